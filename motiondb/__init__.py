@@ -1,0 +1,1 @@
+"""motiondb stage."""
