@@ -1,0 +1,184 @@
+"""Body-part groups from joint names.
+
+Names are matched after dropping a namespace prefix (``mixamorig:``) and
+separators; side comes from ``Left``/``Right`` anywhere, or a lone ``L``/``R``
+prefix or suffix (``LHipJoint``, ``hand.L``, ``Hand_R``). A joint whose name
+says nothing (an end effector, a finger) takes its parent's group. Covered:
+CMU/cgspeed, Mixamo and the built-in skeleton (CMU names).
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+
+from .skeleton import Skeleton
+
+#: The groups a partial action may be declared for, plus the whole halves.
+GROUPS = ("lower", "upper", "right_arm", "left_arm", "both_arms", "head", "torso", "right_leg", "left_leg")
+
+_KEYWORDS = (  # first match wins, so "forearm" is an arm before anything else
+    ("head", ("neck", "head", "jaw", "eye", "nose", "skull")),
+    ("arm", ("shoulder", "clavicle", "collar", "arm", "elbow", "hand", "wrist", "finger", "thumb",
+             "index", "middle", "ring", "pinky", "palm")),
+    ("leg", ("upleg", "thigh", "leg", "knee", "shin", "calf", "foot", "ankle", "toe", "hipjoint", "heel")),
+    ("torso", ("spine", "chest", "back", "abdomen", "torso", "waist", "belly")),
+    ("hips", ("hips", "hip", "pelvis", "root")),
+)
+
+
+class BodyMapError(ValueError):
+    """A skeleton whose joints cannot all be placed in body parts."""
+
+    user_facing = True
+
+
+def _strip(name: str) -> str:
+    return name.rsplit(":", 1)[-1]
+
+
+def side_of(name: str) -> str | None:
+    """``"left"``, ``"right"`` or ``None`` from a joint name."""
+    n = _strip(name)
+    low = n.lower()
+    if "left" in low:
+        return "left"
+    if "right" in low:
+        return "right"
+    if re.match(r"^L(?=[A-Z_.\-])", n) or re.search(r"[_.\-][Ll]$", n) or re.match(r"^l[_.\-]", n):
+        return "left"
+    if re.match(r"^R(?=[A-Z_.\-])", n) or re.search(r"[_.\-][Rr]$", n) or re.match(r"^r[_.\-]", n):
+        return "right"
+    return None
+
+
+def kind_of(name: str) -> str | None:
+    """``head``, ``arm``, ``leg``, ``torso``, ``hips`` or ``None`` from a joint name."""
+    low = re.sub(r"[^a-z0-9]", "", _strip(name).lower())
+    for kind, words in _KEYWORDS:
+        if any(w in low for w in words):
+            return kind
+    return None
+
+
+@dataclass(frozen=True)
+class BodyMap:
+    """Joint indices per body part, and the end effectors metrics and synthesis use.
+
+    ``groups`` maps each name of :data:`GROUPS` (and ``hips``) to a sorted tuple of joint indices.
+    ``feet`` maps ``left``/``right`` to ``(ankle, toe)`` (toe may equal ankle when the skeleton has none).
+    """
+
+    groups: dict[str, tuple[int, ...]]
+    feet: dict[str, tuple[int, int]]
+    hands: dict[str, int]
+    head: int
+    chest: int
+    hips: int = 0
+
+    def joints(self, part: str) -> tuple[int, ...]:
+        try:
+            return self.groups[part]
+        except KeyError:
+            raise BodyMapError(f"unknown body part {part!r}; known: {', '.join(GROUPS)}") from None
+
+
+def _first(skel: Skeleton, members: tuple[int, ...], words: tuple[str, ...]) -> int | None:
+    for j in members:
+        low = re.sub(r"[^a-z0-9]", "", _strip(skel.names[j]).lower())
+        if any(w in low for w in words):
+            return j
+    return None
+
+
+@lru_cache(maxsize=64)
+def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
+    skel_parents = parents
+    labels: list[str | None] = []
+    unplaced = []
+    for j, name in enumerate(names):
+        kind = "hips" if j == 0 else kind_of(name)
+        side = side_of(name)
+        if kind in ("arm", "leg"):
+            if side is None:
+                p = skel_parents[j]
+                inherited = labels[p] if p >= 0 else None
+                if inherited and inherited.startswith(("left_", "right_")) and inherited.endswith(kind):
+                    labels.append(inherited)
+                    continue
+                unplaced.append(name)
+                labels.append(None)
+                continue
+            labels.append(f"{side}_{kind}")
+        elif kind is not None:
+            labels.append(kind)
+        else:
+            p = skel_parents[j]
+            inherited = labels[p] if p >= 0 else None
+            if inherited in (None, "hips", "torso"):
+                unplaced.append(name)
+            labels.append(inherited)
+    if unplaced:
+        raise BodyMapError("cannot place these joints in body parts (no known name pattern): " + ", ".join(unplaced))
+    groups: dict[str, list[int]] = {g: [] for g in (*GROUPS, "hips")}
+    for j, lab in enumerate(labels):
+        groups[lab].append(j)
+    groups["both_arms"] = groups["left_arm"] + groups["right_arm"]
+    groups["lower"] = groups["hips"] + groups["left_leg"] + groups["right_leg"]
+    groups["upper"] = groups["torso"] + groups["head"] + groups["both_arms"]
+    frozen = {g: tuple(sorted(v)) for g, v in groups.items()}
+    missing = [g for g in ("left_leg", "right_leg", "left_arm", "right_arm", "head") if not frozen[g]]
+    if missing:
+        raise BodyMapError("the skeleton has no joints for: " + ", ".join(missing))
+
+    class _S:  # the minimal view _first needs
+        pass
+
+    view = _S()
+    view.names = names
+    feet, hands = {}, {}
+    for side in ("left", "right"):
+        leg = frozen[f"{side}_leg"]
+        ankle = _first(view, leg, ("foot", "ankle"))
+        if ankle is None:
+            raise BodyMapError(f"no {side} foot/ankle joint among: " + ", ".join(names[j] for j in leg))
+        toe = _first(view, leg, ("toe",))
+        if toe is None:
+            kids = [j for j in leg if parents[j] == ankle]
+            toe = kids[0] if kids else ankle
+        feet[side] = (ankle, toe)
+        arm = frozen[f"{side}_arm"]
+        hand = _first(view, arm, ("hand", "wrist"))
+        hands[side] = hand if hand is not None else arm[-1]
+    head = _first(view, frozen["head"], ("head",))
+    head = head if head is not None else frozen["head"][-1]
+    neck = frozen["head"][0]
+    chest = parents[neck] if parents[neck] in frozen["torso"] else (frozen["torso"][-1] if frozen["torso"] else 0)
+    return BodyMap(frozen, feet, hands, head, chest)
+
+
+def body_map(skeleton: Skeleton) -> BodyMap:
+    """The :class:`BodyMap` of ``skeleton``; raises :class:`BodyMapError` naming unplaceable joints."""
+    return _body_map(skeleton.names, tuple(int(p) for p in skeleton.parents))
+
+
+def mirror_index(skeleton: Skeleton) -> list[int]:
+    """For each joint, the index of its left/right counterpart (itself for centre joints)."""
+    names = skeleton.names
+    out = []
+    for n in names:
+        swapped = re.sub(r"Left|Right|left|right|LEFT|RIGHT", lambda m: {"left": "right", "right": "left"}[m.group(0).lower()].capitalize()
+                         if m.group(0)[0].isupper() else {"left": "right", "right": "left"}[m.group(0)], n)
+        if swapped == n:
+            base = _strip(n)
+            prefix = n[: len(n) - len(base)]
+            m = re.match(r"^([LR])(?=[A-Z_.\-])", base)
+            if m:
+                swapped = prefix + ("R" if m.group(1) == "L" else "L") + base[1:]
+            else:
+                m = re.search(r"([_.\-])([LlRr])$", base)
+                if m:
+                    s = {"L": "R", "R": "L", "l": "r", "r": "l"}[m.group(2)]
+                    swapped = prefix + base[: m.start(2)] + s
+        out.append(names.index(swapped) if swapped in names else names.index(n))
+    return out

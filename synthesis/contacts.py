@@ -1,0 +1,134 @@
+"""Foot–ground contact labels and foot-moving intervals.
+
+A foot is its ankle and toe joints. On each frame it is in contact when
+
+- its lowest joint is within :data:`HEIGHT_THRESHOLD` (5 cm) of that foot's
+  floor level, and
+- that joint's horizontal speed is below :data:`SPEED_THRESHOLD` (0.4 m/s).
+
+The floor level of a foot is its planted height: the 5th percentile of its
+lowest joint's height over the clip, clamped to ``[0, 0.10]`` m (joint
+centres sit a few centimetres above the ground: the CMU toes at 1-4 cm).
+Labels are then cleaned by hysteresis: gaps and runs shorter than
+:data:`MIN_PHASE` seconds are absorbed into their neighbours, so a one-frame
+flicker is never a step.
+
+The speed here is a central difference over frames, in m/s.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .bodyparts import body_map
+from .motion import Motion
+
+HEIGHT_THRESHOLD = 0.05  # m above the foot's floor level
+SPEED_THRESHOLD = 0.4  # m/s, horizontal
+MIN_PHASE = 0.05  # s; shorter contact runs or gaps are flicker
+FLOOR_PERCENTILE = 5.0
+MAX_FLOOR = 0.10  # m
+
+
+def runs(mask: np.ndarray) -> np.ndarray:
+    """``(N, 2)`` array of ``[start, stop)`` frame ranges where ``mask`` is true."""
+    m = np.concatenate([[False], np.asarray(mask, dtype=bool), [False]])
+    d = np.diff(m.astype(np.int8))
+    return np.stack([np.flatnonzero(d == 1), np.flatnonzero(d == -1)], axis=1)
+
+
+def _drop_short(mask: np.ndarray, value: bool, min_len: int, keep_edges: bool) -> np.ndarray:
+    out = mask.copy()
+    target = out if value else ~out
+    for a, b in runs(target):
+        at_edge = a == 0 or b == len(mask)
+        if b - a < min_len and not (keep_edges and at_edge):
+            out[a:b] = not value
+    return out
+
+
+def hysteresis(mask: np.ndarray, min_len: int) -> np.ndarray:
+    """Fill interior gaps shorter than ``min_len`` frames, then drop shorter runs."""
+    if min_len <= 1 or len(mask) == 0:
+        return np.asarray(mask, dtype=bool).copy()
+    filled = _drop_short(np.asarray(mask, dtype=bool), False, min_len, keep_edges=True)
+    return _drop_short(filled, True, min_len, keep_edges=False)
+
+
+def horizontal_speed(positions: np.ndarray, fps: float) -> np.ndarray:
+    """Horizontal (XZ) speed in m/s of ``(T, ..., 3)`` positions, ``(T, ...)``."""
+    if len(positions) < 2:
+        return np.zeros(positions.shape[:-1])
+    vel = np.gradient(positions[..., [0, 2]], axis=0) * fps
+    return np.linalg.norm(vel, axis=-1)
+
+
+@dataclass(frozen=True)
+class FootTrack:
+    """Per-frame data of one foot: ``height`` above its floor (m), ``speed`` (m/s), ``joint`` lowest joint index, all ``(T,)``."""
+
+    height: np.ndarray
+    speed: np.ndarray
+    joint: np.ndarray
+
+
+def foot_tracks(motion: Motion) -> dict[str, FootTrack]:
+    """Height above floor and horizontal speed of each foot's lowest joint."""
+    bm = body_map(motion.skeleton)
+    pos = motion.positions
+    out = {}
+    for side, (ankle, toe) in bm.feet.items():
+        pair = pos[:, [ankle, toe]]
+        lowest = np.argmin(pair[:, :, 1], axis=1)
+        rows = np.arange(len(pos))
+        y = pair[rows, lowest, 1]
+        floor = np.clip(np.percentile(y, FLOOR_PERCENTILE), 0.0, MAX_FLOOR) if len(y) else 0.0
+        speed = horizontal_speed(pair, motion.fps)[rows, lowest] if len(y) else y
+        out[side] = FootTrack(y - floor, speed, np.array([ankle, toe])[lowest])
+    return out
+
+
+@dataclass(frozen=True)
+class FootContacts:
+    """Contact labels per foot, ``(T,)`` booleans, at ``fps``."""
+
+    fps: float
+    left: np.ndarray
+    right: np.ndarray
+
+    def of(self, side: str) -> np.ndarray:
+        return {"left": self.left, "right": self.right}[side]
+
+    def intervals(self, side: str) -> list[tuple[int, int]]:
+        """Contact intervals of one foot as ``[start, stop)`` frames."""
+        return [tuple(map(int, r)) for r in runs(self.of(side))]
+
+    def moving(self, side: str) -> list[tuple[int, int]]:
+        """Foot-moving intervals (lift-off to landing) of one foot, ``[start, stop)`` frames."""
+        return [tuple(map(int, r)) for r in runs(~self.of(side))]
+
+    def state(self) -> np.ndarray:
+        """Per-frame contact state code: 0 none, 1 left, 2 right, 3 both, ``(T,)``."""
+        return self.left.astype(np.int8) + 2 * self.right.astype(np.int8)
+
+    def phases(self) -> list[tuple[int, int, str]]:
+        """Runs of equal state as ``(start, stop, "both"|"left"|"right"|"none")``."""
+        st = self.state()
+        if len(st) == 0:
+            return []
+        cuts = np.flatnonzero(np.diff(st)) + 1
+        starts = np.concatenate([[0], cuts])
+        stops = np.concatenate([cuts, [len(st)]])
+        names = ("none", "left", "right", "both")
+        return [(int(a), int(b), names[st[a]]) for a, b in zip(starts, stops)]
+
+
+def detect_contacts(motion: Motion) -> FootContacts:
+    """Contact labels of both feet (see the module docstring for the rule)."""
+    min_len = max(1, int(round(MIN_PHASE * motion.fps)))
+    labels = {}
+    for side, tr in foot_tracks(motion).items():
+        raw = (tr.height < HEIGHT_THRESHOLD) & (tr.speed < SPEED_THRESHOLD)
+        labels[side] = hysteresis(raw, min_len)
+    return FootContacts(motion.fps, labels["left"], labels["right"])

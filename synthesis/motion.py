@@ -1,0 +1,216 @@
+"""A clip of skeletal motion and its forward kinematics.
+
+Shapes: ``T`` frames, ``J`` joints. Root positions ``(T, 3)`` in metres,
+local joint rotations ``(T, J, 4)`` as scipy quaternions ``(x, y, z, w)``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import cached_property
+
+import numpy as np
+from scipy.spatial.transform import Rotation, Slerp
+
+from .skeleton import Skeleton
+
+
+def quat_to_matrix(q: np.ndarray) -> np.ndarray:
+    """Quaternions ``(..., 4)`` to rotation matrices ``(..., 3, 3)``."""
+    flat = q.reshape(-1, 4)
+    if len(flat) == 0:
+        return np.zeros(q.shape[:-1] + (3, 3))
+    return Rotation.from_quat(flat).as_matrix().reshape(q.shape[:-1] + (3, 3))
+
+
+def matrix_to_quat(m: np.ndarray) -> np.ndarray:
+    """Rotation matrices ``(..., 3, 3)`` to quaternions ``(..., 4)``."""
+    flat = m.reshape(-1, 3, 3)
+    if len(flat) == 0:
+        return np.zeros(m.shape[:-2] + (4,))
+    return Rotation.from_matrix(flat).as_quat().reshape(m.shape[:-2] + (4,))
+
+
+def unroll_quaternions(q: np.ndarray) -> np.ndarray:
+    """Flip signs along axis 0 so consecutive quaternions lie in one hemisphere.
+
+    ``q`` is ``(T, ..., 4)``; the result represents the same rotations but
+    differences and blends between neighbouring frames take the short way.
+    """
+    if len(q) < 2:
+        return q.copy()
+    dots = np.sum(q[1:] * q[:-1], axis=-1)
+    flips = np.concatenate([np.ones((1,) + dots.shape[1:]), np.where(dots < 0, -1.0, 1.0)])
+    return q * np.cumprod(flips, axis=0)[..., None]
+
+
+@dataclass(frozen=True)
+class Pose:
+    """World-space result of forward kinematics.
+
+    positions: ``(T, J, 3)`` metres; rotations: ``(T, J, 3, 3)`` world rotation matrices.
+    """
+
+    positions: np.ndarray
+    rotations: np.ndarray
+
+    def quaternions(self) -> np.ndarray:
+        """World rotations as ``(T, J, 4)`` quaternions."""
+        return matrix_to_quat(self.rotations)
+
+
+@dataclass(frozen=True, eq=False)
+class Motion:
+    """Skeletal motion sampled at a fixed frame rate.
+
+    Attributes:
+        skeleton: the joint hierarchy.
+        fps: frames per second.
+        root_positions: ``(T, 3)`` world position of the root joint, metres.
+        rotations: ``(T, J, 4)`` local joint rotations, quaternions (x, y, z, w).
+        translations: ``(T, J, 3)`` local translations for skeletons whose
+            non-root joints carry position channels (rare BVH files); ``None``
+            means every non-root joint sits at its rest offset.
+    """
+
+    skeleton: Skeleton
+    fps: float
+    root_positions: np.ndarray
+    rotations: np.ndarray
+    translations: np.ndarray | None = None
+
+    def __post_init__(self):
+        J = self.skeleton.n_joints
+        rp = np.asarray(self.root_positions, dtype=np.float64).reshape(-1, 3)
+        rot = np.asarray(self.rotations, dtype=np.float64).reshape(-1, J, 4)
+        if len(rp) != len(rot):
+            raise ValueError(f"{len(rp)} root positions for {len(rot)} frames of rotations")
+        if not self.fps > 0:
+            raise ValueError(f"fps must be positive, got {self.fps}")
+        object.__setattr__(self, "root_positions", rp)
+        object.__setattr__(self, "rotations", rot)
+        object.__setattr__(self, "fps", float(self.fps))
+        if self.translations is not None:
+            tr = np.asarray(self.translations, dtype=np.float64).reshape(len(rot), J, 3)
+            object.__setattr__(self, "translations", tr)
+
+    # ------------------------------------------------------------------ size
+    @property
+    def n_frames(self) -> int:
+        return len(self.rotations)
+
+    def __len__(self) -> int:
+        return self.n_frames
+
+    @property
+    def duration(self) -> float:
+        """Seconds covered: frame count times frame time."""
+        return self.n_frames / self.fps
+
+    @property
+    def times(self) -> np.ndarray:
+        """Time of each frame in seconds, ``(T,)``."""
+        return np.arange(self.n_frames) / self.fps
+
+    # -------------------------------------------------------------- kinematics
+    def local_translations(self) -> np.ndarray:
+        """Translation of every joint from its parent, ``(T, J, 3)``; the root's is its world position."""
+        if self.translations is not None:
+            tr = self.translations.copy()
+        else:
+            tr = np.broadcast_to(self.skeleton.offsets, (self.n_frames,) + self.skeleton.offsets.shape).copy()
+        tr[:, 0] = self.root_positions
+        return tr
+
+    @cached_property
+    def pose(self) -> Pose:
+        """Forward kinematics, vectorised over frames (one step per joint)."""
+        local_r = quat_to_matrix(self.rotations)
+        local_t = self.local_translations()
+        world_r = np.empty_like(local_r)
+        world_p = np.empty_like(local_t)
+        for j, p in enumerate(self.skeleton.parents):
+            if p < 0:
+                world_r[:, j] = local_r[:, j]
+                world_p[:, j] = local_t[:, j]
+            else:
+                world_r[:, j] = world_r[:, p] @ local_r[:, j]
+                world_p[:, j] = world_p[:, p] + np.einsum("tij,tj->ti", world_r[:, p], local_t[:, j])
+        world_r.setflags(write=False)
+        world_p.setflags(write=False)
+        return Pose(world_p, world_r)
+
+    @property
+    def positions(self) -> np.ndarray:
+        """World joint positions ``(T, J, 3)``, metres."""
+        return self.pose.positions
+
+    def end_site_positions(self) -> np.ndarray:
+        """World positions of the BVH end sites ``(T, E, 3)``, in ``skeleton.end_sites`` order."""
+        if not self.skeleton.end_sites:
+            return np.zeros((self.n_frames, 0, 3))
+        joints = np.array([j for j, _ in self.skeleton.end_sites])
+        offs = np.stack([o for _, o in self.skeleton.end_sites])
+        pose = self.pose
+        return pose.positions[:, joints] + np.einsum("teij,ej->tei", pose.rotations[:, joints], offs)
+
+    # ---------------------------------------------------------------- editing
+    def replace(self, **changes) -> "Motion":
+        return replace(self, **changes)
+
+    def frames(self, start: int, stop: int | None = None) -> "Motion":
+        """Frames ``start`` .. ``stop - 1`` (Python slice semantics)."""
+        sl = slice(start, stop)
+        return Motion(self.skeleton, self.fps, self.root_positions[sl], self.rotations[sl],
+                      None if self.translations is None else self.translations[sl])
+
+    def __getitem__(self, sl: slice) -> "Motion":
+        if not isinstance(sl, slice) or sl.step not in (None, 1):
+            raise TypeError("a Motion is sliced by a contiguous frame range, e.g. motion[10:50]")
+        return self.frames(sl.start or 0, sl.stop)
+
+    def between(self, t0: float, t1: float) -> "Motion":
+        """The frames whose times lie in ``[t0, t1)`` seconds."""
+        return self.frames(int(np.ceil(t0 * self.fps - 1e-9)), int(np.ceil(t1 * self.fps - 1e-9)))
+
+    def resample(self, fps: float) -> "Motion":
+        """The same motion at another frame rate: slerp for rotations, linear for positions.
+
+        The new frames sample times ``0, 1/fps, ...`` up to the last original frame.
+        """
+        fps = float(fps)
+        if fps == self.fps or self.n_frames < 2:
+            return self.replace(fps=fps)
+        t_old = self.times
+        n_new = int(np.floor(t_old[-1] * fps + 1e-9)) + 1
+        t_new = np.minimum(np.arange(n_new) / fps, t_old[-1])
+        root = np.stack([np.interp(t_new, t_old, self.root_positions[:, k]) for k in range(3)], axis=1)
+        rots = np.empty((n_new, self.skeleton.n_joints, 4))
+        for j in range(self.skeleton.n_joints):
+            rots[:, j] = Slerp(t_old, Rotation.from_quat(self.rotations[:, j]))(t_new).as_quat()
+        trans = None
+        if self.translations is not None:
+            flat = self.translations.reshape(self.n_frames, -1)
+            trans = np.stack([np.interp(t_new, t_old, flat[:, k]) for k in range(flat.shape[1])], axis=1)
+        return Motion(self.skeleton, fps, root, rots, trans)
+
+    def then(self, *others: "Motion") -> "Motion":
+        """Frames of ``self`` followed by those of ``others`` (same skeleton and fps, no alignment)."""
+        return concatenate([self, *others])
+
+
+def concatenate(motions: list[Motion]) -> Motion:
+    """Append motions end to end without any blending or alignment."""
+    if not motions:
+        raise ValueError("nothing to concatenate")
+    first = motions[0]
+    for m in motions[1:]:
+        if not m.skeleton.same_hierarchy(first.skeleton):
+            raise ValueError("cannot concatenate motions of different skeletons")
+        if m.fps != first.fps:
+            raise ValueError(f"cannot concatenate {first.fps} fps with {m.fps} fps; resample first")
+    trans = None
+    if any(m.translations is not None for m in motions):
+        trans = np.concatenate([m.local_translations() for m in motions])
+    return Motion(first.skeleton, first.fps,
+                  np.concatenate([m.root_positions for m in motions]),
+                  np.concatenate([m.rotations for m in motions]), trans)

@@ -1,0 +1,106 @@
+"""The joint hierarchy of a character.
+
+Conventions, kept throughout the project: metres, seconds, Y up,
+right-handed; rotations are scipy quaternions ``(x, y, z, w)``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+POSITION_CHANNELS = ("Xposition", "Yposition", "Zposition")
+ROTATION_CHANNELS = ("Xrotation", "Yrotation", "Zrotation")
+
+
+def _frozen(a, dtype) -> np.ndarray:
+    arr = np.array(a, dtype=dtype, copy=True)
+    arr.setflags(write=False)
+    return arr
+
+
+@dataclass(frozen=True, eq=False)
+class Skeleton:
+    """A joint hierarchy in topological order (every parent before its children).
+
+    Attributes:
+        names: joint names, ``(J,)``.
+        parents: parent index per joint, ``(J,)``; ``-1`` for the root (joint 0).
+        offsets: rest translation of each joint from its parent, ``(J, 3)`` metres.
+        end_sites: ``((joint_index, offset (3,)), ...)``: BVH "End Site" leaves.
+        channels: BVH channel names per joint, in file order, e.g.
+            ``("Xposition", "Yposition", "Zposition", "Zrotation", "Yrotation", "Xrotation")``.
+            The rotation channels' order is the intrinsic Euler order of that joint.
+    """
+
+    names: tuple[str, ...]
+    parents: np.ndarray
+    offsets: np.ndarray
+    end_sites: tuple[tuple[int, np.ndarray], ...] = ()
+    channels: tuple[tuple[str, ...], ...] = field(default=())
+
+    def __post_init__(self):
+        names = tuple(self.names)
+        n = len(names)
+        object.__setattr__(self, "names", names)
+        object.__setattr__(self, "parents", _frozen(self.parents, np.int64).reshape(n))
+        object.__setattr__(self, "offsets", _frozen(self.offsets, np.float64).reshape(n, 3))
+        object.__setattr__(
+            self, "end_sites", tuple((int(j), _frozen(o, np.float64).reshape(3)) for j, o in self.end_sites)
+        )
+        channels = tuple(tuple(c) for c in self.channels) if self.channels else self.default_channels(n)
+        object.__setattr__(self, "channels", channels)
+        if len(channels) != n:
+            raise ValueError(f"{len(channels)} channel lists for {n} joints")
+        if n and self.parents[0] != -1:
+            raise ValueError("joint 0 must be the root")
+        if np.any(self.parents[1:] >= np.arange(1, n)) or np.any(self.parents[1:] < 0):
+            raise ValueError("joints must be listed parents first, with a single root")
+
+    @staticmethod
+    def default_channels(n: int) -> tuple[tuple[str, ...], ...]:
+        """Root: XYZ position + ZYX rotation; others: ZYX rotation (the CMU layout)."""
+        rot = ("Zrotation", "Yrotation", "Xrotation")
+        return tuple((POSITION_CHANNELS + rot) if j == 0 else rot for j in range(n))
+
+    @property
+    def n_joints(self) -> int:
+        return len(self.names)
+
+    def index(self, name: str) -> int:
+        try:
+            return self.names.index(name)
+        except ValueError:
+            raise KeyError(f"no joint named {name!r}") from None
+
+    def children(self, j: int) -> list[int]:
+        return [int(c) for c in np.flatnonzero(self.parents == j)]
+
+    def rotation_order(self, j: int) -> str:
+        """Intrinsic Euler order of joint ``j`` as scipy spells it (e.g. ``"ZYX"``), as listed."""
+        return "".join(c[0] for c in self.channels[j] if c in ROTATION_CHANNELS)
+
+    def has_position_channels(self, j: int) -> bool:
+        return any(c in POSITION_CHANNELS for c in self.channels[j])
+
+    def scaled(self, s: float) -> "Skeleton":
+        """The same hierarchy with every length multiplied by ``s``."""
+        return Skeleton(self.names, self.parents, self.offsets * s,
+                        tuple((j, o * s) for j, o in self.end_sites), self.channels)
+
+    def same_hierarchy(self, other: "Skeleton") -> bool:
+        return self.names == other.names and np.array_equal(self.parents, other.parents)
+
+    def rest_positions(self) -> np.ndarray:
+        """World positions of the joints in the rest pose, root at the origin, ``(J, 3)``."""
+        pos = np.zeros((self.n_joints, 3))
+        for j in range(1, self.n_joints):
+            pos[j] = pos[self.parents[j]] + self.offsets[j]
+        return pos
+
+    def height(self) -> float:
+        """Vertical extent of the rest pose including end sites (metres if the skeleton is)."""
+        pos = self.rest_positions()
+        ends = [pos[j] + o for j, o in self.end_sites]
+        allp = np.vstack([pos, *ends]) if ends else pos
+        return float(np.ptp(allp[:, 1])) if len(allp) else 0.0
