@@ -165,6 +165,8 @@ def _parse_hierarchy(tok: _Tokens):
                     nxt = tok.peek()
                     if nxt == "ROOT":
                         raise tok.error("more than one ROOT: this reader reads one character per file")
+                    if nxt is None:
+                        raise tok.error("unexpected end of file, expected 'MOTION'")
                     if nxt != "MOTION":
                         raise tok.error(f"expected 'MOTION' after the hierarchy, found {nxt!r}")
                     return names, parents, offsets, channels, end_sites
@@ -308,8 +310,8 @@ def _build_motion(skel: Skeleton, data: np.ndarray, fps: float) -> Motion:
 def _z_up_to_y_up(m: Motion) -> Motion:
     c = _Z_TO_Y
     skel = m.skeleton
-    new_skel = Skeleton(skel.names, skel.parents, c.apply(skel.offsets),
-                        tuple((j, c.apply(o)) for j, o in skel.end_sites), skel.channels)
+    new_skel = Skeleton(skel.names, skel.parents, c.apply(np.array(skel.offsets)),
+                        tuple((j, c.apply(np.array(o))) for j, o in skel.end_sites), skel.channels)
     T, J = m.rotations.shape[:2]
     r = Rotation.from_quat(m.rotations.reshape(-1, 4))
     cc = Rotation.concatenate([c] * len(r)) if len(r) else c
@@ -397,7 +399,9 @@ def _channel_values(m: Motion) -> np.ndarray:
         if not chans:
             continue
         order = skel.rotation_order(j)
-        euler = Rotation.from_quat(m.rotations[:, j]).as_euler(_full_order(order), degrees=True) if T and order else None
+        euler = np.zeros((T, 3))
+        if T and order:
+            euler = Rotation.from_quat(m.rotations[:, j]).as_euler(_full_order(order), degrees=True)
         pos = local_t[:, j] - skel.offsets[j]
         block = np.empty((T, len(chans)))
         for k, c in enumerate(chans):

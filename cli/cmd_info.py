@@ -1,0 +1,50 @@
+"""``text2anim info FILE.bvh``: skeleton summary, frames, fps, duration, contact phases."""
+from __future__ import annotations
+
+from synthesis import read_bvh
+from synthesis.bodyparts import BodyMapError, body_map
+from synthesis.contacts import detect_contacts
+
+from .bvh_options import add_read_options, read_options
+
+NAME = "info"
+HELP = "summarise a BVH file: skeleton, frames, fps, duration, foot contact phases"
+
+
+def add_arguments(p):
+    p.add_argument("file", help="a BVH file")
+    add_read_options(p)
+
+
+def _tree(skel) -> list[str]:
+    depth = [0] * skel.n_joints
+    lines = []
+    for j, p in enumerate(skel.parents):
+        depth[j] = 0 if p < 0 else depth[p] + 1
+        order = skel.rotation_order(j) or "-"
+        lines.append(f"  {'  ' * depth[j]}{skel.names[j]}  [{len(skel.channels[j])} ch, {order}]")
+    return lines
+
+
+def run(args) -> int:
+    m = read_bvh(args.file, **read_options(args))
+    s = m.skeleton
+    print(f"file:      {args.file}")
+    print(f"frames:    {m.n_frames} at {m.fps:.3f} fps, {m.duration:.3f} s")
+    print(f"skeleton:  {s.n_joints} joints, {len(s.end_sites)} end sites, rest height {s.height():.3f} m")
+    print(f"root:      {s.names[0]}")
+    print(*_tree(s), sep="\n")
+    if m.n_frames == 0:
+        return 0
+    try:
+        body_map(s)
+    except BodyMapError as exc:
+        print(f"contacts:  not available ({exc})")
+        return 0
+    c = detect_contacts(m)
+    for side in ("left", "right"):
+        iv = c.intervals(side)
+        print(f"{side + ' foot:':10} {len(iv)} contacts: "
+              + ", ".join(f"{a / m.fps:.2f}-{b / m.fps:.2f}s" for a, b in iv))
+    print("phases:    " + " ".join(f"{st}({(b - a) / m.fps:.2f}s)" for a, b, st in c.phases()))
+    return 0

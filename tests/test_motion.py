@@ -1,0 +1,80 @@
+"""Motion core: forward kinematics, slicing, resampling, concatenation."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from shared_data import cmu
+from synthesis import Motion, Skeleton, concatenate, read_bvh
+from synthesis.motion import unroll_quaternions
+
+
+def _chain():
+    return Skeleton(["root", "a", "b"], [-1, 0, 1], [[0, 0, 0], [0, 1, 0], [0, 1, 0]])
+
+
+def test_fk_matches_rotations_composed_by_hand():
+    rng = np.random.default_rng(0)
+    rots = Rotation.random(3 * 5, random_state=1).as_quat().reshape(5, 3, 4)
+    root = rng.normal(size=(5, 3))
+    m = Motion(_chain(), 30, root, rots)
+    for t in range(5):
+        r0, r1 = Rotation.from_quat(rots[t, 0]), Rotation.from_quat(rots[t, 1])
+        a = root[t] + r0.apply([0, 1, 0])
+        b = a + (r0 * r1).apply([0, 1, 0])
+        np.testing.assert_allclose(m.positions[t], [root[t], a, b], atol=1e-12)
+        np.testing.assert_allclose(m.pose.rotations[t, 2], (r0 * r1 * Rotation.from_quat(rots[t, 2])).as_matrix(), atol=1e-12)
+
+
+def test_slicing_by_frames_and_time():
+    m = read_bvh(cmu("16_35_run"), drop_first=True)
+    part = m[10:40]
+    assert part.n_frames == 30
+    np.testing.assert_allclose(part.positions, m.positions[10:40])
+    t = m.between(0.25, 0.5)
+    assert t.n_frames == pytest.approx(0.25 * m.fps, abs=1)
+    np.testing.assert_allclose(t.positions[0], m.positions[int(np.ceil(0.25 * m.fps - 1e-9))])
+    with pytest.raises(TypeError):
+        m[::2]
+
+
+def test_resample_keeps_poses_at_shared_times():
+    m = read_bvh(cmu("16_35_run"), drop_first=True)
+    r = m.resample(30)
+    assert r.fps == 30
+    assert r.duration == pytest.approx(m.duration, abs=2 / 30)
+    # Every 4th frame at 120 fps is a frame at 30 fps (to the file's 1e-6 rounding of the frame time).
+    k = np.arange(r.n_frames)
+    np.testing.assert_allclose(r.positions, m.positions[np.round(k * m.fps / 30).astype(int)], atol=2e-3)
+
+
+def test_resample_slerps_between_frames():
+    q = Rotation.from_euler("z", [[0], [90]], degrees=True).as_quat()
+    rots = np.stack([np.tile([0, 0, 0, 1.0], (2, 1)), q, np.tile([0, 0, 0, 1.0], (2, 1))], axis=1)
+    m = Motion(_chain(), 1, np.zeros((2, 3)), rots)
+    mid = m.resample(2).rotations[1, 1]
+    assert Rotation.from_quat(mid).magnitude() == pytest.approx(np.radians(45))
+
+
+def test_concatenate_appends_frames():
+    m = read_bvh(cmu("16_35_run"), drop_first=True)
+    both = concatenate([m[:10], m[10:25]])
+    np.testing.assert_allclose(both.positions, m.positions[:25])
+    with pytest.raises(ValueError, match="resample"):
+        concatenate([m, m.resample(30)])
+
+
+def test_unroll_keeps_neighbours_in_one_hemisphere():
+    q = Rotation.from_euler("z", np.linspace(0, 720, 50)[:, None], degrees=True).as_quat()
+    q[1::2] *= -1
+    u = unroll_quaternions(q)
+    assert np.all(np.sum(u[1:] * u[:-1], axis=-1) > 0)
+    np.testing.assert_allclose(Rotation.from_quat(u).as_matrix(), Rotation.from_quat(q).as_matrix(), atol=1e-12)
+
+
+def test_motion_rejects_mismatched_shapes():
+    with pytest.raises(ValueError):
+        Motion(_chain(), 30, np.zeros((4, 3)), np.zeros((5, 3, 4)))
+    with pytest.raises(ValueError):
+        Motion(_chain(), 0, np.zeros((1, 3)), np.tile([0, 0, 0, 1.0], (1, 3, 1)))
