@@ -1,0 +1,113 @@
+"""What the synthesis stage is asked to do: clips placed on actor tracks.
+
+These frozen records are the contract between the pipeline (which turns the
+scheduler's time table and the database's clips into them) and the engines
+in this package. Times are seconds; ``start``/``end`` are on the actor's own
+track (0 = the start of the animation).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .motion import Motion
+
+#: How an element is joined to ``prev`` (timetable.md §1).
+METHODS = ("initial", "connection", "transition", "composition")
+
+
+@dataclass(frozen=True, eq=False)
+class Clip:
+    """A source clip with the metadata synthesis uses.
+
+    Attributes:
+        name: the clip's name in the database.
+        motion: its frames (metres, Y up).
+        core: ``(begin, end)`` seconds of clip time that must be kept (コア区間).
+        cyclic: the clip loops (its last frame flows into its first).
+        body_part: the group a partial clip is declared for (``right_arm``), ``None`` for whole-body.
+    """
+
+    name: str
+    motion: Motion
+    core: tuple[float, float]
+    cyclic: bool = False
+    body_part: str | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class Element:
+    """One motion on an actor's track.
+
+    Attributes:
+        id: the time table's element id.
+        clip: the source clip.
+        start: when the element begins on the track (s).
+        end: when it ends (s); ``end - start`` is the played length after
+            speed, repeats, looping (cyclic clips) or holding/trimming.
+        method: one of :data:`METHODS`; how it joins ``prev``.
+        prev: id of the element it is joined to (the base motion for a
+            composition); ``None`` for ``initial``.
+        speed: time scale (2.0 plays twice as fast).
+        repeat: how many times the clip is performed.
+        hold: たまま — this element's end pose stays as the base while the
+            element composed onto it plays.
+        body_part: for a composition, the part taken from this clip (may be
+            the mirror of the clip's declared part: ``left_arm`` from a
+            ``right_arm`` clip).
+    """
+
+    id: int
+    clip: Clip
+    start: float
+    end: float
+    method: str
+    prev: int | None = None
+    speed: float = 1.0
+    repeat: int = 1
+    hold: bool = False
+    body_part: str | None = None
+
+    def __post_init__(self):
+        if self.method not in METHODS:
+            raise ValueError(f"unknown method {self.method!r}")
+        if self.end < self.start:
+            raise ValueError(f"element {self.id} ends before it starts")
+
+
+@dataclass(frozen=True, eq=False)
+class Track:
+    """All elements of one actor, and where the actor stands at time 0.
+
+    ``origin`` is the (x, z) ground position in metres and ``heading`` the
+    facing angle in radians about +Y (0 faces +Z).
+    """
+
+    actor: str | None
+    elements: tuple[Element, ...]
+    origin: tuple[float, float] = (0.0, 0.0)
+    heading: float = 0.0
+
+
+@dataclass(frozen=True)
+class BlendInterval:
+    """One blend of a join: body ``part`` (``lower``/``upper``/``whole`` or a group), the blend
+    ``kind`` (``motion-motion``, ``pose-pose``, ``motion-pose``, ``pose-motion``) and its track times (s)."""
+
+    part: str
+    kind: str
+    begin: float
+    end: float
+
+
+@dataclass(frozen=True)
+class JoinReport:
+    """What the synthesizer decided for one join (timetable.md §2)."""
+
+    first: int
+    second: int
+    method: str
+    blend: str
+    intervals: tuple[BlendInterval, ...]
+    cost: dict | None = None
+    metrics: dict = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
