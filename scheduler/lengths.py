@@ -1,0 +1,46 @@
+"""How long an element plays, and where a transition may overlap it (seconds)."""
+from __future__ import annotations
+
+import math
+
+from .types import ClipTiming
+
+
+def played_length(clip: ClipTiming, speed: float, repeat: int, duration: float | None) -> float:
+    """Seconds an element plays after speed, repeats and an explicit duration.
+
+    A cyclic clip loops to fill ``duration``; any other clip plays whole and
+    then holds its last pose, or is trimmed, but never inside its core.
+    """
+    if duration is not None:
+        return duration if clip.cyclic else max(duration, clip.core[1] / speed)
+    return repeat * clip.duration / speed
+
+
+def moving_intervals(clip: ClipTiming, speed: float, length: float) -> list[tuple[float, float]]:
+    """Foot-moving intervals in element time over ``[0, length]``, a looping clip's repeated each cycle."""
+    period = clip.duration / speed
+    cycles = max(1, math.ceil(length / period)) if period > 0 else 1
+    out = []
+    for k in range(cycles):
+        for a, b in clip.foot_moving:
+            a2, b2 = k * period + a / speed, k * period + b / speed
+            if a2 < length:
+                out.append((a2, min(b2, length)))
+    return sorted(out)
+
+
+def transition_window(clip: ClipTiming, speed: float, repeat: int, length: float) -> tuple[float, float] | None:
+    """The foot-moving interval (element time) over which the next motion overlaps this one.
+
+    Cyclic clips: the last step that fits in the played length. Others: the
+    first foot-moving interval after the core (of the last repetition).
+    ``None`` when the clip has none: the next motion then starts at the end.
+    """
+    steps = moving_intervals(clip, speed, length)
+    if clip.cyclic:
+        whole = [s for s in steps if s[1] <= length + 1e-9 and s[1] - s[0] > 1e-3]
+        return whole[-1] if whole else None
+    core_end = (repeat - 1) * clip.duration / speed + clip.core[1] / speed
+    after = [s for s in steps if s[0] >= core_end - 1e-9 and s[1] - s[0] > 1e-3]
+    return after[0] if after else None

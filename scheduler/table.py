@@ -1,0 +1,25 @@
+"""The time table as the paper prints it (section 5.2), plus start and end times."""
+from __future__ import annotations
+
+from .types import TimeTable
+
+_METHOD_NAMES = {"initial": "初期動作", "connection": "Connection", "transition": "Transition",
+                 "composition": "Composition"}
+
+
+def format_table(table: TimeTable) -> str:
+    """One block per element: 要素 / 動作主格 / 動作データ / 動作名 / 接続形式 / 前要素 / 開始 / 終了."""
+    out = [f"入力: 「{table.text}」", ""]
+    for e in table.elements:
+        out.append(f"[要素 {e.id}]")
+        out.append(f"  動作主格  {e.actor or '(既定のキャラクター)'}")
+        part = f"  (部位: {e.body_part})" if e.body_part else ""
+        out.append(f"  動作データ {e.clip}{part}")
+        out.append(f"  動作名    {e.verb}")
+        out.append(f"  接続形式  {_METHOD_NAMES[e.method]}")
+        if e.prev is not None:
+            out.append(f"  前要素    要素 {e.prev}")
+        out.append(f"  開始      {e.start:.2f} s")
+        out.append(f"  終了      {e.end:.2f} s")
+        out.append("")
+    return "\n".join(out).rstrip() + "\n"

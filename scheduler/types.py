@@ -1,0 +1,88 @@
+"""What the scheduler reads (clip timing) and writes (the motion time table)."""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+
+#: Time-table methods (timetable.md §1).
+METHODS = ("initial", "connection", "transition", "composition")
+
+
+@dataclass(frozen=True)
+class ClipTiming:
+    """The metadata of a retrieved clip that timing depends on (seconds of clip time).
+
+    Attributes:
+        name: the clip's name in the database.
+        duration: its length.
+        core: ``(begin, end)`` of its core interval (コア区間).
+        cyclic: the clip loops.
+        body_part: the group a partial clip is declared for; ``None`` for whole-body.
+        foot_moving: ``((begin, end), ...)`` intervals where one foot is off the ground, sorted.
+        character: the character (skeleton) the clip belongs to.
+    """
+
+    name: str
+    duration: float
+    core: tuple[float, float]
+    cyclic: bool = False
+    body_part: str | None = None
+    foot_moving: tuple[tuple[float, float], ...] = ()
+    character: str = "default"
+
+
+@dataclass(frozen=True)
+class Element:
+    """One row of the motion time table (Table 1 of paper 003), times in seconds on the actor's track.
+
+    ``body_part`` is set for a composition: the part taken from this element's clip.
+    ``speed``, ``repeat``, ``hold`` and ``delay`` say how the clip is played.
+    """
+
+    id: int
+    actor: str | None
+    verb: str
+    clip: str
+    method: str
+    prev: int | None
+    start: float
+    end: float
+    body_part: str | None = None
+    speed: float = 1.0
+    repeat: int = 1
+    hold: bool = False
+    delay: float | None = None
+
+    def to_dict(self) -> dict:
+        return {
+            "id": self.id, "actor": self.actor, "verb": self.verb, "clip": self.clip,
+            "method": self.method, "prev": self.prev,
+            "start": round(self.start, 3), "end": round(self.end, 3), "body_part": self.body_part,
+            "speed": self.speed, "repeat": self.repeat, "hold": self.hold,
+        }
+
+
+@dataclass(frozen=True)
+class TimeTable:
+    """The motion time table: every element, ordered by id."""
+
+    text: str
+    fps: float
+    elements: tuple[Element, ...]
+
+    def to_dict(self) -> dict:
+        return {"text": self.text, "fps": self.fps, "elements": [e.to_dict() for e in self.elements]}
+
+    def to_json(self, indent: int | None = 2) -> str:
+        return json.dumps(self.to_dict(), ensure_ascii=False, indent=indent)
+
+    def actors(self) -> list[str | None]:
+        """Actors in order of first appearance."""
+        seen: list[str | None] = []
+        for e in self.elements:
+            if e.actor not in seen:
+                seen.append(e.actor)
+        return seen
+
+    def element(self, id: int) -> Element:
+        return next(e for e in self.elements if e.id == id)
