@@ -1,0 +1,30 @@
+"""``text2anim plan TEXT``: the motion time table of a text, clips from the motion database."""
+from __future__ import annotations
+
+import argparse
+import sys
+
+from .cmd_parse import read_text
+
+NAME = "plan"
+HELP = "build the motion time table of a text (which clip, how joined, when)"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("text", metavar="TEXT", help="the text, or - to read it from standard input")
+    p.add_argument("--json", action="store_true", help="print the JSON of timetable.md §1")
+    p.add_argument("--db", metavar="URL", help="motion database (SQLAlchemy URL or SQLite path; "
+                   "default: $TEXT2ANIM_DB or the user's data directory)")
+    p.add_argument("--fps", type=float, default=30.0, help="frame rate recorded in the table (default 30)")
+    p.add_argument("--skip-unknown", action="store_true", help="drop motions whose verb the database lacks")
+
+
+def run(args: argparse.Namespace) -> int:
+    import text2anim
+    from scheduler import format_table
+
+    planned = text2anim.plan(read_text(args.text), args.db, fps=args.fps, skip_unknown=args.skip_unknown)
+    for verb in planned.skipped:
+        print(f"text2anim: skipped {verb}: not in the motion database", file=sys.stderr)
+    sys.stdout.write(planned.table.to_json() + "\n" if args.json else format_table(planned.table))
+    return 0

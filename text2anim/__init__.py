@@ -1,0 +1,27 @@
+"""text2anim: Japanese text to character animation.
+
+The public Python API; the command line is a thin layer over it::
+
+    import text2anim
+    planned = text2anim.plan("太郎は走って、ボールを蹴る。そして喜ぶ。")
+    print(planned.table.to_json())
+"""
+from __future__ import annotations
+
+__version__ = "0.1.0"
+
+
+def plan(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False):
+    """Analyse ``text`` and build its motion time table with clips from ``db``.
+
+    ``db`` is a :class:`motiondb.MotionDB`, a database URL or path, or ``None``
+    for the default database (created with the built-in library on first use).
+    """
+    from motiondb import MotionDB
+
+    from .pipeline import plan_text
+
+    if isinstance(db, MotionDB):
+        return plan_text(text, db, fps=fps, skip_unknown=skip_unknown)
+    with MotionDB.open(db) as opened:
+        return plan_text(text, opened, fps=fps, skip_unknown=skip_unknown)
