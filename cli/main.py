@@ -19,6 +19,10 @@ COMMAND_MODULES = [
     "cli.cmd_info",
     "cli.cmd_metrics",
     "cli.cmd_convert",
+    "cli.cmd_db",
+    "cli.cmd_parse",
+    "cli.cmd_plan",
+    "cli.cmd_batch",
 ]
 
 EXIT_USER_ERROR = 2
