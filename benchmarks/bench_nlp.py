@@ -1,0 +1,164 @@
+"""Benchmark of the nlp stage: ``python benchmarks/bench_nlp.py``.
+
+Prints one table:
+
+- parse throughput: sentences/s through ``nlp.analyze``, warm, one process,
+  over the project corpus (tests/corpus/nlp_corpus.jsonl);
+- cold start: wall time of ``python -m cli.main parse TEXT --json`` as a whole
+  process (median of several runs), next to a bare ``python -c pass``;
+- GiNZA (only if ``ginza`` and ``ja_ginza`` are importable; install them in
+  a development venv only, they are not a dependency): load time, throughput
+  on the same sentences, the speed ratio, and the predicate-link agreement —
+  the fraction of our predicate -> head links (bunsetsu level) that GiNZA's
+  dependency tree also makes.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+CORPUS = ROOT / "tests" / "corpus" / "nlp_corpus.jsonl"
+COLD_TEXT = "太郎は走って、ボールを蹴る。そして喜ぶ。"
+
+sys.path.insert(0, str(ROOT))
+
+
+def load_sentences() -> list[str]:
+    lines = CORPUS.read_text(encoding="utf-8").splitlines()
+    return [json.loads(x)["text"] for x in lines if x.startswith("{")]
+
+
+def parse_all(sentences: list[str]) -> list:
+    from nlp import NLPError, analyze
+
+    out = []
+    for s in sentences:
+        try:
+            out.append(analyze(s))
+        except NLPError:
+            out.append(None)
+    return out
+
+
+def throughput(fn, sentences: list[str], seconds: float) -> float:
+    fn(sentences)  # warm up (tagger, caches)
+    n, start = 0, time.perf_counter()
+    while time.perf_counter() - start < seconds:
+        fn(sentences)
+        n += len(sentences)
+    return n / (time.perf_counter() - start)
+
+
+def cold_start(runs: int) -> tuple[float, float, float]:
+    """Median wall seconds of a whole `parse` process, of the nlp stage alone in
+    a process (no CLI dispatcher, which imports every sub-command), and of a
+    bare interpreter."""
+    def median_of(cmd):
+        times = []
+        for _ in range(runs):
+            t = time.perf_counter()
+            subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True)
+            times.append(time.perf_counter() - t)
+        return statistics.median(times)
+
+    parse = median_of([sys.executable, "-m", "cli.main", "parse", COLD_TEXT, "--json"])
+    alone = median_of([sys.executable, "-c",
+                       f"import nlp; print(nlp.analyze({COLD_TEXT!r}).to_json())"])
+    bare = median_of([sys.executable, "-c", "pass"])
+    return parse, alone, bare
+
+
+def our_links(analyses) -> list[tuple[int, tuple[int, int], tuple[int, int], bool]]:
+    """(sentence no., dependent span, head span, head is the nearest motion) per link."""
+    links = []
+    for n, a in enumerate(analyses):
+        if a is None:
+            continue
+        motions = [b for b in a.bunsetsu if b.role == "motion"]
+        for k, b in enumerate(motions):
+            if b.head is None:
+                continue
+            head = a.bunsetsu[b.head]
+            nearest = k + 1 < len(motions) and motions[k + 1].index == head.index
+            links.append((n, b.span, head.span, nearest))
+    return links
+
+
+def ginza_heads(doc, span: tuple[int, int]):
+    """Tokens whose head lies outside the character range ``span``."""
+    inside = [t for t in doc if span[0] <= t.idx < span[1]]
+    return [t.head for t in inside if not (span[0] <= t.head.idx < span[1])]
+
+
+def ginza_bench(sentences: list[str], analyses, seconds: float) -> dict | None:
+    try:
+        import spacy  # noqa: F401
+        import ginza  # noqa: F401
+    except ImportError:
+        return None
+    t = time.perf_counter()
+    try:
+        nlp = spacy.load("ja_ginza")
+    except OSError:
+        return None
+    load = time.perf_counter() - t
+    docs = list(nlp.pipe(sentences))
+    rate = throughput(lambda ss: list(nlp.pipe(ss)), sentences, seconds)
+    agree = agree_far = far = 0
+    links = our_links(analyses)
+    for n, dep, head, nearest in links:
+        ok = any(head[0] <= h.idx < head[1] for h in ginza_heads(docs[n], dep))
+        agree += ok
+        if not nearest:
+            far += 1
+            agree_far += ok
+    return {"load": load, "rate": rate, "links": len(links), "agree": agree,
+            "far": far, "agree_far": agree_far}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--seconds", type=float, default=3.0, help="time per throughput run")
+    ap.add_argument("--runs", type=int, default=7, help="process runs for the cold start")
+    args = ap.parse_args(argv)
+
+    sentences = load_sentences()
+    ours = throughput(parse_all, sentences, args.seconds)
+    analyses = parse_all(sentences)
+    cold, alone, bare = cold_start(args.runs)
+    g = ginza_bench(sentences, analyses, args.seconds)
+
+    rows = [
+        ("corpus sentences", f"{len(sentences)}"),
+        ("parse throughput (warm, 1 process)", f"{ours:,.0f} sentences/s"),
+        ("cold start `text2anim parse` (median)", f"{cold * 1000:.0f} ms"),
+        ("cold start nlp alone (import + analyze)", f"{alone * 1000:.0f} ms"),
+        ("bare interpreter", f"{bare * 1000:.0f} ms"),
+    ]
+    if g is None:
+        rows.append(("GiNZA", "not installed"))
+    else:
+        rows += [
+            ("GiNZA model load", f"{g['load'] * 1000:.0f} ms"),
+            ("GiNZA throughput (warm)", f"{g['rate']:,.0f} sentences/s"),
+            ("speed ratio (ours / GiNZA)", f"{ours / g['rate']:.0f}x"),
+            ("predicate-link agreement", f"{g['agree']}/{g['links']} = {g['agree'] / max(1, g['links']):.0%}"),
+            ("  on links past the nearest motion",
+             f"{g['agree_far']}/{g['far']} = {g['agree_far'] / max(1, g['far']):.0%}"),
+        ]
+    width = max(len(k) for k, _ in rows)
+    print(f"{'measure':<{width}}  value")
+    print(f"{'-' * width}  {'-' * 24}")
+    for k, v in rows:
+        print(f"{k:<{width}}  {v}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,73 @@
+"""``text2anim parse``: the motions and temporal constraints of a text."""
+from __future__ import annotations
+
+import argparse
+import sys
+
+NAME = "parse"
+HELP = "analyse Japanese text: motions and temporal constraints (no database needed)"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("text", metavar="TEXT", help="the text, or - to read it from standard input")
+    parser.add_argument("--json", action="store_true",
+                        help="print the JSON object of language.md §5")
+    parser.add_argument("--explain", action="store_true",
+                        help="also print the bunsetsu and the head each one depends on")
+
+
+def read_text(arg: str) -> str:
+    """TEXT itself, or standard input (surrounding whitespace removed) for ``-``."""
+    if arg == "-":
+        return sys.stdin.read().strip()
+    return arg
+
+
+def run(args: argparse.Namespace) -> int:
+    from nlp import analyze  # lazy: keeps `text2anim --help` fast
+
+    analysis = analyze(read_text(args.text))
+    out = sys.stdout
+    if args.json:
+        out.write(analysis.to_json() + "\n")
+    else:
+        out.write(format_listing(analysis))
+    if args.explain:
+        out.write(format_explain(analysis))
+    return 0
+
+
+def format_listing(analysis) -> str:
+    """The readable form: one line per motion, one per constraint."""
+    lines = [f"text: {analysis.text}", "motions:"]
+    for m in analysis.motions:
+        extras = [f"{k}={v}" for k, v in (
+            ("object", m.object), ("body_part", m.body_part),
+            ("repeat", m.repeat if m.repeat != 1 else None),
+            ("speed", m.speed if m.speed != 1.0 else None),
+            ("duration", f"{m.duration:g}s" if m.duration is not None else None),
+            ("hold", "yes" if m.hold else None)) if v is not None]
+        actor = m.actor or "(default)"
+        word = analysis.text[m.span[0]:m.span[1]]
+        lines.append(f"  {m.id:>2}  {actor}  {m.verb}  {' '.join(extras)}".rstrip()
+                     + f"  [{m.span[0]},{m.span[1]}) {word}")
+    lines.append("constraints:" if analysis.constraints else "constraints: (none)")
+    for c in analysis.constraints:
+        if c.relation == "parallel":
+            timing = "parallel"
+        else:
+            timing = "serial, " + ("overlap" if c.overlap else "no overlap")
+        delay = f", delay {c.delay:g}s" if c.delay is not None else ""
+        lines.append(f"  {c.first:>2} -> {c.second:<2} {c.method:<11} {timing}{delay}  ({c.cue})")
+    return "\n".join(lines) + "\n"
+
+
+def format_explain(analysis) -> str:
+    """The bunsetsu, their roles and heads: why each link was made."""
+    lines = ["bunsetsu (index, text, head, role, why):"]
+    texts = {b.index: b.text.strip() for b in analysis.bunsetsu}
+    for b in analysis.bunsetsu:
+        head = f"-> {b.head} {texts[b.head]}" if b.head is not None else "-> (none)"
+        why = f"  [{b.why}]" if b.why else ""
+        lines.append(f"  {b.index:>3} {b.text.strip()}  {head}  {b.role}{why}")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,140 @@
+"""Word lists of the nlp stage: the small lexicon the rules rely on.
+
+Everything language-specific that is a *list* rather than a *rule* lives here,
+so a reader can see at a glance which words the analyzer knows about.
+"""
+from __future__ import annotations
+
+#: Verbs of the built-in motion library, in the spelling the motion database
+#: uses.  The analyzer normalises every spelling variant to these lemmas.
+LIBRARY_VERBS = frozenset(
+    """歩く 走る 下がる スキップする 止まる 立ち止まる ジャンプする 跳ぶ 飛ぶ 転ぶ 倒れる
+    回る 踊る 座る 立ち上がる 立つ しゃがむ 蹴る 殴る 構える 投げる 拾う 持ち上げる 置く 押す
+    引く キャッチする 受け取る 振る 上げる 広げる 拍手する 叩く 指さす うなずく 見回す 見上げる
+    お辞儀する 振り向く 振り返る 喜ぶ ガッツポーズする 泣く 笑う 伸びする 待つ""".split()
+)
+
+#: UniDic lemma (or written base form) -> library spelling, where they differ.
+#: とぶ is read as a jump: a character on the ground jumps, it does not fly.
+VERB_ALIASES = {
+    "頷く": "うなずく",
+    "指差す": "指さす",
+    "とぶ": "跳ぶ",
+    "屈む": "しゃがむ",
+}
+
+#: Reading (katakana, base form) -> library verb, for verbs written in
+#: hiragana that UniDic reads as another word (たつ -> 経つ, but 立つ is meant).
+#: トブ goes to 跳ぶ for the reason given at VERB_ALIASES.
+LIBRARY_BY_READING = {
+    "ウナズク": "うなずく", "シャガム": "しゃがむ", "アゲル": "上げる", "サガル": "下がる",
+    "タオレル": "倒れる", "ウケトル": "受け取る", "タタク": "叩く", "ヨロコブ": "喜ぶ",
+    "マワル": "回る", "ヒロゲル": "広げる", "スワル": "座る", "ヒク": "引く", "マツ": "待つ",
+    "ナゲル": "投げる", "オス": "押す", "ヒロウ": "拾う", "モチアゲル": "持ち上げる",
+    "ユビサス": "指さす", "フリムク": "振り向く", "フリカエル": "振り返る", "フル": "振る",
+    "カマエル": "構える", "トマル": "止まる", "アルク": "歩く", "ナグル": "殴る", "ナク": "泣く",
+    "タチアガル": "立ち上がる", "タチドマル": "立ち止まる", "タツ": "立つ", "ワラウ": "笑う",
+    "オク": "置く", "ミアゲル": "見上げる", "ミマワス": "見回す", "ハシル": "走る",
+    "トブ": "跳ぶ", "オドル": "踊る", "ケル": "蹴る", "コロブ": "転ぶ",
+}
+
+#: Body-part nouns (marked with を or で) -> body_part value.
+#: Values: right_arm, left_arm, both_arms, arm (side unspecified),
+#: right_leg, left_leg, leg (side unspecified or both), head, torso.
+BODY_PARTS = {
+    "右手": "right_arm", "右腕": "right_arm",
+    "左手": "left_arm", "左腕": "left_arm",
+    "両手": "both_arms", "両腕": "both_arms",
+    "手": "arm", "腕": "arm",
+    "右足": "right_leg", "右脚": "right_leg",
+    "左足": "left_leg", "左脚": "left_leg",
+    "足": "leg", "脚": "leg", "両足": "leg", "両脚": "leg",
+    "頭": "head", "首": "head", "顔": "head",
+    "腰": "torso", "体": "torso", "身体": "torso", "からだ": "torso",
+    "上体": "torso", "上半身": "torso", "背中": "torso", "胸": "torso",
+}
+
+#: 右の手 / 左の足: a side noun + の before a body part.
+SIDE_PREFIX = {"右": "right", "左": "left", "両方": "both"}
+
+#: Manner adverbs -> speed factor (1.0 = the clip's own speed).
+#: Slower: ゆっくり 0.6 is a clearly slower but still natural pace.
+#: Faster: 1.5 for "quickly / in a hurry", 1.3 for a brisk but not rushed one.
+SPEED_WORDS = {
+    "ゆっくり": 0.6, "ゆっくりと": 0.6, "ゆったり": 0.6, "ゆったりと": 0.6,
+    "のんびり": 0.7, "のんびりと": 0.7, "そっと": 0.8, "静かに": 0.8,
+    "素早く": 1.5, "すばやく": 1.5, "速く": 1.5, "早く": 1.5, "はやく": 1.5,
+    "急いで": 1.5, "慌てて": 1.5, "あわてて": 1.5, "全力で": 1.5,
+    "さっと": 1.3, "勢いよく": 1.3, "元気よく": 1.3,
+}
+
+#: て-forms used as manner adverbs: never a motion of their own.
+MANNER_TE = frozenset(
+    """急いで 慌てて あわてて 黙って だまって 落ち着いて 頑張って がんばって 思い切って
+    張り切って 揃って そろって 改めて 初めて 続けて 気をつけて 注意して""".split()
+)
+
+#: Verbs that are states or formal verbs, not motions (compared by lemma).
+NON_ACTION_LEMMAS = frozenset(
+    """居る 有る 在る 成る 出来る 思う 考える 分かる 見える 聞こえる 要る 知る 似る 違う
+    為る 御座る 居す""".split()
+)
+
+#: Auxiliary verbs after a て-form (written base form): folded into the verb.
+#: 置く / 見る written in kanji stay main verbs (持ち上げて置く = put it down).
+AUX_AFTER_TE = frozenset(
+    """いる ある おく みる しまう いく 行く くる 来る もらう あげる くれる ください 下さい
+    おる""".split()
+)
+
+#: Aspect auxiliaries after a 連用形 verb (written base form): folded.
+ASPECT_AUX = frozenset(
+    """始める はじめる 続ける つづける 出す だす 終わる おわる 終える おえる 始まる かける""".split()
+)
+
+#: Nouns that name a person (or another creature that can be an actor).
+PERSON_NOUNS = frozenset(
+    """男 女 男性 女性 少年 少女 子供 子ども こども 男の子 女の子 人 先生 生徒 学生 選手
+    父 母 兄 姉 弟 妹 父親 母親 友達 友人 赤ちゃん 老人 おじいさん おばあさん お父さん お母さん
+    ロボット 主人公 犬 猫 王様 騎士 忍者 ダンサー 彼 彼女 私 僕 俺 あなた 彼ら 自分
+    わたし ぼく おれ あたし""".split()
+)
+
+#: Honorific suffixes stripped from actor names (花子さん -> 花子).
+HONORIFICS = frozenset("さん 君 くん ちゃん 様 さま 氏 殿".split())
+
+#: Formal nouns that turn a preceding predicate into a temporal connective
+#: (instead of a relative clause).
+FORMAL_NOUNS = frozenset(
+    "まま 侭 後 あと 前 間 うち 内 時 とき 瞬間 途端 とたん 同時".split()
+)
+
+#: Sentence connectives and adverbs that adjust the link into the motion
+#: they modify: (relation, overlap, method, delay seconds).
+#: しばらくして waits 2.0 s (a noticeable pause); 少しして 1.0 s.
+CONNECTIVES = {
+    "そして": ("serial", False, "connection", None),
+    "それから": ("serial", False, "connection", None),
+    "その後": ("serial", False, "connection", None),
+    "そのあと": ("serial", False, "connection", None),
+    "次に": ("serial", False, "connection", None),
+    "続いて": ("serial", False, "connection", None),
+    "最後に": ("serial", False, "connection", None),
+    "同時に": ("parallel", None, "composition", None),
+    "それと同時に": ("parallel", None, "composition", None),
+    "しばらくして": ("serial", False, "connection", 2.0),
+    "しばらくすると": ("serial", False, "connection", 2.0),
+    "少しして": ("serial", False, "connection", 1.0),
+    "すぐに": ("serial", True, "transition", None),
+    "すぐ": ("serial", True, "transition", None),
+}
+
+#: Default delay of しばらくして, in seconds.
+DEFAULT_PAUSE = CONNECTIVES["しばらくして"][3]
+
+#: Counters: unit -> (kind, factor to seconds or 1).
+COUNTERS = {
+    "回": ("repeat", 1), "度": ("repeat", 1),
+    "秒間": ("duration", 1.0), "分間": ("duration", 60.0),
+    "秒": ("seconds", 1.0), "分": ("seconds", 60.0),
+}

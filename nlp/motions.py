@@ -1,0 +1,292 @@
+"""Motions: the role of every bunsetsu and the fields of each motion (§1-§2).
+
+Roles: predicates (motions or not, with the reason), actors (person + は/が/も),
+objects and body parts (を / で), repeat (N回), duration (N秒間), speed
+(ゆっくり), manner て-forms (急いで), and time cues (そして, N秒後に,
+しばらくして, ...) that adjust the link into the motion they modify.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .bunsetsu import FUNCTION_POS, Phrase
+from .endings import ENDINGS
+from .lexicon import (
+    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, MANNER_TE, PERSON_NOUNS, SIDE_PREFIX,
+    SPEED_WORDS,
+)
+from .predicates import Pred, find_predicate, settle_reason
+from .tokens import is_name
+
+_SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg"}
+
+
+@dataclass(frozen=True, slots=True)
+class TimeCue:
+    """A connective or delay adjusting the link into the motion ``target``."""
+
+    phrase: int
+    target: int  # phrase index of the motion it modifies
+    relation: str
+    overlap: bool | None
+    method: str
+    delay: float | None
+    cue: str
+
+
+def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
+    """Give every phrase its role; return the predicates and the time cues."""
+    values: dict[int, float] = {}
+    for i, ph in enumerate(phrases):
+        nxt = phrases[i + 1] if i + 1 < len(phrases) else None
+        role = _modifier_role(ph, values)
+        if role:
+            ph.role = role
+            continue
+        ph.pred = find_predicate(ph, nxt)
+        ph.role = "predicate" if ph.pred else _noun_role(ph)
+    _assign_groups(phrases)
+    preds = [ph.pred for ph in phrases if ph.pred]
+    _merge_light_verbs(phrases)
+    _mark_embedded(phrases)
+    _assign_actors(phrases)
+    cues = _attach_modifiers(phrases, values)
+    for ph in phrases:
+        if ph.pred:
+            ph.role = "motion" if ph.pred.motion else f"not a motion: {ph.pred.reason}"
+    return preds, cues
+
+
+# ---------------------------------------------------------------- roles
+
+
+def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
+    key = ph.key
+    if key in CONNECTIVES:
+        return "connective"
+    if key in MANNER_TE:
+        return "manner"
+    if key in SPEED_WORDS:
+        return "speed"
+    toks = ph.tokens
+    if not toks[0].is_number or toks[0].value is None:
+        return ""
+    values[ph.index] = toks[0].value
+    unit = toks[1].surface if len(toks) > 1 else ""
+    kind = COUNTERS.get(unit, ("number",))[0]
+    if kind == "seconds":
+        after = toks[2].surface if len(toks) > 2 else ""
+        kind = "delay" if after in ("後", "あと") else "duration"
+        values[ph.index] *= COUNTERS[unit][1]
+    elif kind == "duration":
+        values[ph.index] *= COUNTERS[unit][1]
+    return kind
+
+
+def _noun_role(ph: Phrase) -> str:
+    particle = _case_particle(ph)
+    if particle in ("は", "が", "も") and _person(ph):
+        return "actor"
+    if particle in ("を", "で"):
+        noun = _noun(ph)
+        if noun in BODY_PARTS:
+            return "body part"
+        return "object" if particle == "を" else ""
+    return ""
+
+
+def _case_particle(ph: Phrase) -> str:
+    """The particle(s) after the nouns: は, が, を, で ... ('' if several or none)."""
+    parts = [t.surface for t in ph.tokens if t.pos1 == "助詞"]
+    return parts[0] if len(parts) == 1 else ""
+
+
+def _noun(ph: Phrase) -> str:
+    """The noun of a noun phrase: its last run of nouns (with prefixes)."""
+    run: list[str] = []
+    for t in ph.tokens:
+        if t.pos1 in ("名詞", "代名詞", "接頭辞") and not t.is_number:
+            run.append(t.surface)
+        elif t.pos1 == "接尾辞" and run:
+            continue
+        elif t.pos1 in FUNCTION_POS:
+            break
+        else:
+            run = []
+    return "".join(run)
+
+
+def _person(ph: Phrase) -> str | None:
+    """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, 男の子)."""
+    nouns = [t for t in ph.tokens if t.pos1 in ("名詞", "代名詞")]
+    if not nouns:
+        return None
+    name = "".join(t.surface for t in nouns)
+    honorific = any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in ph.tokens)
+    if honorific or name in PERSON_NOUNS or any(t.pos3 == "人名" for t in nouns):
+        return name
+    if len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name):
+        return name
+    return None
+
+
+# ---------------------------------------------------------------- structure
+
+
+def _assign_groups(phrases: list[Phrase]) -> None:
+    """Clause groups: sentences, split after a 終止形 + 、 (歩く、走る)."""
+    group = -1
+    prev_sentence = None
+    split_next = False
+    for ph in phrases:
+        if ph.sentence != prev_sentence or split_next:
+            group += 1
+        prev_sentence = ph.sentence
+        ph.group = group
+        split_next = bool(ph.pred and ph.pred.ending == "final")
+
+
+def _merge_light_verbs(phrases: list[Phrase]) -> None:
+    """ジャンプを(3回)する / お辞儀をする: the を-noun becomes the verb."""
+    for i, ph in enumerate(phrases):
+        pred = ph.pred
+        if not pred or pred.reason != "light":
+            continue
+        j = i - 1
+        while j >= 0 and phrases[j].group == ph.group and phrases[j].role in (
+                "repeat", "duration", "speed"):
+            j -= 1
+        if j < 0 or phrases[j].group != ph.group or phrases[j].role != "object":
+            continue
+        noun_ph = phrases[j]
+        nouns = [t for t in noun_ph.tokens if t.pos1 in ("名詞", "接頭辞") and not t.is_number]
+        if not nouns:
+            continue
+        pred.verb = "".join(t.surface if t.pos1 == "接頭辞" else t.lemma for t in nouns) + "する"
+        pred.reading = "".join(t.kana_form for t in nouns) + "スル"
+        pred.start = nouns[0].start
+        pred.reason = ""
+        settle_reason(pred, ph.quoted)
+        noun_ph.role = "action noun"
+
+
+def _mark_embedded(phrases: list[Phrase]) -> None:
+    """A clause without a comma right before a relative / の clause is inside it."""
+    preds = [ph for ph in phrases if ph.pred]
+    for a, b in zip(reversed(preds[:-1]), reversed(preds[1:])):
+        if a.group != b.group or a.has_comma() or a.pred.ending == "final":
+            continue
+        if b.pred.reason in ("relative", "nominal", "embedded"):
+            a.pred.reason = a.pred.reason or "embedded"
+
+
+def _assign_actors(phrases: list[Phrase]) -> None:
+    """は/も set the topic, which carries over; が binds to its own clause.
+
+    A が-subject holds until a clause that ends it (てから, 間に, 前に, の,
+    relative, ...); then the topic is back, or, if the text has no topic yet,
+    the が-subject carries over as the contract's "nearest preceding" rule.
+    """
+    topic: str | None = None
+    subject: str | None = None
+    group = None
+    for ph in phrases:
+        if ph.group != group:
+            if subject is not None:
+                topic, subject = subject, None
+            group = ph.group
+        if ph.role == "actor":
+            name = _person(ph)
+            if _case_particle(ph) == "が":
+                subject = name
+            else:
+                topic, subject = name, None
+            continue
+        pred = ph.pred
+        if not pred:
+            continue
+        pred.actor = subject or topic
+        ending = ENDINGS.get(pred.ending)
+        closes = ending.closes_subject if ending else True
+        if closes and subject is not None:
+            topic = topic or subject
+            subject = None
+
+
+# ---------------------------------------------------------------- modifiers
+
+
+def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[TimeCue]:
+    cues: list[TimeCue] = []
+    for i, ph in enumerate(phrases):
+        if ph.pred:
+            continue
+        target = _next_pred(phrases, i)
+        if target is None:
+            continue
+        ph.head = target.index
+        pred = target.pred
+        role = ph.role
+        if role in ("connective", "delay"):
+            cue = _time_cue(phrases, i, values)
+            if cue:
+                cues.append(cue)
+        elif not pred.motion:
+            continue
+        elif role == "object":
+            pred.object = _noun(ph)
+        elif role == "body part":
+            pred.body_part = _body_part(phrases, i)
+        elif role == "repeat":
+            if values[i] >= 1 and float(values[i]).is_integer():
+                pred.repeat = int(values[i])
+        elif role == "duration":
+            pred.duration = values[i]
+        elif role in ("speed", "manner"):
+            pred.speed = SPEED_WORDS.get(ph.key, pred.speed)
+    return cues
+
+
+def _next_pred(phrases: list[Phrase], i: int, motion_level: int = 0) -> Phrase | None:
+    """The nearest following predicate phrase in the same clause group.
+
+    With ``motion_level`` only motions whose clause level is at least that
+    (skipping ながら / たまま clauses) count; it falls back to any motion.
+    """
+    group = phrases[i].group
+    fallback = None
+    for ph in phrases[i + 1:]:
+        if ph.group != group:
+            break
+        if not ph.pred:
+            continue
+        if not motion_level:
+            return ph
+        if ph.pred.motion:
+            fallback = fallback or ph
+            if ENDINGS[ph.pred.ending].level >= motion_level:
+                return ph
+    return fallback
+
+
+def _time_cue(phrases: list[Phrase], i: int, values: dict[int, float]) -> TimeCue | None:
+    target = _next_pred(phrases, i, motion_level=2)
+    if target is None:
+        return None
+    ph = phrases[i]
+    if ph.role == "delay":
+        return TimeCue(i, target.index, "serial", False, "connection", values[i], ph.key)
+    relation, overlap, method, delay = CONNECTIVES[ph.key]
+    return TimeCue(i, target.index, relation, overlap, method, delay, ph.key)
+
+
+def _body_part(phrases: list[Phrase], i: int) -> str:
+    """右手 -> right_arm; 右の手 -> right_arm (side noun + の before the part)."""
+    noun = _noun(phrases[i])
+    part = BODY_PARTS[noun]
+    if noun in _SIDED and i > 0:
+        side = SIDE_PREFIX.get(phrases[i - 1].key.removesuffix("の"))
+        if side and phrases[i - 1].key.endswith("の"):
+            part = {"right": "right_", "left": "left_", "both": "both_"}[side] + _SIDED[noun]
+            part = "leg" if part == "both_leg" else part.replace("both_arm", "both_arms")
+    return part

@@ -1,0 +1,221 @@
+"""Predicates: which bunsetsu hold a verb, which verb, and how the clause ends.
+
+A predicate bunsetsu holds a verb (走って), a サ変 noun + する (ジャンプする), or
+a bare する whose action noun is in the bunsetsu before (ジャンプをする,
+お辞儀をする).  Its *verb group* is the verb with its auxiliaries (た, ない,
+ている, aspect auxiliaries 始める/続ける/出す/終わる) and a trailing て: the
+``span`` of the motion.  What follows the group is the clause ending
+(``endings.ENDINGS``) or a reason why the predicate is not a motion.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .bunsetsu import Phrase
+from .lexicon import (
+    BODY_PARTS, LIBRARY_BY_READING, LIBRARY_VERBS, NON_ACTION_LEMMAS, VERB_ALIASES,
+)
+from .types import Token
+
+_NEGATIONS = frozenset(["ない", "ず", "ぬ", "無い"])
+_FORMAL_ENDINGS = {
+    "まま": "mama", "侭": "mama", "後": "ato", "あと": "ato", "前": "mae", "間": "aida",
+    "うち": "aida", "内": "aida", "時": "toki", "とき": "toki", "瞬間": "totan",
+    "途端": "totan", "とたん": "totan",
+}
+
+
+@dataclass(slots=True)
+class Pred:
+    """A predicate under analysis; becomes a ``MotionSpec`` when ``reason`` is empty."""
+
+    phrase: int
+    verb: str
+    reading: str
+    lemma: str
+    start: int  # offsets of the predicate word in the normalised text (the span)
+    end: int
+    ending: str = "final"
+    cue: str = ""
+    reason: str = ""  # why this is not a motion (endings.NOT_MOTION key)
+    negated: bool = False
+    actor: str | None = None
+    object: str | None = None
+    body_part: str | None = None
+    repeat: int = 1
+    speed: float = 1.0
+    duration: float | None = None
+    head: int | None = None  # phrase index of the head motion
+    id: int = 0
+
+    @property
+    def motion(self) -> bool:
+        return not self.reason
+
+
+def canonical_verb(tok: Token) -> str:
+    """The library spelling of a verb: written base form first (跳ぶ vs 飛ぶ);
+    a verb written in hiragana that UniDic reads as some other word (たつ as
+    経つ) is matched to a library verb by its reading."""
+    for cand in (tok.orth, tok.lemma):
+        if cand in LIBRARY_VERBS:
+            return cand
+        if cand in VERB_ALIASES:
+            return VERB_ALIASES[cand]
+    if _is_hiragana(tok.orth) and tok.kana in LIBRARY_BY_READING:
+        return LIBRARY_BY_READING[tok.kana]
+    return tok.lemma
+
+
+def _is_hiragana(s: str) -> bool:
+    return all("\u3041" <= ch <= "\u309f" for ch in s)
+
+
+def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
+    """The predicate of ``ph``, with its ending, or ``None`` if it has no verb."""
+    toks = ph.tokens
+    v = next((i for i, t in enumerate(toks) if t.pos1 == "動詞"), None)
+    if v is None:
+        return None
+    first = toks[v]
+    if first.lemma == "為る" and v > 0:
+        if toks[v - 1].pos1 != "名詞":
+            return None  # しばらくして, そうして: an adverb + する
+        s = _noun_run_start(toks, v)
+        verb = _sahen_name(toks[s:v])
+        reading = "".join(t.kana_form for t in toks[s:v]) + "スル"
+        pred = Pred(ph.index, verb, reading, "為る", toks[s].start, 0)
+    elif v + 1 < len(toks) and toks[v + 1].lemma == "為る" and first.cform.startswith("連用形"):
+        # 伸びする: the 連用形 is the action noun of a light verb
+        pred = Pred(ph.index, first.surface + "する", first.kana_form + "スル", "為る",
+                    first.start, 0)
+    else:
+        pred = Pred(ph.index, canonical_verb(first), first.kana, first.lemma, first.start, 0)
+        if first.lemma == "為る":
+            pred.verb, pred.reason = "する", "light"
+        elif first.lemma in NON_ACTION_LEMMAS:
+            pred.reason = "state"
+    g = _group_end(toks, v)
+    pred.end = toks[_verb_end(toks, v)].end
+    pred.negated = any(t.lemma in _NEGATIONS and t.pos1 in ("助動詞", "形容詞")
+                       for t in toks[v:g + 1])
+    pred.ending, pred.cue = _ending(toks, g, ph, next_ph)
+    settle_reason(pred, ph.quoted)
+    return pred
+
+
+def settle_reason(pred: Pred, quoted: bool) -> None:
+    """Why the predicate is not a motion, strongest reason first ('' if it is one)."""
+    if quoted or pred.ending == "quote":
+        pred.reason = "quote"
+    elif pred.ending in ("relative", "nominal"):
+        pred.reason = pred.ending
+    elif pred.negated:
+        pred.reason = "negated"
+    elif pred.reason not in ("light", "state"):
+        pred.reason = ""
+
+
+def _noun_run_start(toks: list[Token], v: int) -> int:
+    s = v - 1
+    while s > 0 and toks[s - 1].pos1 in ("名詞", "接頭辞") and not toks[s - 1].is_number:
+        s -= 1
+    return s
+
+
+def _sahen_name(nouns: list[Token]) -> str:
+    """お + 辞儀 -> お辞儀, ガッツ + ポーズ -> ガッツポーズ; + する."""
+    parts = [t.surface if t.pos1 == "接頭辞" else t.lemma for t in nouns]
+    return "".join(parts) + "する"
+
+
+def _verb_end(toks: list[Token], v: int) -> int:
+    """Last token of the verb word itself: 走っ(て), 歩き始め(た), ジャンプ(を)する."""
+    k = v
+    while k + 1 < len(toks) and toks[k + 1].pos1 == "動詞":
+        k += 1
+    return k
+
+
+def _group_end(toks: list[Token], v: int) -> int:
+    """Index of the last token of the verb group starting at ``v``."""
+    g = v
+    for j in range(v + 1, len(toks)):
+        t = toks[j]
+        if t.pos1 == "助動詞" or (t.pos1 == "助詞" and t.lemma == "て" and t.pos2 == "接続助詞"):
+            g = j
+        elif t.pos1 == "動詞":
+            g = j  # bunsetsu.chunk only lets auxiliary verbs into a phrase
+        elif t.pos1 == "形容詞" and t.lemma == "無い":
+            g = j
+        else:
+            break
+    return g
+
+
+def _ending(toks: list[Token], g: int, ph: Phrase, next_ph: Phrase | None) -> tuple[str, str]:
+    """(ending kind, cue words) of the clause whose verb group ends at ``g``."""
+    last = toks[g]
+    words = [t for t in toks[g + 1:] if t.pos1 != "補助記号"]
+    if words:
+        return _ending_from_words(words, last)
+    if last.lemma == "て" and last.pos1 == "助詞":
+        return "te", last.surface
+    if last.pos1 == "助動詞" and last.cform.startswith("仮定形"):
+        return "cond", last.surface  # 終わったら, 歩いたら
+    if last.cform.startswith("連用形"):
+        return "renyou", "、" if ph.has_comma() else ""
+    if _ends_sentence(ph, next_ph) or ph.has_comma():
+        return "final", _punct(ph)
+    if _starts_with_noun(next_ph):
+        return "relative", ""
+    return "final", ""
+
+
+def _ending_from_words(words: list[Token], last: Token) -> tuple[str, str]:
+    w = words[0]
+    cue = "".join(t.surface for t in words)
+    surfaces = [t.surface for t in words]
+    if w.surface in ("ながら", "つつ"):
+        return "nagara", w.surface
+    if w.surface == "から" and last.lemma == "て":
+        return "tekara", "てから"
+    if w.surface in ("たり", "だり"):
+        return "tari", w.surface
+    if "同時" in surfaces:
+        return "douji", cue
+    if w.surface == "の":
+        return "nominal", cue
+    if w.surface == "と" and w.pos2 == "格助詞":
+        return "quote", cue
+    if w.surface in ("と", "ば"):
+        return "cond", w.surface
+    kind = _FORMAL_ENDINGS.get(w.surface)
+    if kind == "aida" and w.surface == "間" and w.kana != "アイダ":
+        kind = None
+    if kind == "toki" and last.lemma == "た":
+        kind = "toki_past"
+    if kind:
+        return kind, cue
+    return "other", cue
+
+
+def _ends_sentence(ph: Phrase, next_ph: Phrase | None) -> bool:
+    return next_ph is None or next_ph.sentence != ph.sentence or any(
+        t.pos2 == "句点" for t in ph.tokens)
+
+
+def _punct(ph: Phrase) -> str:
+    t = ph.tokens[-1]
+    return t.surface if t.pos1 == "補助記号" else ""
+
+
+def _starts_with_noun(ph: Phrase | None) -> bool:
+    if ph is None:
+        return False
+    t = ph.tokens[0]
+    return t.pos1 in ("名詞", "代名詞", "接頭辞") and not t.is_number
+
+
+def body_part_of(noun: str) -> str | None:
+    return BODY_PARTS.get(noun)

@@ -1,0 +1,145 @@
+"""The values the nlp stage hands to the next stage (the scheduler).
+
+All are frozen dataclasses.  ``Analysis.to_dict()`` is the JSON object of
+``language.md`` §5, field for field.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+#: Methods a constraint can ask for (timetable.md §1 uses the same names).
+METHODS = ("connection", "transition", "composition")
+
+
+@dataclass(frozen=True, slots=True)
+class Token:
+    """One morpheme of the NFKC-normalised text (offsets into that text)."""
+
+    surface: str
+    pos1: str
+    pos2: str
+    pos3: str
+    ctype: str
+    cform: str
+    lemma: str
+    orth: str
+    kana: str  # reading of the base form (kanaBase)
+    start: int
+    end: int
+    value: float | None = None  # numbers only (merged digits / kanji numerals)
+    kana_form: str = ""  # reading of the form as written (伸び -> ノビ)
+
+    @property
+    def is_number(self) -> bool:
+        return self.value is not None
+
+
+@dataclass(frozen=True, slots=True)
+class Bunsetsu:
+    """A phrase: a content word plus its particles, auxiliaries, punctuation.
+
+    ``head`` is the index of the bunsetsu this one depends on (``None`` for
+    the last one of a sentence); ``role`` says what the analyzer made of it
+    and ``why`` how the head was chosen, for ``parse --explain``.
+    """
+
+    index: int
+    text: str
+    span: tuple[int, int]
+    sentence: int
+    role: str = ""
+    head: int | None = None
+    why: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class MotionSpec:
+    """One motion the text asks an actor to perform (language.md §1-§2)."""
+
+    id: int
+    actor: str | None
+    verb: str
+    object: str | None = None
+    body_part: str | None = None
+    repeat: int = 1
+    speed: float = 1.0
+    duration: float | None = None
+    span: tuple[int, int] = (0, 0)
+    hold: bool = False  # たまま: held at its end pose while the other motion plays
+    reading: str = ""  # katakana reading of the verb, for a database fallback
+
+    def to_dict(self, extra: bool = False) -> dict:
+        d = {
+            "id": self.id, "actor": self.actor, "verb": self.verb,
+            "object": self.object, "body_part": self.body_part,
+            "repeat": self.repeat, "speed": self.speed, "duration": self.duration,
+            "span": [self.span[0], self.span[1]],
+        }
+        if extra:
+            d["hold"] = self.hold
+            d["reading"] = self.reading
+        return d
+
+
+@dataclass(frozen=True, slots=True)
+class Constraint:
+    """A temporal constraint between motion ``first`` and motion ``second``.
+
+    ``relation`` is ``serial`` or ``parallel``; ``overlap`` is ``None`` for a
+    parallel relation; ``delay`` is seconds or ``None``; ``method`` is what the
+    time table records for ``second`` (see ``METHODS``).  ``cue`` names the
+    words that produced the constraint (only in the extended JSON).
+    """
+
+    first: int
+    second: int
+    relation: str
+    overlap: bool | None
+    delay: float | None
+    method: str
+    cue: str = ""
+
+    def to_dict(self, extra: bool = False) -> dict:
+        d = {
+            "first": self.first, "second": self.second, "relation": self.relation,
+            "overlap": self.overlap, "delay": self.delay, "method": self.method,
+        }
+        if extra:
+            d["cue"] = self.cue
+        return d
+
+
+@dataclass(frozen=True, slots=True)
+class Analysis:
+    """The result of ``nlp.analyze``: motions, constraints and the phrases."""
+
+    text: str
+    motions: tuple[MotionSpec, ...]
+    constraints: tuple[Constraint, ...]
+    bunsetsu: tuple[Bunsetsu, ...] = field(default=(), compare=False)
+
+    def to_dict(self, extra: bool = False) -> dict:
+        """language.md §5; ``extra`` adds ``hold``, ``reading`` and ``cue``."""
+        return {
+            "text": self.text,
+            "motions": [m.to_dict(extra) for m in self.motions],
+            "constraints": [c.to_dict(extra) for c in self.constraints],
+        }
+
+    def to_json(self, indent: int | None = 2, extra: bool = False) -> str:
+        """The JSON text of ``to_dict``; with ``indent``, one motion or
+        constraint a line, as language.md §5 shows it."""
+        import json  # lazy: keeps the import of the stage light for cold starts
+
+        data = self.to_dict(extra)
+        if indent is None:
+            return json.dumps(data, ensure_ascii=False)
+        pad = " " * indent
+
+        def items(key: str) -> str:
+            rows = [pad * 2 + json.dumps(x, ensure_ascii=False) for x in data[key]]
+            return "[\n" + ",\n".join(rows) + "\n" + pad + "]" if rows else "[]"
+
+        return ("{\n" + f'{pad}"text": {json.dumps(data["text"], ensure_ascii=False)},\n'
+                + f'{pad}"motions": {items("motions")},\n'
+                + f'{pad}"constraints": {items("constraints")}\n' + "}")
