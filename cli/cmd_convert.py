@@ -1,8 +1,6 @@
 """``text2anim convert IN.bvh -o OUT.bvh``: rewrite a file through our reader and writer."""
 from __future__ import annotations
 
-from synthesis import read_bvh, write_bvh
-
 from .bvh_options import add_read_options, positive_float, read_options
 
 NAME = "convert"
@@ -17,6 +15,7 @@ def add_arguments(p):
 
 
 def run(args) -> int:
+    from synthesis import read_bvh, write_bvh
     m = read_bvh(args.input, **read_options(args))
     if args.fps:
         m = m.resample(args.fps)

@@ -1,10 +1,6 @@
 """``text2anim info FILE.bvh``: skeleton summary, frames, fps, duration, contact phases."""
 from __future__ import annotations
 
-from synthesis import read_bvh
-from synthesis.bodyparts import BodyMapError, body_map
-from synthesis.contacts import detect_contacts
-
 from .bvh_options import add_read_options, read_options
 
 NAME = "info"
@@ -27,6 +23,9 @@ def _tree(skel) -> list[str]:
 
 
 def run(args) -> int:
+    from synthesis import read_bvh
+    from synthesis.bodyparts import BodyMapError, body_map
+    from synthesis.contacts import detect_contacts
     m = read_bvh(args.file, **read_options(args))
     s = m.skeleton
     print(f"file:      {args.file}")

@@ -3,8 +3,6 @@ from __future__ import annotations
 
 import json
 
-from synthesis import read_bvh
-from synthesis.metrics import compute_metrics
 
 from .bvh_options import add_read_options, read_options
 
@@ -19,6 +17,8 @@ def add_arguments(p):
 
 
 def run(args) -> int:
+    from synthesis import read_bvh
+    from synthesis.metrics import compute_metrics
     m = read_bvh(args.file, **read_options(args))
     met = compute_metrics(m)
     if args.json:

@@ -2,9 +2,26 @@
 
 Units and conventions: metres, seconds, Y up, right-handed; quaternions
 ``(x, y, z, w)`` as scipy uses them. This package knows nothing of Japanese.
-"""
-from .bvh import BVHError, format_bvh, parse_bvh, read_bvh, write_bvh
-from .motion import Motion, Pose, concatenate
-from .skeleton import Skeleton
 
-__all__ = ["BVHError", "Motion", "Pose", "Skeleton", "concatenate", "format_bvh", "parse_bvh", "read_bvh", "write_bvh"]
+The names below are imported on first use, so ``import synthesis.bodyparts``
+does not pay for scipy.
+"""
+from __future__ import annotations
+
+_LAZY = {
+    "BVHError": "bvh", "format_bvh": "bvh", "parse_bvh": "bvh", "read_bvh": "bvh", "write_bvh": "bvh",
+    "Motion": "motion", "Pose": "motion", "concatenate": "motion",
+    "Skeleton": "skeleton",
+}
+
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
