@@ -16,6 +16,7 @@ import sys
 
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMAND_MODULES = [
+    "cli.cmd_animate",
     "cli.cmd_info",
     "cli.cmd_metrics",
     "cli.cmd_convert",

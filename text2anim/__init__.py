@@ -3,8 +3,11 @@
 The public Python API; the command line is a thin layer over it::
 
     import text2anim
-    planned = text2anim.plan("太郎は走って、ボールを蹴る。そして喜ぶ。")
-    print(planned.table.to_json())
+    anim = text2anim.animate("太郎は走って、ボールを蹴る。そして喜ぶ。")
+    anim.save_bvh("out.bvh"); anim.save_html("out.html")
+    print(anim.table.to_json())
+
+``text2anim.plan`` stops after the time table.
 """
 from __future__ import annotations
 
@@ -25,3 +28,10 @@ def plan(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False):
         return plan_text(text, db, fps=fps, skip_unknown=skip_unknown)
     with MotionDB.open(db) as opened:
         return plan_text(text, opened, fps=fps, skip_unknown=skip_unknown)
+
+
+def animate(text: str, db=None, **options):
+    """Text to animation; see :func:`text2anim.animation.animate` for the options."""
+    from .animation import animate as _animate
+
+    return _animate(text, db, **options)
