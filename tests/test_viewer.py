@@ -1,0 +1,257 @@
+"""The self-contained HTML viewer: its data, its safety, and the page itself in headless Chromium.
+
+The browser tests run ``/usr/bin/chromium`` (Debian's package; ``.ci/run`` installs it)
+and skip when it is absent:
+
+    chromium --headless --no-sandbox --disable-gpu ... --user-data-dir=TMP
+             --enable-logging=stderr --v=0 --virtual-time-budget=MS --dump-dom file://PAGE
+    chromium --headless ... --window-size=1000,700 --screenshot=OUT.png file://PAGE
+"""
+from __future__ import annotations
+
+import base64
+import json
+import re
+import shutil
+import subprocess
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from shared_data import cmu
+from synthesis import Motion, Skeleton, concatenate, read_bvh
+from synthesis.atomic import OutputError
+from synthesis.viewer import PALETTE, Span, Track, render_html, viewer_data
+
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                  "--hide-scrollbars", "--mute-audio"]
+requires_chromium = pytest.mark.skipif(
+    not Path(CHROMIUM).exists(),
+    reason=f"{CHROMIUM} not installed (apt-get install chromium); the page is not tested in a browser")
+
+
+def _chain(T=20, fps=30.0):
+    skel = Skeleton(["root", "a", "b"], [-1, 0, 1], [[0, 0, 0], [0, 0.5, 0], [0, 0.5, 0]], end_sites=[(2, [0, 0.2, 0])])
+    ang = np.linspace(0, 1, T)
+    rot = np.zeros((T, 3, 4))
+    rot[..., 3] = 1
+    rot[:, 1, 2], rot[:, 1, 3] = np.sin(ang / 2), np.cos(ang / 2)
+    return Motion(skel, fps, np.c_[np.linspace(0, 1, T), np.full(T, 0.9), np.zeros(T)], rot)
+
+
+def _decode(actor: dict, encoding: str) -> np.ndarray:
+    """The page's decoding, in numpy: world positions (T, N, 3) in metres."""
+    def raw(s):
+        b = base64.b64decode(s)
+        return zlib.decompress(b) if encoding == "deflate" else b
+
+    T, N = actor["frames"], actor["points"]
+    rel = np.frombuffer(raw(actor["rel"]), "<i2").reshape(N, 3, T).astype(np.int64).cumsum(axis=2)
+    root = np.frombuffer(raw(actor["root"]), "<i4").reshape(3, T).astype(np.int64).cumsum(axis=1)
+    return (rel + root[None]).transpose(2, 0, 1) / 1000.0
+
+
+def _data_of(page: str) -> dict:
+    m = re.search(r'<script type="application/json" id="t2a-data">(.*?)</script>', page, re.S)
+    assert m, "no data block"
+    return json.loads(m.group(1))
+
+
+@pytest.fixture(scope="module")
+def walk():
+    return read_bvh(cmu("02_01_walk"), drop_first=True).resample(30)
+
+
+@pytest.fixture(scope="module")
+def kick():
+    return read_bvh(cmu("10_01_kick"), drop_first=True)
+
+
+def _spans(actor="太郎"):
+    return [Span(actor, "1 歩く (initial)", 0.0, 2.8), Span(actor, "2 蹴る (transition)", 2.2, 5.0),
+            Span(actor, "blend", 2.2, 2.7, "blend", "lower"), Span(actor, "blend", 2.3, 2.9, "blend", "upper"),
+            Span(actor, "blend", 4.8, 5.0, "blend")]
+
+
+# ----------------------------------------------------------------------------- data
+@pytest.mark.parametrize("compress", [True, False])
+def test_positions_roundtrip_to_the_millimetre(walk, compress):
+    data = viewer_data([Track("a", walk)], compress=compress)
+    (actor,) = data["actors"]
+    pos = _decode(actor, data["encoding"])
+    want = np.concatenate([walk.positions, walk.end_site_positions()], axis=1)
+    assert pos.shape == want.shape
+    assert np.abs(pos - want).max() <= 0.0005 + 1e-9
+    assert actor["parents"][: walk.skeleton.n_joints] == list(walk.skeleton.parents)
+    assert len(actor["contact"]) == walk.n_frames and set(actor["contact"]) <= set("0123")
+    assert "1" in actor["contact"] or "3" in actor["contact"]  # a walk puts its feet down
+
+
+def test_fast_motions_are_resampled_for_the_page(kick):
+    assert kick.fps > 100
+    (actor,) = viewer_data([Track("k", kick)], max_fps=30)["actors"]
+    assert actor["fps"] == 30
+    assert actor["frames"] == int(np.floor((kick.n_frames - 1) / kick.fps * 30 + 1e-9)) + 1
+    pos = _decode(actor, "deflate")
+    # frame k of the page is the capture at k/30 s
+    for k in (0, 10, actor["frames"] - 1):
+        src = kick.positions[int(round(k / 30 * kick.fps))]
+        assert np.abs(pos[k, : kick.skeleton.n_joints] - src).max() < 0.02
+
+
+def test_ten_second_page_stays_small(walk):
+    reps = int(np.ceil(300 / walk.n_frames))
+    ten = concatenate([walk] * reps)[:300]
+    assert ten.skeleton.n_joints == 31 and abs(ten.duration - 10) < 1e-9
+    page = render_html([Track("太郎", ten)], _spans(), title="10 s")
+    raw = render_html([Track("太郎", ten)], _spans(), title="10 s", compress=False)
+    assert len(page.encode()) < 110_000, len(page.encode())
+    assert len(page.encode()) < len(raw.encode())
+
+
+def test_page_is_self_contained_and_escapes_text(walk):
+    evil = '</script><script>alert("x")</script><!--'
+    page = render_html([Track(evil, walk)], [Span(evil, evil, 0, 1)], title=evil)
+    assert page.count("</script>") == page.count("<script")  # nothing closes a script early
+    assert "<script>alert" not in page
+    assert not re.search(r"""(src|href)\s*=\s*["']?(https?:)?//""", page)
+    data = _data_of(page)
+    assert data["title"] == evil and data["actors"][0]["name"] == evil and data["spans"][0]["label"] == evil
+    assert "<title>&lt;/script&gt;" in page
+
+
+def test_spans_and_rows(walk, kick):
+    spans = _spans() + [Span("花子", "1 蹴る", 0, 6.7), Span("次郎", "only a span", 1, 2)]
+    data = viewer_data([Track("太郎", walk), Track("花子", kick)], spans)
+    assert data["rows"] == ["太郎", "花子", "次郎"]
+    assert [a["color"] for a in data["actors"]] == list(PALETTE[:2])
+    lanes = [s["lane"] for s in data["spans"] if s["kind"] == "blend"]
+    assert lanes == ["lower", "upper", "both"]
+    assert data["duration"] == pytest.approx(6.7)
+
+
+def test_bad_input_is_refused(walk):
+    with pytest.raises(ValueError, match="share the name"):
+        render_html([Track("a", walk), Track("a", walk)])
+    with pytest.raises(ValueError, match="no tracks"):
+        render_html([])
+    with pytest.raises(ValueError, match="kind"):
+        Span("a", "x", 0, 1, "gap")
+    with pytest.raises(ValueError, match="before start"):
+        Span("a", "x", 2, 1)
+    with pytest.raises(ValueError, match="no frames"):
+        Track("a", walk[0:0])
+
+
+def test_other_inputs_accepted():
+    m = _chain()
+    for tracks in (m, {"x": m}, Track("x", m)):
+        data = viewer_data(tracks)
+        assert len(data["actors"]) == 1 and data["actors"][0]["head"] == -1  # no body map: drawn plainly
+
+
+def test_written_atomically(tmp_path, walk):
+    out = tmp_path / "v.html"
+    page = render_html([Track("a", walk)], path=out)
+    assert out.read_text(encoding="utf-8") == page
+    with pytest.raises(OutputError) as e:
+        render_html([Track("a", walk)], path=tmp_path / "missing" / "v.html")
+    assert e.value.user_facing
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["v.html"]
+
+
+# --------------------------------------------------------------------------- browser
+def _chromium(args: list[str], profile: Path, timeout=60) -> subprocess.CompletedProcess:
+    cmd = [CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "--enable-logging=stderr", "--v=0", *args]
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+
+
+def _console(stderr: str) -> list[str]:
+    return [ln for ln in stderr.splitlines() if ":CONSOLE" in ln]
+
+
+def _body(dom: str) -> dict:
+    m = re.search(r"<body([^>]*)>", dom)
+    assert m, dom[:500]
+    return dict(re.findall(r'data-([\w-]+)="([^"]*)"', m.group(1)))
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory, walk, kick):
+    d = tmp_path_factory.mktemp("viewer")
+    k = kick.replace(root_positions=kick.root_positions + [1.5, 0, 0])
+    path = d / "viewer.html"
+    render_html([Track("太郎", walk), Track("花子", k)], _spans() + [Span("花子", "1 蹴る (initial)", 0, k.duration)],
+                title="太郎は歩いて、ボールを蹴る。", path=path)
+    return path
+
+
+@requires_chromium
+def test_page_loads_without_console_messages_and_frames_advance(page, tmp_path):
+    seen = []
+    for budget in (500, 2500):
+        proc = _chromium([f"--virtual-time-budget={budget}", "--dump-dom", page.as_uri()], tmp_path / f"p{budget}")
+        assert proc.returncode == 0, proc.stderr[-2000:]
+        assert _console(proc.stderr) == [], _console(proc.stderr)
+        body = _body(proc.stdout)
+        assert body.get("ready") == "1", body
+        assert 'data-errors=' not in proc.stdout.split("<body", 1)[0]
+        seen.append((int(body["frame"]), float(body["time"])))
+    (f0, t0), (f1, t1) = seen
+    assert 0 < t0 < t1 and f0 < f1, seen
+    assert t1 == pytest.approx(2.5, abs=0.3)  # plays in real time
+
+
+@requires_chromium
+def test_screenshot_shows_the_characters(page, tmp_path):
+    mpimg = pytest.importorskip("matplotlib.image")
+    shot = tmp_path / "shot.png"
+    proc = _chromium(["--virtual-time-budget=1500", "--window-size=1000,700", f"--screenshot={shot}", page.as_uri()],
+                     tmp_path / "prof")
+    assert proc.returncode == 0 and shot.exists(), proc.stderr[-2000:]
+    assert _console(proc.stderr) == []
+    img = mpimg.imread(shot)[..., :3]
+    assert img.shape[:2] == (700, 1000)
+    for color in PALETTE[:2]:
+        rgb = np.array([int(color[i:i + 2], 16) for i in (1, 3, 5)]) / 255
+        near = np.abs(img - rgb).max(axis=-1) < 0.2  # the colour, give or take the shading
+        # the 3D view below the header, above the controls and timeline, right of the legend
+        ys, xs = np.nonzero(near[40:480, 80:])
+        assert len(ys) > 800, f"{color}: only {len(ys)} pixels of the actor's colour in the view"
+        assert 100 < xs.mean() < 800 and 50 < ys.mean() < 400, (xs.mean(), ys.mean())  # framed, not at an edge
+    # the background is dark and the figure is not: the view is not blank
+    view = img[40:480]
+    assert (view.max(axis=-1) > 0.5).mean() > 0.005
+
+
+@requires_chromium
+def test_a_person_can_drive_it(page, tmp_path):
+    """Space, arrow keys, timeline click, orbit drag, wheel zoom, double-click reset, speed: through DevTools."""
+    if shutil.which("node") is None:
+        pytest.skip("node not installed: the page is driven through the DevTools protocol by a node script")
+    script = Path(__file__).parent / "browser" / "viewer_drive.mjs"
+    shot = tmp_path / "driven.png"
+    proc = subprocess.run(["node", str(script), CHROMIUM, page.as_uri(), str(tmp_path / "prof"), str(shot)],
+                          capture_output=True, text=True, timeout=90)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    r = json.loads(proc.stdout)
+    assert "error" not in r, r.get("error", "") + r.get("stderr", "")
+    assert r["ready"] == "1"
+    assert r["console"] == [] and r["pageErrors"] == []
+    assert r["afterPlaying"]["time"] - r["start"]["time"] > 0.3 and r["afterPlaying"]["playing"]
+    assert not r["paused"]["playing"] and r["stillPaused"]["time"] == r["paused"]["time"]
+    fps = 30
+    assert r["stepped"]["time"] == pytest.approx((round(r["paused"]["time"] * fps) + 1) / fps)
+    assert r["seeked"]["time"] == pytest.approx(r["seekTarget"], abs=0.05)
+    cam0, cam1 = r["seeked"]["camera"], r["dragged"]["camera"]
+    assert abs(cam1["yaw"] - cam0["yaw"]) > 0.5 and cam1["pitch"] > cam0["pitch"]
+    assert r["zoomed"]["camera"]["dist"] > cam1["dist"] * 1.2
+    assert r["reset"]["camera"]["yaw"] == pytest.approx(r["start"]["camera"]["yaw"])
+    assert r["reset"]["camera"]["dist"] == pytest.approx(r["start"]["camera"]["dist"])
+    ds = r["doubleSpeed"]
+    assert ds["speed"] == 2 and ds["playing"] and ds["time"] - ds["from"] > 0.7
+    assert shot.stat().st_size > 10_000
