@@ -1,1 +1,38 @@
-"""motiondb stage."""
+"""The motion database: clips of motion with verbs, objects, characters and foot contacts.
+
+Public API (imported lazily, so ``import motiondb.types`` stays light)::
+
+    MotionDB.open(url=None, *, seed=True) -> MotionDB
+    db.search(verb, object=None, character=None, body_part=None, prefer_character=None, limit=None)
+        -> list[ClipInfo]                         # ranked, no frame data read
+    db.load(clip_or_name) -> synthesis.Motion
+    db.record(name) -> ClipRecord
+    db.add(records, *, replace=False) -> list[ClipInfo]           # all or nothing
+    db.import_bvh(paths, verbs, objects, character, core, part, cyclic, ...) -> list[ClipInfo]
+    db.remove(name_or_names); db.clips(character=None); db.info(name); db.verbs(); db.characters()
+
+Errors are :class:`DBError` subclasses, all user facing.
+"""
+from __future__ import annotations
+
+from .types import ClipRecord
+
+_LAZY = {
+    "MotionDB": "store", "ClipInfo": "store", "VerbInfo": "store",
+    "DBError": "errors", "UnknownVerbError": "errors", "UnknownClipError": "errors",
+    "UnknownCharacterError": "errors", "ClipValidationError": "errors", "ClipExistsError": "errors",
+    "SchemaVersionError": "errors",
+    "resolve_url": "location", "default_path": "location",
+}
+
+__all__ = ["ClipRecord", *_LAZY]
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,0 +1,240 @@
+"""``text2anim db ACTION``: look after the motion database.
+
+Actions: ``import`` BVH files as clips, ``list`` and ``show`` clips, ``export``
+a clip as BVH, ``remove`` clips, list the ``verbs``, ``preview`` a clip as a
+contact sheet. Every action takes ``--db URL`` (an SQLAlchemy URL or an SQLite
+file path; default ``TEXT2ANIM_DB``, else the XDG data folder).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import unicodedata
+
+from synthesis.bodyparts import GROUPS
+
+from .bvh_options import add_read_options, read_options
+
+NAME = "db"
+HELP = "the motion database: import BVH clips, list, show, export, remove, verbs, preview"
+
+_PARTS = GROUPS
+
+
+def _core_type(text: str) -> tuple[float, float]:
+    try:
+        b, e = (float(x) for x in text.split(":"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not BEGIN:END in seconds (e.g. 0.4:1.6)") from None
+    if not (0 <= b < e < float("inf")):
+        raise argparse.ArgumentTypeError(f"{text!r}: need 0 <= BEGIN < END")
+    return b, e
+
+
+def _db_option(p: argparse.ArgumentParser, default=None) -> None:
+    p.add_argument("--db", dest="db_url", metavar="URL", default=default,
+                   help="database URL (sqlite:///FILE, postgresql+psycopg2://...) or SQLite file; "
+                        "default: $TEXT2ANIM_DB, else $XDG_DATA_HOME/text2anim/motions.sqlite")
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    _db_option(p)
+    sub = p.add_subparsers(dest="db_action", metavar="ACTION")
+
+    def action(name: str, help: str) -> argparse.ArgumentParser:
+        a = sub.add_parser(name, help=help, description=help)
+        _db_option(a, default=argparse.SUPPRESS)  # after the action too; the one before it otherwise
+        return a
+
+    a = action("import", "import BVH files as clips (all or nothing)")
+    a.add_argument("files", nargs="+", metavar="FILE", help="BVH files; each becomes a clip named after the file")
+    a.add_argument("--verb", action="append", required=True, metavar="VERB",
+                   help="a verb lemma that retrieves the clips; repeat for synonyms (the first is the primary verb)")
+    a.add_argument("--object", action="append", default=[], metavar="NOUN", help="an object the action is about (ボール)")
+    a.add_argument("--character", default="default", help="the character the clips belong to (default: default)")
+    a.add_argument("--core", type=_core_type, metavar="BEGIN:END",
+                   help="the part that must be kept, seconds (default: the whole clip)")
+    a.add_argument("--part", choices=_PARTS, help="the body part a partial action is declared for")
+    a.add_argument("--cyclic", action="store_true", help="the clips loop (locomotion)")
+    a.add_argument("--name", help="clip name (one file only; default: the file name without .bvh)")
+    a.add_argument("--replace", action="store_true", help="replace clips of the same names")
+    add_read_options(a)
+
+    a = action("list", "list clips (ranked as a search when --verb is given)")
+    a.add_argument("--verb", help="only clips retrieved by this verb, best first")
+    a.add_argument("--object", help="with --verb: rank clips declaring this object first")
+    a.add_argument("--character", help="only this character's clips")
+    a.add_argument("--part", choices=_PARTS, help="with --verb: a request for this body part")
+    a.add_argument("--json", action="store_true", help="JSON instead of a table")
+
+    a = action("show", "show one clip: metadata, verbs, objects, foot contacts")
+    a.add_argument("clip")
+    a.add_argument("--json", action="store_true", help="JSON instead of text")
+
+    a = action("export", "write a clip as a BVH file (metres)")
+    a.add_argument("clip")
+    a.add_argument("-o", "--output", required=True, metavar="FILE.bvh", help="the file to write (atomically)")
+
+    a = action("remove", "remove clips (all or nothing)")
+    a.add_argument("clips", nargs="+", metavar="CLIP")
+
+    a = action("verbs", "list the verbs with their readings and clip counts")
+    a.add_argument("--json", action="store_true", help="JSON instead of a table")
+
+    a = action("preview", "draw a clip as a contact sheet (stick figures, front and side view)")
+    a.add_argument("clip")
+    a.add_argument("-o", "--output", required=True, metavar="SHEET.png", help="the image to write")
+
+    p.set_defaults(_db_parser=p)
+
+
+# ------------------------------------------------------------------ printing
+def _width(s: str) -> int:
+    return sum(2 if unicodedata.east_asian_width(c) in "WF" else 1 for c in s)
+
+
+def _table(rows: list[list[str]], header: list[str]) -> str:
+    widths = [max(_width(r[k]) for r in [header, *rows]) for k in range(len(header))]
+    lines = []
+    for r in [header, *rows]:
+        cells = [c + " " * (w - _width(c)) for c, w in zip(r, widths)]
+        lines.append("  ".join(cells).rstrip())
+    return "\n".join(lines)
+
+
+def _clip_row(c) -> list[str]:
+    return [c.name, c.character, "/".join(c.verbs), "/".join(c.objects) or "-", c.body_part or "-",
+            str(c.frames), f"{c.fps:g}", f"{c.duration:.2f}", "yes" if c.cyclic else ""]
+
+
+def _print_clips(clips, as_json: bool) -> None:
+    if as_json:
+        print(json.dumps([c.to_dict() for c in clips], ensure_ascii=False, indent=1))
+        return
+    if not clips:
+        print("(no clips)")
+        return
+    print(_table([_clip_row(c) for c in clips],
+                 ["clip", "character", "verbs", "objects", "part", "frames", "fps", "seconds", "cyclic"]))
+
+
+def _show(c) -> str:
+    def intervals(iv):
+        return ", ".join(f"{a}-{b}" for a, b in iv) or "none"
+
+    lines = [
+        f"clip:       {c.name}",
+        f"character:  {c.character} ({c.joints} joints)",
+        f"verbs:      {c.verbs[0]}" + (f" (synonyms: {', '.join(c.verbs[1:])})" if len(c.verbs) > 1 else ""),
+        f"objects:    {', '.join(c.objects) or '-'}",
+        f"frames:     {c.frames} at {c.fps:g} fps = {c.duration:.3f} s",
+        f"core:       {c.core[0]:.3f} .. {c.core[1]:.3f} s",
+        f"body part:  {c.body_part or 'whole body'}",
+        f"cyclic:     {'yes' if c.cyclic else 'no'}",
+        f"contacts:   left {intervals(c.left_contacts)}",
+        f"            right {intervals(c.right_contacts)}   (frames [start, stop))",
+        f"source:     {c.source or '-'}",
+        f"stored:     {c.created.strftime('%Y-%m-%d %H:%M:%S')} UTC",
+    ]
+    return "\n".join(lines)
+
+
+def _progress(done: int, total: int, path: str) -> None:
+    if path:
+        print(f"text2anim db import: [{done + 1}/{total}] {path}", file=sys.stderr, flush=True)
+    elif total > 1:
+        print(f"text2anim db import: read {total} files, storing", file=sys.stderr, flush=True)
+
+
+class PreviewUnavailable(RuntimeError):
+    user_facing = True
+
+
+# ---------------------------------------------------------------------- run
+def run(args) -> int:
+    if not getattr(args, "db_action", None):
+        args._db_parser.print_help(sys.stderr)
+        return 2
+    from motiondb import ClipValidationError, MotionDB
+
+    if args.db_action == "import" and args.name and len(args.files) != 1:
+        raise ClipValidationError("--name needs exactly one file")
+    db = MotionDB.open(args.db_url)
+    try:
+        return _ACTIONS[args.db_action](db, args)
+    finally:
+        db.close()
+
+
+def _import(db, args) -> int:
+    infos = db.import_bvh(args.files, args.verb, args.object, character=args.character, core=args.core,
+                          part=args.part, cyclic=args.cyclic, names=[args.name] if args.name else None,
+                          replace=args.replace, progress=_progress, **read_options(args))
+    print(f"imported {len(infos)} clip{'s' if len(infos) != 1 else ''} into {db.url}:")
+    for c in infos:
+        print(f"  {c.name}: {c.frames} frames at {c.fps:g} fps ({c.duration:.2f} s), "
+              f"{len(c.left_contacts)}+{len(c.right_contacts)} foot contacts, verbs {'/'.join(c.verbs)}")
+    return 0
+
+
+def _list(db, args) -> int:
+    if args.verb:
+        clips = db.search(args.verb, object=args.object, character=args.character, body_part=args.part)
+    else:
+        clips = db.clips(character=args.character)
+    _print_clips(clips, args.json)
+    return 0
+
+
+def _show_action(db, args) -> int:
+    c = db.info(args.clip)
+    print(json.dumps(c.to_dict(), ensure_ascii=False, indent=1) if args.json else _show(c))
+    return 0
+
+
+def _export(db, args) -> int:
+    from synthesis import write_bvh
+
+    m = db.load(args.clip)
+    write_bvh(m, args.output)
+    print(f"wrote {args.output}: {m.n_frames} frames at {m.fps:g} fps, {m.duration:.3f} s")
+    return 0
+
+
+def _remove(db, args) -> int:
+    db.remove(args.clips)
+    print(f"removed {', '.join(args.clips)}")
+    return 0
+
+
+def _verbs(db, args) -> int:
+    verbs = db.verbs()
+    if args.json:
+        print(json.dumps([{"lemma": v.lemma, "reading": v.reading, "clips": v.clips, "primary": v.primary}
+                          for v in verbs], ensure_ascii=False, indent=1))
+    elif not verbs:
+        print("(no verbs)")
+    else:
+        print(_table([[v.lemma, v.reading, str(v.clips), str(v.primary)] for v in verbs],
+                     ["verb", "reading", "clips", "primary"]))
+    return 0
+
+
+def _preview(db, args) -> int:
+    try:
+        from synthesis.sheet import contact_sheet
+    except ModuleNotFoundError as exc:
+        if exc.name in ("synthesis.sheet", "matplotlib"):
+            raise PreviewUnavailable(f"db preview is not available: {exc.name} is not installed") from None
+        raise
+    info = db.info(args.clip)
+    motion = db.load(info)
+    title = f"{info.name}: {'/'.join(info.verbs)} ({info.character}, {info.frames} frames, {info.fps:g} fps)"
+    contact_sheet(motion, args.output, title=title, core=info.core)
+    print(f"wrote {args.output}")
+    return 0
+
+
+_ACTIONS = {"import": _import, "list": _list, "show": _show_action, "export": _export, "remove": _remove,
+            "verbs": _verbs, "preview": _preview}

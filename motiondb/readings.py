@@ -1,0 +1,82 @@
+"""Katakana readings of verbs and nouns, and nearest-reading suggestions.
+
+A reading is the word's pronunciation in katakana, as MeCab (fugashi) with
+the UniDic-lite dictionary gives it: ``跳ぶ`` and ``飛ぶ`` → ``トブ``,
+``ジャンプする`` → ``ジャンプスル``, ``とぶ`` → ``トブ``. Words written in kana
+only are converted directly (hiragana → katakana) without the analyser, so a
+kana spelling always meets the word it spells. Input is NFKC-normalised first
+(half-width katakana, full-width letters).
+
+The first morpheme is read in its dictionary form when it is written in that
+form (``箱`` → ``ハコ``, not the compound form ``バコ``); later morphemes as
+written (``歩き出す`` → ``アルキダス``).
+"""
+from __future__ import annotations
+
+import difflib
+import re
+import unicodedata
+from functools import lru_cache
+
+_KANA_ONLY = re.compile(r"^[\u3041-\u3096\u30a1-\u30fa\u30fc\u30fd\u30fe\u309d\u309e]+$")
+
+
+def normalize(word: str) -> str:
+    """NFKC form without surrounding white space (how lemmas are stored and compared)."""
+    return unicodedata.normalize("NFKC", word).strip()
+
+
+def to_katakana(text: str) -> str:
+    """Hiragana → katakana; everything else unchanged."""
+    return "".join(chr(ord(c) + 0x60) if "\u3041" <= c <= "\u3096" or c in "\u309d\u309e" else c for c in text)
+
+
+@lru_cache(maxsize=1)
+def _tagger():
+    import fugashi  # imported lazily: reading a clip needs no analyser
+
+    return fugashi.Tagger()
+
+
+def _usable(kana) -> bool:
+    return bool(kana) and kana != "*"
+
+
+@lru_cache(maxsize=4096)
+def reading(word: str) -> str:
+    """The katakana reading of ``word`` (see the module docstring); ``""`` for an empty word."""
+    w = normalize(word)
+    if not w:
+        return ""
+    if _KANA_ONLY.match(w):
+        return to_katakana(w)
+    parts = []
+    for k, tok in enumerate(_tagger()(w)):
+        f = tok.feature
+        kana = None
+        if k == 0 and getattr(f, "orthBase", None) == tok.surface and _usable(getattr(f, "kanaBase", None)):
+            kana = f.kanaBase
+        elif _usable(getattr(f, "kana", None)):
+            kana = f.kana
+        parts.append(kana if kana else to_katakana(tok.surface))
+    return "".join(parts)
+
+
+def nearest(word: str, candidates: dict[str, str], n: int = 5, cutoff: float = 0.5) -> list[str]:
+    """The keys of ``candidates`` (word → reading) whose readings are closest to ``word``'s.
+
+    Similarity is :class:`difflib.SequenceMatcher`'s ratio on katakana readings
+    (the surface spellings break ties: ``max`` of both ratios); at most ``n``
+    words with a ratio of at least ``cutoff``, best first, ties by reading then word.
+    """
+    r = reading(word)
+    w = normalize(word)
+    scored = []
+    for cand, cand_reading in candidates.items():
+        sm = difflib.SequenceMatcher(None, r, cand_reading)
+        score = sm.ratio() if r and cand_reading else 0.0
+        score = max(score, difflib.SequenceMatcher(None, w, cand).ratio())
+        if score >= cutoff:
+            scored.append((-score, cand_reading, cand))
+    scored.sort()
+    return [c for _, _, c in scored[:n]]

@@ -1,0 +1,77 @@
+"""Real CMU captures (../shared/mocap/cmu) imported into a temporary database and retrieved by verb."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from motiondb import ClipValidationError
+from shared_data import cmu, requires_cmu
+from synthesis import read_bvh
+from synthesis.contacts import detect_contacts
+
+pytestmark = requires_cmu
+
+RUNS = ("02_03_run", "16_35_run", "127_07_run")
+
+
+def test_imported_captures_are_found_by_verb_and_load_unchanged(empty_db):
+    progress = []
+    infos = empty_db.import_bvh([cmu(n) for n in RUNS], ["走る", "駆ける", "ダッシュする"], character="cmu",
+                                cyclic=True, drop_first=True, progress=lambda *a: progress.append(a))
+    assert [i.name for i in infos] == list(RUNS)
+    assert [p[:2] for p in progress] == [(0, 3), (1, 3), (2, 3), (3, 3)]
+    empty_db.import_bvh([cmu("16_01_jump")], ["跳ぶ", "ジャンプする"], character="cmu", core=(0.5, 2.0),
+                        drop_first=True)
+    empty_db.import_bvh([cmu("02_01_walk")], ["歩く"], objects=(), character="cmu", drop_first=True)
+
+    assert [c.name for c in empty_db.search("走る")] == sorted(RUNS)
+    assert [c.name for c in empty_db.search("かける")] == sorted(RUNS)       # by reading of the synonym 駆ける
+    assert [c.name for c in empty_db.search("とぶ")] == ["16_01_jump"]       # 跳ぶ by its reading
+    assert [c.name for c in empty_db.search("ジャンプする")] == ["16_01_jump"]
+    walk = empty_db.search("歩く", character="cmu")[0]
+    assert walk.name == "02_01_walk" and walk.fps == pytest.approx(120, abs=0.01)
+
+    original = read_bvh(cmu("02_01_walk"), drop_first=True)
+    assert walk.frames == original.n_frames == 343
+    assert walk.source.endswith("02_01_walk.bvh") and walk.joints == 31
+    contacts = detect_contacts(original)
+    assert walk.left_contacts == tuple(contacts.intervals("left"))
+    assert walk.right_contacts == tuple(contacts.intervals("right"))
+    assert len(walk.left_contacts) >= 2 and len(walk.right_contacts) >= 2  # steps of a walk
+    loaded = empty_db.load(walk)
+    assert np.array_equal(loaded.rotations, original.rotations)
+    assert np.array_equal(loaded.root_positions, original.root_positions)
+    assert np.array_equal(loaded.skeleton.offsets, original.skeleton.offsets)
+    assert loaded.skeleton.channels == original.skeleton.channels
+
+    jump = empty_db.info("16_01_jump")
+    assert jump.core == (0.5, 2.0) and jump.verbs == ("跳ぶ", "ジャンプする")
+    assert all(i.cyclic for i in empty_db.search("走る")) and not jump.cyclic
+
+
+def test_one_malformed_file_in_a_batch_imports_nothing(empty_db, tmp_path):
+    good = cmu("02_03_run")
+    lines = good.read_text().splitlines()
+    truncated = tmp_path / "truncated_run.bvh"
+    truncated.write_text("\n".join(lines[: len(lines) - 20]) + "\n")  # 20 frame lines missing
+    with pytest.raises(ClipValidationError) as err:
+        empty_db.import_bvh([good, truncated, cmu("16_35_run")], ["走る"], drop_first=True, character="cmu")
+    msg = str(err.value)
+    assert str(truncated) in msg and "truncated" in msg and "nothing was imported" in msg
+    assert empty_db.clips() == [] and empty_db.verbs() == [] and empty_db.characters() == []
+
+    with pytest.raises(ClipValidationError,
+                       match=r"02_03_run.bvh: core 0..9 s must satisfy .*duration \(1.442 s\).*nothing was imported"):
+        empty_db.import_bvh([good], ["走る"], core=(0, 9), drop_first=True)
+    missing = tmp_path / "nowhere.bvh"
+    with pytest.raises(ClipValidationError, match="nowhere.bvh: no such file"):
+        empty_db.import_bvh([good, missing], ["走る"], drop_first=True)
+    assert empty_db.clips() == []
+
+
+def test_another_performer_joins_the_same_character(empty_db):
+    # CMU subjects share the hierarchy but not the proportions: each clip keeps its own offsets.
+    empty_db.import_bvh([cmu("02_03_run"), cmu("127_07_run")], ["走る"], character="cmu", drop_first=True)
+    a, b = empty_db.load("02_03_run"), empty_db.load("127_07_run")
+    assert a.skeleton.same_hierarchy(b.skeleton)
+    assert not np.array_equal(a.skeleton.offsets, b.skeleton.offsets)

@@ -1,0 +1,31 @@
+"""Katakana readings of verbs and nouns, and nearest-verb suggestions."""
+from __future__ import annotations
+
+import pytest
+
+from motiondb.readings import nearest, normalize, reading, to_katakana
+
+
+@pytest.mark.parametrize("word, expected", [
+    ("跳ぶ", "トブ"), ("飛ぶ", "トブ"), ("とぶ", "トブ"), ("トブ", "トブ"),
+    ("ジャンプする", "ジャンプスル"), ("じゃんぷする", "ジャンプスル"), ("ｼﾞｬﾝﾌﾟする", "ジャンプスル"),
+    ("歩き出す", "アルキダス"), ("前進する", "ゼンシンスル"), ("お辞儀する", "オジギスル"),
+    ("箱", "ハコ"), ("はこ", "ハコ"), ("ボール", "ボール"), ("手を振る", "テヲフル"),
+    ("  歩く ", "アルク"), ("", ""),
+])
+def test_readings(word, expected):
+    assert reading(word) == expected
+
+
+def test_normalize_and_katakana():
+    assert normalize(" ｼﾞｬﾝﾌﾟ ") == "ジャンプ"
+    assert to_katakana("あるく ABC ー") == "アルク ABC ー"
+
+
+def test_nearest_compares_readings_and_is_deterministic():
+    verbs = {"転ぶ": "コロブ", "走る": "ハシル", "歩く": "アルク", "倒れる": "タオレル"}
+    assert nearest("ころがる", verbs)[0] == "転ぶ"
+    assert nearest("はしりだす", verbs)[0] == "走る"
+    assert nearest("あるく", verbs)[0] == "歩く"
+    assert nearest("ぱぴぷぺぽ", verbs) == []
+    assert nearest("ころがる", verbs) == nearest("ころがる", dict(reversed(list(verbs.items()))))

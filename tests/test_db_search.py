@@ -1,0 +1,95 @@
+"""Search: synonyms and readings meet on the same clips; the documented ranking; unknown verbs."""
+from __future__ import annotations
+
+import pytest
+
+from motiondb import DBError, UnknownCharacterError, UnknownVerbError
+
+
+def names(hits):
+    return [h.name for h in hits]
+
+
+def test_verb_and_object_rank_over_verb_over_synonym(empty_db, record):
+    empty_db.add([
+        record("stomp", ("踏む", "蹴る")),                       # synonym, no object
+        record("kick", ("蹴る", "キックする")),                   # primary, no object
+        record("shoot", ("シュートする", "蹴る"), objects=("ボール",)),  # synonym + object
+        record("kick_ball", ("蹴る", "キックする"), objects=("ボール",)),  # primary + object
+        record("kick_box", ("蹴る",), objects=("箱",)),            # primary, another object
+    ])
+    assert names(empty_db.search("蹴る", object="ボール")) == ["kick_ball", "shoot", "kick", "stomp", "kick_box"]
+    # no object asked: clips without one first, then primary over synonym, then by name
+    assert names(empty_db.search("蹴る")) == ["kick", "stomp", "kick_ball", "kick_box", "shoot"]
+    # the object also matches by reading; an object nobody has ranks object-less clips first
+    assert names(empty_db.search("蹴る", object="ぼーる"))[:2] == ["kick_ball", "shoot"]
+    assert names(empty_db.search("蹴る", object="椅子"))[:2] == ["kick", "stomp"]
+    assert names(empty_db.search("キックする", object="ボール")) == ["kick_ball", "kick"]
+    assert names(empty_db.search("蹴る", object="ボール", limit=2)) == ["kick_ball", "shoot"]
+
+
+def test_the_previous_clips_character_comes_first(empty_db, record):
+    empty_db.add([
+        record("alice_walk", ("歩く",), character="alice"),
+        record("bob_stroll", ("散歩する", "歩く"), character="bob"),
+        record("bob_walk", ("歩く",), character="bob"),
+    ])
+    assert names(empty_db.search("歩く")) == ["alice_walk", "bob_walk", "bob_stroll"]
+    assert names(empty_db.search("歩く", prefer_character="bob")) == ["bob_walk", "bob_stroll", "alice_walk"]
+    assert names(empty_db.search("歩く", character="alice")) == ["alice_walk"]
+    assert names(empty_db.search("歩く", prefer_character="nobody")) == ["alice_walk", "bob_walk", "bob_stroll"]
+    with pytest.raises(UnknownCharacterError, match="'carol'.*alice, bob"):
+        empty_db.search("歩く", character="carol")
+    assert empty_db.search("散歩する", character="alice") == []  # known verb, nothing passes the filter
+
+
+def test_synonyms_and_kana_spellings_meet_on_the_same_clips(empty_db, record):
+    empty_db.add([
+        record("jump", ("ジャンプする", "跳ぶ", "飛ぶ")),
+        record("hop", ("跳ぶ",)),
+        record("fly", ("飛ぶ",)),
+        record("walk", ("歩く",)),
+    ])
+    for query in ("ジャンプする", "じゃんぷする", "ｼﾞｬﾝﾌﾟする", "跳ぶ", "飛ぶ", "とぶ", "トブ"):
+        assert "jump" in names(empty_db.search(query)), query
+    assert names(empty_db.search("ジャンプする")) == ["jump"]
+    # exact lemma (primary, then synonym) before clips that only share the reading
+    assert names(empty_db.search("跳ぶ")) == ["hop", "jump", "fly"]
+    assert names(empty_db.search("飛ぶ")) == ["fly", "jump", "hop"]
+    assert names(empty_db.search("とぶ")) == ["fly", "hop", "jump"]  # reading only: primary over synonym
+    verbs = {v.lemma: v for v in empty_db.verbs()}
+    assert verbs["跳ぶ"].reading == verbs["飛ぶ"].reading == "トブ"
+    assert verbs["ジャンプする"].reading == "ジャンプスル"
+    assert (verbs["跳ぶ"].clips, verbs["跳ぶ"].primary) == (2, 1)
+
+
+def test_an_unknown_verb_lists_the_nearest_verbs_by_reading(empty_db, record):
+    with pytest.raises(UnknownVerbError, match="no verbs yet"):
+        empty_db.search("歩く")
+    empty_db.add([record("walk", ("歩く",)), record("fall", ("転ぶ", "倒れる")), record("run", ("走る",))])
+    with pytest.raises(UnknownVerbError) as err:
+        empty_db.search("ころがる")
+    e = err.value
+    assert e.user_facing and e.verb == "ころがる"
+    assert e.suggestions[0] == ("転ぶ", "コロブ")
+    assert "nearest verbs: 転ぶ (コロブ)" in str(e)
+    with pytest.raises(UnknownVerbError) as err:
+        empty_db.search("はしりだす")
+    assert err.value.suggestions[0] == ("走る", "ハシル")
+    with pytest.raises(DBError, match="needs a verb"):
+        empty_db.search("  ")
+
+
+def test_body_part_requests_take_the_part_then_its_mirror_then_whole_body(empty_db, record):
+    empty_db.add([
+        record("wave_right", ("振る", "手を振る"), body_part="right_arm"),
+        record("shake_head", ("首を振る", "振る"), body_part="head"),
+        record("swing", ("振る",)),
+    ])
+    assert names(empty_db.search("振る", body_part="right_arm")) == ["wave_right", "swing"]
+    left = empty_db.search("振る", body_part="left_arm")
+    assert names(left) == ["wave_right", "swing"] and left[0].body_part == "right_arm"  # to be mirrored
+    assert names(empty_db.search("振る", body_part="head")) == ["shake_head", "swing"]
+    assert names(empty_db.search("振る")) == ["swing", "wave_right", "shake_head"]
+    with pytest.raises(DBError, match="unknown body part 'tail'"):
+        empty_db.search("振る", body_part="tail")

@@ -1,0 +1,233 @@
+"""Storing, loading and removing clips; all-or-nothing changes; lazy frame data; schema version."""
+from __future__ import annotations
+
+import io
+import zlib
+
+import numpy as np
+import pytest
+from sqlalchemy import create_engine, event, text, update
+
+from conftest import make_motion, make_skeleton
+from motiondb import (
+    ClipExistsError,
+    ClipRecord,
+    ClipValidationError,
+    DBError,
+    MotionDB,
+    SchemaVersionError,
+    UnknownCharacterError,
+    UnknownClipError,
+)
+from motiondb.blobs import decode_frames, encode_frames
+from motiondb.schema import SCHEMA_VERSION, Clip, SchemaVersion
+from synthesis.contacts import detect_contacts
+
+
+def _same_skeleton(a, b):
+    assert a.names == b.names
+    assert np.array_equal(a.parents, b.parents)
+    assert np.array_equal(a.offsets, b.offsets)
+    assert a.channels == b.channels
+    assert len(a.end_sites) == len(b.end_sites)
+    for (ja, oa), (jb, ob) in zip(a.end_sites, b.end_sites):
+        assert ja == jb and np.array_equal(oa, ob)
+
+
+def test_add_then_load_gives_back_the_same_frames(empty_db, record):
+    recs = [record("walk", ("歩く", "進む"), objects=("ボール",), character="alice", core=(0.2, 0.6),
+                   cyclic=True, source="test"),
+            record("wiggle", ("揺れる",), translations=True, body_part="torso")]
+    infos = empty_db.add(recs)
+    assert [i.name for i in infos] == ["walk", "wiggle"]
+    for rec in recs:
+        m = empty_db.load(rec.name)
+        assert np.array_equal(m.root_positions, rec.motion.root_positions)
+        assert np.array_equal(m.rotations, rec.motion.rotations)
+        if rec.motion.translations is None:
+            assert m.translations is None
+        else:
+            assert np.array_equal(m.translations, rec.motion.translations)
+        assert m.fps == rec.motion.fps
+        _same_skeleton(m.skeleton, rec.motion.skeleton)
+    walk = empty_db.info("walk")
+    assert walk.verbs == ("歩く", "進む") and walk.verb == "歩く"
+    assert walk.objects == ("ボール",) and walk.character == "alice"
+    assert walk.core == (0.2, 0.6) and walk.cyclic and walk.source == "test"
+    assert walk.frames == 24 and walk.fps == 30.0 and walk.duration == pytest.approx(0.8)
+    assert walk.joints == 23 and walk.created.tzinfo is not None
+    contacts = detect_contacts(recs[0].motion)
+    assert walk.contacts("left") == tuple(contacts.intervals("left"))
+    assert walk.contacts("right") == tuple(contacts.intervals("right"))
+    wiggle = empty_db.info("wiggle")
+    assert wiggle.core == (0.0, wiggle.duration)  # no core declared: the whole clip
+    assert wiggle.body_part == "torso" and not wiggle.cyclic
+    assert [c.name for c in empty_db.clips()] == ["walk", "wiggle"]
+    assert [c.name for c in empty_db.clips(character="alice")] == ["walk"]
+    assert empty_db.characters() == ["alice", "default"]
+
+
+def test_record_round_trips_into_another_database(empty_db, record, tmp_path):
+    empty_db.add([record("kick", ("蹴る", "キックする"), objects=("ボール",), core=(0.1, 0.5), body_part="right_leg")])
+    rec = empty_db.record("kick")
+    assert isinstance(rec, ClipRecord)
+    assert rec.verbs == ("蹴る", "キックする") and rec.objects == ("ボール",)
+    assert rec.core == (0.1, 0.5) and rec.body_part == "right_leg" and rec.character == "default"
+    with MotionDB.open(tmp_path / "other.sqlite", seed=False) as other:
+        other.add([rec])
+        again = other.load("kick")
+    assert np.array_equal(again.rotations, rec.motion.rotations)
+
+
+def test_a_bad_record_in_a_batch_changes_nothing(empty_db, record):
+    with pytest.raises(ClipValidationError, match=r"clip 'late'.*core"):
+        empty_db.add([record("fine", ("歩く",)), record("late", ("走る",), core=(0.5, 9.0))])
+    assert empty_db.clips() == [] and empty_db.verbs() == [] and empty_db.characters() == []
+
+    empty_db.add([record("fine", ("歩く",))])
+    with pytest.raises(ClipExistsError, match="clip 'fine' is already in the database"):
+        empty_db.add([record("new", ("跳ぶ",)), record("fine", ("歩く",), seed=5)])
+    assert [c.name for c in empty_db.clips()] == ["fine"]
+    assert [v.lemma for v in empty_db.verbs()] == ["歩く"]
+    with pytest.raises(ClipValidationError, match="two clips named 'x'"):
+        empty_db.add([record("x"), record("x")])
+
+    replacement = record("fine", ("歩く", "進む"), seed=5)
+    empty_db.add([replacement], replace=True)
+    assert empty_db.info("fine").verbs == ("歩く", "進む")
+    assert np.array_equal(empty_db.load("fine").rotations, replacement.motion.rotations)
+
+
+@pytest.mark.parametrize("fields, message", [
+    ({"verbs": ()}, "at least one verb"),
+    ({"verbs": ("  ",)}, "empty verb"),
+    ({"body_part": "tail"}, "unknown body part 'tail'"),
+    ({"core": (0.5, 0.2)}, "core"),
+    ({"name": ""}, "clip name is empty"),
+    ({"character": ""}, "character name is empty"),
+])
+def test_invalid_records_are_refused_with_a_reason(tmp_path, record, fields, message):
+    with MotionDB.open(tmp_path / "v.sqlite", seed=False) as db:
+        rec = record(fields.pop("name", "c"), fields.pop("verbs", ("歩く",)), **fields)
+        with pytest.raises(ClipValidationError, match=message) as err:
+            db.add([rec])
+        assert err.value.user_facing
+        assert db.clips() == []
+
+
+def test_bad_frames_are_refused(tmp_path, record):
+    good = make_motion()
+    with MotionDB.open(tmp_path / "f.sqlite", seed=False) as db:
+        rot = good.rotations.copy()
+        rot[3, 2] *= 3.0
+        with pytest.raises(ClipValidationError, match="unit quaternions"):
+            db.add([ClipRecord("bad", good.replace(rotations=rot), ("歩く",))])
+        root = good.root_positions.copy()
+        root[1, 0] = np.nan
+        with pytest.raises(ClipValidationError, match="non-finite"):
+            db.add([ClipRecord("bad", good.replace(root_positions=root), ("歩く",))])
+        with pytest.raises(ClipValidationError, match="no frames"):
+            db.add([ClipRecord("bad", good.frames(0, 0), ("歩く",))])
+
+
+def test_remove_deletes_clips_and_what_only_they_used(empty_db, record):
+    empty_db.add([record("walk", ("歩く", "進む"), objects=("ボール",), character="alice"),
+                  record("run", ("走る", "進む"), character="bob")])
+    with pytest.raises(UnknownClipError, match="'wlak'.*nearest: walk") as err:
+        empty_db.remove(["run", "wlak"])
+    assert err.value.user_facing
+    assert len(empty_db.clips()) == 2  # all or nothing
+    empty_db.remove("walk")
+    assert [c.name for c in empty_db.clips()] == ["run"]
+    assert sorted(v.lemma for v in empty_db.verbs()) == ["走る", "進む"]
+    assert empty_db.characters() == ["bob"]
+    with pytest.raises(UnknownClipError):
+        empty_db.load("walk")
+    empty_db.remove(["run"])
+    assert empty_db.clips() == [] and empty_db.verbs() == [] and empty_db.characters() == []
+    with empty_db.engine.connect() as conn:  # nothing left behind
+        for table in ("clip_frames", "contacts", "clip_verbs", "clip_objects", "objects", "skeletons"):
+            assert conn.execute(text(f"SELECT COUNT(*) FROM {table}")).scalar() == 0, table
+
+
+def test_a_character_keeps_one_joint_hierarchy(empty_db, record):
+    empty_db.add([record("walk", character="alice")])
+    other = record("stomp", ("踏む",), character="alice", skeleton=make_skeleton(without_toes=True))
+    with pytest.raises(ClipValidationError, match="joint hierarchy of character 'alice'.*--character"):
+        empty_db.add([other])
+    # same hierarchy, other proportions (another performer): fine, and kept exactly
+    tall = record("tall_walk", character="alice", skeleton=make_skeleton(scale=1.1))
+    empty_db.add([tall])
+    assert np.array_equal(empty_db.load("tall_walk").skeleton.offsets, tall.motion.skeleton.offsets)
+    empty_db.add([record("stomp", ("踏む",), character="bobby", skeleton=make_skeleton(without_toes=True))])
+    assert empty_db.characters() == ["alice", "bobby"]
+    with pytest.raises(UnknownCharacterError, match="'bob'.*alice, bobby"):
+        empty_db.clips(character="bob")
+
+
+def test_listing_and_searching_never_read_frame_data(empty_db, record):
+    empty_db.add([record("walk", ("歩く", "進む"), objects=("ボール",)), record("run", ("走る",))])
+    statements: list[str] = []
+
+    def log(conn, cursor, statement, params, context, executemany):
+        statements.append(statement.lower())
+
+    event.listen(empty_db.engine, "before_cursor_execute", log)
+    try:
+        hits = empty_db.search("歩く", object="ボール")
+        empty_db.search("すすむ")
+        empty_db.clips()
+        empty_db.info("run")
+        empty_db.verbs()
+        assert hits[0].left_contacts or hits[0].right_contacts  # contacts come with the metadata
+        assert statements and not any("clip_frames" in s for s in statements)
+        empty_db.load(hits[0])
+        assert any("clip_frames" in s for s in statements)
+    finally:
+        event.remove(empty_db.engine, "before_cursor_execute", log)
+    # The clips table has no frame column, and the relationship refuses to load lazily.
+    assert "data" not in Clip.__table__.c
+
+
+def test_frame_blobs_are_deterministic_npy_without_pickle():
+    m = make_motion(seed=3, translations=True)
+    blob = encode_frames(m)
+    assert blob == encode_frames(make_motion(seed=3, translations=True))
+    raw = zlib.decompress(blob)
+    assert raw.startswith(b"\x93NUMPY")
+    arr = np.load(io.BytesIO(raw), allow_pickle=False)
+    assert arr.shape == (m.n_frames, 3 + 7 * m.skeleton.n_joints) and arr.dtype == np.float64
+    back = decode_frames(blob, m.skeleton, m.fps, frames=m.n_frames)
+    assert np.array_equal(back.translations, m.translations)
+    # An object array (a pickle inside) is refused, never unpickled.
+    buf = io.BytesIO()
+    np.save(buf, np.array([{"a": 1}], dtype=object), allow_pickle=True)
+    with pytest.raises(DBError, match="damaged"):
+        decode_frames(zlib.compress(buf.getvalue()), m.skeleton, m.fps)
+    with pytest.raises(DBError, match="does not fit"):
+        decode_frames(blob, make_skeleton(without_toes=True), m.fps)
+
+
+def test_schema_version_is_recorded_and_checked(db_url):
+    MotionDB.open(db_url, seed=False).close()
+    engine = create_engine(db_url)
+    try:
+        with engine.begin() as conn:
+            assert conn.execute(text("SELECT version FROM schema_version WHERE id = 1")).scalar() == SCHEMA_VERSION
+            conn.execute(update(SchemaVersion).values(version=SCHEMA_VERSION + 1))
+    finally:
+        engine.dispose()
+    with pytest.raises(SchemaVersionError, match="newer than this text2anim reads") as err:
+        MotionDB.open(db_url)
+    assert err.value.user_facing
+
+
+def test_tables_of_someone_else_are_not_touched(db_url):
+    engine = create_engine(db_url)
+    try:
+        with engine.begin() as conn:
+            conn.execute(text("CREATE TABLE clips (id INTEGER PRIMARY KEY, title TEXT)"))
+    finally:
+        engine.dispose()
+    with pytest.raises(DBError, match="already has tables named clips"):
+        MotionDB.open(db_url, seed=False)
