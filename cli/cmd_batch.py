@@ -10,9 +10,11 @@ element and of the same length; ``{"error": "words"}`` expects the line to be
 refused with a message containing the words.  Blank lines and lines starting
 with ``#`` are skipped.
 
-Each line goes through the *stages* in ``STAGES`` (only ``parse`` today; the
-plan and animation stages add themselves there when they exist, and their
-results are written with ``--out``).
+Every line is parsed; with ``--out DIR`` it is also planned and animated
+with clips from the motion database (``--db``): ``DIR/line_NNNN.bvh`` per
+line, its time table and per-join figures in ``DIR/results.jsonl``. A line
+whose verbs the database lacks is recorded as skipped for animation, not as
+an error.
 """
 from __future__ import annotations
 
@@ -22,10 +24,11 @@ import os
 import sys
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
+from functools import partial
 
 NAME = "batch"
-HELP = ("run every line of a corpus through parse, print a summary and, with --check, "
-        "fail when an expectation is not met (plan/animation per line: not yet available)")
+HELP = ("run every line of a corpus through parse (and plan + animation with --out), print a "
+        "summary and, with --check, fail when an expectation is not met")
 
 EXIT_FAILED = 1
 
@@ -68,8 +71,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--jobs", type=int, default=1, metavar="N",
                         help="worker processes (results identical to serial; default 1)")
     parser.add_argument("--out", metavar="DIR",
-                        help="write per-line results to DIR/results.jsonl and DIR/summary.json "
-                             "(parse only for now; plan and animation will follow)")
+                        help="also plan and animate every line: DIR/line_NNNN.bvh, per-line results in "
+                             "DIR/results.jsonl and DIR/summary.json")
+    parser.add_argument("--parse-only", action="store_true",
+                        help="with --out: write the parse results only, do not plan or animate")
+    parser.add_argument("--db", metavar="URL", help="motion database for --out (default: $TEXT2ANIM_DB "
+                        "or the user's data directory)")
+    parser.add_argument("--fps", type=float, default=30.0, help="frame rate of the animations (default 30)")
+
+
+@dataclass(frozen=True)
+class Config:
+    """What the stages after parse need: where to write, which database, which frame rate."""
+
+    out: str | None = None
+    db: str | None = None
+    fps: float = 30.0
 
 
 # ---------------------------------------------------------------- corpus
@@ -111,17 +128,48 @@ def stage_parse(text: str) -> dict:
     return analyze(text).to_dict(extra=True)
 
 
-#: Stages run on every line, in order: (name, function of the text).
-STAGES = [("parse", stage_parse)]
+_DB = {}  # one open database per process and URL
 
 
-def run_item(item: Item) -> Result:
+def _database(url: str | None):
+    from motiondb import MotionDB
+
+    if url not in _DB:
+        _DB[url] = MotionDB.open(url)
+    return _DB[url]
+
+
+def stage_animate(item: Item, cfg: Config) -> dict:
+    """Plan and animate one line; its BVH goes to ``cfg.out``. Unknown verbs: ``{"skipped": ...}``."""
+    from motiondb import UnknownVerbError
+    from text2anim.animation import animate
+
+    try:
+        anim = animate(item.text, _database(cfg.db), fps=cfg.fps)
+    except UnknownVerbError as exc:
+        return {"skipped": str(exc)}
+    files = anim.save_bvh(os.path.join(cfg.out, f"line_{item.line:04d}.bvh"))
+    report = anim.report
+    joins = report["joins"]
+    return {
+        "plan": [{k: e[k] for k in ("id", "actor", "verb", "clip", "method", "prev", "start", "end")}
+                 for e in report["time_table"]],
+        "files": [os.path.basename(f) for f in files],
+        "skating_ratio": max(a["skating_ratio"] for a in report["actors"].values()),
+        "join_skating_ratio": max((j["metrics"].get("skating_ratio", 0.0) for j in joins), default=0.0),
+        "joins": len(joins),
+        "warnings": report["warnings"],
+    }
+
+
+def run_item(item: Item, cfg: Config = Config()) -> Result:
     """Run one corpus line through the stages and check its expectation."""
     stages: dict = {}
     error = None
     try:
-        for name, fn in STAGES:
-            stages[name] = fn(item.text)
+        stages["parse"] = stage_parse(item.text)
+        if cfg.out:
+            stages["animate"] = stage_animate(item, cfg)
     except Exception as exc:  # noqa: BLE001 - one bad line must not stop the batch
         error = f"{type(exc).__name__}: {exc}"
     mismatches = _check(item.expect, stages.get("parse"), error)
@@ -178,19 +226,20 @@ def compare(expected, actual, path: str):
 # ---------------------------------------------------------------- running
 
 
-def run_all(items: list[Item], jobs: int = 1, progress=None) -> list[Result]:
+def run_all(items: list[Item], jobs: int = 1, progress=None, cfg: Config = Config()) -> list[Result]:
     """Results in corpus order, serially or on ``jobs`` processes."""
     progress = progress or (lambda done, total: None)
     results: list[Result] = []
+    run_one = partial(run_item, cfg=cfg)
     if jobs <= 1 or len(items) < 2:
-        iterator = map(run_item, items)
+        iterator = map(run_one, items)
         for r in iterator:
             results.append(r)
             progress(len(results), len(items))
         return results
     chunksize = max(1, len(items) // (jobs * 8))
     with ProcessPoolExecutor(max_workers=jobs) as pool:
-        for r in pool.map(run_item, items, chunksize=chunksize):
+        for r in pool.map(run_one, items, chunksize=chunksize):
             results.append(r)
             progress(len(results), len(items))
     return results
@@ -224,10 +273,20 @@ def summarize(results: list[Result]) -> dict:
         return c
 
     cats = sorted({r.category for r in results if r.category})
-    return {
+    summary = {
         **counts(results),
         "categories": {c: counts([r for r in results if r.category == c]) for c in cats},
     }
+    animated = [r.stages["animate"] for r in results if "animate" in r.stages]
+    if animated:
+        done = [a for a in animated if "skipped" not in a]
+        summary["animation"] = {
+            "rendered": len(done), "skipped_unknown_verb": len(animated) - len(done),
+            "joins": sum(a["joins"] for a in done),
+            "max_skating_ratio": max((a["skating_ratio"] for a in done), default=0.0),
+            "max_join_skating_ratio": max((a["join_skating_ratio"] for a in done), default=0.0),
+        }
+    return summary
 
 
 def format_summary(summary: dict, results: list[Result], max_listed: int = 20) -> str:
@@ -246,6 +305,11 @@ def format_summary(summary: dict, results: list[Result], max_listed: int = 20) -
         for cat, c in summary["categories"].items():
             lines.append(f"  {cat:<{width}}  passed {c['passed']:>3}  failed {c['failed']:>3}"
                          f"  errored {c['errored']:>3}")
+    if "animation" in summary:
+        a = summary["animation"]
+        lines.append(f"animation: {a['rendered']} rendered, {a['skipped_unknown_verb']} skipped (unknown verb), "
+                     f"{a['joins']} joins, max foot-skating ratio {a['max_skating_ratio']:.4f} "
+                     f"(in joins {a['max_join_skating_ratio']:.4f})")
     lines.append(f"passed {summary['passed']}, failed {summary['failed']}, "
                  f"errored {summary['errored']} (of {summary['total']})")
     return "\n".join(lines) + "\n"
@@ -267,7 +331,10 @@ def run(args: argparse.Namespace) -> int:
     items = load_corpus(args.corpus)
     if not items:
         raise CorpusError(f"{args.corpus}: no lines to run")
-    results = run_all(items, args.jobs, make_progress())
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+    cfg = Config(None if args.parse_only else args.out, args.db, args.fps)
+    results = run_all(items, args.jobs, make_progress(), cfg)
     summary = summarize(results)
     if args.out:
         write_out(args.out, results, summary)

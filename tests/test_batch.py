@@ -36,7 +36,7 @@ def test_corpus_is_large_and_covers_every_category():
 
 
 def test_project_corpus_passes_check(capsys, tmp_path):
-    code, out, err = run_cli(capsys, "batch", CORPUS, "--check", "--out", tmp_path)
+    code, out, err = run_cli(capsys, "batch", CORPUS, "--check", "--out", tmp_path, "--parse-only")
     assert code == 0, out
     assert "failed 0, errored 0" in out
     assert len(err.splitlines()) <= 12  # a short counter, not a line per sentence
@@ -93,8 +93,8 @@ def test_jobs_give_the_same_results_as_serial(tmp_path):
 
 def test_jobs_via_cli_write_the_same_file(capsys, tmp_path):
     corpus = write(tmp_path, "c.txt", ["太郎は歩く。", "花子は走って、座る。", "手を振りながら歩く。"] * 5)
-    run_cli(capsys, "batch", corpus, "--out", tmp_path / "a")
-    run_cli(capsys, "batch", corpus, "--jobs", "2", "--out", tmp_path / "b")
+    run_cli(capsys, "batch", corpus, "--out", tmp_path / "a", "--parse-only")
+    run_cli(capsys, "batch", corpus, "--jobs", "2", "--out", tmp_path / "b", "--parse-only")
     assert (tmp_path / "a" / "results.jsonl").read_text() == (tmp_path / "b" / "results.jsonl").read_text()
 
 
