@@ -183,3 +183,26 @@ def empty_db(db_url):
     db = MotionDB.open(db_url, seed=False)
     yield db
     db.close()
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _private_default_database(tmp_path_factory):
+    """No test writes to the user's data directory: the default database lives in a temp folder."""
+    path = tmp_path_factory.mktemp("default-db") / "motions.sqlite"
+    old = os.environ.get("TEXT2ANIM_DB")
+    os.environ["TEXT2ANIM_DB"] = str(path)
+    yield path
+    if old is None:
+        os.environ.pop("TEXT2ANIM_DB", None)
+    else:
+        os.environ["TEXT2ANIM_DB"] = old
+
+
+@pytest.fixture(scope="session")
+def library_db(tmp_path_factory) -> str:
+    """URL of an SQLite database seeded with the built-in library (shared by the session's tests)."""
+    from motiondb import MotionDB
+
+    url = f"sqlite:///{tmp_path_factory.mktemp('library-db') / 'motions.sqlite'}"
+    MotionDB.open(url).close()
+    return url

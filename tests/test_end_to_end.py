@@ -1,0 +1,110 @@
+"""Text to animation through the real pipeline and the built-in library, as a user runs it."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import text2anim
+from cli_run import assert_clean_error, text2anim as run
+from synthesis import read_bvh
+from synthesis.metrics import skating_ratio
+
+EXAMPLE = "太郎は走って、ボールを蹴る。そして喜ぶ。"
+
+
+@pytest.fixture(scope="module")
+def example(library_db):
+    return text2anim.animate(EXAMPLE, library_db)
+
+
+def test_plan_cli_prints_the_papers_table(library_db):
+    proc = run("plan", EXAMPLE, "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    assert "[要素 2]" in proc.stdout and "接続形式  Transition" in proc.stdout
+    assert "接続形式  Connection" in proc.stdout and "前要素    要素 2" in proc.stdout
+
+
+def test_plan_json_follows_the_contract(library_db):
+    proc = run("plan", EXAMPLE, "--json", "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    table = json.loads(proc.stdout)
+    assert [(e["verb"], e["method"], e["prev"]) for e in table["elements"]] == [
+        ("走る", "initial", None), ("蹴る", "transition", 1), ("喜ぶ", "connection", 2)]
+    run_, kick, cheer = table["elements"]
+    assert run_["start"] == 0 and run_["start"] < kick["start"] < run_["end"] <= kick["end"]
+    assert cheer["start"] == pytest.approx(kick["end"], abs=1e-3)
+
+
+def test_example_animation_is_one_clean_motion(example):
+    (name, motion), = example.motions.items()
+    assert name == "太郎" and motion.fps == 30
+    last = example.table.elements[-1]
+    assert motion.duration == pytest.approx(last.end, abs=0.2)
+    assert skating_ratio(motion) == 0
+    # No teleport: the hips never move more than a sprint's distance in one frame.
+    step = np.linalg.norm(np.diff(motion.positions[:, 0], axis=0), axis=1)
+    assert step.max() < 10 / motion.fps
+    # The kick happens: one foot rises well above the other while the kick element plays.
+    kick = example.table.elements[1]
+    frames = slice(int(kick.start * 30), int(kick.end * 30))
+    from synthesis.bodyparts import body_map
+    feet = body_map(motion.skeleton).feet
+    y = motion.positions[frames][:, [feet["left"][0], feet["right"][0]], 1]
+    assert np.abs(y[:, 0] - y[:, 1]).max() > 0.2
+
+
+def test_report_has_every_join_with_metrics(example):
+    report = example.report
+    assert [(j["first"], j["second"], j["method"]) for j in report["joins"]][:2] == [
+        (1, 2, "transition"), (2, 3, "connection")]
+    for j in report["joins"]:
+        assert j["intervals"] and all(iv["begin"] <= iv["end"] for iv in j["intervals"])
+        assert j["metrics"]["skating_ratio"] == 0
+
+
+def test_cli_writes_bvh_viewer_and_report(tmp_path, library_db):
+    out = tmp_path / "anim.bvh"
+    proc = run(EXAMPLE, "-o", out, "--html", tmp_path / "anim.html", "--report", tmp_path / "r.json",
+               "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    m = read_bvh(out)
+    assert m.n_frames > 60 and m.fps == pytest.approx(30)
+    assert "<canvas" in (tmp_path / "anim.html").read_text()
+    assert json.loads((tmp_path / "r.json").read_text())["joins"]
+
+
+def test_same_text_same_bytes(tmp_path, library_db):
+    a, b = tmp_path / "a.bvh", tmp_path / "b.bvh"
+    assert run(EXAMPLE, "-o", a, "--db", library_db).returncode == 0
+    assert run(EXAMPLE, "-o", b, "--db", library_db).returncode == 0
+    assert a.read_bytes() == b.read_bytes()
+
+
+def test_two_actors_get_two_files_apart(tmp_path, library_db):
+    anim = text2anim.animate("太郎が歩くと同時に花子が走る。", library_db)
+    files = anim.save_bvh(tmp_path / "x.bvh")
+    assert sorted(f.name for f in files) == ["x_太郎.bvh", "x_花子.bvh"]
+    taro, hanako = (anim.motions[n].positions[0, 0] for n in ("太郎", "花子"))
+    assert np.linalg.norm((taro - hanako)[[0, 2]]) >= 1.0
+
+
+@pytest.mark.parametrize("args, fragment", [
+    (("",), "empty"),
+    (("宇宙遊泳する。",), "宇宙遊泳する"),
+    (("走る。", "-o", "/nonexistent-dir/x.bvh"), "does not exist"),
+    (("走る。", "--db", "postgresql://nobody@127.0.0.1:1/none"), "cannot connect"),
+])
+def test_bad_input_one_message_no_file(tmp_path, library_db, args, fragment):
+    extra = () if "--db" in args else ("--db", library_db)
+    proc = run(*args, *extra, cwd=tmp_path)
+    assert_clean_error(proc, fragment)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_skip_unknown_animates_the_rest(tmp_path, library_db):
+    proc = run("走って、宇宙遊泳する。そして喜ぶ。", "--skip-unknown", "-o", tmp_path / "a.bvh", "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    assert "skipped 宇宙遊泳する" in proc.stderr
+    assert (tmp_path / "a.bvh").exists()
