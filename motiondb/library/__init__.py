@@ -1,0 +1,146 @@
+"""The built-in motion library: clips generated from keyframe data on one skeleton.
+
+``builtin_clips(fps)`` gives every clip as a :class:`motiondb.types.ClipRecord`
+on :func:`canonical_skeleton` (see :mod:`.skeleton`). The clips are data:
+``clips/*.json`` hold key poses, timing, root travel, foot plants, the core
+interval and the verbs (format in :mod:`.keyframes`); ``clips/_poses.json``
+the shared named poses (``stand``, ...). Generation is deterministic
+(the same bytes on every run) and cached per frame rate:
+
+1. the keyed curves are sampled with scipy splines (:mod:`.keyframes`);
+2. the feet are planted exactly by leg IK (:mod:`.plant`);
+3. hands are put on their ``reach`` targets by arm IK (:mod:`.reach`);
+4. cyclic clips are generated with one extra cycle on each side and cut,
+   so the last frame flows into the first.
+
+A clip declared for the right side (``body_part="right_arm"``) serves a
+left-side request through :func:`synthesis.mirror.mirror`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from motiondb.types import ClipRecord
+from synthesis.motion import Motion
+
+from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, curves_to_motion, load_json_dir, parse_clip,
+                        sample_curves)
+from .plant import FramePlant, PlantReport, plant_feet
+from .reach import apply_reach
+from .skeleton import ANKLE_HEIGHT, TOE_HEIGHT, canonical_skeleton
+
+__all__ = ["BuiltClip", "ClipDataError", "builtin_clips", "build_all", "canonical_skeleton"]
+
+SOURCE = "builtin"
+
+#: Sole points (heel, ball) in the ankle's frame: what touches the ground.
+SOLE = np.array([
+    [0.0, -ANKLE_HEIGHT, -0.05],
+    [0.0, -ANKLE_HEIGHT, 0.13],
+])
+
+
+@dataclass(frozen=True)
+class BuiltClip:
+    """A generated clip and how its foot planting went (for tests and previews)."""
+
+    record: ClipRecord
+    report: PlantReport | None
+    data: ClipData
+
+    @property
+    def starts(self) -> str:
+        """The posture the clip starts in: ``stand`` (the relaxed standing pose), ``sit``, ``hold``, ..."""
+        return self.data.raw.get("starts", "stand")
+
+    @property
+    def ends(self) -> str:
+        """The posture the clip ends in (``stand`` unless the data says ``sit``, ``floor``, ``hold``)."""
+        return self.data.raw.get("ends", "stand")
+
+
+def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> list[FramePlant]:
+    n = int(round((t_last - t_first) / h)) + 1
+    always = [FramePlant(p.side, 0, n - 1, int(round(-t_first / h))) for p in clip.plants if np.isinf(p.t0)]
+    plants = [p for p in clip.plants if not np.isinf(p.t0)]
+    if clip.cyclic:
+        reps = []
+        for k in range(-2, clip.cycles + 3):
+            reps.extend(p.shifted(k * clip.period) for p in plants)
+        plants = [p for p in reps if p.t1 >= t_first - 1e-9 and p.t0 <= t_last + 1e-9]
+    out = []
+    for p in plants:
+        start = int(np.ceil((p.t0 - t_first) / h - 1e-6))
+        stop = int(np.floor((p.t1 - t_first) / h + 1e-6))
+        anchor = int(round((p.anchor - t_first) / h))
+        heel = None if p.heel_off is None else int(round((p.heel_off - t_first) / h))
+        flat = None if p.flat is None else int(round((p.flat - t_first) / h))
+        out.append(FramePlant(p.side, start, stop, anchor, heel, p.toe_off, flat, p.strike, p.keep))
+    return always + out
+
+
+def _frozen(m: Motion) -> Motion:
+    root = np.array(m.root_positions)
+    rots = np.array(m.rotations)
+    root.setflags(write=False)
+    rots.setflags(write=False)
+    return Motion(m.skeleton, m.fps, root, rots)
+
+
+def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantReport | None]:
+    """Generate one clip's motion at ``fps`` (cyclic clips: an exact whole number of frames per cycle)."""
+    skel = canonical_skeleton()
+    if clip.cyclic:
+        per = max(2, int(round(clip.period * fps)))
+        h = clip.period / per
+        n = per * clip.cycles
+        margin = per
+        times = (np.arange(n + 2 * margin) - margin) * h
+    else:
+        h = 1.0 / fps
+        n = int(np.floor(clip.duration * fps + 1e-6)) + 1
+        margin = 0
+        times = np.arange(n) * h
+    curves = sample_curves(clip, poses, skel, times)
+    motion = curves_to_motion(curves, skel, fps)
+    report = None
+    if clip.plants:
+        plants = _frame_plants(clip, float(times[0]), h, float(times[-1]))
+        motion, report = plant_feet(motion, plants, toe_height=TOE_HEIGHT, sole=SOLE,
+                                    report_frames=slice(margin, margin + n))
+    motion = apply_reach(motion, clip.raw.get("reach", {}), times, clip.name)
+    if margin:
+        motion = motion.frames(margin, margin + n)
+    return _frozen(motion), report
+
+
+@lru_cache(maxsize=8)
+def build_all(fps: float = 30.0) -> tuple[BuiltClip, ...]:
+    """Every built-in clip at ``fps`` with its plant report (cached; the motions are read-only)."""
+    poses, raws = load_json_dir(CLIPS_DIR)
+    out = []
+    names = set()
+    for raw in raws:
+        clip = parse_clip(raw)
+        if clip.name in names:
+            raise ClipDataError(f"two built-in clips are named {clip.name!r}")
+        names.add(clip.name)
+        motion, report = build_clip(clip, poses, float(fps))
+        core = clip.core
+        if clip.cyclic and raw.get("core") in (None, "all"):
+            core = (0.0, motion.duration)  # a whole number of frames per cycle: the exact loop length
+        record = ClipRecord(
+            name=clip.name, motion=motion, verbs=clip.verbs, objects=clip.objects,
+            character="default", core=core, body_part=clip.body_part, cyclic=clip.cyclic,
+            source=f"{SOURCE}:{raw.get('_file', clip.name)}",
+        )
+        out.append(BuiltClip(record, report, clip))
+    return tuple(out)
+
+
+def builtin_clips(fps: float = 30.0) -> list[ClipRecord]:
+    """The built-in library as :class:`ClipRecord` s on :func:`canonical_skeleton` (deterministic, cached)."""
+    return [b.record for b in build_all(float(fps))]

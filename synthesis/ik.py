@@ -1,0 +1,220 @@
+"""Analytic two-bone inverse kinematics (legs and arms), vectorised over frames.
+
+A two-bone chain is ``(upper, middle, end)``: hip, knee, ankle or shoulder,
+elbow, wrist, each joint the parent of the next. :func:`two_bone_ik` changes
+the local rotations of ``upper`` and ``middle`` so that ``end`` lands on a
+world target, in three steps per frame:
+
+1. **Bend.** The middle joint turns about its *hinge* axis (the axis fixed
+   in the upper bone about which a positive rotation flexes it: ``+X`` for a
+   knee of the canonical skeleton) until the distance upper→end equals the
+   distance upper→target. Of the two solutions the one on the flexion side
+   is taken, so a knee never bends backwards. Its other rotation components
+   (twist, side tilt) are kept.
+2. **Aim.** The upper joint turns by the shortest arc that points the
+   upper→end line at the target.
+3. **Twist.** The upper joint turns about the upper→target line so that the
+   middle joint lies in the plane through upper, target and the *pole*
+   (default: where the middle joint was, i.e. the bend plane is kept).
+
+A target farther than the chain's length gives a straight chain pointing at
+it; a target nearer than ``|l1 - l2|`` gives a fully folded one: never NaN.
+
+Shapes: ``T`` frames; targets ``(T, 3)`` world metres; masks ``(T,)`` bool;
+quaternions ``(x, y, z, w)`` (scipy order). The end joint's *local*
+rotation is left as it was (so its world orientation follows the chain);
+:func:`set_world_rotation` then orients it, e.g. a foot flat on the ground.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from .bodyparts import body_map
+from .motion import Motion
+
+_EPS = 1e-12
+
+
+def _unit(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.maximum(n, _EPS), n[..., 0]
+
+
+def _joint(motion: Motion, j) -> int:
+    return motion.skeleton.index(j) if isinstance(j, str) else int(j)
+
+
+def _rows(a, T: int, what: str) -> np.ndarray:
+    arr = np.asarray(a, dtype=np.float64)
+    if arr.shape == (3,):
+        return np.broadcast_to(arr, (T, 3)).copy()
+    if arr.shape != (T, 3):
+        raise ValueError(f"{what} must be (3,) or ({T}, 3), got {arr.shape}")
+    return arr
+
+
+def _shortest_arc(src: np.ndarray, dst: np.ndarray) -> Rotation:
+    """Rotations ``(T)`` turning unit vectors ``src`` onto unit vectors ``dst`` by the shortest arc."""
+    axis = np.cross(src, dst)
+    s = np.linalg.norm(axis, axis=-1)
+    c = np.sum(src * dst, axis=-1)
+    angle = np.arctan2(s, c)
+    # Antiparallel vectors: any axis perpendicular to src will do.
+    anti = s < 1e-9
+    if np.any(anti):
+        alt = np.cross(src[anti], np.array([1.0, 0.0, 0.0]))
+        bad = np.linalg.norm(alt, axis=-1) < 1e-6
+        alt[bad] = np.cross(src[anti][bad], np.array([0.0, 1.0, 0.0]))
+        axis[anti] = alt
+    axis, _ = _unit(axis)
+    return Rotation.from_rotvec(axis * angle[:, None])
+
+
+def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0, 0.0, 0.0)) -> Motion:
+    """Rotate ``chain``'s upper and middle joints so its end joint reaches ``targets``.
+
+    Args:
+        motion: the motion to edit (not modified).
+        chain: ``(upper, middle, end)`` joint names or indices, each the parent
+            of the next (``("LeftUpLeg", "LeftLeg", "LeftFoot")``).
+        targets: ``(T, 3)`` (or ``(3,)``) world positions for the end joint, metres.
+        mask: ``(T,)`` bool, the frames to solve; others are returned unchanged.
+            ``None`` solves every frame.
+        pole: ``None``, ``(3,)`` or ``(T, 3)`` world points the middle joint
+            should bend towards (a point in front of the knee). ``None`` keeps
+            the current bend plane (the current middle joint is the pole).
+        hinge: the middle joint's flexion axis in the upper bone's frame
+            (positive rotation about it flexes). Knee of the canonical (CMU-like)
+            skeleton: ``(1, 0, 0)``; left elbow ``(0, -1, 0)``, right ``(0, 1, 0)``.
+
+    Returns:
+        A new :class:`Motion`; only the local rotations of upper and middle change.
+    """
+    skel = motion.skeleton
+    T = motion.n_frames
+    a_j, b_j, c_j = (_joint(motion, j) for j in chain)
+    if skel.parents[b_j] != a_j or skel.parents[c_j] != b_j:
+        raise ValueError(f"{[skel.names[j] for j in (a_j, b_j, c_j)]} is not a parent-child chain")
+    mask = np.ones(T, dtype=bool) if mask is None else np.asarray(mask, dtype=bool).reshape(T)
+    if T == 0 or not mask.any():
+        return motion
+    targets = _rows(targets, T, "targets")[mask]
+    idx = np.flatnonzero(mask)
+
+    pose = motion.pose
+    P, R = pose.positions[idx], pose.rotations[idx]
+    a, b, c = P[:, a_j], P[:, b_j], P[:, c_j]
+    Ra, Rb = R[:, a_j], R[:, b_j]
+    parent = skel.parents[a_j]
+    Rp = R[:, parent] if parent >= 0 else np.broadcast_to(np.eye(3), Ra.shape)
+    poles = b.copy() if pole is None else _rows(pole, T, "pole")[mask]
+
+    # 1. Bend about the hinge (fixed in the upper bone) to get the right reach.
+    n, _ = _unit(np.einsum("tij,j->ti", Ra, np.asarray(hinge, dtype=np.float64)))
+    w = b - a
+    v = c - b
+    l1 = np.linalg.norm(w, axis=-1)
+    l2 = np.linalg.norm(v, axis=-1)
+    d = np.linalg.norm(targets - a, axis=-1)
+    n_dot_v = np.sum(n * v, axis=-1)
+    v_par = n * n_dot_v[:, None]
+    v_perp = v - v_par
+    n_x_v = np.cross(n, v)
+    p_ = np.sum(w * v_par, axis=-1)
+    q_ = np.sum(w * v_perp, axis=-1)
+    s_ = np.sum(w * n_x_v, axis=-1)
+    k_ = (d ** 2 - l1 ** 2 - l2 ** 2) / 2.0
+    r_ = np.hypot(q_, s_)
+    psi = np.arctan2(s_, q_)  # the rotation that straightens the chain as far as the hinge allows
+    cos_arg = np.clip((k_ - p_) / np.maximum(r_, _EPS), -1.0, 1.0)
+    phi = psi + np.arccos(cos_arg)  # flexion side of the straight configuration
+    phi = (phi + np.pi) % (2 * np.pi) - np.pi
+    bend = Rotation.from_rotvec(n * phi[:, None])
+    Rb_bent = bend.as_matrix() @ Rb
+    c_bent = b + bend.apply(v)
+
+    # 2. Aim: upper->end onto upper->target.
+    aim_dir, aim_len = _unit(targets - a)
+    degenerate = aim_len < 1e-9
+    if np.any(degenerate):  # target on the upper joint: keep the current direction
+        aim_dir[degenerate] = _unit(c_bent - a)[0][degenerate]
+    q1 = _shortest_arc(_unit(c_bent - a)[0], aim_dir)
+
+    # 3. Twist about the aim line so the middle joint faces the pole.
+    b1 = a + q1.apply(w)
+    p1 = b1 - a
+    p2 = poles - a
+    p1 = p1 - aim_dir * np.sum(p1 * aim_dir, axis=-1)[:, None]
+    p2 = p2 - aim_dir * np.sum(p2 * aim_dir, axis=-1)[:, None]
+    ok = (np.linalg.norm(p1, axis=-1) > 1e-6) & (np.linalg.norm(p2, axis=-1) > 1e-6)
+    twist = np.arctan2(np.sum(aim_dir * np.cross(p1, p2), axis=-1), np.sum(p1 * p2, axis=-1))
+    twist = np.where(ok, twist, 0.0)
+    q2 = Rotation.from_rotvec(aim_dir * twist[:, None])
+    G = (q2 * q1).as_matrix()
+
+    Ra_new = G @ Ra
+    local_a = np.swapaxes(Rp, -1, -2) @ Ra_new
+    local_b = np.swapaxes(Ra, -1, -2) @ Rb_bent  # G cancels: R_a'^T (G R_b') = R_a^T R_b'
+
+    rots = motion.rotations.copy()
+    rots[idx, a_j] = Rotation.from_matrix(local_a).as_quat()
+    rots[idx, b_j] = Rotation.from_matrix(local_b).as_quat()
+    return motion.replace(rotations=rots)
+
+
+def set_world_rotation(motion: Motion, joint, rotations, mask=None) -> Motion:
+    """Set ``joint``'s local rotation so its *world* rotation is ``rotations`` (``(T, 4)`` quats)."""
+    j = _joint(motion, joint)
+    T = motion.n_frames
+    mask = np.ones(T, dtype=bool) if mask is None else np.asarray(mask, dtype=bool).reshape(T)
+    if T == 0 or not mask.any():
+        return motion
+    q = np.asarray(rotations, dtype=np.float64).reshape(T, 4)[mask]
+    p = motion.skeleton.parents[j]
+    world = Rotation.from_quat(q)
+    if p >= 0:
+        parent = Rotation.from_matrix(motion.pose.rotations[mask, p])
+        local = parent.inv() * world
+    else:
+        local = world
+    rots = motion.rotations.copy()
+    rots[mask, j] = local.as_quat()
+    return motion.replace(rotations=rots)
+
+
+def _limb(motion: Motion, side: str, kind: str) -> tuple[tuple[int, int, int], tuple[float, float, float]]:
+    if side not in ("left", "right"):
+        raise ValueError(f"side must be 'left' or 'right', got {side!r}")
+    bm = body_map(motion.skeleton)
+    parents = motion.skeleton.parents
+    if kind == "leg":
+        end = bm.feet[side][0]
+        hinge = (1.0, 0.0, 0.0)
+    else:
+        end = bm.hands[side]
+        hinge = (0.0, -1.0, 0.0) if side == "left" else (0.0, 1.0, 0.0)
+    mid = int(parents[end])
+    up = int(parents[mid])
+    return (up, mid, end), hinge
+
+
+def leg_ik(motion: Motion, side: str, targets, mask=None, pole=None) -> Motion:
+    """:func:`two_bone_ik` on the ``side`` leg (hip, knee, ankle from the body map); ankle targets ``(T, 3)``."""
+    chain, hinge = _limb(motion, side, "leg")
+    return two_bone_ik(motion, chain, targets, mask, pole, hinge)
+
+
+def arm_ik(motion: Motion, side: str, targets, mask=None, pole=None) -> Motion:
+    """:func:`two_bone_ik` on the ``side`` arm (shoulder, elbow, wrist); wrist targets ``(T, 3)``."""
+    chain, hinge = _limb(motion, side, "arm")
+    return two_bone_ik(motion, chain, targets, mask, pole, hinge)
+
+
+def chain_angle(motion: Motion, chain) -> np.ndarray:
+    """Flexion of a chain's middle joint in degrees per frame, ``(T,)``: 0 straight, 180 folded."""
+    a_j, b_j, c_j = (_joint(motion, j) for j in chain)
+    P = motion.positions
+    u1 = _unit(P[:, b_j] - P[:, a_j])[0]
+    u2 = _unit(P[:, c_j] - P[:, b_j])[0]
+    return np.degrees(np.arccos(np.clip(np.sum(u1 * u2, axis=-1), -1.0, 1.0)))
