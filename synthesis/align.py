@@ -1,0 +1,154 @@
+"""Where a character faces, and the rigid ground-plane moves that place motions.
+
+Paper 003 §4.3 joins motions "through the support foot": the next motion is
+turned about +Y and slid over the ground so that, at the switching frames,
+its support foot stands where the previous motion's does and its body faces
+the same way. Everything here is that one kind of move, a :class:`Rigid`:
+a yaw about the world +Y axis followed by a horizontal translation. Heights
+are never changed (both clips stand on the same floor, y = 0).
+
+Heading convention (the project's): radians about +Y, 0 faces +Z, so a
+heading ``h`` faces ``(sin h, 0, cos h)``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import uniform_filter1d
+from scipy.spatial.transform import Rotation
+
+from .bodyparts import body_map
+from .motion import Motion
+from .skeleton import Skeleton
+
+_UP = np.array([0.0, 1.0, 0.0])
+
+
+def wrap_angle(a):
+    """Angles mapped to ``(-pi, pi]``."""
+    return np.pi - np.mod(np.pi - np.asarray(a, dtype=np.float64), 2 * np.pi)
+
+
+def rest_forward(skeleton: Skeleton) -> np.ndarray:
+    """The direction the rest pose faces, in the root's frame (unit, horizontal).
+
+    From the legs: ``left - right`` is the character's left, and forward is
+    ``left x up`` (right-handed, Y up). A CMU-like skeleton gives ``+Z``.
+    """
+    bm = body_map(skeleton)
+    rest = skeleton.rest_positions()
+    across = rest[list(bm.joints("left_leg"))].mean(axis=0) - rest[list(bm.joints("right_leg"))].mean(axis=0)
+    fwd = np.cross(across, _UP)
+    fwd[1] = 0.0
+    n = np.linalg.norm(fwd)
+    return fwd / n if n > 1e-9 else np.array([0.0, 0.0, 1.0])
+
+
+def headings(motion: Motion, smooth: float = 0.0) -> np.ndarray:
+    """Facing angle per frame, ``(T,)`` radians, unwrapped (continuous across ±pi).
+
+    The rest pose's forward direction carried by the root's world rotation,
+    projected on the ground. ``smooth`` (seconds) averages it over a window,
+    which removes the pelvis' own swing in gait (±5-10 degrees per step).
+    """
+    if motion.n_frames == 0:
+        return np.zeros(0)
+    fwd = Rotation.from_quat(motion.rotations[:, 0]).apply(rest_forward(motion.skeleton))
+    h = np.unwrap(np.arctan2(fwd[:, 0], fwd[:, 2]))
+    n = int(round(smooth * motion.fps))
+    if n > 1:
+        h = uniform_filter1d(h, size=n, mode="nearest")
+    return h
+
+
+def yaw_rotation(yaw) -> Rotation:
+    """Rotation(s) by ``yaw`` radians about +Y."""
+    yaw = np.asarray(yaw, dtype=np.float64)
+    return Rotation.from_rotvec(np.multiply.outer(yaw, _UP))
+
+
+def to_heading_frame(vectors: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """World vectors ``(T, ..., 3)`` expressed in the frame turned by ``-heading`` ``(T,)``: +Z is forward."""
+    c, s = np.cos(heading), np.sin(heading)
+    shape = (len(heading),) + (1,) * (vectors.ndim - 2)
+    c, s = c.reshape(shape), s.reshape(shape)
+    x, y, z = vectors[..., 0], vectors[..., 1], vectors[..., 2]
+    return np.stack([c * x - s * z, y, s * x + c * z], axis=-1)
+
+
+@dataclass(frozen=True)
+class Rigid:
+    """A yaw about +Y (radians) then a horizontal translation ``offset`` (x, z metres)."""
+
+    yaw: float = 0.0
+    offset: tuple[float, float] = (0.0, 0.0)
+
+    @property
+    def translation(self) -> np.ndarray:
+        return np.array([self.offset[0], 0.0, self.offset[1]])
+
+    def rotation(self) -> Rotation:
+        return yaw_rotation(self.yaw)
+
+    def apply_points(self, points: np.ndarray) -> np.ndarray:
+        """Move world points ``(..., 3)``."""
+        p = np.array(points, dtype=np.float64)  # a copy: scipy wants a writable buffer
+        return self.rotation().apply(p.reshape(-1, 3)).reshape(p.shape) + self.translation
+
+    def apply(self, motion: Motion) -> Motion:
+        """The motion moved rigidly: root positions and the root's world rotation change."""
+        if self.yaw == 0.0 and self.offset == (0.0, 0.0):
+            return motion
+        rot = self.rotation()
+        rots = motion.rotations.copy()
+        if len(rots):
+            rots[:, 0] = (rot * Rotation.from_quat(rots[:, 0])).as_quat()
+        return motion.replace(root_positions=self.apply_points(motion.root_positions), rotations=rots)
+
+    def then(self, other: "Rigid") -> "Rigid":
+        """``other`` after ``self``."""
+        t = other.apply_points(self.translation)
+        return Rigid(float(self.yaw + other.yaw), (float(t[0]), float(t[2])))
+
+    def inverse(self) -> "Rigid":
+        t = yaw_rotation(-self.yaw).apply(self.translation)
+        return Rigid(-self.yaw, (float(-t[0]), float(-t[2])))
+
+
+def match(point: np.ndarray, heading: float, to_point: np.ndarray, to_heading: float) -> Rigid:
+    """The :class:`Rigid` that turns ``heading`` into ``to_heading`` and puts ``point`` over ``to_point``.
+
+    Only the ground-plane (x, z) coordinates of the points matter.
+    """
+    yaw = float(wrap_angle(to_heading - heading))
+    p = yaw_rotation(yaw).apply(np.asarray(point, dtype=np.float64))
+    return Rigid(yaw, (float(to_point[0] - p[0]), float(to_point[2] - p[2])))
+
+
+def place_at(motion: Motion, origin: tuple[float, float], heading: float, frame: int = 0,
+             smooth: float = 0.5) -> Rigid:
+    """The move that puts ``motion``'s root over ``origin`` (x, z) facing ``heading`` (smoothed over
+    ``smooth`` seconds, see :func:`headings`) at ``frame``."""
+    h = headings(motion, smooth)[frame]
+    return match(motion.root_positions[frame], h, np.array([origin[0], 0.0, origin[1]]), heading)
+
+
+def align_through_foot(prev: Motion, a: int, nxt: Motion, b: int, side: str | None,
+                       smooth: float = 0.5) -> Rigid:
+    """Move ``nxt`` so its frame ``b`` continues ``prev``'s frame ``a`` (paper 003 §4.3).
+
+    The heading (smoothed over ``smooth`` seconds) of ``nxt`` at ``b`` is turned
+    onto ``prev``'s at ``a`` and the ``side`` foot's lowest joint of ``nxt``
+    at ``b`` is put over the same foot of ``prev`` at ``a``. ``side=None``
+    (no foot on the ground in either) aligns the roots instead.
+    """
+    ha = headings(prev, smooth)[a]
+    hb = headings(nxt, smooth)[b]
+    if side is None:
+        pa, pb = prev.root_positions[a], nxt.root_positions[b]
+    else:
+        ankle, toe = body_map(prev.skeleton).feet[side]
+        pa = prev.positions[a, [ankle, toe]].mean(axis=0)
+        pb = nxt.positions[b, [ankle, toe]].mean(axis=0)
+    return match(pb, hb, pa, ha)

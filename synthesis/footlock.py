@@ -1,0 +1,290 @@
+"""Foot locking during blends (paper 003 §4.3.2, last paragraph).
+
+While two motions are blended, a foot on the ground must stay where it is:
+blending joint angles (and root positions) moves it otherwise. Each planted
+foot gets a :class:`Lock` over the frames ``[begin, end)`` where it is down
+in the motion that dominates the blend (and, past the blend, in the next
+motion). The ankle is driven to a target by the analytic two-bone IK of
+:mod:`synthesis.ik` (hip and knee) and turned to a target orientation
+(:func:`synthesis.ik.set_world_rotation`), so the toe stays too.
+
+The target starts where the foot is on the lock's first frame and then moves
+only as the foot moves *in the source motions that have it planted*
+(:func:`planted_targets`): their foot velocities, weighted by their blend
+weights, are integrated. A foot flat on the ground in both sources stays
+exactly still; a foot rolling onto its toe in a source rolls the same way;
+the sliding a blend of two different foot placements would cause is never
+integrated. Past the blend only the next motion counts, so the foot does what
+that clip does, displaced by whatever offset the lock had built up.
+
+A foot that lands during the blend is carried to where the planted source
+puts it over its approach (:func:`lock_foot`). At ``end`` the foot leaves
+the ground in the next motion and is **released while it is in the air**: the leg's joint angles are blended from the locked
+solution back to the motion's own by eq. (3) with the ratio of eq. (4) over
+the air phase ``[end, release_end)``, so it lands where the next motion puts
+it.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from .align import rest_forward
+from .blend import ease, ratio, slerp
+from .bodyparts import body_map
+from .contacts import runs
+from .ik import leg_ik, set_world_rotation
+from .motion import Motion
+
+
+@dataclass(frozen=True)
+class Lock:
+    """One foot held on the ground: ``side``; frames ``[begin, end)`` locked, released over ``[end, release_end)``."""
+
+    side: str
+    begin: int
+    end: int
+    release_end: int
+
+
+def planted_targets(start_pos: np.ndarray, start_rot: Rotation, positions: list[np.ndarray],
+                    rotations: list[Rotation], weights: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Ankle targets of a lock: the start pose moved by the weighted motion of the planted sources.
+
+    Args:
+        start_pos: ``(3,)`` the ankle on the lock's first frame; ``start_rot`` its world rotation.
+        positions: per source, the ankle's world positions ``(T, 3)`` over the lock.
+        rotations: per source, the ankle's world rotations (``T`` of them).
+        weights: per source ``(T,)``: its blend weight where the foot is planted in it, else 0.
+
+    Returns:
+        ``(T, 3)`` positions and ``(T, 4)`` quaternions. Frame 0 is the start pose;
+        frame ``t`` adds the weighted mean of the sources' steps ``t - 1 -> t``
+        (velocity and body-frame angular velocity), summed.
+    """
+    T = len(weights[0])
+    w = np.stack(weights)  # (S, T)
+    tot = w.sum(axis=0)
+    share = np.divide(w, tot, out=np.zeros_like(w), where=tot > 1e-9)
+    dp = np.zeros((T, 3))
+    dr = np.zeros((T, 3))
+    for s, (p, r) in enumerate(zip(positions, rotations)):
+        if T < 2:
+            break
+        step_p = np.diff(p, axis=0)
+        step_r = (r[:-1].inv() * r[1:]).as_rotvec()
+        dp[1:] += share[s, 1:, None] * step_p
+        dr[1:] += share[s, 1:, None] * step_r
+    targets = start_pos + np.cumsum(dp, axis=0)
+    rots = (start_rot * Rotation.from_rotvec(np.cumsum(dr, axis=0))).as_quat()
+    return targets, rots
+
+
+def _ankle(motion: Motion, side: str) -> int:
+    return body_map(motion.skeleton).feet[side][0]
+
+
+#: IK targets are kept within this fraction of the leg's length from the hip: a leg pulled fully
+#: straight has no bend plane, and the knee would flip from frame to frame. Captured legs reach 0.99
+#: of their length, the built-in ones 0.999.
+REACH = 0.998
+
+
+def _leg_ik(motion: Motion, side: str, targets: np.ndarray) -> Motion:
+    """:func:`synthesis.ik.leg_ik` with targets pulled within :data:`REACH` of the leg's length and the
+    knee bending towards the thigh's forward direction."""
+    ankle = _ankle(motion, side)
+    parents = motion.skeleton.parents
+    knee = int(parents[ankle])
+    hip = int(parents[knee])
+    offs = motion.skeleton.offsets
+    reach = REACH * (np.linalg.norm(offs[knee]) + np.linalg.norm(offs[ankle]))
+    pos = motion.positions
+    h = pos[:, hip]
+    v = targets - h
+    dist = np.linalg.norm(v, axis=-1)
+    scale = np.minimum(1.0, reach / np.maximum(dist, 1e-9))
+    # the knee bends towards the thigh's own forward: with the leg's own knee as the pole, a nearly
+    # straight leg has no bend plane to keep and the knee could swing sideways (a hinge knee bends in
+    # the thigh's forward plane, so for a bent leg this is the plane it already has)
+    fwd = np.einsum("tij,j->ti", motion.pose.rotations[:, hip], rest_forward(motion.skeleton))
+    pole = pos[:, knee] + 0.5 * fwd
+    return leg_ik(motion, side, h + v * scale[:, None], pole=pole)
+
+
+def release(motion: Motion, side: str, begin: int, end: int, offset: np.ndarray, turn: Rotation,
+            profile: str = "smooth") -> Motion:
+    """Release a locked foot over ``[begin, end)`` while it is in the air (eq. (3)).
+
+    The lock's last offset (``offset`` metres and ``turn``, the ankle's rotation
+    relative to its own) rides on the motion's own foot, solved by IK; the
+    leg's joint angles are then blended from that solution to the motion's own,
+    ``angle = (1 - ratio) * locked + ratio * own`` with the ratio of eq. (4).
+    """
+    b, e = max(0, begin), min(motion.n_frames, end)
+    if e <= b:
+        return motion
+    ankle = _ankle(motion, side)
+    sub = motion[b:e]
+    pose = sub.pose
+    r_own = Rotation.from_matrix(pose.rotations[:, ankle])
+    solved = _leg_ik(sub, side, pose.positions[:, ankle] + offset)
+    solved = set_world_rotation(solved, ankle, (r_own * turn).as_quat())
+    w = ease(ratio(e - b), profile)  # eq. (4), eased
+    legs = list(body_map(motion.skeleton).joints(f"{side}_leg"))
+    rots = sub.rotations.copy()
+    rots[:, legs] = slerp(solved.rotations[:, legs], sub.rotations[:, legs], w[:, None])  # eq. (3)
+    out = motion.rotations.copy()
+    out[b:e] = rots
+    return motion.replace(rotations=out)
+
+
+def lock_foot(motion: Motion, side: str, locks: list[Lock], first: int, positions: list[np.ndarray],
+              rotations: list[np.ndarray], weights: list[np.ndarray], profile: str = "smooth") -> Motion:
+    """Apply all the locks of one foot in one join.
+
+    Args:
+        motion: the joined motion (not yet locked on this side).
+        locks: this foot's :class:`Lock` s, in time order, none beginning before ``first``.
+        first: the frame the sources start at (the blend's first frame).
+        positions, rotations: per source motion, its ankle's world positions ``(N, 3)`` and
+            rotation matrices ``(N, 3, 3)`` over frames ``[first, first + N)``.
+        weights: per source ``(N,)``: its blend weight where the foot is planted in it, else 0.
+
+    Each lock's target starts where the planted sources put the foot (their
+    weighted mean) and follows their motion (:func:`planted_targets`). Between
+    ``first`` and the first lock, and between two locks, the foot's offset
+    from its own path moves smoothly (the ``smooth`` profile) from the one
+    before to the one after, so a foot that lands during the blend is
+    carried to its lock without a jump; after the last lock it is
+    :func:`release` d.
+    """
+    if not locks:
+        return motion
+    locks = sorted(locks, key=lambda lk: lk.begin)
+    ankle = _ankle(motion, side)
+    stop = locks[-1].end
+    sub = motion[first:stop]
+    pose = sub.pose
+    p = pose.positions[:, ankle]
+    r = Rotation.from_matrix(pose.rotations[:, ankle])
+    T = len(p)
+    d = np.zeros((T, 3))
+    e = np.zeros((T, 3))
+    w = np.stack([x[:T] for x in weights])
+    for lk in locks:
+        i0, i1 = lk.begin - first, lk.end - first
+        tot = w[:, i0].sum()
+        if tot > 1e-9:
+            share = w[:, i0] / tot
+            start = sum(share[k] * positions[k][i0] for k in range(len(positions)))
+            start_rot = Rotation.from_matrix(rotations[int(np.argmax(share))][i0])
+        else:
+            start, start_rot = p[i0], r[i0]
+        tp, tr = planted_targets(start, start_rot, [x[i0:i1] for x in positions],
+                                 [Rotation.from_matrix(x[i0:i1]) for x in rotations], [x[i0:i1] for x in w])
+        d[i0:i1] = tp - p[i0:i1]
+        e[i0:i1] = (r[i0:i1].inv() * Rotation.from_quat(tr)).as_rotvec()
+    prev_end, prev_d, prev_e = 0, np.zeros(3), np.zeros(3)
+    for lk in locks:  # the approaches: the offset eases from the previous state to the lock's
+        i0 = lk.begin - first
+        if i0 > prev_end:
+            u = ease(ratio(i0 - prev_end), profile)[:, None]
+            d[prev_end:i0] = prev_d + u * (d[i0] - prev_d)
+            e[prev_end:i0] = prev_e + u * (e[i0] - prev_e)
+        prev_end = lk.end - first
+        prev_d, prev_e = d[prev_end - 1].copy(), e[prev_end - 1].copy()
+    solved = _leg_ik(sub, side, p + d)
+    solved = set_world_rotation(solved, ankle, (r * Rotation.from_rotvec(e)).as_quat())
+    out = motion.rotations.copy()
+    out[first:stop] = solved.rotations
+    motion = motion.replace(rotations=out)
+    last = locks[-1]
+    return release(motion, side, last.end, last.release_end, prev_d, Rotation.from_rotvec(prev_e), profile)
+
+
+CLEARANCE_SLOPE = 0.3  # m of height per m of horizontal distance from the nearer end of a swing
+CLEARANCE_MAX = 0.08  # m
+SWING_SPEED = 0.3  # m/s: only where the foot moves faster than this does its height matter
+LIFT_JERK = 500.0  # m/s^3: the largest jerk a lift may add (short runs get lower arcs)
+
+
+def lift_swing(motion: Motion, side: str, begin: int, end: int,
+               slope: float = CLEARANCE_SLOPE, top: float = CLEARANCE_MAX) -> Motion:
+    """Keep a foot off the floor while a blend (or a release) carries it through the air, ``[begin, end)``.
+
+    A blend moves a foot between two places along the mix of its two source
+    paths; where the two places differ, the weight's own change pushes the
+    foot along, which can skim the floor (a shuffle the skating measure
+    rightly counts). The foot should be at least ``slope`` × its horizontal
+    distance from the nearer end of the run (capped at ``top``) above the
+    lower of its two end heights — its lowest point, ankle or toe, counts —
+    wherever it moves faster than :data:`SWING_SPEED`. Where it is not, the
+    ankle is raised by IK (its world orientation kept) along one smooth arc
+    in time, ``64 (u (1 - u))^3``, tall enough for the largest shortfall but
+    adding no more jerk than :data:`LIFT_JERK`; zero, with zero slope and
+    curvature, at both ends.
+    """
+    n = motion.n_frames
+    b, e = max(0, begin), min(n, end)
+    if e - b < 3:
+        return motion
+    ankle, toe = body_map(motion.skeleton).feet[side]
+    sub = motion[b:e]
+    pose = sub.pose
+    p = pose.positions[:, ankle]
+    low = np.minimum(p[:, 1], pose.positions[:, toe, 1])  # the foot's lowest point
+    step = np.linalg.norm(np.diff(p[:, [0, 2]], axis=0), axis=1)
+    s_from = np.concatenate([[0.0], np.cumsum(step)])
+    total = s_from[-1]
+    speed = np.linalg.norm(np.gradient(p[:, [0, 2]], axis=0), axis=1) * motion.fps
+    moving = speed > SWING_SPEED
+    if total < 0.05 or not moving.any():
+        return motion
+    clearance = np.minimum(slope * np.minimum(s_from, total - s_from), top)
+    floor = min(low[0], low[-1])
+    need = float(np.max((floor + clearance - low)[moving]))
+    m = len(p)
+    # one smooth arc (not a clipped max, which would kink the leg's motion), no taller than a jerk of
+    # LIFT_JERK allows over the run: the arc's third derivative at its ends is 384 * height / duration^3
+    height = min(need, top, LIFT_JERK * ((m - 1) / motion.fps) ** 3 / 384.0)
+    if height < 1e-3:
+        return motion
+    u = np.arange(m) / (m - 1)
+    target = p.copy()
+    target[:, 1] += height * 64.0 * (u * (1.0 - u)) ** 3
+    rot = Rotation.from_matrix(pose.rotations[:, ankle]).as_quat()
+    solved = set_world_rotation(_leg_ik(sub, side, target), ankle, rot)
+    out = motion.rotations.copy()
+    out[b:e] = solved.rotations
+    return motion.replace(rotations=out)
+
+
+def plan_locks(planted: dict[str, np.ndarray], window: tuple[int, int], limit: int) -> list[Lock]:
+    """Locks for the feet planted during a blend.
+
+    Args:
+        planted: per side, ``(N,)`` bool over the frames of the motion: whether
+            the foot should be on the ground (inside the blend: in the motion
+            that dominates, i.e. has the larger weight; after it: in the next motion).
+        window: ``[w0, w1)``, the blend's frames.
+        limit: no lock or release reaches this frame.
+
+    Every run of ``planted`` that overlaps the window is locked from where it
+    starts (at the earliest ``w0``) to where the foot lifts (at the latest
+    ``limit``) and released over the foot's next air phase (cut at ``limit``).
+    """
+    w0, w1 = window
+    out = []
+    for side, mask in planted.items():
+        mask = np.asarray(mask, dtype=bool)
+        air = {int(a): int(h) for a, h in runs(~mask)}
+        for lo, hi in runs(mask):
+            if hi <= w0 or lo >= w1:
+                continue
+            begin, end = max(int(lo), w0), min(int(hi), limit)
+            release_end = min(air.get(int(hi), limit), limit) if end < limit else end
+            out.append(Lock(side, begin, end, release_end))
+    return out

@@ -1,0 +1,303 @@
+"""Preparing a clip for its place on a track: speed, looping, repeats, holding and trimming.
+
+The time table (``timetable.md`` §1) gives every element a played length
+``end - start``; this module turns the element's clip into exactly that many
+frames at the output frame rate:
+
+- **speed** is a time scale: the clip is resampled (slerp) as if recorded at
+  ``fps * speed``; its core scales with it.
+- a **cyclic** clip (its last frame flows into its first) is **looped** to the
+  length: each cycle is moved rigidly by the cycle's own root travel and turn,
+  so a loop of a walk walks on instead of jumping back. Any mismatch between
+  the end of the cycle and its start is spread over the cycle
+  (:func:`make_cyclic`), so the seam has no pop.
+- any other clip is played whole and then its last pose is **held**, or it is
+  **trimmed** to the length — from its tail, never inside its core; a core
+  longer than the length is kept whole (the element then overruns; a warning
+  says so).
+- **repeats** of a non-cyclic clip are joined by the engine as connections
+  (each repetition is a motion in its own right); here :func:`prepare` plays
+  one repetition of ``length / repeat``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from .align import Rigid, headings, yaw_rotation
+from .blend import sample
+from .contacts import detect_contacts
+from .motion import Motion
+from .plan import Element
+
+
+def at_speed(motion: Motion, speed: float, fps: float) -> Motion:
+    """``motion`` played ``speed`` times as fast, sampled at ``fps`` (time scaling by resampling)."""
+    if not speed > 0:
+        raise ValueError(f"speed must be positive, got {speed}")
+    return motion.replace(fps=motion.fps * speed).resample(fps)
+
+
+def hold(motion: Motion, n_frames: int) -> Motion:
+    """``motion`` extended to ``n_frames`` by repeating its last frame (or cut to it)."""
+    n = motion.n_frames
+    if n_frames <= n:
+        return motion[:n_frames]
+    idx = np.concatenate([np.arange(n), np.full(n_frames - n, n - 1)])
+    return _take(motion, idx)
+
+
+#: Seconds over which a clip coming to its last frame (or leaving its first) eases to a stop
+#: instead of freezing in one frame: its velocity falls linearly to zero over twice this.
+KNEE = 0.2
+
+
+def soft_clip(x: np.ndarray, lo: float, hi: float, knee: float) -> np.ndarray:
+    """``np.clip(x, lo, hi)`` with rounded corners: within ``knee`` of a bound the curve bends
+    quadratically (slope 1 → 0), so a clip played up to a held frame slows down to it.
+
+    Identity for ``lo + knee <= x <= hi - knee`` (it never changes which frame plays there).
+    """
+    x = np.asarray(x, dtype=np.float64)
+    if knee <= 0 or hi - lo < 2 * knee:
+        return np.clip(x, lo, hi)
+    out = np.clip(x, lo, hi)
+    up = (x > hi - knee) & (x < hi + knee)
+    out[up] = hi - (hi + knee - x[up]) ** 2 / (4 * knee)
+    down = (x > lo - knee) & (x < lo + knee)
+    out[down] = lo + (x[down] - lo + knee) ** 2 / (4 * knee)
+    return out
+
+
+def ease_hold(motion: Motion, n_frames: int, knee: float = KNEE) -> Motion:
+    """``motion`` extended to ``n_frames`` by holding its last pose, easing into it (see :func:`soft_clip`)."""
+    n = motion.n_frames
+    if n_frames <= n:
+        return motion[:n_frames]
+    k = knee * motion.fps
+    start = max(0, int(np.floor(n - 1 - k)))
+    src = soft_clip(np.arange(start, n_frames, dtype=np.float64), 0, n - 1, k)
+    return motion[:start].then(sample(motion, src)) if start else sample(motion, src)
+
+
+def ease_lead(motion: Motion, n_frames: int, knee: float = KNEE) -> Motion:
+    """``n_frames`` of ``motion``'s first pose before it, easing out of it (the mirror of :func:`ease_hold`)."""
+    if n_frames <= 0:
+        return motion
+    k = knee * motion.fps
+    stop = min(motion.n_frames, int(np.ceil(k)) + 1)
+    src = soft_clip(np.arange(-n_frames, stop, dtype=np.float64), 0, motion.n_frames - 1, k)
+    return sample(motion, src).then(motion[stop:])
+
+
+def _take(motion: Motion, idx: np.ndarray) -> Motion:
+    return Motion(motion.skeleton, motion.fps, motion.root_positions[idx], motion.rotations[idx],
+                  None if motion.translations is None else motion.translations[idx])
+
+
+def _extrapolated(motion: Motion) -> tuple[np.ndarray, np.ndarray, float]:
+    """Root position, local rotations and heading one frame after the last (constant velocity)."""
+    if motion.n_frames < 2:
+        return motion.root_positions[-1], motion.rotations[-1], float(headings(motion)[-1])
+    r = Rotation.from_quat(motion.rotations[-2:].reshape(-1, 4)).as_quat().reshape(2, -1, 4)
+    step = Rotation.from_quat(r[0]).inv() * Rotation.from_quat(r[1])
+    q_next = (Rotation.from_quat(r[1]) * step).as_quat()
+    p_next = 2 * motion.root_positions[-1] - motion.root_positions[-2]
+    h = headings(motion)
+    return p_next, q_next, float(2 * h[-1] - h[-2])
+
+
+#: A cycle turning less than this (radians) is taken as going straight: a captured walk wobbles a few
+#: degrees between cycles, which looping would add up into a curve.
+STRAIGHT_BELOW = 0.2
+
+
+def cycle_move(motion: Motion, straight_below: float = STRAIGHT_BELOW) -> Rigid:
+    """The ground move from a cyclic clip's first frame to the frame after its last (one cycle's travel and turn).
+
+    The frame after the last is extrapolated at the clip's final velocity;
+    the move maps frame 0's root (x, z) and heading onto it. A turn smaller
+    than ``straight_below`` radians is dropped (see :data:`STRAIGHT_BELOW`).
+    """
+    p_next, _, h_next = _extrapolated(motion)
+    h0 = float(headings(motion)[0])
+    yaw = h_next - h0
+    if abs(yaw) < straight_below:
+        yaw = 0.0
+    p0 = yaw_rotation(yaw).apply(motion.root_positions[0])
+    return Rigid(float(yaw), (float(p_next[0] - p0[0]), float(p_next[2] - p0[2])))
+
+
+def make_cyclic(motion: Motion) -> Motion:
+    """A cyclic clip adjusted so its last frame flows exactly into its first.
+
+    The mismatch between the extrapolated frame after the last and frame 0
+    (each joint's local rotation, the root height and the root's sideways
+    position in the cycle's own frame) is spread linearly over the cycle:
+    frame ``k`` takes ``k / n`` of the correction. A clip that already loops
+    is returned as it was (to rounding).
+    """
+    n = motion.n_frames
+    if n < 3:
+        return motion
+    p_next, q_next, _ = _extrapolated(motion)
+    move = cycle_move(motion)
+    # where frame 0 is, seen from the next cycle: the extrapolated frame should coincide with it
+    p0_next = move.apply_points(motion.root_positions[0])
+    u = np.arange(n) / n
+    q0 = motion.rotations[0].copy()
+    q0[0] = (move.rotation() * Rotation.from_quat(q0[0])).as_quat()  # the next cycle's root is turned by the move
+    err_rot = (Rotation.from_quat(q_next).inv() * Rotation.from_quat(q0)).as_rotvec()  # (J, 3)
+    corr = Rotation.from_rotvec(np.einsum("t,jk->tjk", u, err_rot).reshape(-1, 3))
+    rots = (Rotation.from_quat(motion.rotations.reshape(-1, 4)) * corr).as_quat().reshape(motion.rotations.shape)
+    # root position: by construction of the move only the height can disagree
+    err_p = p0_next - p_next
+    root = motion.root_positions + np.outer(u, err_p)
+    return motion.replace(root_positions=root, rotations=rots)
+
+
+def loop(motion: Motion, n_frames: int, first: int = 0) -> Motion:
+    """A cyclic clip repeated to ``n_frames``, every cycle moved by the previous cycles' travel.
+
+    Frame ``k`` of the result is frame ``first + k`` of the endless loop whose
+    cycle 0 is ``motion`` itself (``first < 0`` starts cycles before it, moved
+    back by the inverse travel). Call :func:`make_cyclic` first for a clip
+    that does not loop exactly.
+    """
+    n = motion.n_frames
+    if first == 0 and n_frames <= n:
+        return motion[:n_frames]
+    move = cycle_move(motion)
+    frames = first + np.arange(n_frames)
+    cyc = np.floor_divide(frames, n)
+    root = np.empty((n_frames, 3))
+    rot = np.empty((n_frames, motion.skeleton.n_joints, 4))
+    for k in np.unique(cyc):  # a handful of cycles; each is one vectorised rigid move
+        acc = Rigid()
+        step = move if k >= 0 else move.inverse()
+        for _ in range(abs(int(k))):
+            acc = acc.then(step)
+        sel = cyc == k
+        moved = acc.apply(motion)
+        idx = frames[sel] - k * n
+        root[sel] = moved.root_positions[idx]
+        rot[sel] = moved.rotations[idx]
+    return Motion(motion.skeleton, motion.fps, root, rot)
+
+
+def trim(motion: Motion, n_frames: int, core: tuple[int, int]) -> tuple[Motion, int]:
+    """Cut ``motion`` to ``n_frames`` from its tail, never inside ``core`` (frames).
+
+    Returns the cut motion and the number of frames it is still too long
+    (0 unless the core itself does not fit).
+    """
+    keep = max(n_frames, core[1], 1)
+    return motion[:keep], max(0, keep - n_frames)
+
+
+def find_cycle(motion: Motion, side: str = "left", min_frames: int | None = None) -> tuple[int, int]:
+    """One gait cycle ``[start, stop)`` of a locomotion clip: between two landings of ``side``'s foot.
+
+    Of all pairs of landings one or more cycles apart, the pair whose poses
+    (local joint rotations, root height) differ least is taken, so the cycle
+    loops with the smallest seam. Raises ``ValueError`` when the foot lands
+    fewer than twice.
+    """
+    c = detect_contacts(motion).of(side)
+    lands = np.flatnonzero(c[1:] & ~c[:-1]) + 1
+    if len(lands) < 2:
+        raise ValueError(f"the {side} foot lands fewer than twice: no gait cycle")
+    min_frames = min_frames or int(0.3 * motion.fps)
+    best, best_cost = None, np.inf
+    q = motion.rotations
+    for i in range(len(lands)):
+        for j in range(i + 1, len(lands)):
+            a, b = int(lands[i]), int(lands[j])
+            if b - a < min_frames:
+                continue
+            d = (Rotation.from_quat(q[a]).inv() * Rotation.from_quat(q[b])).magnitude()
+            cost = float(np.mean(d) + abs(motion.root_positions[a, 1] - motion.root_positions[b, 1]))
+            if cost < best_cost:
+                best, best_cost = (a, b), cost
+    if best is None:
+        raise ValueError("no gait cycle long enough")
+    return best
+
+
+@dataclass(frozen=True)
+class Prepared:
+    """An element's clip at the output frame rate and played length.
+
+    Attributes:
+        motion: the frames, in the clip's own placement (not yet moved onto the track).
+        core: ``[begin, end)`` frames of the core interval in ``motion``.
+        cycle: frames per cycle for a looped clip, else 0.
+        lead: frames of loop added before the element's start (``margin``), 0 otherwise.
+        played: frames of the clip actually played before any hold (the rest repeats the last frame).
+        warnings: what could not be honoured (a core longer than the played length).
+    """
+
+    motion: Motion
+    core: tuple[int, int]
+    cycle: int = 0
+    played: int = 0
+    warnings: tuple[str, ...] = ()
+    lead: int = 0
+
+
+def cycle_frames(motion: Motion, speed: float, fps: float) -> Motion:
+    """One cycle of a cyclic clip at ``speed``, sampled at ``fps`` with a whole number of frames.
+
+    The period (the clip's frame count over its frame rate, over ``speed``)
+    is rounded to whole output frames and the clip is sampled (slerp) at
+    that spacing, so looping keeps the clip's exact tempo to within a frame.
+    """
+    period = motion.n_frames / motion.fps / speed
+    n_cycle = max(3, int(round(period * fps)))
+    src = np.arange(n_cycle) * (motion.n_frames / n_cycle)
+    return sample(motion, src).replace(fps=fps)
+
+
+def prepare(element: Element, fps: float, repeats_as_one: bool = True, margin: bool = False) -> Prepared:
+    """The element's clip made ready for the track: speed, loop or hold/trim to ``end - start``.
+
+    A non-cyclic clip with ``repeat > 1`` is prepared as one repetition of
+    ``(end - start) / repeat`` when ``repeats_as_one`` (the engine joins the
+    repetitions); a cyclic clip simply loops to the whole length. With
+    ``margin`` a cyclic clip gets one more cycle before its start and after its
+    end (``lead`` frames before): a transition may then enter it at any phase.
+    """
+    clip = element.clip
+    speed = float(element.speed)
+    if not speed > 0:
+        raise ValueError(f"element {element.id}: speed must be positive, got {speed}")
+    length = element.end - element.start
+    repeat = max(1, int(element.repeat))
+    if not clip.cyclic and repeat > 1 and repeats_as_one:
+        length = length / repeat
+    n_target = max(1, int(round(length * fps)))
+    if clip.cyclic and clip.motion.n_frames >= 3:
+        m = make_cyclic(cycle_frames(clip.motion, speed, fps))
+    else:
+        m = at_speed(clip.motion, speed, fps)
+    n_src = m.n_frames
+    c0 = int(np.clip(round(clip.core[0] / speed * fps), 0, max(n_src - 1, 0)))
+    c1 = int(np.clip(round(clip.core[1] / speed * fps), c0 + 1, n_src))
+    if clip.cyclic and n_src >= 3:
+        lead = n_src if margin else 0
+        out = loop(m, n_target + 2 * lead, -lead)
+        full = max(1, n_target // n_src)
+        core = (lead + min(c0, n_target - 1), lead + min(n_target, (full - 1) * n_src + c1))
+        return Prepared(out, core, n_src, n_target, (), lead)
+    warnings: list[str] = []
+    if n_target >= n_src:
+        out, played = hold(m, n_target), n_src
+    else:
+        out, over = trim(m, n_target, (c0, c1))
+        played = out.n_frames
+        if over:
+            warnings.append(f"element {element.id}: its core ({(clip.core[1] - clip.core[0]) / speed:.2f} s) does not "
+                            f"fit in {length:.2f} s; the core is kept and the element runs {over / fps:.2f} s longer")
+    return Prepared(out, (c0, min(c1, out.n_frames)), 0, played, tuple(warnings))

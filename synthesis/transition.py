@@ -1,0 +1,381 @@
+"""Motion connection (動作接続, paper 003 §4.3): Connection and Transition joins.
+
+Both joins take the track built so far (the first motion ``A`` is on it) and
+the next element's prepared clip ``B``, and decide a :class:`Join`: where
+``B`` is placed (a :class:`~synthesis.align.Rigid` through the support foot
+and a frame offset on the track), the blend window, which frame of each
+motion every window frame shows (a time warp for transitions) and the blend
+weights. :func:`apply_join` then writes it and locks the feet
+(:mod:`synthesis.footlock`).
+
+**Connection** (§4.3.1–4.3.2): switching frames ``a`` near the end of ``A``
+(after its core) and ``b`` near the start of ``B`` (before its core) with the
+same foot contact, at least one foot down in both
+(:func:`synthesis.switching.find_switch`); ``B`` is aligned through that
+foot. With a delay (``B`` starts later than :data:`HOLD_GAP` s after ``A``
+ends) ``A``'s pose at ``a`` stands until the blend, which is centred on ``b``
+where ``B`` is scheduled. Without one, ``B`` is moved in time so that ``b``
+falls on ``a`` (``shift_s`` in the report; ``phase_s`` for a looped ``B``,
+which enters at another phase but still ends when scheduled) and the blend is
+centred there.
+Either way both motions play their own frames through the blend — a clip
+only ever holds its first or last frame, easing into and out of it
+(:func:`synthesis.timing.soft_clip`), never a frame in mid-motion — and the
+blend never enters a core unless the cores leave no room for
+:data:`MIN_BLEND` s (a warning then says so). A looped ``B`` may start at
+any phase, so only where the switch falls costs time.
+
+**Transition** of two cyclic motions (walk → run): the key frames of both,
+foot lift and foot land (:func:`synthesis.switching.swings`); a swing of the
+same foot is taken in each, both near the scheduled overlap; both swings
+are time-warped onto one of their mean length and blended lift to land.
+``B`` is aligned through the stance foot at the lift (its root when that
+foot is not down in both) and continues from its landing frame: a looped
+clip simply enters at another phase (``phase_s``). A transition of motions
+that are not both cyclic (run → kick) is a connection at the footstep:
+switching frames as for a connection, chosen nearest to the scheduled
+overlap, and a blend as long as the overlap (at least :data:`MIN_BLEND` s).
+
+Feet (:mod:`synthesis.footlock`): a foot counts as planted in the blend where
+a motion holding at least :data:`PLANTED_WEIGHT` of the weight has it down,
+and past the blend where ``B`` has it down; planted runs that touch the blend
+are locked and released in the air; feet the blend carries through the air
+are kept off the floor.
+
+Choices where the paper is silent (constants below): connection blend
+:data:`CONNECTION_BLEND` s, at least :data:`MIN_BLEND` s for any blend;
+switching frames searched in the last/first :data:`SEARCH` s; weights of the
+``smooth`` profile (:mod:`synthesis.blend`); clips ease into a held frame
+over :data:`synthesis.timing.KNEE` s.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .align import Rigid, align_through_foot
+from .blend import blend, ramp, sample
+from .bodyparts import body_map
+from .contacts import FootContacts, runs
+from .footlock import Lock, lift_swing, lock_foot, plan_locks
+from .motion import Motion, concatenate
+from .switching import Switch, find_switch, swings
+from .timing import KNEE, hold, soft_clip
+
+CONNECTION_BLEND = 0.5  # s
+HOLD_GAP = 0.1  # s: a connection whose second motion starts later than this after the first ends holds a pose
+HOLD_LIFTED_COST = 0.2  # s-equivalent: a held pose should have both feet down when A has such a frame
+MIN_BLEND = 0.3  # s
+SEARCH = 1.0  # s searched for switching frames at the end of A / start of B
+PROFILE = "smooth"
+
+
+@dataclass(frozen=True)
+class Side:
+    """One motion of a join: its frames (``motion``, for ``B`` not yet placed), where its frame 0
+    is on the track (``offset``), its core ``[c0, c1)`` in its own frames, its contacts, cyclic or not.
+
+    A looped clip may carry a margin of extra cycles: its scheduled frames are
+    ``[lead, stop)`` of ``motion`` (``stop=None``: to the end).
+    """
+
+    motion: Motion
+    offset: int
+    core: tuple[int, int]
+    contacts: FootContacts
+    cyclic: bool = False
+    lead: int = 0
+    stop: int | None = None
+
+    @property
+    def last(self) -> int:
+        """One past the last scheduled frame, in the motion's own frames."""
+        return self.motion.n_frames if self.stop is None else self.stop
+
+    @property
+    def start(self) -> int:
+        """Scheduled start on the track."""
+        return self.offset + self.lead
+
+    @property
+    def end(self) -> int:
+        """Scheduled end on the track."""
+        return self.offset + self.last
+
+
+@dataclass(frozen=True)
+class Join:
+    """What a connection or transition decided (all frames are track frames unless said).
+
+    Attributes:
+        kind: ``connection``, ``transition`` (cyclic, time-warped) or ``footstep`` (a transition
+            joined as a connection at the footstep).
+        rigid: the move that places ``B``.
+        offset: the track frame of ``B``'s frame 0.
+        window: ``[w0, w1)`` the blend.
+        src_a: ``(n,)`` fractional track frames ``A`` shows in the window.
+        src_b: ``(n,)`` fractional frames of (placed) ``B`` in the window.
+        weights: ``(n,)`` weight of ``B``, or ``(n, J)`` per joint (e.g. lower and upper body
+            blended over different spans); the feet follow joint 0's (the hips').
+        planted: per side, ``(n,)`` whether the foot is down in the motion that dominates the window.
+        planted_a: per side, ``(n,)`` whether it is down in ``A`` as shown in the window.
+        switch: the switching frames (connection / footstep), track frame of ``a``, ``B``'s frame ``b``.
+        intervals: ``(part, kind, begin, end)`` frames for the report.
+        pre: fractional track frames ``A`` shows just before the window, where it eases into
+            its held last frame (``None``: the track is kept as it is up to the window).
+        warnings: what could not be honoured.
+    """
+
+    kind: str
+    rigid: Rigid
+    offset: int
+    window: tuple[int, int]
+    src_a: np.ndarray
+    src_b: np.ndarray
+    weights: np.ndarray
+    planted: dict
+    planted_a: dict
+    switch: Switch | None = None
+    intervals: tuple = ()
+    warnings: tuple[str, ...] = ()
+    info: dict = field(default_factory=dict)
+    pre: np.ndarray | None = None
+
+    @property
+    def retimed_from(self) -> int:
+        """First track frame the join rewrites: ``A`` eases to its end over ``pre`` before the window."""
+        return self.window[0] - (0 if self.pre is None else len(self.pre))
+
+
+def _contacts_at(contacts: FootContacts, frames: np.ndarray) -> dict[str, np.ndarray]:
+    idx = np.clip(np.round(frames).astype(int), 0, len(contacts.left) - 1)
+    return {"left": contacts.left[idx], "right": contacts.right[idx]}
+
+
+#: In a blend a foot counts as planted when a motion holding at least this weight has it on the ground.
+PLANTED_WEIGHT = 0.25
+
+
+def _dominant(ca: dict, cb: dict, w: np.ndarray) -> dict:
+    return {s: (ca[s] & (1.0 - w >= PLANTED_WEIGHT)) | (cb[s] & (w >= PLANTED_WEIGHT)) for s in ("left", "right")}
+
+
+def _blend_kind(src: np.ndarray) -> str:
+    return "pose" if len(src) < 2 or np.ptp(src) < 1e-9 else "motion"
+
+
+def connection(track: Motion, a: Side, b: Side, fps: float, overlap: bool = False,
+               blend_seconds: float = CONNECTION_BLEND, floor: int = 0) -> Join:
+    """A Connection (or, with ``overlap``, a transition at the footstep) of ``a`` and ``b``.
+
+    ``track`` holds ``A`` (``a.motion`` is ``A`` as placed, its frame 0 at track frame
+    ``a.offset``); ``b.offset`` is where ``B``'s frame 0 would be as scheduled.
+    Nothing before track frame ``floor`` (the end of the join into ``A``) is rewritten.
+
+    Two cases:
+
+    - **a delay** (``B`` starts more than :data:`HOLD_GAP` s after ``A`` ends): ``A``
+      plays to ``a`` — its last frame, unless an earlier one in its last second
+      has both feet down (:data:`HOLD_LIFTED_COST`) or that one has no planted
+      foot in common with ``B``'s start — and that pose stands; ``b`` is
+      searched near ``B``'s start for the same contact; the blend is centred on
+      ``b`` where ``B`` is scheduled, ``B`` playing its own frames through it.
+    - **no delay, or an overlap** (a footstep): ``a`` and ``b`` are searched
+      together and ``B`` is moved in time so that ``b`` falls on ``a``; the
+      blend is centred there, both motions playing their own frames through it
+      (no pose is frozen mid-motion; a clip only holds its first or last frame).
+    """
+    warnings = []
+    nA, nB = a.last, b.motion.n_frames
+    search = max(2, int(round(SEARCH * fps)))
+    gap = b.start - a.end
+    hold_mode = not overlap and gap > HOLD_GAP * fps
+    # after A's core and before B's (a looped clip is all core: its last / first second then), leaving
+    # room for half a blend on the core's side; failing a common planted foot there, closer to the cores,
+    # then anywhere in the last / first second
+    half = int(round(0.5 * blend_seconds * fps))
+    a_core = 0 if a.cyclic else a.core[1] - 1
+    a_floor = floor - a.offset + (0 if hold_mode else half)
+    b_core = nB if b.cyclic else b.core[0] + 1
+    levels = []
+    for a_room, b_room in ((half, half), (0, 0), (None, None)):
+        a_lim = max(0, a_floor) if a_room is None else max(a_core + a_room, a_floor, 0)
+        a_lo = min(max(nA - search, a_lim), nA - 1)
+        b_lim = nB if b_room is None else b_core - b_room
+        b_hi = max(b.lead + 1, min(b.lead + search, b_lim, nB))
+        levels.append(((a_lo, nA), (b.lead, b_hi)))
+
+    def time_cost(ai, bj):
+        if hold_mode:  # A's pose at a stands (frames after a are dropped); B's frames before b still play;
+            # a pose with a foot in the air is a poor one to stand in
+            lifted = ~(a.contacts.left[ai] & a.contacts.right[ai])
+            return (nA - 1 - ai) / fps + (bj - b.lead) / fps + HOLD_LIFTED_COST * lifted
+        ta, tb = a.offset + ai, b.offset + bj
+        if b.cyclic:  # a loop may start at any phase: only where the switch falls matters
+            return np.abs(ta - b.start) / fps + 0 * bj
+        return np.abs(tb - ta - max(gap, 0)) / fps  # how far B moves from its schedule
+
+    sw = None
+    for a_range, b_range in levels:
+        found = find_switch(a.motion, a.contacts, a_range, b.motion, b.contacts, b_range, time_cost)
+        sw = sw or found
+        if found.support is not None:
+            sw = found
+            break
+    ta = a.offset + sw.a
+    rigid = align_through_foot(track, ta, b.motion, sw.b, sw.support)
+    if hold_mode:
+        offset, centre = b.offset, b.offset + sw.b
+        L = blend_seconds
+    else:
+        offset, centre = ta - sw.b, ta
+        L = float(np.clip((a.end - b.start) / fps, MIN_BLEND, blend_seconds)) if overlap else blend_seconds
+    span = max(int(round(L * fps)), 2)
+    w0 = int(round(centre - span / 2))
+    w1 = w0 + span
+    lo = a.offset + (0 if a.cyclic else a.core[1])  # never blend inside a core (a looped clip's: its whole cycles)
+    hi = offset + (nB if b.cyclic else b.core[0])
+    c0, c1 = max(w0, lo, floor), min(w1, hi)
+    shortest = max(int(round(MIN_BLEND * fps)), 2)
+    if c1 - c0 >= min(shortest, span):
+        w0, w1 = c0, c1
+    else:  # a blend this short would be a pop: it goes into the core instead
+        w0 = max(w0, floor)
+        w1 = max(w1, w0 + shortest)
+        warnings.append("the cores leave no room for a blend; it overlaps a core")
+    w0 = max(w0, 0)
+    w1 = max(w1, w0 + 2)
+    a_stop = sw.a + 1 if hold_mode else a.motion.n_frames  # a delay ends A at its switching frame
+    # A is re-timed from where it starts easing to its last frame (never frozen mid-motion)
+    k = KNEE * fps
+    a_from = int(np.clip(np.floor(a.offset + a_stop - 1 - k), min(floor, w0), w0))
+    src_a_all = a.offset + soft_clip(np.arange(a_from, w1) - a.offset, 0, a_stop - 1, k)
+    pre = src_a_all[:w0 - a_from]
+    src_a = src_a_all[w0 - a_from:]
+    frames = np.arange(w0, w1)
+    src_b = soft_clip(frames - offset, 0, nB - 1, k)
+    w = ramp(w1 - w0, PROFILE)
+    ca = _contacts_at(a.contacts, src_a - a.offset)
+    cb = _contacts_at(b.contacts, src_b)
+    kind = f"{_blend_kind(src_a)}-{_blend_kind(src_b)}"
+    info = {"switch_first_s": ta / fps, "switch_second_s": (offset + sw.b) / fps, "support": sw.support,
+            "same_state": sw.exact, "other_foot_gap_cm": 100 * sw.other_gap,
+            "phase_s" if b.cyclic else "shift_s": (offset - b.offset) / fps,
+            "held_s": max(0, w0 - (a.offset + nA)) / fps if hold_mode else 0.0}
+    return Join("footstep" if overlap else "connection", rigid, offset, (w0, w1), src_a, src_b, w,
+                _dominant(ca, cb, w), ca, sw, (("whole", kind, w0, w1),), tuple(warnings), info, pre)
+
+
+def transition(track: Motion, a: Side, b: Side, fps: float, floor: int = 0) -> Join:
+    """A Transition: cyclic ``a`` → cyclic ``b`` blended over one time-warped swing; a footstep
+    connection when either is not cyclic or no swing of the same foot exists in both."""
+    if not (a.cyclic and b.cyclic):
+        return connection(track, a, b, fps, overlap=True, floor=floor)
+    sa = [s for s in swings(a.contacts) if floor <= a.offset + s.lift < track.n_frames]
+    sb = swings(b.contacts)
+    pairs = [(x, y) for x in sa for y in sb if x.side == y.side]
+    if not pairs:
+        return connection(track, a, b, fps, overlap=True, floor=floor)
+    s2 = b.start  # the scheduled overlap starts here; both lifts should be near it
+
+    def cost(p):
+        x, y = p
+        t_a = abs(a.offset + x.lift - s2) / fps
+        t_b = abs(b.offset + y.lift - s2) / fps
+        warp = abs(np.log(x.frames / y.frames))
+        return t_a + t_b + 0.5 * warp
+
+    x, y = min(pairs, key=cost)
+    D = max(2, int(round(0.5 * (x.frames + y.frames))))
+    stance = "left" if x.side == "right" else "right"
+    t_lift = a.offset + x.lift
+    sup_a = a.contacts.of(stance)[x.lift]
+    sup_b = b.contacts.of(stance)[y.lift]
+    rigid = align_through_foot(track, t_lift, b.motion, y.lift, stance if (sup_a and sup_b) else None)
+    u = np.arange(D) / D  # the time warp: both swings run from lift (u = 0) towards landing (u = 1)
+    src_a = t_lift + u * x.frames
+    src_b = y.lift + u * y.frames
+    w0, w1 = t_lift, t_lift + D
+    offset = w1 - y.land  # B continues from its landing frame
+    w = ramp(D, PROFILE)
+    ca = _contacts_at(a.contacts, src_a - a.offset)
+    cb = _contacts_at(b.contacts, src_b)
+    info = {"key_frames_first_s": ((a.offset + x.lift) / fps, (a.offset + x.land) / fps),
+            "key_frames_second_s": (y.lift / fps, y.land / fps), "swing_foot": x.side,
+            "phase_s": (offset - b.offset) / fps, "warp_first": D / x.frames, "warp_second": D / y.frames}
+    return Join("transition", rigid, offset, (w0, w1), src_a, src_b, w, _dominant(ca, cb, w), ca, None,
+                (("whole", "motion-motion", w0, w1),), (), info)
+
+
+def apply_join(track: Motion, placed_b: Motion, b_contacts: FootContacts, join: Join,
+               lock: bool = True) -> tuple[Motion, list[Lock]]:
+    """Write a join: the track up to the window, the blend, then all of placed ``B``; feet locked.
+
+    Returns the new track (it ends with ``B``'s last frame) and the locks applied.
+    """
+    w0, w1 = join.window
+    if w0 > track.n_frames:  # B starts after everything so far: hold the last frame until then
+        track = hold(track, w0)
+    a_w = sample(track, join.src_a)
+    b_w = sample(placed_b, join.src_b)
+    mix = blend(a_w, b_w, join.weights)
+    parts = [mix]
+    head = track[:w0]
+    if join.pre is not None and len(join.pre):
+        head = concatenate([p for p in (track[:join.retimed_from], sample(track, join.pre)) if p.n_frames])
+    if w1 - join.offset < 0:  # the window ends before B's first frame: B's first pose bridges the rest
+        parts.append(sample(placed_b, np.zeros(join.offset - w1)))
+    parts.append(placed_b[max(0, w1 - join.offset):])
+    b_line = concatenate([b_w] + parts[1:])  # B alone over [w0, end)
+    out = concatenate([p for p in [head] + parts if p.n_frames])
+    locks: list[Lock] = []
+    if not lock:
+        return out, locks
+    n = out.n_frames
+    nb = n - w0
+    after = np.arange(w1, n) - join.offset
+    ok = (after >= 0) & (after < len(b_contacts.left))
+    planted, src_planted = {}, {}
+    for s in ("left", "right"):
+        m = np.zeros(n, dtype=bool)
+        m[w0:w1] = join.planted[s]
+        m[w1:][ok] = b_contacts.of(s)[after[ok]]
+        planted[s] = m
+        pb = np.zeros(nb, dtype=bool)
+        pb[:w1 - w0] = _contacts_at(b_contacts, join.src_b)[s]
+        pb[w1 - w0:] = m[w1:]
+        src_planted[s] = pb
+    locks = plan_locks(planted, (w0, w1), n)
+    feet = body_map(out.skeleton).feet
+    a_pose, b_pose = a_w.pose, b_line.pose
+    wa = np.zeros(nb)
+    wl = join.weights if join.weights.ndim == 1 else join.weights[:, 0]
+    wa[:w1 - w0] = 1.0 - wl
+    wb = 1.0 - wa
+    a_contacts = {s: np.zeros(nb, dtype=bool) for s in ("left", "right")}
+    for s in ("left", "right"):
+        a_contacts[s][:w1 - w0] = join.planted_a[s]
+    for side in ("left", "right"):
+        mine = [lk for lk in locks if lk.side == side]
+        if not mine:
+            continue
+        ankle = feet[side][0]
+        pa = np.zeros((nb, 3))
+        ra = np.tile(np.eye(3), (nb, 1, 1))
+        pa[:w1 - w0] = a_pose.positions[:, ankle]
+        ra[:w1 - w0] = a_pose.rotations[:, ankle]
+        out = lock_foot(out, side, mine, w0, [pa, b_pose.positions[:, ankle]], [ra, b_pose.rotations[:, ankle]],
+                        [wa * a_contacts[side], wb * src_planted[side]], PROFILE)
+    for side in ("left", "right"):  # feet the blend or a release carries through the air keep clear of the floor
+        air = np.zeros(n, dtype=bool)
+        air[w0:w1] = True
+        for lk in locks:
+            if lk.side == side:
+                air[lk.end:lk.release_end] = True
+        for lk in locks:
+            if lk.side == side:
+                air[lk.begin:lk.end] = False
+        for lo, hi in runs(air):
+            out = lift_swing(out, side, int(lo), int(hi))
+    return out, locks
