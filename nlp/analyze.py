@@ -1,13 +1,15 @@
 """The public entry of the nlp stage: ``analyze(text) -> Analysis``."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 from .bunsetsu import Phrase, chunk, split_sentences
 from .constraints import build_constraints
 from .dependency import link_heads
 from .errors import NLPError
 from .motions import annotate
 from .tokens import OffsetMap, normalize, tokenize
-from .types import Analysis, Bunsetsu, MotionSpec
+from .types import Analysis, Bunsetsu, Constraint, MotionSpec
 
 #: Longest text accepted, in characters (a few pages of a script).  Longer
 #: texts are refused rather than producing an unreadable animation.
@@ -39,13 +41,40 @@ def analyze(text: str) -> Analysis:
         pred.id = n
     link_heads(phrases)
     constraints = build_constraints(phrases, cues)
-    specs = tuple(
+    specs = [
         MotionSpec(p.id, p.actor, p.verb, p.object, p.body_part, p.repeat, p.speed,
                    p.duration, offsets.span(p.start, p.end),
                    hold=p.ending == "mama", reading=p.reading)
         for p in motions
-    )
-    return Analysis(text, specs, tuple(constraints), _bunsetsu(text, offsets, phrases))
+    ]
+    constraints = list(constraints)
+    _add_co_actors(specs, constraints, {p.id: p.co_actors for p in motions if p.co_actors})
+    return Analysis(text, tuple(specs), tuple(constraints), _bunsetsu(text, offsets, phrases))
+
+
+def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: dict[int, tuple[str, ...]]) -> None:
+    """太郎と花子が歩く: each co-actor gets a copy of the motions (ids after the text's own, same span).
+
+    Links among the copied motions are copied; a copy with no copied link starts
+    with its original (parallel), so every actor's track is linked as the contract says.
+    """
+    names = list(dict.fromkeys(n for group in co.values() for n in group))
+    by_id = {s.id: s for s in specs}
+    next_id = len(specs) + 1
+    for name in names:
+        copies: dict[int, int] = {}
+        for orig in sorted(i for i, group in co.items() if name in group):
+            copies[orig] = next_id
+            specs.append(replace(by_id[orig], id=next_id, actor=name))
+            next_id += 1
+        linked = set()
+        for c in list(constraints):
+            if c.first in copies and c.second in copies:
+                constraints.append(replace(c, first=copies[c.first], second=copies[c.second]))
+                linked.add(copies[c.second])
+        for orig, copy in copies.items():
+            if copy not in linked:
+                constraints.append(Constraint(orig, copy, "parallel", None, None, "composition", "と"))
 
 
 def _bunsetsu(text: str, offsets: OffsetMap, phrases: list[Phrase]) -> tuple[Bunsetsu, ...]:

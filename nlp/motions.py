@@ -186,31 +186,48 @@ def _assign_actors(phrases: list[Phrase]) -> None:
     A が-subject holds until a clause that ends it (てから, 間に, 前に, の,
     relative, ...); then the topic is back, or, if the text has no topic yet,
     the が-subject carries over as the contract's "nearest preceding" rule.
+    Coordinated actors (太郎と花子が) are one group: every one of them performs
+    the motions (the first is ``actor``, the others ``co_actors``).
     """
-    topic: str | None = None
-    subject: str | None = None
+    topic: tuple[str, ...] = ()
+    subject: tuple[str, ...] = ()
     group = None
-    for ph in phrases:
+    for i, ph in enumerate(phrases):
         if ph.group != group:
-            if subject is not None:
-                topic, subject = subject, None
+            if subject:
+                topic, subject = subject, ()
             group = ph.group
         if ph.role == "actor":
-            name = _person(ph)
+            names = (*_partners(phrases, i), _person(ph))
             if _case_particle(ph) == "が":
-                subject = name
+                subject = names
             else:
-                topic, subject = name, None
+                topic, subject = names, ()
             continue
         pred = ph.pred
         if not pred:
             continue
-        pred.actor = subject or topic
+        names = subject or topic
+        pred.actor = names[0] if names else None
+        pred.co_actors = names[1:]
         ending = ENDINGS.get(pred.ending)
         closes = ending.closes_subject if ending else True
-        if closes and subject is not None:
+        if closes and subject:
             topic = topic or subject
-            subject = None
+            subject = ()
+
+
+def _partners(phrases: list[Phrase], i: int) -> list[str]:
+    """The persons joined to the actor phrase ``i`` by と just before it (太郎と次郎と花子が)."""
+    names: list[str] = []
+    j = i - 1
+    while j >= 0 and phrases[j].group == phrases[i].group and _case_particle(phrases[j]) == "と":
+        name = _person(phrases[j])
+        if not name:
+            break
+        names.insert(0, name)
+        j -= 1
+    return names
 
 
 # ---------------------------------------------------------------- modifiers

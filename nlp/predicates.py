@@ -40,6 +40,7 @@ class Pred:
     reason: str = ""  # why this is not a motion (endings.NOT_MOTION key)
     negated: bool = False
     actor: str | None = None
+    co_actors: tuple[str, ...] = ()  # 太郎と花子が: the others who perform it too
     object: str | None = None
     body_part: str | None = None
     repeat: int = 1
