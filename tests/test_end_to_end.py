@@ -108,3 +108,26 @@ def test_skip_unknown_animates_the_rest(tmp_path, library_db):
     assert proc.returncode == 0, proc.stderr
     assert "skipped 宇宙遊泳する" in proc.stderr
     assert (tmp_path / "a.bvh").exists()
+
+
+def test_a_wait_is_standing_not_a_frozen_stride(library_db):
+    anim = text2anim.animate("走る。3秒後に歩く。", library_db)
+    (motion,) = anim.motions.values()
+    run, walk = anim.table.elements
+    assert walk.start == pytest.approx(run.end + 3)
+    from synthesis.contacts import detect_contacts
+    c = detect_contacts(motion)
+    mid = slice(int((walk.start - 0.8) * 30), int((walk.start - 0.2) * 30))
+    assert c.left[mid].all() and c.right[mid].all()  # both feet down while waiting
+    hips_speed = np.linalg.norm(np.diff(motion.positions[mid, 0], axis=0), axis=1) * 30
+    assert hips_speed.max() < 0.3
+    assert all(j["metrics"]["skating_ratio"] == 0 for j in anim.report["joins"])
+    assert skating_ratio(motion) == 0
+
+
+def test_an_actor_who_finishes_early_stands_until_the_end(library_db):
+    anim = text2anim.animate("太郎は走る。3秒後に花子が歩く。", library_db)
+    taro, hanako = anim.motions["太郎"], anim.motions["花子"]
+    assert taro.n_frames == hanako.n_frames
+    hips = taro.positions[-15:, 0]
+    assert np.linalg.norm(hips[-1] - hips[0]) < 0.1

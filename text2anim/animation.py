@@ -15,23 +15,97 @@ from .pipeline import Planned, plan_text
 DEFAULT_ACTOR = "default"
 
 
+#: A wait longer than this (s) between two motions is filled rather than frozen: a looping
+#: motion (walk, run) first comes to a stop (止まる), then the idle clip (待つ) plays until the next
+#: motion, so after 走る。3秒後に歩く the runner stops and stands, breathing, before walking.
+IDLE_GAP = 0.5
+IDLE_VERB = "待つ"
+STOP_VERB = "止まる"
+
+
+class _Clips:
+    """Clips loaded from ``db`` once each, resampled to ``fps``."""
+
+    def __init__(self, db: MotionDB, fps: float):
+        self.db, self.fps, self.cache = db, fps, {}
+
+    def get(self, info) -> splan.Clip:
+        if info.name not in self.cache:
+            motion = self.db.load(info)
+            if motion.fps != self.fps:
+                motion = motion.resample(self.fps)
+            self.cache[info.name] = splan.Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
+        return self.cache[info.name]
+
+    def by_verb(self, verb: str, character: str | None) -> splan.Clip | None:
+        from motiondb import UnknownVerbError
+
+        try:
+            hits = self.db.search(verb, prefer_character=character)
+        except UnknownVerbError:
+            return None
+        return self.get(hits[0]) if hits else None
+
+
+def _fill_gap(clips: _Clips, prev: splan.Element, start: float, end: float, character: str | None,
+              next_id: int) -> list[splan.Element]:
+    """Elements that fill ``[start, end)`` after ``prev``: a stop for a looping motion, then idling."""
+    out: list[splan.Element] = []
+    stop = clips.by_verb(STOP_VERB, character) if prev.clip.cyclic else None
+    if stop is not None:
+        t1 = min(end, start + stop.motion.duration)
+        if end - t1 <= IDLE_GAP:
+            t1 = end
+        out.append(splan.Element(next_id, stop, start, t1, "transition", prev.id))
+        start = t1
+    idle = clips.by_verb(IDLE_VERB, character) if end - start > IDLE_GAP else None
+    if idle is not None:
+        out.append(splan.Element(next_id + len(out), idle, start, end, "connection",
+                                 out[-1].id if out else prev.id))
+    return out
+
+
 def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track]:
-    """The synthesis tracks of a time table: clips loaded from ``db`` and resampled to ``fps``."""
-    loaded: dict[str, splan.Clip] = {}
+    """The synthesis tracks of a time table: clips loaded from ``db`` and resampled to ``fps``.
+
+    A connection that waits more than :data:`IDLE_GAP` seconds gets filler
+    elements (ids above the table's) in the gap: see :func:`_fill_gap`.
+    """
+    clips = _Clips(db, fps)
+    table = planned.table
+    next_id = max(e.id for e in table.elements) + 1
     tracks = []
-    for actor in planned.table.actors():
-        elements = []
-        for e in (e for e in planned.table.elements if e.actor == actor):
+    for actor in table.actors():
+        elements: list[splan.Element] = []
+        for e in (e for e in table.elements if e.actor == actor):
             info = planned.clips[e.id]
-            if info.name not in loaded:
-                motion = db.load(info)
-                if motion.fps != fps:
-                    motion = motion.resample(fps)
-                loaded[info.name] = splan.Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
-            elements.append(splan.Element(e.id, loaded[info.name], e.start, e.end, e.method, e.prev,
+            prev, method = e.prev, e.method
+            idle = clips.by_verb(IDLE_VERB, info.character) if method == "initial" and e.start > IDLE_GAP else None
+            if idle is not None:  # an actor who comes in later stands idle until then
+                elements.append(splan.Element(next_id, idle, 0.0, e.start, "initial"))
+                prev, method, next_id = next_id, "connection", next_id + 1
+            if e.method == "connection" and e.prev is not None:
+                before = next(x for x in elements if x.id == e.prev)
+                if e.start - before.end > IDLE_GAP:
+                    fill = _fill_gap(clips, before, before.end, e.start, info.character, next_id)
+                    elements.extend(fill)
+                    if fill:
+                        prev, next_id = fill[-1].id, next_id + len(fill)
+            elements.append(splan.Element(e.id, clips.get(info), e.start, e.end, method, prev,
                                           e.speed, e.repeat, e.hold, e.body_part))
-        tracks.append(splan.Track(actor, tuple(elements)))
-    return tracks
+        tracks.append((actor, elements))
+    # Actors who finish early stop and stand idle until the last one is done.
+    end = max(e.end for e in table.elements)
+    out = []
+    for actor, elements in tracks:
+        last = max((x for x in elements if x.method != "composition"), key=lambda x: x.end)
+        if end - last.end > IDLE_GAP:
+            character = planned.clips[last.id].character if last.id in planned.clips else None
+            fill = _fill_gap(clips, last, last.end, end, character, next_id)
+            elements.extend(fill)
+            next_id += len(fill)
+        out.append(splan.Track(actor, tuple(elements)))
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,12 +170,11 @@ class Animation:
             start, end = played.get("start", e.start), played.get("end", e.end)
             part = f" [{e.body_part}]" if e.body_part else ""
             out.append(Span(e.actor or DEFAULT_ACTOR, f"{e.id} {e.verb} ({e.method}){part}", start, end, "element"))
-        actor_of = {e.id: e.actor or DEFAULT_ACTOR for e in self.table.elements}
         for j in self.result.joins:
+            actor = self.result.elements.get(j.second, {}).get("actor") or DEFAULT_ACTOR
             for iv in j.intervals:
                 if iv.end > iv.begin:
-                    out.append(Span(actor_of.get(j.second, DEFAULT_ACTOR), f"{j.first}→{j.second} {iv.kind}",
-                                    iv.begin, iv.end, "blend", iv.part))
+                    out.append(Span(actor, f"{j.first}→{j.second} {iv.kind}", iv.begin, iv.end, "blend", iv.part))
         return out
 
     # ------------------------------------------------------------------- saving
