@@ -77,7 +77,10 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
     tracks = []
     for actor in table.actors():
         elements: list[splan.Element] = []
-        for e in (e for e in table.elements if e.actor == actor):
+        # In playing order (前に puts a later id first); a composition after its base.
+        mine = sorted((e for e in table.elements if e.actor == actor),
+                      key=lambda e: (e.start, e.method == "composition", e.id))
+        for e in mine:
             info = planned.clips[e.id]
             prev, method = e.prev, e.method
             idle = clips.by_verb(IDLE_VERB, info.character) if method == "initial" and e.start > IDLE_GAP else None
