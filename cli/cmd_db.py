@@ -20,6 +20,8 @@ NAME = "db"
 HELP = "the motion database: import BVH clips, list, show, export, remove, verbs, preview"
 
 _PARTS = GROUPS
+#: motiondb.types.POSTURES (repeated here so that building the parser imports no database code).
+_POSTURES = ("standing", "seated", "crouched", "kneeling", "lying")
 
 
 def _core_type(text: str) -> tuple[float, float]:
@@ -59,6 +61,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     a.add_argument("--cyclic", action="store_true", help="the clips loop (locomotion)")
     a.add_argument("--name", help="clip name (one file only; default: the file name without .bvh)")
     a.add_argument("--replace", action="store_true", help="replace clips of the same names")
+    a.add_argument("--start-posture", choices=_POSTURES,
+                   help="the posture the clips start in (default: classified from each file's first frame)")
+    a.add_argument("--end-posture", choices=_POSTURES,
+                   help="the posture the clips end in (default: classified from each file's last frame)")
     add_read_options(a)
 
     a = action("list", "list clips (ranked as a search when --verb is given)")
@@ -66,6 +72,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     a.add_argument("--object", help="with --verb: rank clips declaring this object first")
     a.add_argument("--character", help="only this character's clips")
     a.add_argument("--part", choices=_PARTS, help="with --verb: a request for this body part")
+    a.add_argument("--start-posture", choices=_POSTURES,
+                   help="with --verb: rank clips starting in this posture first (what follows a clip ending in it)")
     a.add_argument("--json", action="store_true", help="JSON instead of a table")
 
     a = action("show", "show one clip: metadata, verbs, objects, foot contacts")
@@ -105,7 +113,13 @@ def _table(rows: list[list[str]], header: list[str]) -> str:
 
 def _clip_row(c) -> list[str]:
     return [c.name, c.character, "/".join(c.verbs), "/".join(c.objects) or "-", c.body_part or "-",
-            str(c.frames), f"{c.fps:g}", f"{c.duration:.2f}", "yes" if c.cyclic else ""]
+            _postures(c), str(c.frames), f"{c.fps:g}", f"{c.duration:.2f}", "yes" if c.cyclic else ""]
+
+
+def _postures(c) -> str:
+    """``seated→standing``, or one word when the clip starts and ends in the same posture."""
+    return c.start_posture if c.start_posture == c.end_posture else f"{c.start_posture}→{c.end_posture}"
+
 
 
 def _print_clips(clips, as_json: bool) -> None:
@@ -116,7 +130,8 @@ def _print_clips(clips, as_json: bool) -> None:
         print("(no clips)")
         return
     print(_table([_clip_row(c) for c in clips],
-                 ["clip", "character", "verbs", "objects", "part", "frames", "fps", "seconds", "cyclic"]))
+                 ["clip", "character", "verbs", "objects", "part", "posture", "frames", "fps", "seconds",
+                  "cyclic"]))
 
 
 def _show(c) -> str:
@@ -131,6 +146,7 @@ def _show(c) -> str:
         f"frames:     {c.frames} at {c.fps:g} fps = {c.duration:.3f} s",
         f"core:       {c.core[0]:.3f} .. {c.core[1]:.3f} s",
         f"body part:  {c.body_part or 'whole body'}",
+        f"postures:   starts {c.start_posture}, ends {c.end_posture}",
         f"cyclic:     {'yes' if c.cyclic else 'no'}",
         f"contacts:   left {intervals(c.left_contacts)}",
         f"            right {intervals(c.right_contacts)}   (frames [start, stop))",
@@ -170,17 +186,20 @@ def run(args) -> int:
 def _import(db, args) -> int:
     infos = db.import_bvh(args.files, args.verb, args.object, character=args.character, core=args.core,
                           part=args.part, cyclic=args.cyclic, names=[args.name] if args.name else None,
-                          replace=args.replace, progress=_progress, **read_options(args))
+                          replace=args.replace, progress=_progress, start_posture=args.start_posture,
+                          end_posture=args.end_posture, **read_options(args))
     print(f"imported {len(infos)} clip{'s' if len(infos) != 1 else ''} into {db.url}:")
     for c in infos:
         print(f"  {c.name}: {c.frames} frames at {c.fps:g} fps ({c.duration:.2f} s), "
-              f"{len(c.left_contacts)}+{len(c.right_contacts)} foot contacts, verbs {'/'.join(c.verbs)}")
+              f"{len(c.left_contacts)}+{len(c.right_contacts)} foot contacts, verbs {'/'.join(c.verbs)}, "
+              f"posture {_postures(c)}")
     return 0
 
 
 def _list(db, args) -> int:
     if args.verb:
-        clips = db.search(args.verb, object=args.object, character=args.character, body_part=args.part)
+        clips = db.search(args.verb, object=args.object, character=args.character, body_part=args.part,
+                          prefer_start_posture=args.start_posture)
     else:
         clips = db.clips(character=args.character)
     _print_clips(clips, args.json)

@@ -7,7 +7,7 @@ Tables (schema version :data:`SCHEMA_VERSION`)::
     characters      id, name (unique), skeleton_id -> skeletons
     clips           id, name (unique), character_id -> characters, skeleton_id -> skeletons,
                     fps, frames, duration, core_begin, core_end, body_part, cyclic,
-                    source, created
+                    source, created, start_posture, end_posture
     clip_frames     clip_id (PK) -> clips, encoding, data (compressed .npy bytes)
     verbs           id, lemma (unique), reading (indexed)
     clip_verbs      clip_id -> clips, verb_id -> verbs, position, is_primary
@@ -29,7 +29,11 @@ Meaning and units:
   clip's start, the コア区間 that must be kept (the whole clip when none was
   declared); ``body_part`` one of :data:`synthesis.bodyparts.GROUPS` for a
   partial action, NULL for whole-body clips; ``cyclic`` the clip loops;
-  ``source`` where it came from (``builtin``, a file path); ``created`` UTC.
+  ``source`` where it came from (``builtin``, a file path); ``created`` UTC;
+  ``start_posture``/``end_posture`` the posture of the first and of the last
+  frame, one of :data:`motiondb.types.POSTURES` (``standing``, ``seated``,
+  ``crouched``, ``kneeling``, ``lying``; checked when stored, not by the
+  database, so the vocabulary can grow without a migration).
 - ``clip_frames``: the frame data in its own table, so listing and searching
   clips never reads it (see :mod:`motiondb.blobs` for the layout).
 - ``verbs``: lemmas (NFKC) and their katakana readings (see
@@ -38,6 +42,14 @@ Meaning and units:
 - ``objects``: object nouns (ボール, 箱) with readings, linked to clips in order.
 - ``contacts``: foot-contact intervals ``[start_frame, stop_frame)`` per foot,
   computed with :func:`synthesis.contacts.detect_contacts` when the clip is stored.
+
+Versions and migrations (:func:`motiondb.store.MotionDB.open` migrates an
+older database in place, in one transaction, under the writers' lock):
+
+- 1: the first schema;
+- 2: ``clips.start_posture`` and ``clips.end_posture`` (``VARCHAR(16) NOT NULL
+  DEFAULT 'standing'``). Migrating from 1 adds them with ``ALTER TABLE ... ADD
+  COLUMN`` and classifies every stored clip from its first and last frames.
 
 Deleting a clip deletes its frames, verb/object links and contacts (ON DELETE
 CASCADE); verbs, objects, characters and skeletons no clip uses any more are
@@ -62,8 +74,13 @@ from sqlalchemy import (
 )
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, relationship
 
-#: Bumped whenever a table or column changes meaning; see :class:`SchemaVersion`.
-SCHEMA_VERSION = 1
+from .types import DEFAULT_POSTURE
+
+#: Bumped whenever a table or column changes meaning; see :class:`SchemaVersion` and the
+#: migrations in the module docstring.
+SCHEMA_VERSION = 2
+#: The oldest schema version :meth:`motiondb.store.MotionDB.open` can migrate from.
+OLDEST_MIGRATABLE = 1
 
 #: The tables of this schema, for detecting a database that holds someone else's tables.
 TABLE_NAMES = ("schema_version", "skeletons", "characters", "clips", "clip_frames", "verbs",
@@ -133,6 +150,11 @@ class Clip(Base):
     cyclic: Mapped[bool] = mapped_column(Boolean, nullable=False, default=False)
     source: Mapped[str] = mapped_column(Text, nullable=False, default="")
     created: Mapped[datetime] = mapped_column(DateTime(timezone=True), nullable=False, default=utcnow)
+    # schema version 2
+    start_posture: Mapped[str] = mapped_column(String(16), nullable=False, default=DEFAULT_POSTURE,
+                                               server_default=DEFAULT_POSTURE)
+    end_posture: Mapped[str] = mapped_column(String(16), nullable=False, default=DEFAULT_POSTURE,
+                                             server_default=DEFAULT_POSTURE)
 
     character: Mapped[Character] = relationship(lazy="joined", innerjoin=True)
     verb_links: Mapped[list["ClipVerb"]] = relationship(

@@ -16,16 +16,24 @@ Ranking (each key breaks the ties of the one before):
 
 1. character: clips of ``prefer_character`` (the previous clip's character) first;
 2. body part (when asked): declared for the part < its mirror side < whole body;
-3. object: when an object is asked, clips declaring it < clips declaring no
+3. start posture (when asked): clips whose ``start_posture`` is
+   ``prefer_start_posture`` (the posture the previous clip ends in) first, the
+   others after (in the order of the keys below);
+4. object: when an object is asked, clips declaring it < clips declaring no
    object < clips declaring other objects; when none is asked, clips declaring
    no object come first;
-4. verb: the query is the clip's primary verb < one of its synonyms < the
+5. verb: the query is the clip's primary verb < one of its synonyms < the
    primary verb only by reading (another spelling) < a synonym only by reading;
-5. the clip's name (so the order is total and deterministic).
+6. the clip's name (so the order is total and deterministic).
 
 Hence "verb+object over verb over synonym": 蹴る + ボール puts a kick clip that
 declares ボール before a plain kick, and a clip whose primary verb is 蹴る before
-one that only lists 蹴る as a synonym. The ordering is done by the database
+one that only lists 蹴る as a synonym. And 立ち上がる after a clip that ends
+crouched (``prefer_start_posture="crouched"``) puts the clip that rises from a
+crouch before the one that rises from a chair, whatever their verbs and
+objects: a clip that cannot start where the character is would need another
+clip in between (see :mod:`text2anim.postures`). The posture key changed
+nothing for searches that do not ask for it. The ordering is done by the database
 (``ORDER BY`` on these keys, ``LIMIT`` when asked), never by reading frames.
 """
 from __future__ import annotations
@@ -80,7 +88,7 @@ def match_objects(session: Session, obj: str) -> tuple[int, ...]:
 
 @lru_cache(maxsize=256)
 def _ranked_statement(has_exact: bool, objects: str, prefer: bool, body_part: str | None, character: bool,
-                      limit: bool, collate_c: bool):
+                      limit: bool, collate_c: bool, posture: bool = False):
     """The ranking query for one combination of options (built once; values are bound parameters).
 
     ``objects``: ``"none"`` (no object asked), ``"asked"`` (clips declaring one
@@ -116,6 +124,8 @@ def _ranked_statement(has_exact: bool, objects: str, prefer: bool, body_part: st
         stmt = stmt.where(or_(Clip.body_part.in_(parts), Clip.body_part.is_(None)))
         whens = [(Clip.body_part == body_part, 0)] + ([(Clip.body_part == mirror, 1)] if mirror else [])
         order.append(case(*whens, else_=2))
+    if posture:
+        order.append(case((Clip.start_posture == bindparam("posture"), 0), else_=1))
     if character:
         stmt = stmt.where(Clip.character_id == bindparam("character"))
     name = Clip.name.collate("C") if collate_c else Clip.name
@@ -128,12 +138,13 @@ def _ranked_statement(has_exact: bool, objects: str, prefer: bool, body_part: st
 
 def ranked_clip_ids(session: Session, verbs: VerbMatch, *, object_ids: tuple[int, ...] | None = None,
                     character_id: int | None = None, body_part: str | None = None,
-                    prefer_character_id: int | None = None, limit: int | None = None) -> list[int]:
+                    prefer_character_id: int | None = None, prefer_start_posture: str | None = None,
+                    limit: int | None = None) -> list[int]:
     """Ids of the matching clips, best first (see the module docstring)."""
     objects = "none" if object_ids is None else ("asked" if object_ids else "unknown")
     stmt = _ranked_statement(bool(verbs.exact), objects, prefer_character_id is not None, body_part,
                              character_id is not None, limit is not None,
-                             session.get_bind().dialect.name == "postgresql")
+                             session.get_bind().dialect.name == "postgresql", prefer_start_posture is not None)
     params = {"verbs": list(verbs.all)}
     if verbs.exact:
         params["exact"] = list(verbs.exact)
@@ -143,6 +154,8 @@ def ranked_clip_ids(session: Session, verbs: VerbMatch, *, object_ids: tuple[int
         params["prefer"] = prefer_character_id
     if character_id is not None:
         params["character"] = character_id
+    if prefer_start_posture is not None:
+        params["posture"] = prefer_start_posture
     if limit is not None:
         params["limit"] = int(limit)
     return list(session.scalars(stmt, params))

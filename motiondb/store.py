@@ -13,6 +13,12 @@ at once end with one copy of the library.
 
 Units: seconds for times (``duration``, ``core``), frames for contact
 intervals (``[start, stop)`` at the clip's ``fps``), metres for lengths.
+
+Postures: every clip has a ``start_posture`` and an ``end_posture`` (one of
+:data:`motiondb.types.POSTURES`), declared by the record or classified from
+its first and last frames by :func:`classify_posture` when it is stored;
+``search(..., prefer_start_posture=...)`` ranks clips starting in a posture
+first (so a clip can follow one that ends seated, crouched or lying).
 """
 from __future__ import annotations
 
@@ -34,7 +40,7 @@ from sqlalchemy import exc as sa_exc
 from sqlalchemy.engine import Engine, make_url
 from sqlalchemy.orm import Session
 
-from synthesis.bodyparts import GROUPS, BodyMapError
+from synthesis.bodyparts import GROUPS, BodyMapError, body_map
 from synthesis.bvh import BVHError, read_bvh
 from synthesis.contacts import detect_contacts
 from synthesis.motion import Motion
@@ -55,6 +61,7 @@ from .errors import (
 from .location import resolve_url
 from .readings import nearest, normalize, reading
 from .schema import (
+    OLDEST_MIGRATABLE,
     SCHEMA_VERSION,
     TABLE_NAMES,
     Base,
@@ -70,7 +77,7 @@ from .schema import (
     Verb,
     utcnow,
 )
-from .types import ClipRecord
+from .types import DEFAULT_POSTURE, POSTURES, ClipRecord
 
 #: ``source`` of the built-in library's clips (``builtin`` or ``builtin:<file>``).
 BUILTIN_SOURCE = "builtin"
@@ -105,6 +112,9 @@ class ClipInfo:
         created: when it was stored (UTC).
         joints: joint count of its skeleton.
         left_contacts, right_contacts: foot-contact intervals ``[start, stop)`` in frames.
+        start_posture, end_posture: the posture of its first and of its last frame
+            (:data:`motiondb.types.POSTURES`: ``standing``, ``seated``, ``crouched``,
+            ``kneeling``, ``lying``).
     """
 
     name: str
@@ -122,6 +132,8 @@ class ClipInfo:
     joints: int
     left_contacts: tuple[tuple[int, int], ...] = ()
     right_contacts: tuple[tuple[int, int], ...] = ()
+    start_posture: str = DEFAULT_POSTURE
+    end_posture: str = DEFAULT_POSTURE
 
     @property
     def verb(self) -> str:
@@ -141,7 +153,7 @@ class ClipInfo:
             "objects": list(self.objects), "fps": self.fps, "frames": self.frames,
             "duration": self.duration, "core": list(self.core), "body_part": self.body_part,
             "cyclic": self.cyclic, "source": self.source, "created": self.created.isoformat(),
-            "joints": self.joints,
+            "joints": self.joints, "start_posture": self.start_posture, "end_posture": self.end_posture,
             "contacts": {"left": [list(c) for c in self.left_contacts],
                          "right": [list(c) for c in self.right_contacts]},
         }
@@ -182,7 +194,7 @@ _IDS = bindparam("ids", expanding=True)
 _INFO_CLIPS = (
     select(Clip.id, Clip.name, Character.name.label("character"), Clip.fps, Clip.frames, Clip.duration,
            Clip.core_begin, Clip.core_end, Clip.body_part, Clip.cyclic, Clip.source, Clip.created,
-           SkeletonRow.n_joints)
+           Clip.start_posture, Clip.end_posture, SkeletonRow.n_joints)
     .join(Character, Character.id == Clip.character_id)
     .join(SkeletonRow, SkeletonRow.id == Clip.skeleton_id)
     .where(Clip.id.in_(_IDS))
@@ -215,6 +227,8 @@ class _Prepared:
     cyclic: bool
     source: str
     blob: bytes
+    start_posture: str = DEFAULT_POSTURE
+    end_posture: str = DEFAULT_POSTURE
     contacts: list[tuple[str, int, int]] = field(default_factory=list)
 
 
@@ -244,6 +258,88 @@ def _check_name(name, what: str, where: str) -> str:
     if len(n) > _MAX_NAME or any(ord(c) < 32 for c in n):
         raise ClipValidationError(f"{where}: bad {what} name {n[:40]!r} (at most {_MAX_NAME} printable characters)")
     return n
+
+
+# --------------------------------------------------------------- postures
+#: Hip joints at least this fraction of the leg length above the floor: standing.
+STAND_HIP = 0.75
+#: Head below this fraction of the leg length above the floor: lying.
+LIE_HEAD = 0.45
+#: A knee this close to the floor (fraction of the leg length) rests on it ...
+KNEE_DOWN = 0.15
+#: ... and with the hips this much higher than it (fraction of the leg length): kneeling.
+KNEEL_HIP = 0.15
+#: Hips this low (fraction of the leg length) sit on the floor.
+FLOOR_SIT_HIP = 0.25
+#: Hips this far (fraction of the leg length, horizontally) from the middle of the ankles
+#: are not over the feet: seated (on a seat), else crouched.
+SEAT_OFFSET = 0.3
+
+
+def _leg_joints(skel: Skeleton, side: str) -> tuple[int, int, int, int]:
+    """``(hip, knee, ankle, toe)`` joint indices of one leg (the hip is the knee's parent)."""
+    ankle, toe = body_map(skel).feet[side]
+    knee = int(skel.parents[ankle])
+    hip = int(skel.parents[knee])
+    if knee < 0 or hip < 0:
+        raise BodyMapError(f"the {side} leg has no knee and hip above its ankle")
+    return hip, knee, ankle, toe
+
+
+def classify_posture(motion: Motion, frame: int = 0) -> str:
+    """The posture (one of :data:`motiondb.types.POSTURES`) of one frame of ``motion``.
+
+    Heights are measured from the floor, taken as the lowest foot joint's 5th
+    percentile over the clip (clamped to 0..0.10 m, as the contact detector
+    does), in units of the leg length ``L`` (rest-pose height of the hip joints
+    above the lowest foot joint: 0.86 m on the built-in 1.70 m skeleton). In
+    this order:
+
+    1. hip joints at least :data:`STAND_HIP` ``L`` up: ``standing`` (bending
+       over or reaching does not change it);
+    2. the head below :data:`LIE_HEAD` ``L``: ``lying`` (face down or up);
+    3. a knee within :data:`KNEE_DOWN` ``L`` of the floor and the hips
+       :data:`KNEEL_HIP` ``L`` above it: ``kneeling`` (also on all fours);
+    4. hips below :data:`FLOOR_SIT_HIP` ``L``: ``seated`` (on the floor);
+    5. hips more than :data:`SEAT_OFFSET` ``L`` horizontally from the middle of
+       the ankles (the weight is not over the feet): ``seated``; else ``crouched``.
+
+    Falls back to :data:`motiondb.types.DEFAULT_POSTURE` for a skeleton whose
+    legs cannot be found.
+    """
+    skel = motion.skeleton
+    try:
+        legs = [_leg_joints(skel, side) for side in ("left", "right")]
+    except BodyMapError:
+        return DEFAULT_POSTURE
+    rest = skel.rest_positions()
+    foot_joints = [j for leg in legs for j in leg[2:]]
+    length = float(np.mean([rest[leg[0], 1] for leg in legs]) - rest[foot_joints, 1].min())
+    if not length > 1e-6:
+        return DEFAULT_POSTURE
+    pos = motion.positions
+    floor = float(np.clip(np.percentile(pos[:, foot_joints, 1].min(axis=1), 5.0), 0.0, 0.10))
+    p = pos[frame]
+    hips = np.mean([p[leg[0]] for leg in legs], axis=0)
+    hip_h = (hips[1] - floor) / length
+    if hip_h >= STAND_HIP:
+        return "standing"
+    head_h = (p[body_map(skel).head, 1] - floor) / length
+    if head_h < LIE_HEAD:
+        return "lying"
+    knees = [(p[leg[1], 1] - floor) / length for leg in legs]
+    if min(knees) < KNEE_DOWN and hip_h - min(knees) > KNEEL_HIP:
+        return "kneeling"
+    if hip_h < FLOOR_SIT_HIP:
+        return "seated"
+    ankles = np.mean([p[leg[2]] for leg in legs], axis=0)
+    offset = float(np.hypot(*(hips - ankles)[[0, 2]])) / length
+    return "seated" if offset > SEAT_OFFSET else "crouched"
+
+
+def clip_postures(motion: Motion) -> tuple[str, str]:
+    """``(start, end)`` postures of a clip: :func:`classify_posture` of its first and last frames."""
+    return classify_posture(motion, 0), classify_posture(motion, motion.n_frames - 1)
 
 
 def prepare_record(rec: ClipRecord, where: str | None = None) -> _Prepared:
@@ -291,13 +387,21 @@ def prepare_record(rec: ClipRecord, where: str | None = None) -> _Prepared:
     except BodyMapError as exc:
         raise ClipValidationError(f"{where}: cannot compute foot contacts: {exc}") from None
     contacts = [(side, a, b) for side in ("left", "right") for a, b in fc.intervals(side)]
+    postures = []
+    for what, declared, frame in (("start", rec.start_posture, 0), ("end", rec.end_posture, -1)):
+        if declared is None:
+            postures.append(classify_posture(m, frame))
+        elif declared not in POSTURES:
+            raise ClipValidationError(f"{where}: unknown {what} posture {declared!r}; known: {', '.join(POSTURES)}")
+        else:
+            postures.append(declared)
     definition = skeleton_json(m.skeleton)
     return _Prepared(
         name=name, verbs=verbs, objects=objects, character=character, skeleton=m.skeleton,
         skeleton_def=definition, fingerprint=hashlib.sha256(definition.encode("utf-8")).hexdigest(),
         fps=float(m.fps), frames=int(m.n_frames), duration=float(duration), core=core,
         body_part=rec.body_part, cyclic=bool(rec.cyclic), source=str(rec.source or ""),
-        blob=encode_frames(m), contacts=contacts,
+        blob=encode_frames(m), start_posture=postures[0], end_posture=postures[1], contacts=contacts,
     )
 
 
@@ -428,6 +532,9 @@ class MotionDB:
                 ``builtin``/``builtin:…`` are replaced by the new ones; other
                 clips are kept, and win over built-in clips of the same name.
 
+        A database of an older schema version is migrated in place first, in
+        one transaction (see :mod:`motiondb.schema` for what each version adds).
+
         Raises:
             DBError: a bad URL, an unreachable server, a file that is not a
                 database, a schema written by a newer text2anim.
@@ -493,7 +600,11 @@ class MotionDB:
 
     # ------------------------------------------------------- schema, seeding
     def _state(self, session: Session) -> tuple[int | None, str | None]:
-        """``(schema version, builtin_library)``; ``(None, None)`` for a database without our schema."""
+        """``(schema version, builtin_library)``; ``(None, None)`` for a database without our schema.
+
+        An older version this code can migrate (see :mod:`motiondb.schema`) is
+        returned as it is; a newer one, or one too old, raises :class:`SchemaVersionError`.
+        """
         insp = inspect(session.connection())
         if not insp.has_table("schema_version"):
             ours = [t for t in TABLE_NAMES if insp.has_table(t)]
@@ -507,17 +618,44 @@ class MotionDB:
         if row.version > SCHEMA_VERSION:
             raise SchemaVersionError(f"{self.url} has motion-database schema version {row.version}, newer than "
                                      f"this text2anim reads ({SCHEMA_VERSION}); upgrade text2anim")
-        if row.version < SCHEMA_VERSION:  # no older versions exist yet: version 1 is the first
+        if row.version < OLDEST_MIGRATABLE:
             raise SchemaVersionError(f"{self.url} has motion-database schema version {row.version}, "
                                      f"which this text2anim cannot upgrade to {SCHEMA_VERSION}")
         return row.version, row.builtin_library
+
+    def _migrate(self, s: Session, version: int) -> None:
+        """Bring a database of schema ``version`` to :data:`SCHEMA_VERSION` in session ``s`` (under
+        the write lock; the caller's transaction makes it all or nothing)."""
+        if version < 2:
+            # 1 -> 2: clip postures. The columns come with the default; then every stored clip is
+            # classified from its frames (one clip at a time, so memory stays one clip's).
+            for column in ("start_posture", "end_posture"):
+                s.execute(text(f"ALTER TABLE clips ADD COLUMN {column} VARCHAR(16) "
+                               f"DEFAULT '{DEFAULT_POSTURE}' NOT NULL"))
+            rows = s.execute(select(Clip.id, Clip.name, Clip.fps, Clip.frames, Clip.skeleton_id)
+                             .order_by(Clip.id)).all()
+            for row in rows:
+                enc, data = s.execute(select(ClipFrames.encoding, ClipFrames.data)
+                                      .where(ClipFrames.clip_id == row.id)).one()
+                try:
+                    motion = decode_frames(data, self._skeleton(s, row.skeleton_id), row.fps, encoding=enc,
+                                           frames=row.frames, clip=row.name)
+                    start, end = clip_postures(motion)
+                except (DBError, BodyMapError, ValueError):
+                    continue  # a clip that cannot be read keeps the default; loading it will say why
+                s.execute(Clip.__table__.update().where(Clip.__table__.c.id == row.id)
+                          .values(start_posture=start, end_posture=end))
+        meta = s.get(SchemaVersion, 1)
+        meta.version = SCHEMA_VERSION
+        meta.updated = utcnow()
+        s.flush()
 
     def _prepare(self, seed) -> None:
         """Create the schema if missing and seed (or refresh the built-in clips) when needed."""
         source = _seed_source(seed)
         with self._session() as s:
             version, library = self._state(s)
-        if version is not None and not _seeding_needed(library, source):
+        if version == SCHEMA_VERSION and not _seeding_needed(library, source):
             return
         with self._session(write=True) as s:
             version, library = self._state(s)  # again, under the write lock: another process may have done it
@@ -526,6 +664,8 @@ class MotionDB:
                 library = "" if seed is False else None
                 s.add(SchemaVersion(id=1, version=SCHEMA_VERSION, builtin_library=library))
                 s.flush()
+            elif version < SCHEMA_VERSION:
+                self._migrate(s, version)
             if not _seeding_needed(library, source):
                 return
             try:
@@ -568,15 +708,19 @@ class MotionDB:
                    character: str = "default", core: tuple[float, float] | None = None, part: str | None = None,
                    cyclic: bool = False, *, names: Sequence[str] | None = None, scale: float | str = "auto",
                    up: str = "y", drop_first: bool = False, replace: bool = False,
-                   progress: Callable[[int, int, str], None] | None = None) -> list[ClipInfo]:
+                   progress: Callable[[int, int, str], None] | None = None,
+                   start_posture: str | None = None, end_posture: str | None = None) -> list[ClipInfo]:
         """Read BVH files and store them as clips, all or nothing.
 
         Every file becomes one clip named after the file (``02_01_walk``) unless
         ``names`` are given, with the same verbs, objects, character, core
         (seconds), body ``part`` and ``cyclic`` flag. ``scale``/``up``/``drop_first``
         are :func:`synthesis.read_bvh`'s options (``drop_first`` drops the T-pose
-        frame 0 of CMU/cgspeed files). A file that cannot be read or validated
-        raises :class:`ClipValidationError` naming it, and nothing is stored.
+        frame 0 of CMU/cgspeed files). ``start_posture``/``end_posture`` declare
+        every clip's postures (:data:`motiondb.types.POSTURES`); ``None``
+        classifies each file's first/last frame (:func:`classify_posture`). A
+        file that cannot be read or validated raises :class:`ClipValidationError`
+        naming it, and nothing is stored.
         ``progress(done, total, path)`` is called before each file and once at the end.
         """
         paths = [Path(p) for p in paths]
@@ -597,7 +741,7 @@ class MotionDB:
                 raise ClipValidationError(f"{path}: {exc} (nothing was imported)") from None
             rec = ClipRecord(name=name, motion=motion, verbs=tuple(verbs), objects=tuple(objects),
                              character=character, core=core, body_part=part, cyclic=cyclic,
-                             source=str(path.resolve()))
+                             source=str(path.resolve()), start_posture=start_posture, end_posture=end_posture)
             try:
                 prepared.append(prepare_record(rec, where=str(path)))
             except ClipValidationError as exc:
@@ -614,6 +758,9 @@ class MotionDB:
         version, _ = self._state(s)
         if version is None:
             raise DBError(f"{self.url} has no motion tables (it was emptied after opening)")
+        if version != SCHEMA_VERSION:
+            raise SchemaVersionError(f"{self.url} went back to motion-database schema version {version} after "
+                                     "opening; open it again to migrate it")
 
     def _store(self, s: Session, prepared: list[_Prepared], *, conflicts: str,
                where: dict[str, str] | None = None) -> list[int]:
@@ -677,7 +824,8 @@ class MotionDB:
             characters[p.character] = ch
             clip = Clip(name=p.name, character_id=ch.id, skeleton_id=srow.id, fps=p.fps, frames=p.frames,
                         duration=p.duration, core_begin=p.core[0], core_end=p.core[1], body_part=p.body_part,
-                        cyclic=p.cyclic, source=p.source, created=utcnow())
+                        cyclic=p.cyclic, source=p.source, created=utcnow(), start_posture=p.start_posture,
+                        end_posture=p.end_posture)
             for k, lemma in enumerate(p.verbs):
                 v = verbs.get(lemma) or s.scalar(select(Verb).where(Verb.lemma == lemma))
                 if v is None:
@@ -728,7 +876,7 @@ class MotionDB:
     # ----------------------------------------------------------------- search
     def search(self, verb: str, object: str | None = None, character: str | None = None,
                body_part: str | None = None, prefer_character: str | None = None,
-               limit: int | None = None) -> list[ClipInfo]:
+               limit: int | None = None, prefer_start_posture: str | None = None) -> list[ClipInfo]:
         """Clips retrieved by ``verb``, best first; frame data is not read.
 
         ``verb`` is a lemma, a synonym or another spelling with the same
@@ -736,7 +884,9 @@ class MotionDB:
         it first; ``character`` keeps that character's clips only;
         ``body_part`` keeps clips for that part, its mirror side or the whole
         body; ``prefer_character`` (the previous clip's) ranks that character's
-        clips first; ``limit`` keeps the best ``limit``. The full ranking is in
+        clips first; ``prefer_start_posture`` (the posture the previous clip
+        ends in, one of :data:`motiondb.types.POSTURES`) ranks clips starting
+        in it next; ``limit`` keeps the best ``limit``. The full ranking is in
         :mod:`motiondb.search`.
 
         Returns an empty list when the verb is known but no clip passes the
@@ -750,6 +900,8 @@ class MotionDB:
             raise DBError(f"unknown body part {body_part!r}; known: {', '.join(GROUPS)}")
         if limit is not None and limit < 0:
             raise ValueError("limit must not be negative")
+        if prefer_start_posture is not None and prefer_start_posture not in POSTURES:
+            raise DBError(f"unknown posture {prefer_start_posture!r}; known: {', '.join(POSTURES)}")
         with self._session() as s:
             match = _search.match_verbs(s, verb)
             if not match.all:
@@ -762,7 +914,8 @@ class MotionDB:
             pref_id = _search.character_id(s, normalize(prefer_character)) if prefer_character else None
             object_ids = _search.match_objects(s, object) if object is not None and normalize(object) else None
             ids = _search.ranked_clip_ids(s, match, object_ids=object_ids, character_id=char_id,
-                                          body_part=body_part, prefer_character_id=pref_id, limit=limit)
+                                          body_part=body_part, prefer_character_id=pref_id,
+                                          prefer_start_posture=prefer_start_posture, limit=limit)
             return self._infos(s, ids)
 
     def _unknown_verb(self, s: Session, verb: str) -> UnknownVerbError:
@@ -822,7 +975,8 @@ class MotionDB:
         info = self.info(name)
         return ClipRecord(name=info.name, motion=self.load(info.name), verbs=info.verbs, objects=info.objects,
                           character=info.character, core=info.core, body_part=info.body_part,
-                          cyclic=info.cyclic, source=info.source)
+                          cyclic=info.cyclic, source=info.source, start_posture=info.start_posture,
+                          end_posture=info.end_posture)
 
     # --------------------------------------------------------------- helpers
     def _clip_id(self, s: Session, name: str) -> int:
@@ -881,6 +1035,7 @@ class MotionDB:
                 core=(r.core_begin, r.core_end), body_part=r.body_part, cyclic=bool(r.cyclic), source=r.source,
                 created=created, joints=int(r.n_joints),
                 left_contacts=tuple(sides["left"]), right_contacts=tuple(sides["right"]),
+                start_posture=r.start_posture, end_posture=r.end_posture,
             ))
         return out
 

@@ -128,3 +128,36 @@ def test_the_environment_variable_selects_the_database(tmp_path, record):
     proc = text2anim("db", "list", "--json", env=env)
     assert proc.returncode == 0, proc.stderr
     assert [c["name"] for c in json.loads(proc.stdout)] == ["walk"]
+
+
+def test_import_classifies_postures_and_takes_overrides(cli_db, capsys, tmp_path):
+    from motiondb.library import build_all
+    from synthesis import write_bvh
+
+    sit = next(b.record.motion for b in build_all(30.0) if b.record.name == "sit_down")
+    path = tmp_path / "my_sit.bvh"
+    write_bvh(sit, path)
+    code, out, err = run(capsys, "db", "import", path, "--verb", "座る", "--scale", "1", "--db", cli_db)
+    assert code == 0, err
+    assert "posture standing→seated" in out
+    code, out, err = run(capsys, "db", "import", path, "--verb", "座る", "--name", "told", "--scale", "1",
+                         "--start-posture", "crouched", "--end-posture", "lying", "--db", cli_db)
+    assert code == 0, err
+    assert "told: " in out and "posture crouched→lying" in out
+    code, out, _ = run(capsys, "db", "show", "my_sit", "--db", cli_db)
+    assert "postures:   starts standing, ends seated" in out
+    code, out, _ = run(capsys, "db", "list", "--db", cli_db)
+    assert out.splitlines()[0].split()[:6] == ["clip", "character", "verbs", "objects", "part", "posture"]
+    assert "crouched→lying" in out and "standing→seated" in out
+    code, out, _ = run(capsys, "db", "list", "--verb", "座る", "--start-posture", "crouched", "--json", "--db", cli_db)
+    listed = json.loads(out)
+    assert [c["name"] for c in listed] == ["told", "my_sit"]
+    assert listed[0]["start_posture"] == "crouched" and listed[1]["end_posture"] == "seated"
+    from cli.cmd_db import _POSTURES
+    from motiondb.types import POSTURES
+
+    assert _POSTURES == POSTURES  # the parser's copy of the vocabulary
+    with pytest.raises(SystemExit) as exc:
+        main(["db", "import", str(path), "--verb", "座る", "--start-posture", "sitting", "--db", cli_db])
+    assert exc.value.code == 2
+    assert "invalid choice: 'sitting'" in capsys.readouterr().err

@@ -75,3 +75,23 @@ def test_another_performer_joins_the_same_character(empty_db):
     a, b = empty_db.load("02_03_run"), empty_db.load("127_07_run")
     assert a.skeleton.same_hierarchy(b.skeleton)
     assert not np.array_equal(a.skeleton.offsets, b.skeleton.offsets)
+
+
+def test_postures_of_real_captures_are_classified_on_import(empty_db, tmp_path):
+    """Sitting down on a step stool, getting up, squatting, walking: what the classifier makes of real data."""
+    from motiondb.store import classify_posture
+    from synthesis import write_bvh
+
+    sit = read_bvh(cmu("14_31_sit"), drop_first=True)  # sits at ~2 s, stands up at ~7.5 s
+    write_bvh(sit.between(0.0, 5.0), tmp_path / "sit_down.bvh")
+    write_bvh(sit.between(5.0, 9.0), tmp_path / "stand_up.bvh")
+    infos = empty_db.import_bvh([tmp_path / "sit_down.bvh", tmp_path / "stand_up.bvh", cmu("02_01_walk")],
+                                ["動く"], character="cmu", drop_first=False)
+    assert [(i.name, i.start_posture, i.end_posture) for i in infos] == [
+        ("sit_down", "standing", "seated"), ("stand_up", "seated", "standing"), ("02_01_walk", "standing", "standing")]
+    squat = read_bvh(cmu("14_06_squat"), drop_first=True)
+    assert classify_posture(squat, int(10.0 * squat.fps)) == "crouched"  # hips low, over the feet
+    assert classify_posture(squat, int(20.0 * squat.fps)) == "standing"
+    told = empty_db.import_bvh([tmp_path / "sit_down.bvh"], ["座る"], character="cmu", names=["told"],
+                               start_posture="standing", end_posture="crouched")
+    assert (told[0].start_posture, told[0].end_posture) == ("standing", "crouched")

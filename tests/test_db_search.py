@@ -93,3 +93,33 @@ def test_body_part_requests_take_the_part_then_its_mirror_then_whole_body(empty_
     assert names(empty_db.search("振る")) == ["swing", "wave_right", "shake_head"]
     with pytest.raises(DBError, match="unknown body part 'tail'"):
         empty_db.search("振る", body_part="tail")
+
+
+def test_a_start_posture_ranks_after_the_character_and_before_objects_and_verbs(empty_db):
+    from motiondb import ClipRecord
+    from motiondb.library import build_all
+
+    motion = {b.record.name: b.record.motion for b in build_all(30.0)}
+    empty_db.add([
+        ClipRecord("chair_up", motion["stand_up"], ("立ち上がる",)),
+        ClipRecord("squat_up", motion["stand_from_crouch"], ("立ち上がる",), objects=("椅子",)),
+        ClipRecord("floor_up", motion["get_up"], ("起き上がる", "立ち上がる")),
+        ClipRecord("bob_floor_up", motion["get_up"], ("立ち上がる",), character="bob"),
+    ])
+    assert {c.name: c.start_posture for c in empty_db.clips()} == {
+        "bob_floor_up": "lying", "chair_up": "seated", "floor_up": "lying", "squat_up": "crouched"}
+    assert names(empty_db.search("立ち上がる")) == ["bob_floor_up", "chair_up", "floor_up", "squat_up"]
+    # the posture goes before the verb tier (floor_up has 立ち上がる as a synonym only) ...
+    assert names(empty_db.search("立ち上がる", prefer_start_posture="lying")) == [
+        "bob_floor_up", "floor_up", "chair_up", "squat_up"]
+    # ... and before the object (squat_up declares 椅子) ...
+    assert names(empty_db.search("立ち上がる", object="椅子", prefer_start_posture="crouched"))[0] == "squat_up"
+    assert names(empty_db.search("立ち上がる", object="椅子", prefer_start_posture="seated"))[:2] == [
+        "chair_up", "squat_up"]
+    # ... but after the character
+    assert names(empty_db.search("立ち上がる", prefer_character="default", prefer_start_posture="lying")) == [
+        "floor_up", "chair_up", "squat_up", "bob_floor_up"]
+    assert names(empty_db.search("立ち上がる", prefer_start_posture="kneeling")) == names(empty_db.search("立ち上がる"))
+    assert names(empty_db.search("立ち上がる", prefer_start_posture="lying", limit=1)) == ["bob_floor_up"]
+    with pytest.raises(DBError, match="unknown posture 'sitting'"):
+        empty_db.search("立ち上がる", prefer_start_posture="sitting")

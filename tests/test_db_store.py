@@ -231,3 +231,109 @@ def test_tables_of_someone_else_are_not_touched(db_url):
         engine.dispose()
     with pytest.raises(DBError, match="already has tables named clips"):
         MotionDB.open(db_url, seed=False)
+
+
+# ------------------------------------------------------------------ postures
+def _library(name: str):
+    from motiondb.library import build_all
+
+    return next(b.record for b in build_all(30.0) if b.record.name == name)
+
+
+def test_postures_are_classified_unless_declared(empty_db):
+    sit, up = _library("sit_down"), _library("stand_up")
+    infos = empty_db.add([
+        ClipRecord("plain_sit", sit.motion, ("座る",)),  # nothing declared: from the first/last frames
+        ClipRecord("plain_up", up.motion, ("立ち上がる",)),
+        ClipRecord("told", sit.motion, ("座り込む",), start_posture="kneeling", end_posture="lying"),
+    ])
+    assert [(i.start_posture, i.end_posture) for i in infos] == [
+        ("standing", "seated"), ("seated", "standing"), ("kneeling", "lying")]
+    info = empty_db.info("plain_sit")
+    assert (info.start_posture, info.end_posture) == ("standing", "seated")
+    assert info.to_dict()["start_posture"] == "standing" and info.to_dict()["end_posture"] == "seated"
+    rec = empty_db.record("told")
+    assert (rec.start_posture, rec.end_posture) == ("kneeling", "lying")
+    assert [c.name for c in empty_db.search("座る", prefer_start_posture="kneeling")] == ["plain_sit"]
+
+
+def test_an_unknown_posture_is_refused(empty_db, record):
+    with pytest.raises(ClipValidationError, match="unknown end posture 'sitting'.*standing, seated"):
+        empty_db.add([record("x", end_posture="sitting")])
+    assert empty_db.clips() == []
+
+
+def _make_version_1(url: str) -> None:
+    """Turn a database of this version into what schema version 1 wrote (no posture columns)."""
+    engine = create_engine(url)
+    try:
+        with engine.begin() as conn:
+            conn.execute(text("ALTER TABLE clips DROP COLUMN start_posture"))
+            conn.execute(text("ALTER TABLE clips DROP COLUMN end_posture"))
+            conn.execute(text("UPDATE schema_version SET version = 1"))
+    finally:
+        engine.dispose()
+
+
+def test_a_version_1_database_is_migrated_in_place(db_url, record):
+    sit, fall = _library("sit_down"), _library("fall")
+
+    def seed():
+        return [ClipRecord("sitting", sit.motion, ("座る",)), ClipRecord("falling", fall.motion, ("転ぶ",)),
+                record("walking", ("歩く",), character="other")]
+
+    MotionDB.open(db_url, seed=seed).close()
+    _make_version_1(db_url)
+    engine = create_engine(db_url)
+    try:
+        with engine.connect() as conn:
+            from sqlalchemy import inspect
+
+            assert "start_posture" not in {c["name"] for c in inspect(conn).get_columns("clips")}
+    finally:
+        engine.dispose()
+    with MotionDB.open(db_url, seed=seed) as db:  # migrates: adds the columns, classifies every clip
+        got = {c.name: (c.start_posture, c.end_posture) for c in db.clips()}
+        assert got == {"sitting": ("standing", "seated"), "falling": ("standing", "lying"),
+                       "walking": ("standing", "standing")}
+        db.add([record("after", ("跳ぶ",), character="other", start_posture="crouched")])
+        assert db.info("after").start_posture == "crouched"
+    engine = create_engine(db_url)
+    try:
+        with engine.connect() as conn:
+            assert conn.execute(text("SELECT version FROM schema_version")).scalar() == SCHEMA_VERSION == 2
+            # the columns were added with their default, for rows written by other tools
+            conn.execute(text("SELECT start_posture, end_posture FROM clips")).all()
+    finally:
+        engine.dispose()
+    with MotionDB.open(db_url, seed=seed) as db:  # opening again changes nothing
+        assert db.info("sitting").end_posture == "seated" and len(db.clips()) == 4
+
+
+def test_a_version_1_library_database_gets_the_new_library(tmp_path):
+    """An old database seeded with the built-in library: migrated, then the new library replaces the old one."""
+    path = tmp_path / "old.sqlite"
+    MotionDB.open(path).close()
+    _make_version_1(f"sqlite:///{path}")
+    engine = create_engine(f"sqlite:///{path}")
+    try:
+        with engine.begin() as conn:  # as if seeded by the library of that version
+            conn.execute(text("UPDATE schema_version SET builtin_library = 'sha256:old'"))
+    finally:
+        engine.dispose()
+    with MotionDB.open(path) as db:
+        assert db.info("get_up").start_posture == "lying"
+        assert db.info("sit_down").end_posture == "seated"
+        assert [c.name for c in db.search("立ち上がる", prefer_start_posture="crouched")][0] == "stand_from_crouch"
+
+
+def test_a_schema_older_than_any_migration_is_refused(db_url):
+    MotionDB.open(db_url, seed=False).close()
+    engine = create_engine(db_url)
+    try:
+        with engine.begin() as conn:
+            conn.execute(update(SchemaVersion).values(version=0))
+    finally:
+        engine.dispose()
+    with pytest.raises(SchemaVersionError, match="version 0, which this text2anim cannot upgrade to 2"):
+        MotionDB.open(db_url)

@@ -46,7 +46,7 @@ REQUIRED = {
     "ジャンプする": None, "跳ぶ": None, "飛ぶ": None, "跳ねる": None, "転ぶ": None, "倒れる": None,
     "回る": None, "回転する": None, "ターンする": None, "踊る": None, "ダンスする": None,
     "座る": None, "腰掛ける": None, "立ち上がる": None, "立つ": None, "起き上がる": None,
-    "しゃがむ": None, "かがむ": None,
+    "しゃがむ": None, "かがむ": None, "しゃがみ込む": None,
     "蹴る": None, "キックする": None, "シュートする": None, "殴る": None, "パンチする": None, "構える": None,
     "投げる": None, "拾う": None, "持ち上げる": None, "置く": None, "押す": None, "引く": None,
     "キャッチする": None, "受け取る": None,
@@ -333,6 +333,49 @@ def test_sit_and_stand_up_meet():
     sit, up = CLIPS["sit_down"].motion, CLIPS["stand_up"].motion
     assert np.abs(sit.positions[-1] - up.positions[0]).max() < 0.04
     assert sit.root_positions[-1, 1] < 0.6
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_declared_postures_are_what_the_classifier_sees(name):
+    """The postures the data declares (starts/ends) match the frames, as an imported clip's would be classified."""
+    from motiondb.store import classify_posture
+
+    built, m = BUILT[name], CLIPS[name].motion
+    assert (CLIPS[name].start_posture, CLIPS[name].end_posture) == (built.start_posture, built.end_posture)
+    assert classify_posture(m, 0) == built.start_posture
+    assert classify_posture(m, m.n_frames - 1) == built.end_posture
+
+
+@pytest.mark.parametrize("first, then", [("crouch_down", "stand_from_crouch"), ("fall", "get_up"),
+                                         ("crouch", "crouch_down")])
+def test_posture_changes_meet(first, then):
+    """Where one clip ends off its feet, the clip that rises from there starts in the same pose."""
+    a, b = CLIPS[first].motion, CLIPS[then].motion
+    assert np.abs(a.positions[-1] - b.positions[0]).max() < 0.04
+    assert BUILT[first].end_posture == BUILT[then].start_posture
+
+
+def test_crouch_down_stays_down_as_crouch_does():
+    crouch, down = CLIPS["crouch"].motion, CLIPS["crouch_down"].motion
+    hold = int(round(1.9 * 30))  # crouch's last frame down, before it comes back up
+    assert np.abs(crouch.positions[:hold] - down.positions[:hold]).max() < 0.05
+    assert down.root_positions[-1, 1] < 0.5 and CLIPS["stand_from_crouch"].motion.root_positions[-1, 1] > 0.9
+
+
+def test_get_up_goes_through_hands_and_knees_with_the_knees_on_the_floor():
+    from motiondb.store import classify_posture
+
+    m = CLIPS["get_up"].motion
+    seen = [classify_posture(m, f) for f in range(0, m.n_frames, 3)]
+    phases = [p for k, p in enumerate(seen) if k == 0 or p != seen[k - 1]]
+    # (rising from the half-kneel it passes through a crouch: hips low, over the feet)
+    assert phases[0] == "lying" and phases[1] == "kneeling" and phases[-1] == "standing", phases
+    assert "seated" not in phases
+    knees = [m.skeleton.index(n) for n in ("LeftLeg", "RightLeg")]
+    assert m.positions[:, knees, 1].min() > 0.03  # resting on the floor, never through it
+    hands = [m.skeleton.index(n) for n in ("LeftHand", "RightHand")]
+    on_floor = m.positions[: int(1.6 * 30), hands, 1]
+    assert np.abs(on_floor - 0.05).max() < 0.01  # both hands stay where fall put them until the step
 
 
 def test_mirroring_serves_the_left_side():

@@ -14,6 +14,8 @@ from nlp.types import Analysis, MotionSpec
 from scheduler import ClipTiming, ScheduleError, TimeTable, plan, without
 from synthesis.bodyparts import GROUPS
 
+from . import postures
+
 
 @dataclass(frozen=True)
 class Planned:
@@ -109,4 +111,9 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
             raise ScheduleError("no motion of this text is in the motion database: " + "、".join(skipped))
     finder = _Finder(db)
     table = plan(analysis, finder, fps)
+    # posture continuity: clips whose postures meet, bridging clips where none can (text2anim.postures)
+    arranged = postures.arrange(analysis, table, finder.chosen, finder.search, db)
+    if arranged.changed:
+        analysis, finder = arranged.analysis, _Finder(db)
+        table = plan(analysis, arranged.finder(finder), fps)
     return Planned(analysis, table, dict(finder.chosen), skipped)

@@ -15,6 +15,13 @@ the shared named poses (``stand``, ...). Generation is deterministic
 
 A clip declared for the right side (``body_part="right_arm"``) serves a
 left-side request through :func:`synthesis.mirror.mirror`.
+
+Postures: a clip's data says how it starts and ends (``starts``/``ends``:
+``stand`` by default, ``sit``, ``crouch``, ``floor``, ``hold``); the record
+carries them as :data:`motiondb.types.POSTURES` words (:data:`POSTURE_OF`), so
+the pipeline can chain clips whose postures meet (``sit_down`` then
+``stand_up``, ``crouch_down`` then ``stand_from_crouch``, ``fall`` then
+``get_up``).
 """
 from __future__ import annotations
 
@@ -32,9 +39,14 @@ from .plant import FramePlant, PlantReport, plant_feet
 from .reach import apply_reach
 from .skeleton import ANKLE_HEIGHT, TOE_HEIGHT, canonical_skeleton
 
-__all__ = ["BuiltClip", "ClipDataError", "builtin_clips", "build_all", "canonical_skeleton"]
+__all__ = ["BuiltClip", "ClipDataError", "POSTURE_OF", "builtin_clips", "build_all", "canonical_skeleton"]
 
 SOURCE = "builtin"
+
+#: The data's ``starts``/``ends`` words -> the database's posture (``hold``: standing with
+#: an object in the hands; ``floor``: lying face down, as ``fall`` ends).
+POSTURE_OF = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched",
+              "floor": "lying"}
 
 #: Sole points (heel, ball) in the ankle's frame: what touches the ground.
 SOLE = np.array([
@@ -58,8 +70,25 @@ class BuiltClip:
 
     @property
     def ends(self) -> str:
-        """The posture the clip ends in (``stand`` unless the data says ``sit``, ``floor``, ``hold``)."""
+        """The posture the clip ends in (``stand`` unless the data says ``sit``, ``crouch``, ``floor``, ``hold``)."""
         return self.data.raw.get("ends", "stand")
+
+    @property
+    def start_posture(self) -> str:
+        """:attr:`starts` as a :data:`motiondb.types.POSTURES` word (``standing``, ``seated``, ...)."""
+        return POSTURE_OF[self.starts]
+
+    @property
+    def end_posture(self) -> str:
+        """:attr:`ends` as a :data:`motiondb.types.POSTURES` word."""
+        return POSTURE_OF[self.ends]
+
+
+def _posture(raw: dict, key: str, name: str) -> str:
+    word = raw.get(key, "stand")
+    if word not in POSTURE_OF:
+        raise ClipDataError(f"{name}: {key} must be one of {', '.join(POSTURE_OF)}, not {word!r}")
+    return POSTURE_OF[word]
 
 
 def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> list[FramePlant]:
@@ -136,6 +165,7 @@ def build_all(fps: float = 30.0) -> tuple[BuiltClip, ...]:
             name=clip.name, motion=motion, verbs=clip.verbs, objects=clip.objects,
             character="default", core=core, body_part=clip.body_part, cyclic=clip.cyclic,
             source=f"{SOURCE}:{raw.get('_file', clip.name)}",
+            start_posture=_posture(raw, "starts", clip.name), end_posture=_posture(raw, "ends", clip.name),
         )
         out.append(BuiltClip(record, report, clip))
     return tuple(out)

@@ -7,7 +7,10 @@ The data format (one clip object per file in ``clips/``, or a family file
 it; spelling variants as further synonyms), ``objects``, ``body_part``,
 ``cyclic``, ``core`` (``[begin, end]`` seconds; cyclic clips: the whole
 clip), ``starts``/``ends`` (the posture at either end: ``stand`` by default,
-else ``sit``, ``hold``, ``floor``), ``about`` (a note for readers);
+else ``sit`` (on a 0.45 m seat), ``crouch`` (squatting on flat feet, the
+``crouch`` pose), ``floor`` (lying face down, as ``fall`` ends), ``hold``
+(standing, an object in the hands); stored as the database's postures, see
+:data:`motiondb.library.POSTURE_OF`), ``about`` (a note for readers);
 
 timing: ``duration`` seconds (one-shot clips), or for cyclic clips
 ``period`` (seconds of one cycle), ``cycles`` (>= 2) and ``travel``
