@@ -26,6 +26,29 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--skip-unknown", action="store_true", help="drop motions whose verb the database lacks")
     p.add_argument("--no-foot-lock", action="store_true", help="do not lock planted feet during blends")
     p.add_argument("--no-sway", action="store_true", help="do not transfer sway in compositions")
+    add_blend_arguments(p)
+
+
+def add_blend_arguments(p: argparse.ArgumentParser) -> None:
+    """``--blend`` and ``--smoothness`` (shared with ``compare``)."""
+    from synthesis.engines import METHODS
+
+    p.add_argument("--blend", choices=METHODS, default="optimal",
+                   help="how consecutive motions are joined: optimal (paper 000, default), constraint "
+                        "(paper 003), pose (closest poses, linear), crossfade (linear, fixed length)")
+    p.add_argument("--smoothness", type=unit_float, default=0.5, metavar="W",
+                   help="for --blend optimal: 0 joins as fast as it can, 1 as smoothly as it can (default 0.5)")
+
+
+def unit_float(text: str) -> float:
+    """A number in [0, 1] for argparse."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not 0.0 <= value <= 1.0:
+        raise argparse.ArgumentTypeError(f"{text} is not between 0 and 1")
+    return value
 
 
 def _say(msg: str) -> None:
@@ -38,7 +61,8 @@ def run(args: argparse.Namespace) -> int:
     text = read_text(args.text)
     _say("analysing, retrieving clips and synthesising ...")
     anim = text2anim.animate(text, args.db, fps=args.fps, skip_unknown=args.skip_unknown,
-                             lock_feet=not args.no_foot_lock, sway=not args.no_sway)
+                             lock_feet=not args.no_foot_lock, sway=not args.no_sway, blend=args.blend,
+                             smoothness=args.smoothness)
     for verb in anim.planned.skipped:
         _say(f"skipped {verb}: not in the motion database")
     for w in anim.report["warnings"]:

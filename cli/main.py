@@ -17,6 +17,7 @@ import sys
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMAND_MODULES = [
     "cli.cmd_animate",
+    "cli.cmd_compare",
     "cli.cmd_info",
     "cli.cmd_metrics",
     "cli.cmd_convert",

@@ -122,6 +122,8 @@ class Animation:
     planned: Planned
     result: object  # synthesis.engine.Result
     fps: float
+    blend: str = "optimal"
+    smoothness: float = 0.5
 
     @property
     def text(self) -> str:
@@ -149,6 +151,7 @@ class Animation:
         return {
             "text": self.text,
             "fps": self.fps,
+            "synthesis": {"blend": self.blend, "smoothness": self.smoothness},
             "time_table": self.table.to_dict()["elements"],
             **self.result.report(),
             "elements": {str(k): v for k, v in self.result.elements.items()},
@@ -233,7 +236,8 @@ def _write_all(files: dict[Path, bytes]) -> list[Path]:
 
 
 def animate(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False,
-            lock_feet: bool = True, sway: bool = True) -> Animation:
+            lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
+            smoothness: float = 0.5) -> Animation:
     """Analyse ``text``, schedule it, and synthesise one motion per actor.
 
     Args:
@@ -242,11 +246,19 @@ def animate(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False
         fps: output frame rate.
         skip_unknown: drop motions whose verb the database lacks instead of failing.
         lock_feet, sway: the synthesis options of paper 003 (foot locking, sway transfer).
+        blend: how consecutive motions are joined: ``optimal`` (paper 000, the default),
+            ``constraint`` (paper 003), ``pose`` or ``crossfade`` (the common baselines);
+            see :mod:`synthesis.engines`.
+        smoothness: ``W`` of paper 000 §4.3 for ``optimal``: 0 joins as fast as it can, 1 as
+            smoothly as it can.
     """
-    from synthesis.engine import synthesize
+    from synthesis.engines import check_method, synthesize_with
 
     if not fps > 0:
         raise OutputError(f"fps must be positive, not {fps}")
+    check_method(blend)
+    if not 0.0 <= float(smoothness) <= 1.0:
+        raise OutputError(f"smoothness must be between 0 (time first) and 1 (smoothness first), not {smoothness}")
     opened = db if isinstance(db, MotionDB) else MotionDB.open(db)
     try:
         planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown)
@@ -254,8 +266,8 @@ def animate(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False
     finally:
         if opened is not db:
             opened.close()
-    result = synthesize(tracks, fps, lock_feet=lock_feet, sway=sway)
-    return Animation(planned, result, fps)
+    result = synthesize_with(blend, tracks, fps, smoothness=smoothness, lock_feet=lock_feet, sway=sway)
+    return Animation(planned, result, fps, blend, float(smoothness))
 
 
 __all__ = ["Animation", "animate", "build_tracks"]

@@ -1,0 +1,117 @@
+"""``text2anim compare TEXT``: one time table joined by several methods, the quality figures side by side.
+
+The text is analysed, scheduled and its clips retrieved once; the same tracks
+are then synthesised with each method of ``--methods`` (``optimal``, paper
+000; ``constraint``, paper 003; ``pose`` and ``crossfade``, the common
+baselines) and the figures of timetable.md §3 are printed as one row per
+method (or as JSON). ``--out DIR`` writes one BVH per method (and actor);
+``--plot FILE`` overlays every method's upper- and lower-body speed curves as
+Fig. 5 of paper 000 does.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from .bvh_options import positive_float
+from .cmd_animate import unit_float
+from .cmd_parse import read_text
+
+NAME = "compare"
+HELP = "join the same time table with several methods and compare foot skate, jerk, core fidelity"
+
+_HEAD = (("foot_skate_cm_s", "skate cm/s", "{:10.2f}"), ("slide_cm", "slide cm", "{:8.1f}"),
+         ("skating_ratio", "ratio", "{:6.3f}"), ("join_skating_ratio", "join ratio", "{:10.3f}"),
+         ("jerk_max", "jerk max", "{:8.0f}"), ("jerk_rms", "jerk rms", "{:8.0f}"),
+         ("core_fidelity_cm", "core cm", "{:7.1f}"), ("duration_s", "dur s", "{:6.2f}"))
+
+
+class CompareError(ValueError):
+    """A bad ``--methods`` list or output folder."""
+
+    user_facing = True
+
+
+def _methods(text: str) -> list[str]:
+    from synthesis.engines import METHODS
+
+    names = [m.strip() for m in text.split(",") if m.strip()]
+    bad = [m for m in names if m not in METHODS]
+    if bad or not names:
+        raise argparse.ArgumentTypeError(f"unknown method(s) {', '.join(bad) or '(none)'}; "
+                                         f"choose from {','.join(METHODS)}")
+    return list(dict.fromkeys(names))
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("text", metavar="TEXT", help="the text, or - to read it from standard input")
+    p.add_argument("--methods", type=_methods, default=["optimal", "constraint", "pose", "crossfade"],
+                   help="comma-separated methods (default optimal,constraint,pose,crossfade)")
+    p.add_argument("--out", metavar="DIR", help="write one BVH per method into DIR (DIR/optimal.bvh, ...)")
+    p.add_argument("--plot", metavar="FILE", help="plot every method's upper/lower-body speeds (Fig. 5 of "
+                   "paper 000; needs text2anim[plot])")
+    p.add_argument("--json", action="store_true", help="print the figures as JSON")
+    p.add_argument("--smoothness", type=unit_float, default=0.5, metavar="W",
+                   help="W for the optimal method: 0 time first, 1 smoothness first (default 0.5)")
+    p.add_argument("--fps", type=positive_float, default=30.0, help="output frame rate (default 30)")
+    p.add_argument("--db", metavar="URL", help="motion database (default: $TEXT2ANIM_DB or the user's data directory)")
+    p.add_argument("--skip-unknown", action="store_true", help="drop motions whose verb the database lacks")
+
+
+def run(args: argparse.Namespace) -> int:
+    from motiondb import MotionDB
+    from synthesis.comparison import compare
+    from text2anim.animation import Animation, build_tracks
+    from text2anim.pipeline import plan_text
+
+    text = read_text(args.text)
+    out_dir = Path(args.out) if args.out else None
+    if out_dir is not None and out_dir.exists() and not out_dir.is_dir():
+        raise CompareError(f"{out_dir} is not a folder")
+    with MotionDB.open(args.db) as db:
+        planned = plan_text(text, db, fps=args.fps, skip_unknown=args.skip_unknown)
+        tracks = build_tracks(planned, db, args.fps)
+    results = compare(tracks, args.fps, args.methods, args.smoothness)
+    anims = {m: Animation(planned, res, args.fps, m, args.smoothness) for m, (res, _) in results.items()}
+    written = []
+    if out_dir is not None:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        for m, anim in anims.items():
+            written.extend(anim.save_bvh(out_dir / f"{m}.bvh"))
+    if args.plot:
+        written.append(_plot(anims, args.plot, text))
+    rows = {m: fig for m, (_, fig) in results.items()}
+    if args.json:
+        doc = {"text": text, "fps": args.fps, "smoothness": args.smoothness, "methods": rows,
+               "joins": {m: [j["blend"] for j in res.report()["joins"]] for m, (res, _) in results.items()},
+               "warnings": {m: list(res.warnings) for m, (res, _) in results.items() if res.warnings},
+               "written": [str(p) for p in written]}
+        print(json.dumps(doc, ensure_ascii=False, indent=2))
+        return 0
+    print(f"{'method':10} " + " ".join(h for _, h, _ in _HEAD) + "  joins")
+    for m, fig in rows.items():
+        joins = ",".join(j.blend for j in results[m][0].joins) or "-"
+        print(f"{m:10} " + " ".join(f.format(fig[k]).rjust(len(h)) for k, h, f in _HEAD) + f"  {joins}")
+    for m, (res, _) in results.items():
+        for w in res.warnings:
+            print(f"text2anim: {m}: warning: {w}", file=sys.stderr)
+    if written:
+        print("wrote " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def _plot(anims: dict, path, title: str) -> Path:
+    """Every method's speed curves on one figure; the time table's elements marked, the blend intervals of
+    the first method (``optimal`` by default) shaded."""
+    from synthesis.plots import plot_speeds
+
+    first = next(iter(anims.values()))
+    labelled = {}
+    for m, anim in anims.items():
+        for actor, motion in anim.motions.items():
+            labelled[m if len(anim.motions) == 1 else f"{m} {actor}"] = motion
+    spans = [s for s in first.spans() if s.kind == "element" or s.kind == "blend"]
+    plot_speeds(labelled, path, spans, title=title)
+    return Path(path)

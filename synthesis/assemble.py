@@ -1,0 +1,183 @@
+"""What every whole-body joiner shares after laying its clips: compositions, measurement, the Result.
+
+The optimal engine (:mod:`synthesis.optimal`) and the baselines
+(:mod:`synthesis.baselines`) lay the whole-body elements of a track their own
+way; then, exactly as the seed-003 engine (:mod:`synthesis.engine`) does:
+
+1. the partial elements are composed onto the track
+   (:func:`synthesis.composition.compose`, sway transfer and all);
+2. every join is measured with the engine's own figures (``timetable.md`` §3:
+   skating ratio and foot skate in the blend and its region, largest and RMS
+   jerk against the source clips', core fidelity per element);
+3. a :class:`synthesis.engine.Result` is returned, so every method can be
+   saved, viewed, reported and compared the same way.
+
+The per-join and per-element figures are the engine's functions; this module
+only repeats the engine's short loops around them (its ``synthesize`` does the
+same inline and is not split into callable steps).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from .composition import compose
+from .contacts import detect_contacts, foot_tracks
+from .engine import (Placed, Result, _fidelity, _mirrored_if_needed, _on_skeleton, _part_fidelity,
+                     _window_metrics, max_slide, skating_frames)
+from .metrics import jerk
+from .motion import Motion
+from .plan import BlendInterval, Element, JoinReport, Track
+from .timing import ease_hold, prepare
+
+
+@dataclass
+class Laid:
+    """One track after its whole-body elements are laid.
+
+    ``joins``: ``(report, (window, region) or None, first Placed, second Placed, extra windows)`` — a
+    ``None`` window for a join that was not carried out (nothing to measure). ``skipped``: element ids
+    not executed, with the reason. ``delays``: ``(element id, s)`` of elements the joiner moved in
+    time (the partial elements laid on them move too).
+    """
+
+    motion: Motion
+    placed: list[Placed]
+    joins: list = field(default_factory=list)
+    warnings: list = field(default_factory=list)
+    skipped: dict = field(default_factory=dict)
+    delays: list = field(default_factory=list)
+
+
+def shifted(parts: list[Element], delays: list) -> list[Element]:
+    """Partial elements moved with the whole-body element they are laid on when a joiner moved it in time:
+    ``delays`` lists ``(element id, seconds)``."""
+    moved = dict(delays)
+    return [replace(e, start=e.start + moved[e.prev], end=e.end + moved[e.prev]) if e.prev in moved else e
+            for e in parts]
+
+
+def finish_whole(tr: Motion, placed: list[Placed], elements) -> Motion:
+    """The track cut after the last whole-body element and held (eased) to the last scheduled end."""
+    last = placed[-1]
+    tr = tr[:max(1, last.offset + last.stop)]
+    n_end = max([int(round(e.end * tr.fps)) for e in elements] + [tr.n_frames])
+    return ease_hold(tr, n_end)
+
+
+def compose_parts(laid: Laid, parts: list[Element], whole: list[Element], fps: float, sway: bool) -> list:
+    """Compose the partial elements onto ``laid.motion`` (in place); returns the compositions."""
+    tr = laid.motion
+    comps = []
+    for e in parts:
+        prep = prepare(e, fps, repeats_as_one=False)
+        laid.warnings.extend(prep.warnings)
+        prep, _, note = _on_skeleton(prep, tr.skeleton, e)
+        if note:
+            laid.warnings.append(note)
+        part = e.body_part or e.clip.body_part or "upper"
+        donor = _mirrored_if_needed(e.clip.body_part, part, prep.motion)
+        start = int(round(e.start * fps))
+        end = start + donor.n_frames
+        if end + 1 > tr.n_frames:
+            tr = ease_hold(tr, end + 1)
+        comp = compose(tr, start, end, donor, prep.core, part, sway=sway)
+        tr = comp.motion
+        t = comp.timing
+        intervals = (BlendInterval(part, "motion-motion", t.ta0 / fps, (t.ta0 + t.blend_in) / fps),
+                     BlendInterval(part, "motion-motion", (t.ta1 - t.blend_out) / fps, t.ta1 / fps))
+        info = {"switch_s": [t.ta0 / fps, t.ta1 / fps], "clip_s": [t.tb0 / fps, t.tb1 / fps],
+                "stretch": t.stretch, "sway_joints": len(comp.sway_joints), "sway_max_deg": comp.sway_deg}
+        base_id = e.prev if e.prev is not None and e.prev not in laid.skipped else whole[0].id
+        rep = JoinReport(base_id, e.id, "composition", "composition", intervals,
+                         {"start": t.cost_start, "end": t.cost_end}, info, ())
+        laid.joins.append((rep, ((t.ta0, t.ta0 + t.blend_in), (t.ta0, t.ta1)), None, None,
+                           [(t.ta1 - t.blend_out, t.ta1)]))
+        comps.append((e, comp, donor, prep.core))
+    laid.motion = tr
+    return comps
+
+
+def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, dict]:
+    """Per-join reports with their metrics and per-element figures (the engine's, see the module doc)."""
+    tr = laid.motion
+    contacts = detect_contacts(tr)
+    ftracks = foot_tracks(tr)
+    skating = skating_frames(tr, ftracks)
+    composed_at = [(c.timing.ta0, c.timing.ta1) for _, c, _, _ in comps]
+    elements: dict = {}
+    fid: dict = {}
+    for p in laid.placed:
+        key = p.element.id
+        f = _fidelity(tr, p)
+        fid[key] = max(fid.get(key, 0.0), f)
+        c0, c1 = p.offset + p.core[0], p.offset + p.core[1]
+        el = elements.setdefault(key, {"actor": track.actor, "start": (p.offset + p.lead) / fps,
+                                       "core": [c0 / fps, c1 / fps],
+                                       "placement": {"yaw": p.rigid.yaw, "x": p.rigid.offset[0],
+                                                     "z": p.rigid.offset[1]}})
+        el["end"] = (p.offset + p.stop) / fps
+        el["core"][1] = c1 / fps
+        el["core_fidelity_cm"] = fid[key]
+        if any(a < c1 and b > c0 for a, b in composed_at):
+            from .bodyparts import body_map
+
+            legs = list(body_map(tr.skeleton).joints("lower"))
+            el["core_fidelity_untouched_cm"] = _fidelity(tr, p, legs)
+    for eid, why in laid.skipped.items():
+        elements[eid] = {"actor": track.actor, "executed": False, "reason": why}
+    for e, comp, donor, core in comps:
+        elements[e.id] = {"actor": track.actor, "start": comp.timing.ta0 / fps, "end": comp.timing.ta1 / fps,
+                          "part": comp.part, "part_fidelity_cm": _part_fidelity(tr, comp, donor, core)}
+    by_id = {p.element.id: p for p in laid.placed}
+    reports = []
+    for rep, spans, first, second, extra in laid.joins:
+        if spans is None:
+            reports.append(rep)
+            continue
+        window, region = spans
+        m = _window_metrics(tr, window[0], window[1], contacts, ftracks, skating)
+        for a, b in extra:
+            m2 = _window_metrics(tr, a, b, contacts, ftracks, skating)
+            m["jerk_max"] = max(m["jerk_max"], m2["jerk_max"])
+            m["jerk_rms"] = float(np.hypot(m["jerk_rms"], m2["jerk_rms"]) / np.sqrt(2))
+            m["skating_ratio"] = max(m["skating_ratio"], m2["skating_ratio"])
+            m["max_slide_cm_s"] = max(m["max_slide_cm_s"], m2["max_slide_cm_s"])
+        reg = _window_metrics(tr, region[0], region[1], contacts, ftracks, skating)
+        m["region"] = {k: reg[k] for k in ("frames", "skating_ratio", "max_slide_cm_s", "foot_skate")}
+        srcs = [first, second] if first is not None else [by_id.get(rep.first), None]
+        src_m = [p.motion for p in srcs if p is not None]
+        if rep.method == "composition":
+            src_m = [c[2] for c in comps if c[0].id == rep.second] + src_m
+        src_j = [jerk(x) for x in src_m]
+        m["source_max_slide_cm_s"] = max((max_slide(x) for x in src_m), default=0.0)
+        m["source_jerk_max"] = max((j.max for j in src_j), default=0.0)
+        m["source_jerk_rms"] = max((j.rms for j in src_j), default=0.0)
+        m["core_fidelity_cm"] = {str(rep.first): elements.get(rep.first, {}).get("core_fidelity_cm"),
+                                 str(rep.second): elements.get(rep.second, {}).get(
+                                     "core_fidelity_cm", elements.get(rep.second, {}).get("part_fidelity_cm"))}
+        reports.append(replace(rep, metrics={**rep.metrics, **m}))
+    return reports, elements
+
+
+def assemble(tracks, fps: float, lay, sway: bool = True) -> Result:
+    """Lay every track with ``lay(track, whole_elements) -> Laid``, compose its partial elements, measure.
+
+    ``tracks`` are already spread (:func:`synthesis.engine.spread_actors`) if they should be.
+    """
+    motions, reports, elements, warnings = {}, [], {}, []
+    for track in tracks:
+        whole = [e for e in track.elements if e.method != "composition"]
+        parts = sorted((e for e in track.elements if e.method == "composition"), key=lambda e: (e.start, e.id))
+        if not whole:
+            raise ValueError(f"actor {track.actor!r} has no whole-body motion to lay compositions onto")
+        laid = lay(track, whole)
+        laid.motion = finish_whole(laid.motion, laid.placed, track.elements)
+        comps = compose_parts(laid, shifted(parts, laid.delays), whole, fps, sway)
+        reps, els = measure(track, laid, comps, fps)
+        reports.extend(reps)
+        elements.update(els)
+        warnings.extend(laid.warnings)
+        motions[track.actor] = laid.motion
+    return Result(motions, reports, fps, elements, tuple(warnings))

@@ -1,0 +1,73 @@
+"""Pose distance of paper 000 §4.3 (eq. (13)) and the approach speeds of eqs. (14)–(15).
+
+eq. (13): ``D(t0, t1) = Σ_i |p_i(t1) - p_i(t0)| / n`` — the mean distance (metres)
+between corresponding joints of two poses, computed as Kovar et al. do
+(*Motion graphs*, 2002): before comparing, each pose is moved so that its
+hips stand over the origin and face +Z (the root's horizontal position and
+heading are aligned; heights are kept). So the distance does not depend on
+where a clip is placed on the ground, only on the shape of the body, and a
+search can run before the next clip is placed.
+
+``features`` turns frames into those aligned positions once, ``(T, K, 3)``;
+``distance_matrix`` compares every frame of one set with every frame of
+another at once (numpy broadcasting), ``(Na, Nb)``.
+
+Joint sets: the paper computes ``Q_p`` and ``Q_v`` over the upper or the
+lower body, whichever the blend interval is for (:func:`part_joints`): the
+lower body is the hips and both legs, the upper body the torso, head and
+arms (:mod:`synthesis.bodyparts`).
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from .align import rest_forward
+from .bodyparts import body_map
+from .motion import Motion
+
+
+def part_joints(motion: Motion, part: str) -> list[int]:
+    """Joint indices of a body part (``lower``, ``upper``, ``whole`` or a :data:`~synthesis.bodyparts.GROUPS` name)."""
+    if part == "whole":
+        return list(range(motion.skeleton.n_joints))
+    return list(body_map(motion.skeleton).joints(part))
+
+
+def root_headings(motion: Motion) -> np.ndarray:
+    """The root's own facing angle per frame (radians about +Y, 0 faces +Z), ``(T,)``, not smoothed:
+    Kovar aligns each pose by its root's yaw."""
+    fwd = Rotation.from_quat(motion.rotations[:, 0]).apply(rest_forward(motion.skeleton))
+    return np.arctan2(fwd[:, 0], fwd[:, 2])
+
+
+def features(motion: Motion, joints, frames=None) -> np.ndarray:
+    """Joint positions with the root's horizontal position and heading removed, ``(F, K, 3)`` metres.
+
+    ``frames``: integer frame indices ``(F,)`` (clamped to the motion), or ``None`` for all.
+    """
+    pos = motion.positions
+    if frames is None:
+        frames = np.arange(motion.n_frames)
+    idx = np.clip(np.asarray(frames, dtype=int), 0, motion.n_frames - 1)
+    p = pos[idx][:, list(joints)]
+    root = pos[idx, 0]
+    h = root_headings(motion)[idx]
+    d = p - np.stack([root[:, 0], np.zeros(len(idx)), root[:, 2]], axis=1)[:, None, :]
+    c, s = np.cos(h)[:, None], np.sin(h)[:, None]
+    # turn by -h about +Y: the character then faces +Z
+    return np.stack([c * d[..., 0] - s * d[..., 2], d[..., 1], s * d[..., 0] + c * d[..., 2]], axis=-1)
+
+
+def distance_matrix(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
+    """eq. (13) for every pair: ``D[i, j]`` = mean over joints of ``|fb[j] - fa[i]|`` (metres), ``(Na, Nb)``.
+
+    ``fa`` ``(Na, K, 3)`` and ``fb`` ``(Nb, K, 3)`` are :func:`features`.
+    """
+    diff = fa[:, None, :, :] - fb[None, :, :, :]
+    return np.sqrt(np.einsum("ijkc,ijkc->ijk", diff, diff)).mean(axis=-1)
+
+
+def distance(fa: np.ndarray, fb: np.ndarray) -> float:
+    """eq. (13) for one pair of poses ``(K, 3)``."""
+    return float(np.linalg.norm(fa - fb, axis=-1).mean())

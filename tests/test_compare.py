@@ -1,0 +1,81 @@
+"""``text2anim compare`` and ``--blend`` through the real command, on the built-in library."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from cli_run import assert_clean_error, text2anim as run
+from synthesis import read_bvh
+
+EXAMPLE = "太郎は走って、ボールを蹴る。そして喜ぶ。"
+METHODS = ["optimal", "constraint", "pose", "crossfade"]
+
+
+@pytest.fixture(scope="module")
+def compared(library_db, tmp_path_factory):
+    out = tmp_path_factory.mktemp("compare")
+    proc = run("compare", EXAMPLE, "--json", "--out", out, "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    return json.loads(proc.stdout), out
+
+
+def test_compare_prints_the_figures_of_every_method_side_by_side(compared):
+    doc, out = compared
+    assert list(doc["methods"]) == METHODS
+    for m, fig in doc["methods"].items():
+        assert {"foot_skate_cm_s", "slide_cm", "skating_ratio", "join_skating_ratio", "jerk_max", "jerk_rms",
+                "core_fidelity_cm", "duration_s"} <= set(fig), m
+        assert fig["duration_s"] > 5
+    assert doc["joins"]["optimal"] == ["motion_connection", "motion_adaptation"]
+    assert doc["joins"]["constraint"] == ["footstep", "connection"]
+    # the paper's method never skates; the common baselines, without foot locking, do
+    opt = doc["methods"]["optimal"]
+    assert opt["skating_ratio"] == 0.0 and opt["join_skating_ratio"] == 0.0
+    assert max(doc["methods"][m]["join_skating_ratio"] for m in ("pose", "crossfade")) > 0.0
+
+
+def test_compare_writes_one_bvh_per_method(compared):
+    doc, out = compared
+    files = sorted(p.name for p in out.iterdir())
+    assert files == sorted(f"{m}.bvh" for m in METHODS)
+    lengths = {m: read_bvh(out / f"{m}.bvh").n_frames for m in METHODS}
+    assert all(n > 150 for n in lengths.values())
+
+
+def test_compare_table_and_plot(tmp_path, library_db):
+    pytest.importorskip("matplotlib")
+    plot = tmp_path / "fig5.png"
+    proc = run("compare", "歩いて、走る。", "--methods", "optimal,crossfade", "--plot", plot, "--smoothness", "0.8",
+               "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    assert lines[0].split()[:3] == ["method", "skate", "cm/s"]
+    assert [ln.split()[0] for ln in lines[1:3]] == ["optimal", "crossfade"]
+    assert "motion_transition" in lines[1]
+    assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize("args, fragment", [
+    (("--methods", "optimal,warp"), "warp"),
+    (("--smoothness", "2"), "between 0 and 1"),
+])
+def test_compare_rejects_bad_options_cleanly(tmp_path, library_db, args, fragment):
+    proc = run("compare", EXAMPLE, *args, "--db", library_db, cwd=tmp_path)
+    assert proc.returncode == 2 and fragment in proc.stderr and "Traceback" not in proc.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_animate_takes_blend_and_smoothness(tmp_path, library_db):
+    out, report = tmp_path / "a.bvh", tmp_path / "r.json"
+    proc = run("歩いて、走る。", "--blend", "crossfade", "-o", out, "--report", report, "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(report.read_text())
+    assert doc["synthesis"] == {"blend": "crossfade", "smoothness": 0.5}
+    assert [j["blend"] for j in doc["joins"]] == ["crossfade"]
+    proc = run("歩いて、走る。", "--smoothness", "0", "-o", out, "--report", report, "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(report.read_text())
+    assert doc["synthesis"]["blend"] == "optimal" and doc["joins"][0]["blend"] == "motion_transition"
+    assert {"time", "pose", "velocity", "total"} == set(doc["joins"][0]["cost"])
+    assert_clean_error(run("歩く。", "--blend", "magic", "--db", library_db, cwd=tmp_path), "magic")
