@@ -3,13 +3,14 @@ from __future__ import annotations
 
 import json
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from motiondb import MotionDB
 from synthesis import plan as splan
 from synthesis.atomic import OutputError, atomic_write_bytes
 
+from . import postures
 from .pipeline import Planned, plan_text
 
 DEFAULT_ACTOR = "default"
@@ -27,9 +28,10 @@ class _Clips:
     """Clips loaded from ``db`` once each, resampled to ``fps``."""
 
     def __init__(self, db: MotionDB, fps: float):
-        self.db, self.fps, self.cache = db, fps, {}
+        self.db, self.fps, self.cache, self.infos = db, fps, {}, {}
 
     def get(self, info) -> splan.Clip:
+        self.infos[info.name] = info
         if info.name not in self.cache:
             motion = self.db.load(info)
             if motion.fps != self.fps:
@@ -46,6 +48,13 @@ class _Clips:
             return None
         return self.get(hits[0]) if hits else None
 
+    def idle(self, posture: str, character: str | None) -> splan.Clip | None:
+        """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still."""
+        if posture == "standing":
+            return self.by_verb(IDLE_VERB, character)
+        info = postures.matching(self.db, IDLE_VERB, posture, character=character)
+        return self.get(info) if info is not None else None
+
 
 def _fill_gap(clips: _Clips, prev: splan.Element, start: float, end: float, character: str | None,
               next_id: int) -> list[splan.Element]:
@@ -58,7 +67,8 @@ def _fill_gap(clips: _Clips, prev: splan.Element, start: float, end: float, char
             t1 = end
         out.append(splan.Element(next_id, stop, start, t1, "transition", prev.id))
         start = t1
-    idle = clips.by_verb(IDLE_VERB, character) if end - start > IDLE_GAP else None
+    posture = getattr(clips.infos.get(prev.clip.name), "end_posture", "standing")
+    idle = clips.idle(posture, character) if end - start > IDLE_GAP else None
     if idle is not None:
         out.append(splan.Element(next_id + len(out), idle, start, end, "connection",
                                  out[-1].id if out else prev.id))
@@ -83,7 +93,7 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
         for e in mine:
             info = planned.clips[e.id]
             prev, method = e.prev, e.method
-            idle = clips.by_verb(IDLE_VERB, info.character) if method == "initial" and e.start > IDLE_GAP else None
+            idle = clips.idle(info.start_posture, info.character) if method == "initial" and e.start > IDLE_GAP else None
             if idle is not None:  # an actor who comes in later stands idle until then
                 elements.append(splan.Element(next_id, idle, 0.0, e.start, "initial"))
                 prev, method, next_id = next_id, "connection", next_id + 1
@@ -105,6 +115,8 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
         if end - last.end > IDLE_GAP:
             character = planned.clips[last.id].character if last.id in planned.clips else None
             fill = _fill_gap(clips, last, last.end, end, character, next_id)
+            if not fill and not last.clip.cyclic:  # no idle keeps this posture (seated, lying): hold the last pose
+                elements[elements.index(last)] = replace(last, end=end)
             elements.extend(fill)
             next_id += len(fill)
         out.append(splan.Track(actor, tuple(elements)))

@@ -1,0 +1,48 @@
+"""End-to-end posture continuity through text2anim.plan/animate (needs the pipeline/animation hook)."""
+from __future__ import annotations
+
+import pytest
+
+import text2anim
+from motiondb import MotionDB
+from motiondb.store import classify_posture
+
+
+@pytest.fixture(scope="module")
+def db(library_db):
+    with MotionDB.open(library_db) as opened:
+        yield opened
+
+
+@pytest.mark.parametrize("text, clips", [
+    ("しゃがんで、立ち上がる。", ["crouch_down", "stand_from_crouch"]),
+    ("転んで、起き上がる。", ["fall", "get_up"]),
+    ("座って、歩く。", ["sit_down", "stand_up", "walk"]),
+    ("しゃがむ。", ["crouch"]),
+])
+def test_plan_and_animate_keep_postures_continuous(db, text, clips):
+    planned = text2anim.plan(text, db)
+    seq = sorted(planned.table.elements, key=lambda e: (e.start, e.id))
+    assert [e.clip for e in seq] == clips
+    anim = text2anim.animate(text, db)
+    (motion,) = anim.motions.values()
+    for e in seq:
+        played = anim.result.elements[e.id]
+        assert classify_posture(motion, int(round(played["start"] * anim.fps))) == planned.clips[e.id].start_posture
+    assert anim.report["actors"]["default"]["skating_ratio"] == 0.0
+
+
+def test_a_wait_in_a_posture_is_not_filled_with_standing_idle(db):
+    anim = text2anim.animate("太郎は座る。3秒後に歩く。", db)
+    table_ids = {e.id for e in anim.table.elements}
+    fillers = {k: v for k, v in anim.result.elements.items() if k not in table_ids}
+    assert not any(v["start"] < 5.6 for v in fillers.values()), fillers  # no standing idle while seated
+    (motion,) = anim.motions.values()
+    assert classify_posture(motion, int(4.0 * anim.fps)) == "seated"  # still sitting during the 3 s
+
+
+def test_an_actor_who_finishes_lying_is_not_stood_up_by_the_idle(db):
+    anim = text2anim.animate("花子が座るのと同時に太郎は転ぶ。そして起き上がる。", db)
+    hanako = anim.motions["花子"]
+    assert classify_posture(hanako, hanako.n_frames - 1) == "seated"
+    assert hanako.n_frames == anim.motions["太郎"].n_frames  # held to the end, on the same clock
