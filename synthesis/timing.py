@@ -137,7 +137,10 @@ def make_cyclic(motion: Motion) -> Motion:
     (each joint's local rotation, the root height and the root's sideways
     position in the cycle's own frame) is spread linearly over the cycle:
     frame ``k`` takes ``k / n`` of the correction. A clip that already loops
-    is returned as it was (to rounding).
+    is returned as it was: the mismatch is the seam's second difference, and
+    when no joint's exceeds what that joint does inside the clip (a skip's
+    landing at the seam accelerates as hard as its landings elsewhere) there
+    is nothing to correct.
     """
     n = motion.n_frames
     if n < 3:
@@ -150,12 +153,33 @@ def make_cyclic(motion: Motion) -> Motion:
     q0 = motion.rotations[0].copy()
     q0[0] = (move.rotation() * Rotation.from_quat(q0[0])).as_quat()  # the next cycle's root is turned by the move
     err_rot = (Rotation.from_quat(q_next).inv() * Rotation.from_quat(q0)).as_rotvec()  # (J, 3)
+    if _seam_within_clip(motion, err_rot, p0_next - p_next):
+        return motion
     corr = Rotation.from_rotvec(np.einsum("t,jk->tjk", u, err_rot).reshape(-1, 3))
     rots = (Rotation.from_quat(motion.rotations.reshape(-1, 4)) * corr).as_quat().reshape(motion.rotations.shape)
     # root position: by construction of the move only the height can disagree
     err_p = p0_next - p_next
     root = motion.root_positions + np.outer(u, err_p)
     return motion.replace(root_positions=root, rotations=rots)
+
+
+#: The seam may accelerate this much more than the clip's own frames before it is corrected.
+SEAM_TOLERANCE = 1.25
+
+
+def _seam_within_clip(motion: Motion, err_rot: np.ndarray, err_p: np.ndarray) -> bool:
+    """True when the seam's second differences (rotation ``(J, 3)``, root position ``(3,)``)
+    are no larger than :data:`SEAM_TOLERANCE` times the largest inside the clip, joint by joint."""
+    T, J = motion.rotations.shape[:2]
+    r = Rotation.from_quat(motion.rotations.reshape(-1, 4))
+    idx = np.arange(T * J).reshape(T, J)
+    steps = r[idx[:-1].ravel()].inv() * r[idx[1:].ravel()]  # (T-1)*J frame-to-frame rotations
+    s_idx = np.arange((T - 1) * J).reshape(T - 1, J)
+    second = (steps[s_idx[:-1].ravel()].inv() * steps[s_idx[1:].ravel()]).magnitude().reshape(T - 2, J)
+    inside_rot = second.max(axis=0)
+    inside_p = np.linalg.norm(np.diff(motion.root_positions, n=2, axis=0), axis=1).max()
+    rot_ok = np.all(np.linalg.norm(err_rot, axis=1) <= SEAM_TOLERANCE * inside_rot + 1e-9)
+    return bool(rot_ok and np.linalg.norm(err_p) <= SEAM_TOLERANCE * inside_p + 1e-9)
 
 
 def loop(motion: Motion, n_frames: int, first: int = 0) -> Motion:
