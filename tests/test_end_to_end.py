@@ -142,8 +142,8 @@ def test_a_looping_clip_alone_plays_as_recorded(library_db, text, clip):
         source = db.load(clip)
     (motion,) = text2anim.animate(text, library_db).motions.values()
     n = min(motion.n_frames, source.n_frames)
-    here, there = motion.positions[:n].copy(), source.positions[:n].copy()
-    here[..., [0, 2]] -= here[0, 0, [0, 2]]  # the actor is placed at the origin
-    there[..., [0, 2]] -= there[0, 0, [0, 2]]
-    np.testing.assert_allclose(here, there, atol=0.01)  # up to a small yaw that faces it along +Z
+    # The body's shape, seen from its hips (placement on the ground may turn and move it).
+    here = np.linalg.norm(motion.positions[:n] - motion.positions[:n, :1], axis=-1)
+    there = np.linalg.norm(source.positions[:n] - source.positions[:n, :1], axis=-1)
+    np.testing.assert_allclose(here, there, atol=2e-3)
     assert skating_ratio(motion) == 0
