@@ -11,6 +11,11 @@ method          what joins consecutive whole-body motions
 
 Compositions (a body part laid onto a motion) are the same for all of them.
 All return a :class:`synthesis.engine.Result`.
+
+``optimal`` keeps planted feet planted above all: when one of an actor's
+joins still skates after its own fallbacks (a run pulled into a stop), that
+actor is rendered by ``constraint`` instead if that one does not skate, and
+the report's warnings say so.
 """
 from __future__ import annotations
 
@@ -47,7 +52,8 @@ def synthesize_with(method: str, tracks: Sequence[Track], fps: float = 30.0, smo
     if method == "optimal":
         from .optimal import synthesize_optimal
 
-        return synthesize_optimal(tracks, fps, smoothness, lock_feet=lock_feet, sway=sway)
+        result = synthesize_optimal(tracks, fps, smoothness, lock_feet=lock_feet, sway=sway)
+        return _feet_first(result, tracks, fps, sway) if lock_feet else result
     if method == "constraint":
         from .engine import synthesize
 
@@ -55,3 +61,40 @@ def synthesize_with(method: str, tracks: Sequence[Track], fps: float = 30.0, smo
     from .baselines import synthesize_baseline
 
     return synthesize_baseline(tracks, fps, method, sway=sway)
+
+
+def _skating_actors(result) -> dict:
+    """Actor → the joins (first, second) of theirs whose blends skate."""
+    out: dict = {}
+    for j in result.joins:
+        if j.metrics.get("skating_ratio", 0.0) > 0:
+            actor = result.elements.get(j.second, {}).get("actor")
+            out.setdefault(actor, []).append((j.first, j.second))
+    return out
+
+
+def _feet_first(result, tracks: Sequence[Track], fps: float, sway: bool):
+    """``result`` with every skating actor re-rendered by the constraint engine when that one is clean."""
+    from dataclasses import replace
+
+    from .engine import synthesize
+
+    bad = _skating_actors(result)
+    if not bad:
+        return result
+    other = synthesize(tracks, fps, lock_feet=True, sway=sway)
+    still = _skating_actors(other)
+    swap = [a for a in bad if a not in still]
+    if not swap:
+        return result
+    motions, elements = dict(result.motions), dict(result.elements)
+    for actor in swap:
+        motions[actor] = other.motions[actor]
+        elements.update({k: v for k, v in other.elements.items() if v.get("actor") == actor})
+    joins = [j for j in result.joins if result.elements.get(j.second, {}).get("actor") not in swap]
+    joins += [j for j in other.joins if other.elements.get(j.second, {}).get("actor") in swap]
+    warnings = list(result.warnings) + [
+        f"{actor or 'default'}: optimal blending left feet skating at join "
+        f"{', '.join(f'{a}→{b}' for a, b in bad[actor])}; rendered with the constraint engine instead"
+        for actor in swap]
+    return replace(result, motions=motions, joins=joins, elements=elements, warnings=tuple(warnings))

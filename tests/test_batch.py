@@ -144,3 +144,18 @@ def test_progress_bar_on_a_terminal():
 ])
 def test_compare_subset(expected, actual, ok):
     assert (list(cmd_batch.compare(expected, actual, "$")) == []) is ok
+
+
+def test_every_corpus_sentence_animates_without_skating(capsys, tmp_path, library_db):
+    """Issue 5's bar: every corpus sentence whose verbs the built-in library has renders, with
+    foot-skating ratio 0 over the whole animation and in every join."""
+    code, out, err = run_cli(capsys, "batch", CORPUS, "--out", tmp_path, "--jobs", "2", "--db", library_db)
+    assert code == 0, out
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    a = summary["animation"]
+    assert summary["errored"] == 0
+    refused = sum(1 for item in cmd_batch.load_corpus(str(CORPUS)) if "error" in (item.expect or {}))
+    assert a["rendered"] + a["skipped_unknown_verb"] == summary["total"] - refused
+    assert a["skipped_unknown_verb"] <= 2
+    assert a["max_skating_ratio"] == 0 and a["max_join_skating_ratio"] == 0
+    assert len(list(tmp_path.glob("line_*.bvh"))) >= a["rendered"]
