@@ -47,7 +47,7 @@ def main() -> int:
     os.environ["TEXT2ANIM_DB"] = url
 
     from motiondb import MotionDB
-    from synthesis.engine import synthesize
+    from synthesis.engines import DEFAULT, synthesize_with
     from text2anim.animation import animate, build_tracks
     from text2anim.pipeline import plan_text
 
@@ -56,12 +56,13 @@ def main() -> int:
     print(f"first open + seeding the built-in library: {time.perf_counter() - t:.2f} s")
     animate(SENTENCES[1], db)  # warm up the analyser and caches
 
-    print(f"\n{'motions':>7} {'animation s':>11} {'end-to-end ms':>13} {'plan ms':>8} {'synth ms':>9} {'RT factor':>10}")
+    print(f"\nsynthesis: {DEFAULT} blending (the default)")
+    print(f"{'motions':>7} {'animation s':>11} {'end-to-end ms':>13} {'plan ms':>8} {'synth ms':>9} {'RT factor':>10}")
     for n, text in SENTENCES.items():
         total, anim = median_time(lambda: animate(text, db), args.repeat)
         plan_s, planned = median_time(lambda: plan_text(text, db), args.repeat)
         tracks = build_tracks(planned, db, 30.0)
-        synth_s, result = median_time(lambda: synthesize(tracks, 30.0), args.repeat)
+        synth_s, result = median_time(lambda: synthesize_with(DEFAULT, tracks, 30.0), args.repeat)
         seconds = max(m.duration for m in result.motions.values())
         print(f"{len(planned.table.elements):7d} {seconds:11.2f} {total * 1000:13.1f} {plan_s * 1000:8.1f} "
               f"{synth_s * 1000:9.1f} {seconds / synth_s:9.0f}x")
