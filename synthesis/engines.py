@@ -20,8 +20,10 @@ the report's warnings say so.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
-from .plan import Track
+if TYPE_CHECKING:  # the command line reads METHODS without paying for scipy
+    from .plan import Track
 
 METHODS = ("optimal", "constraint", "pose", "crossfade")
 DEFAULT = "optimal"
