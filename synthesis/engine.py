@@ -29,7 +29,6 @@ from scipy.ndimage import uniform_filter1d
 
 from .align import Rigid, place_at
 from .blend import sample
-from .bodyparts import body_map
 from .composition import Composed, compose
 from .contacts import FootContacts, detect_contacts, foot_tracks
 from .metrics import SKATE_HEIGHT, SKATE_SPEED, SKATE_WINDOW, jerk
@@ -358,56 +357,14 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
     """
     if spread:
         tracks = spread_actors(tracks)
+    from .assemble import Laid, measure  # assemble builds on this module's pieces
+
     motions, reports, elements, warnings = {}, [], {}, []
     for track in tracks:
         tr, placed, joins, comps, warns = _synthesize_track(track, fps, lock_feet, sway)
         warnings.extend(warns)
-        contacts = detect_contacts(tr)
-        ftracks = foot_tracks(tr)
-        skating = skating_frames(tr, ftracks)
-        composed_at = [(c.timing.ta0, c.timing.ta1) for _, c, _, _ in comps]
-        fid = {}
-        for p in placed:
-            key = p.element.id
-            f = _fidelity(tr, p)
-            fid[key] = max(fid.get(key, 0.0), f)
-            c0, c1 = p.offset + p.core[0], p.offset + p.core[1]
-            el = elements.setdefault(key, {"actor": track.actor, "start": (p.offset + p.lead) / fps,
-                                           "core": [c0 / fps, c1 / fps],
-                                           "placement": {"yaw": p.rigid.yaw, "x": p.rigid.offset[0],
-                                                         "z": p.rigid.offset[1]}})
-            el["end"] = (p.offset + p.stop) / fps
-            el["core"][1] = c1 / fps
-            el["core_fidelity_cm"] = fid[key]
-            if any(a < c1 and b > c0 for a, b in composed_at):
-                legs = list(body_map(tr.skeleton).joints("lower"))
-                el["core_fidelity_untouched_cm"] = _fidelity(tr, p, legs)
-        for e, comp, donor, core in comps:
-            elements[e.id] = {"actor": track.actor, "start": comp.timing.ta0 / fps, "end": comp.timing.ta1 / fps,
-                              "part": comp.part, "part_fidelity_cm": _part_fidelity(tr, comp, donor, core)}
-        by_id = {p.element.id: p for p in placed}
-        for rep_, (window, region), first, second, extra in joins:
-            m = _window_metrics(tr, window[0], window[1], contacts, ftracks, skating)
-            for a, b in extra:  # a composition's second blend
-                m2 = _window_metrics(tr, a, b, contacts, ftracks, skating)
-                m["jerk_max"] = max(m["jerk_max"], m2["jerk_max"])
-                m["jerk_rms"] = float(np.hypot(m["jerk_rms"], m2["jerk_rms"]) / np.sqrt(2))
-                m["skating_ratio"] = max(m["skating_ratio"], m2["skating_ratio"])
-                m["max_slide_cm_s"] = max(m["max_slide_cm_s"], m2["max_slide_cm_s"])
-            reg = _window_metrics(tr, region[0], region[1], contacts, ftracks, skating)
-            m["region"] = {k: reg[k] for k in ("frames", "skating_ratio", "max_slide_cm_s", "foot_skate")}
-            srcs = [first, second] if first is not None else [by_id.get(rep_.first), None]
-            src_m = [p.motion for p in srcs if p is not None]
-            if rep_.method == "composition":
-                src_m = [c[2] for c in comps if c[0].id == rep_.second] + src_m
-            src_j = [jerk(x) for x in src_m]
-            m["source_max_slide_cm_s"] = max((max_slide(x) for x in src_m), default=0.0)
-            m["source_jerk_max"] = max((j.max for j in src_j), default=0.0)
-            m["source_jerk_rms"] = max((j.rms for j in src_j), default=0.0)
-            m["core_fidelity_cm"] = {str(rep_.first): elements.get(rep_.first, {}).get("core_fidelity_cm"),
-                                     str(rep_.second): elements.get(rep_.second, {}).get(
-                                         "core_fidelity_cm", elements.get(rep_.second, {}).get("part_fidelity_cm"))}
-            metrics = {**rep_.metrics, **m}
-            reports.append(replace(rep_, metrics=metrics))
+        reps, els = measure(track, Laid(tr, placed, joins), comps, fps)
+        reports.extend(reps)
+        elements.update(els)
         motions[track.actor] = tr
     return Result(motions, reports, fps, elements, tuple(warnings))
