@@ -29,12 +29,12 @@ from scipy.ndimage import uniform_filter1d
 
 from .align import Rigid, place_at
 from .blend import sample
-from .composition import Composed, compose
+from .composition import Composed
 from .contacts import FootContacts, detect_contacts, foot_tracks
 from .metrics import SKATE_HEIGHT, SKATE_SPEED, SKATE_WINDOW, jerk
 from .motion import Motion
 from .plan import BlendInterval, Element, JoinReport, Track
-from .timing import Prepared, ease_hold, ease_lead, prepare
+from .timing import Prepared, ease_lead, prepare
 from .transition import Join, Side, apply_join, connection, transition
 
 ACTOR_SPACING = 1.5  # m between actors placed by default
@@ -312,36 +312,12 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
                                    "release_end": lk.release_end / fps} for lk in locks]
         rep_ = JoinReport(prev.element.id, e.id, method, blend, intervals, None, info, tuple(join.warnings))
         joins.append((rep_, (join.window, (join.window[0], region_end)), prev, p, []))
-    last = placed[-1]
-    tr = tr[:max(1, last.offset + last.stop)]  # a looped clip's margin after its end is not played
-    n_end = max([int(round(e.end * fps)) for e in track.elements] + [tr.n_frames])
-    tr = ease_hold(tr, n_end)
-    comps: list[tuple[Element, Composed, Motion, tuple]] = []
-    for e in parts:
-        prep = prepare(e, fps, repeats_as_one=False)
-        warnings.extend(prep.warnings)
-        prep, _, note = _on_skeleton(prep, tr.skeleton, e)
-        if note:
-            warnings.append(note)
-        part = e.body_part or e.clip.body_part or "upper"
-        donor = _mirrored_if_needed(e.clip.body_part, part, prep.motion)
-        start = int(round(e.start * fps))
-        end = start + donor.n_frames
-        if end + 1 > tr.n_frames:  # the partial clip overruns the track: its base holds on
-            tr = ease_hold(tr, end + 1)
-        comp = compose(tr, start, end, donor, prep.core, part, sway=sway)
-        tr = comp.motion
-        t = comp.timing
-        intervals = (BlendInterval(part, "motion-motion", t.ta0 / fps, (t.ta0 + t.blend_in) / fps),
-                     BlendInterval(part, "motion-motion", (t.ta1 - t.blend_out) / fps, t.ta1 / fps))
-        info = {"switch_s": [t.ta0 / fps, t.ta1 / fps], "clip_s": [t.tb0 / fps, t.tb1 / fps],
-                "stretch": t.stretch, "sway_joints": len(comp.sway_joints), "sway_max_deg": comp.sway_deg}
-        base_id = e.prev if e.prev is not None else whole[0].id
-        rep_ = JoinReport(base_id, e.id, "composition", "composition", intervals,
-                          {"start": t.cost_start, "end": t.cost_end}, info, ())
-        joins.append((rep_, ((t.ta0, t.ta0 + t.blend_in), (t.ta0, t.ta1)), None, None, [(t.ta1 - t.blend_out, t.ta1)]))
-        comps.append((e, comp, donor, prep.core))
-    return tr, placed, joins, comps, warnings
+    from .assemble import Laid, compose_parts, finish_whole  # assemble builds on this module's pieces
+
+    # a looped clip's margin after its end is not played; the track holds to the last scheduled end
+    laid = Laid(finish_whole(tr, placed, track.elements), placed, joins, warnings)
+    comps = compose_parts(laid, parts, whole, fps, sway)
+    return laid, comps
 
 
 def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = True, sway: bool = True,
@@ -357,14 +333,14 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
     """
     if spread:
         tracks = spread_actors(tracks)
-    from .assemble import Laid, measure  # assemble builds on this module's pieces
+    from .assemble import measure  # assemble builds on this module's pieces
 
     motions, reports, elements, warnings = {}, [], {}, []
     for track in tracks:
-        tr, placed, joins, comps, warns = _synthesize_track(track, fps, lock_feet, sway)
-        warnings.extend(warns)
-        reps, els = measure(track, Laid(tr, placed, joins), comps, fps)
+        laid, comps = _synthesize_track(track, fps, lock_feet, sway)
+        warnings.extend(laid.warnings)
+        reps, els = measure(track, laid, comps, fps)
         reports.extend(reps)
         elements.update(els)
-        motions[track.actor] = tr
+        motions[track.actor] = laid.motion
     return Result(motions, reports, fps, elements, tuple(warnings))
