@@ -11,7 +11,7 @@ starts the second clip at the first clip's last step after its core and ends
 the first when that step ends; a *connection* starts it when the first ends.
 
 Figures per join (``timetable.md`` §3, from the engines' own reports and
-:mod:`synthesis.metrics`):
+:mod:`core.metrics`):
 
 - ``slide``: distance the feet slide while in contact over the whole motion
   (cm; the clips' own marker noise is in every method's figure alike);
@@ -41,14 +41,14 @@ import numpy as np
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from motiondb import ClipRecord, MotionDB  # noqa: E402
-from scheduler.lengths import transition_window  # noqa: E402
-from synthesis import read_bvh  # noqa: E402
-from synthesis import optimal  # noqa: E402
-from synthesis.engines import METHODS, synthesize_with  # noqa: E402
-from synthesis.metrics import foot_skate  # noqa: E402
-from synthesis.plan import Clip, Element, Track  # noqa: E402
-from synthesis.timing import find_cycle  # noqa: E402
+from text2anim.motiondb import ClipRecord, MotionDB  # noqa: E402
+from text2anim.scheduler.lengths import transition_window  # noqa: E402
+from text2anim.core import read_bvh  # noqa: E402
+from text2anim.core import optimal  # noqa: E402
+from text2anim.synthesis.engines import METHODS, synthesize_with  # noqa: E402
+from text2anim.core.metrics import foot_skate  # noqa: E402
+from text2anim.synthesis.plan import Clip, Element, Track  # noqa: E402
+from text2anim.synthesis.timing import find_cycle  # noqa: E402
 from text2anim.pipeline import timing  # noqa: E402
 
 CMU = REPO.parent / "shared" / "mocap" / "cmu"

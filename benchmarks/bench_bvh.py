@@ -20,7 +20,7 @@ import numpy as np
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from synthesis import read_bvh  # noqa: E402
+from text2anim.core import read_bvh  # noqa: E402
 
 CMU = REPO.parent / "shared" / "mocap" / "cmu"
 FILES = ["02_01_walk", "16_35_run", "10_01_kick", "02_05_punch", "14_06_squat"]

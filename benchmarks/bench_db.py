@@ -39,10 +39,10 @@ sys.path.insert(0, str(REPO))
 
 from sqlalchemy import insert  # noqa: E402
 
-from motiondb import ClipRecord, MotionDB  # noqa: E402
-from motiondb.blobs import ENCODING, encode_frames  # noqa: E402
-from motiondb.readings import to_katakana  # noqa: E402
-from motiondb.schema import (  # noqa: E402
+from text2anim.motiondb import ClipRecord, MotionDB  # noqa: E402
+from text2anim.motiondb.blobs import ENCODING, encode_frames  # noqa: E402
+from text2anim.motiondb.readings import to_katakana  # noqa: E402
+from text2anim.motiondb.schema import (  # noqa: E402
     Character,
     Clip,
     ClipFrames,
@@ -53,7 +53,7 @@ from motiondb.schema import (  # noqa: E402
     SkeletonRow,
     Verb,
 )
-from motiondb.store import skeleton_json  # noqa: E402
+from text2anim.motiondb.store import skeleton_json  # noqa: E402
 
 sys.path.insert(0, str(REPO / "tests"))
 from conftest import make_motion  # noqa: E402
@@ -153,7 +153,7 @@ def time_first_run(folder: Path) -> tuple[float, int, int] | None:
     """Seconds for a fresh process to open (create + seed) a new database; clip count; file size."""
     path = folder / "seeded.sqlite"
     code = ("import sys, time; sys.path.insert(0, sys.argv[2]); t = time.perf_counter();"
-            "from motiondb import MotionDB; db = MotionDB.open(sys.argv[1]); n = len(db.clips());"
+            "from text2anim.motiondb import MotionDB; db = MotionDB.open(sys.argv[1]); n = len(db.clips());"
             "print(time.perf_counter() - t, n)")
     proc = subprocess.run([sys.executable, "-c", code, str(path), str(REPO)], capture_output=True, text=True,
                           cwd=REPO)

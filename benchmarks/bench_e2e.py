@@ -46,8 +46,8 @@ def main() -> int:
     url = f"sqlite:///{tmp}/motions.sqlite"
     os.environ["TEXT2ANIM_DB"] = url
 
-    from motiondb import MotionDB
-    from synthesis.engines import DEFAULT, synthesize_with
+    from text2anim.motiondb import MotionDB
+    from text2anim.synthesis.engines import DEFAULT, synthesize_with
     from text2anim.animation import animate, build_tracks
     from text2anim.pipeline import plan_text
 

@@ -35,7 +35,7 @@ def load_sentences() -> list[str]:
 
 
 def parse_all(sentences: list[str]) -> list:
-    from nlp import NLPError, analyze
+    from text2anim.nlp import NLPError, analyze
 
     out = []
     for s in sentences:
@@ -69,7 +69,7 @@ def cold_start(runs: int) -> tuple[float, float, float]:
 
     parse = median_of([sys.executable, "-m", "cli.main", "parse", COLD_TEXT, "--json"])
     alone = median_of([sys.executable, "-c",
-                       f"import nlp; print(nlp.analyze({COLD_TEXT!r}).to_json())"])
+                       f"from text2anim import nlp; print(nlp.analyze({COLD_TEXT!r}).to_json())"])
     bare = median_of([sys.executable, "-c", "pass"])
     return parse, alone, bare
 

@@ -123,7 +123,7 @@ def _parse_line(line: str, n: int, path: str) -> Item:
 
 def stage_parse(text: str) -> dict:
     """The parse JSON of ``text`` with the extended fields."""
-    from nlp import analyze
+    from text2anim.nlp import analyze
 
     return analyze(text).to_dict(extra=True)
 
@@ -132,7 +132,7 @@ _DB = {}  # one open database per process and URL
 
 
 def _database(url: str | None):
-    from motiondb import MotionDB
+    from text2anim.motiondb import MotionDB
 
     if url not in _DB:
         _DB[url] = MotionDB.open(url)
@@ -141,7 +141,7 @@ def _database(url: str | None):
 
 def stage_animate(item: Item, cfg: Config) -> dict:
     """Plan and animate one line; its BVH goes to ``cfg.out``. Unknown verbs: ``{"skipped": ...}``."""
-    from motiondb import UnknownVerbError
+    from text2anim.motiondb import UnknownVerbError
     from text2anim.animation import animate
 
     try:

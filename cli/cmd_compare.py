@@ -35,7 +35,7 @@ class CompareError(ValueError):
 
 
 def _methods(text: str) -> list[str]:
-    from synthesis.engines import METHODS
+    from text2anim.synthesis.engines import METHODS
 
     names = [m.strip() for m in text.split(",") if m.strip()]
     bad = [m for m in names if m not in METHODS]
@@ -61,8 +61,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from motiondb import MotionDB
-    from synthesis.comparison import compare
+    from text2anim.motiondb import MotionDB
+    from text2anim.synthesis.comparison import compare
     from text2anim.animation import Animation, build_tracks
     from text2anim.pipeline import plan_text
 
@@ -105,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
 def _plot(anims: dict, path, title: str) -> Path:
     """Every method's speed curves on one figure; the time table's elements marked, the blend intervals of
     the first method (``optimal`` by default) shaded."""
-    from synthesis.plots import plot_speeds
+    from text2anim.core.plots import plot_speeds
 
     first = next(iter(anims.values()))
     labelled = {}

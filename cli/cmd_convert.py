@@ -15,7 +15,7 @@ def add_arguments(p):
 
 
 def run(args) -> int:
-    from synthesis import read_bvh, write_bvh
+    from text2anim.core import read_bvh, write_bvh
     m = read_bvh(args.input, **read_options(args))
     if args.fps:
         m = m.resample(args.fps)

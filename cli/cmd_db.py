@@ -12,7 +12,7 @@ import json
 import sys
 import unicodedata
 
-from synthesis.bodyparts import GROUPS
+from text2anim.core.bodyparts import GROUPS
 
 from .bvh_options import add_read_options, read_options
 
@@ -172,7 +172,7 @@ def run(args) -> int:
     if not getattr(args, "db_action", None):
         args._db_parser.print_help(sys.stderr)
         return 2
-    from motiondb import ClipValidationError, MotionDB
+    from text2anim.motiondb import ClipValidationError, MotionDB
 
     if args.db_action == "import" and args.name and len(args.files) != 1:
         raise ClipValidationError("--name needs exactly one file")
@@ -213,7 +213,7 @@ def _show_action(db, args) -> int:
 
 
 def _export(db, args) -> int:
-    from synthesis import write_bvh
+    from text2anim.core import write_bvh
 
     m = db.load(args.clip)
     write_bvh(m, args.output)
@@ -242,9 +242,9 @@ def _verbs(db, args) -> int:
 
 def _preview(db, args) -> int:
     try:
-        from synthesis.sheet import contact_sheet
+        from text2anim.core.sheet import contact_sheet
     except ModuleNotFoundError as exc:
-        if exc.name in ("synthesis.sheet", "matplotlib"):
+        if exc.name in ("text2anim.core.sheet", "matplotlib"):
             raise PreviewUnavailable(f"db preview is not available: {exc.name} is not installed") from None
         raise
     info = db.info(args.clip)

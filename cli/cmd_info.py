@@ -23,9 +23,9 @@ def _tree(skel) -> list[str]:
 
 
 def run(args) -> int:
-    from synthesis import read_bvh
-    from synthesis.bodyparts import BodyMapError, body_map
-    from synthesis.contacts import detect_contacts
+    from text2anim.core import read_bvh
+    from text2anim.core.bodyparts import BodyMapError, body_map
+    from text2anim.core.contacts import detect_contacts
     m = read_bvh(args.file, **read_options(args))
     s = m.skeleton
     print(f"file:      {args.file}")

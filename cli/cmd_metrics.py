@@ -17,8 +17,8 @@ def add_arguments(p):
 
 
 def run(args) -> int:
-    from synthesis import read_bvh
-    from synthesis.metrics import compute_metrics
+    from text2anim.core import read_bvh
+    from text2anim.core.metrics import compute_metrics
     m = read_bvh(args.file, **read_options(args))
     met = compute_metrics(m)
     if args.json:

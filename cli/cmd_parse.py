@@ -24,7 +24,7 @@ def read_text(arg: str) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from nlp import analyze  # lazy: keeps `text2anim --help` fast
+    from text2anim.nlp import analyze  # lazy: keeps `text2anim --help` fast
 
     analysis = analyze(read_text(args.text))
     out = sys.stdout

@@ -21,7 +21,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import text2anim
-    from scheduler import format_table
+    from text2anim.scheduler import format_table
 
     planned = text2anim.plan(read_text(args.text), args.db, fps=args.fps, skip_unknown=args.skip_unknown)
     for verb in planned.skipped:

@@ -16,15 +16,15 @@ import sys
 
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMAND_MODULES = [
-    "cli.cmd_animate",
-    "cli.cmd_compare",
-    "cli.cmd_info",
-    "cli.cmd_metrics",
-    "cli.cmd_convert",
-    "cli.cmd_db",
-    "cli.cmd_parse",
-    "cli.cmd_plan",
-    "cli.cmd_batch",
+    "text2anim.cli.cmd_animate",
+    "text2anim.cli.cmd_compare",
+    "text2anim.cli.cmd_info",
+    "text2anim.cli.cmd_metrics",
+    "text2anim.cli.cmd_convert",
+    "text2anim.cli.cmd_db",
+    "text2anim.cli.cmd_parse",
+    "text2anim.cli.cmd_plan",
+    "text2anim.cli.cmd_batch",
 ]
 
 EXIT_USER_ERROR = 2

@@ -20,8 +20,8 @@ import zlib
 
 import numpy as np
 
-from synthesis.motion import Motion
-from synthesis.skeleton import Skeleton
+from text2anim.core.motion import Motion
+from text2anim.core.skeleton import Skeleton
 
 from .errors import DBError
 

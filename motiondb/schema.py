@@ -27,7 +27,7 @@ Meaning and units:
 - ``clips``: ``fps`` frames per second; ``frames`` frame count; ``duration``
   seconds (``frames / fps``); ``core_begin``/``core_end`` seconds from the
   clip's start, the コア区間 that must be kept (the whole clip when none was
-  declared); ``body_part`` one of :data:`synthesis.bodyparts.GROUPS` for a
+  declared); ``body_part`` one of :data:`core.bodyparts.GROUPS` for a
   partial action, NULL for whole-body clips; ``cyclic`` the clip loops;
   ``source`` where it came from (``builtin``, a file path); ``created`` UTC;
   ``start_posture``/``end_posture`` the posture of the first and of the last
@@ -41,7 +41,7 @@ Meaning and units:
   position 0 is the primary verb (``is_primary``), the others are synonyms.
 - ``objects``: object nouns (ボール, 箱) with readings, linked to clips in order.
 - ``contacts``: foot-contact intervals ``[start_frame, stop_frame)`` per foot,
-  computed with :func:`synthesis.contacts.detect_contacts` when the clip is stored.
+  computed with :func:`core.contacts.detect_contacts` when the clip is stored.
 
 Versions and migrations (:func:`motiondb.store.MotionDB.open` migrates an
 older database in place, in one transaction, under the writers' lock):

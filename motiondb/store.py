@@ -40,11 +40,11 @@ from sqlalchemy import exc as sa_exc
 from sqlalchemy.engine import Engine, make_url
 from sqlalchemy.orm import Session
 
-from synthesis.bodyparts import GROUPS, BodyMapError, body_map
-from synthesis.bvh import BVHError, read_bvh
-from synthesis.contacts import detect_contacts
-from synthesis.motion import Motion
-from synthesis.skeleton import Skeleton
+from text2anim.core.bodyparts import GROUPS, BodyMapError, body_map
+from text2anim.core.bvh import BVHError, read_bvh
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.motion import Motion
+from text2anim.core.skeleton import Skeleton
 
 from . import search as _search
 from .blobs import ENCODING, decode_frames, encode_frames
@@ -694,7 +694,7 @@ class MotionDB:
     def add(self, records: Sequence[ClipRecord], *, replace: bool = False) -> list[ClipInfo]:
         """Store clips, all or nothing; returns their :class:`ClipInfo` in the given order.
 
-        Contacts are computed here (:func:`synthesis.contacts.detect_contacts`).
+        Contacts are computed here (:func:`core.contacts.detect_contacts`).
         ``replace`` overwrites clips of the same names; otherwise an existing
         name raises :class:`ClipExistsError` and nothing is stored.
         """
@@ -1088,9 +1088,9 @@ def _seed_source(seed) -> _SeedSource | None:
     import importlib
 
     try:
-        library = importlib.import_module("motiondb.library")
+        library = importlib.import_module("text2anim.motiondb.library")
     except ModuleNotFoundError as exc:
-        if exc.name == "motiondb.library":
+        if exc.name == "text2anim.motiondb.library":
             return None  # the built-in library is not there (yet)
         raise
     fn = getattr(library, "builtin_clips", None)

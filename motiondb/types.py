@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from synthesis.motion import Motion
+from text2anim.core.motion import Motion
 
 #: The postures a clip starts and ends in (``ClipRecord.start_posture``/``end_posture``):
 #:

@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
-from nlp.types import Analysis, Constraint, MotionSpec
+from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .errors import ScheduleError
 from .lengths import played_length, transition_window

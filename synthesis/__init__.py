@@ -1,27 +1,6 @@
-"""Motion core and synthesis: skeletons, motions, BVH, contacts, metrics, joining clips.
+"""Synthesis stage: clips of the time table joined into one motion per actor.
 
-Units and conventions: metres, seconds, Y up, right-handed; quaternions
-``(x, y, z, w)`` as scipy uses them. This package knows nothing of Japanese.
-
-The names below are imported on first use, so ``import synthesis.bodyparts``
-does not pay for scipy.
+The engines (``engines.METHODS``): optimal blending (paper 000, the default), the
+constraint-based joins of paper 003, and the pose and crossfade baselines. They work on
+:mod:`text2anim.core` motions and know nothing of Japanese.
 """
-from __future__ import annotations
-
-_LAZY = {
-    "BVHError": "bvh", "format_bvh": "bvh", "parse_bvh": "bvh", "read_bvh": "bvh", "write_bvh": "bvh",
-    "Motion": "motion", "Pose": "motion", "concatenate": "motion",
-    "Skeleton": "skeleton",
-}
-
-__all__ = sorted(_LAZY)
-
-
-def __getattr__(name: str):
-    if name in _LAZY:
-        import importlib
-
-        value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -12,8 +12,8 @@ previous motion has it. :func:`adapt`:
   stays planted, where the previous motion had it;
 - **the hips keep their place relative to both feet** (§4.1, last paragraph
   of the method list): they move by the mean of the two offsets;
-- both legs are solved by two-bone IK (:func:`synthesis.ik.leg_ik`) and each
-  ankle keeps its world orientation (:func:`synthesis.ik.set_world_rotation`),
+- both legs are solved by two-bone IK (:func:`core.ik.leg_ik`) and each
+  ankle keeps its world orientation (:func:`core.ik.set_world_rotation`),
   so the sole stays on the ground; the upper body is untouched (its joints are
   local to the hips).
 
@@ -29,9 +29,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .bodyparts import body_map
-from .ik import leg_ik, set_world_rotation
-from .motion import Motion
+from text2anim.core.bodyparts import body_map
+from text2anim.core.ik import leg_ik, set_world_rotation
+from text2anim.core.motion import Motion
 
 
 def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:

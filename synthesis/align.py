@@ -18,9 +18,9 @@ import numpy as np
 from scipy.ndimage import uniform_filter1d
 from scipy.spatial.transform import Rotation
 
-from .bodyparts import body_map
-from .motion import Motion
-from .skeleton import Skeleton
+from text2anim.core.bodyparts import body_map
+from text2anim.core.motion import Motion
+from text2anim.core.skeleton import Skeleton
 
 _UP = np.array([0.0, 1.0, 0.0])
 

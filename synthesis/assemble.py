@@ -23,11 +23,11 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .composition import compose
-from .contacts import detect_contacts, foot_tracks
+from text2anim.core.contacts import detect_contacts, foot_tracks
 from .engine import (Placed, Result, _fidelity, _mirrored_if_needed, _on_skeleton, _part_fidelity,
                      _window_metrics, max_slide, skating_frames)
-from .metrics import jerk
-from .motion import Motion
+from text2anim.core.metrics import jerk
+from text2anim.core.motion import Motion
 from .plan import BlendInterval, Element, JoinReport, Track
 from .timing import ease_hold, prepare
 
@@ -121,7 +121,7 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
         el["core"][1] = c1 / fps
         el["core_fidelity_cm"] = fid[key]
         if any(a < c1 and b > c0 for a, b in composed_at):
-            from .bodyparts import body_map
+            from text2anim.core.bodyparts import body_map
 
             legs = list(body_map(tr.skeleton).joints("lower"))
             el["core_fidelity_untouched_cm"] = _fidelity(tr, p, legs)

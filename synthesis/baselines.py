@@ -30,8 +30,8 @@ from .align import match
 from .assemble import Laid, assemble
 from .engine import Placed, Result, _expand, spread_actors
 from .method_select import cyclic_core_begin, cyclic_core_end, steps
-from .contacts import detect_contacts
-from .motion import Motion
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.motion import Motion
 from .optimal import Incoming, TrackState, extend, incoming, place_first
 from .plan import BlendInterval, JoinReport, Track
 from .posedist import distance_matrix, features, root_headings

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .motion import Motion
+from text2anim.core.motion import Motion
 
 PROFILES = ("linear", "smooth")
 

@@ -23,7 +23,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from .engines import METHODS, check_method, synthesize_with
-from .metrics import foot_skate, skating_ratio
+from text2anim.core.metrics import foot_skate, skating_ratio
 
 FIELDS = ("foot_skate_cm_s", "slide_cm", "skating_ratio", "join_skating_ratio", "jerk_max", "jerk_rms",
           "source_jerk_max", "core_fidelity_cm", "duration_s")

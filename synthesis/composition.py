@@ -55,8 +55,8 @@ from scipy.spatial.transform import Rotation
 
 from .align import headings, to_heading_frame
 from .blend import ease, ratio, sample, slerp
-from .bodyparts import body_map
-from .motion import Motion
+from text2anim.core.bodyparts import body_map
+from text2anim.core.motion import Motion
 
 ALPHA, BETA, GAMMA = 1.0, 0.2, 0.5
 SEARCH = 0.5  # s

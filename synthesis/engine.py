@@ -30,9 +30,9 @@ from scipy.ndimage import uniform_filter1d
 from .align import Rigid, place_at
 from .blend import sample
 from .composition import Composed
-from .contacts import FootContacts, detect_contacts, foot_tracks
-from .metrics import SKATE_HEIGHT, SKATE_SPEED, SKATE_WINDOW, jerk
-from .motion import Motion
+from text2anim.core.contacts import FootContacts, detect_contacts, foot_tracks
+from text2anim.core.metrics import SKATE_HEIGHT, SKATE_SPEED, SKATE_WINDOW, jerk
+from text2anim.core.motion import Motion
 from .plan import BlendInterval, Element, JoinReport, Track
 from .timing import Prepared, ease_lead, prepare
 from .transition import Join, Side, apply_join, connection, transition
@@ -137,7 +137,7 @@ def _foot_skate_window(track: Motion, contacts: FootContacts, tracks: dict, w0: 
 
 
 def skating_frames(motion: Motion, ftracks: dict | None = None) -> np.ndarray:
-    """Per frame, whether both feet skate, by the rule of :func:`synthesis.metrics.skating_ratio`
+    """Per frame, whether both feet skate, by the rule of :func:`core.metrics.skating_ratio`
     (low and faster than 0.5 m/s over 5 frames) with each foot's floor level taken over the whole motion."""
     ftracks = ftracks or foot_tracks(motion)
     out = np.ones(motion.n_frames, dtype=bool)
@@ -234,7 +234,7 @@ def _mirrored_if_needed(clip_part: str | None, want: str | None, motion: Motion)
     sides = {"left": "right", "right": "left"}
     for s, o in sides.items():
         if clip_part.startswith(s + "_") and want == o + "_" + clip_part.split("_", 1)[1]:
-            from .mirror import mirror
+            from text2anim.core.mirror import mirror
 
             return mirror(motion)
     return motion

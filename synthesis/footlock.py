@@ -5,8 +5,8 @@ blending joint angles (and root positions) moves it otherwise. Each planted
 foot gets a :class:`Lock` over the frames ``[begin, end)`` where it is down
 in the motion that dominates the blend (and, past the blend, in the next
 motion). The ankle is driven to a target by the analytic two-bone IK of
-:mod:`synthesis.ik` (hip and knee) and turned to a target orientation
-(:func:`synthesis.ik.set_world_rotation`), so the toe stays too.
+:mod:`core.ik` (hip and knee) and turned to a target orientation
+(:func:`core.ik.set_world_rotation`), so the toe stays too.
 
 The target starts where the foot is on the lock's first frame and then moves
 only as the foot moves *in the source motions that have it planted*
@@ -33,10 +33,10 @@ from scipy.spatial.transform import Rotation
 
 from .align import rest_forward
 from .blend import ease, ratio, slerp
-from .bodyparts import body_map
-from .contacts import runs
-from .ik import leg_ik, set_world_rotation
-from .motion import Motion
+from text2anim.core.bodyparts import body_map
+from text2anim.core.contacts import runs
+from text2anim.core.ik import leg_ik, set_world_rotation
+from text2anim.core.motion import Motion
 
 
 @dataclass(frozen=True)
@@ -93,7 +93,7 @@ REACH = 0.998
 
 
 def _leg_ik(motion: Motion, side: str, targets: np.ndarray) -> Motion:
-    """:func:`synthesis.ik.leg_ik` with targets pulled within :data:`REACH` of the leg's length and the
+    """:func:`core.ik.leg_ik` with targets pulled within :data:`REACH` of the leg's length and the
     knee bending towards the thigh's forward direction."""
     ankle = _ankle(motion, side)
     parents = motion.skeleton.parents

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .contacts import FootContacts
+from text2anim.core.contacts import FootContacts
 
 METHODS = ("motion_transition", "motion_connection", "motion_adaptation_step", "motion_adaptation")
 

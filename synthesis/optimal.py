@@ -68,16 +68,16 @@ import numpy as np
 
 from .adaptation import adapt, pin_feet
 from .align import Rigid, align_through_foot, headings, place_at, to_heading_frame
-from .bodyparts import body_map
+from text2anim.core.bodyparts import body_map
 from .assemble import Laid, assemble
 from .blend import blend, ease, sample
 from .blend_ranges import Bounds, Range, after, ranges
 from .blend_search import Found, Weights, best, evaluate, evaluate_motions, preset
-from .contacts import FootContacts, detect_contacts
+from text2anim.core.contacts import FootContacts, detect_contacts
 from .engine import Placed, Result, _expand, _on_skeleton, skating_frames, spread_actors
 from .method_select import (Choice, cyclic_core_begin, cyclic_core_end, phase_for, select, steps,
                             support_by_gap)
-from .motion import Motion, concatenate
+from text2anim.core.motion import Motion, concatenate
 from .plan import BlendInterval, Element, JoinReport, Track
 from .posedist import distance, features, part_joints
 from .switching import foot_points

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .motion import Motion
+from text2anim.core.motion import Motion
 
 #: How an element is joined to ``prev`` (timetable.md §1).
 METHODS = ("initial", "connection", "transition", "composition")

@@ -15,7 +15,7 @@ another at once (numpy broadcasting), ``(Na, Nb)``.
 Joint sets: the paper computes ``Q_p`` and ``Q_v`` over the upper or the
 lower body, whichever the blend interval is for (:func:`part_joints`): the
 lower body is the hips and both legs, the upper body the torso, head and
-arms (:mod:`synthesis.bodyparts`).
+arms (:mod:`core.bodyparts`).
 """
 from __future__ import annotations
 
@@ -23,12 +23,12 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from .align import rest_forward
-from .bodyparts import body_map
-from .motion import Motion
+from text2anim.core.bodyparts import body_map
+from text2anim.core.motion import Motion
 
 
 def part_joints(motion: Motion, part: str) -> list[int]:
-    """Joint indices of a body part (``lower``, ``upper``, ``whole`` or a :data:`~synthesis.bodyparts.GROUPS` name)."""
+    """Joint indices of a body part (``lower``, ``upper``, ``whole`` or a :data:`~core.bodyparts.GROUPS` name)."""
     if part == "whole":
         return list(range(motion.skeleton.n_joints))
     return list(body_map(motion.skeleton).joints(part))

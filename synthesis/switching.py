@@ -28,9 +28,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .align import headings, to_heading_frame
-from .bodyparts import body_map
-from .contacts import FootContacts
-from .motion import Motion
+from text2anim.core.bodyparts import body_map
+from text2anim.core.contacts import FootContacts
+from text2anim.core.motion import Motion
 
 SIDES = ("left", "right")
 PARTIAL_STATE_COST = 0.3  # s-equivalent: prefer the full state when it costs less than 0.3 s of motion

@@ -37,8 +37,8 @@ from .assemble import finish_whole
 from .blend_search import preset
 from .engine import Result
 from .method_select import cyclic_core_end, steps
-from .contacts import detect_contacts
-from .motion import Motion
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.motion import Motion
 from .optimal import MIN_BLEND, Skip, TrackState, extend, incoming, join_next, place_first, plan_join
 from .plan import Clip, Element
 from .timing import KNEE

@@ -28,8 +28,8 @@ from scipy.spatial.transform import Rotation
 
 from .align import Rigid, headings, yaw_rotation
 from .blend import sample
-from .contacts import detect_contacts
-from .motion import Motion
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.motion import Motion
 from .plan import Element
 
 

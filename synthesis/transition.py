@@ -56,10 +56,10 @@ import numpy as np
 
 from .align import Rigid, align_through_foot
 from .blend import blend, ramp, sample
-from .bodyparts import body_map
-from .contacts import FootContacts, runs
+from text2anim.core.bodyparts import body_map
+from text2anim.core.contacts import FootContacts, runs
 from .footlock import Lock, lift_swing, lock_foot, plan_locks
-from .motion import Motion, concatenate
+from text2anim.core.motion import Motion, concatenate
 from .switching import Switch, find_switch, swings
 from .timing import KNEE, hold, soft_clip
 

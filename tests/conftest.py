@@ -129,7 +129,7 @@ CMU_LIKE_JOINTS = (
 def make_skeleton(without_toes: bool = False, scale: float = 1.0):
     import numpy as np
 
-    from synthesis import Skeleton
+    from text2anim.core import Skeleton
 
     joints = [j for j in CMU_LIKE_JOINTS if not (without_toes and "Toe" in j[0])]
     names = [j[0] for j in joints]
@@ -146,7 +146,7 @@ def make_motion(frames: int = 24, fps: float = 30.0, seed: int = 0, *, skeleton=
     import numpy as np
     from scipy.spatial.transform import Rotation
 
-    from synthesis import Motion
+    from text2anim.core import Motion
 
     skel = skeleton if skeleton is not None else make_skeleton()
     rng = np.random.default_rng(seed)
@@ -164,7 +164,7 @@ def make_motion(frames: int = 24, fps: float = 30.0, seed: int = 0, *, skeleton=
 @pytest.fixture
 def record():
     """``record(name, verbs, **fields)``: a :class:`ClipRecord` with a small synthetic motion."""
-    from motiondb import ClipRecord
+    from text2anim.motiondb import ClipRecord
 
     def make(name: str, verbs=("歩く",), *, seed: int | None = None, frames: int = 24, fps: float = 30.0,
              skeleton=None, translations: bool = False, **fields):
@@ -178,7 +178,7 @@ def record():
 @pytest.fixture
 def empty_db(db_url):
     """An open, empty database (created without the built-in library) on each backend."""
-    from motiondb import MotionDB
+    from text2anim.motiondb import MotionDB
 
     db = MotionDB.open(db_url, seed=False)
     yield db
@@ -201,7 +201,7 @@ def _private_default_database(tmp_path_factory):
 @pytest.fixture(scope="session")
 def library_db(tmp_path_factory) -> str:
     """URL of an SQLite database seeded with the built-in library (shared by the session's tests)."""
-    from motiondb import MotionDB
+    from text2anim.motiondb import MotionDB
 
     url = f"sqlite:///{tmp_path_factory.mktemp('library-db') / 'motions.sqlite'}"
     MotionDB.open(url).close()

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from cli import cmd_batch
-from cli.main import main
+from text2anim.cli import cmd_batch
+from text2anim.cli.main import main
 
 CORPUS = Path(__file__).parent / "corpus" / "nlp_corpus.jsonl"
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 import pytest
 
 from shared_data import cmu
-from synthesis import Skeleton, read_bvh
-from synthesis.bodyparts import BodyMapError, body_map, mirror_index
+from text2anim.core import Skeleton, read_bvh
+from text2anim.core.bodyparts import BodyMapError, body_map, mirror_index
 
 MIXAMO = ["Hips", "Spine", "Spine1", "Spine2", "Neck", "Head", "HeadTop_End",
           "LeftShoulder", "LeftArm", "LeftForeArm", "LeftHand", "LeftHandThumb1",

@@ -6,8 +6,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from shared_data import CMU_FILES, cmu, requires_cmu
-from synthesis import BVHError, format_bvh, parse_bvh, read_bvh, write_bvh
-from synthesis.bvh import CMU_UNIT
+from text2anim.core import BVHError, format_bvh, parse_bvh, read_bvh, write_bvh
+from text2anim.core.bvh import CMU_UNIT
 
 
 @requires_cmu
@@ -125,7 +125,7 @@ def test_z_up_files_become_y_up(tmp_path):
     # Make a Z-up copy: rotate the whole character so +Y becomes +Z.
     rz = Rotation.from_euler("x", 90, degrees=True)
     skel = m.skeleton
-    from synthesis import Motion, Skeleton
+    from text2anim.core import Motion, Skeleton
     zskel = Skeleton(skel.names, skel.parents, rz.apply(np.array(skel.offsets)),
                      tuple((j, rz.apply(np.array(o))) for j, o in skel.end_sites), skel.channels)
     T, J = m.rotations.shape[:2]

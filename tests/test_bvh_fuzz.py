@@ -6,7 +6,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from shared_data import CMU_DIR, requires_cmu
-from synthesis import BVHError, parse_bvh
+from text2anim.core import BVHError, parse_bvh
 
 SOURCE = CMU_DIR / "127_07_run.bvh"
 TEXT = SOURCE.read_text() if SOURCE.exists() else ""

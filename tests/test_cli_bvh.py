@@ -8,7 +8,7 @@ import pytest
 
 from cli_run import assert_clean_error, text2anim
 from shared_data import cmu
-from synthesis import read_bvh
+from text2anim.core import read_bvh
 
 
 def test_info_summarises_a_walk():

@@ -6,7 +6,7 @@ import json
 import pytest
 
 from cli_run import assert_clean_error, text2anim as run
-from synthesis import read_bvh
+from text2anim.core import read_bvh
 
 EXAMPLE = "太郎は走って、ボールを蹴る。そして喜ぶ。"
 METHODS = ["optimal", "constraint", "pose", "crossfade"]

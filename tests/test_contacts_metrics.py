@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 from shared_data import cmu
-from synthesis import Motion, read_bvh
-from synthesis.contacts import detect_contacts, hysteresis, runs
-from synthesis.metrics import compute_metrics, foot_skate, jerk, skating_ratio, speed_curves
+from text2anim.core import Motion, read_bvh
+from text2anim.core.contacts import detect_contacts, hysteresis, runs
+from text2anim.core.metrics import compute_metrics, foot_skate, jerk, skating_ratio, speed_curves
 
 
 def _steps(c):

@@ -4,10 +4,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from motiondb import ClipValidationError
+from text2anim.motiondb import ClipValidationError
 from shared_data import cmu, requires_cmu
-from synthesis import read_bvh
-from synthesis.contacts import detect_contacts
+from text2anim.core import read_bvh
+from text2anim.core.contacts import detect_contacts
 
 pytestmark = requires_cmu
 
@@ -79,8 +79,8 @@ def test_another_performer_joins_the_same_character(empty_db):
 
 def test_postures_of_real_captures_are_classified_on_import(empty_db, tmp_path):
     """Sitting down on a step stool, getting up, squatting, walking: what the classifier makes of real data."""
-    from motiondb.store import classify_posture
-    from synthesis import write_bvh
+    from text2anim.motiondb.store import classify_posture
+    from text2anim.core import write_bvh
 
     sit = read_bvh(cmu("14_31_sit"), drop_first=True)  # sits at ~2 s, stands up at ~7.5 s
     write_bvh(sit.between(0.0, 5.0), tmp_path / "sit_down.bvh")

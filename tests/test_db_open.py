@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 from sqlalchemy import create_engine, text
 
-from motiondb import ClipRecord, DBError, MotionDB
-from motiondb.errors import SeedWarning
-from motiondb.location import resolve_url
+from text2anim.motiondb import ClipRecord, DBError, MotionDB
+from text2anim.motiondb.errors import SeedWarning
+from text2anim.motiondb.location import resolve_url
 from conftest import make_motion
 
 REPO = Path(__file__).resolve().parents[1]
@@ -23,7 +23,7 @@ def _records(n=3, verb="歩く"):
 
 def _builtin_clips():
     try:
-        from motiondb.library import builtin_clips
+        from text2anim.motiondb.library import builtin_clips
     except ImportError:
         pytest.skip("motiondb.library.builtin_clips is not there yet")
     return builtin_clips
@@ -147,7 +147,7 @@ def test_a_changed_builtin_library_replaces_the_old_builtin_clips(db_url):
 _RACE = r"""
 import json, sys, time
 sys.path[:0] = [sys.argv[4], sys.argv[5]]
-from motiondb import ClipRecord, MotionDB
+from text2anim.motiondb import ClipRecord, MotionDB
 from conftest import make_motion
 
 import os, pathlib

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import pytest
 
-from motiondb.readings import nearest, normalize, reading, to_katakana
+from text2anim.motiondb.readings import nearest, normalize, reading, to_katakana
 
 
 @pytest.mark.parametrize("word, expected", [

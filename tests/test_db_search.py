@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import pytest
 
-from motiondb import DBError, UnknownCharacterError, UnknownVerbError
+from text2anim.motiondb import DBError, UnknownCharacterError, UnknownVerbError
 
 
 def names(hits):
@@ -96,8 +96,8 @@ def test_body_part_requests_take_the_part_then_its_mirror_then_whole_body(empty_
 
 
 def test_a_start_posture_ranks_after_the_character_and_before_objects_and_verbs(empty_db):
-    from motiondb import ClipRecord
-    from motiondb.library import build_all
+    from text2anim.motiondb import ClipRecord
+    from text2anim.motiondb.library import build_all
 
     motion = {b.record.name: b.record.motion for b in build_all(30.0)}
     empty_db.add([

@@ -9,7 +9,7 @@ import pytest
 from sqlalchemy import create_engine, event, text, update
 
 from conftest import make_motion, make_skeleton
-from motiondb import (
+from text2anim.motiondb import (
     ClipExistsError,
     ClipRecord,
     ClipValidationError,
@@ -19,9 +19,9 @@ from motiondb import (
     UnknownCharacterError,
     UnknownClipError,
 )
-from motiondb.blobs import decode_frames, encode_frames
-from motiondb.schema import SCHEMA_VERSION, Clip, SchemaVersion
-from synthesis.contacts import detect_contacts
+from text2anim.motiondb.blobs import decode_frames, encode_frames
+from text2anim.motiondb.schema import SCHEMA_VERSION, Clip, SchemaVersion
+from text2anim.core.contacts import detect_contacts
 
 
 def _same_skeleton(a, b):
@@ -235,7 +235,7 @@ def test_tables_of_someone_else_are_not_touched(db_url):
 
 # ------------------------------------------------------------------ postures
 def _library(name: str):
-    from motiondb.library import build_all
+    from text2anim.motiondb.library import build_all
 
     return next(b.record for b in build_all(30.0) if b.record.name == name)
 

@@ -8,8 +8,8 @@ import pytest
 
 import text2anim
 from cli_run import assert_clean_error, text2anim as run
-from synthesis import read_bvh
-from synthesis.metrics import skating_ratio
+from text2anim.core import read_bvh
+from text2anim.core.metrics import skating_ratio
 
 EXAMPLE = "太郎は走って、ボールを蹴る。そして喜ぶ。"
 
@@ -49,7 +49,7 @@ def test_example_animation_is_one_clean_motion(example):
     # The kick happens: one foot rises well above the other while the kick element plays.
     kick = example.table.elements[1]
     frames = slice(int(kick.start * 30), int(kick.end * 30))
-    from synthesis.bodyparts import body_map
+    from text2anim.core.bodyparts import body_map
     feet = body_map(motion.skeleton).feet
     y = motion.positions[frames][:, [feet["left"][0], feet["right"][0]], 1]
     assert np.abs(y[:, 0] - y[:, 1]).max() > 0.2
@@ -115,7 +115,7 @@ def test_a_wait_is_standing_not_a_frozen_stride(library_db):
     (motion,) = anim.motions.values()
     run, walk = anim.table.elements
     assert walk.start == pytest.approx(run.end + 3)
-    from synthesis.contacts import detect_contacts
+    from text2anim.core.contacts import detect_contacts
     c = detect_contacts(motion)
     mid = slice(int((walk.start - 0.8) * 30), int((walk.start - 0.2) * 30))
     assert c.left[mid].all() and c.right[mid].all()  # both feet down while waiting
@@ -136,7 +136,7 @@ def test_an_actor_who_finishes_early_stands_until_the_end(library_db):
 @pytest.mark.parametrize("text, clip", [("スキップする。", "skip"), ("歩く。", "walk"), ("走る。", "run")])
 def test_a_looping_clip_alone_plays_as_recorded(library_db, text, clip):
     """A clip that already loops is not 'corrected' at its seam (the skip's landing once made it skate)."""
-    from motiondb import MotionDB
+    from text2anim.motiondb import MotionDB
 
     with MotionDB.open(library_db) as db:
         source = db.load(clip)

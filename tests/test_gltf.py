@@ -19,10 +19,10 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from shared_data import cmu
-from synthesis import Motion, Skeleton, read_bvh
-from synthesis.atomic import OutputError
-from synthesis.gltf import glb_bytes, write_glb
-from synthesis.viewer import Track
+from text2anim.core import Motion, Skeleton, read_bvh
+from text2anim.core.atomic import OutputError
+from text2anim.core.gltf import glb_bytes, write_glb
+from text2anim.core.viewer import Track
 
 NODE_MODULES = Path(os.environ.get("T2A_NODE_MODULES", Path.home() / ".cache" / "text2anim-node" / "node_modules"))
 CHECK_SCRIPT = Path(__file__).parent / "browser" / "gltf_check.mjs"

@@ -1,4 +1,4 @@
-"""Two-bone IK (synthesis.ik): reach, bend direction, unreachable targets, masks, poles."""
+"""Two-bone IK (core.ik): reach, bend direction, unreachable targets, masks, poles."""
 from __future__ import annotations
 
 import numpy as np
@@ -7,10 +7,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from motiondb.library import canonical_skeleton
+from text2anim.motiondb.library import canonical_skeleton
 from shared_data import cmu
-from synthesis import Motion, read_bvh
-from synthesis.ik import arm_ik, chain_angle, leg_ik, set_world_rotation, two_bone_ik
+from text2anim.core import Motion, read_bvh
+from text2anim.core.ik import arm_ik, chain_angle, leg_ik, set_world_rotation, two_bone_ik
 
 LEG = ("LeftUpLeg", "LeftLeg", "LeftFoot")
 

@@ -14,14 +14,14 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from motiondb.library import build_all, builtin_clips, canonical_skeleton, keyframes
-from motiondb.types import ClipRecord
+from text2anim.motiondb.library import build_all, builtin_clips, canonical_skeleton, keyframes
+from text2anim.motiondb.types import ClipRecord
 from shared_data import CMU_FILES, requires_cmu
-from synthesis import read_bvh, write_bvh
-from synthesis.bodyparts import GROUPS, body_map
-from synthesis.contacts import detect_contacts
-from synthesis.metrics import foot_skate, jerk, skating_ratio
-from synthesis.mirror import mirror
+from text2anim.core import read_bvh, write_bvh
+from text2anim.core.bodyparts import GROUPS, body_map
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.metrics import foot_skate, jerk, skating_ratio
+from text2anim.core.mirror import mirror
 
 BUILT = {b.record.name: b for b in build_all(30.0)}
 CLIPS = {name: b.record for name, b in BUILT.items()}
@@ -109,7 +109,7 @@ def test_kick_is_about_a_ball():
 
 
 def test_nlp_library_verbs_all_exist():
-    lexicon = pytest.importorskip("nlp.lexicon")
+    from text2anim.nlp import lexicon
     have = {v for c in CLIPS.values() for v in c.verbs}
     missing = sorted(set(lexicon.LIBRARY_VERBS) - have)
     assert not missing, missing
@@ -338,7 +338,7 @@ def test_sit_and_stand_up_meet():
 @pytest.mark.parametrize("name", NAMES)
 def test_declared_postures_are_what_the_classifier_sees(name):
     """The postures the data declares (starts/ends) match the frames, as an imported clip's would be classified."""
-    from motiondb.store import classify_posture
+    from text2anim.motiondb.store import classify_posture
 
     built, m = BUILT[name], CLIPS[name].motion
     assert (CLIPS[name].start_posture, CLIPS[name].end_posture) == (built.start_posture, built.end_posture)
@@ -363,7 +363,7 @@ def test_crouch_down_stays_down_as_crouch_does():
 
 
 def test_get_up_goes_through_hands_and_knees_with_the_knees_on_the_floor():
-    from motiondb.store import classify_posture
+    from text2anim.motiondb.store import classify_posture
 
     m = CLIPS["get_up"].motion
     seen = [classify_posture(m, f) for f in range(0, m.n_frames, 3)]
@@ -389,7 +389,7 @@ def test_mirroring_serves_the_left_side():
 # ---------------------------------------------------------- contact sheets
 def test_contact_sheet_png(tmp_path):
     pytest.importorskip("matplotlib")
-    from synthesis.sheet import contact_sheet
+    from text2anim.core.sheet import contact_sheet
 
     path = tmp_path / "walk.png"
     contact_sheet(CLIPS["walk"].motion, path, title="walk 歩く", n=6, core=CLIPS["walk"].core)
@@ -399,7 +399,7 @@ def test_contact_sheet_png(tmp_path):
 
 
 def test_contact_sheet_without_matplotlib_says_how_to_install(tmp_path, monkeypatch):
-    from synthesis import sheet
+    from text2anim.core import sheet
 
     monkeypatch.setitem(sys.modules, "matplotlib", None)
     with pytest.raises(sheet.PlotUnavailableError, match=r"pip install text2anim\[plot\]"):

@@ -1,15 +1,15 @@
-"""Left/right mirroring (synthesis.mirror): involution, reflected forward kinematics, planted feet."""
+"""Left/right mirroring (core.mirror): involution, reflected forward kinematics, planted feet."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from motiondb.library import builtin_clips, canonical_skeleton
+from text2anim.motiondb.library import builtin_clips, canonical_skeleton
 from shared_data import cmu
-from synthesis import read_bvh
-from synthesis.bodyparts import body_map, mirror_index
-from synthesis.metrics import foot_skate, skating_ratio
-from synthesis.mirror import is_symmetric, mirror
+from text2anim.core import read_bvh
+from text2anim.core.bodyparts import body_map, mirror_index
+from text2anim.core.metrics import foot_skate, skating_ratio
+from text2anim.core.mirror import is_symmetric, mirror
 
 CLIPS = {c.name: c for c in builtin_clips()}
 REFLECT = np.array([-1.0, 1.0, 1.0])

@@ -6,8 +6,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from shared_data import cmu
-from synthesis import Motion, Skeleton, concatenate, read_bvh
-from synthesis.motion import unroll_quaternions
+from text2anim.core import Motion, Skeleton, concatenate, read_bvh
+from text2anim.core.motion import unroll_quaternions
 
 
 def _chain():

@@ -8,9 +8,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-import nlp
-from nlp import MAX_CHARS, NLPError, analyze
-from nlp.lexicon import LIBRARY_VERBS
+from text2anim import nlp
+from text2anim.nlp import MAX_CHARS, NLPError, analyze
+from text2anim.nlp.lexicon import LIBRARY_VERBS
 
 CORPUS = Path(__file__).parent / "corpus" / "nlp_corpus.jsonl"
 SENTENCES = [json.loads(line)["text"] for line in CORPUS.read_text(encoding="utf-8").splitlines()

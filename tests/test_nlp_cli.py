@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from cli.main import main
+from text2anim.cli.main import main
 
 ROOT = Path(__file__).resolve().parent.parent
 TEXT = "太郎は走って、ボールを蹴る。そして喜ぶ。"

@@ -1,7 +1,7 @@
 """Coordinated actors (太郎と花子が…): every one of them performs the motions."""
 from __future__ import annotations
 
-import nlp
+from text2anim import nlp
 
 
 def _rows(text):

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from nlp.bunsetsu import chunk, split_sentences
-from nlp.numbers import kanji_to_int, number_value
-from nlp.tokens import is_name, normalize, tagger, tokenize
+from text2anim.nlp.bunsetsu import chunk, split_sentences
+from text2anim.nlp.numbers import kanji_to_int, number_value
+from text2anim.nlp.tokens import is_name, normalize, tagger, tokenize
 
 
 def raw(text):
@@ -154,7 +154,7 @@ def test_bunsetsu_number_with_counter_stands_alone():
 
 
 def test_reading_table_matches_the_tagger():
-    from nlp.lexicon import LIBRARY_BY_READING, VERB_ALIASES
+    from text2anim.nlp.lexicon import LIBRARY_BY_READING, VERB_ALIASES
 
     for reading, verb in LIBRARY_BY_READING.items():
         kana = raw(f"太郎は{verb}。")[2][1].kanaBase

@@ -6,12 +6,12 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from synthesis import read_bvh
-from synthesis.baselines import BLEND, closest_pair
-from synthesis.engines import METHODS, UnknownMethodError, synthesize_with
-from synthesis.plan import Clip, Element, Track
-from synthesis.posedist import distance, features
-from synthesis.timing import find_cycle
+from text2anim.core import read_bvh
+from text2anim.synthesis.baselines import BLEND, closest_pair
+from text2anim.synthesis.engines import METHODS, UnknownMethodError, synthesize_with
+from text2anim.synthesis.plan import Clip, Element, Track
+from text2anim.synthesis.posedist import distance, features
+from text2anim.synthesis.timing import find_cycle
 
 from shared_data import cmu, requires_cmu
 

@@ -13,15 +13,15 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from synthesis import read_bvh
-from synthesis.bodyparts import body_map
-from synthesis.contacts import detect_contacts
-from synthesis.engine import synthesize
-from synthesis.metrics import skating_ratio
-from synthesis.optimal import synthesize_optimal
-from synthesis.plan import Clip, Element, Track
-from synthesis.switching import foot_points
-from synthesis.timing import find_cycle
+from text2anim.core import read_bvh
+from text2anim.core.bodyparts import body_map
+from text2anim.core.contacts import detect_contacts
+from text2anim.synthesis.engine import synthesize
+from text2anim.core.metrics import skating_ratio
+from text2anim.synthesis.optimal import synthesize_optimal
+from text2anim.synthesis.plan import Clip, Element, Track
+from text2anim.synthesis.switching import foot_points
+from text2anim.synthesis.timing import find_cycle
 
 from shared_data import cmu, requires_cmu
 

@@ -10,12 +10,12 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from synthesis import read_bvh
-from synthesis.blend_ranges import Bounds, after, ranges
-from synthesis.blend_search import SMOOTH_FIRST, TIME_FIRST, evaluate, evaluate_motions, preset, search
-from synthesis.method_select import Choice, Step, cyclic_core_begin, cyclic_core_end, select
-from synthesis.posedist import distance, features, part_joints
-from synthesis.weights import (MAX_SLOPE, hermite_weights, linear_weights, monotone_slopes, plan_partial, shape_of,
+from text2anim.core import read_bvh
+from text2anim.synthesis.blend_ranges import Bounds, after, ranges
+from text2anim.synthesis.blend_search import SMOOTH_FIRST, TIME_FIRST, evaluate, evaluate_motions, preset, search
+from text2anim.synthesis.method_select import Choice, Step, cyclic_core_begin, cyclic_core_end, select
+from text2anim.synthesis.posedist import distance, features, part_joints
+from text2anim.synthesis.weights import (MAX_SLOPE, hermite_weights, linear_weights, monotone_slopes, plan_partial, shape_of,
                                slope)
 
 from shared_data import cmu
@@ -155,7 +155,7 @@ def test_motion_motion_search_is_the_global_minimum_too():
 
 
 def test_the_pose_distance_ignores_where_the_clip_stands():
-    from synthesis.align import Rigid
+    from text2anim.synthesis.align import Rigid
 
     walk = _cmu("16_15_walk")
     moved = Rigid(1.1, (3.0, -2.0)).apply(walk)

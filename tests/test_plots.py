@@ -9,12 +9,12 @@ import numpy as np
 import pytest
 
 from shared_data import cmu
-from synthesis import read_bvh
-from synthesis.atomic import OutputError
-from synthesis.viewer import Span
+from text2anim.core import read_bvh
+from text2anim.core.atomic import OutputError
+from text2anim.core.viewer import Span
 
 mpimg = pytest.importorskip("matplotlib.image")
-plots = pytest.importorskip("synthesis.plots")
+from text2anim.core import plots  # noqa: E402
 
 
 @pytest.fixture(scope="module")

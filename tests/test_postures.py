@@ -14,12 +14,12 @@ import itertools
 import numpy as np
 import pytest
 
-import nlp
-from motiondb import ClipRecord, MotionDB
-from motiondb.library import build_all
-from motiondb.store import classify_posture
-from scheduler import plan
-from synthesis.metrics import skating_ratio
+from text2anim import nlp
+from text2anim.motiondb import ClipRecord, MotionDB
+from text2anim.motiondb.library import build_all
+from text2anim.motiondb.store import classify_posture
+from text2anim.scheduler import plan
+from text2anim.core.metrics import skating_ratio
 from text2anim.pipeline import Planned, _Finder
 from text2anim.postures import BRIDGE_VERBS, arrange, bridges, choose, matching, mismatches
 
@@ -159,7 +159,7 @@ def test_bridges_refuse_unknown_postures(db):
 
 
 def test_bridge_verbs_cover_every_posture():
-    from motiondb.types import POSTURES
+    from text2anim.motiondb.types import POSTURES
 
     assert set(BRIDGE_VERBS) == set(POSTURES)
 
@@ -285,7 +285,7 @@ def test_two_actors_are_arranged_separately(db):
 @pytest.mark.parametrize("text", ["しゃがんで、立ち上がる。", "転んで、起き上がる。", "座って、歩く。"])
 def test_the_animation_changes_posture_where_the_clips_do(db, text):
     """Synthesised through the real engine: at each element's start the character is in its clip's posture."""
-    from synthesis.engine import synthesize
+    from text2anim.synthesis.engine import synthesize
     from text2anim.animation import build_tracks
 
     fps = 30.0

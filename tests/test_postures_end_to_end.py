@@ -4,8 +4,8 @@ from __future__ import annotations
 import pytest
 
 import text2anim
-from motiondb import MotionDB
-from motiondb.store import classify_posture
+from text2anim.motiondb import MotionDB
+from text2anim.motiondb.store import classify_posture
 
 
 @pytest.fixture(scope="module")

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import pytest
 
-import nlp
-from scheduler import ClipTiming, ScheduleError, format_table, plan, without
+from text2anim import nlp
+from text2anim.scheduler import ClipTiming, ScheduleError, format_table, plan, without
 
 RUN = ClipTiming("run", 2.0, (0.2, 1.8), True, None, ((0.1, 0.4), (0.5, 0.8), (1.1, 1.4), (1.5, 1.8)))
 KICK = ClipTiming("kick_ball", 2.0, (0.5, 1.3), False, None, ((0.4, 1.2), (1.4, 1.6)))

@@ -14,13 +14,13 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from synthesis import read_bvh
-from synthesis.bodyparts import body_map
-from synthesis.contacts import detect_contacts, foot_tracks
-from synthesis.engine import hips_frame, synthesize
-from synthesis.metrics import skating_ratio
-from synthesis.plan import Clip, Element, Track
-from synthesis.timing import find_cycle, prepare
+from text2anim.core import read_bvh
+from text2anim.core.bodyparts import body_map
+from text2anim.core.contacts import detect_contacts, foot_tracks
+from text2anim.synthesis.engine import hips_frame, synthesize
+from text2anim.core.metrics import skating_ratio
+from text2anim.synthesis.plan import Clip, Element, Track
+from text2anim.synthesis.timing import find_cycle, prepare
 
 from shared_data import cmu, requires_cmu
 

@@ -6,12 +6,12 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from synthesis.bodyparts import body_map
-from synthesis.engine import synthesize
-from synthesis.metrics import skating_ratio
-from synthesis.plan import Clip, Element, Track
+from text2anim.core.bodyparts import body_map
+from text2anim.synthesis.engine import synthesize
+from text2anim.core.metrics import skating_ratio
+from text2anim.synthesis.plan import Clip, Element, Track
 
-library = pytest.importorskip("motiondb.library")
+from text2anim.motiondb import library
 FPS = 30
 
 

@@ -5,17 +5,17 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation, Slerp
 
-from synthesis.align import Rigid, align_through_foot, headings, match, wrap_angle
-from synthesis.blend import blend, ramp, sample, slerp
-from synthesis.composition import hermite_sway
-from synthesis.contacts import FootContacts
-from synthesis.engine import default_origins, spread_actors
-from synthesis.footlock import plan_locks, planted_targets
-from synthesis.motion import Motion
-from synthesis.plan import Track
-from synthesis.skeleton import Skeleton
-from synthesis.switching import find_switch, planted_for, swings
-from synthesis.timing import at_speed, cycle_move, ease_hold, hold, loop, make_cyclic, soft_clip, trim
+from text2anim.synthesis.align import Rigid, align_through_foot, headings, match, wrap_angle
+from text2anim.synthesis.blend import blend, ramp, sample, slerp
+from text2anim.synthesis.composition import hermite_sway
+from text2anim.core.contacts import FootContacts
+from text2anim.synthesis.engine import default_origins, spread_actors
+from text2anim.synthesis.footlock import plan_locks, planted_targets
+from text2anim.core.motion import Motion
+from text2anim.synthesis.plan import Track
+from text2anim.core.skeleton import Skeleton
+from text2anim.synthesis.switching import find_switch, planted_for, swings
+from text2anim.synthesis.timing import at_speed, cycle_move, ease_hold, hold, loop, make_cyclic, soft_clip, trim
 
 
 def _skeleton() -> Skeleton:

@@ -9,12 +9,12 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from motiondb.library import builtin_clips
-from synthesis import read_bvh
-from synthesis.metrics import skating_ratio
-from synthesis.plan import Clip
-from synthesis.timeline import GAP, Timeline
-from synthesis.timing import find_cycle
+from text2anim.motiondb.library import builtin_clips
+from text2anim.core import read_bvh
+from text2anim.core.metrics import skating_ratio
+from text2anim.synthesis.plan import Clip
+from text2anim.synthesis.timeline import GAP, Timeline
+from text2anim.synthesis.timing import find_cycle
 
 from shared_data import cmu
 

@@ -21,9 +21,9 @@ import numpy as np
 import pytest
 
 from shared_data import cmu
-from synthesis import Motion, Skeleton, concatenate, read_bvh
-from synthesis.atomic import OutputError
-from synthesis.viewer import PALETTE, Span, Track, render_html, viewer_data
+from text2anim.core import Motion, Skeleton, concatenate, read_bvh
+from text2anim.core.atomic import OutputError
+from text2anim.core.viewer import PALETTE, Span, Track, render_html, viewer_data
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",

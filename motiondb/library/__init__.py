@@ -14,7 +14,7 @@ the shared named poses (``stand``, ...). Generation is deterministic
    so the last frame flows into the first.
 
 A clip declared for the right side (``body_part="right_arm"``) serves a
-left-side request through :func:`synthesis.mirror.mirror`.
+left-side request through :func:`core.mirror.mirror`.
 
 Postures: a clip's data says how it starts and ends (``starts``/``ends``:
 ``stand`` by default, ``sit``, ``crouch``, ``floor``, ``hold``); the record
@@ -30,8 +30,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from motiondb.types import ClipRecord
-from synthesis.motion import Motion
+from text2anim.motiondb.types import ClipRecord
+from text2anim.core.motion import Motion
 
 from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, curves_to_motion, load_json_dir, parse_clip,
                         sample_curves)

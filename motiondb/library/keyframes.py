@@ -1,4 +1,4 @@
-"""Turn a clip's keyframe data (JSON) into a :class:`synthesis.motion.Motion`.
+"""Turn a clip's keyframe data (JSON) into a :class:`core.motion.Motion`.
 
 The data format (one clip object per file in ``clips/``, or a family file
 ``{"clips": [...]}``; files whose name starts with ``_`` hold shared data):
@@ -77,8 +77,8 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline, CubicSpline, PchipInterpolator
 from scipy.spatial.transform import Rotation
 
-from synthesis.motion import Motion
-from synthesis.skeleton import Skeleton
+from text2anim.core.motion import Motion
+from text2anim.core.skeleton import Skeleton
 
 CLIPS_DIR = Path(__file__).with_name("clips")
 GRAVITY = 9.81

@@ -14,7 +14,7 @@ module makes the plants exact and keeps the swings smooth:
   (heel or ball) touches the ground.
 - **Horizontal lock**: the ball does not move horizontally over the vertical
   lock *and* over any neighbouring frame the contact detector
-  (:func:`synthesis.contacts.detect_contacts`) would call a contact (low and
+  (:func:`core.contacts.detect_contacts`) would call a contact (low and
   slow), and the frames either side of those (its speed is a central
   difference): so the detector's contact intervals are exactly frames where
   the foot stands still (the foot first lifts, then swings). The locks grow
@@ -38,7 +38,7 @@ module makes the plants exact and keeps the swings smooth:
   Gaussian of the same support, so it is never less than needed).
   Swing targets beyond that are pulled in smoothly towards
   :data:`SOFT_REACH` (soft IK), so a knee never snaps straight.
-- **IK**: :func:`synthesis.ik.leg_ik` puts the ankle where the ball target
+- **IK**: :func:`core.ik.leg_ik` puts the ankle where the ball target
   and foot orientation require, the knee bending towards a pole in front of
   the keyed knee; then the ankle (and toe) world rotations are set.
 
@@ -53,10 +53,10 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 from scipy.spatial.transform import Rotation
 
-from synthesis.bodyparts import body_map
-from synthesis.contacts import detect_contacts, runs
-from synthesis.ik import leg_ik
-from synthesis.motion import Motion
+from text2anim.core.bodyparts import body_map
+from text2anim.core.contacts import detect_contacts, runs
+from text2anim.core.ik import leg_ik
+from text2anim.core.motion import Motion
 
 SIDES = ("left", "right")
 #: Frames over which the toes ease from flat-on-the-ground back to their keyed bend.

@@ -15,7 +15,7 @@ A clip may carry ``"reach": {"left": [KEY, ...], "right": [...]}`` with keys
   towards; without it the keyed elbow's bend plane is kept.
 
 Targets and weights are interpolated like the joint curves (PCHIP slopes,
-at rest on the first and last key: no overshoot), the arm solved with :func:`synthesis.ik.arm_ik` keeping the keyed
+at rest on the first and last key: no overshoot), the arm solved with :func:`core.ik.arm_ik` keeping the keyed
 elbow plane, and the shoulder and elbow rotations slerped from the keyed to
 the solved ones by the weight.
 """
@@ -24,9 +24,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from synthesis.bodyparts import body_map
-from synthesis.ik import arm_ik
-from synthesis.motion import Motion
+from text2anim.core.bodyparts import body_map
+from text2anim.core.ik import arm_ik
+from text2anim.core.motion import Motion
 
 from .keyframes import ClipDataError, _interpolator
 

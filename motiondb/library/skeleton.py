@@ -1,7 +1,7 @@
 """The canonical skeleton of the built-in library.
 
 CMU joint names and hierarchy (the 31 joints of the cgspeed BVH release, so
-:func:`synthesis.bodyparts.body_map` works unchanged), human proportions of a
+:func:`core.bodyparts.body_map` works unchanged), human proportions of a
 1.70 m adult, metres, Y up, facing +Z. The rest pose is a T-pose with every
 joint's axes aligned with the world: arms along +-X (palms down), legs
 straight down, feet flat and pointing +Z. Channels are CMU-style: the root
@@ -18,7 +18,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from synthesis.skeleton import Skeleton
+from text2anim.core.skeleton import Skeleton
 
 #: Root height of the rest pose (straight legs, feet flat on y = 0).
 REST_ROOT_HEIGHT = 0.94

@@ -214,8 +214,8 @@ def _actor(b: _Builder, gl: dict, name: str, motion: Motion, color: str, multi: 
 
 
 def glb_bytes(tracks) -> bytes:
-    """The ``.glb`` file of ``tracks`` (a list of :class:`~synthesis.viewer.types.Track`,
-    a ``{name: Motion}`` dict or one :class:`~synthesis.motion.Motion`)."""
+    """The ``.glb`` file of ``tracks`` (a list of :class:`~core.viewer.types.Track`,
+    a ``{name: Motion}`` dict or one :class:`~core.motion.Motion`)."""
     from .viewer.types import as_tracks
     from .viewer import PALETTE
 
@@ -250,5 +250,5 @@ def glb_bytes(tracks) -> bytes:
 
 def write_glb(tracks, path: str | os.PathLike) -> None:
     """Write :func:`glb_bytes` of ``tracks`` to ``path`` atomically
-    (:class:`~synthesis.atomic.OutputError` if it cannot be written)."""
+    (:class:`~core.atomic.OutputError` if it cannot be written)."""
     atomic_write_bytes(path, glb_bytes(tracks))

@@ -32,8 +32,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from motiondb import ClipInfo, UnknownVerbError
-from motiondb.types import POSTURES
+from text2anim.motiondb import ClipInfo, UnknownVerbError
+from text2anim.motiondb.types import POSTURES
 
 #: Verbs whose clips take the actor *into* each posture, tried in this order to build bridges.
 #: Only clips that change posture (start elsewhere, end there), whole-body and not looping, are used.
@@ -264,7 +264,7 @@ def arrange(analysis, table, chosen: Mapping[int, ClipInfo], search: Callable, d
     hung on the first. So a second :func:`scheduler.plan` with
     :meth:`Arrangement.finder` times them like any motion.
     """
-    from nlp.types import Constraint, MotionSpec
+    from text2anim.nlp.types import Constraint, MotionSpec
 
     specs = {m.id: m for m in analysis.motions}
     picked: dict[int, ClipInfo] = {}

@@ -12,7 +12,7 @@ player are ~39 KB, unminified; three.js' minified module build alone is
 writes, to draw the same lines. Canvas 2D also needs no WebGL, so it renders identically in
 headless Chromium without a GPU, on remote desktops and in old laptops' browsers.
 Users who want meshes, lights and a real scene get the GLB
-(:mod:`synthesis.gltf`), which Blender and three.js load.
+(:mod:`core.gltf`), which Blender and three.js load.
 
 **Data.** Python does the forward kinematics: per actor, the world positions
 of every joint and BVH end site, rounded to millimetres, root-relative
@@ -23,7 +23,7 @@ browser's ``DecompressionStream`` (Chrome 80, Firefox 113, Safari 16.4). A
 ~97 KB raw, so its whole page is 60-70 KB (``compress=False`` writes the
 raw ``int16`` form, for browsers without ``DecompressionStream``).
 Motions faster than ``max_fps`` are resampled to it (the page interpolates
-between frames). Foot contacts (:mod:`synthesis.contacts`) are shown as rings
+between frames). Foot contacts (:mod:`core.contacts`) are shown as rings
 on the floor.
 """
 from __future__ import annotations
@@ -221,7 +221,7 @@ def render_html(tracks, spans=(), title: str = "", path: str | os.PathLike | Non
     ``spans`` (:class:`Span`) are drawn on the timeline under the 3D view:
     time-table elements as bars, blend intervals shaded (upper / lower body
     lanes). Returns the HTML text; when ``path`` is given it is also written
-    there atomically (:class:`~synthesis.atomic.OutputError` if it cannot be).
+    there atomically (:class:`~core.atomic.OutputError` if it cannot be).
     """
     data = viewer_data(tracks, spans, title, max_fps=max_fps, compress=compress)
     page_title = title or "text2anim"

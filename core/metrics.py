@@ -1,7 +1,7 @@
 """Quality metrics of ``timetable.md`` §3, on world joint positions (metres, seconds).
 
 - foot skate: per foot, mean horizontal speed (cm/s) of its lowest joint over
-  its contact frames (see :mod:`synthesis.contacts`), and the distance it
+  its contact frames (see :mod:`core.contacts`), and the distance it
   slides while in contact (cm);
 - foot-skating ratio, as in the GMD benchmark's code: the fraction of frames
   on which *both* feet skate, a foot skating when it is low (lowest joint

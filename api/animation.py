@@ -6,9 +6,9 @@ import os
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from motiondb import MotionDB
-from synthesis import plan as splan
-from synthesis.atomic import OutputError, atomic_write_bytes
+from text2anim.motiondb import MotionDB
+from text2anim.synthesis import plan as splan
+from text2anim.core.atomic import OutputError, atomic_write_bytes
 
 from . import postures
 from .pipeline import Planned, plan_text
@@ -40,7 +40,7 @@ class _Clips:
         return self.cache[info.name]
 
     def by_verb(self, verb: str, character: str | None) -> splan.Clip | None:
-        from motiondb import UnknownVerbError
+        from text2anim.motiondb import UnknownVerbError
 
         try:
             hits = self.db.search(verb, prefer_character=character)
@@ -152,7 +152,7 @@ class Animation:
     @property
     def report(self) -> dict:
         """The synthesis report of timetable.md §2, with the time table and per-element figures."""
-        from synthesis.metrics import compute_metrics
+        from text2anim.core.metrics import compute_metrics
 
         whole = {}
         for name, m in self.motions.items():
@@ -174,13 +174,13 @@ class Animation:
 
     # ---------------------------------------------------------------- for the viewer
     def tracks(self):
-        from synthesis.viewer.types import Track
+        from text2anim.core.viewer.types import Track
 
         return [Track(name, m) for name, m in self.motions.items()]
 
     def spans(self):
         """Time-table elements and blend intervals as viewer spans."""
-        from synthesis.viewer.types import Span
+        from text2anim.core.viewer.types import Span
 
         out = []
         for e in self.table.elements:
@@ -205,19 +205,19 @@ class Animation:
         return {n: path.with_name(f"{path.stem}_{n}{path.suffix or '.bvh'}") for n in names}
 
     def save_bvh(self, path: str | os.PathLike) -> list[Path]:
-        from synthesis.bvh import format_bvh
+        from text2anim.core.bvh import format_bvh
 
         files = {p: format_bvh(self.motions[n]).encode() for n, p in self.bvh_paths(path).items()}
         return _write_all(files)
 
     def save_html(self, path: str | os.PathLike) -> Path:
-        from synthesis.viewer import render_html
+        from text2anim.core.viewer import render_html
 
         html = render_html(self.tracks(), self.spans(), title=self.text)
         return _write_all({Path(path): html.encode()})[0]
 
     def save_glb(self, path: str | os.PathLike) -> Path:
-        from synthesis.gltf import glb_bytes
+        from text2anim.core.gltf import glb_bytes
 
         return _write_all({Path(path): glb_bytes(self.tracks())})[0]
 
@@ -227,7 +227,7 @@ class Animation:
 
     def save_plot(self, path: str | os.PathLike) -> Path:
         """Upper/lower-body speed curves (Fig. 5 of paper 000) with the blend intervals shaded."""
-        from synthesis.plots import plot_speeds
+        from text2anim.core.plots import plot_speeds
 
         plot_speeds(self.motions, path, [s for s in self.spans() if s.kind == "blend"])
         return Path(path)
@@ -264,7 +264,7 @@ def animate(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False
         smoothness: ``W`` of paper 000 §4.3 for ``optimal``: 0 joins as fast as it can, 1 as
             smoothly as it can.
     """
-    from synthesis.engines import check_method, synthesize_with
+    from text2anim.synthesis.engines import check_method, synthesize_with
 
     if not fps > 0:
         raise OutputError(f"fps must be positive, not {fps}")

@@ -20,7 +20,7 @@ def plan(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False):
     ``db`` is a :class:`motiondb.MotionDB`, a database URL or path, or ``None``
     for the default database (created with the built-in library on first use).
     """
-    from motiondb import MotionDB
+    from text2anim.motiondb import MotionDB
 
     from .pipeline import plan_text
 

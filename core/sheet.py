@@ -8,7 +8,7 @@ red, the spine and head black, with a tick on the head where the face
 points (so nods and head turns show). Each panel is centred on that frame's root;
 the ground is the grey line, with ticks every 50 cm fixed to the world (a
 foot that slides moves against them). A foot in contact (as
-:func:`synthesis.contacts.detect_contacts` labels it) is marked with a green
+:func:`core.contacts.detect_contacts` labels it) is marked with a green
 dot. Frames inside the ``core`` interval have a bold title. A strip under the
 frames plots root and foot heights over the whole clip with the contact
 intervals shaded, and the core interval if given.

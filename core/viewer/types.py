@@ -1,6 +1,6 @@
 """What the outputs a person looks at (viewer page, GLB, plots) are given.
 
-- :class:`Track`: one actor's animation, a named :class:`~synthesis.motion.Motion`;
+- :class:`Track`: one actor's animation, a named :class:`~core.motion.Motion`;
 - :class:`Span`: an interval on an actor's timeline, either a time-table
   element (``kind="element"``, label like ``"2 蹴る (transition)"``) or a blend
   interval (``kind="blend"``, ``part`` ``"upper"``, ``"lower"`` or ``None`` for
@@ -18,7 +18,7 @@ from ..motion import Motion
 
 SPAN_KINDS = ("element", "blend")
 
-#: Body-part names (``synthesis.bodyparts.GROUPS``) drawn in the lower-body lane of a blend;
+#: Body-part names (``core.bodyparts.GROUPS``) drawn in the lower-body lane of a blend;
 #: every other named part (arms, head, torso, "upper") in the upper lane; ``None``: both.
 LOWER_PARTS = frozenset({"lower", "right_leg", "left_leg", "legs", "hips"})
 

@@ -13,7 +13,7 @@ CJK font that matplotlib knows (Noto Sans CJK JP from Debian's
 ``fonts-noto-cjk``, IPAexGothic, Hiragino, Yu Gothic, ...) is used as a
 fallback after DejaVu Sans when there is one; none is ever installed at run
 time. Without one, every label is checked glyph by glyph and a label that
-cannot be drawn is replaced by its :attr:`~synthesis.viewer.types.Span.alt`
+cannot be drawn is replaced by its :attr:`~core.viewer.types.Span.alt`
 (e.g. the clip name), or else loses the characters that cannot be drawn
 (``"2 蹴る (transition)"`` → ``"2 (transition)"``); an actor's name becomes
 ``actor N``. No "missing glyph" warnings are emitted.
@@ -189,7 +189,7 @@ def plot_speeds(motions_by_label, path: str | os.PathLike, spans: Iterable[Span]
 
     ``motions_by_label``: one Motion, a ``{label: Motion}`` mapping or ``(label, Motion)``
     pairs, overlaid (e.g. the same time table synthesized by several methods).
-    Speeds are :func:`synthesis.metrics.speed_curves`: lower = mean world speed of
+    Speeds are :func:`core.metrics.speed_curves`: lower = mean world speed of
     both feet and the hips, upper = of both hands, the chest and the head.
     Blend intervals of ``spans`` are shaded in the panel of the body part they
     blend (both panels for whole-body blends); element starts are marked.

@@ -13,7 +13,7 @@ faces +Z with Y up, so X is its left-right axis).
   every *local* rotation as long as the rest pose's joint axes are aligned
   with the world (true of CMU-style BVH skeletons and the built-in one).
 - Then each left joint takes the (reflected) rotation of its right
-  counterpart and vice versa (:func:`synthesis.bodyparts.mirror_index`);
+  counterpart and vice versa (:func:`core.bodyparts.mirror_index`);
   centre joints keep their own.
 
 Forward kinematics of the result is then exactly the reflection of the

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import nlp
-from motiondb import ClipInfo, MotionDB, UnknownVerbError
-from nlp.types import Analysis, MotionSpec
-from scheduler import ClipTiming, ScheduleError, TimeTable, plan, without
-from synthesis.bodyparts import GROUPS
+from text2anim import nlp
+from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
+from text2anim.nlp.types import Analysis, MotionSpec
+from text2anim.scheduler import ClipTiming, ScheduleError, TimeTable, plan, without
+from text2anim.core.bodyparts import GROUPS
 
 from . import postures
 

@@ -1,0 +1,57 @@
+"""Rewrite ``tests/golden/outputs.json``: sha256 of the BVH bytes and the report of each golden sentence.
+
+Run it only when a change is *meant* to alter the animation (and say so in the commit):
+``python tests/golden/regen.py``. A refactor must leave the file as it is; the test
+``tests/test_golden.py`` checks that.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+SENTENCES = [
+    "太郎は走って、ボールを蹴る。そして喜ぶ。",
+    "太郎は走って、右手を振りながら歩く。",
+    "太郎は走る。3秒後に花子が歩く。",
+    "花子は歩いて、座る。",
+    "ボールを拾って、投げる。",
+    "太郎は3回跳ぶ。",
+    "太郎はゆっくり歩いて、止まる。",
+    "花子は踊る。そして笑う。",
+    "太郎は構えて、殴る。",
+    "左手を振る。",
+    "太郎と花子が走る。",
+    "太郎は座って、立ち上がる。",
+]
+ENGINES = ("optimal", "constraint")
+
+
+def digests(db) -> dict[str, str]:
+    """``"engine|sentence" → sha256`` of every actor's BVH text and of the JSON report."""
+    import text2anim
+    from text2anim.core.bvh import format_bvh
+
+    out = {}
+    for engine in ENGINES:
+        for text in SENTENCES:
+            anim = text2anim.animate(text, db, blend=engine)
+            h = hashlib.sha256()
+            for name, motion in sorted(anim.motions.items()):
+                h.update(name.encode() + b"\0" + format_bvh(motion).encode())
+            h.update(json.dumps(anim.report, ensure_ascii=False, sort_keys=True).encode())
+            out[f"{engine}|{text}"] = h.hexdigest()
+    return out
+
+
+if __name__ == "__main__":
+    import tempfile
+
+    from text2anim.motiondb import MotionDB
+
+    with tempfile.TemporaryDirectory() as tmp, MotionDB.open(f"sqlite:///{tmp}/golden.sqlite") as db:
+        data = digests(db)
+    (HERE / "outputs.json").write_text(json.dumps(data, ensure_ascii=False, indent=1, sort_keys=True) + "\n")
+    print(f"wrote {len(data)} digests", file=sys.stderr)
