@@ -15,6 +15,7 @@ from text2anim.scheduler import ClipTiming, ScheduleError, TimeTable, plan, with
 from text2anim.core.bodyparts import GROUPS
 
 from . import postures
+from .clip_timing import timing
 
 
 @dataclass(frozen=True)
@@ -27,27 +28,8 @@ class Planned:
     skipped: tuple[str, ...] = ()
 
 
-def foot_moving(info: ClipInfo) -> tuple[tuple[float, float], ...]:
-    """Intervals (s) where one foot is off the ground: the gaps between each foot's contacts."""
-    out = []
-    for side in ("left", "right"):
-        cursor = 0
-        for a, b in info.contacts(side):
-            if a > cursor:
-                out.append((cursor / info.fps, a / info.fps))
-            cursor = b
-        if cursor < info.frames:
-            out.append((cursor / info.fps, info.frames / info.fps))
-    return tuple(sorted(out))
-
-
-def timing(info: ClipInfo) -> ClipTiming:
-    return ClipTiming(info.name, info.duration, tuple(info.core), info.cyclic, info.body_part,
-                      foot_moving(info), info.character)
-
-
-class _Finder:
-    """Retrieves the best clip for each motion and remembers it."""
+class ClipFinder:
+    """Retrieves the best clip for each motion and remembers it (``chosen``: motion id -> clip)."""
 
     def __init__(self, db: MotionDB):
         self.db = db
@@ -83,7 +65,7 @@ class _Finder:
 
 def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbError]:
     """Motions whose verb no clip in ``db`` has, by motion id."""
-    finder = _Finder(db)
+    finder = ClipFinder(db)
     out = {}
     for spec in analysis.motions:
         try:
@@ -109,11 +91,11 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
         analysis = without(analysis, set(unknown))
         if not analysis.motions:
             raise ScheduleError("no motion of this text is in the motion database: " + "、".join(skipped))
-    finder = _Finder(db)
+    finder = ClipFinder(db)
     table = plan(analysis, finder, fps)
     # posture continuity: clips whose postures meet, bridging clips where none can (text2anim.postures)
     arranged = postures.arrange(analysis, table, finder.chosen, finder.search, db)
     if arranged.changed:
-        analysis, finder = arranged.analysis, _Finder(db)
+        analysis, finder = arranged.analysis, ClipFinder(db)
         table = plan(analysis, arranged.finder(finder), fps)
     return Planned(analysis, table, dict(finder.chosen), skipped)
