@@ -16,16 +16,22 @@ from text2anim.core.bodyparts import GROUPS
 
 from . import postures
 from .clip_timing import timing
+from .fillers import fill_waits
 
 
 @dataclass(frozen=True)
 class Planned:
-    """A text's analysis and time table, with the clip chosen for each element id."""
+    """A text's analysis and time table, with the clip chosen for each element id.
+
+    ``fillers`` are the ids of the elements added to fill the waits (stops, idles:
+    :mod:`text2anim.fillers`); ``skipped`` the verbs dropped as unknown.
+    """
 
     analysis: Analysis
     table: TimeTable
     clips: dict[int, ClipInfo]
     skipped: tuple[str, ...] = ()
+    fillers: tuple[int, ...] = ()
 
 
 class ClipFinder:
@@ -76,9 +82,11 @@ def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbEr
 
 
 def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False) -> Planned:
-    """Analyse ``text`` and schedule its motions with clips from ``db``.
+    """Analyse ``text`` and schedule its motions with clips from ``db``, the waits filled.
 
-    Unknown verbs raise :class:`UnknownVerbError` (naming the nearest verbs the
+    The table holds everything that will play: the text's motions, the clips
+    bridging postures (:mod:`text2anim.postures`) and the stops and idles in
+    the waits (:mod:`text2anim.fillers`). Unknown verbs raise :class:`UnknownVerbError` (naming the nearest verbs the
     database has) unless ``skip_unknown``, which drops those motions.
     """
     analysis = nlp.analyze(text)
@@ -98,4 +106,5 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
     if arranged.changed:
         analysis, finder = arranged.analysis, ClipFinder(db)
         table = plan(analysis, arranged.finder(finder), fps)
-    return Planned(analysis, table, dict(finder.chosen), skipped)
+    filled = fill_waits(table, dict(finder.chosen), db, fps)
+    return Planned(analysis, filled.table, filled.clips, skipped, filled.fillers)
