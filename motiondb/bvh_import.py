@@ -14,11 +14,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from text2anim.core.bodyparts import BodyPart
 from text2anim.core.bvh import BVHError, read_bvh
 
 from .errors import ClipValidationError
 from .records import PreparedClip, prepare_record
-from .types import ClipRecord
+from .types import ClipRecord, Posture
 
 #: ``progress(done, total, path)``: called before each file and once at the end (``path`` ``""``).
 Progress = Callable[[int, int, str], None]
@@ -48,15 +49,15 @@ class ImportOptions:
     objects: tuple[str, ...] = ()
     character: str = "default"
     core: tuple[float, float] | None = None
-    part: str | None = None
+    part: BodyPart | None = None
     cyclic: bool = False
     names: tuple[str, ...] | None = None
     scale: float | str = "auto"
     up: str = "y"
     drop_first: bool = False
     replace: bool = False
-    start_posture: str | None = None
-    end_posture: str | None = None
+    start_posture: Posture | None = None
+    end_posture: Posture | None = None
 
     def __post_init__(self) -> None:
         # lists (from argparse, callers) become tuples, so the options stay immutable and hashable
