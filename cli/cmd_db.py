@@ -184,10 +184,13 @@ def run(args) -> int:
 
 
 def _import(db, args) -> int:
-    infos = db.import_bvh(args.files, args.verb, args.object, character=args.character, core=args.core,
-                          part=args.part, cyclic=args.cyclic, names=[args.name] if args.name else None,
-                          replace=args.replace, progress=_progress, start_posture=args.start_posture,
-                          end_posture=args.end_posture, **read_options(args))
+    from text2anim.motiondb import ImportOptions
+
+    options = ImportOptions(verbs=tuple(args.verb), objects=tuple(args.object or ()), character=args.character,
+                            core=args.core, part=args.part, cyclic=args.cyclic,
+                            names=(args.name,) if args.name else None, replace=args.replace,
+                            start_posture=args.start_posture, end_posture=args.end_posture, **read_options(args))
+    infos = db.import_bvh(args.files, options, progress=_progress)
     print(f"imported {len(infos)} clip{'s' if len(infos) != 1 else ''} into {db.url}:")
     for c in infos:
         print(f"  {c.name}: {c.frames} frames at {c.fps:g} fps ({c.duration:.2f} s), "

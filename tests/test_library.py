@@ -338,7 +338,7 @@ def test_sit_and_stand_up_meet():
 @pytest.mark.parametrize("name", NAMES)
 def test_declared_postures_are_what_the_classifier_sees(name):
     """The postures the data declares (starts/ends) match the frames, as an imported clip's would be classified."""
-    from text2anim.motiondb.store import classify_posture
+    from text2anim.motiondb import classify_posture
 
     built, m = BUILT[name], CLIPS[name].motion
     assert (CLIPS[name].start_posture, CLIPS[name].end_posture) == (built.start_posture, built.end_posture)
@@ -363,7 +363,7 @@ def test_crouch_down_stays_down_as_crouch_does():
 
 
 def test_get_up_goes_through_hands_and_knees_with_the_knees_on_the_floor():
-    from text2anim.motiondb.store import classify_posture
+    from text2anim.motiondb import classify_posture
 
     m = CLIPS["get_up"].motion
     seen = [classify_posture(m, f) for f in range(0, m.n_frames, 3)]

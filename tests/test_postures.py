@@ -17,7 +17,7 @@ import pytest
 from text2anim import nlp
 from text2anim.motiondb import ClipRecord, MotionDB
 from text2anim.motiondb.library import build_all
-from text2anim.motiondb.store import classify_posture
+from text2anim.motiondb import classify_posture
 from text2anim.scheduler import plan
 from text2anim.core.metrics import skating_ratio
 from text2anim.pipeline import Planned, _Finder

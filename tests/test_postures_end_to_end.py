@@ -5,7 +5,7 @@ import pytest
 
 import text2anim
 from text2anim.motiondb import MotionDB
-from text2anim.motiondb.store import classify_posture
+from text2anim.motiondb import classify_posture
 
 
 @pytest.fixture(scope="module")
