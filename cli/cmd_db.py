@@ -190,7 +190,8 @@ def _import(db, args) -> int:
                             core=args.core, part=args.part, cyclic=args.cyclic,
                             names=(args.name,) if args.name else None, replace=args.replace,
                             start_posture=args.start_posture, end_posture=args.end_posture, **read_options(args))
-    infos = db.import_bvh(args.files, options, progress=_progress)
+    infos = db.import_bvh(args.files, options, progress=_progress,
+                          notify=lambda path, msg: print(f"text2anim db import: {path}: {msg}", file=sys.stderr))
     print(f"imported {len(infos)} clip{'s' if len(infos) != 1 else ''} into {db.url}:")
     for c in infos:
         print(f"  {c.name}: {c.frames} frames at {c.fps:g} fps ({c.duration:.2f} s), "

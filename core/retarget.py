@@ -238,6 +238,7 @@ def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndar
     _, _, fwd_t = _body_axes(out.skeleton, mapping.target)
     src_pos = source.positions
     Gs = source.pose.rotations
+    rest_t = out.skeleton.rest_positions()
     lift = ankle_height(out.skeleton, mapping.target) - mapping.scale * ankle_height(source.skeleton, mapping.source)
     for name, roles in _LIMBS.items():
         if not all(r in mapping.source and r in mapping.target for r in roles):
@@ -246,11 +247,16 @@ def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndar
         parents = out.skeleton.parents
         if parents[chain[1]] != chain[0] or parents[chain[2]] != chain[1]:
             continue  # a twist bone inside the limb: not a two-bone chain, left as rotated
+        end_world = Gs[:, mapping.source[roles[2]]] @ A[roles[2]]
         goal = mapping.scale * src_pos[:, mapping.source[roles[2]]]
-        if name.endswith("leg"):  # the target's own ankle height above its sole, not the scaled source's
+        toes = roles[2].replace("Foot", "Toes")
+        if name.endswith("leg") and toes in mapping.source and toes in mapping.target:
+            # the toe where the scaled source's is, the ankle where the foot's own shape puts it
+            foot = rest_t[mapping.target[toes]] - rest_t[chain[2]]
+            goal = mapping.scale * src_pos[:, mapping.source[toes]] - end_world @ foot
+        elif name.endswith("leg"):  # no toes: the target's own ankle height above its sole
             goal[:, 1] += lift
         hinge = _hinge(out.skeleton, chain, fwd_t, name.endswith("leg"))
         out = two_bone_ik(out, chain, goal, hinge=tuple(hinge))
-        end_world = Gs[:, mapping.source[roles[2]]] @ A[roles[2]]
         out = set_world_rotation(out, chain[2], matrix_to_quat(end_world))
     return out

@@ -1,0 +1,122 @@
+"""Clips entering the database clean: floor offsets, retargeting errors, skating before and after.
+
+    python benchmarks/bench_retarget.py [--character 02_01_walk] [FILES...]
+
+Reads CMU captures from ``../shared/mocap/cmu`` (frame 0, the T-pose, dropped)
+and does to each what ``db import`` does under one character whose skeleton
+is ``--character``'s (subject 02 by default) and, in a second table, under
+the built-in skeleton. Printed per file:
+
+- floor: the floor found (cm; the clip is moved down by it) and how
+  (``contacts`` or ``lowest``), and the floor found again afterwards;
+- bones: the largest bone-length difference to the character's skeleton
+  before (cm), and after (always 0: the clip is retargeted onto it);
+- legs: the leg-length ratio ``s`` target / source;
+- hands, feet: the largest and 95th-percentile distance (cm) between the
+  output's wrists (hands) or ankles and toe joints (feet) and the source's
+  scaled by ``s``, on the frames where a source foot is planted;
+- skate: the skating ratio of the source and the output, both resampled to
+  30 fps (timetable.md §3): ``core`` is ``core.metrics.skating_ratio``; ``gmd``
+  is the either-foot toe definition of §3, computed here;
+- cpu: CPU time of floor + retarget (ms), beside wall time.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.ndimage import uniform_filter1d
+
+REPO = Path(__file__).resolve().parents[1]
+CMU = REPO.parent / "shared" / "mocap" / "cmu"
+DEFAULT = ("02_01_walk", "02_02_walk", "07_02_walk", "07_04_slowwalk", "08_02_walk", "08_04_slowwalk",
+           "09_02_run", "09_05_run", "16_15_walk", "127_07_run", "16_01_jump", "14_27_sit")
+
+
+def gmd_skating_ratio(m) -> float:
+    """timetable.md §3: toe below 5 cm on t and t+1, speed > 0.5 m/s and its 5-frame mean > 0.5; either foot."""
+    from text2anim.core.bodyparts import body_map
+
+    bm = body_map(m.skeleton)
+    P = m.positions
+    skating = np.zeros(max(m.n_frames - 1, 0), dtype=bool)
+    for side in ("left", "right"):
+        toe = P[:, bm.feet[side][1]]
+        low = (toe[:-1, 1] < 0.05) & (toe[1:, 1] < 0.05)
+        v = np.linalg.norm(np.diff(toe[:, [0, 2]], axis=0), axis=-1) * m.fps
+        skating |= low & (v > 0.5) & (uniform_filter1d(v, 5, mode="nearest") > 0.5)
+    return float(skating.mean()) if len(skating) else 0.0
+
+
+def effector_errors(src, out, mapping, lift: float) -> tuple[float, float, float, float]:
+    """(hands max, hands p95, feet max, feet p95) in cm on planted frames."""
+    from text2anim.core.contacts import detect_contacts
+
+    fc = detect_contacts(src)
+    planted = fc.left | fc.right
+    res = []
+    for roles, dy in ((("leftHand", "rightHand"), 0.0), (("leftFoot", "rightFoot", "leftToes", "rightToes"), 0.0)):
+        err = []
+        for r in roles:
+            goal = mapping.scale * src.positions[planted, mapping.source[r]]
+            goal[:, 1] += dy
+            err.append(np.linalg.norm(out.positions[planted, mapping.target[r]] - goal, axis=-1))
+        e = 100 * np.concatenate(err)
+        res += [float(e.max()), float(np.percentile(e, 95))] if len(e) else [0.0, 0.0]
+    return tuple(res)
+
+
+def row(name: str, target) -> list[str]:
+    from text2anim.core.bvh import read_bvh
+    from text2anim.core.floor import find_floor, place_on_floor
+    from text2anim.core.metrics import skating_ratio
+    from text2anim.core.retarget import ankle_height, map_skeletons, retarget
+
+    raw = read_bvh(CMU / f"{name}.bvh", drop_first=True)
+    t0, c0 = time.perf_counter(), time.process_time()
+    src, floor = place_on_floor(raw)
+    out = retarget(src, target)
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    mapping = map_skeletons(src.skeleton, target)
+    lift = ankle_height(target, mapping.target) - mapping.scale * ankle_height(src.skeleton, mapping.source)
+    same = src.skeleton.same_hierarchy(target)
+    bones = 100 * float(np.abs(np.linalg.norm(src.skeleton.offsets, axis=1)
+                               - np.linalg.norm(target.offsets, axis=1)).max()) if same else float("nan")
+    after = 100 * float(np.abs(np.linalg.norm(out.skeleton.offsets, axis=1)
+                               - np.linalg.norm(target.offsets, axis=1)).max())
+    hmax, h95, fmax, f95 = effector_errors(src, out, mapping, lift)
+    s30, o30 = src.resample(30), out.resample(30)
+    return [name, f"{100 * floor.height:+.2f}", floor.method, f"{100 * find_floor(out).height:+.2f}",
+            f"{bones:.2f}", f"{after:.2f}", f"{mapping.scale:.3f}", f"{hmax:.2f}/{h95:.2f}", f"{fmax:.2f}/{f95:.2f}",
+            f"{skating_ratio(s30):.3f}>{skating_ratio(o30):.3f}", f"{gmd_skating_ratio(s30):.3f}>{gmd_skating_ratio(o30):.3f}",
+            f"{1000 * cpu:.0f}/{1000 * wall:.0f}"]
+
+
+def table(rows: list[list[str]], head: list[str]) -> str:
+    w = [max(len(r[k]) for r in [head, *rows]) for k in range(len(head))]
+    return "\n".join(" ".join(c.ljust(w[k]) for k, c in enumerate(r)) for r in [head, *rows])
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("files", nargs="*", default=list(DEFAULT), help="CMU clip names (default: a mix of subjects)")
+    ap.add_argument("--character", default="02_01_walk", help="the clip whose skeleton is the character's")
+    args = ap.parse_args()
+    if not CMU.is_dir():
+        sys.exit(f"no CMU captures at {CMU}")
+    from text2anim.core.bvh import read_bvh
+    from text2anim.motiondb.library.skeleton import canonical_skeleton
+
+    head = ["clip", "floor cm", "how", "after", "bones cm", "after", "legs s", "hands cm max/p95",
+            "feet cm max/p95", "skate core 30fps", "skate gmd 30fps", "cpu/wall ms"]
+    for label, target in ((f"character = {args.character}'s skeleton", read_bvh(CMU / f"{args.character}.bvh").skeleton),
+                          ("character = the built-in skeleton", canonical_skeleton())):
+        print(f"\n## {label}\n")
+        print(table([row(n, target) for n in args.files], head))
+
+
+if __name__ == "__main__":
+    main()
