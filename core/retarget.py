@@ -233,9 +233,52 @@ def retarget(motion: Motion, target: Skeleton, *, source_map: dict[str, str] | N
     return out
 
 
+def _aim(motion: Motion, joint: int, end: int, goal: np.ndarray) -> Motion:
+    """Turn ``joint`` by the shortest arc (per frame) that points it at ``goal`` ``(T, 3)`` through ``end``."""
+    pose = motion.pose
+    a = pose.positions[:, joint]
+    u, v = pose.positions[:, end] - a, goal - a
+    axis = np.cross(u, v)
+    sin = np.linalg.norm(axis, axis=-1)
+    angle = np.arctan2(sin, np.sum(u * v, axis=-1))
+    turn = axis * (angle / np.maximum(sin, 1e-12))[:, None]
+    turn[sin < 1e-9] = 0.0
+    world = Rotation.from_rotvec(turn).as_matrix() @ pose.rotations[:, joint]
+    p = motion.skeleton.parents[joint]
+    local = world if p < 0 else np.swapaxes(pose.rotations[:, p], -1, -2) @ world
+    rots = motion.rotations.copy()
+    rots[:, joint] = matrix_to_quat(local)
+    return motion.replace(rotations=rots)
+
+
+def _aim_torso(out: Motion, source: Motion, mapping: Mapping) -> Motion:
+    """The spine aimed so the top of the chest, and each shoulder so its upper arm, sit on the scaled source's."""
+    both = set(mapping.roles)
+    spine = [r for r in ("spine", "chest", "upperChest") if r in both]
+    src_pos = source.positions
+    if len(spine) >= 2:
+        out = _aim(out, mapping.target[spine[0]], mapping.target[spine[-1]],
+                   mapping.scale * src_pos[:, mapping.source[spine[-1]]])
+    rest = out.skeleton.rest_positions()
+    for side in ("left", "right"):
+        sh, arm, fore, hand = (f"{side}{p}" for p in ("Shoulder", "UpperArm", "LowerArm", "Hand"))
+        if not all(r in both for r in (sh, arm, fore, hand)):
+            continue
+        goal = mapping.scale * src_pos[:, mapping.source[arm]]
+        # if the hand's goal is out of the arm's reach from there, slide the goal towards it until it is not
+        reach = 0.999 * sum(np.linalg.norm(rest[mapping.target[b]] - rest[mapping.target[a]])
+                            for a, b in ((arm, fore), (fore, hand)))
+        to_hand = mapping.scale * src_pos[:, mapping.source[hand]] - goal
+        dist = np.linalg.norm(to_hand, axis=-1)
+        goal = goal + to_hand * (np.maximum(dist - reach, 0.0) / np.maximum(dist, 1e-12))[:, None]
+        out = _aim(out, mapping.target[sh], mapping.target[arm], goal)
+    return out
+
+
 def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndarray]) -> Motion:
-    """Step 4: ankles and wrists onto the scaled source's, then their world rotations restored."""
+    """Step 4: chest and shoulders aimed, ankles and wrists onto the scaled source's, their world rotations restored."""
     _, _, fwd_t = _body_axes(out.skeleton, mapping.target)
+    out = _aim_torso(out, source, mapping)
     src_pos = source.positions
     Gs = source.pose.rotations
     rest_t = out.skeleton.rest_positions()
