@@ -3,35 +3,25 @@ from __future__ import annotations
 
 import json
 import os
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
-from text2anim.motiondb import MotionDB
+from text2anim.motiondb import ClipInfo, MotionDB
 from text2anim.synthesis import plan as splan
 from text2anim.core.atomic import OutputError, atomic_write_bytes
 
-from . import postures
 from .pipeline import Planned, plan_text
 
 DEFAULT_ACTOR = "default"
-
-
-#: A wait longer than this (s) between two motions is filled rather than frozen: a looping
-#: motion (walk, run) first comes to a stop (止まる), then the idle clip (待つ) plays until the next
-#: motion, so after 走る。3秒後に歩く the runner stops and stands, breathing, before walking.
-IDLE_GAP = 0.5
-IDLE_VERB = "待つ"
-STOP_VERB = "止まる"
 
 
 class _Clips:
     """Clips loaded from ``db`` once each, resampled to ``fps``."""
 
     def __init__(self, db: MotionDB, fps: float):
-        self.db, self.fps, self.cache, self.infos = db, fps, {}, {}
+        self.db, self.fps, self.cache = db, fps, {}
 
-    def get(self, info) -> splan.Clip:
-        self.infos[info.name] = info
+    def get(self, info: ClipInfo) -> splan.Clip:
         if info.name not in self.cache:
             motion = self.db.load(info)
             if motion.fps != self.fps:
@@ -39,88 +29,24 @@ class _Clips:
             self.cache[info.name] = splan.Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
         return self.cache[info.name]
 
-    def by_verb(self, verb: str, character: str | None) -> splan.Clip | None:
-        from text2anim.motiondb import UnknownVerbError
-
-        try:
-            hits = self.db.search(verb, prefer_character=character)
-        except UnknownVerbError:
-            return None
-        return self.get(hits[0]) if hits else None
-
-    def idle(self, posture: str, character: str | None) -> splan.Clip | None:
-        """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still."""
-        if posture == "standing":
-            return self.by_verb(IDLE_VERB, character)
-        info = postures.matching(self.db, IDLE_VERB, posture, character=character)
-        return self.get(info) if info is not None else None
-
-
-def _fill_gap(clips: _Clips, prev: splan.Element, start: float, end: float, character: str | None,
-              next_id: int) -> list[splan.Element]:
-    """Elements that fill ``[start, end)`` after ``prev``: a stop for a looping motion, then idling."""
-    out: list[splan.Element] = []
-    stop = clips.by_verb(STOP_VERB, character) if prev.clip.cyclic else None
-    if stop is not None:
-        t1 = min(end, start + stop.motion.duration)
-        if end - t1 <= IDLE_GAP:
-            t1 = end
-        out.append(splan.Element(next_id, stop, start, t1, "transition", prev.id))
-        start = t1
-    posture = getattr(clips.infos.get(prev.clip.name), "end_posture", "standing")
-    idle = clips.idle(posture, character) if end - start > IDLE_GAP else None
-    if idle is not None:
-        out.append(splan.Element(next_id + len(out), idle, start, end, "connection",
-                                 out[-1].id if out else prev.id))
-    return out
-
 
 def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track]:
-    """The synthesis tracks of a time table: clips loaded from ``db`` and resampled to ``fps``.
+    """The synthesis tracks of a time table: its elements with their clips loaded from ``db`` at ``fps``.
 
-    A connection that waits more than :data:`IDLE_GAP` seconds gets filler
-    elements (ids above the table's) in the gap: see :func:`_fill_gap`.
+    Every element of the table plays, the fillers of the waits included
+    (:mod:`text2anim.fillers`); nothing is added here.
     """
     clips = _Clips(db, fps)
     table = planned.table
-    next_id = max(e.id for e in table.elements) + 1
     tracks = []
     for actor in table.actors():
-        elements: list[splan.Element] = []
         # In playing order (前に puts a later id first); a composition after its base.
         mine = sorted((e for e in table.elements if e.actor == actor),
                       key=lambda e: (e.start, e.method == "composition", e.id))
-        for e in mine:
-            info = planned.clips[e.id]
-            prev, method = e.prev, e.method
-            idle = clips.idle(info.start_posture, info.character) if method == "initial" and e.start > IDLE_GAP else None
-            if idle is not None:  # an actor who comes in later stands idle until then
-                elements.append(splan.Element(next_id, idle, 0.0, e.start, "initial"))
-                prev, method, next_id = next_id, "connection", next_id + 1
-            if e.method == "connection" and e.prev is not None:
-                before = next(x for x in elements if x.id == e.prev)
-                if e.start - before.end > IDLE_GAP:
-                    fill = _fill_gap(clips, before, before.end, e.start, info.character, next_id)
-                    elements.extend(fill)
-                    if fill:
-                        prev, next_id = fill[-1].id, next_id + len(fill)
-            elements.append(splan.Element(e.id, clips.get(info), e.start, e.end, method, prev,
-                                          e.speed, e.repeat, e.hold, e.body_part))
-        tracks.append((actor, elements))
-    # Actors who finish early stop and stand idle until the last one is done.
-    end = max(e.end for e in table.elements)
-    out = []
-    for actor, elements in tracks:
-        last = max((x for x in elements if x.method != "composition"), key=lambda x: x.end)
-        if end - last.end > IDLE_GAP:
-            character = planned.clips[last.id].character if last.id in planned.clips else None
-            fill = _fill_gap(clips, last, last.end, end, character, next_id)
-            if not fill and not last.clip.cyclic:  # no idle keeps this posture (seated, lying): hold the last pose
-                elements[elements.index(last)] = replace(last, end=end)
-            elements.extend(fill)
-            next_id += len(fill)
-        out.append(splan.Track(actor, tuple(elements)))
-    return out
+        elements = tuple(splan.Element(e.id, clips.get(planned.clips[e.id]), e.start, e.end, e.method, e.prev,
+                                       e.speed, e.repeat, e.hold, e.body_part) for e in mine)
+        tracks.append(splan.Track(actor, elements))
+    return tracks
 
 
 @dataclass(frozen=True, eq=False)

@@ -35,6 +35,8 @@ from typing import Any
 from text2anim.motiondb import ClipInfo, UnknownVerbError
 from text2anim.motiondb.types import POSTURES
 
+from .clip_timing import timing
+
 #: Verbs whose clips take the actor *into* each posture, tried in this order to build bridges.
 #: Only clips that change posture (start elsewhere, end there), whole-body and not looping, are used.
 BRIDGE_VERBS: dict[str, tuple[str, ...]] = {
@@ -211,11 +213,9 @@ class Arrangement:
     def finder(self, fallback: Callable) -> Callable:
         """A clip finder for :func:`scheduler.plan` returning :attr:`clips`, else asking ``fallback``.
 
-        ``fallback`` is the pipeline's finder (``text2anim.pipeline._Finder``):
+        ``fallback`` is the pipeline's finder (``text2anim.pipeline.ClipFinder``):
         the chosen clips are recorded in its ``chosen`` dict as its own are.
         """
-        from .pipeline import timing
-
         clips = self.clips
 
         def find(spec, prefer):
@@ -245,9 +245,9 @@ def arrange(analysis, table, chosen: Mapping[int, ClipInfo], search: Callable, d
     Args:
         analysis: the :class:`nlp.types.Analysis` that was planned.
         table: its first time table (:func:`scheduler.plan` with the pipeline's finder).
-        chosen: motion id -> the clip the first pass took (``_Finder.chosen``).
+        chosen: motion id -> the clip the first pass took (``ClipFinder.chosen``).
         search: ``search(spec, prefer_character) -> [ClipInfo, ...]`` ranked
-            candidates of a motion (``_Finder.search``).
+            candidates of a motion (``ClipFinder.search``).
         db: the :class:`motiondb.MotionDB`, for :func:`bridges`.
 
     Each actor's sequence is its table elements other than compositions, in

@@ -49,7 +49,7 @@ from text2anim.synthesis.engines import METHODS, synthesize_with  # noqa: E402
 from text2anim.core.metrics import foot_skate  # noqa: E402
 from text2anim.synthesis.plan import Clip, Element, Track  # noqa: E402
 from text2anim.synthesis.timing import find_cycle  # noqa: E402
-from text2anim.pipeline import timing  # noqa: E402
+from text2anim.clip_timing import timing  # noqa: E402
 
 CMU = REPO.parent / "shared" / "mocap" / "cmu"
 FPS = 30.0

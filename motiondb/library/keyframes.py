@@ -273,7 +273,7 @@ def parse_clip(raw: dict) -> ClipData:
 
 
 # ---------------------------------------------------------- interpolation
-def _interpolator(t: np.ndarray, v: np.ndarray, kind: str, period: float | None):
+def interpolator(t: np.ndarray, v: np.ndarray, kind: str, period: float | None):
     """A callable ``f(times) -> values`` through the keys ``(t, v)`` (``v`` is ``(K, ...)``)."""
     if len(t) == 1:
         return lambda x: np.broadcast_to(v[0], (len(x),) + v.shape[1:]).copy()
@@ -380,7 +380,7 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
             continue
         kt = np.array([k[0] for k in keys])
         kv = np.stack([k[1] for k in keys])
-        f = _interpolator(kt, kv, kind, period)
+        f = interpolator(kt, kv, kind, period)
         euler[:, j] = f(times - drag_idx.get(j, 0.0))
 
     root = np.empty((T, 3))
@@ -396,7 +396,7 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
         kv = np.array([k[1] for k in keys])
         if clip.cyclic:
             kv = kv - travel[axis] * kt / clip.period
-        root[:, axis] = _interpolator(kt, kv[:, None], kind, period)(times)[:, 0] + line
+        root[:, axis] = interpolator(kt, kv[:, None], kind, period)(times)[:, 0] + line
 
     sway = float(raw.get("sway", 0.0 if clip.cyclic else 1.0))
     if sway:
