@@ -251,14 +251,20 @@ def _aim(motion: Motion, joint: int, end: int, goal: np.ndarray) -> Motion:
     return motion.replace(rotations=rots)
 
 
-def _aim_torso(out: Motion, source: Motion, mapping: Mapping) -> Motion:
-    """The spine aimed so the top of the chest, and each shoulder so its upper arm, sit on the scaled source's."""
+def _aim_torso(out: Motion, source: Motion, mapping: Mapping, world: dict[str, np.ndarray]) -> Motion:
+    """The spine aimed so the top of the chest, and each shoulder so its upper arm, sit on the scaled source's.
+
+    The neck and the upper arms then get their world rotations (``world``, step 2) back, so the
+    aiming moves where the head and arms hang from but not which way they point.
+    """
     both = set(mapping.roles)
     spine = [r for r in ("spine", "chest", "upperChest") if r in both]
     src_pos = source.positions
     if len(spine) >= 2:
         out = _aim(out, mapping.target[spine[0]], mapping.target[spine[-1]],
                    mapping.scale * src_pos[:, mapping.source[spine[-1]]])
+        if "neck" in both:
+            out = set_world_rotation(out, mapping.target["neck"], matrix_to_quat(world["neck"]))
     rest = out.skeleton.rest_positions()
     for side in ("left", "right"):
         sh, arm, fore, hand = (f"{side}{p}" for p in ("Shoulder", "UpperArm", "LowerArm", "Hand"))
@@ -272,15 +278,17 @@ def _aim_torso(out: Motion, source: Motion, mapping: Mapping) -> Motion:
         dist = np.linalg.norm(to_hand, axis=-1)
         goal = goal + to_hand * (np.maximum(dist - reach, 0.0) / np.maximum(dist, 1e-12))[:, None]
         out = _aim(out, mapping.target[sh], mapping.target[arm], goal)
+        out = set_world_rotation(out, mapping.target[arm], matrix_to_quat(world[arm]))
     return out
 
 
 def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndarray]) -> Motion:
     """Step 4: chest and shoulders aimed, ankles and wrists onto the scaled source's, their world rotations restored."""
     _, _, fwd_t = _body_axes(out.skeleton, mapping.target)
-    out = _aim_torso(out, source, mapping)
-    src_pos = source.positions
     Gs = source.pose.rotations
+    world = {r: Gs[:, mapping.source[r]] @ A[r] for r in mapping.roles}
+    out = _aim_torso(out, source, mapping, world)
+    src_pos = source.positions
     rest_t = out.skeleton.rest_positions()
     lift = ankle_height(out.skeleton, mapping.target) - mapping.scale * ankle_height(source.skeleton, mapping.source)
     for name, roles in _LIMBS.items():
@@ -290,7 +298,7 @@ def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndar
         parents = out.skeleton.parents
         if parents[chain[1]] != chain[0] or parents[chain[2]] != chain[1]:
             continue  # a twist bone inside the limb: not a two-bone chain, left as rotated
-        end_world = Gs[:, mapping.source[roles[2]]] @ A[roles[2]]
+        end_world = world[roles[2]]
         goal = mapping.scale * src_pos[:, mapping.source[roles[2]]]
         toes = roles[2].replace("Foot", "Toes")
         if name.endswith("leg") and toes in mapping.source and toes in mapping.target:
