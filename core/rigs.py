@@ -109,12 +109,15 @@ def _place(skel: Skeleton, table: dict[str, str]) -> dict[str, int]:
 def rig_roles(skel: Skeleton, joint_map: dict[str, str] | None = None) -> tuple[str, dict[str, int]]:
     """``(rig name, {role: joint index})`` for ``skel``.
 
-    The known rig that places the most roles is taken; ``joint_map`` entries
+    The known rig that places the most required roles (then the most roles) is taken; ``joint_map`` entries
     (``{role: joint name}``) are laid over it. Raises :class:`RigError` naming
     the required roles that stay unplaced, and any joint of the map the
     skeleton lacks.
     """
-    scored = sorted(((len(_place(skel, t)), name) for name, t in RIGS.items()), key=lambda x: (-x[0], x[1]))
+    placed = {name: _place(skel, t) for name, t in RIGS.items()}
+    scored = sorted(((sum(r in p for r in REQUIRED), len(p), name) for name, p in placed.items()),
+                    key=lambda x: (-x[0], -x[1], x[2]))
+    scored = [(n_all, name) for _, n_all, name in scored]
     best = scored[0][1]
     roles = _place(skel, RIGS[best])
     if joint_map:

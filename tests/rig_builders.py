@@ -1,5 +1,6 @@
 """Test rigs made from the built-in skeleton (no downloads): Mixamo names with an A-pose rest, SMPL's 22 joints,
-the Unreal mannequin (a root bone under the pelvis), each with its own proportions, as BVH files."""
+the Unreal mannequin (a root bone above the pelvis), VRM humanoid bone names; each with its own proportions,
+as BVH files."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -20,8 +21,8 @@ def _mid(p: dict, a: str, b: str) -> np.ndarray:
     return (p[a] + p[b]) / 2
 
 
-def _positions(p: dict, spine: str) -> dict[str, np.ndarray]:
-    """Where a generic humanoid's joints sit on the built-in body (``spine`` names 3 spine joints' style)."""
+def _positions(p: dict) -> dict[str, np.ndarray]:
+    """Where a humanoid's joints (by VRM role; ``*Index``: a finger) sit on the built-in body, metres."""
     out = {"hips": p["Hips"], "spine": p["Spine"], "chest": _mid(p, "Spine", "Spine1"), "upperChest": p["Spine1"],
            "neck": p["Neck1"], "head": p["Head"]}
     for side, s in (("left", 1.0), ("right", -1.0)):
@@ -64,7 +65,7 @@ def _write(skel: Skeleton, path: Path, unit: float = 1.0) -> Path:
 
 def mixamo_rig(path: Path, scale: float = 1.08) -> Path:
     """Mixamo joint names (``mixamorig:``), an A-pose rest, ZXY channels, fingers, 8% taller; written in cm."""
-    pos = {k: v * scale for k, v in _a_pose(_positions(_rest(), "mixamo")).items()}
+    pos = {k: v * scale for k, v in _a_pose(_positions(_rest())).items()}
     m = "mixamorig:"
     rows = [(m + "Hips", None, "hips"), (m + "Spine", m + "Hips", "spine"), (m + "Spine1", m + "Spine", "chest"),
             (m + "Spine2", m + "Spine1", "upperChest"), (m + "Neck", m + "Spine2", "neck"),
@@ -85,13 +86,11 @@ def mixamo_rig(path: Path, scale: float = 1.08) -> Path:
 
 def smpl_rig(path: Path, scale: float = 0.93) -> Path:
     """SMPL's 22 body joints by name, children in SMPL's index order, a T-pose, 7% shorter."""
-    pos = {k: v * scale for k, v in _positions(_rest(), "smpl").items()}
+    pos = {k: v * scale for k, v in _positions(_rest()).items()}
     rows = [("pelvis", None, "hips")]
     for side in ("left", "right"):
-        S = side.capitalize()
         rows += [(f"{side}_hip", "pelvis", f"{side}UpperLeg"), (f"{side}_knee", f"{side}_hip", f"{side}LowerLeg"),
                  (f"{side}_ankle", f"{side}_knee", f"{side}Foot"), (f"{side}_foot", f"{side}_ankle", f"{side}Toes")]
-        del S
     rows += [("spine1", "pelvis", "spine"), ("spine2", "spine1", "chest"), ("spine3", "spine2", "upperChest"),
              ("neck", "spine3", "neck"), ("head", "neck", "head")]
     for side in ("left", "right"):
@@ -103,7 +102,7 @@ def smpl_rig(path: Path, scale: float = 0.93) -> Path:
 
 def unreal_rig(path: Path, scale: float = 1.02) -> Path:
     """Unreal mannequin names: a ``root`` bone at the floor above ``pelvis`` (which has position channels)."""
-    pos = {k: v * scale for k, v in _positions(_rest(), "unreal").items()}
+    pos = {k: v * scale for k, v in _positions(_rest()).items()}
     pos["root"] = pos["hips"] - np.array([0.0, pos["hips"][1] - min(pos["leftToes"][1], pos["leftFoot"][1]), 0.0])
     rows = [("root", None, "root"), ("pelvis", "root", "hips"), ("spine_01", "pelvis", "spine"),
             ("spine_02", "spine_01", "chest"), ("spine_03", "spine_02", "upperChest"), ("neck_01", "spine_03", "neck"),
@@ -117,6 +116,22 @@ def unreal_rig(path: Path, scale: float = 1.02) -> Path:
                  (f"foot_{s}", f"calf_{s}", f"{side}Foot"), (f"ball_{s}", f"foot_{s}", f"{side}Toes")]
     full = ("Xposition", "Yposition", "Zposition", "Zrotation", "Yrotation", "Xrotation")
     chans = lambda n, j: full if j <= 1 else full[3:]  # noqa: E731
-    skel = _skeleton(rows, pos, chans, {"head": (0, 0.15, 0)})
-    # the root's own position must be the floor point: its offset is its world position
-    return _write(skel, path)
+    return _write(_skeleton(rows, pos, chans, {"head": (0, 0.15, 0)}), path)
+
+
+def vrm_rig(path: Path, scale: float = 0.85) -> Path:
+    """VRM humanoid bone names (a T-pose avatar 15% shorter), with an index finger left at rest."""
+    pos = {k: v * scale for k, v in _positions(_rest()).items()}
+    rows = [("hips", None, "hips"), ("spine", "hips", "spine"), ("chest", "spine", "chest"),
+            ("upperChest", "chest", "upperChest"), ("neck", "upperChest", "neck"), ("head", "neck", "head")]
+    for side in ("left", "right"):
+        rows += [(f"{side}Shoulder", "upperChest", f"{side}Shoulder"),
+                 (f"{side}UpperArm", f"{side}Shoulder", f"{side}UpperArm"),
+                 (f"{side}LowerArm", f"{side}UpperArm", f"{side}LowerArm"),
+                 (f"{side}Hand", f"{side}LowerArm", f"{side}Hand"),
+                 (f"{side}IndexProximal", f"{side}Hand", f"{side}Index")]
+    for side in ("left", "right"):
+        rows += [(f"{side}UpperLeg", "hips", f"{side}UpperLeg"), (f"{side}LowerLeg", f"{side}UpperLeg", f"{side}LowerLeg"),
+                 (f"{side}Foot", f"{side}LowerLeg", f"{side}Foot"), (f"{side}Toes", f"{side}Foot", f"{side}Toes")]
+    chans = lambda n, j: Skeleton.default_channels(2)[0 if j == 0 else 1]  # noqa: E731
+    return _write(_skeleton(rows, pos, chans, {"head": (0, 0.15, 0)}), path)

@@ -83,7 +83,7 @@ def test_a_skeleton_that_cannot_be_mapped_is_refused_naming_its_joints(empty_db,
         empty_db.import_bvh([odd], ImportOptions(("歩く",), character="cmu", drop_first=True))
     msg = str(err.value)
     assert "odd_rig.bvh" in msg and "character 'cmu'" in msg and "nothing was imported" in msg
-    assert "spine" in msg and "leftUpperLeg" in msg and "rightUpperLeg" in msg and "--map" in msg
+    assert "leftUpperLeg" in msg and "rightUpperLeg" in msg and "--map" in msg
     assert [c.name for c in empty_db.clips()] == [CHARACTER]
     # under a character of its own it is its own skeleton: nothing to map, it is only put on the floor
     empty_db.import_bvh([odd], ImportOptions(("歩く",), character="odd", drop_first=True))

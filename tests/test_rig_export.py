@@ -9,7 +9,7 @@ from scipy.spatial.transform import Rotation
 
 import text2anim
 from cli_run import assert_clean_error, text2anim as run_cli
-from rig_builders import mixamo_rig, smpl_rig, unreal_rig
+from rig_builders import mixamo_rig, smpl_rig, unreal_rig, vrm_rig
 from shared_data import cmu, requires_cmu
 from text2anim.core import read_bvh
 from text2anim.core.contacts import detect_contacts
@@ -19,7 +19,7 @@ from text2anim.core.metrics import skating_ratio
 from text2anim.core.retarget import map_skeletons
 from text2anim.export import ExportError, ExportOptions
 
-RIGS = {"mixamo_a_pose": mixamo_rig, "smpl": smpl_rig, "unreal": unreal_rig}
+RIGS = {"mixamo_a_pose": mixamo_rig, "smpl": smpl_rig, "unreal": unreal_rig, "vrm": vrm_rig}
 
 
 @pytest.fixture(scope="module")
