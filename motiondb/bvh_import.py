@@ -68,6 +68,9 @@ class ImportOptions:
         replace: overwrite clips of the same names instead of refusing.
         start_posture, end_posture: every clip's postures (:data:`motiondb.types.POSTURES`);
             ``None`` classifies each file's first/last frame.
+        joint_map: ``{role: joint name}`` (or its items) for the files' joints no known rig names
+            (:func:`core.rigs.load_joint_map`), used when a clip is retargeted; it applies to the
+            character's skeleton too when that has every joint it names.
     """
 
     verbs: tuple[str, ...]
@@ -83,8 +86,11 @@ class ImportOptions:
     replace: bool = False
     start_posture: str | None = None
     end_posture: str | None = None
+    joint_map: tuple[tuple[str, str], ...] | None = None
 
     def __post_init__(self) -> None:
+        if isinstance(self.joint_map, dict):
+            object.__setattr__(self, "joint_map", tuple(sorted(self.joint_map.items())))
         # lists (from argparse, callers) become tuples, so the options stay immutable and hashable
         for name in ("verbs", "objects", "names"):
             value = getattr(self, name)
@@ -97,8 +103,12 @@ def _same_skeleton(a: Skeleton, b: Skeleton) -> bool:
             and bool(np.allclose(a.offsets, b.offsets, rtol=0.0, atol=SAME_BONES)))
 
 
-def conform(motion: Motion, target: Skeleton | None, where: str, character: str) -> tuple[Motion, list[str]]:
+def conform(motion: Motion, target: Skeleton | None, where: str, character: str,
+            joint_map: dict[str, str] | None = None) -> tuple[Motion, list[str]]:
     """``motion`` on the floor and on the ``target`` skeleton (``None``: its own), and what was done.
+
+    ``joint_map`` (``{role: joint name}``) places the motion's joints no known rig names, and the
+    target's when the target has every joint it names.
 
     Raises :class:`ClipValidationError` naming ``where`` when the motion has
     no feet to find the floor with or its skeleton cannot be mapped onto ``target``.
@@ -114,9 +124,10 @@ def conform(motion: Motion, target: Skeleton | None, where: str, character: str)
                      f"(found from its {how})")
     if target is None or _same_skeleton(motion.skeleton, target):
         return (motion if target is None else motion.replace(skeleton=target)), notes
+    target_map = joint_map if joint_map and set(joint_map.values()) <= set(target.names) else None
     try:
-        mapping = map_skeletons(motion.skeleton, target)
-        motion = retarget(motion, target)
+        mapping = map_skeletons(motion.skeleton, target, joint_map, target_map)
+        motion = retarget(motion, target, source_map=joint_map, target_map=target_map)
     except RigError as exc:
         raise ClipValidationError(f"{where}: cannot be retargeted onto the skeleton of character "
                                   f"{character!r}: {exc}") from None
@@ -152,7 +163,8 @@ def read_clips(paths: Sequence[str | os.PathLike], options: ImportOptions,
         except ValueError as exc:
             raise ClipValidationError(f"{path}: {exc} (nothing was imported)") from None
         try:
-            motion, notes = conform(motion, skeleton, str(path), options.character)
+            motion, notes = conform(motion, skeleton, str(path), options.character,
+                                    dict(options.joint_map) if options.joint_map else None)
         except ClipValidationError as exc:
             raise ClipValidationError(f"{exc} (nothing was imported)") from None
         skeleton = motion.skeleton

@@ -85,6 +85,13 @@ def test_a_skeleton_that_cannot_be_mapped_is_refused_naming_its_joints(empty_db,
     assert "odd_rig.bvh" in msg and "character 'cmu'" in msg and "nothing was imported" in msg
     assert "leftUpperLeg" in msg and "rightUpperLeg" in msg and "--map" in msg
     assert [c.name for c in empty_db.clips()] == [CHARACTER]
+    # a joint map places them, and the clip joins the character on its skeleton
+    empty_db.import_bvh([odd], ImportOptions(("歩く",), character="cmu", drop_first=True, names=("mapped",),
+                                             joint_map={"leftUpperLeg": "LeftThighBone",
+                                                        "rightUpperLeg": "RightThighBone"}))
+    mapped = empty_db.load("mapped")
+    assert mapped.skeleton.names == empty_db.load(CHARACTER).skeleton.names and abs(find_floor(mapped).height) < 0.01
     # under a character of its own it is its own skeleton: nothing to map, it is only put on the floor
     empty_db.import_bvh([odd], ImportOptions(("歩く",), character="odd", drop_first=True))
     assert abs(find_floor(empty_db.load("odd_rig")).height) < 1e-9
+    assert sorted(c.name for c in empty_db.clips()) == sorted([CHARACTER, "mapped", "odd_rig"])
