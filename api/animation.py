@@ -5,12 +5,18 @@ import json
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from text2anim.motiondb import ClipInfo, MotionDB
 from text2anim.synthesis import plan as splan
 from text2anim.core.atomic import OutputError, atomic_write_bytes
 
 from .pipeline import Planned, plan_text
+
+if TYPE_CHECKING:
+    from text2anim.core.motion import Motion
+    from text2anim.scheduler import TimeTable
+    from text2anim.synthesis.engine import Result
 
 DEFAULT_ACTOR = "default"
 
@@ -19,7 +25,8 @@ class _Clips:
     """Clips loaded from ``db`` once each, resampled to ``fps``."""
 
     def __init__(self, db: MotionDB, fps: float):
-        self.db, self.fps, self.cache = db, fps, {}
+        self.db, self.fps = db, fps
+        self.cache: dict[str, splan.Clip] = {}
 
     def get(self, info: ClipInfo) -> splan.Clip:
         if info.name not in self.cache:
@@ -58,7 +65,7 @@ class Animation:
     """
 
     planned: Planned
-    result: object  # synthesis.engine.Result
+    result: Result
     fps: float
     blend: str = "optimal"
     smoothness: float = 0.5
@@ -68,15 +75,15 @@ class Animation:
         return self.planned.analysis.text
 
     @property
-    def table(self):
+    def table(self) -> TimeTable:
         return self.planned.table
 
     @property
-    def motions(self) -> dict:
+    def motions(self) -> dict[str, Motion]:
         return {a or DEFAULT_ACTOR: m for a, m in self.result.motions.items()}
 
     @property
-    def report(self) -> dict:
+    def report(self) -> dict[str, Any]:
         """The synthesis report of timetable.md §2, with the time table and per-element figures."""
         from text2anim.core.metrics import compute_metrics
 

@@ -30,7 +30,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, overload
 
 from text2anim.motiondb import ClipInfo, UnknownVerbError
 from text2anim.motiondb.types import POSTURES
@@ -54,6 +54,16 @@ MAX_BRIDGE = 2
 # ------------------------------------------------------------------- choose
 def _mismatch(prev_end: str | None, start: str) -> int:
     return 0 if prev_end is None or prev_end == start else 1
+
+
+@overload
+def choose(candidates_by_motion: Mapping[Any, Sequence[ClipInfo]], *,
+           initial: str | None = None) -> dict[Any, ClipInfo | None]: ...
+
+
+@overload
+def choose(candidates_by_motion: Sequence[Sequence[ClipInfo]], *,
+           initial: str | None = None) -> list[ClipInfo | None]: ...
 
 
 def choose(candidates_by_motion: Sequence[Sequence[ClipInfo]] | Mapping[Any, Sequence[ClipInfo]], *,
@@ -91,7 +101,8 @@ def choose(candidates_by_motion: Sequence[Sequence[ClipInfo]] | Mapping[Any, Seq
         # best[k] = (mismatches, ranks so far) of the best path ending in candidate k of the current
         # motion; tuples compare as the docstring says (fewer mismatches, then earlier ranks)
         first = lists[present[0]]
-        best = [(_mismatch(initial, c.start_posture), (k,)) for k, c in enumerate(first)]
+        best: list[tuple[int, tuple[int, ...]]] = [(_mismatch(initial, c.start_posture), (k,))
+                                                   for k, c in enumerate(first)]
         prev = first
         for i in present[1:]:
             cur = lists[i]
@@ -311,7 +322,7 @@ def arrange(analysis, table, chosen: Mapping[int, ClipInfo], search: Callable, d
                 motions.insert(next(i for i, m in enumerate(motions) if m.id == b),
                                MotionSpec(nid, spec_b.actor, clip.verb, span=(spec_b.span[0], spec_b.span[0])))
             chain = [a] + new_ids + [b]
-            if link is not None:
+            if incoming is not None and link is not None:
                 # the link that led to b leads to the first bridge (a delay is spent in the old posture;
                 # a link from another actor's motion starts the change of posture where b would have
                 # started); the bridges and b follow each other, b as the link said when it came from a

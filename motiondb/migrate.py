@@ -44,6 +44,14 @@ def schema_state(session: Session, url: str) -> tuple[int | None, str | None]:
     return row.version, row.builtin_library
 
 
+def version_row(s: Session) -> SchemaVersion:
+    """The ``schema_version`` row of a database that has our schema."""
+    row = s.get(SchemaVersion, 1)
+    if row is None:
+        raise DBError("the motion database lost its schema_version row")
+    return row
+
+
 def create_schema(s: Session, *, seeded: bool) -> None:
     """Create every table at :data:`SCHEMA_VERSION`; ``seeded=False`` marks it never to be seeded."""
     Base.metadata.create_all(s.connection())
@@ -60,6 +68,7 @@ def migrate(s: Session, version: int, skeletons: SkeletonCache) -> None:
         for column in ("start_posture", "end_posture"):
             s.execute(text(f"ALTER TABLE clips ADD COLUMN {column} VARCHAR(16) "
                            f"DEFAULT '{DEFAULT_POSTURE}' NOT NULL"))
+        clips = Base.metadata.tables["clips"]
         rows = s.execute(select(Clip.id, Clip.name, Clip.fps, Clip.frames, Clip.skeleton_id)
                          .order_by(Clip.id)).all()
         for row in rows:
@@ -71,9 +80,8 @@ def migrate(s: Session, version: int, skeletons: SkeletonCache) -> None:
                 start, end = clip_postures(motion)
             except (DBError, BodyMapError, ValueError):
                 continue  # a clip that cannot be read keeps the default; loading it will say why
-            s.execute(Clip.__table__.update().where(Clip.__table__.c.id == row.id)
-                      .values(start_posture=start, end_posture=end))
-    meta = s.get(SchemaVersion, 1)
+            s.execute(clips.update().where(clips.c.id == row.id).values(start_posture=start, end_posture=end))
+    meta = version_row(s)
     meta.version = SCHEMA_VERSION
     meta.updated = utcnow()
     s.flush()

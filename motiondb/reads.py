@@ -5,12 +5,13 @@ from collections.abc import Iterator
 from datetime import timezone
 from typing import Any, TypeVar
 
-from sqlalchemy import bindparam, select
+from sqlalchemy import BindParameter, bindparam, select
 from sqlalchemy.orm import Session
 
 from text2anim.core.skeleton import Skeleton
 
 from .blobs import skeleton_from_json
+from .errors import DBError
 from .schema import Character, Clip, ClipObject, ClipVerb, Contact, ObjectRow, SkeletonRow, Verb
 from .types import ClipInfo
 
@@ -37,12 +38,14 @@ class SkeletonCache:
         skel = self._by_id.get(skeleton_id)
         if skel is None:
             definition = s.scalar(select(SkeletonRow.definition).where(SkeletonRow.id == skeleton_id))
+            if definition is None:
+                raise DBError(f"skeleton {skeleton_id} is missing from the database")
             skel = skeleton_from_json(definition)
             self._by_id[skeleton_id] = skel
         return skel
 
 
-_IDS = bindparam("ids", expanding=True)
+_IDS: BindParameter[list[int]] = bindparam("ids", expanding=True)
 _INFO_CLIPS = (
     select(Clip.id, Clip.name, Character.name.label("character"), Clip.fps, Clip.frames, Clip.duration,
            Clip.core_begin, Clip.core_end, Clip.body_part, Clip.cyclic, Clip.source, Clip.created,

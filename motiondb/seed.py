@@ -13,7 +13,8 @@ from sqlalchemy.orm import Session
 from .errors import ClipValidationError, DBError, SeedWarning
 from .reads import SkeletonCache
 from .records import prepare_record
-from .schema import Clip, SchemaVersion, utcnow
+from .migrate import version_row
+from .schema import Clip, utcnow
 from .types import ClipRecord
 from .writes import delete_clips, store_clips
 
@@ -102,6 +103,6 @@ def fill(s: Session, source: SeedSource, library: str | None, url: str, skeleton
             f"{len(skipped)} built-in clip(s) not stored because clips of those names or a character "
             f"'default' of another skeleton are already in {url}: {', '.join(skipped[:8])}"
             f"{'…' if len(skipped) > 8 else ''}"), stacklevel=4)
-    row = s.get(SchemaVersion, 1)
+    row = version_row(s)
     row.builtin_library = source.tag
     row.updated = utcnow()

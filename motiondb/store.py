@@ -99,7 +99,9 @@ class MotionDB:
         """
         url_text, is_default = resolve_url(url)
         if is_default:
-            folder = Path(make_url(url_text).database).parent
+            database = make_url(url_text).database
+            assert database, url_text  # the default location is an SQLite file
+            folder = Path(database).parent
             try:
                 folder.mkdir(parents=True, exist_ok=True)
             except OSError as exc:

@@ -45,7 +45,7 @@ def store_clips(s: Session, prepared: list[PreparedClip], cache: SkeletonCache, 
         if p.name in seen:
             raise ClipValidationError(f"two clips named {p.name!r} in one batch; nothing was stored")
         seen.add(p.name)
-    existing = set()
+    existing: set[str] = set()
     for chunk in chunks([p.name for p in prepared]):
         existing.update(s.scalars(select(Clip.name).where(Clip.name.in_(chunk))))
     if existing:

@@ -71,10 +71,11 @@ def _order(analysis: Analysis) -> list[tuple[MotionSpec, Constraint | None]]:
             raise ScheduleError(f"motion {c.second} is linked to two earlier motions")
         incoming[c.second] = c
     by_id = {m.id: m for m in analysis.motions}
-    children: dict[int | None, list[Constraint | None]] = {}
+    # per motion id (None: the roots), its successors: the constraint leading to each, or a root's id
+    children: dict[int | None, list[Constraint | int]] = {}
     for m in analysis.motions:
-        c = incoming.get(m.id)
-        children.setdefault(c.first if c else None, []).append(c if c else m.id)
+        link = incoming.get(m.id)
+        children.setdefault(link.first if link else None, []).append(link if link else m.id)
     out: list[tuple[MotionSpec, Constraint | None]] = []
     # Compositions first among siblings, so a base's length is final before a successor is placed.
     key = lambda x: (0, x.second) if isinstance(x, Constraint) and x.method == "composition" else (1, x if isinstance(x, int) else x.second)  # noqa: E731

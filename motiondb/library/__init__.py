@@ -33,7 +33,7 @@ import numpy as np
 from text2anim.motiondb.types import ClipRecord
 from text2anim.core.motion import Motion
 
-from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, curves_to_motion, load_json_dir, parse_clip,
+from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, PlantSpec, curves_to_motion, load_json_dir, parse_clip,
                         sample_curves)
 from .plant import FramePlant, PlantReport, plant_feet
 from .reach import apply_reach
@@ -96,7 +96,7 @@ def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> li
     always = [FramePlant(p.side, 0, n - 1, int(round(-t_first / h))) for p in clip.plants if np.isinf(p.t0)]
     plants = [p for p in clip.plants if not np.isinf(p.t0)]
     if clip.cyclic:
-        reps = []
+        reps: list[PlantSpec] = []
         for k in range(-2, clip.cycles + 3):
             reps.extend(p.shifted(k * clip.period) for p in plants)
         plants = [p for p in reps if p.t1 >= t_first - 1e-9 and p.t0 <= t_last + 1e-9]

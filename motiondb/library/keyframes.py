@@ -184,6 +184,7 @@ def expand_joints(values: dict, skeleton: Skeleton, where: str) -> dict[int, np.
         a = np.asarray(ang, dtype=np.float64)
         if a.shape != (3,):
             raise ClipDataError(f"{where}: {key} needs [x, y, z] degrees, got {ang!r}")
+        pairs: tuple[tuple[str, np.ndarray], ...]
         if key.startswith("both:"):
             suffix = key[5:]
             pairs = (("Left" + suffix, a), ("Right" + suffix, a * np.array([1.0, -1.0, -1.0])))
@@ -204,7 +205,8 @@ def resolve_pose(name: str, poses: dict, skeleton: Skeleton, where: str, _seen=(
     if name in _seen:
         raise ClipDataError(f"{where}: pose {name!r} is based on itself")
     p = poses[name]
-    joints, root = {}, {}
+    joints: dict[int, np.ndarray] = {}
+    root: dict[str, float] = {}
     if "base" in p:
         joints, root = resolve_pose(p["base"], poses, skeleton, where, _seen + (name,))
         joints, root = dict(joints), dict(root)
@@ -339,20 +341,20 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
             raise ClipDataError(f"{where}: key times must increase ({t} after {last_t})")
         last_t = t
         vals: dict[int, np.ndarray] = {}
-        root: dict = {}
+        key_root: dict = {}
         if "pose" in key:
             pj, pr = resolve_pose(key["pose"], poses, skeleton, f"{where} t={t}")
             vals.update(pj)
-            root.update({k: v for k, v in pr.items() if k == "y"})
+            key_root.update({k: v for k, v in pr.items() if k == "y"})
         vals.update(expand_joints(key.get("set", {}), skeleton, f"{where} t={t}"))
         r = key.get("root")
         if isinstance(r, (list, tuple)):
             r = dict(zip("xyz", r))
-        root.update(r or {})
+        key_root.update(r or {})
         for j, v in vals.items():
             joint_keys.setdefault(j, []).append((t, v))
-        if root:
-            root_keys.append((t, {k: float(v) for k, v in root.items()}))
+        if key_root:
+            root_keys.append((t, {k: float(v) for k, v in key_root.items()}))
     if not clip.cyclic and root_keys is not None and raw.get("keys"):
         # One-shot clips start at the origin: root x/z are 0 at the first key unless keyed there.
         t_first = float(raw["keys"][0]["t"])
@@ -360,9 +362,9 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
         if first is None:
             first = {}
             root_keys.insert(0, (t_first, first))
-        for axis in ("x", "z"):
-            if any(axis in r for _, r in root_keys):
-                first.setdefault(axis, 0.0)
+        for horizontal in ("x", "z"):
+            if any(horizontal in r for _, r in root_keys):
+                first.setdefault(horizontal, 0.0)
     root_keys = _flight_keys(root_keys, raw.get("flight", []), where)
 
     period = clip.period if clip.cyclic else None
@@ -386,8 +388,8 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
     root = np.empty((T, 3))
     travel = clip.travel if clip.cyclic else np.zeros(3)
     defaults = (0.0, float(base_root.get("y", 0.94)), 0.0)
-    for axis, name in enumerate("xyz"):
-        keys = [(t, r[name]) for t, r in root_keys if name in r]
+    for axis, coord in enumerate("xyz"):
+        keys = [(t, r[coord]) for t, r in root_keys if coord in r]
         line = travel[axis] * times / clip.period if clip.cyclic else np.zeros(T)
         if not keys:
             root[:, axis] = defaults[axis] + line
