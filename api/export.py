@@ -67,7 +67,7 @@ class ExportOptions:
 
     @cached_property
     def target_map(self) -> dict[str, str] | None:
-        return None if self.joint_map is None else load_joint_map(self.joint_map)
+        return None if self.joint_map is None else load_joint_map(Path(self.joint_map))
 
     @cached_property
     def skeleton(self) -> Skeleton | None:

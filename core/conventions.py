@@ -103,9 +103,9 @@ def root_motion(motion: Motion, joint_map: dict[str, str] | None = None) -> Moti
     parents[1] = 0
     offsets = np.vstack([np.zeros(3), skel.offsets])
     offsets[1] = 0.0
-    channels = ((*POSITION_CHANNELS, "Zrotation", "Yrotation", "Xrotation"),) + skel.channels
+    new_channels: tuple[tuple[str, ...], ...] = ((*POSITION_CHANNELS, "Zrotation", "Yrotation", "Xrotation"),)
     ends = tuple((j + 1, o) for j, o in skel.end_sites)
-    out_skel = Skeleton(names, parents, offsets, ends, channels)
+    out_skel = Skeleton(names, parents, offsets, ends, new_channels + skel.channels)
     rots = np.concatenate([root_rot[:, None], motion.rotations], axis=1)
     rots[:, 1] = hip_rot
     trans = np.concatenate([np.zeros((T, 1, 3)), motion.local_translations()], axis=1)

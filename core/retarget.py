@@ -294,7 +294,7 @@ def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndar
     for name, roles in _LIMBS.items():
         if not all(r in mapping.source and r in mapping.target for r in roles):
             continue
-        chain = tuple(mapping.target[r] for r in roles)
+        chain = (mapping.target[roles[0]], mapping.target[roles[1]], mapping.target[roles[2]])
         parents = out.skeleton.parents
         if parents[chain[1]] != chain[0] or parents[chain[2]] != chain[1]:
             continue  # a twist bone inside the limb: not a two-bone chain, left as rotated
