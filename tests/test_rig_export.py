@@ -151,3 +151,19 @@ def test_loop_makes_a_single_cyclic_motion_loop_and_refuses_a_sequence(walk, lib
     assert not (tmp_path / "two.bvh").exists()
     with pytest.raises(ExportError, match="exclude each other"):
         ExportOptions(root_motion=True, in_place=True)
+
+
+@pytest.mark.parametrize("rig", list(RIGS))
+def test_body_parts_of_the_known_rigs(tmp_path, rig):
+    """Contacts, IK and partial actions find each rig's legs, arms, feet and hands by their names."""
+    from text2anim.core.bodyparts import body_map, side_of
+
+    skel = read_bvh(RIGS[rig](tmp_path / "r.bvh")).skeleton
+    bm = body_map(skel)
+    for side in ("left", "right"):
+        sided = {j for j, n in enumerate(skel.names) if side_of(n) == side}
+        assert sided == set(bm.groups[f"{side}_leg"]) | set(bm.groups[f"{side}_arm"])
+        ankle, toe = bm.feet[side]
+        assert skel.names[ankle].lower().split(":")[-1].replace("_", "") in (
+            f"{side}foot", f"{side}ankle", f"foot{side[0]}") and toe != ankle
+        assert "hand" in skel.names[bm.hands[side]].lower() or "wrist" in skel.names[bm.hands[side]].lower()
