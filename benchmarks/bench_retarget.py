@@ -12,9 +12,11 @@ the built-in skeleton. Printed per file:
 - bones: the largest bone-length difference to the character's skeleton
   before (cm), and after (always 0: the clip is retargeted onto it);
 - legs: the leg-length ratio ``s`` target / source;
-- hands, feet: the largest and 95th-percentile distance (cm) between the
-  output's wrists (hands) or ankles and toe joints (feet) and the source's
-  scaled by ``s``, on the frames where a source foot is planted;
+- hands, toes, ankles: the largest and 95th-percentile distance (cm) between
+  the output's wrists, toe joints or ankles and the source's scaled by ``s``,
+  on the frames where a source foot is planted (toes are what retargeting
+  places; ankles follow the foot's own shape; toe heights within 10 cm of the
+  floor are kept unscaled, ``core.retarget.foot_height``);
 - skate: the skating ratio of the source and the output, both resampled to
   30 fps (timetable.md §3): ``core`` is ``core.metrics.skating_ratio``; ``gmd``
   is the either-foot toe definition of §3, computed here;
@@ -51,29 +53,26 @@ def gmd_skating_ratio(m) -> float:
     return float(skating.mean()) if len(skating) else 0.0
 
 
-def effector_errors(src, out, mapping, lift: float) -> tuple[float, float, float, float]:
-    """(hands max, hands p95, feet max, feet p95) in cm on planted frames."""
+def effector_errors(src, out, mapping) -> list[float]:
+    """(max, p95) in cm on planted frames for hands (wrists), toes and ankles."""
     from text2anim.core.contacts import detect_contacts
 
     fc = detect_contacts(src)
     planted = fc.left | fc.right
-    res = []
-    for roles, dy in ((("leftHand", "rightHand"), 0.0), (("leftFoot", "rightFoot", "leftToes", "rightToes"), 0.0)):
-        err = []
-        for r in roles:
-            goal = mapping.scale * src.positions[planted, mapping.source[r]]
-            goal[:, 1] += dy
-            err.append(np.linalg.norm(out.positions[planted, mapping.target[r]] - goal, axis=-1))
-        e = 100 * np.concatenate(err)
+    res: list[float] = []
+    for roles in (("leftHand", "rightHand"), ("leftToes", "rightToes"), ("leftFoot", "rightFoot")):
+        e = 100 * np.concatenate([np.linalg.norm(out.positions[planted, mapping.target[r]]
+                                                 - mapping.scale * src.positions[planted, mapping.source[r]], axis=-1)
+                                  for r in roles])
         res += [float(e.max()), float(np.percentile(e, 95))] if len(e) else [0.0, 0.0]
-    return tuple(res)
+    return res
 
 
 def row(name: str, target) -> list[str]:
     from text2anim.core.bvh import read_bvh
     from text2anim.core.floor import find_floor, place_on_floor
     from text2anim.core.metrics import skating_ratio
-    from text2anim.core.retarget import ankle_height, map_skeletons, retarget
+    from text2anim.core.retarget import map_skeletons, retarget
 
     raw = read_bvh(CMU / f"{name}.bvh", drop_first=True)
     t0, c0 = time.perf_counter(), time.process_time()
@@ -81,16 +80,15 @@ def row(name: str, target) -> list[str]:
     out = retarget(src, target)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     mapping = map_skeletons(src.skeleton, target)
-    lift = ankle_height(target, mapping.target) - mapping.scale * ankle_height(src.skeleton, mapping.source)
     same = src.skeleton.same_hierarchy(target)
     bones = 100 * float(np.abs(np.linalg.norm(src.skeleton.offsets, axis=1)
                                - np.linalg.norm(target.offsets, axis=1)).max()) if same else float("nan")
     after = 100 * float(np.abs(np.linalg.norm(out.skeleton.offsets, axis=1)
                                - np.linalg.norm(target.offsets, axis=1)).max())
-    hmax, h95, fmax, f95 = effector_errors(src, out, mapping, lift)
+    hmax, h95, tmax, t95, amax, a95 = effector_errors(src, out, mapping)
     s30, o30 = src.resample(30), out.resample(30)
     return [name, f"{100 * floor.height:+.2f}", floor.method, f"{100 * find_floor(out).height:+.2f}",
-            f"{bones:.2f}", f"{after:.2f}", f"{mapping.scale:.3f}", f"{hmax:.2f}/{h95:.2f}", f"{fmax:.2f}/{f95:.2f}",
+            f"{bones:.2f}", f"{after:.2f}", f"{mapping.scale:.3f}", f"{hmax:.2f}/{h95:.2f}", f"{tmax:.2f}/{t95:.2f}", f"{amax:.2f}/{a95:.2f}",
             f"{skating_ratio(s30):.3f}>{skating_ratio(o30):.3f}", f"{gmd_skating_ratio(s30):.3f}>{gmd_skating_ratio(o30):.3f}",
             f"{1000 * cpu:.0f}/{1000 * wall:.0f}"]
 
@@ -111,7 +109,7 @@ def main() -> None:
     from text2anim.motiondb.library.skeleton import canonical_skeleton
 
     head = ["clip", "floor cm", "how", "after", "bones cm", "after", "legs s", "hands cm max/p95",
-            "feet cm max/p95", "skate core 30fps", "skate gmd 30fps", "cpu/wall ms"]
+            "toes max/p95", "ankles max/p95", "skate core 30fps", "skate gmd 30fps", "cpu/wall ms"]
     for label, target in ((f"character = {args.character}'s skeleton", read_bvh(CMU / f"{args.character}.bvh").skeleton),
                           ("character = the built-in skeleton", canonical_skeleton())):
         print(f"\n## {label}\n")

@@ -42,6 +42,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.ndimage import maximum_filter1d, uniform_filter1d
 from scipy.spatial.transform import Rotation
 
 from .ik import set_world_rotation, two_bone_ik
@@ -59,6 +60,10 @@ AIM = {
         ("Shoulder", "UpperArm"), ("UpperArm", "LowerArm"), ("LowerArm", "Hand"),
         ("UpperLeg", "LowerLeg"), ("LowerLeg", "Foot"), ("Foot", "Toes"))},
 }
+#: Height (m) below which a toe keeps the source's height above the floor (see :func:`foot_height`).
+GROUND_BAND = 0.10
+#: Seconds over which the hips' lowering (where a leg cannot reach) is spread.
+DROP_WINDOW = 0.2
 _LIMBS = {f"{s}_{k}": (f"{s}{a}", f"{s}{b}", f"{s}{c}") for s in ("left", "right") for k, (a, b, c) in (
     ("leg", ("UpperLeg", "LowerLeg", "Foot")), ("arm", ("UpperArm", "LowerArm", "Hand")))}
 
@@ -282,20 +287,27 @@ def _aim_torso(out: Motion, source: Motion, mapping: Mapping, world: dict[str, n
     return out
 
 
-def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndarray]) -> Motion:
-    """Step 4: chest and shoulders aimed, ankles and wrists onto the scaled source's, their world rotations restored."""
-    _, _, fwd_t = _body_axes(out.skeleton, mapping.target)
-    Gs = source.pose.rotations
-    world = {r: Gs[:, mapping.source[r]] @ A[r] for r in mapping.roles}
-    out = _aim_torso(out, source, mapping, world)
+def foot_height(y: np.ndarray, s: float) -> np.ndarray:
+    """A toe's height on the target: as the source's up to :data:`GROUND_BAND`, scaled by ``s`` above it.
+
+    Contact and the first centimetres of a step are a matter of the ground, not of the body's size:
+    scaled by 0.93, a toe skimming at 5.2 cm would scuff at 4.8 cm (and count as skating, timetable.md
+    section 3); the swing above the band scales with the legs. Continuous at the band.
+    """
+    return np.where(y <= GROUND_BAND, y, GROUND_BAND + s * (y - GROUND_BAND))
+
+
+def _limb_goals(out: Motion, source: Motion, mapping: Mapping, world: dict[str, np.ndarray]):
+    """``[(limb, chain (3,), end-joint goal (T, 3), end world rotation (T, 3, 3))]`` of step 4."""
     src_pos = source.positions
     rest_t = out.skeleton.rest_positions()
     lift = ankle_height(out.skeleton, mapping.target) - mapping.scale * ankle_height(source.skeleton, mapping.source)
+    parents = out.skeleton.parents
+    goals = []
     for name, roles in _LIMBS.items():
         if not all(r in mapping.source and r in mapping.target for r in roles):
             continue
         chain = (mapping.target[roles[0]], mapping.target[roles[1]], mapping.target[roles[2]])
-        parents = out.skeleton.parents
         if parents[chain[1]] != chain[0] or parents[chain[2]] != chain[1]:
             continue  # a twist bone inside the limb: not a two-bone chain, left as rotated
         end_world = world[roles[2]]
@@ -304,9 +316,55 @@ def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndar
         if name.endswith("leg") and toes in mapping.source and toes in mapping.target:
             # the toe where the scaled source's is, the ankle where the foot's own shape puts it
             foot = rest_t[mapping.target[toes]] - rest_t[chain[2]]
-            goal = mapping.scale * src_pos[:, mapping.source[toes]] - end_world @ foot
+            toe = mapping.scale * src_pos[:, mapping.source[toes]]
+            toe[:, 1] = foot_height(src_pos[:, mapping.source[toes], 1], mapping.scale)
+            goal = toe - end_world @ foot
         elif name.endswith("leg"):  # no toes: the target's own ankle height above its sole
             goal[:, 1] += lift
+        goals.append((name, chain, goal, end_world))
+    return goals
+
+
+def _drop_hips(out: Motion, legs, hips: int) -> Motion:
+    """Lower the hips on the frames where a leg cannot reach its ankle goal, smoothly (over :data:`DROP_WINDOW` s).
+
+    ``d = max(0, -v_y - sqrt(c^2 - |v_xz|^2))`` per leg, ``v`` hip joint to goal, ``c`` the chain's
+    length; the larger leg's ``d``, max-filtered then averaged over the window (so never below it).
+    """
+    if not legs:
+        return out
+    pos = out.positions
+    rest = out.skeleton.rest_positions()
+    drops = []
+    for _, (up, mid, end), goal, _ in legs:
+        reach = 0.999 * (np.linalg.norm(rest[mid] - rest[up]) + np.linalg.norm(rest[end] - rest[mid]))
+        v = goal - pos[:, up]
+        flat = np.sqrt(np.maximum(reach ** 2 - v[:, 0] ** 2 - v[:, 2] ** 2, 0.0))
+        drops.append(np.maximum(-v[:, 1] - flat, 0.0))
+    d = np.max(drops, axis=0)
+    if not np.any(d > 0):
+        return out
+    w = max(1, int(round(DROP_WINDOW * out.fps)))
+    d = uniform_filter1d(maximum_filter1d(d, w, mode="nearest"), w, mode="nearest")
+    if hips == 0:
+        root = out.root_positions.copy()
+        root[:, 1] -= d
+        return out.replace(root_positions=root)
+    trans = out.local_translations()
+    trans[:, hips, 1] -= d  # the joints above the hips are unrotated (see retarget)
+    return out.replace(translations=trans)
+
+
+def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndarray]) -> Motion:
+    """Step 4: hips lowered where a leg cannot reach, chest and shoulders aimed, ankles and wrists onto the
+    scaled source's by IK, their world rotations restored."""
+    _, _, fwd_t = _body_axes(out.skeleton, mapping.target)
+    Gs = source.pose.rotations
+    world = {r: Gs[:, mapping.source[r]] @ A[r] for r in mapping.roles}
+    goals = _limb_goals(out, source, mapping, world)
+    out = _drop_hips(out, [g for g in goals if g[0].endswith("leg")], mapping.target["hips"])
+    out = _aim_torso(out, source, mapping, world)
+    for name, chain, goal, end_world in goals:
         hinge = _hinge(out.skeleton, chain, fwd_t, name.endswith("leg"))
         out = two_bone_ik(out, chain, goal, hinge=tuple(hinge))
         out = set_world_rotation(out, chain[2], matrix_to_quat(end_world))
