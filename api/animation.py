@@ -190,7 +190,7 @@ def _write_all(files: dict[Path, bytes]) -> list[Path]:
     return written
 
 
-def animate(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False,
+def animate(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: float = 30.0, skip_unknown: bool = False,
             lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
             smoothness: float = 0.5) -> Animation:
     """Analyse ``text``, schedule it, and synthesise one motion per actor.

@@ -20,8 +20,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from text2anim.core.methods import Method
 from text2anim.core.motion import resampled_frames
 from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
+from text2anim.motiondb.types import Posture
 from text2anim.scheduler import Element, TimeTable
 
 from . import postures
@@ -59,7 +61,7 @@ class _Finder:
             return None
         return hits[0] if hits else None
 
-    def idle(self, posture: str, character: str | None) -> ClipInfo | None:
+    def idle(self, posture: Posture, character: str | None) -> ClipInfo | None:
         """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still."""
         if posture == "standing":
             return self.by_verb(IDLE_VERB, character)
@@ -73,7 +75,7 @@ class _Adder:
         self.next_id = next_id
         self.clips: dict[int, ClipInfo] = {}
 
-    def add(self, actor: str | None, verb: str, info: ClipInfo, method: str, prev: int | None,
+    def add(self, actor: str | None, verb: str, info: ClipInfo, method: Method, prev: int | None,
             start: float, end: float) -> Element:
         e = Element(self.next_id, actor, verb, info.name, method, prev, start, end)
         self.clips[e.id] = info

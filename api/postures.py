@@ -33,13 +33,13 @@ from dataclasses import dataclass, field, replace
 from typing import Any, overload
 
 from text2anim.motiondb import ClipInfo, UnknownVerbError
-from text2anim.motiondb.types import POSTURES
+from text2anim.motiondb.types import POSTURES, Posture
 
 from .clip_timing import timing
 
 #: Verbs whose clips take the actor *into* each posture, tried in this order to build bridges.
 #: Only clips that change posture (start elsewhere, end there), whole-body and not looping, are used.
-BRIDGE_VERBS: dict[str, tuple[str, ...]] = {
+BRIDGE_VERBS: dict[Posture, tuple[str, ...]] = {
     "standing": ("立ち上がる", "起き上がる", "立つ"),
     "seated": ("座る", "腰掛ける"),
     "crouched": ("しゃがみ込む", "しゃがむ"),
@@ -151,7 +151,7 @@ def _changers(db, character: str | None) -> list[ClipInfo]:
     return out
 
 
-def bridges(prev_end_posture: str, next_start_posture: str, db, *, character: str | None = None,
+def bridges(prev_end_posture: Posture, next_start_posture: Posture, db, *, character: str | None = None,
             max_clips: int = MAX_BRIDGE) -> list[ClipInfo]:
     """The clips to play between a clip ending in ``prev_end_posture`` and one starting in ``next_start_posture``.
 
@@ -185,7 +185,7 @@ def bridges(prev_end_posture: str, next_start_posture: str, db, *, character: st
     return []
 
 
-def matching(db, verb: str, posture: str, *, character: str | None = None) -> ClipInfo | None:
+def matching(db, verb: str, posture: Posture, *, character: str | None = None) -> ClipInfo | None:
     """The best clip of ``verb`` that starts and ends in ``posture``, or ``None`` (also for an unknown verb).
 
     For fillers that must not change the posture: the idle clip (待つ) after a

@@ -14,11 +14,16 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Literal, get_args
 
 from .skeleton import Skeleton
 
 #: The groups a partial action may be declared for, plus the whole halves.
-GROUPS = ("lower", "upper", "right_arm", "left_arm", "both_arms", "head", "torso", "right_leg", "left_leg")
+#: A body-part group: what a partial action is declared for (``ClipRecord.body_part``) and what a
+#: composition takes from its clip.
+BodyPart = Literal["lower", "upper", "right_arm", "left_arm", "both_arms", "head", "torso", "right_leg", "left_leg"]
+#: Every :data:`BodyPart`, in this order.
+GROUPS: tuple[BodyPart, ...] = get_args(BodyPart)
 
 _KEYWORDS = (  # first match wins, so "forearm" is an arm before anything else
     ("head", ("neck", "head", "jaw", "eye", "nose", "skull")),

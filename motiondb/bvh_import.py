@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from text2anim.core.bodyparts import BodyMapError
+from text2anim.core.bodyparts import BodyMapError, BodyPart
 from text2anim.core.bvh import BVHError, read_bvh
 from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
@@ -40,7 +40,7 @@ from text2anim.core.skeleton import Skeleton
 
 from .errors import ClipValidationError
 from .records import PreparedClip, prepare_record
-from .types import ClipRecord
+from .types import ClipRecord, Posture
 
 #: ``progress(done, total, path)``: called before each file and once at the end (``path`` ``""``).
 Progress = Callable[[int, int, str], None]
@@ -77,15 +77,15 @@ class ImportOptions:
     objects: tuple[str, ...] = ()
     character: str = "default"
     core: tuple[float, float] | None = None
-    part: str | None = None
+    part: BodyPart | None = None
     cyclic: bool = False
     names: tuple[str, ...] | None = None
     scale: float | str = "auto"
     up: str = "y"
     drop_first: bool = False
     replace: bool = False
-    start_posture: str | None = None
-    end_posture: str | None = None
+    start_posture: Posture | None = None
+    end_posture: Posture | None = None
     joint_map: tuple[tuple[str, str], ...] | None = None
 
     def __post_init__(self) -> None:

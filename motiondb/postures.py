@@ -11,7 +11,7 @@ from text2anim.core.bodyparts import BodyMapError, body_map
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
-from .types import DEFAULT_POSTURE
+from .types import DEFAULT_POSTURE, Posture
 
 #: Hip joints at least this fraction of the leg length above the floor: standing.
 STAND_HIP = 0.75
@@ -38,7 +38,7 @@ def _leg_joints(skel: Skeleton, side: str) -> tuple[int, int, int, int]:
     return hip, knee, ankle, toe
 
 
-def classify_posture(motion: Motion, frame: int = 0) -> str:
+def classify_posture(motion: Motion, frame: int = 0) -> Posture:
     """The posture (one of :data:`motiondb.types.POSTURES`) of one frame of ``motion``.
 
     Heights are measured from the floor, taken as the lowest foot joint's 5th
@@ -89,6 +89,6 @@ def classify_posture(motion: Motion, frame: int = 0) -> str:
     return "seated" if offset > SEAT_OFFSET else "crouched"
 
 
-def clip_postures(motion: Motion) -> tuple[str, str]:
+def clip_postures(motion: Motion) -> tuple[Posture, Posture]:
     """``(start, end)`` postures of a clip: :func:`classify_posture` of its first and last frames."""
     return classify_posture(motion, 0), classify_posture(motion, motion.n_frames - 1)

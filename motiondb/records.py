@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from text2anim.core.bodyparts import GROUPS, BodyMapError
+from text2anim.core.bodyparts import GROUPS, BodyMapError, BodyPart
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
@@ -16,7 +16,7 @@ from .blobs import encode_frames, skeleton_json
 from .errors import ClipValidationError
 from .postures import classify_posture
 from .readings import normalize
-from .types import DEFAULT_POSTURE, POSTURES, ClipRecord
+from .types import DEFAULT_POSTURE, POSTURES, ClipRecord, Posture
 
 #: Longest clip or character name, characters.
 MAX_NAME = 200
@@ -39,12 +39,12 @@ class PreparedClip:
     frames: int
     duration: float
     core: tuple[float, float]
-    body_part: str | None
+    body_part: BodyPart | None
     cyclic: bool
     source: str
     blob: bytes
-    start_posture: str = DEFAULT_POSTURE
-    end_posture: str = DEFAULT_POSTURE
+    start_posture: Posture = DEFAULT_POSTURE
+    end_posture: Posture = DEFAULT_POSTURE
     contacts: list[tuple[str, int, int]] = field(default_factory=list)
 
 

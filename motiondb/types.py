@@ -3,8 +3,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from datetime import datetime
-from typing import Any
+from typing import Any, Literal, get_args
 
+from text2anim.core.bodyparts import BodyPart
 from text2anim.core.motion import Motion
 
 #: The postures a clip starts and ends in (``ClipRecord.start_posture``/``end_posture``):
@@ -19,11 +20,12 @@ from text2anim.core.motion import Motion
 #:
 #: The built-in library declares them per clip; imported clips are classified from their
 #: first and last frames (:func:`motiondb.postures.classify_posture`) unless the importer says.
-POSTURES = ("standing", "seated", "crouched", "kneeling", "lying")
+Posture = Literal["standing", "seated", "crouched", "kneeling", "lying"]
+POSTURES: tuple[Posture, ...] = get_args(Posture)
 
 #: The posture of a clip that declares none and cannot be classified (and of clips stored
 #: before postures existed, until they are classified).
-DEFAULT_POSTURE = "standing"
+DEFAULT_POSTURE: Posture = "standing"
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,11 +54,11 @@ class ClipRecord:
     objects: tuple[str, ...] = ()
     character: str = "default"
     core: tuple[float, float] | None = None
-    body_part: str | None = None
+    body_part: BodyPart | None = None
     cyclic: bool = False
     source: str = ""
-    start_posture: str | None = None
-    end_posture: str | None = None
+    start_posture: Posture | None = None
+    end_posture: Posture | None = None
 
 
 @dataclass(frozen=True)
@@ -91,15 +93,15 @@ class ClipInfo:
     frames: int
     duration: float
     core: tuple[float, float]
-    body_part: str | None
+    body_part: BodyPart | None
     cyclic: bool
     source: str
     created: datetime
     joints: int
     left_contacts: tuple[tuple[int, int], ...] = ()
     right_contacts: tuple[tuple[int, int], ...] = ()
-    start_posture: str = DEFAULT_POSTURE
-    end_posture: str = DEFAULT_POSTURE
+    start_posture: Posture = DEFAULT_POSTURE
+    end_posture: Posture = DEFAULT_POSTURE
 
     @property
     def verb(self) -> str:

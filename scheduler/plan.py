@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
+from text2anim.core.methods import Method
 from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .errors import ScheduleError
@@ -35,7 +36,7 @@ class _Row:
 
     spec: MotionSpec
     clip: ClipTiming
-    method: str
+    method: Method
     prev: int | None
     start: float
     end: float
@@ -114,7 +115,8 @@ class _Planner:
             self._sequence(spec, clip, length, "connection", start=None, delay=link.delay)
 
     # -- whole-body sequence on one actor's track --------------------------------------------
-    def _sequence(self, spec, clip, length, method, start, delay):
+    def _sequence(self, spec: MotionSpec, clip: ClipTiming, length: float, method: Method, start: float | None,
+                  delay: float | None) -> None:
         prev_id = self.last.get(spec.actor)
         if prev_id is None:
             t0 = start if start is not None else 0.0

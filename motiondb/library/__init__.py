@@ -30,7 +30,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from text2anim.motiondb.types import ClipRecord
+from text2anim.motiondb.types import ClipRecord, Posture
 from text2anim.core.motion import Motion
 
 from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, PlantSpec, curves_to_motion, load_json_dir, parse_clip,
@@ -45,7 +45,7 @@ SOURCE = "builtin"
 
 #: The data's ``starts``/``ends`` words -> the database's posture (``hold``: standing with
 #: an object in the hands; ``floor``: lying face down, as ``fall`` ends).
-POSTURE_OF = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched",
+POSTURE_OF: dict[str, Posture] = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched",
               "floor": "lying"}
 
 #: Sole points (heel, ball) in the ankle's frame: what touches the ground.
@@ -74,17 +74,17 @@ class BuiltClip:
         return self.data.raw.get("ends", "stand")
 
     @property
-    def start_posture(self) -> str:
+    def start_posture(self) -> Posture:
         """:attr:`starts` as a :data:`motiondb.types.POSTURES` word (``standing``, ``seated``, ...)."""
         return POSTURE_OF[self.starts]
 
     @property
-    def end_posture(self) -> str:
+    def end_posture(self) -> Posture:
         """:attr:`ends` as a :data:`motiondb.types.POSTURES` word."""
         return POSTURE_OF[self.ends]
 
 
-def _posture(raw: dict, key: str, name: str) -> str:
+def _posture(raw: dict, key: str, name: str) -> Posture:
     word = raw.get(key, "stand")
     if word not in POSTURE_OF:
         raise ClipDataError(f"{name}: {key} must be one of {', '.join(POSTURE_OF)}, not {word!r}")

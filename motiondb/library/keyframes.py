@@ -77,6 +77,7 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline, CubicSpline, PchipInterpolator
 from scipy.spatial.transform import Rotation
 
+from text2anim.core.bodyparts import BodyPart
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
@@ -149,7 +150,7 @@ class ClipData:
     name: str
     verbs: tuple[str, ...]
     objects: tuple[str, ...] = ()
-    body_part: str | None = None
+    body_part: BodyPart | None = None
     cyclic: bool = False
     core: tuple[float, float] | None = None
     duration: float = 0.0
