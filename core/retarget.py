@@ -60,8 +60,9 @@ AIM = {
         ("Shoulder", "UpperArm"), ("UpperArm", "LowerArm"), ("LowerArm", "Hand"),
         ("UpperLeg", "LowerLeg"), ("LowerLeg", "Foot"), ("Foot", "Toes"))},
 }
-#: Height (m) below which a toe keeps the source's height above the floor (see :func:`foot_height`).
-GROUND_BAND = 0.10
+#: Height (m) below which a toe keeps the source's height above the floor (see :func:`foot_height`):
+#: just above the 5 cm under which timetable.md section 3 calls a foot low; the swing above it scales.
+GROUND_BAND = 0.06
 #: Seconds over which the hips' lowering (where a leg cannot reach) is spread.
 DROP_WINDOW = 0.2
 _LIMBS = {f"{s}_{k}": (f"{s}{a}", f"{s}{b}", f"{s}{c}") for s in ("left", "right") for k, (a, b, c) in (
