@@ -23,17 +23,34 @@ Steps, each vectorised over frames (one numpy step per joint):
    the next role down is set in world space.
 3. **Hips.** The source hips' position (its floor at ``y = 0``, see
    :mod:`core.floor`) scaled by ``s = L_t / L_s``, the ratio of leg lengths
-   (:func:`leg_length`: the hips' standing height): height and travel both. A target whose hips are not its root (the Unreal mannequin's
-   ``root``) gets the hips' position as that joint's translation.
-4. **Re-planting.** Two-bone IK (:mod:`core.ik`) puts each ankle on the
-   source ankle's scaled position ``s * p`` on every frame (raised by the
-   difference of the rigs' ankle heights above the sole, ``h_t - s h_s``, so
-   a flat foot stays flat on the floor) and each wrist on the scaled source
-   wrist, and the foot and hand then get their world
-   rotation of step 2 back. Feet therefore plant where the scaled source's
-   do and slide no more than it does (in proportion ``s``). The knee and
-   elbow hinges come from the target's rest pose: a knee flexes backwards
-   (``forward x thigh``), an elbow forwards (``upper arm x forward``).
+   (:func:`leg_length`: the hips' standing height): height and travel both.
+   A target whose hips are not its root (the Unreal mannequin's ``root``)
+   gets the hips' position as that joint's translation.
+4. **Re-planting**, on every frame:
+
+   - each foot's goal: its toe joint on the source toe's scaled position
+     ``s * p`` (its height unscaled within :data:`GROUND_BAND` of the floor,
+     :func:`foot_height`), the foot turned as in step 2, so the ankle goes
+     where the target foot's own shape puts it (a rig without toe joints: the
+     ankle on the scaled source ankle, raised by the rigs' difference in
+     ankle height above the sole);
+   - where a leg cannot reach its goal (a straight stance leg on a rig whose
+     feet or legs are proportioned otherwise) the hips are lowered just
+     enough, smoothly over :data:`DROP_WINDOW`;
+   - the spine's first joint is turned (shortest arc) so the top of the chest
+     points where the scaled source's is, and each shoulder so its upper arm
+     joint does (moved towards the hand's goal when that is out of the arm's
+     reach from there); the neck and upper arms keep their step-2 world
+     rotations. Rigs that split the spine in other places bend it in other
+     places; this puts the arms back where they hang from;
+   - two-bone IK (:mod:`core.ik`) puts the ankles on their goals and the
+     wrists on the scaled source wrists, and the feet and hands get their
+     step-2 world rotations back. The knee and elbow hinges come from the
+     target's rest pose: a knee flexes backwards (``forward x thigh``), an
+     elbow forwards (``upper arm x forward``).
+
+   Feet therefore plant where the scaled source's do and slide no more than
+   they do (in proportion ``s``).
 
 Units: metres, Y up; rotations ``(T, J, 4)`` scipy quaternions ``(x, y, z, w)``.
 """
