@@ -147,10 +147,20 @@ class Animation:
             return {names[0]: path}
         return {n: path.with_name(f"{path.stem}_{n}{path.suffix or '.bvh'}") for n in names}
 
-    def save_bvh(self, path: str | os.PathLike) -> list[Path]:
+    def save_bvh(self, path: str | os.PathLike, export=None) -> list[Path]:
+        """One BVH per actor; ``export`` (:class:`text2anim.export.ExportOptions`): the user's rig,
+        root motion or in place, units, loop."""
         from text2anim.core.bvh import format_bvh
 
-        files = {p: format_bvh(self.motions[n]).encode() for n, p in self.bvh_paths(path).items()}
+        motions = self.motions
+        if export is not None and not export.is_default:
+            from .export import check_loopable, export_motion
+
+            if export.loop:
+                check_loopable(list(self.table.elements),
+                               {k: bool(getattr(c, "cyclic", False)) for k, c in self.planned.clips.items()})
+            motions = {n: export_motion(m, export) for n, m in motions.items()}
+        files = {p: format_bvh(motions[n]).encode() for n, p in self.bvh_paths(path).items()}
         return _write_all(files)
 
     def save_html(self, path: str | os.PathLike) -> Path:

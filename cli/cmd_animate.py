@@ -6,6 +6,7 @@ import sys
 
 from .bvh_options import positive_float
 from .cmd_parse import read_text
+from .export_options import add_export_arguments, export_options
 
 NAME = "animate"
 HELP = "turn a text into animation (the default command: text2anim TEXT ...)"
@@ -27,6 +28,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--no-foot-lock", action="store_true", help="do not lock planted feet during blends")
     p.add_argument("--no-sway", action="store_true", help="do not transfer sway in compositions")
     add_blend_arguments(p)
+    add_export_arguments(p)
 
 
 def add_blend_arguments(p: argparse.ArgumentParser) -> None:
@@ -59,6 +61,7 @@ def run(args: argparse.Namespace) -> int:
     import text2anim
 
     text = read_text(args.text)
+    export = export_options(args)
     _say("analysing, retrieving clips and synthesising ...")
     anim = text2anim.animate(text, args.db, fps=args.fps, skip_unknown=args.skip_unknown,
                              lock_feet=not args.no_foot_lock, sway=not args.no_sway, blend=args.blend,
@@ -67,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
         _say(f"skipped {verb}: not in the motion database")
     for w in anim.report["warnings"]:
         _say(f"warning: {w}")
-    written = anim.save_bvh(args.output)
+    written = anim.save_bvh(args.output, export)
     for extra, save in ((args.html, anim.save_html), (args.glb, anim.save_glb),
                         (args.report, anim.save_report), (args.plot, anim.save_plot)):
         if extra:

@@ -3,8 +3,11 @@
 Names are matched after dropping a namespace prefix (``mixamorig:``) and
 separators; side comes from ``Left``/``Right`` anywhere, or a lone ``L``/``R``
 prefix or suffix (``LHipJoint``, ``hand.L``, ``Hand_R``). A joint whose name
-says nothing (an end effector, a finger) takes its parent's group. Covered:
-CMU/cgspeed, Mixamo and the built-in skeleton (CMU names).
+says nothing (an end effector, a finger, Unreal's ``ball_l``) takes its parent's
+group. A sided hip (SMPL's ``left_hip``) is the top of that leg. Covered:
+CMU/cgspeed, Mixamo, the built-in skeleton (CMU names), VRM humanoid bone
+names, SMPL's 22 joints and the Unreal mannequin (see :mod:`core.rigs` for
+which joint plays which role in retargeting).
 """
 from __future__ import annotations
 
@@ -105,6 +108,8 @@ def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
     for j, name in enumerate(names):
         kind = "hips" if j == 0 else kind_of(name)
         side = side_of(name)
+        if kind == "hips" and j != 0 and side is not None:
+            kind = "leg"  # left_hip (SMPL), LeftHip: the thigh's joint
         if kind in ("arm", "leg"):
             if side is None:
                 p = skel_parents[j]

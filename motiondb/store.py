@@ -34,10 +34,11 @@ from sqlalchemy.orm import Session
 
 from text2anim.core.bodyparts import GROUPS
 from text2anim.core.motion import Motion
+from text2anim.core.skeleton import Skeleton
 
 from . import search as _search
 from .blobs import decode_frames
-from .bvh_import import ImportOptions, Progress, read_clips
+from .bvh_import import ImportOptions, Notify, Progress, read_clips
 from .connect import PG_LOCK_KEY, describe_error, first_line, make_engine
 from .errors import DBError, UnknownCharacterError, UnknownClipError, UnknownVerbError
 from .location import resolve_url
@@ -191,21 +192,30 @@ class MotionDB:
             return clip_infos(s, ids)
 
     def import_bvh(self, paths: Sequence[str | os.PathLike], options: ImportOptions, *,
-                   progress: Progress | None = None) -> list[ClipInfo]:
+                   progress: Progress | None = None, notify: Notify | None = None) -> list[ClipInfo]:
         """Read BVH files and store them as clips (:mod:`motiondb.bvh_import`), all or nothing.
 
-        Every file becomes one clip with the metadata of ``options``. A file
-        that cannot be read or validated raises :class:`ClipValidationError`
-        naming it, and nothing is stored. ``progress(done, total, path)`` is
-        called before each file and once at the end.
+        Every file becomes one clip with the metadata of ``options``, on the
+        floor and on its character's skeleton (retargeted when it was recorded
+        on another). A file that cannot be read, mapped or validated raises
+        :class:`ClipValidationError` naming it, and nothing is stored.
+        ``progress(done, total, path)`` is called before each file and once at
+        the end; ``notify(path, message)`` says what was done to a file.
         """
-        clips = read_clips(paths, options, progress)
+        clips = read_clips(paths, options, progress, skeleton=self.character_skeleton(options.character),
+                           notify=notify)
         with self._session(write=True) as s:
             require_schema(s, self.url)
             ids = store_clips(s, [p for p, _ in clips], self._skeletons,
                               conflicts="replace" if options.replace else "error",
                               where={p.name: str(path) for p, path in clips})
             return clip_infos(s, ids)
+
+    def character_skeleton(self, character: str) -> Skeleton | None:
+        """The skeleton every clip of ``character`` is stored on; ``None`` for a character with no clips."""
+        with self._session() as s:
+            sid = s.scalar(select(Character.skeleton_id).where(Character.name == normalize(character)))
+            return None if sid is None else self._skeletons.get(s, sid)
 
     # ----------------------------------------------------------------- remove
     def remove(self, names: str | Sequence[str]) -> None:

@@ -8,6 +8,7 @@ from text2anim.motiondb import ClipValidationError, ImportOptions
 from shared_data import cmu, requires_cmu
 from text2anim.core import read_bvh
 from text2anim.core.contacts import detect_contacts
+from text2anim.core.floor import place_on_floor
 
 pytestmark = requires_cmu
 
@@ -35,13 +36,17 @@ def test_imported_captures_are_found_by_verb_and_load_unchanged(empty_db):
     original = read_bvh(cmu("02_01_walk"), drop_first=True)
     assert walk.frames == original.n_frames == 343
     assert walk.source.endswith("02_01_walk.bvh") and walk.joints == 31
-    contacts = detect_contacts(original)
+    # same subject as the character's first clip (02_03_run): same skeleton, so only the floor moves
+    floored, floor = place_on_floor(original)
+    assert floor.method == "contacts" and 0.005 < floor.height < 0.05
+    contacts = detect_contacts(floored)
     assert walk.left_contacts == tuple(contacts.intervals("left"))
     assert walk.right_contacts == tuple(contacts.intervals("right"))
     assert len(walk.left_contacts) >= 2 and len(walk.right_contacts) >= 2  # steps of a walk
     loaded = empty_db.load(walk)
     assert np.array_equal(loaded.rotations, original.rotations)
-    assert np.array_equal(loaded.root_positions, original.root_positions)
+    assert np.array_equal(loaded.root_positions[:, [0, 2]], original.root_positions[:, [0, 2]])
+    assert np.allclose(loaded.root_positions[:, 1], original.root_positions[:, 1] - floor.height, atol=1e-12)
     assert np.array_equal(loaded.skeleton.offsets, original.skeleton.offsets)
     assert loaded.skeleton.channels == original.skeleton.channels
 
@@ -72,12 +77,16 @@ def test_one_malformed_file_in_a_batch_imports_nothing(empty_db, tmp_path):
 
 
 def test_another_performer_joins_the_same_character(empty_db):
-    # CMU subjects share the hierarchy but not the proportions: each clip keeps its own offsets.
+    # CMU subjects share the hierarchy but not the proportions: the second is retargeted onto the first's skeleton.
+    notes = []
     empty_db.import_bvh([cmu("02_03_run"), cmu("127_07_run")],
-                        ImportOptions(("走る",), character="cmu", drop_first=True))
+                        ImportOptions(("走る",), character="cmu", drop_first=True),
+                        notify=lambda path, msg: notes.append((path, msg)))
     a, b = empty_db.load("02_03_run"), empty_db.load("127_07_run")
-    assert a.skeleton.same_hierarchy(b.skeleton)
-    assert not np.array_equal(a.skeleton.offsets, b.skeleton.offsets)
+    assert np.array_equal(a.skeleton.offsets, b.skeleton.offsets)
+    src = read_bvh(cmu("127_07_run"), drop_first=True)
+    assert not np.allclose(src.skeleton.offsets, a.skeleton.offsets, atol=0.01)
+    assert [m for p, m in notes if p.endswith("127_07_run.bvh") and m.startswith("retargeted")]
 
 
 def test_postures_of_real_captures_are_classified_on_import(empty_db, tmp_path):
