@@ -18,7 +18,7 @@ from .lexicon import (
 from .predicates import Pred, find_predicate, settle_reason
 from .tokens import is_name
 
-_SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg"}
+_SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
 
 
 @dataclass(frozen=True, slots=True)
@@ -251,7 +251,7 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         elif not pred.motion:
             continue
         elif role == "object":
-            pred.object = _noun(ph)
+            pred.object = _noun(ph) or None  # never an empty string
         elif role == "body part":
             pred.body_part = _body_part(phrases, i)
         elif role == "repeat":

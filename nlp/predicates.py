@@ -46,6 +46,8 @@ class Pred:
     repeat: int = 1
     speed: float = 1.0
     duration: float | None = None
+    delay: float | None = None  # seconds before a motion that opens its track
+    written: str = ""  # the verb in the user's spelling, dictionary form (登る where verb is 上る)
     head: int | None = None  # phrase index of the head motion
     id: int = 0
 
@@ -92,6 +94,7 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
                     first.start, 0)
     else:
         pred = Pred(ph.index, canonical_verb(first), first.kana, first.lemma, first.start, 0)
+        pred.written = first.orth
         if first.lemma == "為る":
             pred.verb, pred.reason = "する", "light"
         elif first.lemma in NON_ACTION_LEMMAS:
