@@ -25,6 +25,7 @@ class Planned:
     table: TimeTable
     clips: dict[int, ClipInfo]
     skipped: tuple[str, ...] = ()
+    fallbacks: tuple = ()  # fallback.Substitution per motion animated with a verb nearest in meaning
 
 
 def foot_moving(info: ClipInfo) -> tuple[tuple[float, float], ...]:
@@ -93,18 +94,27 @@ def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbEr
     return out
 
 
-def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False) -> Planned:
+def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False,
+              fallback: str = "strict") -> Planned:
     """Analyse ``text`` and schedule its motions with clips from ``db``.
 
-    Unknown verbs raise :class:`UnknownVerbError` (naming the nearest verbs the
-    database has) unless ``skip_unknown``, which drops those motions.
+    Unknown verbs raise :class:`UnknownVerbError` (naming every missing verb as
+    written and the database verbs nearest in meaning) unless ``skip_unknown``,
+    which drops those motions, or ``fallback="nearest"``, which animates each with
+    the database verb nearest in meaning (:mod:`text2anim.fallback`).
     """
+    from . import fallback as _fallback
+
     analysis = nlp.analyze(text)
     unknown = unknown_motions(analysis, db)
     skipped: tuple[str, ...] = ()
+    subs: tuple = ()
+    if unknown and fallback == "nearest":
+        analysis, subs = _fallback.substitute(analysis, unknown, db)
+        unknown = {}
     if unknown:
         if not skip_unknown:
-            raise next(iter(unknown.values()))
+            raise _fallback.unknown_error(analysis, unknown, db)
         skipped = tuple(m.verb for m in analysis.motions if m.id in unknown)
         analysis = without(analysis, set(unknown))
         if not analysis.motions:
@@ -116,4 +126,4 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
     if arranged.changed:
         analysis, finder = arranged.analysis, _Finder(db)
         table = plan(analysis, arranged.finder(finder), fps)
-    return Planned(analysis, table, dict(finder.chosen), skipped)
+    return Planned(analysis, table, dict(finder.chosen), skipped, subs)
