@@ -12,8 +12,8 @@ from dataclasses import dataclass
 from .bunsetsu import FUNCTION_POS, Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, MANNER_TE, PERSON_NOUNS, SIDE_PREFIX,
-    SPEED_WORDS,
+    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, LIBRARY_VERBS, MANNER_TE, PERSON_NOUNS,
+    SIDE_PREFIX, SPEED_WORDS,
 )
 from .predicates import Pred, find_predicate, settle_reason
 from .tokens import is_name
@@ -46,6 +46,7 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
         ph.pred = find_predicate(ph, nxt)
         ph.role = "predicate" if ph.pred else _noun_role(ph)
     _assign_groups(phrases)
+    _mark_manner(phrases)
     preds = [ph.pred for ph in phrases if ph.pred]
     _merge_light_verbs(phrases)
     _mark_embedded(phrases)
@@ -144,6 +145,44 @@ def _assign_groups(phrases: list[Phrase]) -> None:
         prev_sentence = ph.sentence
         ph.group = group
         split_next = bool(ph.pred and ph.pred.ending == "final")
+
+
+def _mark_manner(phrases: list[Phrase]) -> None:
+    """音楽に合わせて踊る: a て-clause that only says how its head is done is no motion.
+
+    The rule (language.md §1, "Manner て-forms"; docs in nlp/README.md): a
+    predicate P in て-form is a manner of the next predicate H when
+    1. P modifies H directly: no comma after P, H is the next predicate of its clause;
+    2. P's only complement is a に-marked noun (no を object, no body part), the
+       standard or guide H follows (音楽に, 号令に, 壁に);
+    3. P is not itself a bodily action: not a library verb and no library verb
+       is near it in meaning (``meaning.MIN_SIMILARITY``, chiVe vectors).
+    椅子に座って休む keeps 座る (a library verb), 家に帰って寝る keeps 帰る (near 待つ/歩く).
+    """
+    for i in range(1, len(phrases) - 1):
+        ph, prev = phrases[i], phrases[i - 1]
+        pred = ph.pred
+        if (not pred or pred.reason or pred.ending != "te" or ph.has_comma()
+                or prev.group != ph.group or prev.pred or _case_particle(prev) != "に"):
+            continue
+        if _next_pred(phrases, i) is None:
+            continue
+        args = []
+        for q in reversed(phrases[:i - 1]):
+            if q.group != ph.group or q.pred:
+                break
+            args.append(q.role)
+        if "object" not in args and "body part" not in args and not _bodily(pred.verb):
+            pred.reason = "manner"
+
+
+def _bodily(verb: str) -> bool:
+    """A library verb, or one whose nearest library verb is near in meaning."""
+    if verb in LIBRARY_VERBS:
+        return True
+    from . import meaning  # loads the vectors on first use only
+
+    return bool(meaning.nearest(verb, sorted(LIBRARY_VERBS), n=1, floor=meaning.MIN_SIMILARITY))
 
 
 def _merge_light_verbs(phrases: list[Phrase]) -> None:
