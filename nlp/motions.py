@@ -44,7 +44,9 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
             ph.role = role
             continue
         ph.pred = find_predicate(ph, nxt)
-        ph.role = "predicate" if ph.pred else _noun_role(ph)
+        opens = i == 0 or phrases[i - 1].sentence != ph.sentence
+        ph.role = "predicate" if ph.pred else _noun_role(ph, opens)
+    _bare_objects(phrases)
     _assign_groups(phrases)
     _mark_manner(phrases)
     preds = [ph.pred for ph in phrases if ph.pred]
@@ -84,8 +86,12 @@ def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
     return kind
 
 
-def _noun_role(ph: Phrase) -> str:
+def _noun_role(ph: Phrase, opens: bool = False) -> str:
+    """``opens``: ``ph`` is the first phrase of its sentence (a vocative 花子さん、 there
+    names whom the request is addressed to: the actor, like a topic)."""
     particle = _case_particle(ph)
+    if opens and not any(t.pos1 == "助詞" for t in ph.tokens) and ph.has_comma() and _person(ph):
+        return "actor"
     if particle in ("は", "が", "も") and _person(ph):
         return "actor"
     if particle in ("を", "で"):
@@ -145,6 +151,25 @@ def _assign_groups(phrases: list[Phrase]) -> None:
         prev_sentence = ph.sentence
         ph.group = group
         split_next = bool(ph.pred and ph.pred.ending == "final")
+
+
+def _bare_objects(phrases: list[Phrase]) -> None:
+    """ボール蹴って！ / 手振って / 太郎歩く: casual speech drops を and が; a bare noun right
+    before the predicate (no particle, no comma, not a time word (副詞可能) or a
+    number) is its actor when it names a person, else its object or body part."""
+    for ph, nxt in zip(phrases, phrases[1:]):
+        if ph.role or not nxt.pred or nxt.sentence != ph.sentence or ph.has_comma():
+            continue
+        toks = [t for t in ph.tokens if t.pos1 != "補助記号"]
+        if not toks or any(t.pos1 not in ("名詞", "接頭辞", "接尾辞") for t in toks):
+            continue
+        last = toks[-1]
+        if last.pos1 != "名詞" or last.pos3 == "副詞可能" or last.pos2 == "数詞" or last.is_number:
+            continue
+        if _person(ph):
+            ph.role = "actor"  # 太郎歩く: が dropped too
+        elif not is_name(ph.key):
+            ph.role = "body part" if _noun(ph) in BODY_PARTS else "object"
 
 
 def _mark_manner(phrases: list[Phrase]) -> None:

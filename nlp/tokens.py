@@ -117,8 +117,8 @@ def _tag(line: str, offset: int) -> list[Token]:
     return out
 
 
-#: Particles that mark an actor (a hiragana name is re-split before one of them).
-_ACTOR_PARTICLES = {"は": "係助詞", "が": "格助詞", "も": "係助詞"}
+#: Particles that mark an actor or join actors (a hiragana name is re-split before one of them).
+_ACTOR_PARTICLES = {"は": "係助詞", "が": "格助詞", "も": "係助詞", "と": "格助詞"}
 
 
 def _repair_kana(line: str, offset: int, tokens: list[Token]) -> list[Token]:
@@ -126,7 +126,7 @@ def _repair_kana(line: str, offset: int, tokens: list[Token]) -> list[Token]:
     て (手) before を is tagged the particle て.
 
     A content word cannot start a sentence as an auxiliary or particle, so a
-    hiragana run there that begins with a name (``is_name``) before は/が/も is
+    hiragana run there that begins with a name (``is_name``) before は/が/も/と is
     re-split as name + particle + the rest; a て directly before を is the noun 手.
     """
     out: list[Token] = []

@@ -20,7 +20,7 @@ REQUIRED_CATEGORIES = {
     "sahen", "ojigi", "aspect", "variants", "negation", "relative", "no_complement",
     "manner", "object", "body_part", "repeat", "speed", "duration",
     # issue 14: what users actually write (nlp/README.md)
-    "te_aux", "manner_te", "delay_opening", "kana", "object_adverb", "object_null",
+    "te_aux", "manner_te", "delay_opening", "kana", "object_adverb", "object_null", "request", "casual",
 }
 
 
