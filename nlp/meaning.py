@@ -65,6 +65,14 @@ def forms(verb: str) -> list[str]:
     return list(dict.fromkeys(w for w in out if w))
 
 
+@lru_cache(maxsize=4096)
+def _phrase(verb: str) -> bool:
+    """Is ``verb`` a phrase with a case particle (手を振る, 後ろに下がる) rather than one word?"""
+    from .tokens import tagger
+
+    return any(w.feature.pos2 == "格助詞" for w in tagger()(verb))
+
+
 def vector(verb: str) -> np.ndarray | None:
     """The unit vector ``(D,)`` of ``verb`` (first spelling of ``forms`` in the table), or None."""
     index, vecs = _table()
@@ -78,7 +86,8 @@ def nearest(verb: str, candidates: list[str] | tuple[str, ...], n: int = 3,
             floor: float | None = None) -> list[tuple[str, float]]:
     """The ``n`` candidates nearest ``verb`` by meaning, ``(candidate, cosine)`` best first.
 
-    Candidates without a vector are left out; ties go to the shortest candidate,
+    Candidates without a vector, and phrases (手を振る: the clip also has 振る), are
+    left out; ties go to the shortest candidate,
     then the one that sorts first, so the answer is deterministic.  With ``floor`` only
     candidates at least that near are returned.  Empty if ``verb`` has no vector.
     """
@@ -87,6 +96,8 @@ def nearest(verb: str, candidates: list[str] | tuple[str, ...], n: int = 3,
         return []
     scored = []
     for c in dict.fromkeys(candidates):
+        if _phrase(c):
+            continue  # 足を止める, ステップを踏む: the head verb alone (止める, 踏む) is not its meaning
         cv = vector(c)
         if cv is not None and c != verb:
             s = round(float(cv @ v), 4)
