@@ -135,10 +135,14 @@ def _repair_kana(line: str, offset: int, tokens: list[Token]) -> list[Token]:
         if starts and tok.pos1 in ("助動詞", "助詞") and _ends_in_hiragana(tok.surface):
             fixed = _split_name(line, offset, tok.start - offset)
             if fixed is not None:
-                return out + fixed
+                out.extend(fixed)
+                break
         out.append(tok)
-    return [_as_hand(t) if t.surface == "て" and t.pos1 in ("助詞", "記号") and nxt.surface == "を"
-            and nxt.pos1 == "助詞" else t for t, nxt in zip(out, out[1:] + [out[-1]])] if out else out
+    for i, tok in enumerate(out[:-1]):
+        nxt = out[i + 1]
+        if tok.surface == "て" and tok.pos1 in ("助詞", "記号") and nxt.surface == "を" and nxt.pos1 == "助詞":
+            out[i] = _as_hand(tok)
+    return out
 
 
 def _split_name(line: str, offset: int, at: int) -> list[Token] | None:
