@@ -134,7 +134,7 @@ def _starts_phrase(tok: Token, prev: Token | None, numunit: bool) -> bool:
     if tok.pos1 == "名詞":
         if prev.pos1 == "名詞":
             # compound noun (ガッツ + ポーズ), not まま + 手, nor an adverb written as a
-            # noun before it (うっかり + ボール: UniDic's 副詞可能 in kana)
+            # noun before it (うっかり + ボール, 今日 + ボール: UniDic's 副詞可能)
             return _is_formal(prev) or _adverbial(prev)
         if _is_formal(tok) and _ends_predicate(prev):
             return False  # 上げた + まま, 座る + 前, 上げると + 同時
@@ -153,9 +153,10 @@ def _is_formal(tok: Token) -> bool:
 
 
 def _adverbial(tok: Token) -> bool:
-    """うっかり, しっかり, きちんと: a kana noun UniDic marks 副詞可能 is an adverb, not
-    the first half of a compound noun."""
-    return tok.pos3 == "副詞可能" and all("\u3041" <= ch <= "\u309f" for ch in tok.surface)
+    """うっかり, しっかり, 今日, 毎日, 全部: a noun UniDic marks 副詞可能 before another
+    noun is used as an adverb, not the first half of a compound noun (body parts
+    such as 右手 and 前足 are single tokens)."""
+    return tok.pos3 == "副詞可能"
 
 
 def _ends_predicate(prev: Token) -> bool:
