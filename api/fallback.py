@@ -4,8 +4,9 @@
 (the default): :func:`unknown_error` names every missing verb as the user wrote
 it (登る, not UniDic's lemma 上る) with the database verbs nearest in meaning.
 ``--fallback nearest``: :func:`substitute` replaces each missing verb by the
-nearest database verb whose cosine is at least ``meaning.MIN_SIMILARITY`` and
-records what it did, so the output and the report can say so.
+nearest database verb when it is a real neighbour (cosine at least
+``meaning.MIN_SIMILARITY`` and among the verb's ``meaning.MAX_RANK`` nearest
+vectors in the whole table) and records what it did, so the output and the report can say so.
 """
 from __future__ import annotations
 
@@ -36,23 +37,29 @@ class Substitution:
 
 
 class UnknownVerbsError(UnknownVerbError):
-    """Several motions (or one) whose verbs no clip has; the message names every one."""
+    """Several motions (or one) whose verbs no clip has; the message names every one.
 
-    def __init__(self, missing: list[tuple[str, list[tuple[str, float]]]], hint: bool = True):
+    ``missing``: ``(written verb, [(nearest database verb, cosine), ...], stand-in or None)``
+    per missing verb, where the stand-in is what ``--fallback nearest`` would play.
+    """
+
+    def __init__(self, missing: list[tuple[str, list[tuple[str, float]], str | None]], hint: bool = True):
         self.missing = tuple(missing)
         self.verb = missing[0][0]
         self.suggestions = tuple((v, "") for v, _ in missing[0][1])
         parts = []
-        for written, near in missing:
-            parts.append(f"{written} (nearest by meaning: {', '.join(v for v, _ in near)})" if near
-                         else f"{written} (nothing near in meaning)")
+        for written, near, standin in missing:
+            text = f"nearest by meaning: {', '.join(v for v, _ in near)}" if near else "nothing near in meaning"
+            if hint:
+                text += f"; --fallback nearest would play {standin}" if standin else "; no stand-in near enough"
+            parts.append(f"{written} ({text})")
         noun = "verb" if len(missing) == 1 else "verbs"
-        msg = f"no clip in the motion database for the {noun} " + "; ".join(parts)
+        msg = f"no clip in the motion database for the {noun} " + ", ".join(parts)
         if not hint:
-            msg += f"; none is near enough in meaning to stand in (cosine < {meaning.MIN_SIMILARITY})"
+            msg += (f"; none is near enough in meaning to stand in (cosine >= {meaning.MIN_SIMILARITY} "
+                    f"and among the verb's {meaning.MAX_RANK} nearest words)")
         else:
-            msg += ("; --fallback nearest animates the nearest one, --skip-unknown drops the motion, "
-                    "`text2anim db verbs` lists the verbs there are")
+            msg += "; --skip-unknown drops such motions, `text2anim db verbs` lists the verbs there are"
         Exception.__init__(self, msg)
 
 
@@ -65,16 +72,24 @@ def database_verbs(db: MotionDB) -> list[str]:
     return [v.lemma for v in db.verbs()]
 
 
+def stand_in(verb: str, verbs: list[str]) -> tuple[str, float] | None:
+    """The database verb ``--fallback nearest`` plays for ``verb``: the nearest by meaning,
+    if it is a real neighbour (module docstring); else None."""
+    near = meaning.nearest(verb, verbs, n=1, floor=meaning.MIN_SIMILARITY, within=meaning.MAX_RANK)
+    return near[0] if near else None
+
+
 def unknown_error(analysis: Analysis, unknown: dict[int, UnknownVerbError], db: MotionDB,
                   hint: bool = True) -> UnknownVerbsError:
     """The error for the motions ``unknown``: every missing verb once, as written, with its
-    three nearest database verbs by meaning."""
+    three nearest database verbs by meaning and the stand-in the fallback would play."""
     verbs = database_verbs(db)
-    missing: dict[str, list[tuple[str, float]]] = {}
+    missing: dict[str, tuple] = {}
     for spec in analysis.motions:
         if spec.id in unknown and _written(spec) not in missing:
-            missing[_written(spec)] = meaning.nearest(spec.verb, verbs, n=3)
-    return UnknownVerbsError(list(missing.items()), hint=hint)
+            standin = stand_in(spec.verb, verbs)
+            missing[_written(spec)] = (meaning.nearest(spec.verb, verbs, n=3), standin[0] if standin else None)
+    return UnknownVerbsError([(w, near, st) for w, (near, st) in missing.items()], hint=hint)
 
 
 def substitute(analysis: Analysis, unknown: dict[int, UnknownVerbError],
@@ -82,7 +97,7 @@ def substitute(analysis: Analysis, unknown: dict[int, UnknownVerbError],
     """``analysis`` with each unknown verb replaced by the nearest database verb by meaning.
 
     Raises :class:`UnknownVerbsError` naming the verbs that have nothing near
-    enough (cosine below ``meaning.MIN_SIMILARITY``): no unrelated motion is played.
+    enough (see the module docstring): no unrelated motion is played.
     """
     verbs = database_verbs(db)
     subs: list[Substitution] = []
@@ -92,11 +107,11 @@ def substitute(analysis: Analysis, unknown: dict[int, UnknownVerbError],
         if spec.id not in unknown:
             specs.append(spec)
             continue
-        near = meaning.nearest(spec.verb, verbs, n=1, floor=meaning.MIN_SIMILARITY)
-        if not near:
+        near = stand_in(spec.verb, verbs)
+        if near is None:
             far[spec.id] = unknown[spec.id]
             continue
-        used, score = near[0]
+        used, score = near
         subs.append(Substitution(spec.id, _written(spec), used, score))
         specs.append(replace(spec, verb=used, reading=""))
     if far:

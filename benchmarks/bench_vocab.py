@@ -9,7 +9,8 @@ Nothing here comes from the project's corpus.
 
 For each verb: (a) the built-in library has a clip for it (by lemma, synonym or
 reading, as the planner searches); else the nearest library verb by meaning
-(``nlp.meaning``, cosine >= MIN_SIMILARITY) is what ``--fallback nearest`` plays,
+(``nlp.meaning``: cosine >= MIN_SIMILARITY and among the verb's MAX_RANK nearest
+vectors) is what ``--fallback nearest`` plays,
 and JUDGE holds my judgement as a native-level reader whether that stand-in is
 acceptable (True) or not (False); (c) nothing: no clip and no verb near enough.
 Usage: python benchmarks/bench_vocab.py [--list]
@@ -156,7 +157,7 @@ def classify(db) -> list[tuple[str, str, str, float | None]]:
         if hit:
             out.append((verb, "a", hit[0].name, None))
             continue
-        near = meaning.nearest(spec.verb, verbs, n=1, floor=meaning.MIN_SIMILARITY)
+        near = meaning.nearest(spec.verb, verbs, n=1, floor=meaning.MIN_SIMILARITY, within=meaning.MAX_RANK)
         if not near:
             out.append((verb, "c", "", None))
             continue

@@ -42,22 +42,31 @@ def test_error_names_every_missing_verb_as_written(library_db):
 
 def test_fallback_nearest_animates_and_says_so(library_db, tmp_path):
     out, report = tmp_path / "a.bvh", tmp_path / "r.json"
-    strict = run("太郎は本を読む。", "-o", out, "--db", library_db)
-    assert strict.returncode == 2 and not out.exists() and "読む" in strict.stderr
-    proc = run("太郎は本を読む。", "-o", out, "--db", library_db, "--fallback", "nearest", "--report", report)
+    strict = run("太郎は山に登る。", "-o", out, "--db", library_db)
+    assert strict.returncode == 2 and not out.exists() and "登る" in strict.stderr
+    proc = run("太郎は山に登る。", "-o", out, "--db", library_db, "--fallback", "nearest", "--report", report)
     assert proc.returncode == 0, proc.stderr
-    assert "fallback: 読む → 見る" in proc.stderr
+    assert "fallback: 登る → 歩く" in proc.stderr
     data = json.loads(report.read_text())
-    assert data["fallbacks"] == [{"id": 1, "asked": "読む", "animated_as": "見る",
-                                  "similarity": data["fallbacks"][0]["similarity"]}]
+    assert [(f["id"], f["asked"], f["animated_as"]) for f in data["fallbacks"]] == [(1, "登る", "歩く")]
     assert data["fallbacks"][0]["similarity"] >= meaning.MIN_SIMILARITY
-    assert [e["verb"] for e in data["time_table"]] == ["見る"]
+    assert [e["verb"] for e in data["time_table"]] == ["歩く"]
 
 
-def test_fallback_refuses_a_verb_nothing_is_near(library_db, tmp_path):
-    proc = run("太郎は掃除する。", "-o", tmp_path / "a.bvh", "--db", library_db, "--fallback", "nearest")
-    assert proc.returncode == 2 and "掃除する" in proc.stderr and "near enough" in proc.stderr
+@pytest.mark.parametrize("text, verb", [("太郎は掃除する。", "掃除する"), ("太郎は本を読む。", "読む")])
+def test_fallback_refuses_a_verb_nothing_is_near(library_db, tmp_path, text, verb):
+    """掃除する: no library verb is even loosely near; 読む: 見る (look around) is the
+    nearest library verb but only its ~60th neighbour, so no stand-in is played."""
+    proc = run(text, "-o", tmp_path / "a.bvh", "--db", library_db, "--fallback", "nearest")
+    assert proc.returncode == 2 and verb in proc.stderr and "near enough" in proc.stderr
     assert "Traceback" not in proc.stderr and not (tmp_path / "a.bvh").exists()
+
+
+def test_neighbour_rank_is_required_beside_the_cosine():
+    lib = ["歩く", "走る", "見る", "座る"]
+    assert meaning.nearest("読む", lib, n=1, floor=meaning.MIN_SIMILARITY) == [("見る", pytest.approx(0.61, abs=0.02))]
+    assert meaning.nearest("読む", lib, n=1, floor=meaning.MIN_SIMILARITY, within=meaning.MAX_RANK) == []
+    assert meaning.nearest("登る", lib, n=1, within=meaning.MAX_RANK)[0][0] == "歩く"
 
 
 def test_delay_that_opens_the_text_delays_the_first_motion(library_db):
