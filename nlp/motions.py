@@ -182,7 +182,7 @@ def _mark_manner(phrases: list[Phrase]) -> None:
        standard or guide H follows (音楽に, 号令に, 壁に);
     3. P is not itself a bodily action: not a library verb and no library verb
        is near it in meaning (``meaning.MIN_SIMILARITY``, chiVe vectors).
-    椅子に座って休む keeps 座る (a library verb), 家に帰って寝る keeps 帰る (near 待つ/歩く).
+    椅子に座って手を振る keeps 座る (a library verb), 家に帰って寝る keeps 帰る (near 待つ/歩く).
     """
     for i in range(1, len(phrases) - 1):
         ph, prev = phrases[i], phrases[i - 1]
