@@ -112,6 +112,7 @@ class Animation:
             "elements": {str(k): v for k, v in self.result.elements.items()},
             "actors": whole,
             "skipped": list(self.planned.skipped),
+            **({"fallbacks": [f.to_dict() for f in self.planned.fallbacks]} if self.planned.fallbacks else {}),
             "warnings": list(self.result.warnings),
         }
 
@@ -202,7 +203,7 @@ def _write_all(files: dict[Path, bytes]) -> list[Path]:
 
 def animate(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: float = 30.0, skip_unknown: bool = False,
             lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
-            smoothness: float = 0.5) -> Animation:
+            smoothness: float = 0.5, fallback: str = "strict") -> Animation:
     """Analyse ``text``, schedule it, and synthesise one motion per actor.
 
     Args:
@@ -210,6 +211,8 @@ def animate(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: f
             ``None`` for the default database (the built-in library on first use).
         fps: output frame rate.
         skip_unknown: drop motions whose verb the database lacks instead of failing.
+        fallback: ``nearest`` animates such a motion with the database verb nearest in
+            meaning (said in ``planned.fallbacks`` and the report); ``strict`` (default) refuses.
         lock_feet, sway: the synthesis options of paper 003 (foot locking, sway transfer).
         blend: how consecutive motions are joined: ``optimal`` (paper 000, the default),
             ``constraint`` (paper 003), ``pose`` or ``crossfade`` (the common baselines);
@@ -226,7 +229,7 @@ def animate(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: f
         raise OutputError(f"smoothness must be between 0 (time first) and 1 (smoothness first), not {smoothness}")
     opened = db if isinstance(db, MotionDB) else MotionDB.open(db)
     try:
-        planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown)
+        planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback)
         tracks = build_tracks(planned, opened, fps)
     finally:
         if opened is not db:

@@ -32,6 +32,7 @@ class Planned:
     clips: dict[int, ClipInfo]
     skipped: tuple[str, ...] = ()
     fillers: tuple[int, ...] = ()
+    fallbacks: tuple = ()  # fallback.Substitution per motion animated with a verb nearest in meaning
 
 
 class ClipFinder:
@@ -81,20 +82,29 @@ def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbEr
     return out
 
 
-def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False) -> Planned:
+def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False,
+              fallback: str = "strict") -> Planned:
     """Analyse ``text`` and schedule its motions with clips from ``db``, the waits filled.
 
     The table holds everything that will play: the text's motions, the clips
     bridging postures (:mod:`text2anim.postures`) and the stops and idles in
-    the waits (:mod:`text2anim.fillers`). Unknown verbs raise :class:`UnknownVerbError` (naming the nearest verbs the
-    database has) unless ``skip_unknown``, which drops those motions.
+    the waits (:mod:`text2anim.fillers`). Unknown verbs raise :class:`UnknownVerbError`
+    (naming every missing verb as written and the database verbs nearest in meaning)
+    unless ``skip_unknown``, which drops those motions, or ``fallback="nearest"``, which
+    animates each with the database verb nearest in meaning (:mod:`text2anim.fallback`).
     """
+    from . import fallback as _fallback
+
     analysis = nlp.analyze(text)
     unknown = unknown_motions(analysis, db)
     skipped: tuple[str, ...] = ()
+    subs: tuple = ()
+    if unknown and fallback == "nearest":
+        analysis, subs = _fallback.substitute(analysis, unknown, db)
+        unknown = {}
     if unknown:
         if not skip_unknown:
-            raise next(iter(unknown.values()))
+            raise _fallback.unknown_error(analysis, unknown, db)
         skipped = tuple(m.verb for m in analysis.motions if m.id in unknown)
         analysis = without(analysis, set(unknown))
         if not analysis.motions:
@@ -107,4 +117,4 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
         analysis, finder = arranged.analysis, ClipFinder(db)
         table = plan(analysis, arranged.finder(finder), fps)
     filled = fill_waits(table, dict(finder.chosen), db, fps)
-    return Planned(analysis, filled.table, filled.clips, skipped, filled.fillers)
+    return Planned(analysis, filled.table, filled.clips, skipped, filled.fillers, subs)

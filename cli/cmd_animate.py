@@ -25,6 +25,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--db", metavar="URL", help="motion database (SQLAlchemy URL or SQLite path; "
                    "default: $TEXT2ANIM_DB or the user's data directory)")
     p.add_argument("--skip-unknown", action="store_true", help="drop motions whose verb the database lacks")
+    p.add_argument("--fallback", choices=("strict", "nearest"), default="strict",
+                   help="a verb the database lacks: strict (default) stops with the nearest verbs by meaning; "
+                        "nearest animates the database verb nearest in meaning and says so")
     p.add_argument("--no-foot-lock", action="store_true", help="do not lock planted feet during blends")
     p.add_argument("--no-sway", action="store_true", help="do not transfer sway in compositions")
     add_blend_arguments(p)
@@ -65,7 +68,9 @@ def run(args: argparse.Namespace) -> int:
     _say("analysing, retrieving clips and synthesising ...")
     anim = text2anim.animate(text, args.db, fps=args.fps, skip_unknown=args.skip_unknown,
                              lock_feet=not args.no_foot_lock, sway=not args.no_sway, blend=args.blend,
-                             smoothness=args.smoothness)
+                             smoothness=args.smoothness, fallback=args.fallback)
+    for sub in anim.planned.fallbacks:
+        _say(f"fallback: {sub}")
     for verb in anim.planned.skipped:
         _say(f"skipped {verb}: not in the motion database")
     for w in anim.report["warnings"]:

@@ -119,7 +119,7 @@ class _Planner:
                   delay: float | None) -> None:
         prev_id = self.last.get(spec.actor)
         if prev_id is None:
-            t0 = start if start is not None else 0.0
+            t0 = start if start is not None else (spec.delay or 0.0)  # 3秒後に歩く: held back
             row = _Row(spec, clip, "initial", None, t0, t0 + length)
         else:
             prev = self.rows[prev_id]

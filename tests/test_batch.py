@@ -19,6 +19,8 @@ REQUIRED_CATEGORIES = {
     "shibaraku", "delay_arabic", "delay_fullwidth", "delay_kanji", "sugu", "actors",
     "sahen", "ojigi", "aspect", "variants", "negation", "relative", "no_complement",
     "manner", "object", "body_part", "repeat", "speed", "duration",
+    # issue 14: what users actually write (nlp/README.md)
+    "te_aux", "manner_te", "delay_opening", "kana", "object_adverb", "object_null", "request", "casual",
 }
 
 
