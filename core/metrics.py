@@ -199,7 +199,8 @@ def at_rate(motion: Motion, fps: float | None = COMPARE_FPS) -> Motion:
 
 def window_frames(fps: float, window: tuple[float, float]) -> tuple[int, int]:
     """Frames ``[a, b)`` whose times lie in ``[t0, t1)`` seconds at ``fps``."""
-    return tuple(int(np.ceil(t * fps - 1e-9)) for t in window)
+    t0, t1 = window
+    return int(np.ceil(t0 * fps - 1e-9)), int(np.ceil(t1 * fps - 1e-9))
 
 
 def quality(motion: Motion, fps: float | None = COMPARE_FPS, window: tuple[float, float] | None = None,
