@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from . import quat
 from .motion import Motion
 from .skeleton import POSITION_CHANNELS, ROTATION_CHANNELS, Skeleton
 
@@ -233,16 +234,12 @@ def _parse_frames(lines: list[str], first: int, frames: int, n_channels: int, so
                        + (" (truncated?)" if len(data_lines) < frames else ""))
     if frames == 0:
         return np.zeros((0, n_channels))
-    tokens = " ".join(data_lines).split()
-    if len(tokens) != frames * n_channels:
-        raise _locate_bad_value(lines, first, n_channels, source)
-    try:
-        values = np.array(tokens, dtype=np.float64)
+    try:  # numpy's C reader: whitespace-separated, one frame per line, no comment syntax
+        values = np.loadtxt(data_lines, dtype=np.float64, comments=None, ndmin=2)
     except ValueError:
         raise _locate_bad_value(lines, first, n_channels, source) from None
-    if not np.all(np.isfinite(values)):
+    if values.shape != (frames, n_channels) or not np.all(np.isfinite(values)):
         raise _locate_bad_value(lines, first, n_channels, source)
-    values = values.reshape(frames, n_channels)
     return values
 
 
@@ -275,23 +272,32 @@ def guess_scale(skeleton: Skeleton) -> float:
     raise BVHError(f"cannot guess the length unit of a skeleton {h:.3g} units tall; pass an explicit scale")
 
 
-def _euler_to_quat(values: np.ndarray, order: str) -> np.ndarray:
-    if not order:
-        return np.tile([0.0, 0.0, 0.0, 1.0], (len(values), 1))
-    return Rotation.from_euler(order, values, degrees=True).as_quat()
+def _rotation_columns(skel: Skeleton) -> dict[str, tuple[list[int], list[list[int]]]]:
+    """Joints grouped by Euler order: ``order -> (joints, their rotation columns in the frame data)``."""
+    groups: dict[str, tuple[list[int], list[list[int]]]] = {}
+    col = 0
+    for j, chans in enumerate(skel.channels):
+        cols = [col + k for k, c in enumerate(chans) if c in ROTATION_CHANNELS]
+        joints, columns = groups.setdefault(skel.rotation_order(j), ([], []))
+        joints.append(j)
+        columns.append(cols)
+        col += len(chans)
+    return groups
 
 
 def _build_motion(skel: Skeleton, data: np.ndarray, fps: float) -> Motion:
+    """Frame data ``(T, C)`` to a motion: one vectorised Euler conversion per distinct rotation order."""
     T, J = len(data), skel.n_joints
     rotations = np.empty((T, J, 4))
+    for order, (joints, columns) in _rotation_columns(skel).items():
+        angles = data[:, np.array(columns, dtype=np.intp).reshape(len(joints), len(order))]  # (T, Jg, n)
+        rotations[:, joints] = quat.from_euler(order, angles, degrees=True)
     root = np.tile(skel.offsets[0], (T, 1))
     trans = None
     col = 0
     for j, chans in enumerate(skel.channels):
         block = data[:, col:col + len(chans)]
         col += len(chans)
-        rot_idx = [k for k, c in enumerate(chans) if c in ROTATION_CHANNELS]
-        rotations[:, j] = _euler_to_quat(block[:, rot_idx], skel.rotation_order(j))
         pos_idx = {c[0]: k for k, c in enumerate(chans) if c in POSITION_CHANNELS}
         if not pos_idx:
             continue
