@@ -123,18 +123,25 @@ class Motion:
 
     @cached_property
     def pose(self) -> Pose:
-        """Forward kinematics, vectorised over frames (one step per joint)."""
-        local_r = quat_to_matrix(self.rotations)
-        local_t = self.local_translations()
+        """Forward kinematics, vectorised over frames and over the joints of each tree depth.
+
+        Computed once per motion; :meth:`frames` of a motion whose pose is known slices it
+        (each frame's kinematics depends on that frame alone).
+        """
+        # joint-major (J, T, ...) so that a depth's joints are gathered as whole blocks
+        local_r = quat_to_matrix(self.rotations).transpose(1, 0, 2, 3).copy()
+        local_t = self.local_translations().transpose(1, 0, 2).copy()
         world_r = np.empty_like(local_r)
         world_p = np.empty_like(local_t)
-        for j, p in enumerate(self.skeleton.parents):
-            if p < 0:
-                world_r[:, j] = local_r[:, j]
-                world_p[:, j] = local_t[:, j]
-            else:
-                world_r[:, j] = world_r[:, p] @ local_r[:, j]
-                world_p[:, j] = world_p[:, p] + np.einsum("tij,tj->ti", world_r[:, p], local_t[:, j])
+        world_r[0] = local_r[0]
+        world_p[0] = local_t[0]
+        for joints, parents in self.skeleton.depth_levels():
+            parent_r = world_r[parents]
+            world_r[joints] = parent_r @ local_r[joints]
+            world_p[joints] = world_p[parents] + np.einsum("ntij,ntj->nti", parent_r, local_t[joints])
+        # back to (T, J, ...) in C order: reductions over these arrays sum in the same order as before
+        world_r = np.ascontiguousarray(world_r.transpose(1, 0, 2, 3))
+        world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2))
         world_r.setflags(write=False)
         world_p.setflags(write=False)
         return Pose(world_p, world_r)
@@ -160,8 +167,12 @@ class Motion:
     def frames(self, start: int, stop: int | None = None) -> "Motion":
         """Frames ``start`` .. ``stop - 1`` (Python slice semantics)."""
         sl = slice(start, stop)
-        return Motion(self.skeleton, self.fps, self.root_positions[sl], self.rotations[sl],
-                      None if self.translations is None else self.translations[sl])
+        out = Motion(self.skeleton, self.fps, self.root_positions[sl], self.rotations[sl],
+                     None if self.translations is None else self.translations[sl])
+        known = self.__dict__.get("pose")
+        if known is not None:  # FK is per frame: the slice of the known pose is the pose of the slice
+            out.__dict__["pose"] = Pose(known.positions[sl], known.rotations[sl])
+        return out
 
     def __getitem__(self, sl: slice) -> "Motion":
         if not isinstance(sl, slice) or sl.step not in (None, 1):
