@@ -89,6 +89,11 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
     the waits (:mod:`text2anim.fillers`). Unknown verbs raise :class:`UnknownVerbError` (naming the nearest verbs the
     database has) unless ``skip_unknown``, which drops those motions.
     """
+    with db.memoised():  # the same motions are searched again by each step below
+        return _plan(text, db, fps, skip_unknown)
+
+
+def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool) -> Planned:
     analysis = nlp.analyze(text)
     unknown = unknown_motions(analysis, db)
     skipped: tuple[str, ...] = ()
