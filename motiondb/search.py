@@ -46,7 +46,7 @@ from datetime import timezone
 from functools import lru_cache
 from typing import Any
 
-from sqlalchemy import Integer, and_, bindparam, case, exists, func, or_, select
+from sqlalchemy import Integer, and_, bindparam, case, func, or_, select
 from sqlalchemy.orm import Session
 
 from .readings import normalize, reading
@@ -100,70 +100,72 @@ def _aggregate(postgres: bool, *columns):
     return func.json_group_array(func.json_array(*columns))
 
 
+_CL, _CH, _SK, _VB, _CV = Clip.__table__, Character.__table__, SkeletonRow.__table__, Verb.__table__, ClipVerb.__table__
+_OB, _CO, _CT = ObjectRow.__table__, ClipObject.__table__, Contact.__table__
+
+
 @lru_cache(maxsize=256)
-def _search_statement(objects: bool, prefer: bool, body_part: str | None, character: bool, limit: bool,
-                      postgres: bool, posture: bool):
+def _search_statement(body_part: str | None, character: bool, limit: bool, postgres: bool):
     """Matching, ranking and every :class:`ClipInfo` field of the hits in one SELECT (see the module docstring).
 
     The verb, object and character names are bound parameters matched inside the
     query (no id look-ups first); the ranked ids (``LIMIT`` applied) are an inner
     query, and the verbs, objects and contacts of those hits only are aggregated
-    as JSON arrays by the outer one.
+    as JSON arrays by the outer one. The object, preferred character and start posture
+    are always bound (``NULL`` when not asked: their tiers are then the same for every
+    clip), so a process compiles few variants. Built on the tables, not the ORM classes
+    (cheaper to compile).
     """
     lemma = bindparam("lemma")
-    exact = Verb.lemma == lemma
-    verb_tier = case((and_(exact, ClipVerb.is_primary), 0), (exact, 1), (ClipVerb.is_primary, 2), else_=3)
+    exact = _VB.c.lemma == lemma
+    verb_tier = case((and_(exact, _CV.c.is_primary), 0), (exact, 1), (_CV.c.is_primary, 2), else_=3)
     per_clip = (
-        select(ClipVerb.clip_id.label("clip_id"), func.min(verb_tier).label("verb_tier"))
-        .join(Verb, Verb.id == ClipVerb.verb_id)
-        .where(or_(exact, Verb.reading == bindparam("reading")))
-        .group_by(ClipVerb.clip_id)
+        select(_CV.c.clip_id.label("clip_id"), func.min(verb_tier).label("verb_tier"))
+        .join(_VB, _VB.c.id == _CV.c.verb_id)
+        .where(or_(exact, _VB.c.reading == bindparam("reading")))
+        .group_by(_CV.c.clip_id)
         .subquery()
     )
-    if objects:  # clips declaring it (0) < clips declaring none (1) < clips declaring others (2)
-        matched = or_(ObjectRow.name == bindparam("object"), ObjectRow.reading == bindparam("object_reading"))
-        object_tier = func.coalesce(
-            select(func.min(case((matched, 0), else_=2))).select_from(ClipObject)
-            .join(ObjectRow, ObjectRow.id == ClipObject.object_id)
-            .where(ClipObject.clip_id == Clip.id).scalar_subquery(), 1)
-    else:
-        object_tier = case((exists().where(ClipObject.clip_id == Clip.id), 1), else_=0)
+    # clips declaring the object (0) < clips declaring none (1) < clips declaring others (2)
+    matched = or_(_OB.c.name == bindparam("object"), _OB.c.reading == bindparam("object_reading"))
+    object_tier = func.coalesce(
+        select(func.min(case((matched, 0), else_=2))).select_from(_CO)
+        .join(_OB, _OB.c.id == _CO.c.object_id)
+        .where(_CO.c.clip_id == _CL.c.id).scalar_subquery(), 1)
     keys = [object_tier.label("object_tier"), per_clip.c.verb_tier.label("verb_tier")]
-    stmt = (select(Clip.id.label("id"), Clip.name.label("name")).join(per_clip, per_clip.c.clip_id == Clip.id)
-            .join(Character, Character.id == Clip.character_id))
-    if prefer:
-        keys.insert(0, case((Character.name == bindparam("prefer"), 0), else_=1).label("character_tier"))
+    stmt = (select(_CL.c.id.label("id"), _CL.c.name.label("name")).join(per_clip, per_clip.c.clip_id == _CL.c.id)
+            .join(_CH, _CH.c.id == _CL.c.character_id))
+    keys.insert(0, case((_CH.c.name == bindparam("prefer"), 0), else_=1).label("character_tier"))
     if body_part is not None:
         mirror = MIRROR_PART.get(body_part)
         parts = [body_part] + ([mirror] if mirror else [])
-        stmt = stmt.where(or_(Clip.body_part.in_(parts), Clip.body_part.is_(None)))
-        whens = [(Clip.body_part == body_part, 0)] + ([(Clip.body_part == mirror, 1)] if mirror else [])
+        stmt = stmt.where(or_(_CL.c.body_part.in_(parts), _CL.c.body_part.is_(None)))
+        whens = [(_CL.c.body_part == body_part, 0)] + ([(_CL.c.body_part == mirror, 1)] if mirror else [])
         keys.insert(len(keys) - 2, case(*whens, else_=2).label("part_tier"))
-    if posture:
-        keys.insert(len(keys) - 2, case((Clip.start_posture == bindparam("posture"), 0), else_=1).label("posture_tier"))
+    keys.insert(len(keys) - 2, case((_CL.c.start_posture == bindparam("posture"), 0), else_=1).label("posture_tier"))
     if character:
-        stmt = stmt.where(Character.name == bindparam("character"))
+        stmt = stmt.where(_CH.c.name == bindparam("character"))
     tiers = stmt.add_columns(*keys).subquery()  # each key computed once per matching clip
     order = [tiers.c[k.name] for k in keys] + [tiers.c.name.collate("C") if postgres else tiers.c.name]
     ranked = select(tiers.c.id, func.row_number().over(order_by=order).label("rank")).order_by(*order)
     if limit:
         ranked = ranked.limit(bindparam("limit", type_=Integer))
     hits = ranked.subquery()
-    verbs = (select(_aggregate(postgres, ClipVerb.position, Verb.lemma)).join(Verb, Verb.id == ClipVerb.verb_id)
-             .where(ClipVerb.clip_id == Clip.id).scalar_subquery())
-    objs = (select(_aggregate(postgres, ClipObject.position, ObjectRow.name))
-            .join(ObjectRow, ObjectRow.id == ClipObject.object_id)
-            .where(ClipObject.clip_id == Clip.id).scalar_subquery())
-    contacts = (select(_aggregate(postgres, Contact.side, Contact.start_frame, Contact.stop_frame))
-                .where(Contact.clip_id == Clip.id).scalar_subquery())
-    return (select(Clip.name, Character.name.label("character"), Clip.fps, Clip.frames, Clip.duration,
-                   Clip.core_begin, Clip.core_end, Clip.body_part, Clip.cyclic, Clip.source, Clip.created,
-                   Clip.start_posture, Clip.end_posture, SkeletonRow.n_joints,
+    verbs = (select(_aggregate(postgres, _CV.c.position, _VB.c.lemma)).join(_VB, _VB.c.id == _CV.c.verb_id)
+             .where(_CV.c.clip_id == _CL.c.id).scalar_subquery())
+    objs = (select(_aggregate(postgres, _CO.c.position, _OB.c.name))
+            .join(_OB, _OB.c.id == _CO.c.object_id)
+            .where(_CO.c.clip_id == _CL.c.id).scalar_subquery())
+    contacts = (select(_aggregate(postgres, _CT.c.side, _CT.c.start_frame, _CT.c.stop_frame))
+                .where(_CT.c.clip_id == _CL.c.id).scalar_subquery())
+    return (select(_CL.c.name, _CH.c.name.label("character"), _CL.c.fps, _CL.c.frames, _CL.c.duration,
+                   _CL.c.core_begin, _CL.c.core_end, _CL.c.body_part, _CL.c.cyclic, _CL.c.source, _CL.c.created,
+                   _CL.c.start_posture, _CL.c.end_posture, _SK.c.n_joints,
                    verbs.label("verbs"), objs.label("objects"), contacts.label("contacts"))
             .select_from(hits)
-            .join(Clip, Clip.id == hits.c.id)
-            .join(Character, Character.id == Clip.character_id)
-            .join(SkeletonRow, SkeletonRow.id == Clip.skeleton_id)
+            .join(_CL, _CL.c.id == hits.c.id)
+            .join(_CH, _CH.c.id == _CL.c.character_id)
+            .join(_SK, _SK.c.id == _CL.c.skeleton_id)
             .order_by(hits.c.rank))
 
 
@@ -194,18 +196,14 @@ def find(session: Session, verb: str, *, object: str | None = None, character: s
     """The matching clips' :class:`ClipInfo`, best first, in one SQL statement (names as the user wrote them)."""
     lemma = normalize(verb)
     obj = normalize(object) if object is not None else ""
-    stmt = _search_statement(bool(obj), bool(prefer_character), body_part, character is not None,
-                             limit is not None, session.get_bind().dialect.name == "postgresql",
-                             prefer_start_posture is not None)
-    params: dict[str, Any] = {"lemma": lemma, "reading": reading(lemma)}
-    if obj:
-        params["object"], params["object_reading"] = obj, reading(obj)
-    if prefer_character:
-        params["prefer"] = normalize(prefer_character)
+    stmt = _search_statement(body_part, character is not None, limit is not None,
+                             session.get_bind().dialect.name == "postgresql")
+    params: dict[str, Any] = {"lemma": lemma, "reading": reading(lemma), "object": obj or None,
+                              "object_reading": reading(obj) if obj else None,
+                              "prefer": normalize(prefer_character) if prefer_character else None,
+                              "posture": prefer_start_posture}
     if character is not None:
         params["character"] = normalize(character)
-    if prefer_start_posture is not None:
-        params["posture"] = prefer_start_posture
     if limit is not None:
         params["limit"] = int(limit)
     return [_info(r) for r in session.execute(stmt, params)]
