@@ -30,7 +30,6 @@ import re
 from pathlib import Path
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from . import quat
 from .motion import Motion
@@ -41,8 +40,7 @@ CMU_UNIT = 0.0254 / 0.45
 
 _VALID_CHANNELS = {c.upper(): c for c in POSITION_CHANNELS + ROTATION_CHANNELS}
 
-# Z-up to Y-up: a rotation of -90 degrees about X maps (x, y, z) to (x, z, -y).
-_Z_TO_Y = Rotation.from_euler("x", -90, degrees=True)
+# scipy.spatial.transform is imported by the functions that use it (it is slow to load).
 
 
 class BVHError(ValueError):
@@ -314,7 +312,9 @@ def _build_motion(skel: Skeleton, data: np.ndarray, fps: float) -> Motion:
 
 
 def _z_up_to_y_up(m: Motion) -> Motion:
-    c = _Z_TO_Y
+    from scipy.spatial.transform import Rotation
+
+    c = Rotation.from_euler("x", -90, degrees=True)  # -90 degrees about X maps (x, y, z) to (x, z, -y)
     skel = m.skeleton
     new_skel = Skeleton(skel.names, skel.parents, c.apply(np.array(skel.offsets)),
                         tuple((j, c.apply(np.array(o))) for j, o in skel.end_sites), skel.channels)
@@ -397,6 +397,8 @@ def _full_order(order: str) -> str:
 
 def _channel_values(m: Motion) -> np.ndarray:
     """The motion as a ``(T, C)`` block of BVH channel values (degrees, file units = metres)."""
+    from scipy.spatial.transform import Rotation
+
     skel = m.skeleton
     T = m.n_frames
     cols = []

@@ -9,13 +9,17 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
-from scipy.spatial.transform import Rotation, Slerp
 
 from .skeleton import Skeleton
+
+# scipy.spatial.transform is imported where it is used: loading it costs ~0.1 s of CPU, and
+# commands that never touch a rotation (text2anim plan) import this module for its types.
 
 
 def quat_to_matrix(q: np.ndarray) -> np.ndarray:
     """Quaternions ``(..., 4)`` to rotation matrices ``(..., 3, 3)``."""
+    from scipy.spatial.transform import Rotation
+
     flat = q.reshape(-1, 4)
     if len(flat) == 0:
         return np.zeros(q.shape[:-1] + (3, 3))
@@ -24,6 +28,8 @@ def quat_to_matrix(q: np.ndarray) -> np.ndarray:
 
 def matrix_to_quat(m: np.ndarray) -> np.ndarray:
     """Rotation matrices ``(..., 3, 3)`` to quaternions ``(..., 4)``."""
+    from scipy.spatial.transform import Rotation
+
     flat = m.reshape(-1, 3, 3)
     if len(flat) == 0:
         return np.zeros(m.shape[:-2] + (4,))
@@ -188,6 +194,8 @@ class Motion:
 
         The new frames sample times ``0, 1/fps, ...`` up to the last original frame.
         """
+        from scipy.spatial.transform import Rotation, Slerp
+
         fps = float(fps)
         if fps == self.fps or self.n_frames < 2:
             return self.replace(fps=fps)

@@ -85,8 +85,8 @@ class MotionDB:
                 callable returning the records. A database created while the
                 built-in library was unavailable is seeded by the next open that
                 has it. When the installed built-in library differs from the one
-                a database was seeded with (its ``LIBRARY_VERSION``, else a hash
-                of its code and data files), its clips whose ``source`` is
+                a database was seeded with (a hash of its code and data files,
+                taken without importing it), its clips whose ``source`` is
                 ``builtin``/``builtin:…`` are replaced by the new ones; other
                 clips are kept, and win over built-in clips of the same name.
 
