@@ -46,7 +46,7 @@ from datetime import timezone
 from functools import lru_cache
 from typing import Any
 
-from sqlalchemy import Integer, and_, bindparam, case, func, or_, select
+from sqlalchemy import BindParameter, Integer, and_, bindparam, case, func, or_, select
 from sqlalchemy.orm import Session
 
 from .readings import normalize, reading
@@ -116,7 +116,7 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
     clip), so a process compiles few variants. Built on the tables, not the ORM classes
     (cheaper to compile).
     """
-    lemma = bindparam("lemma")
+    lemma: BindParameter[str] = bindparam("lemma")
     exact = _VB.c.lemma == lemma
     verb_tier = case((and_(exact, _CV.c.is_primary), 0), (exact, 1), (_CV.c.is_primary, 2), else_=3)
     per_clip = (
