@@ -10,6 +10,7 @@ from functools import cached_property
 
 import numpy as np
 
+from . import quat
 from .skeleton import Skeleton
 
 # scipy.spatial.transform is imported where it is used: loading it costs ~0.1 s of CPU, and
@@ -194,8 +195,6 @@ class Motion:
 
         The new frames sample times ``0, 1/fps, ...`` up to the last original frame.
         """
-        from scipy.spatial.transform import Rotation, Slerp
-
         fps = float(fps)
         if fps == self.fps or self.n_frames < 2:
             return self.replace(fps=fps)
@@ -203,9 +202,10 @@ class Motion:
         n_new = resampled_frames(self.n_frames, self.fps, fps)
         t_new = np.minimum(np.arange(n_new) / fps, t_old[-1])
         root = np.stack([np.interp(t_new, t_old, self.root_positions[:, k]) for k in range(3)], axis=1)
-        rots = np.empty((n_new, self.skeleton.n_joints, 4))
-        for j in range(self.skeleton.n_joints):
-            rots[:, j] = Slerp(t_old, Rotation.from_quat(self.rotations[:, j]))(t_new).as_quat()
+        # slerp between the two frames around each new time, every joint at once
+        i = np.clip(np.searchsorted(t_old, t_new, side="right") - 1, 0, self.n_frames - 2)
+        frac = (t_new - t_old[i]) / (t_old[i + 1] - t_old[i])
+        rots = quat.slerp(self.rotations[i], self.rotations[i + 1], frac[:, None])  # (n_new, J, 4)
         trans = None
         if self.translations is not None:
             flat = self.translations.reshape(self.n_frames, -1)

@@ -34,3 +34,14 @@ def test_products_matrices_rotations_and_slerp_match_scipy():
     ref = np.array([Slerp([0, 1], Rotation.from_quat([qa[i], qb[i]]))(t[i]).as_quat() for i in range(300)])
     got = quat.slerp(qa, qb, t)
     assert np.allclose(np.abs(np.sum(got * ref, axis=-1)), 1.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("fps", [24.0, 60.0, 120.0])
+def test_resample_slerps_like_scipy(fps):
+    from conftest import make_motion
+
+    m = make_motion(45, 30.0, 7)
+    t_new = np.minimum(np.arange(len(m.resample(fps).rotations)) / fps, m.times[-1])
+    expect = np.stack([Slerp(m.times, Rotation.from_quat(m.rotations[:, j]))(t_new).as_quat()
+                       for j in range(m.skeleton.n_joints)], axis=1)
+    assert np.allclose(m.resample(fps).rotations, expect, atol=1e-12)
