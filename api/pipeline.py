@@ -93,6 +93,11 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
     unless ``skip_unknown``, which drops those motions, or ``fallback="nearest"``, which
     animates each with the database verb nearest in meaning (:mod:`text2anim.fallback`).
     """
+    with db.memoised():  # the same motions are searched again by each step below
+        return _plan(text, db, fps, skip_unknown, fallback)
+
+
+def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str) -> Planned:
     from . import fallback as _fallback
 
     analysis = nlp.analyze(text)

@@ -166,7 +166,7 @@ def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
 
 def body_map(skeleton: Skeleton) -> BodyMap:
     """The :class:`BodyMap` of ``skeleton``; raises :class:`BodyMapError` naming unplaceable joints."""
-    return _body_map(skeleton.names, tuple(int(p) for p in skeleton.parents))
+    return _body_map(skeleton.names, tuple(skeleton.parents.tolist()))
 
 
 def mirror_index(skeleton: Skeleton) -> list[int]:

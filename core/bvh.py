@@ -30,8 +30,8 @@ import re
 from pathlib import Path
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
+from . import quat
 from .motion import Motion
 from .skeleton import POSITION_CHANNELS, ROTATION_CHANNELS, Skeleton
 
@@ -40,8 +40,7 @@ CMU_UNIT = 0.0254 / 0.45
 
 _VALID_CHANNELS = {c.upper(): c for c in POSITION_CHANNELS + ROTATION_CHANNELS}
 
-# Z-up to Y-up: a rotation of -90 degrees about X maps (x, y, z) to (x, z, -y).
-_Z_TO_Y = Rotation.from_euler("x", -90, degrees=True)
+# scipy.spatial.transform is imported by the functions that use it (it is slow to load).
 
 
 class BVHError(ValueError):
@@ -233,16 +232,12 @@ def _parse_frames(lines: list[str], first: int, frames: int, n_channels: int, so
                        + (" (truncated?)" if len(data_lines) < frames else ""))
     if frames == 0:
         return np.zeros((0, n_channels))
-    tokens = " ".join(data_lines).split()
-    if len(tokens) != frames * n_channels:
-        raise _locate_bad_value(lines, first, n_channels, source)
-    try:
-        values = np.array(tokens, dtype=np.float64)
+    try:  # numpy's C reader: whitespace-separated, one frame per line, no comment syntax
+        values = np.loadtxt(data_lines, dtype=np.float64, comments=None, ndmin=2)
     except ValueError:
         raise _locate_bad_value(lines, first, n_channels, source) from None
-    if not np.all(np.isfinite(values)):
+    if values.shape != (frames, n_channels) or not np.all(np.isfinite(values)):
         raise _locate_bad_value(lines, first, n_channels, source)
-    values = values.reshape(frames, n_channels)
     return values
 
 
@@ -275,23 +270,32 @@ def guess_scale(skeleton: Skeleton) -> float:
     raise BVHError(f"cannot guess the length unit of a skeleton {h:.3g} units tall; pass an explicit scale")
 
 
-def _euler_to_quat(values: np.ndarray, order: str) -> np.ndarray:
-    if not order:
-        return np.tile([0.0, 0.0, 0.0, 1.0], (len(values), 1))
-    return Rotation.from_euler(order, values, degrees=True).as_quat()
+def _rotation_columns(skel: Skeleton) -> dict[str, tuple[list[int], list[list[int]]]]:
+    """Joints grouped by Euler order: ``order -> (joints, their rotation columns in the frame data)``."""
+    groups: dict[str, tuple[list[int], list[list[int]]]] = {}
+    col = 0
+    for j, chans in enumerate(skel.channels):
+        cols = [col + k for k, c in enumerate(chans) if c in ROTATION_CHANNELS]
+        joints, columns = groups.setdefault(skel.rotation_order(j), ([], []))
+        joints.append(j)
+        columns.append(cols)
+        col += len(chans)
+    return groups
 
 
 def _build_motion(skel: Skeleton, data: np.ndarray, fps: float) -> Motion:
+    """Frame data ``(T, C)`` to a motion: one vectorised Euler conversion per distinct rotation order."""
     T, J = len(data), skel.n_joints
     rotations = np.empty((T, J, 4))
+    for order, (joints, columns) in _rotation_columns(skel).items():
+        angles = data[:, np.array(columns, dtype=np.intp).reshape(len(joints), len(order))]  # (T, Jg, n)
+        rotations[:, joints] = quat.from_euler(order, angles, degrees=True)
     root = np.tile(skel.offsets[0], (T, 1))
     trans = None
     col = 0
     for j, chans in enumerate(skel.channels):
         block = data[:, col:col + len(chans)]
         col += len(chans)
-        rot_idx = [k for k, c in enumerate(chans) if c in ROTATION_CHANNELS]
-        rotations[:, j] = _euler_to_quat(block[:, rot_idx], skel.rotation_order(j))
         pos_idx = {c[0]: k for k, c in enumerate(chans) if c in POSITION_CHANNELS}
         if not pos_idx:
             continue
@@ -308,7 +312,9 @@ def _build_motion(skel: Skeleton, data: np.ndarray, fps: float) -> Motion:
 
 
 def _z_up_to_y_up(m: Motion) -> Motion:
-    c = _Z_TO_Y
+    from scipy.spatial.transform import Rotation
+
+    c = Rotation.from_euler("x", -90, degrees=True)  # -90 degrees about X maps (x, y, z) to (x, z, -y)
     skel = m.skeleton
     new_skel = Skeleton(skel.names, skel.parents, c.apply(np.array(skel.offsets)),
                         tuple((j, c.apply(np.array(o))) for j, o in skel.end_sites), skel.channels)
@@ -391,6 +397,8 @@ def _full_order(order: str) -> str:
 
 def _channel_values(m: Motion) -> np.ndarray:
     """The motion as a ``(T, C)`` block of BVH channel values (degrees, file units = metres)."""
+    from scipy.spatial.transform import Rotation
+
     skel = m.skeleton
     T = m.n_frames
     cols = []
@@ -439,7 +447,7 @@ def format_bvh(m: Motion) -> str:
     values = _channel_values(m)
     out += ["MOTION", f"Frames: {m.n_frames}", f"Frame Time: {1.0 / m.fps:.8g}"]
     row = " ".join(["%.7f"] * values.shape[1])
-    out += [row % tuple(r) for r in values]
+    out += [row % tuple(r) for r in values.tolist()]  # Python floats: the same text, formatted faster
     return "\n".join(out) + "\n"
 
 

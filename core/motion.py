@@ -9,13 +9,18 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
-from scipy.spatial.transform import Rotation, Slerp
 
+from . import quat
 from .skeleton import Skeleton
+
+# scipy.spatial.transform is imported where it is used: loading it costs ~0.1 s of CPU, and
+# commands that never touch a rotation (text2anim plan) import this module for its types.
 
 
 def quat_to_matrix(q: np.ndarray) -> np.ndarray:
     """Quaternions ``(..., 4)`` to rotation matrices ``(..., 3, 3)``."""
+    from scipy.spatial.transform import Rotation
+
     flat = q.reshape(-1, 4)
     if len(flat) == 0:
         return np.zeros(q.shape[:-1] + (3, 3))
@@ -24,6 +29,8 @@ def quat_to_matrix(q: np.ndarray) -> np.ndarray:
 
 def matrix_to_quat(m: np.ndarray) -> np.ndarray:
     """Rotation matrices ``(..., 3, 3)`` to quaternions ``(..., 4)``."""
+    from scipy.spatial.transform import Rotation
+
     flat = m.reshape(-1, 3, 3)
     if len(flat) == 0:
         return np.zeros(m.shape[:-2] + (4,))
@@ -123,18 +130,25 @@ class Motion:
 
     @cached_property
     def pose(self) -> Pose:
-        """Forward kinematics, vectorised over frames (one step per joint)."""
-        local_r = quat_to_matrix(self.rotations)
-        local_t = self.local_translations()
+        """Forward kinematics, vectorised over frames and over the joints of each tree depth.
+
+        Computed once per motion; :meth:`frames` of a motion whose pose is known slices it
+        (each frame's kinematics depends on that frame alone).
+        """
+        # joint-major (J, T, ...) so that a depth's joints are gathered as whole blocks
+        local_r = quat_to_matrix(self.rotations).transpose(1, 0, 2, 3).copy()
+        local_t = self.local_translations().transpose(1, 0, 2).copy()
         world_r = np.empty_like(local_r)
         world_p = np.empty_like(local_t)
-        for j, p in enumerate(self.skeleton.parents):
-            if p < 0:
-                world_r[:, j] = local_r[:, j]
-                world_p[:, j] = local_t[:, j]
-            else:
-                world_r[:, j] = world_r[:, p] @ local_r[:, j]
-                world_p[:, j] = world_p[:, p] + np.einsum("tij,tj->ti", world_r[:, p], local_t[:, j])
+        world_r[0] = local_r[0]
+        world_p[0] = local_t[0]
+        for joints, parents in self.skeleton.depth_levels():
+            parent_r = world_r[parents]
+            world_r[joints] = parent_r @ local_r[joints]
+            world_p[joints] = world_p[parents] + np.einsum("ntij,ntj->nti", parent_r, local_t[joints])
+        # back to (T, J, ...) in C order: reductions over these arrays sum in the same order as before
+        world_r = np.ascontiguousarray(world_r.transpose(1, 0, 2, 3))
+        world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2))
         world_r.setflags(write=False)
         world_p.setflags(write=False)
         return Pose(world_p, world_r)
@@ -160,8 +174,12 @@ class Motion:
     def frames(self, start: int, stop: int | None = None) -> "Motion":
         """Frames ``start`` .. ``stop - 1`` (Python slice semantics)."""
         sl = slice(start, stop)
-        return Motion(self.skeleton, self.fps, self.root_positions[sl], self.rotations[sl],
-                      None if self.translations is None else self.translations[sl])
+        out = Motion(self.skeleton, self.fps, self.root_positions[sl], self.rotations[sl],
+                     None if self.translations is None else self.translations[sl])
+        known = self.__dict__.get("pose")
+        if known is not None:  # FK is per frame: the slice of the known pose is the pose of the slice
+            out.__dict__["pose"] = Pose(known.positions[sl], known.rotations[sl])
+        return out
 
     def __getitem__(self, sl: slice) -> "Motion":
         if not isinstance(sl, slice) or sl.step not in (None, 1):
@@ -184,9 +202,10 @@ class Motion:
         n_new = resampled_frames(self.n_frames, self.fps, fps)
         t_new = np.minimum(np.arange(n_new) / fps, t_old[-1])
         root = np.stack([np.interp(t_new, t_old, self.root_positions[:, k]) for k in range(3)], axis=1)
-        rots = np.empty((n_new, self.skeleton.n_joints, 4))
-        for j in range(self.skeleton.n_joints):
-            rots[:, j] = Slerp(t_old, Rotation.from_quat(self.rotations[:, j]))(t_new).as_quat()
+        # slerp between the two frames around each new time, every joint at once
+        i = np.clip(np.searchsorted(t_old, t_new, side="right") - 1, 0, self.n_frames - 2)
+        frac = (t_new - t_old[i]) / (t_old[i + 1] - t_old[i])
+        rots = quat.slerp(self.rotations[i], self.rotations[i + 1], frac[:, None])  # (n_new, J, 4)
         trans = None
         if self.translations is not None:
             flat = self.translations.reshape(self.n_frames, -1)

@@ -76,6 +76,18 @@ class Skeleton:
     def children(self, j: int) -> list[int]:
         return [int(c) for c in np.flatnonzero(self.parents == j)]
 
+    def depth_levels(self) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+        """``(joints, their parents)`` per tree depth 1, 2, ... (the root, depth 0, is left out); cached."""
+        levels = self.__dict__.get("_depth_levels")
+        if levels is None:
+            depth = np.zeros(self.n_joints, dtype=np.int64)
+            for j in range(1, self.n_joints):
+                depth[j] = depth[self.parents[j]] + 1
+            levels = tuple((np.flatnonzero(depth == d), self.parents[depth == d])
+                           for d in range(1, int(depth.max(initial=0)) + 1))
+            object.__setattr__(self, "_depth_levels", levels)
+        return levels
+
     def rotation_order(self, j: int) -> str:
         """Intrinsic Euler order of joint ``j`` as scipy spells it (e.g. ``"ZYX"``), as listed."""
         return "".join(c[0] for c in self.channels[j] if c in ROTATION_CHANNELS)

@@ -34,20 +34,24 @@ crouch before the one that rises from a chair, whatever their verbs and
 objects: a clip that cannot start where the character is would need another
 clip in between (see :mod:`text2anim.postures`). The posture key changed
 nothing for searches that do not ask for it. The ordering is done by the database
-(``ORDER BY`` on these keys, ``LIMIT`` when asked), never by reading frames.
+(``ORDER BY`` on these keys, ``LIMIT`` when asked), never by reading frames, and a
+search is one SQL statement (:func:`find`): the names are matched, the hits ranked and
+their verbs, objects and contacts gathered in the same query.
 """
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass
+from datetime import timezone
+from functools import lru_cache
 from typing import Any
 
-from functools import lru_cache
-
-from sqlalchemy import Integer, and_, bindparam, case, exists, func, or_, select
+from sqlalchemy import BindParameter, Integer, and_, bindparam, case, func, or_, select
 from sqlalchemy.orm import Session
 
 from .readings import normalize, reading
-from .schema import Character, Clip, ClipObject, ClipVerb, ObjectRow, Verb
+from .schema import Character, Clip, ClipObject, ClipVerb, Contact, ObjectRow, SkeletonRow, Verb
+from .types import ClipInfo
 
 #: The mirror side of each sided body part.
 MIRROR_PART = {"left_arm": "right_arm", "right_arm": "left_arm", "left_leg": "right_leg", "right_leg": "left_leg"}
@@ -68,9 +72,6 @@ class VerbMatch:
 _MATCH_VERBS = (select(Verb.id, Verb.lemma)
                 .where(or_(Verb.lemma == bindparam("lemma"), Verb.reading == bindparam("reading")))
                 .order_by(Verb.id))
-_MATCH_OBJECTS = (select(ObjectRow.id)
-                  .where(or_(ObjectRow.name == bindparam("name"), ObjectRow.reading == bindparam("reading")))
-                  .order_by(ObjectRow.id))
 _CHARACTER_ID = select(Character.id).where(Character.name == bindparam("name"))
 
 
@@ -82,86 +83,6 @@ def match_verbs(session: Session, verb: str) -> VerbMatch:
     return VerbMatch(exact, tuple(i for i, lem in rows if lem != lemma))
 
 
-def match_objects(session: Session, obj: str) -> tuple[int, ...]:
-    name = normalize(obj)
-    return tuple(session.scalars(_MATCH_OBJECTS, {"name": name, "reading": reading(name)}))
-
-
-@lru_cache(maxsize=256)
-def _ranked_statement(has_exact: bool, objects: str, prefer: bool, body_part: str | None, character: bool,
-                      limit: bool, collate_c: bool, posture: bool = False):
-    """The ranking query for one combination of options (built once; values are bound parameters).
-
-    ``objects``: ``"none"`` (no object asked), ``"asked"`` (clips declaring one
-    of ``:objects``), ``"unknown"`` (an object no clip declares).
-    """
-    if has_exact:
-        exact = ClipVerb.verb_id.in_(bindparam("exact", expanding=True))
-        verb_tier = case((and_(exact, ClipVerb.is_primary), 0), (exact, 1), (ClipVerb.is_primary, 2), else_=3)
-    else:
-        verb_tier = case((ClipVerb.is_primary, 2), else_=3)
-    per_clip = (
-        select(ClipVerb.clip_id.label("clip_id"), func.min(verb_tier).label("verb_tier"))
-        .where(ClipVerb.verb_id.in_(bindparam("verbs", expanding=True)))
-        .group_by(ClipVerb.clip_id)
-        .subquery()
-    )
-    any_object = exists().where(ClipObject.clip_id == Clip.id)
-    if objects == "none":
-        object_tier = case((any_object, 1), else_=0)
-    elif objects == "asked":
-        asked = exists().where(ClipObject.clip_id == Clip.id,
-                               ClipObject.object_id.in_(bindparam("objects", expanding=True)))
-        object_tier = case((asked, 0), (any_object, 2), else_=1)
-    else:  # an object nobody declares: clips without objects first
-        object_tier = case((any_object, 2), else_=1)
-    order = []
-    if prefer:
-        order.append(case((Clip.character_id == bindparam("prefer"), 0), else_=1))
-    stmt = select(Clip.id).join(per_clip, per_clip.c.clip_id == Clip.id)
-    if body_part is not None:
-        mirror = MIRROR_PART.get(body_part)
-        parts = [body_part] + ([mirror] if mirror else [])
-        stmt = stmt.where(or_(Clip.body_part.in_(parts), Clip.body_part.is_(None)))
-        whens = [(Clip.body_part == body_part, 0)] + ([(Clip.body_part == mirror, 1)] if mirror else [])
-        order.append(case(*whens, else_=2))
-    if posture:
-        order.append(case((Clip.start_posture == bindparam("posture"), 0), else_=1))
-    if character:
-        stmt = stmt.where(Clip.character_id == bindparam("character"))
-    name = Clip.name.collate("C") if collate_c else Clip.name
-    # (a constant is never an ORDER BY term: PostgreSQL would read it as a column position)
-    stmt = stmt.order_by(*order, object_tier, per_clip.c.verb_tier, name)
-    if limit:
-        stmt = stmt.limit(bindparam("limit", type_=Integer))
-    return stmt
-
-
-def ranked_clip_ids(session: Session, verbs: VerbMatch, *, object_ids: tuple[int, ...] | None = None,
-                    character_id: int | None = None, body_part: str | None = None,
-                    prefer_character_id: int | None = None, prefer_start_posture: str | None = None,
-                    limit: int | None = None) -> list[int]:
-    """Ids of the matching clips, best first (see the module docstring)."""
-    objects = "none" if object_ids is None else ("asked" if object_ids else "unknown")
-    stmt = _ranked_statement(bool(verbs.exact), objects, prefer_character_id is not None, body_part,
-                             character_id is not None, limit is not None,
-                             session.get_bind().dialect.name == "postgresql", prefer_start_posture is not None)
-    params: dict[str, Any] = {"verbs": list(verbs.all)}
-    if verbs.exact:
-        params["exact"] = list(verbs.exact)
-    if object_ids:  # objects == "asked"
-        params["objects"] = list(object_ids)
-    if prefer_character_id is not None:
-        params["prefer"] = prefer_character_id
-    if character_id is not None:
-        params["character"] = character_id
-    if prefer_start_posture is not None:
-        params["posture"] = prefer_start_posture
-    if limit is not None:
-        params["limit"] = int(limit)
-    return list(session.scalars(stmt, params))
-
-
 def binary_order(session: Session, column):
     """``column`` for ORDER BY in code-point order on every backend (PostgreSQL sorts by locale otherwise)."""
     return column.collate("C") if session.get_bind().dialect.name == "postgresql" else column
@@ -169,3 +90,120 @@ def binary_order(session: Session, column):
 
 def character_id(session: Session, name: str) -> int | None:
     return session.scalar(_CHARACTER_ID, {"name": name})
+
+
+# ------------------------------------------------------------- one query per search
+def _aggregate(postgres: bool, *columns):
+    """A JSON array of ``[columns...]`` rows (``json_agg`` on PostgreSQL, ``json_group_array`` elsewhere)."""
+    if postgres:
+        return func.json_agg(func.json_build_array(*columns))
+    return func.json_group_array(func.json_array(*columns))
+
+
+_CL, _CH, _SK, _VB, _CV = Clip.__table__, Character.__table__, SkeletonRow.__table__, Verb.__table__, ClipVerb.__table__
+_OB, _CO, _CT = ObjectRow.__table__, ClipObject.__table__, Contact.__table__
+
+
+@lru_cache(maxsize=256)
+def _search_statement(body_part: str | None, character: bool, limit: bool, postgres: bool):
+    """Matching, ranking and every :class:`ClipInfo` field of the hits in one SELECT (see the module docstring).
+
+    The verb, object and character names are bound parameters matched inside the
+    query (no id look-ups first); the ranked ids (``LIMIT`` applied) are an inner
+    query, and the verbs, objects and contacts of those hits only are aggregated
+    as JSON arrays by the outer one. The object, preferred character and start posture
+    are always bound (``NULL`` when not asked: their tiers are then the same for every
+    clip), so a process compiles few variants. Built on the tables, not the ORM classes
+    (cheaper to compile).
+    """
+    lemma: BindParameter[str] = bindparam("lemma")
+    exact = _VB.c.lemma == lemma
+    verb_tier = case((and_(exact, _CV.c.is_primary), 0), (exact, 1), (_CV.c.is_primary, 2), else_=3)
+    per_clip = (
+        select(_CV.c.clip_id.label("clip_id"), func.min(verb_tier).label("verb_tier"))
+        .join(_VB, _VB.c.id == _CV.c.verb_id)
+        .where(or_(exact, _VB.c.reading == bindparam("reading")))
+        .group_by(_CV.c.clip_id)
+        .subquery()
+    )
+    # clips declaring the object (0) < clips declaring none (1) < clips declaring others (2)
+    matched = or_(_OB.c.name == bindparam("object"), _OB.c.reading == bindparam("object_reading"))
+    object_tier = func.coalesce(
+        select(func.min(case((matched, 0), else_=2))).select_from(_CO)
+        .join(_OB, _OB.c.id == _CO.c.object_id)
+        .where(_CO.c.clip_id == _CL.c.id).scalar_subquery(), 1)
+    keys = [object_tier.label("object_tier"), per_clip.c.verb_tier.label("verb_tier")]
+    stmt = (select(_CL.c.id.label("id"), _CL.c.name.label("name")).join(per_clip, per_clip.c.clip_id == _CL.c.id)
+            .join(_CH, _CH.c.id == _CL.c.character_id))
+    keys.insert(0, case((_CH.c.name == bindparam("prefer"), 0), else_=1).label("character_tier"))
+    if body_part is not None:
+        mirror = MIRROR_PART.get(body_part)
+        parts = [body_part] + ([mirror] if mirror else [])
+        stmt = stmt.where(or_(_CL.c.body_part.in_(parts), _CL.c.body_part.is_(None)))
+        whens = [(_CL.c.body_part == body_part, 0)] + ([(_CL.c.body_part == mirror, 1)] if mirror else [])
+        keys.insert(len(keys) - 2, case(*whens, else_=2).label("part_tier"))
+    keys.insert(len(keys) - 2, case((_CL.c.start_posture == bindparam("posture"), 0), else_=1).label("posture_tier"))
+    if character:
+        stmt = stmt.where(_CH.c.name == bindparam("character"))
+    tiers = stmt.add_columns(*keys).subquery()  # each key computed once per matching clip
+    order = [tiers.c[k.name] for k in keys] + [tiers.c.name.collate("C") if postgres else tiers.c.name]
+    ranked = select(tiers.c.id, func.row_number().over(order_by=order).label("rank")).order_by(*order)
+    if limit:
+        ranked = ranked.limit(bindparam("limit", type_=Integer))
+    hits = ranked.subquery()
+    verbs = (select(_aggregate(postgres, _CV.c.position, _VB.c.lemma)).join(_VB, _VB.c.id == _CV.c.verb_id)
+             .where(_CV.c.clip_id == _CL.c.id).scalar_subquery())
+    objs = (select(_aggregate(postgres, _CO.c.position, _OB.c.name))
+            .join(_OB, _OB.c.id == _CO.c.object_id)
+            .where(_CO.c.clip_id == _CL.c.id).scalar_subquery())
+    contacts = (select(_aggregate(postgres, _CT.c.side, _CT.c.start_frame, _CT.c.stop_frame))
+                .where(_CT.c.clip_id == _CL.c.id).scalar_subquery())
+    return (select(_CL.c.name, _CH.c.name.label("character"), _CL.c.fps, _CL.c.frames, _CL.c.duration,
+                   _CL.c.core_begin, _CL.c.core_end, _CL.c.body_part, _CL.c.cyclic, _CL.c.source, _CL.c.created,
+                   _CL.c.start_posture, _CL.c.end_posture, _SK.c.n_joints,
+                   verbs.label("verbs"), objs.label("objects"), contacts.label("contacts"))
+            .select_from(hits)
+            .join(_CL, _CL.c.id == hits.c.id)
+            .join(_CH, _CH.c.id == _CL.c.character_id)
+            .join(_SK, _SK.c.id == _CL.c.skeleton_id)
+            .order_by(hits.c.rank))
+
+
+def _rows(value) -> list:
+    """A JSON aggregate as a list (PostgreSQL's driver decodes it; SQLite gives text; no rows may be NULL)."""
+    if value is None:
+        return []
+    return json.loads(value) if isinstance(value, str) else list(value)
+
+
+def _info(r) -> ClipInfo:
+    created = r.created if r.created.tzinfo else r.created.replace(tzinfo=timezone.utc)
+    contacts: dict[str, list[tuple[int, int]]] = {"left": [], "right": []}
+    for side, a, b in sorted(_rows(r.contacts), key=lambda c: (c[1], c[2], c[0])):
+        contacts[side].append((int(a), int(b)))
+    return ClipInfo(
+        name=r.name, character=r.character, verbs=tuple(v for _, v in sorted(_rows(r.verbs))),
+        objects=tuple(o for _, o in sorted(_rows(r.objects))), fps=r.fps, frames=r.frames, duration=r.duration,
+        core=(r.core_begin, r.core_end), body_part=r.body_part, cyclic=bool(r.cyclic), source=r.source,
+        created=created, joints=int(r.n_joints), left_contacts=tuple(contacts["left"]),
+        right_contacts=tuple(contacts["right"]), start_posture=r.start_posture, end_posture=r.end_posture,
+    )
+
+
+def find(session: Session, verb: str, *, object: str | None = None, character: str | None = None,
+         body_part: str | None = None, prefer_character: str | None = None,
+         prefer_start_posture: str | None = None, limit: int | None = None) -> list[ClipInfo]:
+    """The matching clips' :class:`ClipInfo`, best first, in one SQL statement (names as the user wrote them)."""
+    lemma = normalize(verb)
+    obj = normalize(object) if object is not None else ""
+    stmt = _search_statement(body_part, character is not None, limit is not None,
+                             session.get_bind().dialect.name == "postgresql")
+    params: dict[str, Any] = {"lemma": lemma, "reading": reading(lemma), "object": obj or None,
+                              "object_reading": reading(obj) if obj else None,
+                              "prefer": normalize(prefer_character) if prefer_character else None,
+                              "posture": prefer_start_posture}
+    if character is not None:
+        params["character"] = normalize(character)
+    if limit is not None:
+        params["limit"] = int(limit)
+    return [_info(r) for r in session.execute(stmt, params)]

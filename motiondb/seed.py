@@ -45,37 +45,42 @@ def seeding_needed(library: str | None, source: SeedSource | None) -> bool:
     return source.builtin and library != source.tag
 
 
-def library_tag(library) -> str:
-    """``LIBRARY_VERSION`` if the library has one, else a hash of its code and data files."""
-    version = getattr(library, "LIBRARY_VERSION", None)
-    if version:
-        return str(version)[:64]
-    root = Path(library.__file__).parent
+def files_tag(root: Path) -> str:
+    """A hash of the code and data files under ``root`` (compiled ``.pyc`` files left out), by relative path."""
     h = hashlib.sha256()
-    for path in sorted(p for p in root.rglob("*") if p.suffix in (".py", ".json") and p.is_file()):
+    for path in sorted(p for p in root.rglob("*")
+                       if p.is_file() and p.suffix != ".pyc" and "__pycache__" not in p.parts):
         h.update(path.relative_to(root).as_posix().encode("utf-8") + b"\0")
         h.update(path.read_bytes() + b"\0")
     return "sha256:" + h.hexdigest()[:32]
 
 
+_LIBRARY = "text2anim.motiondb.library"
+
+
+def _builtin_records() -> Iterable[ClipRecord]:
+    import importlib
+
+    return importlib.import_module(_LIBRARY).builtin_clips()
+
+
 def seed_source(seed) -> SeedSource | None:
-    """What to seed a new database with; ``None`` for nothing (or the built-in library is absent)."""
+    """What to seed a new database with; ``None`` for nothing (or the built-in library is absent).
+
+    The built-in library is tagged by :func:`files_tag` of its folder, found without
+    importing it: opening a database that is up to date never loads the library's
+    generator (scipy.interpolate, IK) nor builds a clip.
+    """
     if seed is False or seed is None:
         return None
     if callable(seed) and seed is not True:
         return SeedSource(getattr(seed, "__name__", "custom")[:64], seed, builtin=False)
-    import importlib
+    import importlib.util
 
-    try:
-        library = importlib.import_module("text2anim.motiondb.library")
-    except ModuleNotFoundError as exc:
-        if exc.name == "text2anim.motiondb.library":
-            return None  # the built-in library is not there (yet)
-        raise
-    fn = getattr(library, "builtin_clips", None)
-    if fn is None:
-        return None
-    return SeedSource(library_tag(library), fn, builtin=True)
+    spec = importlib.util.find_spec(_LIBRARY)
+    if spec is None or not spec.submodule_search_locations:
+        return None  # the built-in library is not there (yet)
+    return SeedSource(files_tag(Path(next(iter(spec.submodule_search_locations)))), _builtin_records, builtin=True)
 
 
 def fill(s: Session, source: SeedSource, library: str | None, url: str, skeletons: SkeletonCache) -> None:

@@ -68,6 +68,7 @@ class MotionDB:
         self.backend = engine.dialect.name
         self._writer = engine.execution_options(t2a_write=True)
         self._skeletons = SkeletonCache()
+        self._memo: dict | None = None  # search answers inside memoised(), else None
 
     # ------------------------------------------------------------- open/close
     @classmethod
@@ -85,8 +86,8 @@ class MotionDB:
                 callable returning the records. A database created while the
                 built-in library was unavailable is seeded by the next open that
                 has it. When the installed built-in library differs from the one
-                a database was seeded with (its ``LIBRARY_VERSION``, else a hash
-                of its code and data files), its clips whose ``source`` is
+                a database was seeded with (a hash of its code and data files,
+                taken without importing it), its clips whose ``source`` is
                 ``builtin``/``builtin:…`` are replaced by the new ones; other
                 clips are kept, and win over built-in clips of the same name.
 
@@ -149,8 +150,26 @@ class MotionDB:
             raise DBError(describe_error(exc, self.url, self.backend)) from None
 
     @contextmanager
+    def memoised(self):
+        """Within the block, a search asked again is answered from memory (a plan's searches repeat).
+
+        Any change made through this object inside the block forgets the answers.
+        Nested blocks share the outer one's memory.
+        """
+        outer = self._memo is not None
+        if not outer:
+            self._memo = {}
+        try:
+            yield self
+        finally:
+            if not outer:
+                self._memo = None
+
+    @contextmanager
     def _session(self, write: bool = False):
         """A session in one transaction, committed on success; writers serialised."""
+        if write and self._memo:
+            self._memo.clear()
         with self._errors():
             with Session(self._writer if write else self.engine, expire_on_commit=False) as session:
                 with session.begin():
@@ -259,21 +278,25 @@ class MotionDB:
             raise ValueError("limit must not be negative")
         if prefer_start_posture is not None and prefer_start_posture not in POSTURES:
             raise DBError(f"unknown posture {prefer_start_posture!r}; known: {', '.join(POSTURES)}")
+        key = (verb, object, character, body_part, prefer_character, limit, prefer_start_posture)
+        if self._memo is not None and key in self._memo:
+            return list(self._memo[key])
         with self._session() as s:
-            match = _search.match_verbs(s, verb)
-            if not match.all:
+            found = _search.find(s, verb, object=object, character=character, body_part=body_part,
+                                 prefer_character=prefer_character, prefer_start_posture=prefer_start_posture,
+                                 limit=limit)
+            if found:
+                if self._memo is not None:
+                    self._memo[key] = tuple(found)
+                return found
+            # nothing: say why when it is an unknown verb or character (these look-ups only run here)
+            if not _search.match_verbs(s, verb).all:
                 raise self._unknown_verb(s, verb)
-            char_id = None
-            if character is not None:
-                char_id = _search.character_id(s, normalize(character))
-                if char_id is None:
-                    raise UnknownCharacterError(character, self._character_names(s))
-            pref_id = _search.character_id(s, normalize(prefer_character)) if prefer_character else None
-            object_ids = _search.match_objects(s, object) if object is not None and normalize(object) else None
-            ids = _search.ranked_clip_ids(s, match, object_ids=object_ids, character_id=char_id,
-                                          body_part=body_part, prefer_character_id=pref_id,
-                                          prefer_start_posture=prefer_start_posture, limit=limit)
-            return clip_infos(s, ids)
+            if character is not None and _search.character_id(s, normalize(character)) is None:
+                raise UnknownCharacterError(character, self._character_names(s))
+        if self._memo is not None:
+            self._memo[key] = ()
+        return []
 
     def _unknown_verb(self, s: Session, verb: str) -> UnknownVerbError:
         rows = s.execute(select(Verb.lemma, Verb.reading)

@@ -123,3 +123,43 @@ def test_a_start_posture_ranks_after_the_character_and_before_objects_and_verbs(
     assert names(empty_db.search("立ち上がる", prefer_start_posture="lying", limit=1)) == ["bob_floor_up"]
     with pytest.raises(DBError, match="unknown posture 'sitting'"):
         empty_db.search("立ち上がる", prefer_start_posture="sitting")
+
+
+def _selects(db):
+    """A list that collects the SELECT statements ``db`` runs from now on."""
+    from sqlalchemy import event
+
+    seen: list[str] = []
+    event.listen(db.engine, "before_cursor_execute",
+                 lambda conn, cur, statement, *a: seen.append(statement) if statement.lstrip().upper()
+                 .startswith("SELECT") else None)
+    return seen
+
+
+def test_a_search_is_one_query_and_its_hits_carry_every_field(empty_db, record):
+    empty_db.add([
+        record("kick_ball", ("蹴る", "キックする"), objects=("ボール", "箱"), character="kenji"),
+        record("stomp", ("踏む", "蹴る"), character="kenji"),
+        record("wave_r", ("振る",), body_part="right_arm"),
+    ])
+    seen = _selects(empty_db)
+    hits = empty_db.search("蹴る", object="ボール", prefer_character="kenji", limit=5)
+    assert len(seen) == 1
+    assert names(hits) == ["kick_ball", "stomp"]
+    assert hits == [empty_db.info("kick_ball"), empty_db.info("stomp")]  # verbs, objects, contacts in order
+    seen.clear()
+    assert names(empty_db.search("振る", body_part="left_arm", prefer_start_posture="standing")) == ["wave_r"]
+    assert len(seen) == 1
+
+
+def test_memoised_searches_ask_the_database_once_until_something_changes(empty_db, record):
+    empty_db.add([record("walk", ("歩く",))])
+    with empty_db.memoised():
+        first = empty_db.search("歩く")
+        seen = _selects(empty_db)
+        assert empty_db.search("歩く") == first and seen == []
+        empty_db.add([record("stroll", ("歩く",))])
+        assert names(empty_db.search("歩く")) == ["stroll", "walk"]
+    seen.clear()
+    empty_db.search("歩く")
+    assert len(seen) == 1  # outside the block every search asks the database

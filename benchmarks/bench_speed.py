@@ -1,0 +1,347 @@
+"""Every row of issue 15's speed table in one run: CPU time beside wall time, peers interleaved.
+
+    python benchmarks/bench_speed.py [--repeat 5] [--db-sizes 1000 100000] [--queries 300] [--quick]
+
+The machine is shared (2 cores, many processes): read the CPU column (process
+CPU time, ``time.process_time``; for whole processes the child's user+system
+time from ``getrusage``) and the ratios; wall times are printed beside them
+and vary with the load (the load average is printed at start and end).
+
+Rows (goal in brackets, from the issue):
+
+- text -> BVH, 3 motions, warm API (``animate`` + ``format_bvh``), optimal and constraint [<= 30 ms];
+- ``text2anim TEXT -o x.bvh``, whole process, seeded database [<= 0.5 s];
+- ``text2anim plan TEXT``, whole process [<= 0.3 s];
+- first run on an empty database: a new process opening a new file (create + seed) [<= 1 s];
+- join planning, one transition, built-in clips: ``synthesis.optimal.plan_join`` p95 CPU [<= 1 ms];
+- join planning at 120 fps: the largest ``plan_join`` CPU time and the peak of traced memory [<= 20 ms];
+- synthesis real-time factor: seconds of animation per CPU second, optimal and constraint [>= 500x];
+- DB search: p50/p95 CPU per ``MotionDB.search`` (limit 10) at each size, growth, SQL statements per
+  search, searches per motion in one animation [p95 <= 1 ms, growth <= 1.5x, 1 query];
+- BVH parse: ours against ``bvh`` and ``bvhio`` (if installed; ``pip install bvh bvhio``), the
+  contenders run in turn within each round, so the ratio holds when the load moves [>= 5x the fastest];
+- analysis: ``nlp.analyze`` against GiNZA, interleaved, when ``ginza``/``ja_ginza`` are installed.
+
+Medians over ``--repeat`` rounds. The first two blocks use the built-in library in a temporary SQLite file.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO / "benchmarks"))
+
+CMU = REPO.parent / "shared" / "mocap" / "cmu"
+BVH_FILES = ["02_01_walk", "16_35_run", "10_01_kick", "02_05_punch", "14_06_squat"]
+TEXT3 = "太郎は走って、ボールを蹴る。そして喜ぶ。"
+SENTENCES = ["太郎は歩く。", "太郎は走って、ボールを蹴る。", TEXT3, "花子は歩いて、止まる。そして振り向いて、手を振る。",
+             "太郎は走って、ボールを蹴る。そして喜ぶ。それから歩いて、座る。"]
+
+
+def timed(fn):
+    """(CPU seconds, wall seconds, result) of one call."""
+    c, w = time.process_time(), time.perf_counter()
+    out = fn()
+    return time.process_time() - c, time.perf_counter() - w, out
+
+
+def median_timed(fn, repeat: int) -> tuple[float, float]:
+    cpu, wall = [], []
+    for _ in range(repeat):
+        c, w, _ = timed(fn)
+        cpu.append(c)
+        wall.append(w)
+    return statistics.median(cpu), statistics.median(wall)
+
+
+def child(argv: list[str], env: dict, cwd: str) -> tuple[float, float]:
+    """(CPU, wall) seconds of a whole child process (its user + system time)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    w = time.perf_counter()
+    proc = subprocess.run(argv, env=env, cwd=cwd, capture_output=True)
+    wall = time.perf_counter() - w
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{argv} failed: {proc.stderr.decode()[-2000:]}")
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), wall
+
+
+ROWS: list[tuple[str, str, str, str]] = []
+
+
+def row(name: str, cpu: str, wall: str, goal: str) -> None:
+    ROWS.append((name, cpu, wall, goal))
+    print(f"  {name:52} {cpu:>22} {wall:>22}  {goal}", flush=True)
+
+
+def ms(s: float) -> str:
+    return f"{s * 1000:.1f} ms"
+
+
+# ----------------------------------------------------------------- pipeline rows
+def pipeline_rows(tmp: Path, repeat: int) -> None:
+    from text2anim import animate
+    from text2anim.animation import build_tracks
+    from text2anim.core.bvh import format_bvh
+    from text2anim.motiondb import MotionDB
+    from text2anim.pipeline import plan_text
+    from text2anim.synthesis import optimal
+    from text2anim.synthesis.engines import synthesize_with
+
+    url = f"sqlite:///{tmp}/motions.sqlite"
+    db = MotionDB.open(url)
+    animate(TEXT3, db)  # warm: analyser, caches
+    for blend in ("optimal", "constraint"):
+        def run():
+            anim = animate(TEXT3, db, blend=blend)
+            return [format_bvh(m) for m in anim.motions.values()]
+        cpu, wall = median_timed(run, repeat)
+        row(f"text -> BVH, 3 motions, warm API ({blend})", ms(cpu), ms(wall), "<= 30 ms")
+
+    # searches and SQL statements of one animation's planning
+    from sqlalchemy import event
+
+    statements = [0, 0]  # all (BEGIN included), SELECTs
+
+    def count(conn, cursor, statement, *a):
+        statements[0] += 1
+        statements[1] += statement.lstrip().upper().startswith("SELECT")
+    event.listen(db.engine, "before_cursor_execute", count)
+    searches = [0]
+    real_search = db.search
+
+    def counting(*a, **k):
+        searches[0] += 1
+        return real_search(*a, **k)
+    db.search = counting  # type: ignore[method-assign]
+    planned = plan_text(TEXT3, db)
+    del db.search
+    event.remove(db.engine, "before_cursor_execute", count)
+    n_motions = len(planned.analysis.motions)
+    row("planning: searches per motion; SQL per search", f"{searches[0] / n_motions:.1f} /motion",
+        f"{statements[0] / max(searches[0], 1):.1f} stmt, {statements[1] / max(searches[0], 1):.1f} SELECT",
+        "1 query/motion")
+
+    # join planning, per plan_join call
+    real_plan = optimal.plan_join
+    calls: list[float] = []
+
+    def timed_plan(*a, **k):
+        c = time.thread_time()
+        out = real_plan(*a, **k)
+        calls.append(time.thread_time() - c)
+        return out
+    optimal.plan_join = timed_plan
+    try:
+        for _ in range(max(1, repeat // 2)):
+            for text in SENTENCES:
+                animate(text, db)
+        p50, p95 = np.percentile(calls, [50, 95])
+        row(f"join planning, built-in clips ({len(calls)} joins)", f"p50 {ms(p50)} p95 {ms(p95)}", "-", "p95 <= 1 ms")
+        calls.clear()
+        text2 = SENTENCES[1]
+        c, w, _ = timed(lambda: animate(text2, db, fps=120.0))
+        worst = max(calls) if calls else float("nan")
+        optimal.plan_join = real_plan
+        tracemalloc.start()
+        animate(text2, db, fps=120.0)
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        row("join planning at 120 fps (largest join; peak traced mem)", f"{ms(worst)}; {peak / 2**20:.0f} MB",
+            f"whole animate {ms(w)}", "<= 20 ms, O(N0*N1)")
+    finally:
+        optimal.plan_join = real_plan
+
+    # synthesis real-time factor
+    tracks = [build_tracks(plan_text(t, db), db, 30.0) for t in SENTENCES]
+    for method in ("optimal", "constraint"):
+        seconds = cpu = wall = 0.0
+        for tr in tracks:
+            c, w = median_timed(lambda: synthesize_with(method, tr, 30.0), max(1, repeat // 2))
+            res = synthesize_with(method, tr, 30.0)
+            seconds += max(m.duration for m in res.motions.values())
+            cpu += c
+            wall += w
+        row(f"synthesis real-time factor ({method}, {len(tracks)} sentences)", f"{seconds / cpu:.0f}x",
+            f"{seconds / wall:.0f}x", ">= 500x")
+    db.close()
+
+
+def process_rows(tmp: Path, repeat: int) -> None:
+    env = {**os.environ, "TEXT2ANIM_DB": f"sqlite:///{tmp}/motions.sqlite"}
+    exe = [sys.executable, "-m", "text2anim.cli.main"]
+    child(exe + ["plan", TEXT3], env, str(tmp))  # warm the file cache
+    runs = max(3, repeat)
+    res: dict[str, list[tuple[float, float]]] = {"animate": [], "plan": [], "bare": [], "seed": []}
+    for k in range(runs):  # interleaved
+        res["animate"].append(child(exe + [TEXT3, "-o", str(tmp / "x.bvh")], env, str(tmp)))
+        res["plan"].append(child(exe + ["plan", TEXT3], env, str(tmp)))
+        res["bare"].append(child([sys.executable, "-c", "pass"], env, str(tmp)))
+        if k < 3:
+            fresh = {**os.environ, "TEXT2ANIM_DB": f"sqlite:///{tmp}/fresh{k}.sqlite"}
+            res["seed"].append(child([sys.executable, "-c", "from text2anim.motiondb import MotionDB;"
+                                      "db = MotionDB.open(); db.close()"], fresh, str(tmp)))
+
+    def med(key):
+        return tuple(statistics.median(x[i] for x in res[key]) for i in (0, 1))
+    for key, name, goal in (("animate", "`text2anim TEXT -o x.bvh`, whole process", "<= 0.5 s"),
+                            ("plan", "`text2anim plan TEXT`, whole process", "<= 0.3 s"),
+                            ("seed", "first run on an empty database (seeding)", "<= 1 s"),
+                            ("bare", "(bare `python -c pass`, for scale)", "")):
+        c, w = med(key)
+        row(name, f"{c:.2f} s", f"{w:.2f} s", goal)
+
+
+# ----------------------------------------------------------------- DB search
+def search_rows(sizes: list[int], n_queries: int) -> None:
+    from bench_db import build
+    from sqlalchemy import event
+
+    from text2anim.motiondb import MotionDB
+
+    p50s = []
+    with tempfile.TemporaryDirectory(prefix="t2a-speed-") as tmp:
+        for n in sizes:
+            path = Path(tmp) / f"db{n}.sqlite"
+            verbs, objects, characters, _ = build(path, n)
+            rng = np.random.default_rng(1)
+            cpu, wall = [], []
+            with MotionDB.open(path, seed=False) as db:
+                statements = [0]
+                db.search(verbs[0], limit=10)
+                event.listen(db.engine, "before_cursor_execute", lambda conn, cur, statement, *a: statements.__setitem__(
+                    0, statements[0] + statement.lstrip().upper().startswith("SELECT")))
+                for _ in range(n_queries):
+                    verb = verbs[int(rng.integers(len(verbs)))]
+                    obj = objects[int(rng.integers(len(objects)))] if rng.random() < 0.5 else None
+                    pref = characters[int(rng.integers(len(characters)))] if rng.random() < 1 / 3 else None
+                    c, w, _ = timed(lambda: db.search(verb, object=obj, prefer_character=pref, limit=10))
+                    cpu.append(c)
+                    wall.append(w)
+            c50, c95 = np.percentile(cpu, [50, 95])
+            w50, w95 = np.percentile(wall, [50, 95])
+            p50s.append(c50)
+            row(f"DB search, {n} clips, limit 10 ({statements[0] / n_queries:.1f} SELECTs)",
+                f"p50 {ms(c50)} p95 {ms(c95)}", f"p50 {ms(w50)} p95 {ms(w95)}", "p95 <= 1 ms")
+    if len(p50s) > 1:
+        row(f"DB search growth {sizes[0]} -> {sizes[-1]} clips (p50)", f"{p50s[-1] / p50s[0]:.2f}x", "-", "<= 1.5x")
+
+
+# ----------------------------------------------------------------- peers
+def interleaved(contenders: dict, repeat: int) -> dict[str, tuple[float, float]]:
+    """Median (CPU, wall) per contender; each round runs every contender once, the order rotating."""
+    names = list(contenders)
+    times: dict[str, list[tuple[float, float]]] = {n: [] for n in names}
+    for k in range(repeat):
+        for n in names[k % len(names):] + names[:k % len(names)]:
+            c, w, _ = timed(contenders[n])
+            times[n].append((c, w))
+    return {n: (statistics.median(t[0] for t in v), statistics.median(t[1] for t in v)) for n, v in times.items()}
+
+
+def bvh_rows(repeat: int) -> None:
+    from text2anim.core import read_bvh
+
+    paths = [CMU / f"{f}.bvh" for f in BVH_FILES if (CMU / f"{f}.bvh").exists()]
+    if not paths:
+        row("BVH parse", "no CMU files", "-", "")
+        return
+    texts = {p: p.read_text() for p in paths}
+    frames = sum(read_bvh(p).n_frames for p in paths)
+    contenders = {"text2anim": lambda: [read_bvh(p) for p in paths]}
+    try:
+        import bvhio
+
+        contenders["bvhio"] = lambda: [bvhio.readAsBvh(str(p)) for p in paths]
+    except ImportError:
+        print("  (bvhio not installed)")
+    try:
+        from bvh import Bvh
+
+        contenders["bvh"] = lambda: [np.array(Bvh(texts[p]).frames, dtype=float) for p in paths]
+    except ImportError:
+        print("  (bvh not installed)")
+    res = interleaved(contenders, repeat)
+    ours = res["text2anim"]
+    for n, (c, w) in res.items():
+        ratio = "" if n == "text2anim" else f", ours {c / ours[0]:.1f}x faster"
+        row(f"BVH parse {n} ({len(paths)} files, {frames} frames)", f"{ms(c)} ({frames / c:,.0f} f/s){ratio}",
+            ms(w), ">= 5x the fastest" if n == "text2anim" else "")
+
+
+def nlp_rows(repeat: int) -> None:
+    import json
+
+    from text2anim.nlp import NLPError, analyze
+
+    corpus = REPO / "tests" / "corpus" / "nlp_corpus.jsonl"
+    sentences = [json.loads(x)["text"] for x in corpus.read_text(encoding="utf-8").splitlines()
+                 if x.startswith("{")][:200]
+
+    def ours():
+        for s in sentences:
+            try:
+                analyze(s)
+            except NLPError:
+                pass
+    ours()
+    contenders = {"text2anim.nlp": ours}
+    try:
+        import spacy
+
+        nlp = spacy.load("ja_ginza")
+        contenders["GiNZA"] = lambda: list(nlp.pipe(sentences))
+    except (ImportError, OSError):
+        pass
+    res = interleaved(contenders, max(3, repeat // 2))
+    for n, (c, w) in res.items():
+        extra = "" if n == "text2anim.nlp" else f", ours {c / res['text2anim.nlp'][0]:.0f}x faster"
+        row(f"analysis {n} ({len(sentences)} sentences)", f"{ms(c / len(sentences))}/sentence{extra}",
+            ms(w / len(sentences)), "")
+    if len(res) == 1:
+        row("analysis GiNZA", "not installed", "-", "optional")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--db-sizes", type=int, nargs="+", default=[1000, 100000])
+    ap.add_argument("--queries", type=int, default=300)
+    ap.add_argument("--only", nargs="+", choices=["pipeline", "process", "search", "bvh", "nlp"])
+    args = ap.parse_args(argv)
+    only = set(args.only or ["pipeline", "process", "search", "bvh", "nlp"])
+    load0 = os.getloadavg()
+    print(f"load average at start: {load0[0]:.1f} ({os.cpu_count()} cores)")
+    print(f"  {'figure':52} {'CPU':>22} {'wall':>22}  goal")
+    with tempfile.TemporaryDirectory(prefix="t2a-speed-") as tmp:
+        if "pipeline" in only or "process" in only:
+            from text2anim.motiondb import MotionDB
+
+            MotionDB.open(f"sqlite:///{tmp}/motions.sqlite").close()
+        if "pipeline" in only:
+            pipeline_rows(Path(tmp), args.repeat)
+        if "process" in only:
+            process_rows(Path(tmp), args.repeat)
+    if "search" in only:
+        search_rows(args.db_sizes, args.queries)
+    if "bvh" in only:
+        bvh_rows(args.repeat)
+    if "nlp" in only:
+        nlp_rows(args.repeat)
+    print(f"load average at end: {os.getloadavg()[0]:.1f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
