@@ -74,7 +74,7 @@ class DaskExecutor:
                 raise BatchError(f"cannot reach the Dask scheduler at {self.scheduler}: {exc}") from None
         else:
             self._cluster = LocalCluster(n_workers=self.jobs, threads_per_worker=1, processes=True,
-                                         dashboard_address=None, silence_logs=logging.ERROR)
+                                         dashboard_address=":0", silence_logs=logging.ERROR)
             self.client = Client(self._cluster)
         return self
 

@@ -182,7 +182,7 @@ def _animate(item: Item, opts: Options) -> dict:
 def join_figures(join: dict) -> dict:
     """The quality figures of timetable.md §3 for one join of the synthesis report (None where absent)."""
     m = join.get("metrics", {})
-    core = m.get("core_fidelity_cm") or {}
+    core = [v for v in (m.get("core_fidelity_cm") or {}).values() if v is not None]  # None: no core
 
     def fig(x):
         return None if x is None else round(float(x), ROUND)
@@ -191,7 +191,7 @@ def join_figures(join: dict) -> dict:
             "skating_ratio": fig(m.get("skating_ratio")), "max_slide_cm_s": fig(m.get("max_slide_cm_s")),
             "jerk_max": fig(m.get("jerk_max")), "jerk_rms": fig(m.get("jerk_rms")),
             "source_jerk_max": fig(m.get("source_jerk_max")), "source_jerk_rms": fig(m.get("source_jerk_rms")),
-            "core_fidelity_cm": fig(max(core.values())) if core else None}
+            "core_fidelity_cm": fig(max(core)) if core else None}
 
 
 # ------------------------------------------------------------------ expectations
