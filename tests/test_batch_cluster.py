@@ -19,7 +19,7 @@ from text2anim.batch import Options, load_corpus, manifest, run_corpus
 from text2anim.cli.main import main
 
 CORPUS = Path(__file__).parent / "corpus" / "nlp_corpus.jsonl"
-VARIES = ("time", "options")  # wall time; the options key names the database
+VARIES = ("time", "cpu", "options")  # wall and CPU time; the options key names the database
 
 
 @pytest.fixture(scope="module")

@@ -88,6 +88,13 @@ class DaskExecutor:
         """Check the workers see the output folder; ship an SQLite database to them."""
         from .runner import BatchError
 
+        from text2anim import __version__
+
+        versions = self.client.run(_version)
+        other = sorted({str(v) for v in versions.values()} - {__version__})
+        if other:
+            raise BatchError(f"the Dask workers run text2anim {', '.join(other)}, this is {__version__}: install "
+                             "the same version on the workers (pip install 'text2anim[cluster]')")
         if opts.out:
             seen = self.client.run(os.path.isdir, opts.out)
             blind = sorted(w for w, ok in seen.items() if not ok)
@@ -133,12 +140,21 @@ class DaskExecutor:
                 if fut.status == "finished":
                     continue
                 left = [it for it in chunk if it.line not in recorded]
-                if len(left) > 1:  # one line may be killing its workers: try each alone
-                    todo.extend([it] for it in reversed(left))
-                elif left:
-                    exc = _exception(fut)
-                    deliver([lines.failure_record(left[0], opts, exc)])
+                exc = _exception(fut)
+                if len(left) > 1 and type(exc).__name__ == "KilledWorker":
+                    todo.extend([it] for it in reversed(left))  # one line may be killing its workers: try each alone
+                else:
+                    deliver([lines.failure_record(it, opts, exc) for it in left])
         deliver(queue.get(batch=True))
+
+
+def _version() -> str | None:
+    """The text2anim version a worker has (None: not installed)."""
+    try:
+        from text2anim import __version__
+    except ImportError:
+        return None
+    return __version__
 
 
 def _exception(fut) -> BaseException:

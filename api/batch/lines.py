@@ -120,7 +120,7 @@ def run_line(item: Item, opts: Options) -> dict:
     """Parse (and with ``opts.out`` animate) one line; never raises for a bad line."""
     from text2anim.nlp import analyze
 
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.thread_time()
     rec: dict = {"line": item.line, "text_hash": text_hash(item.text), "options": opts.key,
                  "status": "parsed", "reason": None, "text": item.text, "category": item.category}
     parse, error, refused = None, None, False
@@ -137,7 +137,8 @@ def run_line(item: Item, opts: Options) -> dict:
                    error=f"{type(exc).__name__}: {exc}")
         unknown_verb = refused and parse is not None and getattr(exc, "verb", None) is not None
         error = None if unknown_verb else rec["error"]
-    rec["time"] = round(time.perf_counter() - t0, 4)
+    rec["time"] = round(time.perf_counter() - t0, 4)  # s, wall
+    rec["cpu"] = round(time.thread_time() - c0, 4)     # s, CPU of the thread that ran the line
     mismatches = check(item.expect, parse, error)
     rec["check"] = "failed" if mismatches else "errored" if error and not (
         item.expect and "error" in item.expect) else "passed"
@@ -147,10 +148,11 @@ def run_line(item: Item, opts: Options) -> dict:
 
 def failure_record(item: Item, opts: Options, exc: BaseException) -> dict:
     """The record of a line whose worker kept dying (or whose task failed outside :func:`run_line`)."""
-    msg = f"{type(exc).__name__}: {exc}".splitlines()[0]
+    kind = type(exc).__name__
+    msg = f"{kind}: {exc}".splitlines()[0]
     return {"line": item.line, "text_hash": text_hash(item.text), "options": opts.key, "status": "failed",
-            "reason": f"worker died ({type(exc).__name__})", "text": item.text, "category": item.category,
-            "error": msg, "time": None, "check": "errored", "mismatches": []}
+            "reason": "worker died" if kind == "KilledWorker" else f"task failed ({kind})", "text": item.text, "category": item.category,
+            "error": msg, "time": None, "cpu": None, "check": "errored", "mismatches": []}
 
 
 def run_chunk(chunk: Iterable[Item], opts: Options, emit: Callable[[dict], None]) -> int:
