@@ -16,8 +16,10 @@ from __future__ import annotations
 
 import argparse
 import hashlib
+import json
 import logging
 import os
+import shutil
 import sys
 import tempfile
 import time
@@ -32,8 +34,9 @@ def build_corpus(folder: Path, lines: int) -> Path:
     from text2anim.batch import load_corpus
 
     texts = [it.text for it in load_corpus(str(CORPUS))]
-    path = folder / f"corpus_{lines}.txt"
-    path.write_text("".join(texts[i % len(texts)] + "\n" for i in range(lines)), encoding="utf-8")
+    path = folder / f"corpus_{lines}.jsonl"  # JSON lines: one corpus text has a line break in it
+    path.write_text("".join(json.dumps({"text": texts[i % len(texts)]}, ensure_ascii=False) + "\n"
+                            for i in range(lines)), encoding="utf-8")
     return path
 
 
@@ -72,11 +75,18 @@ def main() -> int:
     ap.add_argument("--workers", default="1,2,4", help="local Dask worker counts (default 1,2,4)")
     ap.add_argument("--chunk", type=int, default=16, help="lines per task (default 16)")
     args = ap.parse_args()
+    tmp = Path(tempfile.mkdtemp(prefix="t2a-bench-batch-"))
+    try:
+        return measure(args, tmp)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def measure(args, tmp: Path) -> int:
     from distributed import Client, LocalCluster
 
     from text2anim.motiondb import MotionDB
 
-    tmp = Path(tempfile.mkdtemp(prefix="t2a-bench-batch-"))
     db = f"sqlite:///{tmp}/motions.sqlite"
     MotionDB.open(db).close()
     corpus = build_corpus(tmp, args.lines)

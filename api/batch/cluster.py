@@ -90,7 +90,11 @@ class DaskExecutor:
 
         from text2anim import __version__
 
-        versions = self.client.run(_version)
+        try:
+            versions = self.client.run(_version)
+        except Exception as exc:  # noqa: BLE001 - a worker without text2anim cannot even load _version
+            raise BatchError(f"the Dask workers cannot run text2anim ({type(exc).__name__}: {exc}); install "
+                             "it on them (pip install 'text2anim[cluster]')") from None
         other = sorted({str(v) for v in versions.values()} - {__version__})
         if other:
             raise BatchError(f"the Dask workers run text2anim {', '.join(other)}, this is {__version__}: install "
