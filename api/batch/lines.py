@@ -4,7 +4,9 @@ A record (one line of ``DIR/manifest.jsonl``)::
 
     {"line": 12, "text_hash": "…", "options": "…", "status": "animated", "reason": null,
      "files": ["0000/line_0000012.bvh"], "skating_ratio": 0.0, "joins": [{…per-join figures…}],
-     "time": 0.31, "check": "passed", …}
+     "time": 0.31, "cpu": 0.09, "check": "passed", …}
+
+``time`` is the line's wall time and ``cpu`` the CPU time of the thread that ran it (s).
 
 ``status`` is what happened to the line: ``animated`` (files written), ``parsed``
 (no animation asked for), ``refused`` (the text's fault: no motion in it, a
