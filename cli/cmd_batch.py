@@ -15,6 +15,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from typing import Any
 
 from text2anim.batch import DEFAULT_CHUNK, Options, run_corpus
 
@@ -52,7 +53,7 @@ class Progress:
 
     def __init__(self, stream=None):
         self.stream = stream or sys.stderr
-        self.bar = None
+        self.bar: Any = None  # a tqdm bar once started
 
     def start(self, total: int, skipped: int) -> None:
         from tqdm import tqdm

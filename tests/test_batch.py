@@ -22,6 +22,8 @@ REQUIRED_CATEGORIES = {
     "shibaraku", "delay_arabic", "delay_fullwidth", "delay_kanji", "sugu", "actors",
     "sahen", "ojigi", "aspect", "variants", "negation", "relative", "no_complement",
     "manner", "object", "body_part", "repeat", "speed", "duration",
+    # issue 14: what users actually write (nlp/README.md)
+    "te_aux", "manner_te", "delay_opening", "kana", "object_adverb", "object_null", "request", "casual",
 }
 
 
@@ -137,7 +139,7 @@ def test_lines_are_animated_into_sharded_folders_with_their_figures(capsys, tmp_
     assert (out / "0001" / "line_0001001.bvh").read_text().startswith("HIERARCHY")
     assert sorted(two["files"]) == ["0001/line_0001002_太郎.bvh", "0001/line_0001002_花子.bvh"]
     assert all((out / f).is_file() for f in two["files"])
-    assert two["joins"] and {"skating_ratio", "max_slide_cm_s", "jerk_rms", "core_fidelity_cm"} <= set(two["joins"][0])
+    assert two["joins"] and {"skating_ratio", "root_pop", "jerk_p99", "core_fidelity_cm", "meets"} <= set(two["joins"][0])
     assert refused["status"] == "refused" and refused["reason"] == "no motion found in the text"
     assert refused["check"] == "errored" and not refused.get("files")
     assert unknown["status"] == "refused" and unknown["reason"] == "unknown verb 泳ぐ"

@@ -5,7 +5,7 @@ import pytest
 
 import text2anim
 from text2anim.motiondb import MotionDB
-from text2anim.motiondb.store import classify_posture
+from text2anim.motiondb import classify_posture
 
 
 @pytest.fixture(scope="module")
@@ -29,13 +29,12 @@ def test_plan_and_animate_keep_postures_continuous(db, text, clips):
     for e in seq:
         played = anim.result.elements[e.id]
         assert classify_posture(motion, int(round(played["start"] * anim.fps))) == planned.clips[e.id].start_posture
-    assert anim.report["actors"]["default"]["skating_ratio"] == 0.0
+    assert anim.report["actors"]["default"]["skating_ratio"] <= 0.02  # GMD ratio at 30 fps (issue 11)
 
 
 def test_a_wait_in_a_posture_is_not_filled_with_standing_idle(db):
     anim = text2anim.animate("太郎は座る。3秒後に歩く。", db)
-    table_ids = {e.id for e in anim.table.elements}
-    fillers = {k: v for k, v in anim.result.elements.items() if k not in table_ids}
+    fillers = {k: v for k, v in anim.result.elements.items() if k in anim.planned.fillers}
     assert not any(v["start"] < 5.6 for v in fillers.values()), fillers  # no standing idle while seated
     (motion,) = anim.motions.values()
     assert classify_posture(motion, int(4.0 * anim.fps)) == "seated"  # still sitting during the 3 s

@@ -15,10 +15,11 @@ from __future__ import annotations
 import logging
 import os
 import sqlite3
+import tempfile
 import time
 import uuid
 from dataclasses import replace
-from typing import Callable
+from typing import Any, Callable
 
 from distributed import Client, LocalCluster, Queue, WorkerPlugin, wait
 
@@ -61,8 +62,8 @@ class DaskExecutor:
 
     def __init__(self, jobs: int, scheduler: str | None):
         self.jobs, self.scheduler = jobs, scheduler
-        self.client: Client | None = None
-        self._cluster = None
+        self.client: Any = None    # a distributed.Client once entered
+        self._cluster: Any = None  # the LocalCluster this executor started, if any
 
     def __enter__(self):
         from .runner import BatchError
@@ -175,9 +176,14 @@ def _snapshot(url: str) -> tuple[str, bytes]:
     from sqlalchemy.engine import make_url
 
     path = make_url(url).database
-    conn = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
-    try:
-        data = conn.serialize()
-    finally:
-        conn.close()
+    with tempfile.TemporaryDirectory(prefix="t2a-ship-") as tmp:
+        copy = os.path.join(tmp, "motions.sqlite")
+        src, dst = sqlite3.connect(f"file:{path}?mode=ro", uri=True), sqlite3.connect(copy)
+        try:
+            src.backup(dst)  # a consistent copy even while another process writes
+        finally:
+            src.close()
+            dst.close()
+        with open(copy, "rb") as fh:
+            data = fh.read()
     return hashlib.sha256(data).hexdigest()[:16], data

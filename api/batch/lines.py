@@ -32,6 +32,8 @@ from .corpus import Item, text_hash
 #: Output files per shard folder: ``DIR/0012/line_0012345.bvh`` keeps folders at 1000 entries.
 SHARD = 1000
 ROUND = 6  # decimals kept of each quality figure in the manifest
+#: The figures of a join's window (``report["joins"][i]["quality"]["join"]``) a record keeps.
+WINDOW_FIGURES = ("skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction")
 
 
 @dataclass(frozen=True)
@@ -169,6 +171,7 @@ def run_chunk(chunk: Iterable[Item], opts: Options, emit: Callable[[dict], None]
 def _animate(item: Item, opts: Options) -> dict:
     from text2anim.animation import animate
 
+    assert opts.out is not None, "animating needs an output folder"
     anim = animate(item.text, database(opts.db), fps=opts.fps)
     rel = shard_path(item.line)
     path = os.path.join(opts.out, rel)
@@ -184,18 +187,23 @@ def _animate(item: Item, opts: Options) -> dict:
 
 
 def join_figures(join: dict) -> dict:
-    """The quality figures of timetable.md §3 for one join of the synthesis report (None where absent)."""
+    """One join's quality figures (timetable.md §3): those of its window at 30 fps from the report's
+    ``quality`` (GMD skating ratio, root pop m/s², jerk p99 m/s³, floor penetration cm, frozen fraction,
+    whether each criterion against its source clips is met), the engine's largest foot slide (cm/s)
+    and core fidelity (cm). None where the report has no figure."""
     m = join.get("metrics", {})
+    q = join.get("quality") or {}
+    window = q.get("join", {})
     core = [v for v in (m.get("core_fidelity_cm") or {}).values() if v is not None]  # None: no core
 
     def fig(x):
         return None if x is None else round(float(x), ROUND)
 
     return {"first": join.get("first"), "second": join.get("second"), "method": join.get("method"),
-            "skating_ratio": fig(m.get("skating_ratio")), "max_slide_cm_s": fig(m.get("max_slide_cm_s")),
-            "jerk_max": fig(m.get("jerk_max")), "jerk_rms": fig(m.get("jerk_rms")),
-            "source_jerk_max": fig(m.get("source_jerk_max")), "source_jerk_rms": fig(m.get("source_jerk_rms")),
-            "core_fidelity_cm": fig(max(core)) if core else None}
+            **{k: fig(window.get(k)) for k in WINDOW_FIGURES},
+            "max_slide_cm_s": fig(m.get("max_slide_cm_s")),
+            "core_fidelity_cm": fig(max(core)) if core else None,
+            "meets": q.get("meets")}
 
 
 # ------------------------------------------------------------------ expectations

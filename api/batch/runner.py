@@ -111,7 +111,7 @@ def run_corpus(corpus: str, opts: Options, *, jobs: int = 1, scheduler: str | No
             with executor:
                 executor.run(chunks(todo, chunk), executor.prepare(opts), emit)
     finally:
-        if manifest is not None:
+        if manifest is not None and opts.out:
             manifest.close()
             atomic_write_text(os.path.join(opts.out, "summary.json"),
                               json.dumps(summary.to_dict(), ensure_ascii=False, indent=2) + "\n")

@@ -12,8 +12,9 @@ CHECKS = ("passed", "failed", "errored")
 #: Quality figures summarised over every join (key in a record's ``joins``, label, unit).
 JOIN_FIGURES = (
     ("skating_ratio", "join foot-skating ratio", ""),
+    ("root_pop", "join root pop", "m/s²"),
+    ("jerk_p99", "join jerk p99", "m/s³"),
     ("max_slide_cm_s", "join max foot slide", "cm/s"),
-    ("jerk_rms", "join RMS jerk", "m/s³"),
     ("core_fidelity_cm", "join core fidelity", "cm"),
 )
 PERCENTILES = (50, 90, 99)
@@ -31,6 +32,7 @@ class Summary:
         self.line_skating = array("d")  # compact: a million lines stay small
         self.joins = {k: array("d") for k, _, _ in JOIN_FIGURES}
         self.n_joins = 0
+        self.n_meeting = 0  # joins whose window meets every criterion against its source clips
         self.max_listed = max_listed
         self._bad: list[tuple[int, dict]] = []  # max-heap (by -line) of the first lines not passing
 
@@ -46,6 +48,7 @@ class Summary:
             self.line_skating.append(rec["skating_ratio"])
         for j in rec.get("joins", ()):
             self.n_joins += 1
+            self.n_meeting += bool(j.get("meets")) and all(j["meets"].values())
             for key in self.joins:
                 if j.get(key) is not None:
                     self.joins[key].append(j[key])
@@ -68,7 +71,7 @@ class Summary:
             "reasons": {s: dict(r.most_common()) for s, r in self.reasons.items()},
         }
         if self.line_skating or self.n_joins:
-            out["quality"] = {"joins": self.n_joins,
+            out["quality"] = {"joins": self.n_joins, "joins_meeting_sources": self.n_meeting,
                               "skating_ratio": spread(self.line_skating),
                               **{f"join_{k}": spread(v) for k, v in self.joins.items()}}
         return out
@@ -105,12 +108,13 @@ class Summary:
             rows = [("foot-skating ratio (whole)", "", self.line_skating)]
             rows += [(label, unit, self.joins[k]) for k, label, unit in JOIN_FIGURES]
             for label, unit, values in rows:
-                s = spread(values)
+                sp = spread(values)
                 name = f"{label} ({unit})" if unit else label
-                if s["n"]:
-                    lines.append(f"{name:<32}" + "".join(f"{s['p' + str(p)]:>9.4g}" for p in PERCENTILES)
-                                 + f"{s['max']:>9.4g}")
-            lines.append(f"({self.n_joins} joins in {self.statuses['animated']} animated lines)")
+                if sp["n"]:
+                    lines.append(f"{name:<32}" + "".join(f"{sp['p' + str(p)]:>9.4g}" for p in PERCENTILES)
+                                 + f"{sp['max']:>9.4g}")
+            lines.append(f"({self.n_joins} joins in {self.statuses['animated']} animated lines; {self.n_meeting} "
+                         "meet every criterion against their source clips)")
         lines.append(f"passed {self.checks['passed']}, failed {self.checks['failed']}, "
                      f"errored {self.checks['errored']} (of {self.total})")
         return "\n".join(lines) + "\n"

@@ -1,0 +1,104 @@
+"""A clip's floor, found from its foot contacts, and moving the clip onto y = 0.
+
+The floor is the level of the soles. Joint centres sit above it: the
+convention of the whole project (the built-in skeleton, ``core.contacts``)
+is that a planted foot's lowest joint (the ball of the foot, CMU's
+``ToeBase``) is :data:`FOOT_CLEARANCE` (2 cm) above the floor. So
+
+    floor = median height of the lowest foot joint on contact frames - FOOT_CLEARANCE
+
+and :func:`place_on_floor` moves the whole clip down by ``floor`` (the root's
+``y`` only; nothing else changes).
+
+Steps (:func:`find_floor`):
+
+1. **Coarse level.** The 5th percentile of the lowest foot joint's height over
+   the clip, minus the clearance. The clip is shifted by it first, so the
+   contact detector's height threshold (5 cm, see :mod:`core.contacts`) is
+   applied near the real floor even when the capture's floor was far off
+   (a clip 30 cm too high would otherwise have no contacts at all).
+2. **Contacts.** :func:`core.contacts.detect_contacts` on the shifted clip.
+   With at least :data:`MIN_CONTACT_FRAMES` contact frames (both feet
+   together), the floor is the median planted height of step 0's formula:
+   the median ignores the few frames of a heel strike or a toe-off.
+3. **Few contacts** (a jump filmed mostly in the air, a clip of under 0.2 s):
+   the coarse level of step 1 is kept, i.e. the floor is where the feet
+   reach lowest (5th percentile) during the clip. ``method`` says which
+   rule was used. A clip whose feet never touch the ground (a seated clip
+   with the feet dangling, a hanging one) is therefore put with its lowest
+   foot reach at the clearance: the best guess without a floor in the data.
+
+Shapes: positions ``(T, J, 3)`` metres, Y up.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .bodyparts import body_map
+from .contacts import detect_contacts
+from .motion import Motion
+
+#: Height of a planted foot's lowest joint centre above the sole (m): the built-in skeleton's toe joint.
+FOOT_CLEARANCE = 0.02
+#: Contact frames (both feet together) needed to trust the contact-based floor; fewer: the coarse level.
+MIN_CONTACT_FRAMES = 6
+#: Percentile of the lowest foot joint's height used for the coarse level.
+COARSE_PERCENTILE = 5.0
+
+
+@dataclass(frozen=True)
+class Floor:
+    """Where a clip's floor was found.
+
+    Attributes:
+        height: the floor's ``y`` in the clip as given, metres (the clip is moved by ``-height``).
+        method: ``"contacts"`` (median planted height) or ``"lowest"`` (too few contacts:
+            5th percentile of the feet's lowest joint).
+        contact_frames: contact frames of both feet together that the estimate used.
+    """
+
+    height: float
+    method: str
+    contact_frames: int
+
+
+def lowest_foot_heights(motion: Motion) -> np.ndarray:
+    """Height of each foot's lowest joint (ankle or toe) per frame, ``(T, 2)`` metres: left, right."""
+    bm = body_map(motion.skeleton)
+    y = motion.positions[..., 1]
+    return np.stack([y[:, list(bm.feet[side])].min(axis=1) for side in ("left", "right")], axis=1)
+
+
+def shifted(motion: Motion, dy: float) -> Motion:
+    """The clip moved up by ``dy`` metres (root ``y`` only)."""
+    if dy == 0.0:
+        return motion
+    root = motion.root_positions.copy()
+    root[:, 1] += dy
+    return motion.replace(root_positions=root)
+
+
+def find_floor(motion: Motion) -> Floor:
+    """The floor of ``motion`` (see the module docstring for the rule).
+
+    Raises :class:`core.bodyparts.BodyMapError` when the skeleton has no feet.
+    """
+    if motion.n_frames == 0:
+        return Floor(0.0, "lowest", 0)
+    low = lowest_foot_heights(motion)
+    coarse = float(np.percentile(low, COARSE_PERCENTILE)) - FOOT_CLEARANCE
+    moved = shifted(motion, -coarse)
+    fc = detect_contacts(moved)
+    planted = np.stack([fc.left, fc.right], axis=1)
+    n = int(planted.sum())
+    if n < MIN_CONTACT_FRAMES:
+        return Floor(coarse, "lowest", n)
+    return Floor(float(np.median(low[planted])) - FOOT_CLEARANCE, "contacts", n)
+
+
+def place_on_floor(motion: Motion) -> tuple[Motion, Floor]:
+    """``motion`` moved vertically so its floor is at ``y = 0``, and the floor that was found."""
+    floor = find_floor(motion)
+    return shifted(motion, -floor.height), floor
