@@ -1,4 +1,6 @@
-"""text2anim batch: the project corpus, checking, parallel runs, output files."""
+"""text2anim batch in one process: the project corpus, checking, the manifest, resuming, the summary.
+
+The Dask runs (local cluster, a killed worker) are in test_batch_cluster.py."""
 from __future__ import annotations
 
 import io
@@ -7,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from text2anim.batch import Options, compare, load_corpus, manifest, run_corpus, shard_path
 from text2anim.cli import cmd_batch
 from text2anim.cli.main import main
 
@@ -31,7 +34,7 @@ def run_cli(capsys, *argv):
 
 
 def test_corpus_is_large_and_covers_every_category():
-    items = cmd_batch.load_corpus(str(CORPUS))
+    items = load_corpus(str(CORPUS))
     assert len(items) >= 150
     assert all(item.expect for item in items)
     assert REQUIRED_CATEGORIES <= {item.category for item in items}
@@ -42,9 +45,10 @@ def test_project_corpus_passes_check(capsys, tmp_path):
     assert code == 0, out
     assert "failed 0, errored 0" in out
     assert len(err.splitlines()) <= 12  # a short counter, not a line per sentence
-    results = [json.loads(x) for x in (tmp_path / "results.jsonl").read_text().splitlines()]
-    assert len(results) == len(cmd_batch.load_corpus(str(CORPUS)))
-    assert all(r["status"] == "passed" for r in results)
+    results = manifest.read(str(tmp_path))
+    assert sorted(r["line"] for r in results) == [it.line for it in load_corpus(str(CORPUS))]
+    assert all(r["check"] == "passed" for r in results)
+    assert all("parse" in r for r in results if r["status"] == "parsed")
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert summary["categories"]["nagara"]["passed"] >= 3
 
@@ -86,20 +90,6 @@ def test_expected_error_passes(capsys, tmp_path):
     assert "expected an error" in out
 
 
-def test_jobs_give_the_same_results_as_serial(tmp_path):
-    items = cmd_batch.load_corpus(str(CORPUS))
-    serial = [r.to_dict() for r in cmd_batch.run_all(items, jobs=1)]
-    parallel = [r.to_dict() for r in cmd_batch.run_all(items, jobs=3)]
-    assert parallel == serial
-
-
-def test_jobs_via_cli_write_the_same_file(capsys, tmp_path):
-    corpus = write(tmp_path, "c.txt", ["太郎は歩く。", "花子は走って、座る。", "手を振りながら歩く。"] * 5)
-    run_cli(capsys, "batch", corpus, "--out", tmp_path / "a", "--parse-only")
-    run_cli(capsys, "batch", corpus, "--jobs", "2", "--out", tmp_path / "b", "--parse-only")
-    assert (tmp_path / "a" / "results.jsonl").read_text() == (tmp_path / "b" / "results.jsonl").read_text()
-
-
 @pytest.mark.parametrize("lines, words", [
     (["{not json"], "not valid JSON"),
     (['{"category": "x"}'], '"text"'),
@@ -115,27 +105,6 @@ def test_missing_corpus_is_a_user_error(capsys, tmp_path):
     assert code == 2 and "nope.jsonl" in err
 
 
-def test_progress_counter_is_short_off_a_terminal():
-    stream = io.StringIO()
-    show = cmd_batch.make_progress(stream)
-    for i in range(1, 501):
-        show(i, 500)
-    lines = stream.getvalue().splitlines()
-    assert 5 <= len(lines) <= 11 and lines[-1] == "batch: 500/500"
-
-
-def test_progress_bar_on_a_terminal():
-    class Tty(io.StringIO):
-        def isatty(self):
-            return True
-
-    stream = Tty()
-    show = cmd_batch.make_progress(stream)
-    for i in range(1, 4):
-        show(i, 3)
-    assert stream.getvalue().count("\r") == 3 and stream.getvalue().endswith("3/3\n")
-
-
 @pytest.mark.parametrize("expected, actual, ok", [
     ({"a": 1}, {"a": 1, "b": 2}, True),
     ({"a": 1.0}, {"a": 1}, True),
@@ -145,21 +114,85 @@ def test_progress_bar_on_a_terminal():
     ({"a": {"b": "x"}}, {"a": {"b": "y"}}, False),
 ])
 def test_compare_subset(expected, actual, ok):
-    assert (list(cmd_batch.compare(expected, actual, "$")) == []) is ok
+    assert (list(compare(expected, actual, "$")) == []) is ok
 
 
-def test_every_corpus_sentence_animates_without_skating(capsys, tmp_path, library_db):
-    """Issue 5's bar: every corpus sentence whose verbs the built-in library has renders; issue 11's
-    threshold for its GMD foot-skating ratio (either foot, 30 fps) is 0.02. Not met yet: the built-in dance clip
-    itself skates 0.050 and the worst join window 0.083 (benchmarks/QUALITY_BEFORE.md lists the sentences);
-    measured ceilings until the joins work lands, so a regression still fails."""
-    code, out, err = run_cli(capsys, "batch", CORPUS, "--out", tmp_path, "--jobs", "2", "--db", library_db)
-    assert code == 0, out
-    summary = json.loads((tmp_path / "summary.json").read_text())
-    a = summary["animation"]
-    assert summary["errored"] == 0
-    refused = sum(1 for item in cmd_batch.load_corpus(str(CORPUS)) if "error" in (item.expect or {}))
-    assert a["rendered"] + a["skipped_unknown_verb"] == summary["total"] - refused
-    assert a["skipped_unknown_verb"] <= 2
-    assert a["max_skating_ratio"] <= 0.051 and a["max_join_skating_ratio"] <= 0.084
-    assert len(list(tmp_path.glob("line_*.bvh"))) >= a["rendered"]
+
+# ------------------------------------------------------------------ animation, manifest, resuming
+SMALL = ["太郎は歩く。", "太郎は走る。3秒後に花子が歩く。", "これは本です。", "太郎は泳ぐ。"]
+
+
+def small_corpus(tmp_path, texts=SMALL, gap=0):
+    """A corpus whose lines are numbered 1.. (after ``gap`` blank lines, to reach another shard)."""
+    return write(tmp_path, "small.txt", [""] * gap + list(texts))
+
+
+def test_lines_are_animated_into_sharded_folders_with_their_figures(capsys, tmp_path, library_db):
+    corpus = small_corpus(tmp_path, gap=1000)
+    out = tmp_path / "out"
+    code, stdout, _ = run_cli(capsys, "batch", corpus, "--out", out, "--db", library_db)
+    assert code == 0
+    recs = {r["line"]: r for r in manifest.read(str(out))}
+    assert sorted(recs) == [1001, 1002, 1003, 1004]
+    walk, two, refused, unknown = (recs[n] for n in sorted(recs))
+    assert walk["status"] == "animated" and walk["files"] == [shard_path(1001)] == ["0001/line_0001001.bvh"]
+    assert (out / "0001" / "line_0001001.bvh").read_text().startswith("HIERARCHY")
+    assert sorted(two["files"]) == ["0001/line_0001002_太郎.bvh", "0001/line_0001002_花子.bvh"]
+    assert all((out / f).is_file() for f in two["files"])
+    assert two["joins"] and {"skating_ratio", "root_pop", "jerk_p99", "core_fidelity_cm", "meets"} <= set(two["joins"][0])
+    assert refused["status"] == "refused" and refused["reason"] == "no motion found in the text"
+    assert refused["check"] == "errored" and not refused.get("files")
+    assert unknown["status"] == "refused" and unknown["reason"] == "unknown verb 泳ぐ"
+    assert unknown["check"] == "passed"  # a verb the database lacks is not a parse error
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["status"] == {"animated": 2, "parsed": 0, "refused": 2, "failed": 0}
+    assert summary["reasons"]["refused"] == {"no motion found in the text": 1, "unknown verb 泳ぐ": 1}
+    assert summary["quality"]["join_skating_ratio"]["n"] == summary["quality"]["joins"] >= 1
+    assert "unknown verb 泳ぐ" in stdout and "join foot-skating ratio" in stdout
+    assert "passed 3, failed 0, errored 1 (of 4)" in stdout
+
+
+def test_rerun_skips_done_lines_and_resumes_after_a_crash(tmp_path, library_db):
+    corpus = small_corpus(tmp_path)
+    out = tmp_path / "out"
+    opts = Options(out=str(out), db=library_db)
+    first = run_corpus(str(corpus), opts)
+    assert (first.ran, first.skipped) == (4, 0)
+    before = {p.name: p.read_bytes() for p in out.rglob("*.bvh")}
+    # A run killed while it wrote its third record: two whole records and half a line.
+    text = (out / "manifest.jsonl").read_text(encoding="utf-8").splitlines(keepends=True)
+    (out / "manifest.jsonl").write_text("".join(text[:2]) + text[2][:25], encoding="utf-8")
+    done_before = {json.loads(x)["line"] for x in text[:2]}
+    ran = []
+    again = run_corpus(str(corpus), opts, on_record=lambda rec, n, total: ran.append(rec["line"]))
+    assert (again.ran, again.skipped) == (2, 2)
+    assert sorted(ran) == sorted({1, 2, 3, 4} - done_before)
+    recs = manifest.read(str(out))
+    assert sorted(r["line"] for r in recs) == [1, 2, 3, 4]
+    assert {p.name: p.read_bytes() for p in out.rglob("*.bvh")} == before
+    # Nothing left to do; then a changed line runs again, alone; then other options run everything.
+    assert run_corpus(str(corpus), opts).ran == 0
+    changed = small_corpus(tmp_path, ["太郎は座る。", *SMALL[1:]])
+    assert run_corpus(str(changed), opts).ran == 1
+    assert manifest.read(str(out))[-1]["text"] == "太郎は座る。"
+    assert run_corpus(str(changed), Options(out=str(out), db=library_db, fps=24.0)).ran == 4
+    assert len(manifest.read(str(out))) == 4
+
+
+@pytest.mark.parametrize("flag", ["--jobs", "--chunk"])
+def test_bad_settings_are_user_errors(capsys, tmp_path, flag):
+    code, _, err = run_cli(capsys, "batch", small_corpus(tmp_path), flag, "0")
+    assert code == 2 and flag in err and "Traceback" not in err
+
+
+def test_progress_off_a_terminal_is_ten_lines_with_rate_and_eta():
+    stream = io.StringIO()
+    bar = cmd_batch.Progress(stream)
+    bar.start(500, 7)
+    for i in range(1, 501):
+        bar.update({}, i, 500)
+    bar.close()
+    lines = stream.getvalue().splitlines()
+    assert lines[0] == "batch: 7 lines already done, 500 to run"
+    assert len(lines) == 11 and "500/500" in lines[-1] and "line/s" in lines[-1]
+    assert "<" in lines[1]  # elapsed<remaining: the ETA
