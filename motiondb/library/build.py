@@ -12,7 +12,7 @@ For every take named in the cut list (each file read once), then every clip cut 
    (:func:`core.retarget.retarget`: bone lengths, hips scaled by leg length, ankles and
    wrists re-placed by IK) and put that on the floor again;
 3. cut the clip's seconds (with ``blend`` seconds before them for a blended loop);
-4. resample to 30 fps (slerp);
+4. resample to 30 fps (slerp) and hold planted feet still (:func:`.feet.lock_feet`);
 5. turn it about +Y and move it so it starts at the origin facing +Z (``face = "travel"``:
    its travel points +Z);
 6. a ``loop = "blend"`` clip (the idle) has its last ``blend`` seconds blended into the
@@ -39,6 +39,7 @@ from text2anim.core.motion import Motion
 from text2anim.core.retarget import retarget
 
 from .capture import ARRAYS, FPS, Cut, cut_list
+from .feet import lock_feet
 from .skeleton import canonical_skeleton
 
 #: Rate of the CMU files (their Frame Time).
@@ -120,7 +121,7 @@ def cut_clip(take: Motion, cut: Cut) -> Motion:
     i0, i1 = _frames(t0 - lead, take.fps), _frames(t1, take.fps)
     if i1 > take.n_frames:
         raise ValueError(f"{cut.name}: the cut ends at {t1} s, after the take's {take.duration:.2f} s")
-    m = take.frames(i0, i1).resample(FPS)
+    m = lock_feet(take.frames(i0, i1).resample(FPS))
     if lead:
         m = blend_loop(m, _frames(lead, FPS))
     return face(m, cut.face)
