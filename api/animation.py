@@ -12,6 +12,7 @@ from text2anim.core.atomic import OutputError, atomic_write_bytes
 
 from . import postures
 from .pipeline import Planned, plan_text
+from .variants import nth
 
 DEFAULT_ACTOR = "default"
 
@@ -22,42 +23,57 @@ DEFAULT_ACTOR = "default"
 IDLE_GAP = 0.5
 IDLE_VERB = "待つ"
 STOP_VERB = "止まる"
+#: Suffix of a mirrored clip's name on a track (a co-actor's or a repetition's variant).
+MIRRORED = "~mirrored"
 
 
 class _Clips:
-    """Clips loaded from ``db`` once each, resampled to ``fps``."""
+    """Clips loaded from ``db`` once each, resampled to ``fps`` (and mirrored where asked)."""
 
     def __init__(self, db: MotionDB, fps: float):
         self.db, self.fps, self.cache, self.infos = db, fps, {}, {}
 
-    def get(self, info) -> splan.Clip:
+    def get(self, info, mirrored: bool = False) -> splan.Clip:
         self.infos[info.name] = info
-        if info.name not in self.cache:
-            motion = self.db.load(info)
-            if motion.fps != self.fps:
-                motion = motion.resample(self.fps)
-            self.cache[info.name] = splan.Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
-        return self.cache[info.name]
+        key = (info.name, mirrored)
+        if key not in self.cache:
+            if mirrored:
+                from text2anim.core.mirror import mirror
 
-    def by_verb(self, verb: str, character: str | None) -> splan.Clip | None:
+                plain = self.get(info)
+                self.cache[key] = replace(plain, name=info.name + MIRRORED, motion=mirror(plain.motion))
+            else:
+                motion = self.db.load(info)
+                if motion.fps != self.fps:
+                    motion = motion.resample(self.fps)
+                self.cache[key] = splan.Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
+        return self.cache[key]
+
+    def by_verb(self, verb: str, character: str | None, variant: int = 0) -> splan.Clip | None:
+        """The best clip of ``verb``; ``variant`` k: the k-th of the tied clips (text2anim.variants)."""
         from text2anim.motiondb import UnknownVerbError
 
         try:
             hits = self.db.search(verb, prefer_character=character)
         except UnknownVerbError:
             return None
-        return self.get(hits[0]) if hits else None
+        if not hits:
+            return None
+        pick = nth(hits, variant)
+        return self.get(pick.clip, pick.mirrored)
 
-    def idle(self, posture: str, character: str | None) -> splan.Clip | None:
-        """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still."""
+    def idle(self, posture: str, character: str | None, variant: int = 0) -> splan.Clip | None:
+        """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still.
+
+        ``variant``: the actor's index, so actors idling side by side are not clones."""
         if posture == "standing":
-            return self.by_verb(IDLE_VERB, character)
+            return self.by_verb(IDLE_VERB, character, variant)
         info = postures.matching(self.db, IDLE_VERB, posture, character=character)
         return self.get(info) if info is not None else None
 
 
 def _fill_gap(clips: _Clips, prev: splan.Element, start: float, end: float, character: str | None,
-              next_id: int) -> list[splan.Element]:
+              next_id: int, variant: int = 0) -> list[splan.Element]:
     """Elements that fill ``[start, end)`` after ``prev``: a stop for a looping motion, then idling."""
     out: list[splan.Element] = []
     stop = clips.by_verb(STOP_VERB, character) if prev.clip.cyclic else None
@@ -67,8 +83,8 @@ def _fill_gap(clips: _Clips, prev: splan.Element, start: float, end: float, char
             t1 = end
         out.append(splan.Element(next_id, stop, start, t1, "transition", prev.id))
         start = t1
-    posture = getattr(clips.infos.get(prev.clip.name), "end_posture", "standing")
-    idle = clips.idle(posture, character) if end - start > IDLE_GAP else None
+    posture = getattr(clips.infos.get(prev.clip.name.removesuffix(MIRRORED)), "end_posture", "standing")
+    idle = clips.idle(posture, character, variant) if end - start > IDLE_GAP else None
     if idle is not None:
         out.append(splan.Element(next_id + len(out), idle, start, end, "connection",
                                  out[-1].id if out else prev.id))
@@ -84,37 +100,53 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
     clips = _Clips(db, fps)
     table = planned.table
     next_id = max(e.id for e in table.elements) + 1
+    bases = {e.prev for e in table.elements if e.method == "composition"}
     tracks = []
-    for actor in table.actors():
+    for a, actor in enumerate(table.actors()):
         elements: list[splan.Element] = []
+        last_of: dict[int, int] = {}  # a repeated element's id -> its last repetition's
         # In playing order (前に puts a later id first); a composition after its base.
         mine = sorted((e for e in table.elements if e.actor == actor),
                       key=lambda e: (e.start, e.method == "composition", e.id))
         for e in mine:
             info = planned.clips[e.id]
             prev, method = e.prev, e.method
-            idle = clips.idle(info.start_posture, info.character) if method == "initial" and e.start > IDLE_GAP else None
+            if method != "composition":
+                prev = last_of.get(prev, prev)
+            idle = clips.idle(info.start_posture, info.character, a) if method == "initial" and e.start > IDLE_GAP \
+                else None
             if idle is not None:  # an actor who comes in later stands idle until then
                 elements.append(splan.Element(next_id, idle, 0.0, e.start, "initial"))
                 prev, method, next_id = next_id, "connection", next_id + 1
-            if e.method == "connection" and e.prev is not None:
-                before = next(x for x in elements if x.id == e.prev)
+            if e.method == "connection" and prev is not None:
+                before = next(x for x in elements if x.id == prev)
                 if e.start - before.end > IDLE_GAP:
-                    fill = _fill_gap(clips, before, before.end, e.start, info.character, next_id)
+                    fill = _fill_gap(clips, before, before.end, e.start, info.character, next_id, a)
                     elements.extend(fill)
                     if fill:
                         prev, next_id = fill[-1].id, next_id + len(fill)
-            elements.append(splan.Element(e.id, clips.get(info), e.start, e.end, method, prev,
-                                          e.speed, e.repeat, e.hold, e.body_part))
+            picks = planned.repeats.get(e.id) if e.id not in bases else None
+            if picks:  # each repetition its own element, playing its own variant
+                step = (e.end - e.start) / len(picks)
+                for k, p in enumerate(picks):
+                    rid = e.id if k == 0 else next_id
+                    next_id += k > 0
+                    elements.append(splan.Element(rid, clips.get(p.clip, p.mirrored), e.start + k * step,
+                                                  e.start + (k + 1) * step, method if k == 0 else "connection",
+                                                  prev if k == 0 else elements[-1].id, e.speed, 1, False, e.body_part))
+                last_of[e.id] = elements[-1].id
+                continue
+            elements.append(splan.Element(e.id, clips.get(info, e.id in planned.mirrored), e.start, e.end, method,
+                                          prev, e.speed, e.repeat, e.hold, e.body_part))
         tracks.append((actor, elements))
     # Actors who finish early stop and stand idle until the last one is done.
     end = max(e.end for e in table.elements)
     out = []
-    for actor, elements in tracks:
+    for a, (actor, elements) in enumerate(tracks):
         last = max((x for x in elements if x.method != "composition"), key=lambda x: x.end)
         if end - last.end > IDLE_GAP:
             character = planned.clips[last.id].character if last.id in planned.clips else None
-            fill = _fill_gap(clips, last, last.end, end, character, next_id)
+            fill = _fill_gap(clips, last, last.end, end, character, next_id, a)
             if not fill and not last.clip.cyclic:  # no idle keeps this posture (seated, lying): hold the last pose
                 elements[elements.index(last)] = replace(last, end=end)
             elements.extend(fill)

@@ -6,7 +6,7 @@ later ``ClipInfo`` + frames → ``synthesis.plan.Clip``).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from text2anim import nlp
 from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
@@ -15,16 +15,23 @@ from text2anim.scheduler import ClipTiming, ScheduleError, TimeTable, plan, with
 from text2anim.core.bodyparts import GROUPS
 
 from . import postures
+from .variants import Pick, Variants
 
 
 @dataclass(frozen=True)
 class Planned:
-    """A text's analysis and time table, with the clip chosen for each element id."""
+    """A text's analysis and time table, with the clip chosen for each element id.
+
+    ``mirrored``: element ids whose clip plays mirrored; ``repeats``: for a repeated
+    element, the clip of each repetition (see :mod:`text2anim.variants`).
+    """
 
     analysis: Analysis
     table: TimeTable
     clips: dict[int, ClipInfo]
     skipped: tuple[str, ...] = ()
+    mirrored: frozenset[int] = frozenset()
+    repeats: dict[int, tuple[Pick, ...]] = field(default_factory=dict)
 
 
 def foot_moving(info: ClipInfo) -> tuple[tuple[float, float], ...]:
@@ -52,6 +59,9 @@ class _Finder:
     def __init__(self, db: MotionDB):
         self.db = db
         self.chosen: dict[int, ClipInfo] = {}
+        self.mirrored: set[int] = set()
+        self.repeats: dict[int, tuple[Pick, ...]] = {}
+        self.variants = Variants()
 
     def search(self, spec: MotionSpec, prefer: str | None) -> list[ClipInfo]:
         part = spec.body_part if spec.body_part in GROUPS else None
@@ -77,8 +87,14 @@ class _Finder:
         if not hits:
             raise ScheduleError(f"the motion database has {spec.verb} but no clip of it fits"
                                 + (f" the {spec.body_part}" if spec.body_part else ""))
-        self.chosen[spec.id] = hits[0]
-        return timing(hits[0])
+        n = max(1, int(spec.repeat))
+        picks = self.variants.take(hits, n)
+        self.chosen[spec.id] = picks[0].clip
+        if picks[0].mirrored:
+            self.mirrored.add(spec.id)
+        if n > 1 and not picks[0].clip.cyclic:
+            self.repeats[spec.id] = tuple(picks)
+        return timing(picks[0].clip)
 
 
 def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbError]:
@@ -116,4 +132,4 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
     if arranged.changed:
         analysis, finder = arranged.analysis, _Finder(db)
         table = plan(analysis, arranged.finder(finder), fps)
-    return Planned(analysis, table, dict(finder.chosen), skipped)
+    return Planned(analysis, table, dict(finder.chosen), skipped, frozenset(finder.mirrored), dict(finder.repeats))
