@@ -117,7 +117,9 @@ def test_a_wait_is_standing_not_a_frozen_stride(library_db):
     assert walk.start == pytest.approx(run.end + 3)
     from text2anim.core.contacts import detect_contacts
     c = detect_contacts(motion)
-    mid = slice(int((walk.start - 0.8) * 30), int((walk.start - 0.2) * 30))
+    # the second before the last 0.5 s: the join into the captured walk (a stride at 1.3 m/s)
+    # shifts the weight forward over those last 0.5 s, as a person setting off does
+    mid = slice(int((walk.start - 1.5) * 30), int((walk.start - 0.5) * 30))
     assert c.left[mid].all() and c.right[mid].all()  # both feet down while waiting
     hips_speed = np.linalg.norm(np.diff(motion.positions[mid, 0], axis=0), axis=1) * 30
     assert hips_speed.max() < 0.3
@@ -133,9 +135,12 @@ def test_an_actor_who_finishes_early_stands_until_the_end(library_db):
     assert np.linalg.norm(hips[-1] - hips[0]) < 0.1
 
 
-@pytest.mark.parametrize("text, clip", [("スキップする。", "skip"), ("歩く。", "walk"), ("走る。", "run")])
+@pytest.mark.parametrize("text, clip", [("スキップする。", "skip"), ("歩く。", "walk"), ("下がる。", "walk_back")])
 def test_a_looping_clip_alone_plays_as_recorded(library_db, text, clip):
-    """A clip that already loops is not 'corrected' at its seam (the skip's landing once made it skate)."""
+    """A clip that already loops is not 'corrected' at its seam (the skip's landing once made it skate).
+
+    The captured walk is built to loop (its seam blended into the frames before the cycle); the
+    captured run's seam is still corrected by the engine: see test_capture_library.py."""
     from text2anim.motiondb import MotionDB
 
     with MotionDB.open(library_db) as db:

@@ -58,6 +58,8 @@ class Cut:
     loop: str | None = None
     blend: float = 0.0
     face: str = "start"
+    starts_from: str | None = None
+    ease: float = 0.0
     about: str = ""
 
     @property
@@ -81,7 +83,8 @@ def _cut(raw: dict) -> Cut:
                   objects=tuple(raw.get("objects", ())), body_part=raw.get("body_part"),
                   cyclic=bool(raw.get("cyclic", False)), starts=raw.get("starts", "stand"),
                   ends=raw.get("ends", "stand"), replaces=raw.get("replaces"), loop=raw.get("loop"),
-                  blend=float(raw.get("blend", 0.0)), face=raw.get("face", "start"), about=raw.get("about", ""))
+                  blend=float(raw.get("blend", 0.0)), face=raw.get("face", "start"),
+                  starts_from=raw.get("starts_from"), ease=float(raw.get("ease", 0.0)), about=raw.get("about", ""))
     except (KeyError, TypeError, ValueError) as exc:
         raise ClipDataError(f"capture.toml: clip {name}: {exc}") from None
     if not 0 <= t0 < t1:
@@ -91,8 +94,10 @@ def _cut(raw: dict) -> Cut:
     for word in (cut.starts, cut.ends):
         if word not in _POSTURE:
             raise ClipDataError(f"capture.toml: clip {name}: unknown posture {word!r}")
-    if cut.face not in ("start", "travel") or cut.loop not in (None, "blend"):
-        raise ClipDataError(f"capture.toml: clip {name}: face must be start|travel, loop blend or absent")
+    if cut.face not in ("start", "travel") or cut.loop not in (None, "blend", "stride"):
+        raise ClipDataError(f"capture.toml: clip {name}: face must be start|travel, loop blend|stride or absent")
+    if cut.loop and not (cut.cyclic and cut.blend > 0):
+        raise ClipDataError(f"capture.toml: clip {name}: a loop needs cyclic = true and blend > 0 seconds")
     return cut
 
 
@@ -104,6 +109,10 @@ def cut_list(path: Path = CUT_LIST) -> tuple[Cut, ...]:
     names = [c.name for c in cuts]
     if len(set(names)) != len(names):
         raise ClipDataError("capture.toml: two clips share a name")
+    for i, c in enumerate(cuts):
+        if c.starts_from is not None and (c.starts_from not in names[:i] or not c.ease > 0):
+            raise ClipDataError(f"capture.toml: clip {c.name}: starts_from must name an earlier clip, "
+                                "with ease > 0 seconds")
     return cuts
 
 
