@@ -126,7 +126,7 @@ def test_planted_feet_are_cleaned(name):
 
 
 def test_the_idle_is_captured_standing_and_alive():
-    for name in ("wait", "wait_118_10"):
+    for name in ("wait",):
         r = CAPTURED[name]
         m = r.motion
         assert r.cyclic and r.verbs[0] == "待つ" and r.start_posture == r.end_posture == "standing"
