@@ -5,24 +5,23 @@ import json
 import os
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
-from text2anim.motiondb import MotionDB
+from text2anim.motiondb import ClipInfo, MotionDB
 from text2anim.synthesis import plan as splan
 from text2anim.core.atomic import OutputError, atomic_write_bytes
 
-from . import postures
 from .pipeline import Planned, plan_text
-from .variants import nth
+from .variants import Pick
+
+if TYPE_CHECKING:
+    from text2anim.core.motion import Motion
+    from text2anim.scheduler import TimeTable
+    from text2anim.synthesis.engine import Result
 
 DEFAULT_ACTOR = "default"
 
 
-#: A wait longer than this (s) between two motions is filled rather than frozen: a looping
-#: motion (walk, run) first comes to a stop (止まる), then the idle clip (待つ) plays until the next
-#: motion, so after 走る。3秒後に歩く the runner stops and stands, breathing, before walking.
-IDLE_GAP = 0.5
-IDLE_VERB = "待つ"
-STOP_VERB = "止まる"
 #: Suffix of a mirrored clip's name on a track (a co-actor's or a repetition's variant).
 MIRRORED = "~mirrored"
 
@@ -31,10 +30,10 @@ class _Clips:
     """Clips loaded from ``db`` once each, resampled to ``fps`` (and mirrored where asked)."""
 
     def __init__(self, db: MotionDB, fps: float):
-        self.db, self.fps, self.cache, self.infos = db, fps, {}, {}
+        self.db, self.fps = db, fps
+        self.cache: dict[tuple[str, bool], splan.Clip] = {}
 
-    def get(self, info, mirrored: bool = False) -> splan.Clip:
-        self.infos[info.name] = info
+    def get(self, info: ClipInfo, mirrored: bool = False) -> splan.Clip:
         key = (info.name, mirrored)
         if key not in self.cache:
             if mirrored:
@@ -49,110 +48,52 @@ class _Clips:
                 self.cache[key] = splan.Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
         return self.cache[key]
 
-    def by_verb(self, verb: str, character: str | None, variant: int = 0) -> splan.Clip | None:
-        """The best clip of ``verb``; ``variant`` k: the k-th of the tied clips (text2anim.variants)."""
-        from text2anim.motiondb import UnknownVerbError
 
-        try:
-            hits = self.db.search(verb, prefer_character=character)
-        except UnknownVerbError:
-            return None
-        if not hits:
-            return None
-        pick = nth(hits, variant)
-        return self.get(pick.clip, pick.mirrored)
-
-    def idle(self, posture: str, character: str | None, variant: int = 0) -> splan.Clip | None:
-        """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still.
-
-        ``variant``: the actor's index, so actors idling side by side are not clones."""
-        if posture == "standing":
-            return self.by_verb(IDLE_VERB, character, variant)
-        info = postures.matching(self.db, IDLE_VERB, posture, character=character)
-        return self.get(info) if info is not None else None
-
-
-def _fill_gap(clips: _Clips, prev: splan.Element, start: float, end: float, character: str | None,
-              next_id: int, variant: int = 0) -> list[splan.Element]:
-    """Elements that fill ``[start, end)`` after ``prev``: a stop for a looping motion, then idling."""
+def _repetitions(e, picks: tuple[Pick, ...], clips: _Clips, first_id: int) -> list[splan.Element]:
+    """A repeated element as one element per repetition, each its own variant (ids: ``e.id``, then
+    ``first_id``, ``first_id + 1``, ...), of equal length, each joined to the one before."""
+    step = (e.end - e.start) / len(picks)
     out: list[splan.Element] = []
-    stop = clips.by_verb(STOP_VERB, character) if prev.clip.cyclic else None
-    if stop is not None:
-        t1 = min(end, start + stop.motion.duration)
-        if end - t1 <= IDLE_GAP:
-            t1 = end
-        out.append(splan.Element(next_id, stop, start, t1, "transition", prev.id))
-        start = t1
-    posture = getattr(clips.infos.get(prev.clip.name.removesuffix(MIRRORED)), "end_posture", "standing")
-    idle = clips.idle(posture, character, variant) if end - start > IDLE_GAP else None
-    if idle is not None:
-        out.append(splan.Element(next_id + len(out), idle, start, end, "connection",
-                                 out[-1].id if out else prev.id))
+    for k, p in enumerate(picks):
+        eid = e.id if k == 0 else first_id + k - 1
+        out.append(splan.Element(eid, clips.get(p.clip, p.mirrored), e.start + k * step, e.start + (k + 1) * step,
+                                 e.method if k == 0 else "connection", e.prev if k == 0 else out[-1].id,
+                                 e.speed, 1, False, e.body_part))
     return out
 
 
 def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track]:
-    """The synthesis tracks of a time table: clips loaded from ``db`` and resampled to ``fps``.
+    """The synthesis tracks of a time table: its elements with their clips loaded from ``db`` at ``fps``.
 
-    A connection that waits more than :data:`IDLE_GAP` seconds gets filler
-    elements (ids above the table's) in the gap: see :func:`_fill_gap`.
+    Every element of the table plays, the fillers of the waits included
+    (:mod:`text2anim.fillers`); an element in ``planned.mirrored`` plays its clip mirrored,
+    and a repeated one in ``planned.repeats`` plays as one element per repetition (ids
+    above the table's; a later element joined to it is joined to its last repetition).
     """
     clips = _Clips(db, fps)
     table = planned.table
     next_id = max(e.id for e in table.elements) + 1
     bases = {e.prev for e in table.elements if e.method == "composition"}
     tracks = []
-    for a, actor in enumerate(table.actors()):
-        elements: list[splan.Element] = []
-        last_of: dict[int, int] = {}  # a repeated element's id -> its last repetition's
+    for actor in table.actors():
         # In playing order (前に puts a later id first); a composition after its base.
         mine = sorted((e for e in table.elements if e.actor == actor),
                       key=lambda e: (e.start, e.method == "composition", e.id))
+        last_of: dict[int, int] = {}  # a repeated element's id -> its last repetition's
+        elements: list[splan.Element] = []
         for e in mine:
-            info = planned.clips[e.id]
-            prev, method = e.prev, e.method
-            if method != "composition":
-                prev = last_of.get(prev, prev)
-            idle = clips.idle(info.start_posture, info.character, a) if method == "initial" and e.start > IDLE_GAP \
-                else None
-            if idle is not None:  # an actor who comes in later stands idle until then
-                elements.append(splan.Element(next_id, idle, 0.0, e.start, "initial"))
-                prev, method, next_id = next_id, "connection", next_id + 1
-            if e.method == "connection" and prev is not None:
-                before = next(x for x in elements if x.id == prev)
-                if e.start - before.end > IDLE_GAP:
-                    fill = _fill_gap(clips, before, before.end, e.start, info.character, next_id, a)
-                    elements.extend(fill)
-                    if fill:
-                        prev, next_id = fill[-1].id, next_id + len(fill)
+            prev = e.prev if e.method == "composition" else last_of.get(e.prev, e.prev)
             picks = planned.repeats.get(e.id) if e.id not in bases else None
-            if picks:  # each repetition its own element, playing its own variant
-                step = (e.end - e.start) / len(picks)
-                for k, p in enumerate(picks):
-                    rid = e.id if k == 0 else next_id
-                    next_id += k > 0
-                    elements.append(splan.Element(rid, clips.get(p.clip, p.mirrored), e.start + k * step,
-                                                  e.start + (k + 1) * step, method if k == 0 else "connection",
-                                                  prev if k == 0 else elements[-1].id, e.speed, 1, False, e.body_part))
-                last_of[e.id] = elements[-1].id
+            if picks:
+                reps = _repetitions(replace(e, prev=prev), picks, clips, next_id)
+                next_id += len(reps) - 1
+                last_of[e.id] = reps[-1].id
+                elements.extend(reps)
                 continue
-            elements.append(splan.Element(e.id, clips.get(info, e.id in planned.mirrored), e.start, e.end, method,
-                                          prev, e.speed, e.repeat, e.hold, e.body_part))
-        tracks.append((actor, elements))
-    # Actors who finish early stop and stand idle until the last one is done.
-    end = max(e.end for e in table.elements)
-    out = []
-    for a, (actor, elements) in enumerate(tracks):
-        last = max((x for x in elements if x.method != "composition"), key=lambda x: x.end)
-        if end - last.end > IDLE_GAP:
-            character = planned.clips[last.id].character if last.id in planned.clips else None
-            fill = _fill_gap(clips, last, last.end, end, character, next_id, a)
-            if not fill and not last.clip.cyclic:  # no idle keeps this posture (seated, lying): hold the last pose
-                elements[elements.index(last)] = replace(last, end=end)
-            elements.extend(fill)
-            next_id += len(fill)
-        out.append(splan.Track(actor, tuple(elements)))
-    return out
+            elements.append(splan.Element(e.id, clips.get(planned.clips[e.id], e.id in planned.mirrored), e.start,
+                                          e.end, e.method, prev, e.speed, e.repeat, e.hold, e.body_part))
+        tracks.append(splan.Track(actor, tuple(elements)))
+    return tracks
 
 
 @dataclass(frozen=True, eq=False)
@@ -164,43 +105,54 @@ class Animation:
     """
 
     planned: Planned
-    result: object  # synthesis.engine.Result
+    result: Result
     fps: float
     blend: str = "optimal"
     smoothness: float = 0.5
+    synthesis_tracks: tuple = ()  # the synthesis input (source clips per element), for the report's join figures
 
     @property
     def text(self) -> str:
         return self.planned.analysis.text
 
     @property
-    def table(self):
+    def table(self) -> TimeTable:
         return self.planned.table
 
     @property
-    def motions(self) -> dict:
+    def motions(self) -> dict[str, Motion]:
         return {a or DEFAULT_ACTOR: m for a, m in self.result.motions.items()}
 
     @property
-    def report(self) -> dict:
-        """The synthesis report of timetable.md §2, with the time table and per-element figures."""
-        from text2anim.core.metrics import compute_metrics
+    def report(self) -> dict[str, Any]:
+        """The synthesis report of timetable.md §2, with the time table and per-element figures.
+
+        ``actors`` holds each actor's whole-motion figures; every join gets ``quality``: the figures of
+        :mod:`text2anim.quality` on a window around it next to its two source clips', all at 30 fps.
+        """
+        from text2anim.core.metrics import foot_skate
+
+        from .quality import actor_quality, join_quality, rounded
 
         whole = {}
-        for name, m in self.motions.items():
-            met = compute_metrics(m)
-            whole[name] = {"frames": met.frames, "duration": round(met.duration, 3),
-                           "skating_ratio": met.skating_ratio,
-                           "foot_skate_cm_s": {s: round(f.mean_speed_cm_s, 3) for s, f in met.foot_skate.items()}}
+        for (name, m), q in zip(self.motions.items(), actor_quality(self.motions).values()):
+            whole[name] = {"frames": m.n_frames, "duration": round(m.duration, 3),
+                           "skating_ratio": round(q.skating_ratio, 4), "quality": rounded(q),
+                           "foot_skate_cm_s": {s: round(f.mean_speed_cm_s, 3) for s, f in foot_skate(m).items()}}
+        joins = self.result.report()["joins"]
+        for j, q in zip(joins, join_quality(self.result, self.synthesis_tracks)):
+            if q is not None:
+                j["quality"] = q
         return {
             "text": self.text,
             "fps": self.fps,
             "synthesis": {"blend": self.blend, "smoothness": self.smoothness},
             "time_table": self.table.to_dict()["elements"],
-            **self.result.report(),
+            "joins": joins,
             "elements": {str(k): v for k, v in self.result.elements.items()},
             "actors": whole,
             "skipped": list(self.planned.skipped),
+            **({"fallbacks": [f.to_dict() for f in self.planned.fallbacks]} if self.planned.fallbacks else {}),
             "warnings": list(self.result.warnings),
         }
 
@@ -236,10 +188,20 @@ class Animation:
             return {names[0]: path}
         return {n: path.with_name(f"{path.stem}_{n}{path.suffix or '.bvh'}") for n in names}
 
-    def save_bvh(self, path: str | os.PathLike) -> list[Path]:
+    def save_bvh(self, path: str | os.PathLike, export=None) -> list[Path]:
+        """One BVH per actor; ``export`` (:class:`text2anim.export.ExportOptions`): the user's rig,
+        root motion or in place, units, loop."""
         from text2anim.core.bvh import format_bvh
 
-        files = {p: format_bvh(self.motions[n]).encode() for n, p in self.bvh_paths(path).items()}
+        motions = self.motions
+        if export is not None and not export.is_default:
+            from .export import check_loopable, export_motion
+
+            if export.loop:
+                check_loopable(list(self.table.elements),
+                               {k: bool(getattr(c, "cyclic", False)) for k, c in self.planned.clips.items()})
+            motions = {n: export_motion(m, export) for n, m in motions.items()}
+        files = {p: format_bvh(motions[n]).encode() for n, p in self.bvh_paths(path).items()}
         return _write_all(files)
 
     def save_html(self, path: str | os.PathLike) -> Path:
@@ -279,9 +241,9 @@ def _write_all(files: dict[Path, bytes]) -> list[Path]:
     return written
 
 
-def animate(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False,
+def animate(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: float = 30.0, skip_unknown: bool = False,
             lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
-            smoothness: float = 0.5) -> Animation:
+            smoothness: float = 0.5, fallback: str = "strict") -> Animation:
     """Analyse ``text``, schedule it, and synthesise one motion per actor.
 
     Args:
@@ -289,6 +251,8 @@ def animate(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False
             ``None`` for the default database (the built-in library on first use).
         fps: output frame rate.
         skip_unknown: drop motions whose verb the database lacks instead of failing.
+        fallback: ``nearest`` animates such a motion with the database verb nearest in
+            meaning (said in ``planned.fallbacks`` and the report); ``strict`` (default) refuses.
         lock_feet, sway: the synthesis options of paper 003 (foot locking, sway transfer).
         blend: how consecutive motions are joined: ``optimal`` (paper 000, the default),
             ``constraint`` (paper 003), ``pose`` or ``crossfade`` (the common baselines);
@@ -305,13 +269,13 @@ def animate(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False
         raise OutputError(f"smoothness must be between 0 (time first) and 1 (smoothness first), not {smoothness}")
     opened = db if isinstance(db, MotionDB) else MotionDB.open(db)
     try:
-        planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown)
+        planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback)
         tracks = build_tracks(planned, opened, fps)
     finally:
         if opened is not db:
             opened.close()
     result = synthesize_with(blend, tracks, fps, smoothness=smoothness, lock_feet=lock_feet, sway=sway)
-    return Animation(planned, result, fps, blend, float(smoothness))
+    return Animation(planned, result, fps, blend, float(smoothness), tuple(tracks))
 
 
 __all__ = ["Animation", "animate", "build_tracks"]

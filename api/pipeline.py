@@ -15,6 +15,8 @@ from text2anim.scheduler import ClipTiming, ScheduleError, TimeTable, plan, with
 from text2anim.core.bodyparts import GROUPS
 
 from . import postures
+from .clip_timing import timing
+from .fillers import fill_waits
 from .variants import Pick, Variants
 
 
@@ -22,39 +24,24 @@ from .variants import Pick, Variants
 class Planned:
     """A text's analysis and time table, with the clip chosen for each element id.
 
-    ``mirrored``: element ids whose clip plays mirrored; ``repeats``: for a repeated
-    element, the clip of each repetition (see :mod:`text2anim.variants`).
+    ``fillers`` are the ids of the elements added to fill the waits (stops, idles:
+    :mod:`text2anim.fillers`); ``skipped`` the verbs dropped as unknown; ``mirrored`` the
+    element ids whose clip plays mirrored and ``repeats``, for a repeated element, the clip
+    of each repetition (co-actors and repeats are not clones: :mod:`text2anim.variants`).
     """
 
     analysis: Analysis
     table: TimeTable
     clips: dict[int, ClipInfo]
     skipped: tuple[str, ...] = ()
+    fillers: tuple[int, ...] = ()
+    fallbacks: tuple = ()  # fallback.Substitution per motion animated with a verb nearest in meaning
     mirrored: frozenset[int] = frozenset()
     repeats: dict[int, tuple[Pick, ...]] = field(default_factory=dict)
 
 
-def foot_moving(info: ClipInfo) -> tuple[tuple[float, float], ...]:
-    """Intervals (s) where one foot is off the ground: the gaps between each foot's contacts."""
-    out = []
-    for side in ("left", "right"):
-        cursor = 0
-        for a, b in info.contacts(side):
-            if a > cursor:
-                out.append((cursor / info.fps, a / info.fps))
-            cursor = b
-        if cursor < info.frames:
-            out.append((cursor / info.fps, info.frames / info.fps))
-    return tuple(sorted(out))
-
-
-def timing(info: ClipInfo) -> ClipTiming:
-    return ClipTiming(info.name, info.duration, tuple(info.core), info.cyclic, info.body_part,
-                      foot_moving(info), info.character)
-
-
-class _Finder:
-    """Retrieves the best clip for each motion and remembers it."""
+class ClipFinder:
+    """Retrieves the best clip for each motion and remembers it (``chosen``: motion id -> clip)."""
 
     def __init__(self, db: MotionDB):
         self.db = db
@@ -99,7 +86,7 @@ class _Finder:
 
 def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbError]:
     """Motions whose verb no clip in ``db`` has, by motion id."""
-    finder = _Finder(db)
+    finder = ClipFinder(db)
     out = {}
     for spec in analysis.motions:
         try:
@@ -109,27 +96,40 @@ def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbEr
     return out
 
 
-def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False) -> Planned:
-    """Analyse ``text`` and schedule its motions with clips from ``db``.
+def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False,
+              fallback: str = "strict") -> Planned:
+    """Analyse ``text`` and schedule its motions with clips from ``db``, the waits filled.
 
-    Unknown verbs raise :class:`UnknownVerbError` (naming the nearest verbs the
-    database has) unless ``skip_unknown``, which drops those motions.
+    The table holds everything that will play: the text's motions, the clips
+    bridging postures (:mod:`text2anim.postures`) and the stops and idles in
+    the waits (:mod:`text2anim.fillers`). Unknown verbs raise :class:`UnknownVerbError`
+    (naming every missing verb as written and the database verbs nearest in meaning)
+    unless ``skip_unknown``, which drops those motions, or ``fallback="nearest"``, which
+    animates each with the database verb nearest in meaning (:mod:`text2anim.fallback`).
     """
+    from . import fallback as _fallback
+
     analysis = nlp.analyze(text)
     unknown = unknown_motions(analysis, db)
     skipped: tuple[str, ...] = ()
+    subs: tuple = ()
+    if unknown and fallback == "nearest":
+        analysis, subs = _fallback.substitute(analysis, unknown, db)
+        unknown = {}
     if unknown:
         if not skip_unknown:
-            raise next(iter(unknown.values()))
+            raise _fallback.unknown_error(analysis, unknown, db)
         skipped = tuple(m.verb for m in analysis.motions if m.id in unknown)
         analysis = without(analysis, set(unknown))
         if not analysis.motions:
             raise ScheduleError("no motion of this text is in the motion database: " + "、".join(skipped))
-    finder = _Finder(db)
+    finder = ClipFinder(db)
     table = plan(analysis, finder, fps)
     # posture continuity: clips whose postures meet, bridging clips where none can (text2anim.postures)
     arranged = postures.arrange(analysis, table, finder.chosen, finder.search, db)
     if arranged.changed:
-        analysis, finder = arranged.analysis, _Finder(db)
+        analysis, finder = arranged.analysis, ClipFinder(db)
         table = plan(analysis, arranged.finder(finder), fps)
-    return Planned(analysis, table, dict(finder.chosen), skipped, frozenset(finder.mirrored), dict(finder.repeats))
+    filled = fill_waits(table, dict(finder.chosen), db, fps)
+    return Planned(analysis, filled.table, filled.clips, skipped, filled.fillers, subs,
+                   frozenset(finder.mirrored) | filled.mirrored, dict(finder.repeats))

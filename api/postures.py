@@ -30,14 +30,16 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, overload
 
 from text2anim.motiondb import ClipInfo, UnknownVerbError
-from text2anim.motiondb.types import POSTURES
+from text2anim.motiondb.types import POSTURES, Posture
+
+from .clip_timing import timing
 
 #: Verbs whose clips take the actor *into* each posture, tried in this order to build bridges.
 #: Only clips that change posture (start elsewhere, end there), whole-body and not looping, are used.
-BRIDGE_VERBS: dict[str, tuple[str, ...]] = {
+BRIDGE_VERBS: dict[Posture, tuple[str, ...]] = {
     "standing": ("立ち上がる", "起き上がる", "立つ"),
     "seated": ("座る", "腰掛ける"),
     "crouched": ("しゃがみ込む", "しゃがむ"),
@@ -52,6 +54,16 @@ MAX_BRIDGE = 2
 # ------------------------------------------------------------------- choose
 def _mismatch(prev_end: str | None, start: str) -> int:
     return 0 if prev_end is None or prev_end == start else 1
+
+
+@overload
+def choose(candidates_by_motion: Mapping[Any, Sequence[ClipInfo]], *,
+           initial: str | None = None) -> dict[Any, ClipInfo | None]: ...
+
+
+@overload
+def choose(candidates_by_motion: Sequence[Sequence[ClipInfo]], *,
+           initial: str | None = None) -> list[ClipInfo | None]: ...
 
 
 def choose(candidates_by_motion: Sequence[Sequence[ClipInfo]] | Mapping[Any, Sequence[ClipInfo]], *,
@@ -89,7 +101,8 @@ def choose(candidates_by_motion: Sequence[Sequence[ClipInfo]] | Mapping[Any, Seq
         # best[k] = (mismatches, ranks so far) of the best path ending in candidate k of the current
         # motion; tuples compare as the docstring says (fewer mismatches, then earlier ranks)
         first = lists[present[0]]
-        best = [(_mismatch(initial, c.start_posture), (k,)) for k, c in enumerate(first)]
+        best: list[tuple[int, tuple[int, ...]]] = [(_mismatch(initial, c.start_posture), (k,))
+                                                   for k, c in enumerate(first)]
         prev = first
         for i in present[1:]:
             cur = lists[i]
@@ -138,7 +151,7 @@ def _changers(db, character: str | None) -> list[ClipInfo]:
     return out
 
 
-def bridges(prev_end_posture: str, next_start_posture: str, db, *, character: str | None = None,
+def bridges(prev_end_posture: Posture, next_start_posture: Posture, db, *, character: str | None = None,
             max_clips: int = MAX_BRIDGE) -> list[ClipInfo]:
     """The clips to play between a clip ending in ``prev_end_posture`` and one starting in ``next_start_posture``.
 
@@ -172,7 +185,7 @@ def bridges(prev_end_posture: str, next_start_posture: str, db, *, character: st
     return []
 
 
-def matching(db, verb: str, posture: str, *, character: str | None = None) -> ClipInfo | None:
+def matching(db, verb: str, posture: Posture, *, character: str | None = None) -> ClipInfo | None:
     """The best clip of ``verb`` that starts and ends in ``posture``, or ``None`` (also for an unknown verb).
 
     For fillers that must not change the posture: the idle clip (待つ) after a
@@ -211,11 +224,9 @@ class Arrangement:
     def finder(self, fallback: Callable) -> Callable:
         """A clip finder for :func:`scheduler.plan` returning :attr:`clips`, else asking ``fallback``.
 
-        ``fallback`` is the pipeline's finder (``text2anim.pipeline._Finder``):
+        ``fallback`` is the pipeline's finder (``text2anim.pipeline.ClipFinder``):
         the chosen clips are recorded in its ``chosen`` dict as its own are.
         """
-        from .pipeline import timing
-
         clips = self.clips
 
         def find(spec, prefer):
@@ -245,9 +256,9 @@ def arrange(analysis, table, chosen: Mapping[int, ClipInfo], search: Callable, d
     Args:
         analysis: the :class:`nlp.types.Analysis` that was planned.
         table: its first time table (:func:`scheduler.plan` with the pipeline's finder).
-        chosen: motion id -> the clip the first pass took (``_Finder.chosen``).
+        chosen: motion id -> the clip the first pass took (``ClipFinder.chosen``).
         search: ``search(spec, prefer_character) -> [ClipInfo, ...]`` ranked
-            candidates of a motion (``_Finder.search``).
+            candidates of a motion (``ClipFinder.search``).
         db: the :class:`motiondb.MotionDB`, for :func:`bridges`.
 
     Each actor's sequence is its table elements other than compositions, in
@@ -312,7 +323,7 @@ def arrange(analysis, table, chosen: Mapping[int, ClipInfo], search: Callable, d
                 motions.insert(next(i for i, m in enumerate(motions) if m.id == b),
                                MotionSpec(nid, spec_b.actor, clip.verb, span=(spec_b.span[0], spec_b.span[0])))
             chain = [a] + new_ids + [b]
-            if link is not None:
+            if incoming is not None and link is not None:
                 # the link that led to b leads to the first bridge (a delay is spent in the old posture;
                 # a link from another actor's motion starts the change of posture where b would have
                 # started); the bridges and b follow each other, b as the link said when it came from a

@@ -44,12 +44,12 @@ sys.path.insert(0, str(REPO))
 from text2anim.motiondb import ClipRecord, MotionDB  # noqa: E402
 from text2anim.scheduler.lengths import transition_window  # noqa: E402
 from text2anim.core import read_bvh  # noqa: E402
-from text2anim.core import optimal  # noqa: E402
+from text2anim.synthesis import optimal  # noqa: E402
 from text2anim.synthesis.engines import METHODS, synthesize_with  # noqa: E402
 from text2anim.core.metrics import foot_skate  # noqa: E402
 from text2anim.synthesis.plan import Clip, Element, Track  # noqa: E402
 from text2anim.synthesis.timing import find_cycle  # noqa: E402
-from text2anim.pipeline import timing  # noqa: E402
+from text2anim.clip_timing import timing  # noqa: E402
 
 CMU = REPO.parent / "shared" / "mocap" / "cmu"
 FPS = 30.0

@@ -53,7 +53,7 @@ from text2anim.motiondb.schema import (  # noqa: E402
     SkeletonRow,
     Verb,
 )
-from text2anim.motiondb.store import skeleton_json  # noqa: E402
+from text2anim.motiondb.blobs import skeleton_json  # noqa: E402
 
 sys.path.insert(0, str(REPO / "tests"))
 from conftest import make_motion  # noqa: E402

@@ -6,6 +6,7 @@ import sys
 
 from .bvh_options import positive_float
 from .cmd_parse import read_text
+from .export_options import add_export_arguments, export_options
 
 NAME = "animate"
 HELP = "turn a text into animation (the default command: text2anim TEXT ...)"
@@ -24,9 +25,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--db", metavar="URL", help="motion database (SQLAlchemy URL or SQLite path; "
                    "default: $TEXT2ANIM_DB or the user's data directory)")
     p.add_argument("--skip-unknown", action="store_true", help="drop motions whose verb the database lacks")
+    p.add_argument("--fallback", choices=("strict", "nearest"), default="strict",
+                   help="a verb the database lacks: strict (default) stops with the nearest verbs by meaning; "
+                        "nearest animates the database verb nearest in meaning and says so")
     p.add_argument("--no-foot-lock", action="store_true", help="do not lock planted feet during blends")
     p.add_argument("--no-sway", action="store_true", help="do not transfer sway in compositions")
     add_blend_arguments(p)
+    add_export_arguments(p)
 
 
 def add_blend_arguments(p: argparse.ArgumentParser) -> None:
@@ -59,15 +64,18 @@ def run(args: argparse.Namespace) -> int:
     import text2anim
 
     text = read_text(args.text)
+    export = export_options(args)
     _say("analysing, retrieving clips and synthesising ...")
     anim = text2anim.animate(text, args.db, fps=args.fps, skip_unknown=args.skip_unknown,
                              lock_feet=not args.no_foot_lock, sway=not args.no_sway, blend=args.blend,
-                             smoothness=args.smoothness)
+                             smoothness=args.smoothness, fallback=args.fallback)
+    for sub in anim.planned.fallbacks:
+        _say(f"fallback: {sub}")
     for verb in anim.planned.skipped:
         _say(f"skipped {verb}: not in the motion database")
     for w in anim.report["warnings"]:
         _say(f"warning: {w}")
-    written = anim.save_bvh(args.output)
+    written = anim.save_bvh(args.output, export)
     for extra, save in ((args.html, anim.save_html), (args.glb, anim.save_glb),
                         (args.report, anim.save_report), (args.plot, anim.save_plot)):
         if extra:

@@ -25,6 +25,10 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from functools import partial
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from text2anim.motiondb import MotionDB
 
 NAME = "batch"
 HELP = ("run every line of a corpus through parse (and plan + animation with --out), print a "
@@ -128,7 +132,7 @@ def stage_parse(text: str) -> dict:
     return analyze(text).to_dict(extra=True)
 
 
-_DB = {}  # one open database per process and URL
+_DB: dict[str | None, MotionDB] = {}  # one open database per process and URL
 
 
 def _database(url: str | None):
@@ -144,6 +148,8 @@ def stage_animate(item: Item, cfg: Config) -> dict:
     from text2anim.motiondb import UnknownVerbError
     from text2anim.animation import animate
 
+    if cfg.out is None:
+        raise ValueError("stage_animate needs an output folder (cfg.out)")
     try:
         anim = animate(item.text, _database(cfg.db), fps=cfg.fps)
     except UnknownVerbError as exc:
@@ -156,7 +162,8 @@ def stage_animate(item: Item, cfg: Config) -> dict:
                  for e in report["time_table"]],
         "files": [os.path.basename(f) for f in files],
         "skating_ratio": max(a["skating_ratio"] for a in report["actors"].values()),
-        "join_skating_ratio": max((j["metrics"].get("skating_ratio", 0.0) for j in joins), default=0.0),
+        "join_skating_ratio": max((j["quality"]["join"]["skating_ratio"] for j in joins if "quality" in j),
+                                  default=0.0),
         "joins": len(joins),
         "warnings": report["warnings"],
     }

@@ -65,6 +65,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="the posture the clips start in (default: classified from each file's first frame)")
     a.add_argument("--end-posture", choices=_POSTURES,
                    help="the posture the clips end in (default: classified from each file's last frame)")
+    a.add_argument("--map", dest="joint_map", metavar="FILE",
+                   help="JSON {role: joint name} for joints no known rig names, used when a clip is retargeted "
+                        "onto its character's skeleton (roles are VRM humanoid bone names)")
     add_read_options(a)
 
     a = action("list", "list clips (ranked as a search when --verb is given)")
@@ -190,10 +193,17 @@ def run(args) -> int:
 
 
 def _import(db, args) -> int:
-    infos = db.import_bvh(args.files, args.verb, args.object, character=args.character, core=args.core,
-                          part=args.part, cyclic=args.cyclic, names=[args.name] if args.name else None,
-                          replace=args.replace, progress=_progress, start_posture=args.start_posture,
-                          end_posture=args.end_posture, **read_options(args))
+    from text2anim.core.rigs import load_joint_map
+    from text2anim.motiondb import ImportOptions
+
+    joint_map = load_joint_map(args.joint_map) if args.joint_map else None
+    options = ImportOptions(verbs=tuple(args.verb), objects=tuple(args.object or ()), character=args.character,
+                            core=args.core, part=args.part, cyclic=args.cyclic,
+                            names=(args.name,) if args.name else None, replace=args.replace,
+                            start_posture=args.start_posture, end_posture=args.end_posture, joint_map=joint_map,
+                            **read_options(args))
+    infos = db.import_bvh(args.files, options, progress=_progress,
+                          notify=lambda path, msg: print(f"text2anim db import: {path}: {msg}", file=sys.stderr))
     print(f"imported {len(infos)} clip{'s' if len(infos) != 1 else ''} into {db.url}:")
     for c in infos:
         print(f"  {c.name}: {c.frames} frames at {c.fps:g} fps ({c.duration:.2f} s), "

@@ -3,19 +3,27 @@
 Names are matched after dropping a namespace prefix (``mixamorig:``) and
 separators; side comes from ``Left``/``Right`` anywhere, or a lone ``L``/``R``
 prefix or suffix (``LHipJoint``, ``hand.L``, ``Hand_R``). A joint whose name
-says nothing (an end effector, a finger) takes its parent's group. Covered:
-CMU/cgspeed, Mixamo and the built-in skeleton (CMU names).
+says nothing (an end effector, a finger, Unreal's ``ball_l``) takes its parent's
+group. A sided hip (SMPL's ``left_hip``) is the top of that leg. Covered:
+CMU/cgspeed, Mixamo, the built-in skeleton (CMU names), VRM humanoid bone
+names, SMPL's 22 joints and the Unreal mannequin (see :mod:`core.rigs` for
+which joint plays which role in retargeting).
 """
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Literal, get_args
 
 from .skeleton import Skeleton
 
 #: The groups a partial action may be declared for, plus the whole halves.
-GROUPS = ("lower", "upper", "right_arm", "left_arm", "both_arms", "head", "torso", "right_leg", "left_leg")
+#: A body-part group: what a partial action is declared for (``ClipRecord.body_part``) and what a
+#: composition takes from its clip.
+BodyPart = Literal["lower", "upper", "right_arm", "left_arm", "both_arms", "head", "torso", "right_leg", "left_leg"]
+#: Every :data:`BodyPart`, in this order.
+GROUPS: tuple[BodyPart, ...] = get_args(BodyPart)
 
 _KEYWORDS = (  # first match wins, so "forearm" is an arm before anything else
     ("head", ("neck", "head", "jaw", "eye", "nose", "skull")),
@@ -83,9 +91,10 @@ class BodyMap:
             raise BodyMapError(f"unknown body part {part!r}; known: {', '.join(GROUPS)}") from None
 
 
-def _first(skel: Skeleton, members: tuple[int, ...], words: tuple[str, ...]) -> int | None:
+def _first(names: tuple[str, ...], members: tuple[int, ...], words: tuple[str, ...]) -> int | None:
+    """The first of ``members`` whose joint name contains one of ``words`` (case and punctuation ignored)."""
     for j in members:
-        low = re.sub(r"[^a-z0-9]", "", _strip(skel.names[j]).lower())
+        low = re.sub(r"[^a-z0-9]", "", _strip(names[j]).lower())
         if any(w in low for w in words):
             return j
     return None
@@ -99,6 +108,8 @@ def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
     for j, name in enumerate(names):
         kind = "hips" if j == 0 else kind_of(name)
         side = side_of(name)
+        if kind == "hips" and j != 0 and side is not None:
+            kind = "leg"  # left_hip (SMPL), LeftHip: the thigh's joint
         if kind in ("arm", "leg"):
             if side is None:
                 p = skel_parents[j]
@@ -122,6 +133,7 @@ def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
         raise BodyMapError("cannot place these joints in body parts (no known name pattern): " + ", ".join(unplaced))
     groups: dict[str, list[int]] = {g: [] for g in (*GROUPS, "hips")}
     for j, lab in enumerate(labels):
+        assert lab is not None  # every joint is placed, else raised above
         groups[lab].append(j)
     groups["both_arms"] = groups["left_arm"] + groups["right_arm"]
     groups["lower"] = groups["hips"] + groups["left_leg"] + groups["right_leg"]
@@ -131,26 +143,21 @@ def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
     if missing:
         raise BodyMapError("the skeleton has no joints for: " + ", ".join(missing))
 
-    class _S:  # the minimal view _first needs
-        pass
-
-    view = _S()
-    view.names = names
     feet, hands = {}, {}
     for side in ("left", "right"):
         leg = frozen[f"{side}_leg"]
-        ankle = _first(view, leg, ("foot", "ankle"))
+        ankle = _first(names, leg, ("foot", "ankle"))
         if ankle is None:
             raise BodyMapError(f"no {side} foot/ankle joint among: " + ", ".join(names[j] for j in leg))
-        toe = _first(view, leg, ("toe",))
+        toe = _first(names, leg, ("toe",))
         if toe is None:
             kids = [j for j in leg if parents[j] == ankle]
             toe = kids[0] if kids else ankle
         feet[side] = (ankle, toe)
         arm = frozen[f"{side}_arm"]
-        hand = _first(view, arm, ("hand", "wrist"))
+        hand = _first(names, arm, ("hand", "wrist"))
         hands[side] = hand if hand is not None else arm[-1]
-    head = _first(view, frozen["head"], ("head",))
+    head = _first(names, frozen["head"], ("head",))
     head = head if head is not None else frozen["head"][-1]
     neck = frozen["head"][0]
     chest = parents[neck] if parents[neck] in frozen["torso"] else (frozen["torso"][-1] if frozen["torso"] else 0)

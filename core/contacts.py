@@ -102,11 +102,11 @@ class FootContacts:
 
     def intervals(self, side: str) -> list[tuple[int, int]]:
         """Contact intervals of one foot as ``[start, stop)`` frames."""
-        return [tuple(map(int, r)) for r in runs(self.of(side))]
+        return [(int(a), int(b)) for a, b in runs(self.of(side))]
 
     def moving(self, side: str) -> list[tuple[int, int]]:
         """Foot-moving intervals (lift-off to landing) of one foot, ``[start, stop)`` frames."""
-        return [tuple(map(int, r)) for r in runs(~self.of(side))]
+        return [(int(a), int(b)) for a, b in runs(~self.of(side))]
 
     def state(self) -> np.ndarray:
         """Per-frame contact state code: 0 none, 1 left, 2 right, 3 both, ``(T,)``."""

@@ -26,6 +26,7 @@ from __future__ import annotations
 import json
 import os
 import struct
+from typing import Any
 
 import numpy as np
 
@@ -73,7 +74,10 @@ class _Builder:
 
 def _bone_boxes(points: np.ndarray, parents: list[int], radii: np.ndarray):
     """Boxes along bones: positions, normals, joint index per vertex and triangle indices."""
-    pos, nrm, jnt, idx = [], [], [], []
+    pos: list[np.ndarray] = []
+    nrm: list[np.ndarray] = []
+    jnt: list[int] = []
+    idx: list[int] = []
     # unit cube faces: normal axis, sign; corners in (u, v) order counter-clockwise seen from outside
     for i, p in enumerate(parents):
         if p < 0:
@@ -145,7 +149,7 @@ def _actor(b: _Builder, gl: dict, name: str, motion: Motion, color: str, multi: 
     bind_root = motion.root_positions[0].astype(np.float64)
     bind_world = skel.rest_positions() + bind_root  # identity rotations: world = sum of offsets
     for j in range(J):
-        node = {"name": skel.names[j]}
+        node: dict[str, Any] = {"name": skel.names[j]}
         t = bind_root if j == 0 else skel.offsets[j]
         if np.any(t != 0):
             node["translation"] = [float(v) for v in t]

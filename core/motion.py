@@ -181,7 +181,7 @@ class Motion:
         if fps == self.fps or self.n_frames < 2:
             return self.replace(fps=fps)
         t_old = self.times
-        n_new = int(np.floor(t_old[-1] * fps + 1e-9)) + 1
+        n_new = resampled_frames(self.n_frames, self.fps, fps)
         t_new = np.minimum(np.arange(n_new) / fps, t_old[-1])
         root = np.stack([np.interp(t_new, t_old, self.root_positions[:, k]) for k in range(3)], axis=1)
         rots = np.empty((n_new, self.skeleton.n_joints, 4))
@@ -196,6 +196,20 @@ class Motion:
     def then(self, *others: "Motion") -> "Motion":
         """Frames of ``self`` followed by those of ``others`` (same skeleton and fps, no alignment)."""
         return concatenate([self, *others])
+
+
+def resampled_frames(n_frames: int, fps: float, new_fps: float) -> int:
+    """How many frames :meth:`Motion.resample` makes of ``n_frames`` at ``fps`` at ``new_fps``.
+
+    The new frames sample ``0, 1/new_fps, ...`` up to the last original frame, at
+    ``(n_frames - 1) / fps`` seconds; so a clip's played length is known from its
+    metadata, without its frames.
+    """
+    new_fps = float(new_fps)
+    if new_fps == fps or n_frames < 2:
+        return n_frames
+    last = (n_frames - 1) / fps
+    return int(np.floor(last * new_fps + 1e-9)) + 1
 
 
 def concatenate(motions: list[Motion]) -> Motion:

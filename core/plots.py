@@ -78,7 +78,7 @@ def _fonts() -> tuple[str | None, frozenset]:
     from matplotlib import font_manager
     from matplotlib.ft2font import FT2Font
 
-    by_name = {}
+    by_name: dict[str, str] = {}
     for f in font_manager.fontManager.ttflist:
         by_name.setdefault(f.name, f.fname)
     chars: set[int] = set()

@@ -23,17 +23,34 @@ Steps, each vectorised over frames (one numpy step per joint):
    the next role down is set in world space.
 3. **Hips.** The source hips' position (its floor at ``y = 0``, see
    :mod:`core.floor`) scaled by ``s = L_t / L_s``, the ratio of leg lengths
-   (:func:`leg_length`: the hips' standing height): height and travel both. A target whose hips are not its root (the Unreal mannequin's
-   ``root``) gets the hips' position as that joint's translation.
-4. **Re-planting.** Two-bone IK (:mod:`core.ik`) puts each ankle on the
-   source ankle's scaled position ``s * p`` on every frame (raised by the
-   difference of the rigs' ankle heights above the sole, ``h_t - s h_s``, so
-   a flat foot stays flat on the floor) and each wrist on the scaled source
-   wrist, and the foot and hand then get their world
-   rotation of step 2 back. Feet therefore plant where the scaled source's
-   do and slide no more than it does (in proportion ``s``). The knee and
-   elbow hinges come from the target's rest pose: a knee flexes backwards
-   (``forward x thigh``), an elbow forwards (``upper arm x forward``).
+   (:func:`leg_length`: the hips' standing height): height and travel both.
+   A target whose hips are not its root (the Unreal mannequin's ``root``)
+   gets the hips' position as that joint's translation.
+4. **Re-planting**, on every frame:
+
+   - each foot's goal: its toe joint on the source toe's scaled position
+     ``s * p`` (its height unscaled within :data:`GROUND_BAND` of the floor,
+     :func:`foot_height`), the foot turned as in step 2, so the ankle goes
+     where the target foot's own shape puts it (a rig without toe joints: the
+     ankle on the scaled source ankle, raised by the rigs' difference in
+     ankle height above the sole);
+   - where a leg cannot reach its goal (a straight stance leg on a rig whose
+     feet or legs are proportioned otherwise) the hips are lowered just
+     enough, smoothly over :data:`DROP_WINDOW`;
+   - the spine's first joint is turned (shortest arc) so the top of the chest
+     points where the scaled source's is, and each shoulder so its upper arm
+     joint does (moved towards the hand's goal when that is out of the arm's
+     reach from there); the neck and upper arms keep their step-2 world
+     rotations. Rigs that split the spine in other places bend it in other
+     places; this puts the arms back where they hang from;
+   - two-bone IK (:mod:`core.ik`) puts the ankles on their goals and the
+     wrists on the scaled source wrists, and the feet and hands get their
+     step-2 world rotations back. The knee and elbow hinges come from the
+     target's rest pose: a knee flexes backwards (``forward x thigh``), an
+     elbow forwards (``upper arm x forward``).
+
+   Feet therefore plant where the scaled source's do and slide no more than
+   they do (in proportion ``s``).
 
 Units: metres, Y up; rotations ``(T, J, 4)`` scipy quaternions ``(x, y, z, w)``.
 """
@@ -42,6 +59,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.ndimage import maximum_filter1d, uniform_filter1d
 from scipy.spatial.transform import Rotation
 
 from .ik import set_world_rotation, two_bone_ik
@@ -59,6 +77,11 @@ AIM = {
         ("Shoulder", "UpperArm"), ("UpperArm", "LowerArm"), ("LowerArm", "Hand"),
         ("UpperLeg", "LowerLeg"), ("LowerLeg", "Foot"), ("Foot", "Toes"))},
 }
+#: Height (m) below which a toe keeps the source's height above the floor (see :func:`foot_height`):
+#: just above the 5 cm under which timetable.md section 3 calls a foot low; the swing above it scales.
+GROUND_BAND = 0.06
+#: Seconds over which the hips' lowering (where a leg cannot reach) is spread.
+DROP_WINDOW = 0.2
 _LIMBS = {f"{s}_{k}": (f"{s}{a}", f"{s}{b}", f"{s}{c}") for s in ("left", "right") for k, (a, b, c) in (
     ("leg", ("UpperLeg", "LowerLeg", "Foot")), ("arm", ("UpperArm", "LowerArm", "Hand")))}
 
@@ -233,24 +256,134 @@ def retarget(motion: Motion, target: Skeleton, *, source_map: dict[str, str] | N
     return out
 
 
-def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndarray]) -> Motion:
-    """Step 4: ankles and wrists onto the scaled source's, then their world rotations restored."""
-    _, _, fwd_t = _body_axes(out.skeleton, mapping.target)
+def _aim(motion: Motion, joint: int, end: int, goal: np.ndarray) -> Motion:
+    """Turn ``joint`` by the shortest arc (per frame) that points it at ``goal`` ``(T, 3)`` through ``end``."""
+    pose = motion.pose
+    a = pose.positions[:, joint]
+    u, v = pose.positions[:, end] - a, goal - a
+    axis = np.cross(u, v)
+    sin = np.linalg.norm(axis, axis=-1)
+    angle = np.arctan2(sin, np.sum(u * v, axis=-1))
+    turn = axis * (angle / np.maximum(sin, 1e-12))[:, None]
+    turn[sin < 1e-9] = 0.0
+    world = Rotation.from_rotvec(turn).as_matrix() @ pose.rotations[:, joint]
+    p = motion.skeleton.parents[joint]
+    local = world if p < 0 else np.swapaxes(pose.rotations[:, p], -1, -2) @ world
+    rots = motion.rotations.copy()
+    rots[:, joint] = matrix_to_quat(local)
+    return motion.replace(rotations=rots)
+
+
+def _aim_torso(out: Motion, source: Motion, mapping: Mapping, world: dict[str, np.ndarray]) -> Motion:
+    """The spine aimed so the top of the chest, and each shoulder so its upper arm, sit on the scaled source's.
+
+    The neck and the upper arms then get their world rotations (``world``, step 2) back, so the
+    aiming moves where the head and arms hang from but not which way they point.
+    """
+    both = set(mapping.roles)
+    spine = [r for r in ("spine", "chest", "upperChest") if r in both]
     src_pos = source.positions
-    Gs = source.pose.rotations
+    if len(spine) >= 2:
+        out = _aim(out, mapping.target[spine[0]], mapping.target[spine[-1]],
+                   mapping.scale * src_pos[:, mapping.source[spine[-1]]])
+        if "neck" in both:
+            out = set_world_rotation(out, mapping.target["neck"], matrix_to_quat(world["neck"]))
+    rest = out.skeleton.rest_positions()
+    for side in ("left", "right"):
+        sh, arm, fore, hand = (f"{side}{p}" for p in ("Shoulder", "UpperArm", "LowerArm", "Hand"))
+        if not all(r in both for r in (sh, arm, fore, hand)):
+            continue
+        goal = mapping.scale * src_pos[:, mapping.source[arm]]
+        # if the hand's goal is out of the arm's reach from there, slide the goal towards it until it is not
+        reach = 0.999 * sum(np.linalg.norm(rest[mapping.target[b]] - rest[mapping.target[a]])
+                            for a, b in ((arm, fore), (fore, hand)))
+        to_hand = mapping.scale * src_pos[:, mapping.source[hand]] - goal
+        dist = np.linalg.norm(to_hand, axis=-1)
+        goal = goal + to_hand * (np.maximum(dist - reach, 0.0) / np.maximum(dist, 1e-12))[:, None]
+        out = _aim(out, mapping.target[sh], mapping.target[arm], goal)
+        out = set_world_rotation(out, mapping.target[arm], matrix_to_quat(world[arm]))
+    return out
+
+
+def foot_height(y: np.ndarray, s: float) -> np.ndarray:
+    """A toe's height on the target: as the source's up to :data:`GROUND_BAND`, scaled by ``s`` above it.
+
+    Contact and the first centimetres of a step are a matter of the ground, not of the body's size:
+    scaled by 0.93, a toe skimming at 5.2 cm would scuff at 4.8 cm (and count as skating, timetable.md
+    section 3); the swing above the band scales with the legs. Continuous at the band.
+    """
+    return np.where(y <= GROUND_BAND, y, GROUND_BAND + s * (y - GROUND_BAND))
+
+
+def _limb_goals(out: Motion, source: Motion, mapping: Mapping, world: dict[str, np.ndarray]):
+    """``[(limb, chain (3,), end-joint goal (T, 3), end world rotation (T, 3, 3))]`` of step 4."""
+    src_pos = source.positions
+    rest_t = out.skeleton.rest_positions()
     lift = ankle_height(out.skeleton, mapping.target) - mapping.scale * ankle_height(source.skeleton, mapping.source)
+    parents = out.skeleton.parents
+    goals = []
     for name, roles in _LIMBS.items():
         if not all(r in mapping.source and r in mapping.target for r in roles):
             continue
-        chain = tuple(mapping.target[r] for r in roles)
-        parents = out.skeleton.parents
+        chain = (mapping.target[roles[0]], mapping.target[roles[1]], mapping.target[roles[2]])
         if parents[chain[1]] != chain[0] or parents[chain[2]] != chain[1]:
             continue  # a twist bone inside the limb: not a two-bone chain, left as rotated
+        end_world = world[roles[2]]
         goal = mapping.scale * src_pos[:, mapping.source[roles[2]]]
-        if name.endswith("leg"):  # the target's own ankle height above its sole, not the scaled source's
+        toes = roles[2].replace("Foot", "Toes")
+        if name.endswith("leg") and toes in mapping.source and toes in mapping.target:
+            # the toe where the scaled source's is, the ankle where the foot's own shape puts it
+            foot = rest_t[mapping.target[toes]] - rest_t[chain[2]]
+            toe = mapping.scale * src_pos[:, mapping.source[toes]]
+            toe[:, 1] = foot_height(src_pos[:, mapping.source[toes], 1], mapping.scale)
+            goal = toe - end_world @ foot
+        elif name.endswith("leg"):  # no toes: the target's own ankle height above its sole
             goal[:, 1] += lift
+        goals.append((name, chain, goal, end_world))
+    return goals
+
+
+def _drop_hips(out: Motion, legs, hips: int) -> Motion:
+    """Lower the hips on the frames where a leg cannot reach its ankle goal, smoothly (over :data:`DROP_WINDOW` s).
+
+    ``d = max(0, -v_y - sqrt(c^2 - |v_xz|^2))`` per leg, ``v`` hip joint to goal, ``c`` the chain's
+    length; the larger leg's ``d``, max-filtered then averaged over the window (so never below it).
+    """
+    if not legs:
+        return out
+    pos = out.positions
+    rest = out.skeleton.rest_positions()
+    drops = []
+    for _, (up, mid, end), goal, _ in legs:
+        reach = 0.999 * (np.linalg.norm(rest[mid] - rest[up]) + np.linalg.norm(rest[end] - rest[mid]))
+        v = goal - pos[:, up]
+        flat = np.sqrt(np.maximum(reach ** 2 - v[:, 0] ** 2 - v[:, 2] ** 2, 0.0))
+        drops.append(np.maximum(-v[:, 1] - flat, 0.0))
+    d = np.max(drops, axis=0)
+    if not np.any(d > 0):
+        return out
+    w = max(1, int(round(DROP_WINDOW * out.fps)))
+    d = uniform_filter1d(maximum_filter1d(d, w, mode="nearest"), w, mode="nearest")
+    if hips == 0:
+        root = out.root_positions.copy()
+        root[:, 1] -= d
+        return out.replace(root_positions=root)
+    trans = out.local_translations()
+    trans[:, hips, 1] -= d  # the joints above the hips are unrotated (see retarget)
+    return out.replace(translations=trans)
+
+
+def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndarray]) -> Motion:
+    """Step 4: hips lowered where a leg cannot reach, chest and shoulders aimed, ankles and wrists onto the
+    scaled source's by IK, their world rotations restored."""
+    _, _, fwd_t = _body_axes(out.skeleton, mapping.target)
+    Gs = source.pose.rotations
+    world = {r: Gs[:, mapping.source[r]] @ A[r] for r in mapping.roles}
+    goals = _limb_goals(out, source, mapping, world)
+    out = _drop_hips(out, [g for g in goals if g[0].endswith("leg")], mapping.target["hips"])
+    out = _aim_torso(out, source, mapping, world)
+    for name, chain, goal, end_world in goals:
         hinge = _hinge(out.skeleton, chain, fwd_t, name.endswith("leg"))
         out = two_bone_ik(out, chain, goal, hinge=tuple(hinge))
-        end_world = Gs[:, mapping.source[roles[2]]] @ A[roles[2]]
         out = set_world_rotation(out, chain[2], matrix_to_quat(end_world))
     return out

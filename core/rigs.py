@@ -109,24 +109,24 @@ def _place(skel: Skeleton, table: dict[str, str]) -> dict[str, int]:
 def rig_roles(skel: Skeleton, joint_map: dict[str, str] | None = None) -> tuple[str, dict[str, int]]:
     """``(rig name, {role: joint index})`` for ``skel``.
 
-    The known rig that places the most roles is taken; ``joint_map`` entries
+    The known rig that places the most required roles (then the most roles) is taken; ``joint_map`` entries
     (``{role: joint name}``) are laid over it. Raises :class:`RigError` naming
     the required roles that stay unplaced, and any joint of the map the
     skeleton lacks.
     """
-    scored = sorted(((len(_place(skel, t)), name) for name, t in RIGS.items()), key=lambda x: (-x[0], x[1]))
-    best = scored[0][1]
-    roles = _place(skel, RIGS[best])
+    placed = {name: _place(skel, t) for name, t in RIGS.items()}
+    closest = min(placed, key=lambda n: (-sum(r in placed[n] for r in REQUIRED), -len(placed[n]), n))
+    roles = dict(placed[closest])
+    best = closest
     if joint_map:
         missing = [n for n in joint_map.values() if _key(n) not in {_key(x) for x in skel.names}]
         if missing:
             raise RigError(f"the joint map names joints this skeleton lacks: {', '.join(missing)}")
         roles.update(_place(skel, joint_map))
-        best = best + "+map" if scored[0][0] else "map"
+        best = closest + "+map" if placed[closest] else "map"
     unplaced = [r for r in REQUIRED if r not in roles]
     if unplaced:
-        listed = ", ".join(f"{r} (e.g. {RIGS[best.split('+')[0]].get(r, r)!r})" if best != "map" else r
-                           for r in unplaced)
-        raise RigError(f"cannot place these joints of the rig (closest known rig: {scored[0][1]}): {listed}; "
+        listed = ", ".join(f"{r} (e.g. {RIGS[closest].get(r, r)!r})" for r in unplaced)
+        raise RigError(f"cannot place these joints of the rig (closest known rig: {closest}): {listed}; "
                        "give them with --map FILE, a JSON object of role -> joint name")
     return best, dict(sorted(roles.items(), key=lambda kv: ROLES.index(kv[0])))

@@ -8,17 +8,26 @@ Public API (imported lazily, so ``import motiondb.types`` stays light)::
     db.load(clip_or_name) -> synthesis.Motion
     db.record(name) -> ClipRecord
     db.add(records, *, replace=False) -> list[ClipInfo]           # all or nothing
-    db.import_bvh(paths, verbs, objects, character, core, part, cyclic, ...) -> list[ClipInfo]
+    db.import_bvh(paths, ImportOptions(verbs, objects=..., character=..., ...), progress=None)
+        -> list[ClipInfo]                                            # all or nothing
     db.remove(name_or_names); db.clips(character=None); db.info(name); db.verbs(); db.characters()
 
 Errors are :class:`DBError` subclasses, all user facing.
+
+Modules: ``store`` (the MotionDB facade), ``types`` (records in and out, postures),
+``records`` (validating a record), ``postures`` (classifying a frame's posture),
+``bvh_import`` (BVH files to clips), ``schema``/``migrate`` (tables, versions,
+migrations), ``seed`` (the built-in library), ``reads``/``writes``/``search``
+(queries), ``blobs`` (frames and skeletons as bytes/JSON), ``location``/``connect``
+(URLs and drivers), ``readings`` (kana readings), ``errors``.
 """
 from __future__ import annotations
 
 from .types import ClipRecord
 
 _LAZY = {
-    "MotionDB": "store", "ClipInfo": "store", "VerbInfo": "store",
+    "MotionDB": "store", "ClipInfo": "types", "VerbInfo": "types", "ImportOptions": "bvh_import",
+    "classify_posture": "postures",
     "DBError": "errors", "UnknownVerbError": "errors", "UnknownClipError": "errors",
     "UnknownCharacterError": "errors", "ClipValidationError": "errors", "ClipExistsError": "errors",
     "SchemaVersionError": "errors",

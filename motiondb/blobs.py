@@ -1,4 +1,4 @@
-"""Frame data as bytes: a zlib-compressed ``.npy`` array, never a pickle.
+"""Frame data as bytes (a zlib-compressed ``.npy`` array, never a pickle) and skeletons as JSON.
 
 Layout (encoding ``npy-zlib-1``): one little-endian float64 array of shape
 ``(T, C)`` saved with :func:`numpy.save` (``allow_pickle=False``) and
@@ -9,13 +9,15 @@ compressed with zlib. Per frame the columns are:
 - ``3+4J:3+7J`` (only when the motion has per-joint translations): local
   translations, metres.
 
-So ``C`` is ``3 + 4J`` or ``3 + 7J``; the skeleton (``J``) is stored apart.
+So ``C`` is ``3 + 4J`` or ``3 + 7J``; the skeleton (``J``) is stored apart, as the
+canonical JSON of :func:`skeleton_json`.
 Float64 keeps a stored clip bit-identical to what was imported; the bytes are
 deterministic (no time stamps), so the same motion always gives the same blob.
 """
 from __future__ import annotations
 
 import io
+import json
 import zlib
 
 import numpy as np
@@ -61,3 +63,23 @@ def decode_frames(data: bytes, skeleton: Skeleton, fps: float, *, encoding: str 
     rot = arr[:, 3:3 + 4 * J].reshape(T, J, 4)
     trans = arr[:, 3 + 4 * J:].reshape(T, J, 3) if arr.shape[1] == 3 + 7 * J else None
     return Motion(skeleton, fps, root, rot, trans)
+
+
+def skeleton_json(skel: Skeleton) -> str:
+    """Canonical JSON of a skeleton (exact floats), the ``skeletons.definition`` column."""
+    return json.dumps({
+        "names": list(skel.names),
+        "parents": [int(p) for p in skel.parents],
+        "offsets": skel.offsets.tolist(),
+        "end_sites": [[int(j), o.tolist()] for j, o in skel.end_sites],
+        "channels": [list(c) for c in skel.channels],
+    }, ensure_ascii=False, sort_keys=True, separators=(",", ":"))
+
+
+def skeleton_from_json(definition: str) -> Skeleton:
+    """The skeleton a :func:`skeleton_json` text describes."""
+    d = json.loads(definition)
+    return Skeleton(tuple(d["names"]), np.array(d["parents"], dtype=np.int64),
+                    np.array(d["offsets"], dtype=np.float64).reshape(-1, 3),
+                    tuple((j, np.array(o, dtype=np.float64)) for j, o in d["end_sites"]),
+                    tuple(tuple(c) for c in d["channels"]))

@@ -39,6 +39,7 @@ nothing for searches that do not ask for it. The ordering is done by the databas
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from functools import lru_cache
 
@@ -145,10 +146,10 @@ def ranked_clip_ids(session: Session, verbs: VerbMatch, *, object_ids: tuple[int
     stmt = _ranked_statement(bool(verbs.exact), objects, prefer_character_id is not None, body_part,
                              character_id is not None, limit is not None,
                              session.get_bind().dialect.name == "postgresql", prefer_start_posture is not None)
-    params = {"verbs": list(verbs.all)}
+    params: dict[str, Any] = {"verbs": list(verbs.all)}
     if verbs.exact:
         params["exact"] = list(verbs.exact)
-    if objects == "asked":
+    if object_ids:  # objects == "asked"
         params["objects"] = list(object_ids)
     if prefer_character_id is not None:
         params["prefer"] = prefer_character_id

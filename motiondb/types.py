@@ -2,7 +2,10 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from datetime import datetime
+from typing import Any, Literal, get_args
 
+from text2anim.core.bodyparts import BodyPart
 from text2anim.core.motion import Motion
 
 #: The postures a clip starts and ends in (``ClipRecord.start_posture``/``end_posture``):
@@ -16,12 +19,13 @@ from text2anim.core.motion import Motion
 #: - ``lying``: the trunk on the floor, face down or up (``fall`` ends lying face down).
 #:
 #: The built-in library declares them per clip; imported clips are classified from their
-#: first and last frames (:func:`motiondb.store.classify_posture`) unless the importer says.
-POSTURES = ("standing", "seated", "crouched", "kneeling", "lying")
+#: first and last frames (:func:`motiondb.postures.classify_posture`) unless the importer says.
+Posture = Literal["standing", "seated", "crouched", "kneeling", "lying"]
+POSTURES: tuple[Posture, ...] = get_args(Posture)
 
 #: The posture of a clip that declares none and cannot be classified (and of clips stored
 #: before postures existed, until they are classified).
-DEFAULT_POSTURE = "standing"
+DEFAULT_POSTURE: Posture = "standing"
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,7 +45,7 @@ class ClipRecord:
         source: where it came from (``builtin``, a file path).
         start_posture, end_posture: the posture (one of :data:`POSTURES`) of the
             first and of the last frame; ``None``: classified from those frames
-            when the clip is stored (:func:`motiondb.store.classify_posture`).
+            when the clip is stored (:func:`motiondb.postures.classify_posture`).
     """
 
     name: str
@@ -50,8 +54,84 @@ class ClipRecord:
     objects: tuple[str, ...] = ()
     character: str = "default"
     core: tuple[float, float] | None = None
-    body_part: str | None = None
+    body_part: BodyPart | None = None
     cyclic: bool = False
     source: str = ""
-    start_posture: str | None = None
-    end_posture: str | None = None
+    start_posture: Posture | None = None
+    end_posture: Posture | None = None
+
+
+@dataclass(frozen=True)
+class ClipInfo:
+    """A stored clip's metadata, without its frames (``MotionDB.load`` reads those).
+
+    Attributes:
+        name: unique clip name.
+        character: the character it belongs to.
+        verbs: its verbs, primary first, then synonyms.
+        objects: object nouns it declares (may be empty).
+        fps: frames per second.
+        frames: frame count.
+        duration: seconds (``frames / fps``).
+        core: ``(begin, end)`` seconds, the interval that must be kept.
+        body_part: group a partial action is declared for, ``None`` for whole body.
+        cyclic: the clip loops.
+        source: ``builtin`` or the imported file's path.
+        created: when it was stored (UTC).
+        joints: joint count of its skeleton.
+        left_contacts, right_contacts: foot-contact intervals ``[start, stop)`` in frames.
+        start_posture, end_posture: the posture of its first and of its last frame
+            (:data:`motiondb.types.POSTURES`: ``standing``, ``seated``, ``crouched``,
+            ``kneeling``, ``lying``).
+    """
+
+    name: str
+    character: str
+    verbs: tuple[str, ...]
+    objects: tuple[str, ...]
+    fps: float
+    frames: int
+    duration: float
+    core: tuple[float, float]
+    body_part: BodyPart | None
+    cyclic: bool
+    source: str
+    created: datetime
+    joints: int
+    left_contacts: tuple[tuple[int, int], ...] = ()
+    right_contacts: tuple[tuple[int, int], ...] = ()
+    start_posture: Posture = DEFAULT_POSTURE
+    end_posture: Posture = DEFAULT_POSTURE
+
+    @property
+    def verb(self) -> str:
+        """The primary verb."""
+        return self.verbs[0]
+
+    def contacts(self, side: str) -> tuple[tuple[int, int], ...]:
+        """Contact intervals of the ``left`` or ``right`` foot, ``[start, stop)`` frames."""
+        if side not in ("left", "right"):
+            raise ValueError(f"side must be 'left' or 'right', not {side!r}")
+        return self.left_contacts if side == "left" else self.right_contacts
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form (lists for tuples, ISO 8601 time)."""
+        return {
+            "name": self.name, "character": self.character, "verbs": list(self.verbs),
+            "objects": list(self.objects), "fps": self.fps, "frames": self.frames,
+            "duration": self.duration, "core": list(self.core), "body_part": self.body_part,
+            "cyclic": self.cyclic, "source": self.source, "created": self.created.isoformat(),
+            "joints": self.joints, "start_posture": self.start_posture, "end_posture": self.end_posture,
+            "contacts": {"left": [list(c) for c in self.left_contacts],
+                         "right": [list(c) for c in self.right_contacts]},
+        }
+
+
+@dataclass(frozen=True)
+class VerbInfo:
+    """A verb the database knows: ``clips`` clips use it, ``primary`` of them as their primary verb."""
+
+    lemma: str
+    reading: str
+    clips: int
+    primary: int

@@ -44,7 +44,8 @@ def analyze(text: str) -> Analysis:
     specs = [
         MotionSpec(p.id, p.actor, p.verb, p.object, p.body_part, p.repeat, p.speed,
                    p.duration, offsets.span(p.start, p.end),
-                   hold=p.ending == "mama", reading=p.reading)
+                   hold=p.ending == "mama", reading=p.reading, delay=p.delay,
+                   written=p.written or p.verb)
         for p in motions
     ]
     constraints = list(constraints)

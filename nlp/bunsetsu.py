@@ -8,7 +8,7 @@ punctuation.  Formal nouns that make temporal connectives (まま, 前, 後, 間
 """
 from __future__ import annotations
 
-from .lexicon import ASPECT_AUX, AUX_AFTER_TE, FORMAL_NOUNS
+from .lexicon import ASPECT_AUX, AUX_AFTER_TE, AUX_KANJI_MAIN, FORMAL_NOUNS, POLITE_AFTER_RENYOU
 from .types import Token
 
 FUNCTION_POS = frozenset(["助詞", "助動詞", "接尾辞", "補助記号", "空白"])
@@ -133,7 +133,9 @@ def _starts_phrase(tok: Token, prev: Token | None, numunit: bool) -> bool:
         return False  # その後, その男
     if tok.pos1 == "名詞":
         if prev.pos1 == "名詞":
-            return _is_formal(prev)  # compound noun (ガッツ + ポーズ), not まま + 手
+            # compound noun (ガッツ + ポーズ), not まま + 手, nor an adverb written as a
+            # noun before it (うっかり + ボール, 今日 + ボール: UniDic's 副詞可能)
+            return _is_formal(prev) or _adverbial(prev)
         if _is_formal(tok) and _ends_predicate(prev):
             return False  # 上げた + まま, 座る + 前, 上げると + 同時
         return True
@@ -150,6 +152,13 @@ def _is_formal(tok: Token) -> bool:
     return tok.surface in FORMAL_NOUNS or tok.lemma in FORMAL_NOUNS
 
 
+def _adverbial(tok: Token) -> bool:
+    """うっかり, しっかり, 今日, 毎日, 全部: a noun UniDic marks 副詞可能 before another
+    noun is used as an adverb, not the first half of a compound noun (body parts
+    such as 右手 and 前足 are single tokens)."""
+    return tok.pos3 == "副詞可能"
+
+
 def _ends_predicate(prev: Token) -> bool:
     if prev.pos1 == "助動詞" or prev.pos1 == "動詞":
         return True
@@ -161,6 +170,20 @@ def _attaches_verb(tok: Token, prev: Token) -> bool:
         if prev.pos1 == "動詞":
             return prev.cform.startswith("連用形")  # 伸びする: a 連用形 used as a noun
         return prev.pos1 in ("名詞", "副詞") and not prev.is_number
-    if prev.pos1 == "動詞" and prev.cform.startswith("連用形") and tok.orth in ASPECT_AUX:
+    if prev.pos1 == "動詞" and prev.cform.startswith("連用形") and (
+            tok.orth in ASPECT_AUX or tok.lemma in POLITE_AFTER_RENYOU):
         return True
-    return prev.pos1 == "助詞" and prev.lemma == "て" and tok.orth in AUX_AFTER_TE
+    return prev.pos1 == "助詞" and prev.lemma == "て" and is_aux_after_te(tok)
+
+
+def is_aux_after_te(tok: Token) -> bool:
+    """Is the verb ``tok`` (just after て) an auxiliary?  Compared on the lemma,
+    so every spelling counts (ください, 下さい, くれ, 呉れる, もらっ, 貰う, ...);
+    置く / 見る / 上げる written in kanji are main verbs (``AUX_KANJI_MAIN``)."""
+    if tok.lemma not in AUX_AFTER_TE:
+        return False
+    return not (tok.lemma in AUX_KANJI_MAIN and _has_kanji(tok.surface))
+
+
+def _has_kanji(s: str) -> bool:
+    return any("\u4e00" <= ch <= "\u9fff" for ch in s)

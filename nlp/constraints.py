@@ -10,7 +10,8 @@
 3. Consecutive clause groups (sentences) are joined by a connection from the
    motion that ends the earlier one to the root of the next one.
 4. Time cues (そして, 同時に, しばらくして, N秒後に, すぐに) then rewrite the
-   link into the motion they modify.  When that motion is the head of a
+   link into the motion they modify; a delay before the motion that opens a
+   track (3秒後に歩く) becomes that motion's own start delay.  When that motion is the head of a
    ながら / たまま clause, the link into the whole group is rewritten.
 """
 from __future__ import annotations
@@ -187,7 +188,11 @@ def _apply_cue(cue: TimeCue, edges: list[_Edge], phrases: list[Phrase]) -> None:
     for _ in range(len(edges) + 1):
         edge = next((e for e in edges if e.second == target), None)
         if edge is None:
-            return  # the very first motion: nothing to adjust
+            # the motion that opens its track (3秒後に太郎が歩く): no link to adjust,
+            # the delay holds back its start
+            if cue.delay:
+                phrases[target].pred.delay = cue.delay
+            return
         dependent_of_target = phrases[edge.first].pred.head == target
         if edge.relation == "parallel" and dependent_of_target and edge.first != target:
             target = edge.first  # 手を振りながら歩く: adjust the link into the group

@@ -58,4 +58,5 @@ NOT_MOTION = {
     "embedded": "inside a noun-modifying clause",
     "light": "bare する without an action noun",
     "state": "state or formal verb",
+    "manner": "manner て-form (says how the next motion is done)",
 }

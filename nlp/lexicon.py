@@ -50,12 +50,17 @@ BODY_PARTS = {
     "左足": "left_leg", "左脚": "left_leg",
     "足": "leg", "脚": "leg", "両足": "leg", "両脚": "leg",
     "頭": "head", "首": "head", "顔": "head",
-    "腰": "torso", "体": "torso", "身体": "torso", "からだ": "torso",
+    "腰": "torso", "体": "torso", "身体": "torso",
     "上体": "torso", "上半身": "torso", "背中": "torso", "胸": "torso",
+    # kana spellings (て is 手 only when tokens._repair_kana made it a noun before を)
+    "て": "arm", "うで": "arm", "みぎて": "right_arm", "ひだりて": "left_arm",
+    "りょうて": "both_arms", "あし": "leg", "みぎあし": "right_leg", "ひだりあし": "left_leg",
+    "あたま": "head", "くび": "head", "かお": "head", "こし": "torso", "からだ": "torso",
 }
 
 #: 右の手 / 左の足: a side noun + の before a body part.
-SIDE_PREFIX = {"右": "right", "左": "left", "両方": "both"}
+SIDE_PREFIX = {"右": "right", "左": "left", "両方": "both", "みぎ": "right", "ひだり": "left",
+               "りょうほう": "both"}
 
 #: Manner adverbs -> speed factor (1.0 = the clip's own speed).
 #: Slower: ゆっくり 0.6 is a clearly slower but still natural pace.
@@ -80,17 +85,30 @@ NON_ACTION_LEMMAS = frozenset(
     為る 御座る 居す""".split()
 )
 
-#: Auxiliary verbs after a て-form (written base form): folded into the verb.
-#: 置く / 見る written in kanji stay main verbs (持ち上げて置く = put it down).
+#: Auxiliary verbs after a て-form, by UniDic lemma (every spelling of one
+#: auxiliary meets on its lemma: ください / 下さい -> 下さる, くれる / 呉れる ->
+#: 呉れる, もらう / 貰う -> 貰う, しまう / 仕舞う -> 仕舞う, おく -> 置く, みる -> 見る,
+#: あげる -> 上げる, いく / 行く -> 行く, くる / 来る -> 来る): folded into the verb.
 AUX_AFTER_TE = frozenset(
-    """いる ある おく みる しまう いく 行く くる 来る もらう あげる くれる ください 下さい
-    おる""".split()
+    "居る 有る 置く 見る 仕舞う 行く 来る 貰う 上げる 呉れる 下さる 遣る 頂く 為さる 御座る".split()
 )
 
+#: Of those, the ones that are also main verbs of the library: written in kanji
+#: after て they stay main verbs (持ち上げて置く = put it down, 振り向いて見る,
+#: 拾って上げる = lift it); in kana (置いておく, 歩いてみる, 振ってあげる) they
+#: are auxiliaries.
+AUX_KANJI_MAIN = frozenset("置く 見る 上げる".split())
+
 #: Aspect auxiliaries after a 連用形 verb (written base form): folded.
+#: なさる (座りなさい) is the polite imperative, not an action of its own.
 ASPECT_AUX = frozenset(
-    """始める はじめる 続ける つづける 出す だす 終わる おわる 終える おえる 始まる かける""".split()
+    """始める はじめる 続ける つづける 出す だす 終わる おわる 終える おえる 始まる かける
+    なさる 為さる""".split()
 )
+
+#: Polite request auxiliaries after an お + 連用形 verb (お座りください, お待ち下さい),
+#: by lemma: the request is the verb before it, not a motion of its own.
+POLITE_AFTER_RENYOU = frozenset("下さる 為さる".split())
 
 #: Nouns that name a person (or another creature that can be an actor).
 PERSON_NOUNS = frozenset(

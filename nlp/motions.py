@@ -12,13 +12,13 @@ from dataclasses import dataclass
 from .bunsetsu import FUNCTION_POS, Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, MANNER_TE, PERSON_NOUNS, SIDE_PREFIX,
-    SPEED_WORDS,
+    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, LIBRARY_VERBS, MANNER_TE, PERSON_NOUNS,
+    SIDE_PREFIX, SPEED_WORDS,
 )
 from .predicates import Pred, find_predicate, settle_reason
 from .tokens import is_name
 
-_SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg"}
+_SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
 
 
 @dataclass(frozen=True, slots=True)
@@ -44,8 +44,11 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
             ph.role = role
             continue
         ph.pred = find_predicate(ph, nxt)
-        ph.role = "predicate" if ph.pred else _noun_role(ph)
+        opens = i == 0 or phrases[i - 1].sentence != ph.sentence
+        ph.role = "predicate" if ph.pred else _noun_role(ph, opens)
+    _bare_objects(phrases)
     _assign_groups(phrases)
+    _mark_manner(phrases)
     preds = [ph.pred for ph in phrases if ph.pred]
     _merge_light_verbs(phrases)
     _mark_embedded(phrases)
@@ -83,8 +86,12 @@ def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
     return kind
 
 
-def _noun_role(ph: Phrase) -> str:
+def _noun_role(ph: Phrase, opens: bool = False) -> str:
+    """``opens``: ``ph`` is the first phrase of its sentence (a vocative 花子さん、 there
+    names whom the request is addressed to: the actor, like a topic)."""
     particle = _case_particle(ph)
+    if opens and not any(t.pos1 == "助詞" for t in ph.tokens) and ph.has_comma() and _person(ph):
+        return "actor"
     if particle in ("は", "が", "も") and _person(ph):
         return "actor"
     if particle in ("を", "で"):
@@ -144,6 +151,63 @@ def _assign_groups(phrases: list[Phrase]) -> None:
         prev_sentence = ph.sentence
         ph.group = group
         split_next = bool(ph.pred and ph.pred.ending == "final")
+
+
+def _bare_objects(phrases: list[Phrase]) -> None:
+    """ボール蹴って！ / 手振って / 太郎歩く: casual speech drops を and が; a bare noun right
+    before the predicate (no particle, no comma, not a time word (副詞可能) or a
+    number) is its actor when it names a person, else its object or body part."""
+    for ph, nxt in zip(phrases, phrases[1:]):
+        if ph.role or not nxt.pred or nxt.sentence != ph.sentence or ph.has_comma():
+            continue
+        toks = [t for t in ph.tokens if t.pos1 != "補助記号"]
+        if not toks or any(t.pos1 not in ("名詞", "接頭辞", "接尾辞") for t in toks):
+            continue
+        last = toks[-1]
+        if last.pos1 != "名詞" or last.pos3 == "副詞可能" or last.pos2 == "数詞" or last.is_number:
+            continue
+        if _person(ph):
+            ph.role = "actor"  # 太郎歩く: が dropped too
+        elif not is_name(ph.key):
+            ph.role = "body part" if _noun(ph) in BODY_PARTS else "object"
+
+
+def _mark_manner(phrases: list[Phrase]) -> None:
+    """音楽に合わせて踊る: a て-clause that only says how its head is done is no motion.
+
+    The rule (language.md §1, "Manner て-forms"; docs in nlp/README.md): a
+    predicate P in て-form is a manner of the next predicate H when
+    1. P modifies H directly: no comma after P, H is the next predicate of its clause;
+    2. P's only complement is a に-marked noun (no を object, no body part), the
+       standard or guide H follows (音楽に, 号令に, 壁に);
+    3. P is not itself a bodily action: not a library verb and no library verb
+       is near it in meaning (``meaning.MIN_SIMILARITY``, chiVe vectors).
+    椅子に座って手を振る keeps 座る (a library verb), 家に帰って寝る keeps 帰る (near 待つ/歩く).
+    """
+    for i in range(1, len(phrases) - 1):
+        ph, prev = phrases[i], phrases[i - 1]
+        pred = ph.pred
+        if (not pred or pred.reason or pred.ending != "te" or ph.has_comma()
+                or prev.group != ph.group or prev.pred or _case_particle(prev) != "に"):
+            continue
+        if _next_pred(phrases, i) is None:
+            continue
+        args = []
+        for q in reversed(phrases[:i - 1]):
+            if q.group != ph.group or q.pred:
+                break
+            args.append(q.role)
+        if "object" not in args and "body part" not in args and not _bodily(pred.verb):
+            pred.reason = "manner"
+
+
+def _bodily(verb: str) -> bool:
+    """A library verb, or one whose nearest library verb is near in meaning."""
+    if verb in LIBRARY_VERBS:
+        return True
+    from . import meaning  # loads the vectors on first use only
+
+    return bool(meaning.nearest(verb, sorted(LIBRARY_VERBS), n=1, floor=meaning.MIN_SIMILARITY))
 
 
 def _merge_light_verbs(phrases: list[Phrase]) -> None:
@@ -251,7 +315,7 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         elif not pred.motion:
             continue
         elif role == "object":
-            pred.object = _noun(ph)
+            pred.object = _noun(ph) or None  # never an empty string
         elif role == "body part":
             pred.body_part = _body_part(phrases, i)
         elif role == "repeat":

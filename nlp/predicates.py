@@ -46,6 +46,8 @@ class Pred:
     repeat: int = 1
     speed: float = 1.0
     duration: float | None = None
+    delay: float | None = None  # seconds before a motion that opens its track
+    written: str = ""  # the verb in the user's spelling, dictionary form (登る where verb is 上る)
     head: int | None = None  # phrase index of the head motion
     id: int = 0
 
@@ -92,6 +94,7 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
                     first.start, 0)
     else:
         pred = Pred(ph.index, canonical_verb(first), first.kana, first.lemma, first.start, 0)
+        pred.written = first.orth
         if first.lemma == "為る":
             pred.verb, pred.reason = "する", "light"
         elif first.lemma in NON_ACTION_LEMMAS:
@@ -99,10 +102,22 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
     g = _group_end(toks, v)
     pred.end = toks[_verb_end(toks, v)].end
     pred.negated = any(t.lemma in _NEGATIONS and t.pos1 in ("助動詞", "形容詞")
-                       for t in toks[v:g + 1])
+                       for t in toks[v:g + 1]) and not _invitation(toks, g)
     pred.ending, pred.cue = _ending(toks, g, ph, next_ph)
     settle_reason(pred, ph.quoted)
     return pred
+
+
+def _invitation(toks: list[Token], g: int) -> bool:
+    """歩きませんか / 振ってくれない? / 座らないか: a negative question is a request or
+    an invitation to do it, not a negation."""
+    rest = [t.surface for t in toks[g + 1:]]
+    return bool(rest) and (rest[0] in ("か", "?") or (rest[0] in ("の", "かな") and "?" in rest))
+
+
+def _sentence_particles(words: list[Token]) -> bool:
+    """ね, よ, な, か after the predicate: sentence-final particles end the clause."""
+    return all(t.pos2 == "終助詞" for t in words)
 
 
 def settle_reason(pred: Pred, quoted: bool) -> None:
@@ -158,6 +173,8 @@ def _ending(toks: list[Token], g: int, ph: Phrase, next_ph: Phrase | None) -> tu
     """(ending kind, cue words) of the clause whose verb group ends at ``g``."""
     last = toks[g]
     words = [t for t in toks[g + 1:] if t.pos1 != "補助記号"]
+    if words and _sentence_particles(words):
+        return "final", _punct(ph)
     if words:
         return _ending_from_words(words, last)
     if last.lemma == "て" and last.pos1 == "助詞":

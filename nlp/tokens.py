@@ -101,6 +101,11 @@ def tokenize(norm: str) -> list[Token]:
 
 
 def _tag_line(line: str, offset: int) -> list[Token]:
+    """Tag one line; repair the two ways kana-only text is mis-tagged (``_repair_kana``)."""
+    return _repair_kana(line, offset, _tag(line, offset))
+
+
+def _tag(line: str, offset: int) -> list[Token]:
     out = []
     pos = 0
     for word in tagger()(line):
@@ -110,6 +115,61 @@ def _tag_line(line: str, offset: int) -> list[Token]:
         pos = start + len(surface)
         out.append(_make_token(surface, word.feature, offset + start, offset + pos))
     return out
+
+
+#: Particles that mark an actor or join actors (a hiragana name is re-split before one of them).
+_ACTOR_PARTICLES = {"は": "係助詞", "が": "格助詞", "も": "係助詞", "と": "格助詞"}
+
+
+def _repair_kana(line: str, offset: int, tokens: list[Token]) -> list[Token]:
+    """Kana-only text: たろうは is tagged 助動詞 だ + ろう and たろうはて as た + 果て;
+    て (手) before を is tagged the particle て.
+
+    A content word cannot start a sentence as an auxiliary or particle, so a
+    hiragana run there that begins with a name (``is_name``) before は/が/も/と is
+    re-split as name + particle + the rest; a て directly before を is the noun 手.
+    """
+    out: list[Token] = []
+    for i, tok in enumerate(tokens):
+        starts = i == 0 or tokens[i - 1].pos1 == "補助記号"
+        if starts and tok.pos1 in ("助動詞", "助詞") and _ends_in_hiragana(tok.surface):
+            fixed = _split_name(line, offset, tok.start - offset)
+            if fixed is not None:
+                out.extend(fixed)
+                break
+        out.append(tok)
+    for i, tok in enumerate(out[:-1]):
+        nxt = out[i + 1]
+        if tok.surface == "て" and tok.pos1 in ("助詞", "記号") and nxt.surface == "を" and nxt.pos1 == "助詞":
+            out[i] = _as_hand(tok)
+    return out
+
+
+def _split_name(line: str, offset: int, at: int) -> list[Token] | None:
+    run = line[at:at + 12]
+    for k in range(min(len(run) - 1, 8), 1, -1):
+        name, particle = run[:k], run[k]
+        if particle in _ACTOR_PARTICLES and _is_hiragana(name) and is_name(name):
+            a = offset + at
+            rest = _repair_kana(line, offset, _tag(line[at + k + 1:], a + k + 1)) if at + k + 1 < len(line) else []
+            return [Token(name, "名詞", "固有名詞", "人名", "*", "*", name, name, _katakana(name), a, a + k,
+                          None, _katakana(name)),
+                    Token(particle, "助詞", _ACTOR_PARTICLES[particle], "*", "*", "*", particle, particle,
+                          _katakana(particle), a + k, a + k + 1, None, _katakana(particle))] + rest
+    return None
+
+
+def _as_hand(tok: Token) -> Token:
+    return Token(tok.surface, "名詞", "普通名詞", "一般", "*", "*", "手", "手", "テ", tok.start, tok.end,
+                 None, "テ")
+
+
+def _is_hiragana(s: str) -> bool:
+    return all("\u3041" <= ch <= "\u309f" or ch == "ー" for ch in s)
+
+
+def _katakana(s: str) -> str:
+    return "".join(chr(ord(ch) + 0x60) if "\u3041" <= ch <= "\u3096" else ch for ch in s)
 
 
 def _make_token(surface: str, f, start: int, end: int) -> Token:
@@ -154,4 +214,12 @@ def is_name(surface: str) -> bool:
     in some contexts (同時に太郎は); with an honorific after it, a word that
     can be a given name is tagged 人名, a common noun (ボール, 公園) is not."""
     words = tagger()(surface + "さん")
-    return len(words) == 2 and words[0].surface == surface and words[0].feature.pos3 == "人名"
+    if len(words) != 2 or words[0].surface != surface:
+        return False
+    f = words[0].feature
+    if f.pos3 == "人名":
+        return True
+    # たろうさん: a kana spelling is tagged a common noun whose lemma (太郎) is a name
+    lemma = f.lemma or ""
+    return (f.pos1 == "名詞" and _is_hiragana(surface) and lemma != surface
+            and not _is_hiragana(lemma) and is_name(lemma))

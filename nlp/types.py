@@ -67,6 +67,11 @@ class MotionSpec:
     span: tuple[int, int] = (0, 0)
     hold: bool = False  # たまま: held at its end pose while the other motion plays
     reading: str = ""  # katakana reading of the verb, for a database fallback
+    #: seconds before the motion starts when it opens its actor's track and the
+    #: text opens with a delay (3秒後に太郎が歩く); later motions carry delays on
+    #: their constraints instead.
+    delay: float | None = None
+    written: str = ""  # the verb as the user spelled it, dictionary form (登る for verb 上る)
 
     def to_dict(self, extra: bool = False) -> dict:
         d = {
@@ -75,9 +80,12 @@ class MotionSpec:
             "repeat": self.repeat, "speed": self.speed, "duration": self.duration,
             "span": [self.span[0], self.span[1]],
         }
+        if extra or self.delay is not None:
+            d["delay"] = self.delay  # the §5 object gains it only when the text opens with one
         if extra:
             d["hold"] = self.hold
             d["reading"] = self.reading
+            d["written"] = self.written
         return d
 
 

@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
+from text2anim.core.methods import Method
 from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .errors import ScheduleError
@@ -35,7 +36,7 @@ class _Row:
 
     spec: MotionSpec
     clip: ClipTiming
-    method: str
+    method: Method
     prev: int | None
     start: float
     end: float
@@ -71,10 +72,11 @@ def _order(analysis: Analysis) -> list[tuple[MotionSpec, Constraint | None]]:
             raise ScheduleError(f"motion {c.second} is linked to two earlier motions")
         incoming[c.second] = c
     by_id = {m.id: m for m in analysis.motions}
-    children: dict[int | None, list[Constraint | None]] = {}
+    # per motion id (None: the roots), its successors: the constraint leading to each, or a root's id
+    children: dict[int | None, list[Constraint | int]] = {}
     for m in analysis.motions:
-        c = incoming.get(m.id)
-        children.setdefault(c.first if c else None, []).append(c if c else m.id)
+        link = incoming.get(m.id)
+        children.setdefault(link.first if link else None, []).append(link if link else m.id)
     out: list[tuple[MotionSpec, Constraint | None]] = []
     # Compositions first among siblings, so a base's length is final before a successor is placed.
     key = lambda x: (0, x.second) if isinstance(x, Constraint) and x.method == "composition" else (1, x if isinstance(x, int) else x.second)  # noqa: E731
@@ -113,10 +115,11 @@ class _Planner:
             self._sequence(spec, clip, length, "connection", start=None, delay=link.delay)
 
     # -- whole-body sequence on one actor's track --------------------------------------------
-    def _sequence(self, spec, clip, length, method, start, delay):
+    def _sequence(self, spec: MotionSpec, clip: ClipTiming, length: float, method: Method, start: float | None,
+                  delay: float | None) -> None:
         prev_id = self.last.get(spec.actor)
         if prev_id is None:
-            t0 = start if start is not None else 0.0
+            t0 = start if start is not None else (spec.delay or 0.0)  # 3秒後に歩く: held back
             row = _Row(spec, clip, "initial", None, t0, t0 + length)
         else:
             prev = self.rows[prev_id]

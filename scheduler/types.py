@@ -4,8 +4,11 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass
 
-#: Time-table methods (timetable.md §1).
-METHODS = ("initial", "connection", "transition", "composition")
+from text2anim.core.bodyparts import BodyPart
+from text2anim.core.methods import METHODS, Method
+
+__all__ = ["METHODS", "ClipTiming", "Element", "Method", "TimeTable"]
+
 
 
 @dataclass(frozen=True)
@@ -26,7 +29,7 @@ class ClipTiming:
     duration: float
     core: tuple[float, float]
     cyclic: bool = False
-    body_part: str | None = None
+    body_part: BodyPart | None = None
     foot_moving: tuple[tuple[float, float], ...] = ()
     character: str = "default"
 
@@ -43,7 +46,7 @@ class Element:
     actor: str | None
     verb: str
     clip: str
-    method: str
+    method: Method
     prev: int | None
     start: float
     end: float

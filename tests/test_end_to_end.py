@@ -42,7 +42,7 @@ def test_example_animation_is_one_clean_motion(example):
     assert name == "太郎" and motion.fps == 30
     last = example.table.elements[-1]
     assert motion.duration == pytest.approx(last.end, abs=0.2)
-    assert skating_ratio(motion) == 0
+    assert skating_ratio(motion) <= clips_skating(e.clip for e in example.table.elements) + 0.01
     # No teleport: the hips never move more than a sprint's distance in one frame.
     step = np.linalg.norm(np.diff(motion.positions[:, 0], axis=0), axis=1)
     assert step.max() < 10 / motion.fps
@@ -113,7 +113,7 @@ def test_skip_unknown_animates_the_rest(tmp_path, library_db):
 def test_a_wait_is_standing_not_a_frozen_stride(library_db):
     anim = text2anim.animate("走る。3秒後に歩く。", library_db)
     (motion,) = anim.motions.values()
-    run, walk = anim.table.elements
+    run, walk = (e for e in anim.table.elements if e.id not in anim.planned.fillers)
     assert walk.start == pytest.approx(run.end + 3)
     from text2anim.core.contacts import detect_contacts
     c = detect_contacts(motion)
@@ -123,8 +123,9 @@ def test_a_wait_is_standing_not_a_frozen_stride(library_db):
     assert c.left[mid].all() and c.right[mid].all()  # both feet down while waiting
     hips_speed = np.linalg.norm(np.diff(motion.positions[mid, 0], axis=0), axis=1) * 30
     assert hips_speed.max() < 0.3
-    assert all(j["metrics"]["skating_ratio"] == 0 for j in anim.report["joins"])
-    assert skating_ratio(motion) == 0
+    bar = clips_skating(e.clip for e in anim.table.elements) + 0.01
+    assert all(j["metrics"]["skating_ratio"] <= bar for j in anim.report["joins"])
+    assert skating_ratio(motion) <= bar
 
 
 def test_an_actor_who_finishes_early_stands_until_the_end(library_db):
@@ -151,4 +152,14 @@ def test_a_looping_clip_alone_plays_as_recorded(library_db, text, clip):
     here = np.linalg.norm(motion.positions[:n] - motion.positions[:n, :1], axis=-1)
     there = np.linalg.norm(source.positions[:n] - source.positions[:n, :1], axis=-1)
     np.testing.assert_allclose(here, there, atol=2e-3)
-    assert skating_ratio(motion) == 0
+    assert skating_ratio(motion) <= skating_ratio(source) + 0.01
+
+
+def clips_skating(names) -> float:
+    """The largest GMD skating ratio (30 fps) of the built-in clips ``names``: since issue 12 most are
+    CMU capture, whose swing toes pass below 5 cm (the bar an output is held to is this + 0.01,
+    issue 11's criterion against the sources)."""
+    from text2anim.motiondb.library import builtin_clips
+
+    recs = {r.name: r.motion for r in builtin_clips()}
+    return max(skating_ratio(recs[n.removesuffix("~mirrored")]) for n in names)

@@ -17,10 +17,10 @@ import pytest
 from text2anim import nlp
 from text2anim.motiondb import ClipRecord, MotionDB
 from text2anim.motiondb.library import build_all
-from text2anim.motiondb.store import classify_posture
+from text2anim.motiondb import classify_posture
 from text2anim.scheduler import plan
 from text2anim.core.metrics import skating_ratio
-from text2anim.pipeline import Planned, _Finder
+from text2anim.pipeline import Planned, ClipFinder
 from text2anim.postures import BRIDGE_VERBS, arrange, bridges, choose, matching, mismatches
 
 #: The sentences the lead saw in contact sheets, and the clips they must play (bridges included).
@@ -45,12 +45,12 @@ def names(clips):
 def plan_with_postures(text: str, db: MotionDB, fps: float = 30.0) -> tuple[Planned, object]:
     """``text2anim.pipeline.plan_text`` with the posture hook (see the hook note of text2anim.postures)."""
     analysis = nlp.analyze(text)
-    finder = _Finder(db)
+    finder = ClipFinder(db)
     table = plan(analysis, finder, fps)
     arranged = arrange(analysis, table, finder.chosen, finder.search, db)
     if arranged.changed:
         analysis = arranged.analysis
-        finder = _Finder(db)
+        finder = ClipFinder(db)
         table = plan(analysis, arranged.finder(finder), fps)
     return Planned(analysis, table, dict(finder.chosen)), arranged
 
@@ -220,7 +220,7 @@ def test_without_the_hook_the_joins_were_broken(db):
     """What the lead saw: the first clip of each motion, as the pipeline picks it today."""
     for text in ("しゃがんで、立ち上がる。", "座って、歩く。"):
         analysis = nlp.analyze(text)
-        finder = _Finder(db)
+        finder = ClipFinder(db)
         plan(analysis, finder, 30.0)
         assert mismatches([finder.chosen[m.id] for m in analysis.motions]) == [1]
 
@@ -269,7 +269,7 @@ def test_several_changes_of_posture_in_a_row(db):
 def test_texts_without_a_posture_change_are_left_alone(db):
     for text in ("歩いて、走る。", "しゃがんで、ボールを拾う。", "座ったまま手を振る。", "ジャンプする前にしゃがむ。"):
         analysis = nlp.analyze(text)
-        finder = _Finder(db)
+        finder = ClipFinder(db)
         table = plan(analysis, finder, 30.0)
         arranged = arrange(analysis, table, finder.chosen, finder.search, db)
         assert not arranged.changed and arranged.bridges == () and arranged.analysis is analysis, text
@@ -292,7 +292,7 @@ def test_the_animation_changes_posture_where_the_clips_do(db, text):
     planned, _ = plan_with_postures(text, db, fps)
     result = synthesize(build_tracks(planned, db, fps), fps)
     (motion,) = result.motions.values()
-    assert skating_ratio(motion) == 0.0
+    assert skating_ratio(motion) <= clips_skating(e.clip for e in planned.table.elements) + 0.01  # GMD, 30 fps
     for e in sequence(planned):
         info = planned.clips[e.id]
         played = result.elements[e.id]
@@ -307,3 +307,13 @@ def test_built_in_postures_are_stored(db):
     for b in build_all(30.0):
         info = db.info(b.record.name)
         assert (info.start_posture, info.end_posture) == (b.start_posture, b.end_posture)
+
+
+def clips_skating(names) -> float:
+    """The largest GMD skating ratio (30 fps) of the built-in clips ``names``: since issue 12 most are
+    CMU capture, whose swing toes pass below 5 cm (the bar an output is held to is this + 0.01,
+    issue 11's criterion against the sources)."""
+    from text2anim.motiondb.library import builtin_clips
+
+    recs = {r.name: r.motion for r in builtin_clips()}
+    return max(skating_ratio(recs[n.removesuffix("~mirrored")]) for n in names)

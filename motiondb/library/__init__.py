@@ -39,11 +39,11 @@ from pathlib import Path
 
 import numpy as np
 
-from text2anim.motiondb.types import ClipRecord
+from text2anim.motiondb.types import ClipRecord, Posture
 from text2anim.core.motion import Motion
 
 from . import capture
-from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, curves_to_motion, load_json_dir, parse_clip,
+from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, PlantSpec, curves_to_motion, load_json_dir, parse_clip,
                         sample_curves)
 from .plant import FramePlant, PlantReport, plant_feet
 from .reach import apply_reach
@@ -71,7 +71,7 @@ LIBRARY_VERSION = _version()
 
 #: The data's ``starts``/``ends`` words -> the database's posture (``hold``: standing with
 #: an object in the hands; ``floor``: lying face down, as ``fall`` ends).
-POSTURE_OF = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched",
+POSTURE_OF: dict[str, Posture] = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched",
               "floor": "lying"}
 
 #: Sole points (heel, ball) in the ankle's frame: what touches the ground.
@@ -100,17 +100,17 @@ class BuiltClip:
         return self.data.raw.get("ends", "stand")
 
     @property
-    def start_posture(self) -> str:
+    def start_posture(self) -> Posture:
         """:attr:`starts` as a :data:`motiondb.types.POSTURES` word (``standing``, ``seated``, ...)."""
         return POSTURE_OF[self.starts]
 
     @property
-    def end_posture(self) -> str:
+    def end_posture(self) -> Posture:
         """:attr:`ends` as a :data:`motiondb.types.POSTURES` word."""
         return POSTURE_OF[self.ends]
 
 
-def _posture(raw: dict, key: str, name: str) -> str:
+def _posture(raw: dict, key: str, name: str) -> Posture:
     word = raw.get(key, "stand")
     if word not in POSTURE_OF:
         raise ClipDataError(f"{name}: {key} must be one of {', '.join(POSTURE_OF)}, not {word!r}")
@@ -122,7 +122,7 @@ def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> li
     always = [FramePlant(p.side, 0, n - 1, int(round(-t_first / h))) for p in clip.plants if np.isinf(p.t0)]
     plants = [p for p in clip.plants if not np.isinf(p.t0)]
     if clip.cyclic:
-        reps = []
+        reps: list[PlantSpec] = []
         for k in range(-2, clip.cycles + 3):
             reps.extend(p.shifted(k * clip.period) for p in plants)
         plants = [p for p in reps if p.t1 >= t_first - 1e-9 and p.t0 <= t_last + 1e-9]

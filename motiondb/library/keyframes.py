@@ -77,6 +77,7 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline, CubicSpline, PchipInterpolator
 from scipy.spatial.transform import Rotation
 
+from text2anim.core.bodyparts import BodyPart
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
@@ -149,7 +150,7 @@ class ClipData:
     name: str
     verbs: tuple[str, ...]
     objects: tuple[str, ...] = ()
-    body_part: str | None = None
+    body_part: BodyPart | None = None
     cyclic: bool = False
     core: tuple[float, float] | None = None
     duration: float = 0.0
@@ -184,6 +185,7 @@ def expand_joints(values: dict, skeleton: Skeleton, where: str) -> dict[int, np.
         a = np.asarray(ang, dtype=np.float64)
         if a.shape != (3,):
             raise ClipDataError(f"{where}: {key} needs [x, y, z] degrees, got {ang!r}")
+        pairs: tuple[tuple[str, np.ndarray], ...]
         if key.startswith("both:"):
             suffix = key[5:]
             pairs = (("Left" + suffix, a), ("Right" + suffix, a * np.array([1.0, -1.0, -1.0])))
@@ -204,7 +206,8 @@ def resolve_pose(name: str, poses: dict, skeleton: Skeleton, where: str, _seen=(
     if name in _seen:
         raise ClipDataError(f"{where}: pose {name!r} is based on itself")
     p = poses[name]
-    joints, root = {}, {}
+    joints: dict[int, np.ndarray] = {}
+    root: dict[str, float] = {}
     if "base" in p:
         joints, root = resolve_pose(p["base"], poses, skeleton, where, _seen + (name,))
         joints, root = dict(joints), dict(root)
@@ -273,7 +276,7 @@ def parse_clip(raw: dict) -> ClipData:
 
 
 # ---------------------------------------------------------- interpolation
-def _interpolator(t: np.ndarray, v: np.ndarray, kind: str, period: float | None):
+def interpolator(t: np.ndarray, v: np.ndarray, kind: str, period: float | None):
     """A callable ``f(times) -> values`` through the keys ``(t, v)`` (``v`` is ``(K, ...)``)."""
     if len(t) == 1:
         return lambda x: np.broadcast_to(v[0], (len(x),) + v.shape[1:]).copy()
@@ -339,20 +342,20 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
             raise ClipDataError(f"{where}: key times must increase ({t} after {last_t})")
         last_t = t
         vals: dict[int, np.ndarray] = {}
-        root: dict = {}
+        key_root: dict = {}
         if "pose" in key:
             pj, pr = resolve_pose(key["pose"], poses, skeleton, f"{where} t={t}")
             vals.update(pj)
-            root.update({k: v for k, v in pr.items() if k == "y"})
+            key_root.update({k: v for k, v in pr.items() if k == "y"})
         vals.update(expand_joints(key.get("set", {}), skeleton, f"{where} t={t}"))
         r = key.get("root")
         if isinstance(r, (list, tuple)):
             r = dict(zip("xyz", r))
-        root.update(r or {})
+        key_root.update(r or {})
         for j, v in vals.items():
             joint_keys.setdefault(j, []).append((t, v))
-        if root:
-            root_keys.append((t, {k: float(v) for k, v in root.items()}))
+        if key_root:
+            root_keys.append((t, {k: float(v) for k, v in key_root.items()}))
     if not clip.cyclic and root_keys is not None and raw.get("keys"):
         # One-shot clips start at the origin: root x/z are 0 at the first key unless keyed there.
         t_first = float(raw["keys"][0]["t"])
@@ -360,9 +363,9 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
         if first is None:
             first = {}
             root_keys.insert(0, (t_first, first))
-        for axis in ("x", "z"):
-            if any(axis in r for _, r in root_keys):
-                first.setdefault(axis, 0.0)
+        for horizontal in ("x", "z"):
+            if any(horizontal in r for _, r in root_keys):
+                first.setdefault(horizontal, 0.0)
     root_keys = _flight_keys(root_keys, raw.get("flight", []), where)
 
     period = clip.period if clip.cyclic else None
@@ -380,14 +383,14 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
             continue
         kt = np.array([k[0] for k in keys])
         kv = np.stack([k[1] for k in keys])
-        f = _interpolator(kt, kv, kind, period)
+        f = interpolator(kt, kv, kind, period)
         euler[:, j] = f(times - drag_idx.get(j, 0.0))
 
     root = np.empty((T, 3))
     travel = clip.travel if clip.cyclic else np.zeros(3)
     defaults = (0.0, float(base_root.get("y", 0.94)), 0.0)
-    for axis, name in enumerate("xyz"):
-        keys = [(t, r[name]) for t, r in root_keys if name in r]
+    for axis, coord in enumerate("xyz"):
+        keys = [(t, r[coord]) for t, r in root_keys if coord in r]
         line = travel[axis] * times / clip.period if clip.cyclic else np.zeros(T)
         if not keys:
             root[:, axis] = defaults[axis] + line
@@ -396,7 +399,7 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
         kv = np.array([k[1] for k in keys])
         if clip.cyclic:
             kv = kv - travel[axis] * kt / clip.period
-        root[:, axis] = _interpolator(kt, kv[:, None], kind, period)(times)[:, 0] + line
+        root[:, axis] = interpolator(kt, kv[:, None], kind, period)(times)[:, 0] + line
 
     sway = float(raw.get("sway", 0.0 if clip.cyclic else 1.0))
     if sway:

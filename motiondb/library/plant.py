@@ -276,8 +276,8 @@ class _Foot:
         self.owner = np.full(T, -1)
         self.vlock = np.zeros(T, dtype=bool)
         self.pitch = np.zeros(T)
-        self.P = []
-        self.yaw = []
+        anchors: list[np.ndarray] = []  # (x, z) of each plant's anchor, metres
+        yaws: list[float] = []
         self.keep_y = np.full(T, np.nan)
         self.keep_rot = np.tile([0.0, 0.0, 0.0, 1.0], (T, 1))
         for k, p in enumerate(sorted(plants, key=lambda p: p.start)):
@@ -287,9 +287,9 @@ class _Foot:
             if (self.owner[s:e + 1] >= 0).any():
                 raise ValueError(f"overlapping {side} plants around frame {s}")
             a = int(np.clip(p.anchor, 0, T - 1))
-            idx = len(self.P)
-            self.P.append(self.F[a, [0, 2]].copy())
-            self.yaw.append(float(_yaw(self.RF[a])))
+            idx = len(anchors)
+            anchors.append(self.F[a, [0, 2]].copy())
+            yaws.append(float(_yaw(self.RF[a])))
             self.owner[s:e + 1] = idx
             self.vlock[s:e + 1] = True
             if p.keep:
@@ -303,8 +303,9 @@ class _Foot:
                 fr = np.arange(s, min(e, p.flat) + 1)
                 u = (fr - p.start) / max(1, p.flat - p.start)
                 self.pitch[fr] = -p.strike * (1 - _smoothstep(u))
-        self.P = np.array(self.P).reshape(-1, 2)
-        self.yaw = np.array(self.yaw)
+        self.P = np.array(anchors).reshape(-1, 2)  # (plants, 2)
+        self.yaw = np.array(yaws)  # (plants,) radians
+        self.last_target: np.ndarray | None = None  # the ball targets of the last solve, (T, 3)
 
     def targets(self, sole: np.ndarray):
         """Ball targets ``(T, 3)``, foot world rotations and toe world rotations (used on vertical locks)."""
@@ -514,6 +515,7 @@ def plant_feet(motion: Motion, plants: list[FramePlant], *, toe_height: float, s
         h = (foot.owner >= 0) & region
         v = foot.vlock & region
         horiz = np.linalg.norm(ball[h][:, [0, 2]] - foot.P[foot.owner[h]], axis=1)
+        assert foot.last_target is not None  # every planted foot was solved
         vert = np.abs(ball[v, 1] - foot.last_target[v, 1])
         err = max(err, float(horiz.max(initial=0.0)), float(vert.max(initial=0.0)))
         stray_total += int((c & ~(foot.owner >= 0)[report_frames]).sum())

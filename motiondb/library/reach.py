@@ -28,12 +28,12 @@ from text2anim.core.bodyparts import body_map
 from text2anim.core.ik import arm_ik
 from text2anim.core.motion import Motion
 
-from .keyframes import ClipDataError, _interpolator
+from .keyframes import ClipDataError, interpolator
 
 
 def _curve(t: np.ndarray, v: np.ndarray, times: np.ndarray) -> np.ndarray:
     """PCHIP through the keys, at rest on the first and last one (as the joint curves)."""
-    return _interpolator(t, v, "pchip", None)(times)
+    return interpolator(t, v, "pchip", None)(times)
 
 
 def _heading(motion: Motion) -> np.ndarray:

@@ -81,7 +81,7 @@ _ROWS = (("Hips", None, (0.0, 0.0, 0.0)),) + _LEFT_LEG + _mirrored(_LEFT_LEG) + 
 def canonical_skeleton() -> Skeleton:
     """The built-in library's skeleton (31 CMU joints, 1.70 m, metres, Y up, facing +Z)."""
     names = tuple(r[0] for r in _ROWS)
-    parents = [-1 if p is None else names.index(p) for _, p, _ in _ROWS]
+    parents = np.array([-1 if p is None else names.index(p) for _, p, _ in _ROWS], dtype=np.int64)
     offsets = np.array([o for _, _, o in _ROWS], dtype=np.float64)
     ends = dict(_END_SITES)
     for n, o in list(ends.items()):

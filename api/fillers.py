@@ -1,0 +1,170 @@
+"""What the animation adds to the time table in the waits: stops, idles and held poses.
+
+A wait longer than :data:`IDLE_GAP` seconds is filled rather than frozen:
+
+- an actor who comes in later idles (in the posture its first clip starts in) from 0 s;
+- before a connection that waits, a looping motion (walk, run) first comes to a stop
+  (:data:`STOP_VERB`, joined by ``transition``), then the idle clip (:data:`IDLE_VERB`)
+  plays until the next motion; so after 走る。3秒後に歩く the runner stops and stands,
+  breathing, before walking;
+- an actor who finishes before the last one stops and idles to the end, or, when no idle
+  keeps its posture (seated, lying), holds its last pose: that element's ``end`` moves
+  to the end.
+
+The idle of a posture other than standing is a clip of :data:`IDLE_VERB` that starts
+and ends in it (:func:`text2anim.postures.matching`); none: the actor holds still.
+Actors idling side by side are not clones: the ``k``-th actor takes the ``k``-th
+variant of the standing idle (:func:`text2anim.variants.nth`: another clip of 待つ,
+else the mirror image), listed in ``Filled.mirrored`` when mirrored.
+The added elements are rows of the time table like the text's own (ids above
+them), so ``text2anim plan`` shows what will play. Only clip metadata is read.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from text2anim.core.methods import Method
+from text2anim.core.motion import resampled_frames
+from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
+from text2anim.motiondb.types import Posture
+from text2anim.scheduler import Element, TimeTable
+
+from . import postures
+from .variants import nth
+
+#: Seconds of waiting above which a wait is filled.
+IDLE_GAP = 0.5
+IDLE_VERB = "待つ"
+STOP_VERB = "止まる"
+
+
+@dataclass(frozen=True)
+class Filled:
+    """A time table with its waits filled: ``clips`` covers every element, ``fillers`` are the added ids."""
+
+    table: TimeTable
+    clips: dict[int, ClipInfo]
+    fillers: tuple[int, ...]
+    mirrored: frozenset[int] = frozenset()
+
+
+def played_duration(info: ClipInfo, fps: float) -> float:
+    """Seconds a clip lasts once resampled to ``fps`` (as synthesis plays it)."""
+    return resampled_frames(info.frames, info.fps, fps) / fps
+
+
+class _Finder:
+    """The stop and idle clips of the database, by posture and character."""
+
+    def __init__(self, db: MotionDB):
+        self.db = db
+        self.variant = 0  # the actor's index: which variant of the standing idle it plays
+
+    def by_verb(self, verb: str, character: str | None) -> ClipInfo | None:
+        try:
+            hits = self.db.search(verb, prefer_character=character)
+        except UnknownVerbError:
+            return None
+        return hits[0] if hits else None
+
+    def idle(self, posture: Posture, character: str | None) -> tuple[ClipInfo | None, bool]:
+        """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still;
+        and whether it plays mirrored (the current actor's variant of the standing idle)."""
+        if posture == "standing":
+            try:
+                hits = self.db.search(IDLE_VERB, prefer_character=character)
+            except UnknownVerbError:
+                return None, False
+            if not hits:
+                return None, False
+            pick = nth(hits, self.variant)
+            return pick.clip, pick.mirrored
+        return postures.matching(self.db, IDLE_VERB, posture, character=character), False
+
+
+class _Adder:
+    """Collects the added elements and their clips, numbering them from ``next_id``."""
+
+    def __init__(self, next_id: int):
+        self.next_id = next_id
+        self.clips: dict[int, ClipInfo] = {}
+        self.mirrored: set[int] = set()
+
+    def add(self, actor: str | None, verb: str, info: ClipInfo, method: Method, prev: int | None,
+            start: float, end: float, mirrored: bool = False) -> Element:
+        e = Element(self.next_id, actor, verb, info.name, method, prev, start, end)
+        self.clips[e.id] = info
+        if mirrored:
+            self.mirrored.add(e.id)
+        self.next_id += 1
+        return e
+
+
+def _fill_gap(find: _Finder, add: _Adder, prev: Element, prev_info: ClipInfo, start: float, end: float,
+              character: str | None, fps: float) -> list[Element]:
+    """Elements that fill ``[start, end)`` s after ``prev``: a stop for a looping motion, then idling."""
+    out: list[Element] = []
+    stop = find.by_verb(STOP_VERB, character) if prev_info.cyclic else None
+    if stop is not None:
+        t1 = min(end, start + played_duration(stop, fps))
+        if end - t1 <= IDLE_GAP:
+            t1 = end
+        out.append(add.add(prev.actor, STOP_VERB, stop, "transition", prev.id, start, t1))
+        start = t1
+    idle, mirrored = find.idle(prev_info.end_posture, character) if end - start > IDLE_GAP else (None, False)
+    if idle is not None:
+        out.append(add.add(prev.actor, IDLE_VERB, idle, "connection", out[-1].id if out else prev.id, start, end,
+                           mirrored))
+    return out
+
+
+def _actor_track(find: _Finder, add: _Adder, mine: list[Element], clips: dict[int, ClipInfo],
+                 fps: float) -> list[Element]:
+    """One actor's elements in playing order with a late start's idle and the connections' waits filled."""
+    track: list[Element] = []
+    for e in mine:
+        info = clips[e.id]
+        prev, method = e.prev, e.method
+        idle, mirrored = find.idle(info.start_posture, info.character) \
+            if method == "initial" and e.start > IDLE_GAP else (None, False)
+        if idle is not None:  # an actor who comes in later stands idle until then
+            first = add.add(e.actor, IDLE_VERB, idle, "initial", None, 0.0, e.start, mirrored)
+            track.append(first)
+            prev, method = first.id, "connection"
+        before = next((x for x in track if x.id == e.prev), None) if e.method == "connection" else None
+        if before is not None and e.start - before.end > IDLE_GAP:
+            fill = _fill_gap(find, add, before, clips.get(before.id) or add.clips[before.id], before.end,
+                             e.start, info.character, fps)
+            track.extend(fill)
+            if fill:
+                prev = fill[-1].id
+        track.append(replace(e, method=method, prev=prev))
+    return track
+
+
+def fill_waits(table: TimeTable, clips: dict[int, ClipInfo], db: MotionDB, fps: float) -> Filled:
+    """The time table with its waits filled (see the module docstring); ``clips``: element id -> clip."""
+    find, add = _Finder(db), _Adder(max(e.id for e in table.elements) + 1)
+    tracks = []
+    for k, actor in enumerate(table.actors()):
+        # In playing order (前に puts a later id first); a composition after its base.
+        mine = sorted((e for e in table.elements if e.actor == actor),
+                      key=lambda e: (e.start, e.method == "composition", e.id))
+        find.variant = k
+        tracks.append(_actor_track(find, add, mine, clips, fps))
+    # Actors who finish early stop and stand idle until the last one is done.
+    end = max(e.end for e in table.elements)
+    elements: list[Element] = []
+    for k, track in enumerate(tracks):
+        find.variant = k
+        last = max((x for x in track if x.method != "composition"), key=lambda x: x.end)
+        if end - last.end > IDLE_GAP:
+            character = clips[last.id].character if last.id in clips else None
+            last_info = clips.get(last.id) or add.clips[last.id]
+            fill = _fill_gap(find, add, last, last_info, last.end, end, character, fps)
+            if not fill and not last_info.cyclic:  # no idle keeps this posture (seated, lying): hold the last pose
+                track[track.index(last)] = replace(last, end=end)
+            track.extend(fill)
+        elements.extend(track)
+    filled = TimeTable(table.text, table.fps, tuple(sorted(elements, key=lambda e: e.id)))
+    return Filled(filled, {**clips, **add.clips}, tuple(sorted(add.clips)), frozenset(add.mirrored))

@@ -1,0 +1,162 @@
+"""Clips entering the database clean: floor offsets, retargeting errors, skating before and after.
+
+    python benchmarks/bench_retarget.py [--character 02_01_walk] [FILES...]
+
+Reads CMU captures from ``../shared/mocap/cmu`` (frame 0, the T-pose, dropped)
+and does to each what ``db import`` does under one character whose skeleton
+is ``--character``'s (subject 02 by default) and, in a second table, under
+the built-in skeleton. Printed per file:
+
+- floor: the floor found (cm; the clip is moved down by it) and how
+  (``contacts`` or ``lowest``), and the floor found again afterwards;
+- bones: the largest bone-length difference to the character's skeleton
+  before (cm), and after (always 0: the clip is retargeted onto it);
+- legs: the leg-length ratio ``s`` target / source;
+- hands, toes, ankles: the largest and 95th-percentile distance (cm) between
+  the output's wrists, toe joints or ankles and the source's scaled by ``s``,
+  on the frames where a source foot is planted (toes are what retargeting
+  places; ankles follow the foot's own shape; toe heights within 6 cm of the
+  floor are kept unscaled, ``core.retarget.foot_height``);
+- skate: the skating ratio of the source and the output, both resampled to
+  30 fps (timetable.md §3): ``core`` is ``core.metrics.skating_ratio``; ``gmd``
+  is the either-foot toe definition of §3, computed here;
+- cpu: CPU time of floor + retarget (ms), beside wall time.
+
+A third table retargets the built-in library's animation of a few sentences
+(a temporary database) onto the test rigs of ``tests/rig_builders.py``
+(Mixamo names with an A-pose rest, SMPL, Unreal mannequin, VRM names), with the
+same error and skating columns (``--no-rigs`` skips it).
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.ndimage import uniform_filter1d
+
+REPO = Path(__file__).resolve().parents[1]
+CMU = REPO.parent / "shared" / "mocap" / "cmu"
+DEFAULT = ("02_01_walk", "02_02_walk", "07_02_walk", "07_04_slowwalk", "08_02_walk", "08_04_slowwalk",
+           "09_02_run", "09_05_run", "16_15_walk", "127_07_run", "16_01_jump", "14_27_sit")
+
+
+def gmd_skating_ratio(m) -> float:
+    """timetable.md §3: toe below 5 cm on t and t+1, speed > 0.5 m/s and its 5-frame mean > 0.5; either foot."""
+    from text2anim.core.bodyparts import body_map
+
+    bm = body_map(m.skeleton)
+    P = m.positions
+    skating = np.zeros(max(m.n_frames - 1, 0), dtype=bool)
+    for side in ("left", "right"):
+        toe = P[:, bm.feet[side][1]]
+        low = (toe[:-1, 1] < 0.05) & (toe[1:, 1] < 0.05)
+        v = np.linalg.norm(np.diff(toe[:, [0, 2]], axis=0), axis=-1) * m.fps
+        skating |= low & (v > 0.5) & (uniform_filter1d(v, 5, mode="nearest") > 0.5)
+    return float(skating.mean()) if len(skating) else 0.0
+
+
+def effector_errors(src, out, mapping) -> list[float]:
+    """(max, p95) in cm on planted frames for hands (wrists), toes and ankles."""
+    from text2anim.core.contacts import detect_contacts
+
+    fc = detect_contacts(src)
+    planted = fc.left | fc.right
+    res: list[float] = []
+    for roles in (("leftHand", "rightHand"), ("leftToes", "rightToes"), ("leftFoot", "rightFoot")):
+        e = 100 * np.concatenate([np.linalg.norm(out.positions[planted, mapping.target[r]]
+                                                 - mapping.scale * src.positions[planted, mapping.source[r]], axis=-1)
+                                  for r in roles])
+        res += [float(e.max()), float(np.percentile(e, 95))] if len(e) else [0.0, 0.0]
+    return res
+
+
+def row(name: str, target) -> list[str]:
+    from text2anim.core.bvh import read_bvh
+    from text2anim.core.floor import find_floor, place_on_floor
+    from text2anim.core.metrics import skating_ratio
+    from text2anim.core.retarget import map_skeletons, retarget
+
+    raw = read_bvh(CMU / f"{name}.bvh", drop_first=True)
+    t0, c0 = time.perf_counter(), time.process_time()
+    src, floor = place_on_floor(raw)
+    out = retarget(src, target)
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    mapping = map_skeletons(src.skeleton, target)
+    same = src.skeleton.same_hierarchy(target)
+    bones = 100 * float(np.abs(np.linalg.norm(src.skeleton.offsets, axis=1)
+                               - np.linalg.norm(target.offsets, axis=1)).max()) if same else float("nan")
+    after = 100 * float(np.abs(np.linalg.norm(out.skeleton.offsets, axis=1)
+                               - np.linalg.norm(target.offsets, axis=1)).max())
+    hmax, h95, tmax, t95, amax, a95 = effector_errors(src, out, mapping)
+    s30, o30 = src.resample(30), out.resample(30)
+    return [name, f"{100 * floor.height:+.2f}", floor.method, f"{100 * find_floor(out).height:+.2f}",
+            f"{bones:.2f}", f"{after:.2f}", f"{mapping.scale:.3f}", f"{hmax:.2f}/{h95:.2f}", f"{tmax:.2f}/{t95:.2f}", f"{amax:.2f}/{a95:.2f}",
+            f"{skating_ratio(s30):.3f}>{skating_ratio(o30):.3f}", f"{gmd_skating_ratio(s30):.3f}>{gmd_skating_ratio(o30):.3f}",
+            f"{1000 * cpu:.0f}/{1000 * wall:.0f}"]
+
+
+SENTENCES = ("太郎は歩く。", "太郎は走って、ボールを蹴る。")
+
+
+def rig_rows(tmp: Path) -> list[list[str]]:
+    import text2anim
+    from text2anim.core.metrics import skating_ratio
+    from text2anim.core.retarget import map_skeletons, retarget
+
+    sys.path.insert(0, str(REPO / "tests"))
+    from rig_builders import mixamo_rig, smpl_rig, unreal_rig, vrm_rig
+    from text2anim.core.bvh import read_bvh
+
+    rigs = {f.__name__: read_bvh(f(tmp / f"{f.__name__}.bvh")).skeleton
+            for f in (mixamo_rig, smpl_rig, unreal_rig, vrm_rig)}
+    rows = []
+    for text in SENTENCES:
+        (src,) = text2anim.animate(text, str(tmp / "db.sqlite")).motions.values()
+        for name, skel in rigs.items():
+            c0 = time.process_time()
+            out = retarget(src, skel)
+            cpu = time.process_time() - c0
+            m = map_skeletons(src.skeleton, skel)
+            hmax, h95, tmax, t95, amax, a95 = effector_errors(src, out, m)
+            rows.append([text, name, f"{m.scale:.3f}", f"{hmax:.2f}/{h95:.2f}", f"{tmax:.2f}/{t95:.2f}",
+                         f"{amax:.2f}/{a95:.2f}", f"{skating_ratio(src):.3f}>{skating_ratio(out):.3f}",
+                         f"{gmd_skating_ratio(src):.3f}>{gmd_skating_ratio(out):.3f}", f"{1000 * cpu:.0f}"])
+    return rows
+
+
+def table(rows: list[list[str]], head: list[str]) -> str:
+    w = [max(len(r[k]) for r in [head, *rows]) for k in range(len(head))]
+    return "\n".join(" ".join(c.ljust(w[k]) for k, c in enumerate(r)) for r in [head, *rows])
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("files", nargs="*", default=list(DEFAULT), help="CMU clip names (default: a mix of subjects)")
+    ap.add_argument("--character", default="02_01_walk", help="the clip whose skeleton is the character's")
+    ap.add_argument("--no-rigs", action="store_true", help="skip the table of the built-in animation on test rigs")
+    args = ap.parse_args()
+    if not CMU.is_dir():
+        sys.exit(f"no CMU captures at {CMU}")
+    from text2anim.core.bvh import read_bvh
+    from text2anim.motiondb.library.skeleton import canonical_skeleton
+
+    head = ["clip", "floor cm", "how", "after", "bones cm", "after", "legs s", "hands cm max/p95",
+            "toes max/p95", "ankles max/p95", "skate core 30fps", "skate gmd 30fps", "cpu/wall ms"]
+    for label, target in ((f"character = {args.character}'s skeleton", read_bvh(CMU / f"{args.character}.bvh").skeleton),
+                          ("character = the built-in skeleton", canonical_skeleton())):
+        print(f"\n## {label}\n")
+        print(table([row(n, target) for n in args.files], head))
+    if not args.no_rigs:
+        import tempfile
+
+        print("\n## the built-in library's animation on the test rigs (30 fps)\n")
+        with tempfile.TemporaryDirectory() as tmp:
+            print(table(rig_rows(Path(tmp)), ["text", "rig", "legs s", "hands cm max/p95", "toes max/p95",
+                                              "ankles max/p95", "skate core", "skate gmd", "cpu ms"]))
+
+
+if __name__ == "__main__":
+    main()

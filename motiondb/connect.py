@@ -1,0 +1,115 @@
+"""Drivers: an SQLAlchemy engine for a database URL, with its timeouts, transactions and error messages.
+
+Where the database is (which URL) is :mod:`motiondb.location`'s business; this
+module turns that URL into an engine: the PostgreSQL driver the ``postgres``
+extra installs, connection and lock timeouts, SQLite transactions that take the
+write lock up front, and one-line messages for driver errors.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from sqlalchemy import create_engine, event
+from sqlalchemy import exc as sa_exc
+from sqlalchemy.engine import Engine, make_url
+
+from .errors import DBError
+
+#: Key of the PostgreSQL advisory lock that serialises writers ("t2aM").
+PG_LOCK_KEY = 0x7432614D
+#: Seconds an SQLite connection waits for another process's write lock.
+SQLITE_BUSY_TIMEOUT = 60.0
+#: Seconds a PostgreSQL connection attempt may take.
+PG_CONNECT_TIMEOUT = 10
+
+
+def first_line(exc: BaseException) -> str:
+    """The first line of a (DBAPI) exception's message, for one-line user messages."""
+    msg = str(getattr(exc, "orig", None) or exc).strip()
+    return msg.splitlines()[0].strip() if msg else type(exc).__name__
+
+
+def make_engine(url_text: str) -> tuple[Engine, str]:
+    """An engine for ``url_text`` and the URL to show in messages (password hidden)."""
+    try:
+        url = make_url(url_text)
+    except (sa_exc.ArgumentError, ValueError):
+        raise DBError(f"not a database URL: {url_text!r} (expected e.g. sqlite:///path/motions.sqlite "
+                      "or postgresql+psycopg2://user@host/dbname)") from None
+    if url.drivername == "postgresql":
+        # SQLAlchemy 2.1 reads a bare postgresql:// as psycopg (3); the postgres extra installs psycopg2
+        import importlib.util
+
+        if importlib.util.find_spec("psycopg") is None and importlib.util.find_spec("psycopg2") is not None:
+            url = url.set(drivername="postgresql+psycopg2")
+    display = url.render_as_string(hide_password=True)
+    try:
+        backend = url.get_backend_name()
+    except Exception:  # noqa: BLE001
+        backend = url.drivername
+    connect_args: dict[str, Any] = {}
+    if backend == "sqlite":
+        db = url.database or ""
+        if db and db != ":memory:" and not db.startswith("file:"):
+            folder = Path(db).expanduser().resolve().parent
+            if not folder.is_dir():
+                raise DBError(f"cannot open the SQLite database {db}: the folder {folder} does not exist")
+            if Path(db).is_dir():
+                raise DBError(f"cannot open the SQLite database {db}: it is a folder")
+        connect_args["timeout"] = SQLITE_BUSY_TIMEOUT
+    elif backend == "postgresql" and url.get_driver_name() in ("psycopg2", "psycopg"):
+        connect_args["connect_timeout"] = PG_CONNECT_TIMEOUT
+    try:
+        engine = create_engine(url, connect_args=connect_args)
+    except sa_exc.NoSuchModuleError:
+        raise DBError(f"unknown kind of database {url.drivername!r} in {display} "
+                      "(use sqlite:///FILE or postgresql+psycopg2://...)") from None
+    except ImportError as exc:
+        hint = " (pip install 'text2anim[postgres]')" if backend == "postgresql" else ""
+        raise DBError(f"the driver for {url.drivername} is not installed: {exc.name or exc}{hint}") from None
+    except (sa_exc.ArgumentError, TypeError, ValueError) as exc:
+        raise DBError(f"bad database URL {display}: {first_line(exc)}") from None
+    if backend == "sqlite":
+        _sqlite_transactions(engine)
+    return engine, display
+
+
+def _sqlite_transactions(engine: Engine) -> None:
+    """Let SQLAlchemy, not pysqlite, start transactions; writers take the lock up front.
+
+    pysqlite's own handling would not start a transaction before DDL and would
+    start reads as deferred transactions that cannot safely upgrade to writes;
+    here every transaction is explicit and writes use ``BEGIN IMMEDIATE``.
+    """
+
+    @event.listens_for(engine, "connect")
+    def _connect(dbapi_conn, _record):
+        dbapi_conn.isolation_level = None
+        cur = dbapi_conn.cursor()
+        cur.execute("PRAGMA foreign_keys = ON")
+        cur.close()
+
+    @event.listens_for(engine, "begin")
+    def _begin(conn):
+        write = conn.get_execution_options().get("t2a_write", False)
+        conn.exec_driver_sql("BEGIN IMMEDIATE" if write else "BEGIN")
+
+
+def describe_error(exc: BaseException, display: str, backend: str) -> str:
+    """A one-line user message for a driver error on database ``display`` (``backend``: ``sqlite``, ...)."""
+    line = first_line(exc)
+    low = line.lower()
+    if backend == "sqlite":
+        if "unable to open database file" in low:
+            return f"cannot open the SQLite database {display} (missing folder or no permission)"
+        if "file is not a database" in low:
+            return f"{display} is not an SQLite database"
+        if "database is locked" in low:
+            return f"the SQLite database {display} stayed locked by another process for {SQLITE_BUSY_TIMEOUT:g} s"
+        if "readonly" in low or "read-only" in low:
+            return f"the SQLite database {display} is read-only"
+    if isinstance(exc, sa_exc.OperationalError) and ("connect" in low or "could not translate" in low
+                                                     or "timeout" in low):
+        return f"lost the connection to the database {display}: {line}"
+    return f"database {display}: {line}"

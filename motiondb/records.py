@@ -1,0 +1,139 @@
+"""Validating a clip record and computing what storing it needs (blob, fingerprint, contacts, postures)."""
+from __future__ import annotations
+
+import hashlib
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from text2anim.core.bodyparts import GROUPS, BodyMapError, BodyPart
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.motion import Motion
+from text2anim.core.skeleton import Skeleton
+
+from .blobs import encode_frames, skeleton_json
+from .errors import ClipValidationError
+from .postures import classify_posture
+from .readings import normalize
+from .types import DEFAULT_POSTURE, POSTURES, ClipRecord, Posture
+
+#: Longest clip or character name, characters.
+MAX_NAME = 200
+#: Longest verb or object, characters.
+MAX_WORD = 100
+
+
+@dataclass
+class PreparedClip:
+    """A validated record with everything computed that the insert needs."""
+
+    name: str
+    verbs: tuple[str, ...]
+    objects: tuple[str, ...]
+    character: str
+    skeleton: Skeleton
+    skeleton_def: str
+    fingerprint: str
+    fps: float
+    frames: int
+    duration: float
+    core: tuple[float, float]
+    body_part: BodyPart | None
+    cyclic: bool
+    source: str
+    blob: bytes
+    start_posture: Posture = DEFAULT_POSTURE
+    end_posture: Posture = DEFAULT_POSTURE
+    contacts: list[tuple[str, int, int]] = field(default_factory=list)
+
+
+def _words(values, what: str, where: str, *, required: bool) -> tuple[str, ...]:
+    if isinstance(values, str):
+        values = (values,)
+    out: list[str] = []
+    for v in values or ():
+        if not isinstance(v, str):
+            raise ClipValidationError(f"{where}: {what} must be text, got {v!r}")
+        w = normalize(v)
+        if not w:
+            raise ClipValidationError(f"{where}: empty {what}")
+        if len(w) > MAX_WORD:
+            raise ClipValidationError(f"{where}: {what} {w[:20]!r}… is longer than {MAX_WORD} characters")
+        if w not in out:
+            out.append(w)
+    if required and not out:
+        raise ClipValidationError(f"{where}: a clip needs at least one verb")
+    return tuple(out)
+
+
+def _check_name(name, what: str, where: str) -> str:
+    if not isinstance(name, str) or not normalize(name):
+        raise ClipValidationError(f"{where}: the {what} name is empty")
+    n = normalize(name)
+    if len(n) > MAX_NAME or any(ord(c) < 32 for c in n):
+        raise ClipValidationError(f"{where}: bad {what} name {n[:40]!r} (at most {MAX_NAME} printable characters)")
+    return n
+
+
+def prepare_record(rec: ClipRecord, where: str | None = None) -> PreparedClip:
+    """Validate a record and compute its blob, skeleton fingerprint and foot contacts.
+
+    Raises :class:`ClipValidationError` naming ``where`` (a file) or the clip.
+    """
+    where = where or f"clip {getattr(rec, 'name', '?')!r}"
+    name = _check_name(rec.name, "clip", where)
+    character = _check_name(rec.character, "character", where)
+    verbs = _words(rec.verbs, "verb", where, required=True)
+    objects = _words(rec.objects, "object", where, required=False)
+    m = rec.motion
+    if not isinstance(m, Motion):
+        raise ClipValidationError(f"{where}: motion must be a synthesis.Motion, got {type(m).__name__}")
+    if m.n_frames < 1:
+        raise ClipValidationError(f"{where}: the motion has no frames")
+    if not math.isfinite(m.fps):
+        raise ClipValidationError(f"{where}: fps must be finite, got {m.fps}")
+    arrays = [m.root_positions, m.rotations] + ([] if m.translations is None else [m.translations])
+    if not all(np.all(np.isfinite(a)) for a in arrays):
+        raise ClipValidationError(f"{where}: the motion has non-finite values")
+    norms = np.linalg.norm(m.rotations, axis=-1)
+    if np.any(np.abs(norms - 1.0) > 1e-3):
+        raise ClipValidationError(
+            f"{where}: rotations are not unit quaternions (norm {norms.min():.3g}..{norms.max():.3g})")
+    duration = m.n_frames / m.fps
+    if rec.core is None:
+        core = (0.0, duration)
+    else:
+        try:
+            b, e = (float(x) for x in rec.core)
+        except (TypeError, ValueError):
+            raise ClipValidationError(f"{where}: core must be (begin, end) seconds, got {rec.core!r}") from None
+        # up to one frame past the end is rounding (a core given in seconds on a frame grid): clamped
+        slack = 1.0 / m.fps + 1e-9
+        if not (math.isfinite(b) and math.isfinite(e) and 0 <= b < e <= duration + slack and b < duration):
+            raise ClipValidationError(
+                f"{where}: core {b:g}..{e:g} s must satisfy 0 <= begin < end <= duration ({duration:.3f} s)")
+        core = (b, min(e, duration))
+    if rec.body_part is not None and rec.body_part not in GROUPS:
+        raise ClipValidationError(f"{where}: unknown body part {rec.body_part!r}; known: {', '.join(GROUPS)}")
+    try:
+        fc = detect_contacts(m)
+    except BodyMapError as exc:
+        raise ClipValidationError(f"{where}: cannot compute foot contacts: {exc}") from None
+    contacts = [(side, a, b) for side in ("left", "right") for a, b in fc.intervals(side)]
+    postures = []
+    for what, declared, frame in (("start", rec.start_posture, 0), ("end", rec.end_posture, -1)):
+        if declared is None:
+            postures.append(classify_posture(m, frame))
+        elif declared not in POSTURES:
+            raise ClipValidationError(f"{where}: unknown {what} posture {declared!r}; known: {', '.join(POSTURES)}")
+        else:
+            postures.append(declared)
+    definition = skeleton_json(m.skeleton)
+    return PreparedClip(
+        name=name, verbs=verbs, objects=objects, character=character, skeleton=m.skeleton,
+        skeleton_def=definition, fingerprint=hashlib.sha256(definition.encode("utf-8")).hexdigest(),
+        fps=float(m.fps), frames=int(m.n_frames), duration=float(duration), core=core,
+        body_part=rec.body_part, cyclic=bool(rec.cyclic), source=str(rec.source or ""),
+        blob=encode_frames(m), start_posture=postures[0], end_posture=postures[1], contacts=contacts,
+    )

@@ -1,0 +1,108 @@
+"""Seeding: filling a new database with the built-in library (or given records), refreshing it when it changes."""
+from __future__ import annotations
+
+import hashlib
+import warnings
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+from sqlalchemy import select
+from sqlalchemy.orm import Session
+
+from .errors import ClipValidationError, DBError, SeedWarning
+from .reads import SkeletonCache
+from .records import prepare_record
+from .migrate import version_row
+from .schema import Clip, utcnow
+from .types import ClipRecord
+from .writes import delete_clips, store_clips
+
+#: ``source`` of the built-in library's clips (``builtin`` or ``builtin:<file>``).
+BUILTIN_SOURCE = "builtin"
+
+
+@dataclass(frozen=True)
+class SeedSource:
+    """What a new database is filled with: ``records()``, stored as ``tag``."""
+
+    tag: str  # stored in schema_version.builtin_library
+    records: Callable[[], Iterable[ClipRecord]]
+    builtin: bool  # the built-in library (refreshed when its tag changes)
+
+
+def seeding_needed(library: str | None, source: SeedSource | None) -> bool:
+    """Whether a database whose ``builtin_library`` is ``library`` should be (re)seeded from ``source``.
+
+    ``""`` means created without seeding (never seeded later); ``None`` means
+    not seeded yet (the library was unavailable); another value is the tag of
+    what was seeded: the built-in library is refreshed when its tag changes.
+    """
+    if source is None or library == "":
+        return False
+    if library is None:
+        return True
+    return source.builtin and library != source.tag
+
+
+def library_tag(library) -> str:
+    """``LIBRARY_VERSION`` if the library has one, else a hash of its code and data files."""
+    version = getattr(library, "LIBRARY_VERSION", None)
+    if version:
+        return str(version)[:64]
+    root = Path(library.__file__).parent
+    h = hashlib.sha256()
+    for path in sorted(p for p in root.rglob("*") if p.suffix in (".py", ".json") and p.is_file()):
+        h.update(path.relative_to(root).as_posix().encode("utf-8") + b"\0")
+        h.update(path.read_bytes() + b"\0")
+    return "sha256:" + h.hexdigest()[:32]
+
+
+def seed_source(seed) -> SeedSource | None:
+    """What to seed a new database with; ``None`` for nothing (or the built-in library is absent)."""
+    if seed is False or seed is None:
+        return None
+    if callable(seed) and seed is not True:
+        return SeedSource(getattr(seed, "__name__", "custom")[:64], seed, builtin=False)
+    import importlib
+
+    try:
+        library = importlib.import_module("text2anim.motiondb.library")
+    except ModuleNotFoundError as exc:
+        if exc.name == "text2anim.motiondb.library":
+            return None  # the built-in library is not there (yet)
+        raise
+    fn = getattr(library, "builtin_clips", None)
+    if fn is None:
+        return None
+    return SeedSource(library_tag(library), fn, builtin=True)
+
+
+def fill(s: Session, source: SeedSource, library: str | None, url: str, skeletons: SkeletonCache) -> None:
+    """Store ``source``'s clips in database ``url`` (session ``s``, under the write lock).
+
+    ``library`` is the tag seeded before (``None`` for none): the old built-in
+    clips go first. Clips whose names are taken are kept as they are (a
+    :class:`SeedWarning` lists them); the tag is recorded in ``schema_version``.
+    """
+    try:
+        prepared = [prepare_record(r) for r in source.records()]
+    except ClipValidationError as exc:
+        what = "the built-in motion library" if source.builtin else "the seed records"
+        raise DBError(f"cannot fill {url} with {what}: {exc}") from None
+    if library is not None:  # a newer built-in library: replace the old built-in clips
+        old = [n for n, src in s.execute(select(Clip.name, Clip.source))
+               if src == BUILTIN_SOURCE or src.startswith(BUILTIN_SOURCE + ":")]
+        delete_clips(s, old)
+    before = {p.name for p in prepared}
+    stored = store_clips(s, prepared, skeletons, conflicts="skip")
+    if len(stored) < len(before):
+        kept = set(s.scalars(select(Clip.name).where(Clip.id.in_(stored)))) if stored else set()
+        skipped = sorted(before - kept)
+        warnings.warn(SeedWarning(
+            f"{len(skipped)} built-in clip(s) not stored because clips of those names or a character "
+            f"'default' of another skeleton are already in {url}: {', '.join(skipped[:8])}"
+            f"{'…' if len(skipped) > 8 else ''}"), stacklevel=4)
+    row = version_row(s)
+    row.builtin_library = source.tag
+    row.updated = utcnow()

@@ -1,0 +1,97 @@
+"""Clips enter the database clean: on the floor, and on their character's skeleton (real CMU captures)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from shared_data import cmu, requires_cmu
+from text2anim.core import read_bvh
+from text2anim.core.contacts import detect_contacts, runs
+from text2anim.core.floor import FOOT_CLEARANCE, find_floor, lowest_foot_heights, place_on_floor, shifted
+from text2anim.core.metrics import skating_ratio
+from text2anim.core.retarget import map_skeletons
+from text2anim.motiondb import ClipValidationError, ImportOptions
+
+pytestmark = requires_cmu
+
+#: The character is subject 02; then subjects 07, 08 and 09, whose bones are 2.5-4.7 cm longer or shorter.
+CHARACTER = "02_01_walk"
+OTHERS = ("07_02_walk", "08_04_slowwalk", "09_05_run")
+
+
+def bone_lengths(skel) -> np.ndarray:
+    return np.linalg.norm(skel.offsets, axis=1)
+
+
+def test_the_floor_of_a_capture_is_found_wherever_the_capture_put_it():
+    walk = read_bvh(cmu("07_02_walk"), drop_first=True)
+    floor = find_floor(walk)
+    assert floor.method == "contacts" and floor.contact_frames > 100
+    for dy in (-0.3, 0.0, 0.25):  # a capture volume calibrated 30 cm low or 25 cm high
+        moved, again = place_on_floor(shifted(walk, dy))
+        assert again.method == "contacts" and again.height == pytest.approx(floor.height + dy, abs=1e-3)
+        planted = detect_contacts(moved)
+        low = lowest_foot_heights(moved)
+        both = np.concatenate([low[planted.left, 0], low[planted.right, 1]])
+        assert np.median(both) == pytest.approx(FOOT_CLEARANCE, abs=0.01)  # planted feet on y = 0 (1 cm)
+
+
+def test_a_clip_with_too_few_contacts_is_floored_by_its_lowest_foot_reach():
+    jump = read_bvh(cmu("16_05_jump"), drop_first=True)
+    fc = detect_contacts(jump)
+    air = runs(~(fc.left | fc.right))
+    a, b = max(air, key=lambda r: r[1] - r[0])  # the flight of the jump: no foot on the ground
+    flight = jump.frames(int(a), int(b))
+    floor = find_floor(flight)
+    assert floor.method == "lowest" and floor.contact_frames < 6
+    placed, _ = place_on_floor(flight)
+    assert np.percentile(lowest_foot_heights(placed), 5) == pytest.approx(FOOT_CLEARANCE, abs=1e-9)
+
+
+def test_subjects_imported_under_one_character_are_retargeted_onto_its_skeleton(empty_db):
+    names = (CHARACTER,) + OTHERS
+    notes = []
+    empty_db.import_bvh([cmu(n) for n in names], ImportOptions(("歩く",), character="cmu", drop_first=True),
+                        notify=lambda path, msg: notes.append((path, msg)))
+    character = empty_db.load(CHARACTER).skeleton
+    for name in OTHERS:
+        source, _ = place_on_floor(read_bvh(cmu(name), drop_first=True))
+        assert np.abs(bone_lengths(source.skeleton) - bone_lengths(character)).max() > 0.02  # another body
+        clip = empty_db.load(name)
+        assert np.array_equal(clip.skeleton.offsets, character.offsets)  # bone lengths: the character's
+        assert abs(find_floor(clip).height) < 0.01  # floor at y = 0 within 1 cm
+        assert skating_ratio(clip.resample(30)) <= skating_ratio(source.resample(30))
+        # hands and feet where the source's are, up to the leg-length scale, on planted frames
+        m = map_skeletons(source.skeleton, character)
+        assert m.scale != pytest.approx(1.0, abs=0.015)
+        fc = detect_contacts(source)
+        planted = fc.left | fc.right
+        for role in ("leftHand", "rightHand", "leftFoot", "rightFoot", "leftToes", "rightToes"):
+            err = np.linalg.norm(clip.positions[planted, m.target[role]]
+                                 - m.scale * source.positions[planted, m.source[role]], axis=-1)
+            assert err.max() < 0.02, (name, role, err.max())
+        assert any(p.endswith(f"{name}.bvh") and msg.startswith("retargeted") for p, msg in notes)
+
+
+def test_a_skeleton_that_cannot_be_mapped_is_refused_naming_its_joints(empty_db, tmp_path):
+    empty_db.import_bvh([cmu(CHARACTER)], ImportOptions(("歩く",), character="cmu", drop_first=True))
+    text = cmu("07_02_walk").read_text()
+    odd = tmp_path / "odd_rig.bvh"  # a rig whose spine and upper-leg joints have names no known rig uses
+    odd.write_text(text.replace("LowerBack", "Waist").replace("LeftUpLeg", "LeftThighBone")
+                   .replace("RightUpLeg", "RightThighBone"))
+    with pytest.raises(ClipValidationError) as err:
+        empty_db.import_bvh([odd], ImportOptions(("歩く",), character="cmu", drop_first=True))
+    msg = str(err.value)
+    assert "odd_rig.bvh" in msg and "character 'cmu'" in msg and "nothing was imported" in msg
+    assert "leftUpperLeg" in msg and "rightUpperLeg" in msg and "--map" in msg
+    assert [c.name for c in empty_db.clips()] == [CHARACTER]
+    # a joint map places them, and the clip joins the character on its skeleton
+    empty_db.import_bvh([odd], ImportOptions(("歩く",), character="cmu", drop_first=True, names=("mapped",),
+                                             joint_map={"leftUpperLeg": "LeftThighBone",
+                                                        "rightUpperLeg": "RightThighBone"}))
+    mapped = empty_db.load("mapped")
+    assert mapped.skeleton.names == empty_db.load(CHARACTER).skeleton.names and abs(find_floor(mapped).height) < 0.01
+    # under a character of its own it is its own skeleton: nothing to map, it is only put on the floor
+    empty_db.import_bvh([odd], ImportOptions(("歩く",), character="odd", drop_first=True))
+    assert abs(find_floor(empty_db.load("odd_rig")).height) < 1e-9
+    assert sorted(c.name for c in empty_db.clips()) == sorted([CHARACTER, "mapped", "odd_rig"])
