@@ -188,7 +188,8 @@ def test_bridges_prefer_the_characters_own_clips(db_with_bob):
 
 def test_matching_finds_a_clip_that_keeps_the_posture(db, db_with_bob):
     assert matching(db, "待つ", "standing").name == "wait"
-    assert matching(db, "待つ", "seated") is None  # the library has no seated idle: hold the pose instead
+    assert matching(db, "待つ", "seated").name == "wait_seated"  # the captured seated idle (issue 12)
+    assert matching(db, "待つ", "lying") is None  # none lying: the pose is held
     assert matching(db, "まだない動詞", "standing") is None
     with MotionDB.open(db_with_bob) as bob:
         assert matching(bob, "待つ", "seated").name == "seated_wait"

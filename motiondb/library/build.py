@@ -141,9 +141,7 @@ def cut_clip(take: Motion, cut: Cut) -> Motion:
         if cut.loop == "stride":  # one cycle's travel: from the cycle's first frame to the frame after it
             root = take.root_positions
             travel = root[i1, [0, 2]] - root[_frames(t0, take.fps), [0, 2]]
-        m = blend_loop(m, pre, travel)
-        if travel is not None:  # the blend moved a stance foot by the cycles' difference: hold it again
-            m = lock_feet(m)
+        m = lock_feet(blend_loop(m, pre, travel))  # the blend moved a planted foot by the frames' difference
     return face(m, cut.face)
 
 
