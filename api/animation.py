@@ -82,7 +82,7 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
         last_of: dict[int, int] = {}  # a repeated element's id -> its last repetition's
         elements: list[splan.Element] = []
         for e in mine:
-            prev = e.prev if e.method == "composition" else last_of.get(e.prev, e.prev)
+            prev = e.prev if e.method == "composition" or e.prev is None else last_of.get(e.prev, e.prev)
             picks = planned.repeats.get(e.id) if e.id not in bases else None
             if picks:
                 reps = _repetitions(replace(e, prev=prev), picks, clips, next_id)

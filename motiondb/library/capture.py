@@ -21,8 +21,9 @@ from pathlib import Path
 
 import numpy as np
 
+from text2anim.core.bodyparts import GROUPS, BodyPart
 from text2anim.core.motion import Motion
-from text2anim.motiondb.types import ClipRecord
+from text2anim.motiondb.types import ClipRecord, Posture
 
 from .keyframes import ClipDataError
 from .skeleton import canonical_skeleton
@@ -30,14 +31,14 @@ from .skeleton import canonical_skeleton
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
+    import tomli as tomllib  # type: ignore[import-not-found]
 
 CUT_LIST = Path(__file__).with_name("capture.toml")
 ARRAYS = Path(__file__).with_name("capture.npz")
 #: Frame rate of the shipped arrays.
 FPS = 30.0
 #: The database's posture words for the cut list's ``starts``/``ends`` (as :data:`.POSTURE_OF`).
-_POSTURE = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched", "floor": "lying"}
+_POSTURE: dict[str, Posture] = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched", "floor": "lying"}
 
 
 @dataclass(frozen=True)
@@ -50,7 +51,7 @@ class Cut:
     core: tuple[float, float] | None  # None: the whole clip
     verbs: tuple[str, ...]
     objects: tuple[str, ...] = ()
-    body_part: str | None = None
+    body_part: BodyPart | None = None
     cyclic: bool = False
     starts: str = "stand"
     ends: str = "stand"
@@ -91,6 +92,8 @@ def _cut(raw: dict) -> Cut:
         raise ClipDataError(f"capture.toml: clip {name}: cut {t0}-{t1} is empty")
     if core is not None and not t0 <= core[0] < core[1] <= t1 + 1e-9:
         raise ClipDataError(f"capture.toml: clip {name}: core {core} is not inside the cut {t0}-{t1}")
+    if cut.body_part is not None and cut.body_part not in GROUPS:
+        raise ClipDataError(f"capture.toml: clip {name}: unknown body part {cut.body_part!r}")
     for word in (cut.starts, cut.ends):
         if word not in _POSTURE:
             raise ClipDataError(f"capture.toml: clip {name}: unknown posture {word!r}")
