@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -12,6 +12,7 @@ from text2anim.synthesis import plan as splan
 from text2anim.core.atomic import OutputError, atomic_write_bytes
 
 from .pipeline import Planned, plan_text
+from .variants import Pick
 
 if TYPE_CHECKING:
     from text2anim.core.motion import Motion
@@ -21,38 +22,77 @@ if TYPE_CHECKING:
 DEFAULT_ACTOR = "default"
 
 
+#: Suffix of a mirrored clip's name on a track (a co-actor's or a repetition's variant).
+MIRRORED = "~mirrored"
+
+
 class _Clips:
-    """Clips loaded from ``db`` once each, resampled to ``fps``."""
+    """Clips loaded from ``db`` once each, resampled to ``fps`` (and mirrored where asked)."""
 
     def __init__(self, db: MotionDB, fps: float):
         self.db, self.fps = db, fps
-        self.cache: dict[str, splan.Clip] = {}
+        self.cache: dict[tuple[str, bool], splan.Clip] = {}
 
-    def get(self, info: ClipInfo) -> splan.Clip:
-        if info.name not in self.cache:
-            motion = self.db.load(info)
-            if motion.fps != self.fps:
-                motion = motion.resample(self.fps)
-            self.cache[info.name] = splan.Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
-        return self.cache[info.name]
+    def get(self, info: ClipInfo, mirrored: bool = False) -> splan.Clip:
+        key = (info.name, mirrored)
+        if key not in self.cache:
+            if mirrored:
+                from text2anim.core.mirror import mirror
+
+                plain = self.get(info)
+                self.cache[key] = replace(plain, name=info.name + MIRRORED, motion=mirror(plain.motion))
+            else:
+                motion = self.db.load(info)
+                if motion.fps != self.fps:
+                    motion = motion.resample(self.fps)
+                self.cache[key] = splan.Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
+        return self.cache[key]
+
+
+def _repetitions(e, picks: tuple[Pick, ...], clips: _Clips, first_id: int) -> list[splan.Element]:
+    """A repeated element as one element per repetition, each its own variant (ids: ``e.id``, then
+    ``first_id``, ``first_id + 1``, ...), of equal length, each joined to the one before."""
+    step = (e.end - e.start) / len(picks)
+    out: list[splan.Element] = []
+    for k, p in enumerate(picks):
+        eid = e.id if k == 0 else first_id + k - 1
+        out.append(splan.Element(eid, clips.get(p.clip, p.mirrored), e.start + k * step, e.start + (k + 1) * step,
+                                 e.method if k == 0 else "connection", e.prev if k == 0 else out[-1].id,
+                                 e.speed, 1, False, e.body_part))
+    return out
 
 
 def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track]:
     """The synthesis tracks of a time table: its elements with their clips loaded from ``db`` at ``fps``.
 
     Every element of the table plays, the fillers of the waits included
-    (:mod:`text2anim.fillers`); nothing is added here.
+    (:mod:`text2anim.fillers`); an element in ``planned.mirrored`` plays its clip mirrored,
+    and a repeated one in ``planned.repeats`` plays as one element per repetition (ids
+    above the table's; a later element joined to it is joined to its last repetition).
     """
     clips = _Clips(db, fps)
     table = planned.table
+    next_id = max(e.id for e in table.elements) + 1
+    bases = {e.prev for e in table.elements if e.method == "composition"}
     tracks = []
     for actor in table.actors():
         # In playing order (前に puts a later id first); a composition after its base.
         mine = sorted((e for e in table.elements if e.actor == actor),
                       key=lambda e: (e.start, e.method == "composition", e.id))
-        elements = tuple(splan.Element(e.id, clips.get(planned.clips[e.id]), e.start, e.end, e.method, e.prev,
-                                       e.speed, e.repeat, e.hold, e.body_part) for e in mine)
-        tracks.append(splan.Track(actor, elements))
+        last_of: dict[int, int] = {}  # a repeated element's id -> its last repetition's
+        elements: list[splan.Element] = []
+        for e in mine:
+            prev = e.prev if e.method == "composition" or e.prev is None else last_of.get(e.prev, e.prev)
+            picks = planned.repeats.get(e.id) if e.id not in bases else None
+            if picks:
+                reps = _repetitions(replace(e, prev=prev), picks, clips, next_id)
+                next_id += len(reps) - 1
+                last_of[e.id] = reps[-1].id
+                elements.extend(reps)
+                continue
+            elements.append(splan.Element(e.id, clips.get(planned.clips[e.id], e.id in planned.mirrored), e.start,
+                                          e.end, e.method, prev, e.speed, e.repeat, e.hold, e.body_part))
+        tracks.append(splan.Track(actor, tuple(elements)))
     return tracks
 
 

@@ -13,6 +13,9 @@ A wait longer than :data:`IDLE_GAP` seconds is filled rather than frozen:
 
 The idle of a posture other than standing is a clip of :data:`IDLE_VERB` that starts
 and ends in it (:func:`text2anim.postures.matching`); none: the actor holds still.
+Actors idling side by side are not clones: the ``k``-th actor takes the ``k``-th
+variant of the standing idle (:func:`text2anim.variants.nth`: another clip of 待つ,
+else the mirror image), listed in ``Filled.mirrored`` when mirrored.
 The added elements are rows of the time table like the text's own (ids above
 them), so ``text2anim plan`` shows what will play. Only clip metadata is read.
 """
@@ -27,6 +30,7 @@ from text2anim.motiondb.types import Posture
 from text2anim.scheduler import Element, TimeTable
 
 from . import postures
+from .variants import nth
 
 #: Seconds of waiting above which a wait is filled.
 IDLE_GAP = 0.5
@@ -41,6 +45,7 @@ class Filled:
     table: TimeTable
     clips: dict[int, ClipInfo]
     fillers: tuple[int, ...]
+    mirrored: frozenset[int] = frozenset()
 
 
 def played_duration(info: ClipInfo, fps: float) -> float:
@@ -53,6 +58,7 @@ class _Finder:
 
     def __init__(self, db: MotionDB):
         self.db = db
+        self.variant = 0  # the actor's index: which variant of the standing idle it plays
 
     def by_verb(self, verb: str, character: str | None) -> ClipInfo | None:
         try:
@@ -61,11 +67,19 @@ class _Finder:
             return None
         return hits[0] if hits else None
 
-    def idle(self, posture: Posture, character: str | None) -> ClipInfo | None:
-        """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still."""
+    def idle(self, posture: Posture, character: str | None) -> tuple[ClipInfo | None, bool]:
+        """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still;
+        and whether it plays mirrored (the current actor's variant of the standing idle)."""
         if posture == "standing":
-            return self.by_verb(IDLE_VERB, character)
-        return postures.matching(self.db, IDLE_VERB, posture, character=character)
+            try:
+                hits = self.db.search(IDLE_VERB, prefer_character=character)
+            except UnknownVerbError:
+                return None, False
+            if not hits:
+                return None, False
+            pick = nth(hits, self.variant)
+            return pick.clip, pick.mirrored
+        return postures.matching(self.db, IDLE_VERB, posture, character=character), False
 
 
 class _Adder:
@@ -74,11 +88,14 @@ class _Adder:
     def __init__(self, next_id: int):
         self.next_id = next_id
         self.clips: dict[int, ClipInfo] = {}
+        self.mirrored: set[int] = set()
 
     def add(self, actor: str | None, verb: str, info: ClipInfo, method: Method, prev: int | None,
-            start: float, end: float) -> Element:
+            start: float, end: float, mirrored: bool = False) -> Element:
         e = Element(self.next_id, actor, verb, info.name, method, prev, start, end)
         self.clips[e.id] = info
+        if mirrored:
+            self.mirrored.add(e.id)
         self.next_id += 1
         return e
 
@@ -94,9 +111,10 @@ def _fill_gap(find: _Finder, add: _Adder, prev: Element, prev_info: ClipInfo, st
             t1 = end
         out.append(add.add(prev.actor, STOP_VERB, stop, "transition", prev.id, start, t1))
         start = t1
-    idle = find.idle(prev_info.end_posture, character) if end - start > IDLE_GAP else None
+    idle, mirrored = find.idle(prev_info.end_posture, character) if end - start > IDLE_GAP else (None, False)
     if idle is not None:
-        out.append(add.add(prev.actor, IDLE_VERB, idle, "connection", out[-1].id if out else prev.id, start, end))
+        out.append(add.add(prev.actor, IDLE_VERB, idle, "connection", out[-1].id if out else prev.id, start, end,
+                           mirrored))
     return out
 
 
@@ -107,9 +125,10 @@ def _actor_track(find: _Finder, add: _Adder, mine: list[Element], clips: dict[in
     for e in mine:
         info = clips[e.id]
         prev, method = e.prev, e.method
-        idle = find.idle(info.start_posture, info.character) if method == "initial" and e.start > IDLE_GAP else None
+        idle, mirrored = find.idle(info.start_posture, info.character) \
+            if method == "initial" and e.start > IDLE_GAP else (None, False)
         if idle is not None:  # an actor who comes in later stands idle until then
-            first = add.add(e.actor, IDLE_VERB, idle, "initial", None, 0.0, e.start)
+            first = add.add(e.actor, IDLE_VERB, idle, "initial", None, 0.0, e.start, mirrored)
             track.append(first)
             prev, method = first.id, "connection"
         before = next((x for x in track if x.id == e.prev), None) if e.method == "connection" else None
@@ -127,15 +146,17 @@ def fill_waits(table: TimeTable, clips: dict[int, ClipInfo], db: MotionDB, fps: 
     """The time table with its waits filled (see the module docstring); ``clips``: element id -> clip."""
     find, add = _Finder(db), _Adder(max(e.id for e in table.elements) + 1)
     tracks = []
-    for actor in table.actors():
+    for k, actor in enumerate(table.actors()):
         # In playing order (前に puts a later id first); a composition after its base.
         mine = sorted((e for e in table.elements if e.actor == actor),
                       key=lambda e: (e.start, e.method == "composition", e.id))
+        find.variant = k
         tracks.append(_actor_track(find, add, mine, clips, fps))
     # Actors who finish early stop and stand idle until the last one is done.
     end = max(e.end for e in table.elements)
     elements: list[Element] = []
-    for track in tracks:
+    for k, track in enumerate(tracks):
+        find.variant = k
         last = max((x for x in track if x.method != "composition"), key=lambda x: x.end)
         if end - last.end > IDLE_GAP:
             character = clips[last.id].character if last.id in clips else None
@@ -146,4 +167,4 @@ def fill_waits(table: TimeTable, clips: dict[int, ClipInfo], db: MotionDB, fps: 
             track.extend(fill)
         elements.extend(track)
     filled = TimeTable(table.text, table.fps, tuple(sorted(elements, key=lambda e: e.id)))
-    return Filled(filled, {**clips, **add.clips}, tuple(sorted(add.clips)))
+    return Filled(filled, {**clips, **add.clips}, tuple(sorted(add.clips)), frozenset(add.mirrored))

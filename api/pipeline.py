@@ -6,7 +6,7 @@ later ``ClipInfo`` + frames → ``synthesis.plan.Clip``).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from text2anim import nlp
 from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
@@ -17,6 +17,7 @@ from text2anim.core.bodyparts import GROUPS
 from . import postures
 from .clip_timing import timing
 from .fillers import fill_waits
+from .variants import Pick, Variants
 
 
 @dataclass(frozen=True)
@@ -24,7 +25,9 @@ class Planned:
     """A text's analysis and time table, with the clip chosen for each element id.
 
     ``fillers`` are the ids of the elements added to fill the waits (stops, idles:
-    :mod:`text2anim.fillers`); ``skipped`` the verbs dropped as unknown.
+    :mod:`text2anim.fillers`); ``skipped`` the verbs dropped as unknown; ``mirrored`` the
+    element ids whose clip plays mirrored and ``repeats``, for a repeated element, the clip
+    of each repetition (co-actors and repeats are not clones: :mod:`text2anim.variants`).
     """
 
     analysis: Analysis
@@ -33,6 +36,8 @@ class Planned:
     skipped: tuple[str, ...] = ()
     fillers: tuple[int, ...] = ()
     fallbacks: tuple = ()  # fallback.Substitution per motion animated with a verb nearest in meaning
+    mirrored: frozenset[int] = frozenset()
+    repeats: dict[int, tuple[Pick, ...]] = field(default_factory=dict)
 
 
 class ClipFinder:
@@ -41,6 +46,9 @@ class ClipFinder:
     def __init__(self, db: MotionDB):
         self.db = db
         self.chosen: dict[int, ClipInfo] = {}
+        self.mirrored: set[int] = set()
+        self.repeats: dict[int, tuple[Pick, ...]] = {}
+        self.variants = Variants()
 
     def search(self, spec: MotionSpec, prefer: str | None) -> list[ClipInfo]:
         part = spec.body_part if spec.body_part in GROUPS else None
@@ -66,8 +74,14 @@ class ClipFinder:
         if not hits:
             raise ScheduleError(f"the motion database has {spec.verb} but no clip of it fits"
                                 + (f" the {spec.body_part}" if spec.body_part else ""))
-        self.chosen[spec.id] = hits[0]
-        return timing(hits[0])
+        n = max(1, int(spec.repeat))
+        picks = self.variants.take(hits, n)
+        self.chosen[spec.id] = picks[0].clip
+        if picks[0].mirrored:
+            self.mirrored.add(spec.id)
+        if n > 1 and not picks[0].clip.cyclic:
+            self.repeats[spec.id] = tuple(picks)
+        return timing(picks[0].clip)
 
 
 def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbError]:
@@ -122,4 +136,5 @@ def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str
         analysis, finder = arranged.analysis, ClipFinder(db)
         table = plan(analysis, arranged.finder(finder), fps)
     filled = fill_waits(table, dict(finder.chosen), db, fps)
-    return Planned(analysis, filled.table, filled.clips, skipped, filled.fillers, subs)
+    return Planned(analysis, filled.table, filled.clips, skipped, filled.fillers, subs,
+                   frozenset(finder.mirrored) | filled.mirrored, dict(finder.repeats))

@@ -291,8 +291,9 @@ def arrange(analysis, table, chosen: Mapping[int, ClipInfo], search: Callable, d
                 hits = search(spec, prefer)
             except UnknownVerbError:
                 hits = []
-            same = [c for c in hits if (c.body_part is None) == (first.body_part is None) and c.cyclic == first.cyclic]
-            cands[e.id] = same or [first]
+            same = [c for c in hits if (c.body_part is None) == (first.body_part is None) and c.cyclic == first.cyclic
+                    and c.name != first.name]
+            cands[e.id] = [first] + same  # the first pass's pick (a variant, text2anim.variants) ranks first
             prefer = first.character
         picked.update({k: v for k, v in choose(cands).items() if v is not None})
 

@@ -116,7 +116,13 @@ def _table(rows: list[list[str]], header: list[str]) -> str:
 
 def _clip_row(c) -> list[str]:
     return [c.name, c.character, "/".join(c.verbs), "/".join(c.objects) or "-", c.body_part or "-",
-            _postures(c), str(c.frames), f"{c.fps:g}", f"{c.duration:.2f}", "yes" if c.cyclic else ""]
+            _postures(c), str(c.frames), f"{c.fps:g}", f"{c.duration:.2f}", "yes" if c.cyclic else "",
+            _source(c.source)]
+
+
+def _source(source: str) -> str:
+    """Where a clip came from, short: ``capture:CMU 16_15 0.57-1.70s``, ``keyframed:walk.json``, a file path."""
+    return source.removeprefix("builtin:") or "-"
 
 
 def _postures(c) -> str:
@@ -134,7 +140,7 @@ def _print_clips(clips, as_json: bool) -> None:
         return
     print(_table([_clip_row(c) for c in clips],
                  ["clip", "character", "verbs", "objects", "part", "posture", "frames", "fps", "seconds",
-                  "cyclic"]))
+                  "cyclic", "source"]))
 
 
 def _show(c) -> str:

@@ -6,15 +6,24 @@ import math
 from .types import ClipTiming
 
 
+#: A looping clip given no duration plays whole cycles for at least this many seconds: a captured
+#: walk or run is a single gait cycle (0.8-1.1 s), which alone would be over in one or two steps.
+MIN_LOOP = 2.0
+
+
 def played_length(clip: ClipTiming, speed: float, repeat: int, duration: float | None) -> float:
     """Seconds an element plays after speed, repeats and an explicit duration.
 
-    A cyclic clip loops to fill ``duration``; any other clip plays whole and
-    then holds its last pose, or is trimmed, but never inside its core.
+    A cyclic clip loops to fill ``duration`` (without one: whole cycles for at
+    least :data:`MIN_LOOP` seconds); any other clip plays whole and then holds
+    its last pose, or is trimmed, but never inside its core.
     """
     if duration is not None:
         return duration if clip.cyclic else max(duration, clip.core[1] / speed)
-    return repeat * clip.duration / speed
+    cycles = 1
+    if clip.cyclic and clip.duration > 0:
+        cycles = max(1, math.ceil(MIN_LOOP * speed / clip.duration - 1e-9))
+    return repeat * cycles * clip.duration / speed
 
 
 def moving_intervals(clip: ClipTiming, speed: float, length: float) -> list[tuple[float, float]]:

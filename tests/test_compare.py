@@ -29,10 +29,12 @@ def test_compare_prints_the_figures_of_every_method_side_by_side(compared):
         assert fig["duration_s"] > 5
     assert doc["joins"]["optimal"] == ["motion_connection", "motion_adaptation"]
     assert doc["joins"]["constraint"] == ["footstep", "connection"]
-    # the paper's method never skates; the common baselines, without foot locking, do
+    # the paper's method skates less than the common baselines without foot locking (since issue 12 the
+    # run and kick are CMU capture, whose swing toes the GMD rule counts: 0.05 of the optimal output)
     opt = doc["methods"]["optimal"]
-    assert opt["skating_ratio"] == 0.0 and opt["join_skating_ratio"] == 0.0
-    assert max(doc["methods"][m]["join_skating_ratio"] for m in ("pose", "crossfade")) > 0.0
+    base = [doc["methods"][m] for m in ("pose", "crossfade")]
+    assert opt["skating_ratio"] < min(b["skating_ratio"] for b in base)
+    assert opt["join_skating_ratio"] < min(b["join_skating_ratio"] for b in base)
 
 
 def test_compare_writes_one_bvh_per_method(compared):

@@ -42,7 +42,7 @@ def test_example_animation_is_one_clean_motion(example):
     assert name == "太郎" and motion.fps == 30
     last = example.table.elements[-1]
     assert motion.duration == pytest.approx(last.end, abs=0.2)
-    assert skating_ratio(motion) == 0
+    assert skating_ratio(motion) <= clips_skating(e.clip for e in example.table.elements) + 0.01
     # No teleport: the hips never move more than a sprint's distance in one frame.
     step = np.linalg.norm(np.diff(motion.positions[:, 0], axis=0), axis=1)
     assert step.max() < 10 / motion.fps
@@ -117,12 +117,15 @@ def test_a_wait_is_standing_not_a_frozen_stride(library_db):
     assert walk.start == pytest.approx(run.end + 3)
     from text2anim.core.contacts import detect_contacts
     c = detect_contacts(motion)
-    mid = slice(int((walk.start - 0.8) * 30), int((walk.start - 0.2) * 30))
+    # the second before the last 0.5 s: the join into the captured walk (a stride at 1.3 m/s)
+    # shifts the weight forward over those last 0.5 s, as a person setting off does
+    mid = slice(int((walk.start - 1.5) * 30), int((walk.start - 0.5) * 30))
     assert c.left[mid].all() and c.right[mid].all()  # both feet down while waiting
     hips_speed = np.linalg.norm(np.diff(motion.positions[mid, 0], axis=0), axis=1) * 30
     assert hips_speed.max() < 0.3
-    assert all(j["metrics"]["skating_ratio"] == 0 for j in anim.report["joins"])
-    assert skating_ratio(motion) == 0
+    bar = clips_skating(e.clip for e in anim.table.elements) + 0.01
+    assert all(j["metrics"]["skating_ratio"] <= bar for j in anim.report["joins"])
+    assert skating_ratio(motion) <= bar
 
 
 def test_an_actor_who_finishes_early_stands_until_the_end(library_db):
@@ -133,9 +136,12 @@ def test_an_actor_who_finishes_early_stands_until_the_end(library_db):
     assert np.linalg.norm(hips[-1] - hips[0]) < 0.1
 
 
-@pytest.mark.parametrize("text, clip", [("スキップする。", "skip"), ("歩く。", "walk"), ("走る。", "run")])
+@pytest.mark.parametrize("text, clip", [("スキップする。", "skip"), ("歩く。", "walk"), ("下がる。", "walk_back")])
 def test_a_looping_clip_alone_plays_as_recorded(library_db, text, clip):
-    """A clip that already loops is not 'corrected' at its seam (the skip's landing once made it skate)."""
+    """A clip that already loops is not 'corrected' at its seam (the skip's landing once made it skate).
+
+    The captured walk is built to loop (its seam blended into the frames before the cycle); the
+    captured run's seam is still corrected by the engine: see test_capture_library.py."""
     from text2anim.motiondb import MotionDB
 
     with MotionDB.open(library_db) as db:
@@ -146,4 +152,14 @@ def test_a_looping_clip_alone_plays_as_recorded(library_db, text, clip):
     here = np.linalg.norm(motion.positions[:n] - motion.positions[:n, :1], axis=-1)
     there = np.linalg.norm(source.positions[:n] - source.positions[:n, :1], axis=-1)
     np.testing.assert_allclose(here, there, atol=2e-3)
-    assert skating_ratio(motion) == 0
+    assert skating_ratio(motion) <= skating_ratio(source) + 0.01
+
+
+def clips_skating(names) -> float:
+    """The largest GMD skating ratio (30 fps) of the built-in clips ``names``: since issue 12 most are
+    CMU capture, whose swing toes pass below 5 cm (the bar an output is held to is this + 0.01,
+    issue 11's criterion against the sources)."""
+    from text2anim.motiondb.library import builtin_clips
+
+    recs = {r.name: r.motion for r in builtin_clips()}
+    return max(skating_ratio(recs[n.removesuffix("~mirrored")]) for n in names)

@@ -68,8 +68,11 @@ def test_a_late_actor_idles_from_the_start_and_an_early_one_to_the_end(db):
     assert [e["verb"] for e in taro][-1] == IDLE_VERB and taro[-1]["end"] == pytest.approx(end, abs=1e-3)
 
 
-def test_an_actor_who_ends_seated_holds_the_pose_in_the_table(db):
+def test_an_actor_who_ends_seated_idles_seated_to_the_end(db):
+    """Since issue 12 the library has a captured seated idle: 花子 sits and then idles seated (was: held the pose)."""
     planned = text2anim.plan("花子が座るのと同時に太郎は転ぶ。そして起き上がる。", db)
     end = max(e.end for e in planned.table.elements)
-    (sit,) = [e for e in planned.table.elements if e.actor == "花子"]
-    assert sit.clip == "sit_down" and sit.end == end and planned.fillers == ()
+    sit, idle = sorted((e for e in planned.table.elements if e.actor == "花子"), key=lambda e: e.start)
+    assert sit.clip == "sit_down" and idle.id in planned.fillers and idle.prev == sit.id
+    assert idle.start == sit.end and idle.end == end
+    assert planned.clips[idle.id].start_posture == planned.clips[idle.id].end_posture == "seated"

@@ -139,7 +139,7 @@ def test_cached_and_read_only():
 
 
 def test_other_frame_rates():
-    clips = {c.name: c for c in builtin_clips(24.0)}
+    clips = {b.record.name: b.record for b in build_all(24.0)}  # the keyframed walk: generated per rate
     walk = clips["walk"].motion
     assert walk.fps == 24.0
     # A whole number of frames per cycle, so the loop stays exact.

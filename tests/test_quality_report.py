@@ -36,7 +36,8 @@ def test_every_join_is_measured_around_its_blend_next_to_its_source_clips(anim):
     for j in report["joins"]:
         q = quality(motion, window=tuple(j["quality"]["window_s"]))
         assert j["quality"]["join"]["root_pop"] == pytest.approx(q.root_pop, abs=0.01)
-        assert j["quality"]["join"]["skating_ratio"] == pytest.approx(q.skating_ratio, abs=1e-4)
+        # the report gives the ratio to 2 decimals (nonzero since the library is capture, issue 12)
+        assert j["quality"]["join"]["skating_ratio"] == pytest.approx(q.skating_ratio, abs=5e-3)
     assert report["actors"]["太郎"]["quality"]["root_pop"] == pytest.approx(quality(motion).root_pop, abs=0.01)
 
 

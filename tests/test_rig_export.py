@@ -58,7 +58,8 @@ def test_the_animation_is_written_on_the_users_rig(walk, tmp_path, rig):
 
 
 def test_an_a_pose_rest_is_not_copied_into_the_motion(walk, tmp_path):
-    """The A-pose rig's arms hang as the source's do: upper-arm directions agree (its rest would put them 45° off)."""
+    """The A-pose rig's arms hang as the source's do: upper-arm directions agree (its rest would put them 45° off;
+    the captured walk's arm swing, issue 12, leaves up to 7°)."""
     out = read_bvh(walk.save_bvh(tmp_path / "a.bvh", ExportOptions(rig=mixamo_rig(tmp_path / "m.bvh")))[0])
     src = _source(walk)
     m = map_skeletons(src.skeleton, out.skeleton)
@@ -68,7 +69,7 @@ def test_an_a_pose_rest_is_not_copied_into_the_motion(walk, tmp_path):
             d = p[:, roles[f"{side}LowerArm"]] - p[:, roles[f"{side}UpperArm"]]
             return d / np.linalg.norm(d, axis=-1, keepdims=True)
         cos = np.sum(direction(out, m.target) * direction(src, m.source), axis=-1)
-        assert np.degrees(np.arccos(np.clip(cos, -1, 1))).max() < 5.0
+        assert np.degrees(np.arccos(np.clip(cos, -1, 1))).max() < 10.0
 
 
 def test_a_rig_with_unknown_names_is_refused_and_a_joint_map_places_it(walk, tmp_path):
@@ -110,7 +111,8 @@ def test_in_place_removes_the_hips_travel(walk, tmp_path):
     out = read_bvh(walk.save_bvh(tmp_path / "i.bvh", ExportOptions(in_place=True))[0], scale=1)
     hips = out.root_positions
     assert np.linalg.norm(src.root_positions[-1] - src.root_positions[0]) > 1.0
-    assert np.abs(hips[:, [0, 2]]).max() < 0.1 and np.linalg.norm(hips[-1, [0, 2]] - hips[0, [0, 2]]) < 0.03
+    # within the captured walk's own sideways sway of the hips (issue 12: up to 3.5 cm apart at the ends)
+    assert np.abs(hips[:, [0, 2]]).max() < 0.1 and np.linalg.norm(hips[-1, [0, 2]] - hips[0, [0, 2]]) < 0.05
     assert np.allclose(hips[:, 1], src.root_positions[:, 1], atol=1e-6)  # height kept
     rel = lambda m: m.positions - m.positions[:, :1]  # noqa: E731
     assert np.allclose(rel(out), rel(src), atol=1e-5)  # the body moves as before about its hips

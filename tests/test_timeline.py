@@ -1,6 +1,8 @@
 """Automatic start times (paper 000 §5): ``Timeline.append(clip, now)`` while the animation plays.
 
-Built-in library clips (30 fps) and real captures (CMU walk cycle, kick).
+The keyframed clips of the built-in library (30 fps; exact foot plants, so a join's own skating
+shows as skating) and real captures (CMU walk cycle, kick). The library's captured clips are
+checked end to end in ``test_capture_library.py``.
 """
 from __future__ import annotations
 
@@ -9,7 +11,7 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from text2anim.motiondb.library import builtin_clips
+from text2anim.motiondb.library import build_all
 from text2anim.core import read_bvh
 from text2anim.core.metrics import BUILTIN_LIMITS, skating_ratio
 from text2anim.synthesis.plan import Clip
@@ -23,7 +25,8 @@ FPS = 30
 
 @lru_cache(maxsize=None)
 def lib() -> dict[str, Clip]:
-    return {r.name: Clip(r.name, r.motion, tuple(r.core), r.cyclic, r.body_part) for r in builtin_clips(FPS)}
+    recs = [b.record for b in build_all(FPS)]
+    return {r.name: Clip(r.name, r.motion, tuple(r.core), r.cyclic, r.body_part) for r in recs}
 
 
 def frozen(m):

@@ -1,7 +1,14 @@
-"""The built-in motion library: clips generated from keyframe data on one skeleton.
+"""The built-in motion library: real motion capture where it exists, keyframes elsewhere.
 
 ``builtin_clips(fps)`` gives every clip as a :class:`motiondb.types.ClipRecord`
-on :func:`canonical_skeleton` (see :mod:`.skeleton`). The clips are data:
+on :func:`canonical_skeleton` (see :mod:`.skeleton`): the clips cut from CMU
+motion capture (:mod:`.capture`: the cut list ``capture.toml`` and the arrays
+``capture.npz`` that :mod:`.build` makes from it), and the keyframed clips for
+actions no capture covers (bow, clap, cheer, ...). A keyframed clip that a
+captured one ``replaces`` is not in the library. ``source`` says which is
+which: ``builtin:capture:CMU <trial> <seconds>`` or ``builtin:keyframed:<file>``.
+
+The keyframed clips are data:
 ``clips/*.json`` hold key poses, timing, root travel, foot plants, the core
 interval and the verbs (format in :mod:`.keyframes`); ``clips/_poses.json``
 the shared named poses (``stand``, ...). Generation is deterministic
@@ -25,23 +32,42 @@ the pipeline can chain clips whose postures meet (``sit_down`` then
 """
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 
 from text2anim.motiondb.types import ClipRecord, Posture
 from text2anim.core.motion import Motion
 
+from . import capture
 from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, PlantSpec, curves_to_motion, load_json_dir, parse_clip,
                         sample_curves)
 from .plant import FramePlant, PlantReport, plant_feet
 from .reach import apply_reach
 from .skeleton import ANKLE_HEIGHT, TOE_HEIGHT, canonical_skeleton
 
-__all__ = ["BuiltClip", "ClipDataError", "POSTURE_OF", "builtin_clips", "build_all", "canonical_skeleton"]
+__all__ = ["BuiltClip", "ClipDataError", "LIBRARY_VERSION", "POSTURE_OF", "builtin_clips", "build_all",
+           "canonical_skeleton"]
 
-SOURCE = "builtin"
+SOURCE = "builtin:keyframed"
+
+
+def _version() -> str:
+    """A hash of the library's code and data (keyframes, cut list, arrays): the database re-seeds
+    its built-in clips when it changes."""
+    root = Path(__file__).parent
+    h = hashlib.sha256()
+    for path in sorted(p for p in root.rglob("*") if p.suffix in (".py", ".json", ".toml", ".npz") and p.is_file()):
+        h.update(path.relative_to(root).as_posix().encode("utf-8") + b"\0")
+        h.update(path.read_bytes() + b"\0")
+    return "sha256:" + h.hexdigest()[:32]
+
+
+#: Tag of this library's contents (see :func:`_version`).
+LIBRARY_VERSION = _version()
 
 #: The data's ``starts``/``ends`` words -> the database's posture (``hold``: standing with
 #: an object in the hands; ``floor``: lying face down, as ``fall`` ends).
@@ -172,5 +198,8 @@ def build_all(fps: float = 30.0) -> tuple[BuiltClip, ...]:
 
 
 def builtin_clips(fps: float = 30.0) -> list[ClipRecord]:
-    """The built-in library as :class:`ClipRecord` s on :func:`canonical_skeleton` (deterministic, cached)."""
-    return [b.record for b in build_all(float(fps))]
+    """The built-in library as :class:`ClipRecord` s on :func:`canonical_skeleton` (deterministic, cached):
+    the keyframed clips no capture replaces, then the captured ones."""
+    gone = capture.replaced()
+    keyed = [b.record for b in build_all(float(fps)) if b.record.name not in gone]
+    return keyed + list(capture.capture_records(float(fps)))

@@ -1,0 +1,144 @@
+"""The built-in library: what it is made of, and how alive the sentences it animates are.
+
+    python benchmarks/bench_library.py [--engine optimal|constraint] [--db URL]
+
+Prints three tables:
+
+1. the library: clips and verbs by source (CMU capture or keyframed), the size of the
+   shipped arrays, the time to seed a fresh SQLite database (CPU beside wall);
+2. per sentence (the golden set and the issue's cases): length, the share of frozen frames
+   (``timetable.md`` §3: every joint slower than 0.5 cm/s), the longest frozen run, the
+   foot-skating ratio, and for repeats the seconds per repetition;
+3. co-actors: whether two actors doing the same verb play identical joint angles.
+
+Frozen frames are measured on the output at 30 fps: a frame pair (t, t+1) is frozen when no
+joint moves 0.5 cm/s or more.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO))
+
+#: Speed below which a joint counts as still (m/s), timetable.md §3.
+FROZEN_SPEED = 0.005
+
+SENTENCES = [
+    "太郎は走って、ボールを蹴る。そして喜ぶ。",
+    "太郎は走って、右手を振りながら歩く。",
+    "太郎は走る。3秒後に花子が歩く。",
+    "花子は歩いて、座る。",
+    "ボールを拾って、投げる。",
+    "太郎は3回跳ぶ。",
+    "太郎はゆっくり歩いて、止まる。",
+    "花子は踊る。そして笑う。",
+    "太郎は構えて、殴る。",
+    "左手を振る。",
+    "太郎と花子が走る。",
+    "太郎は座って、立ち上がる。",
+    "太郎は待つ。そして歩く。",
+    "太郎はしゃがむ。そして跳ぶ。",
+    "太郎と花子が跳ぶ。",
+    "太郎は2回蹴る。",
+]
+
+
+def frozen(motion) -> tuple[float, float]:
+    """``(share of frozen frame pairs, longest frozen run in seconds)`` of ``motion``."""
+    p = motion.positions
+    if len(p) < 2:
+        return 0.0, 0.0
+    speed = np.linalg.norm(np.diff(p, axis=0), axis=-1).max(axis=1) * motion.fps
+    still = speed < FROZEN_SPEED
+    longest, run = 0, 0
+    for s in still:
+        run = run + 1 if s else 0
+        longest = max(longest, run)
+    return float(still.mean()), longest / motion.fps
+
+
+def library_table(db_url: str) -> None:
+    from text2anim.motiondb import MotionDB
+    from text2anim.motiondb.library import capture
+
+    t0, c0 = time.perf_counter(), time.process_time()
+    db = MotionDB.open(db_url)
+    clips = db.clips()
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    cap = [c for c in clips if c.source.startswith("builtin:capture")]
+    key = [c for c in clips if c.source.startswith("builtin:keyframed")]
+    cap_verbs = {v for c in cap for v in c.verbs}
+    key_verbs = {v for c in key for v in c.verbs} - cap_verbs
+    print("| library | clips | verbs (lemmas) | seconds of motion |")
+    print("| --- | ---: | ---: | ---: |")
+    print(f"| CMU capture | {len(cap)} | {len(cap_verbs)} | {sum(c.duration for c in cap):.1f} |")
+    print(f"| keyframed | {len(key)} | {len(key_verbs)} | {sum(c.duration for c in key):.1f} |")
+    print()
+    print(f"capture.npz: {capture.ARRAYS.stat().st_size / 1e6:.2f} MB; seeding a fresh database: "
+          f"{wall:.2f} s wall, {cpu:.2f} s CPU")
+    print(f"capture verbs (primary): {', '.join(sorted({c.verbs[0] for c in cap}))}")
+    print()
+    db.close()
+
+
+def sentence_table(db_url: str, engine: str) -> None:
+    import text2anim
+    from text2anim.motiondb import MotionDB
+
+    db = MotionDB.open(db_url)
+    print(f"engine: {engine}; frozen = every joint slower than {FROZEN_SPEED * 100:g} cm/s (30 fps)")
+    print()
+    print("| sentence | actor | seconds | frozen share | longest frozen (s) | skating ratio | clips |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | --- |")
+    worst = 0.0
+    coactors = []
+    for text in SENTENCES:
+        anim = text2anim.animate(text, db, blend=engine)
+        report = anim.report
+        names = {e["id"]: e["clip"] for e in report["time_table"]}
+        for actor, m in anim.motions.items():
+            share, longest = frozen(m)
+            worst = max(worst, share)
+            clips = ", ".join(f"{names[e.id]}" + ("~m" if e.id in anim.planned.mirrored else "")
+                              for e in anim.table.elements if (e.actor or "default") == actor)
+            reps = anim.planned.repeats
+            if reps:
+                clips += " | repeats: " + " ".join(p.clip.name + ("~m" if p.mirrored else "")
+                                                   for ps in reps.values() for p in ps)
+            print(f"| {text} | {actor} | {m.duration:.2f} | {share:.3f} | {longest:.2f} | "
+                  f"{report['actors'][actor]['skating_ratio']:.3f} | {clips} |")
+        if len(anim.motions) > 1:
+            ms = list(anim.motions.values())
+            n = min(len(m) for m in ms)
+            same = np.allclose(ms[0].rotations[:n], ms[1].rotations[:n], atol=1e-6)
+            coactors.append((text, same))
+    print()
+    print(f"largest frozen share over all outputs: {worst:.3f}")
+    print()
+    print("| co-actors | identical joint angles |")
+    print("| --- | --- |")
+    for text, same in coactors:
+        print(f"| {text} | {'yes' if same else 'no'} |")
+    db.close()
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--engine", default="optimal")
+    p.add_argument("--db", default=None, help="database URL (default: a fresh temporary SQLite file)")
+    args = p.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        url = args.db or str(Path(tmp) / "bench.sqlite")
+        library_table(url)
+        sentence_table(url, args.engine)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,229 @@
+"""Rebuild ``capture.npz`` from the CMU capture and the cut list ``capture.toml``.
+
+Run from a checkout (``../shared/mocap/cmu`` next to it, or ``--cmu DIR``)::
+
+    python -m text2anim.motiondb.library.build [--cmu DIR] [--out FILE]
+
+For every take named in the cut list (each file read once), then every clip cut from it:
+
+1. read the BVH (metres), drop the added T-pose frame 0;
+2. put the take's floor at ``y = 0`` (:func:`core.floor.place_on_floor`, from the whole
+   take's foot contacts), retarget it onto the built-in character
+   (:func:`core.retarget.retarget`: world rotations carried over, hips scaled by leg length;
+   without its IK re-placing of ankles and wrists, which flips a nearly straight leg's twist)
+   and put that on the floor again;
+3. cut the clip's seconds (with ``blend`` seconds before them for a blended loop);
+4. resample to 30 fps (slerp), hold planted feet still and keep feet above the floor
+   (:func:`.feet.lock_feet`, :func:`.feet.clear_floor`);
+5. turn it about +Y and move it so it starts at the origin facing +Z (``face = "travel"``:
+   its travel points +Z);
+6. a looping clip has its last ``blend`` seconds blended into the frames before the cut, so
+   its last frame flows into its first: in place (``loop = "blend"``, the idle) or moved on by
+   the cycle's travel (``loop = "stride"``, a gait cycle), so the synthesizer finds nothing
+   to correct at the seam;
+7. a clip that ``starts_from`` another (standing up after sitting down) is turned to that
+   clip's last heading and eased out of its last pose over ``ease`` seconds.
+
+Contacts are computed when the clips are stored (:func:`motiondb.store.prepare_record`).
+The output is a zip of ``.npy`` arrays with fixed names, order and timestamps: the same
+inputs give the same bytes.
+"""
+from __future__ import annotations
+
+import argparse
+import io
+import sys
+import zipfile
+from pathlib import Path
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from text2anim.core.bvh import read_bvh
+from text2anim.core.floor import place_on_floor
+from text2anim.core.motion import Motion
+from text2anim.core.retarget import retarget
+
+from .capture import ARRAYS, FPS, Cut, cut_list
+from .feet import clear_floor, lock_feet
+from .skeleton import canonical_skeleton
+
+#: Rate of the CMU files (their Frame Time).
+SOURCE_FPS = 120.0
+#: Seconds over which the facing at a clip's start is averaged (the pelvis swings in gait).
+FACING_WINDOW = 0.3
+DEFAULT_CMU = Path(__file__).resolve().parents[2] / ".." / "shared" / "mocap" / "cmu"
+
+
+def load_take(path: Path) -> Motion:
+    """A CMU take on the built-in skeleton, floor at ``y = 0``, at its own 120 fps."""
+    m = read_bvh(path, scale="auto").frames(1)
+    m, _ = place_on_floor(m)
+    # replant=False: the retarget's ankle re-placing flips the thigh's twist by 1.5-2.7 rad for a frame
+    # or two where a leg is nearly straight (walk: 10 flips in 4 s); the contacts are cleaned below instead
+    m, _ = place_on_floor(retarget(m, canonical_skeleton(), replant=False))
+    return m
+
+
+def _frames(t: float, fps: float) -> int:
+    return int(round(t * fps))
+
+
+def _yaw_about_origin(m: Motion, yaw: float, origin: np.ndarray) -> Motion:
+    """``m`` turned by ``yaw`` radians about +Y through ``origin`` (x, z), then moved so it is at 0."""
+    r = Rotation.from_rotvec([0.0, yaw, 0.0])
+    root = m.root_positions - np.array([origin[0], 0.0, origin[1]])
+    root = r.apply(root)
+    rots = m.rotations.copy()
+    rots[:, 0] = (r * Rotation.from_quat(m.rotations[:, 0])).as_quat()
+    return m.replace(root_positions=root, rotations=rots)
+
+
+def _heading(m: Motion, frames: slice) -> float:
+    fwd = Rotation.from_quat(m.rotations[frames, 0]).apply([0.0, 0.0, 1.0])
+    f = fwd[:, [0, 2]].mean(axis=0)
+    return float(np.arctan2(f[0], f[1]))
+
+
+def face(m: Motion, how: str) -> Motion:
+    """``m`` starting at the origin facing +Z (``how="start"``) or travelling along +Z (``"travel"``)."""
+    if how == "travel":
+        d = m.root_positions[-1] - m.root_positions[0]
+        heading = float(np.arctan2(d[0], d[2]))
+    else:
+        heading = _heading(m, slice(0, max(1, _frames(FACING_WINDOW, m.fps))))
+    return _yaw_about_origin(m, -heading, m.root_positions[0, [0, 2]])
+
+
+def blend_loop(m: Motion, pre: int, travel: np.ndarray | None = None) -> Motion:
+    """A loop: ``m``'s first ``pre`` frames lead into the rest, whose last ``pre`` frames are
+    blended (smoothstep) into them, moved on by ``travel`` (root ``(dx, dz)`` of one cycle; none
+    for a standing loop), so the result's last frame flows into its first (of the next cycle).
+
+    ``m``: ``(pre + N)`` frames; returns ``N`` frames. Root positions blend linearly, rotations by slerp.
+    """
+    n = m.n_frames - pre
+    if pre < 1 or n <= pre:
+        raise ValueError(f"a blended loop needs more than {pre} frames after its {pre} lead-in frames")
+    body = m.frames(pre)
+    lead = m.frames(0, pre)
+    lead_root = lead.root_positions.copy()
+    if travel is not None:
+        lead_root[:, [0, 2]] += travel
+    # rising to 1 on the last two frames: they are the lead-in's last two, whose motion flows into frame 0
+    u = np.minimum(1.0, (np.arange(pre) + 1) / max(1, pre - 1))
+    w = u * u * (3 - 2 * u)
+    root = body.root_positions.copy()
+    rots = body.rotations.copy()
+    tail = slice(n - pre, n)
+    root[tail] = (1 - w)[:, None] * root[tail] + w[:, None] * lead_root
+    a = Rotation.from_quat(rots[tail].reshape(-1, 4))
+    b = Rotation.from_quat(lead.rotations.reshape(-1, 4))
+    ww = np.repeat(w, m.skeleton.n_joints)
+    rel = (a.inv() * b).as_rotvec() * ww[:, None]
+    rots[tail] = (a * Rotation.from_rotvec(rel)).as_quat().reshape(pre, -1, 4)
+    return body.replace(root_positions=root, rotations=rots)
+
+
+def cut_clip(take: Motion, cut: Cut) -> Motion:
+    """One clip of the cut list from its (retargeted, floored) take, at :data:`FPS`, facing +Z."""
+    t0, t1 = cut.cut
+    pre = _frames(cut.blend, FPS) if cut.loop else 0  # lead-in frames at FPS, a whole number of take frames each
+    i0 = _frames(t0, take.fps) - _frames(pre / FPS, take.fps)
+    i1 = _frames(t1, take.fps)
+    if i0 < 0:
+        raise ValueError(f"{cut.name}: a {cut.blend} s blend needs {cut.blend} s before the cut at {t0}")
+    if i1 > take.n_frames - (cut.loop == "stride"):
+        raise ValueError(f"{cut.name}: the cut ends at {t1} s, after the take's {take.duration:.2f} s")
+    m = clear_floor(lock_feet(take.frames(i0, i1).resample(FPS)))
+    if cut.loop:
+        travel = None
+        if cut.loop == "stride":  # one cycle's travel: from the cycle's first frame to the frame after it
+            root = take.root_positions
+            travel = root[i1, [0, 2]] - root[_frames(t0, take.fps), [0, 2]]
+        m = lock_feet(blend_loop(m, pre, travel))  # the blend moved a planted foot by the frames' difference
+    return face(m, cut.face)
+
+
+def start_from(m: Motion, before: Motion, n: int) -> Motion:
+    """``m`` starting exactly in ``before``'s last pose: turned to its heading, then eased from it.
+
+    Over the first ``n`` frames the local rotations (the root's too) and the root height go
+    from ``before``'s last frame to ``m``'s own (smoothstep); ``m``'s travel is kept. So a clip
+    cut later from the same take (standing up after sitting down) meets the one before it.
+    """
+    turn = _heading(before, slice(-1, None)) - _heading(m, slice(0, 1))
+    m = _yaw_about_origin(m, turn, m.root_positions[0, [0, 2]])
+    u = np.minimum(1.0, np.arange(m.n_frames) / max(1, n))
+    w = (u * u * (3 - 2 * u))[:, None]
+    last = np.broadcast_to(before.rotations[-1], m.rotations.shape).reshape(-1, 4)
+    a = Rotation.from_quat(last)
+    rel = (a.inv() * Rotation.from_quat(m.rotations.reshape(-1, 4))).as_rotvec()
+    ww = np.repeat(w[:, 0], m.skeleton.n_joints)[:, None]
+    rots = (a * Rotation.from_rotvec(rel * ww)).as_quat().reshape(m.rotations.shape)
+    root = m.root_positions.copy()
+    root[:, 1] = (1 - w[:, 0]) * before.root_positions[-1, 1] + w[:, 0] * root[:, 1]
+    return m.replace(root_positions=root, rotations=rots)
+
+
+def _npy(a: np.ndarray) -> bytes:
+    buf = io.BytesIO()
+    np.lib.format.write_array(buf, np.ascontiguousarray(a), allow_pickle=False)
+    return buf.getvalue()
+
+
+def write_arrays(path: Path, arrays: dict[str, np.ndarray]) -> int:
+    """A ``.npz`` (zip, deflated) with fixed timestamps and the arrays in the given order; returns bytes."""
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
+        for name, a in arrays.items():
+            info = zipfile.ZipInfo(name + ".npy", date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = 0o644 << 16
+            z.writestr(info, _npy(a), compresslevel=9)
+    data = buf.getvalue()
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    tmp.write_bytes(data)
+    tmp.replace(path)
+    return len(data)
+
+
+def build(cmu: Path, out: Path = ARRAYS, log=print) -> int:
+    """Cut, retarget and write every clip of the cut list; returns the file's size in bytes."""
+    cuts = cut_list()
+    takes: dict[str, Motion] = {}
+    arrays: dict[str, np.ndarray] = {}
+    built: dict[str, Motion] = {}
+    for c in cuts:
+        if c.file not in takes:
+            path = cmu / c.file
+            if not path.is_file():
+                raise FileNotFoundError(f"{path}: not found (pass --cmu DIR)")
+            takes[c.file] = load_take(path)
+        m = cut_clip(takes[c.file], c)
+        if c.starts_from:
+            m = lock_feet(start_from(m, built[c.starts_from], _frames(c.ease, FPS)))
+        built[c.name] = m
+        arrays[f"{c.name}.root"] = m.root_positions.astype(np.float32)
+        arrays[f"{c.name}.rot"] = m.rotations.astype(np.float32)
+        log(f"  {c.name:16s} {c.trial:7s} {c.cut[0]:6.2f}-{c.cut[1]:6.2f} s  {m.n_frames:4d} frames")
+    size = write_arrays(out, arrays)
+    log(f"wrote {out}: {len(cuts)} clips, {size / 1e6:.2f} MB")
+    return size
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(prog="python -m text2anim.motiondb.library.build", description=__doc__.split("\n")[0])
+    p.add_argument("--cmu", type=Path, default=DEFAULT_CMU, help="folder of the CMU BVH files (../shared/mocap/cmu)")
+    p.add_argument("--out", type=Path, default=ARRAYS, help="where to write the arrays (the package's capture.npz)")
+    args = p.parse_args(argv)
+    try:
+        build(args.cmu.resolve(), args.out)
+    except (FileNotFoundError, ValueError) as exc:
+        print(f"build: {exc}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
