@@ -161,10 +161,29 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
     return reports, elements
 
 
-def assemble(tracks, fps: float, lay, sway: bool = True) -> Result:
+def finish_joins(laid: Laid) -> None:
+    """Run the join post-pass (:mod:`synthesis.joinpass`) on ``laid.motion`` in place; each join's
+    report gets what the pass did (``post``)."""
+    from .joinpass import Region, finish_track
+
+    idx, regions = [], []
+    for k, (rep, spans, first, second, _extra) in enumerate(laid.joins):
+        if spans is None or first is None or second is None:
+            continue
+        (w0, w1), (_r0, r1) = spans
+        idx.append(k)
+        regions.append(Region(int(w0), int(w1), int(r1), (first.motion, second.motion)))
+    laid.motion, infos = finish_track(laid.motion, regions)
+    for k, info in zip(idx, infos):
+        rep, *rest = laid.joins[k]
+        laid.joins[k] = (replace(rep, metrics={**rep.metrics, "post": info}), *rest)
+
+
+def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> Result:
     """Lay every track with ``lay(track, whole_elements) -> Laid``, compose its partial elements, measure.
 
-    ``tracks`` are already spread (:func:`synthesis.engine.spread_actors`) if they should be.
+    ``tracks`` are already spread (:func:`synthesis.engine.spread_actors`) if they should be. ``post``
+    runs the join post-pass (:func:`finish_joins`) before the compositions are laid.
     """
     motions, reports, elements, warnings = {}, [], {}, []
     for track in tracks:
@@ -174,6 +193,8 @@ def assemble(tracks, fps: float, lay, sway: bool = True) -> Result:
             raise ValueError(f"actor {track.actor!r} has no whole-body motion to lay compositions onto")
         laid = lay(track, whole)
         laid.motion = finish_whole(laid.motion, laid.placed, track.elements)
+        if post:
+            finish_joins(laid)
         comps = compose_parts(laid, shifted(parts, laid.delays), whole, fps, sway)
         reps, els = measure(track, laid, comps, fps)
         reports.extend(reps)

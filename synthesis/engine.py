@@ -312,10 +312,12 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
                                    "release_end": lk.release_end / fps} for lk in locks]
         rep_ = JoinReport(prev.element.id, e.id, method, blend, intervals, None, info, tuple(join.warnings))
         joins.append((rep_, (join.window, (join.window[0], region_end)), prev, p, []))
-    from .assemble import Laid, compose_parts, finish_whole  # assemble builds on this module's pieces
+    from .assemble import Laid, compose_parts, finish_joins, finish_whole  # assemble builds on this module's pieces
 
     # a looped clip's margin after its end is not played; the track holds to the last scheduled end
     laid = Laid(finish_whole(tr, placed, track.elements), placed, joins, warnings)
+    if lock:
+        finish_joins(laid)
     comps = compose_parts(laid, parts, whole, fps, sway)
     return laid, comps
 

@@ -811,4 +811,4 @@ def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: f
     def lay(track: Track, whole):
         return lay_track(track, whole, fps, weights, lock_feet, min_blend)
 
-    return assemble(tracks, fps, lay, sway)
+    return assemble(tracks, fps, lay, sway, post=lock_feet)
