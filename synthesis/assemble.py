@@ -172,7 +172,8 @@ def finish_joins(laid: Laid) -> None:
             continue
         (w0, w1), (_r0, r1) = spans
         idx.append(k)
-        regions.append(Region(int(w0), int(w1), int(r1), (first.motion, second.motion)))
+        keep = (first.offset + first.core[1], second.offset + second.core[0])  # cores are kept (§4.2.5)
+        regions.append(Region(int(w0), int(w1), int(r1), (first.motion, second.motion), keep))
     laid.motion, infos = finish_track(laid.motion, regions)
     for k, info in zip(idx, infos):
         rep, *rest = laid.joins[k]

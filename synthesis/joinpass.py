@@ -23,9 +23,11 @@ own two source clips:
    world orientation are kept, so the toe stays), the filtered leg is solved by
    IK back onto that foot (:func:`synthesis.footlock.solve_leg`); the
    correction fades out over the air phase around the contact.
-4. **Nothing below the floor** (y = 0): a foot whose ankle or toe would go
-   below it is lifted by IK by the deficit, smoothed over a few frames
-   (:func:`lift_off_floor`, over the whole track).
+4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot
+   whose ankle or toe would go below it is lifted by IK by the deficit
+   (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm
+   is lifted clear (:func:`clear_swings`). Cores are never touched (the
+   region stops at the first clip's core end and the next one's core start).
 
 All vectorised over frames and joints; deterministic.
 """
@@ -51,6 +53,7 @@ PAD = 0.25  # s: the filtered pose fades in and out over this on each side of a 
 SIGMAS = (0.0, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0)  # frames at 30 fps (scaled with the frame rate)
 SLACK = 1.0  # the region may reach the sources' own figure times this
 FLOOR = 0.0  # m
+STILL = 0.15  # m/s: an ankle slower than this in the engine's output is held where it is
 
 
 @dataclass(frozen=True)
@@ -62,6 +65,7 @@ class Region:
     w1: int
     r1: int
     sources: tuple
+    keep: tuple[int, int] = (0, 1 << 30)  # track frames the pass may touch: after A's core, before B's
 
 
 def jerk_p99(positions: np.ndarray, fps: float) -> float:
@@ -132,8 +136,11 @@ def keep_feet(motion: Motion, ref: Motion, lo: int, hi: int, contacts) -> Motion
         return motion
     feet = body_map(motion.skeleton).feet
     out = motion
+    ref_p = ref.positions
     for side, (ankle, _toe) in feet.items():
-        c = _soft(contacts.of(side), motion.fps)[lo:hi]
+        still = np.zeros(ref.n_frames, dtype=bool)  # a foot the engine holds still counts too (its locks)
+        still[1:] = np.linalg.norm(np.diff(ref_p[:, ankle][:, [0, 2]], axis=0), axis=1) * ref.fps < STILL
+        c = _soft(contacts.of(side) | still, motion.fps)[lo:hi]
         if not c.any():
             continue
         sub = out[lo:hi]
@@ -149,14 +156,16 @@ def keep_feet(motion: Motion, ref: Motion, lo: int, hi: int, contacts) -> Motion
     return out
 
 
-def lift_off_floor(motion: Motion, floor: float = FLOOR) -> Motion:
-    """``motion`` with every foot whose ankle or toe goes below ``floor`` lifted by IK by the deficit
-    (widened by 2 frames each side and smoothed, so the lift eases in and out)."""
+def lift_off_floor(motion: Motion, lo: int, hi: int, floor: float = FLOOR) -> Motion:
+    """``motion`` with every foot whose ankle or toe goes below ``floor`` over ``[lo, hi)`` lifted by IK by
+    the deficit (widened by 2 frames each side and smoothed, so the lift eases in and out)."""
     feet = body_map(motion.skeleton).feet
     out = motion
     for side, joints in feet.items():
         p = out.positions
         deficit = np.maximum(0.0, floor - p[:, list(joints), 1].min(axis=1))
+        deficit[:lo] = 0.0
+        deficit[hi:] = 0.0
         if not (deficit > 5e-4).any():
             continue
         d = gaussian_filter1d(maximum_filter1d(deficit, 5, mode="nearest"), 1.0, mode="nearest")
@@ -175,6 +184,43 @@ def lift_off_floor(motion: Motion, floor: float = FLOOR) -> Motion:
     return out
 
 
+SWING_CLEARANCE = 0.055  # m: a foot moving faster than SWING_SPEED keeps its toe this high (GMD counts < 5 cm)
+SWING_SPEED = 0.5  # m/s, the GMD skating speed
+
+
+def clear_swings(motion: Motion, lo: int, hi: int) -> Motion:
+    """``motion`` with every foot that skims the floor over ``[lo, hi)`` lifted: where its toe is lower than
+    :data:`SWING_CLEARANCE` while it moves faster than :data:`SWING_SPEED` (5-frame mean) — a shuffle a
+    blend of two foot placements makes, counted as skating — the ankle is raised by IK (world orientation
+    kept, so the toe rises as much), by the shortfall widened by 2 frames and smoothed."""
+    feet = body_map(motion.skeleton).feet
+    out = motion
+    fps = motion.fps
+    for side, (ankle, toe) in feet.items():
+        p = out.positions
+        xz = p[:, toe][:, [0, 2]]
+        v = np.zeros(len(p))
+        v[1:] = np.linalg.norm(np.diff(xz, axis=0), axis=1) * fps
+        fast = (v > SWING_SPEED) & (uniform_filter1d(v, 5, mode="nearest") > SWING_SPEED)
+        short = np.where(fast, np.maximum(0.0, SWING_CLEARANCE - p[:, toe, 1]), 0.0)
+        short[:lo] = 0.0
+        short[hi:] = 0.0
+        if not (short > 1e-3).any():
+            continue
+        d = gaussian_filter1d(maximum_filter1d(short, 5, mode="nearest"), 1.0, mode="nearest")
+        d = np.maximum(d, short)
+        for a, b in runs(d > 1e-5):
+            a, b = int(a), int(b)
+            sub = out[a:b]
+            pose = sub.pose
+            target = pose.positions[:, ankle] + np.stack([np.zeros(b - a), d[a:b], np.zeros(b - a)], 1)
+            solved = set_world_rotation(solve_leg(sub, side, target), ankle, pose.quaternions()[:, ankle])
+            rots = out.rotations.copy()
+            rots[a:b] = solved.rotations
+            out = out.replace(rotations=rots)
+    return out
+
+
 def _figures(m: Motion, lo: int, hi: int) -> tuple[float, float]:
     a, b = max(0, lo - 3), min(m.n_frames, hi + 3)
     p = m[a:b].positions
@@ -185,11 +231,14 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     """One join finished (steps 1–3 of the module docstring); returns the motion and what was done."""
     fps = motion.fps
     T = motion.n_frames
+    pad = max(1, int(round(PAD * fps)))
+    lo = max(0, region.w0 - pad, min(region.keep[0], region.w0))
+    hi = min(T, max(region.r1, region.w1) + pad, max(region.keep[1], region.w1 + 1))
     out = motion
     for s in sorted({region.w0, region.w1}):
-        out = inertialize_at(out, s, SEAM_DECAY)
-    pad = max(1, int(round(PAD * fps)))
-    lo, hi = max(0, region.w0 - pad), min(T, max(region.r1, region.w1) + pad)
+        if s < hi - 2:
+            out = inertialize_at(out, s, min(SEAM_DECAY, (hi - 1 - s) / fps))
+    pad = max(1, min(pad, (hi - lo) // 3))
     jk_lim, pop_lim = _limits(region.sources, fps)
     scale = fps / 30.0
     best = None
@@ -202,17 +251,19 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
         if score <= 1.0:
             break
     score, sigma, cand, jk, pop = best
+    cand = lift_off_floor(clear_swings(cand, lo, hi), lo, hi)
     info = {"smoothing_frames": sigma, "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1),
             "root_pop": round(pop, 2), "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
     return cand, info
 
 
 def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict]]:
-    """All joins of a track finished in time order, then the whole track lifted off the floor."""
+    """All joins of a track finished in time order (the clips' own floor is the import's: only the joins'
+    regions are lifted off it)."""
     contacts = detect_contacts(motion)
     infos = []
     out = motion
     for r in regions:
         out, info = finish_region(out, r, contacts)
         infos.append(info)
-    return lift_off_floor(out), infos
+    return out, infos

@@ -184,6 +184,10 @@ def smooth_seam(motion: Motion, sigma: float = SEAM_SIGMA, width: float = SEAM_W
         return motion
     q = motion.rotations
     ext_q = unroll_quaternions(np.concatenate([q[-k:], q, q[:k]]))
+    third = np.linalg.norm(np.diff(ext_q, 3, axis=0), axis=-1)  # (n + 2k - 3, J); index i spans ext frames i..i+3
+    seam = third[k + n - 4:k + n].max()  # the differences that span the seam (ext frames k+n-1 -> k+n)
+    if seam <= SEAM_TOLERANCE * third[k:k + n - 3].max():  # no harder than inside: leave it as recorded
+        return motion
     qs = gaussian_filter1d(ext_q, sigma * motion.fps, axis=0, mode="nearest")[k:k + n]
     qs /= np.linalg.norm(qs, axis=-1, keepdims=True)
     d = np.minimum(np.arange(n), n - 1 - np.arange(n))
