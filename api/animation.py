@@ -136,6 +136,7 @@ class Animation:
     fps: float
     blend: str = "optimal"
     smoothness: float = 0.5
+    tracks: tuple = ()  # the synthesis input (source clips per element), for the report's join figures
 
     @property
     def text(self) -> str:
@@ -151,21 +152,30 @@ class Animation:
 
     @property
     def report(self) -> dict:
-        """The synthesis report of timetable.md §2, with the time table and per-element figures."""
-        from text2anim.core.metrics import compute_metrics
+        """The synthesis report of timetable.md §2, with the time table and per-element figures.
+
+        ``actors`` holds each actor's whole-motion figures; every join gets ``quality``: the figures of
+        :mod:`text2anim.quality` on a window around it next to its two source clips', all at 30 fps.
+        """
+        from text2anim.core.metrics import foot_skate
+
+        from .quality import actor_quality, join_quality, rounded
 
         whole = {}
-        for name, m in self.motions.items():
-            met = compute_metrics(m)
-            whole[name] = {"frames": met.frames, "duration": round(met.duration, 3),
-                           "skating_ratio": met.skating_ratio,
-                           "foot_skate_cm_s": {s: round(f.mean_speed_cm_s, 3) for s, f in met.foot_skate.items()}}
+        for (name, m), q in zip(self.motions.items(), actor_quality(self.motions).values()):
+            whole[name] = {"frames": m.n_frames, "duration": round(m.duration, 3),
+                           "skating_ratio": round(q.skating_ratio, 4), "quality": rounded(q),
+                           "foot_skate_cm_s": {s: round(f.mean_speed_cm_s, 3) for s, f in foot_skate(m).items()}}
+        joins = self.result.report()["joins"]
+        for j, q in zip(joins, join_quality(self.result, self.tracks)):
+            if q is not None:
+                j["quality"] = q
         return {
             "text": self.text,
             "fps": self.fps,
             "synthesis": {"blend": self.blend, "smoothness": self.smoothness},
             "time_table": self.table.to_dict()["elements"],
-            **self.result.report(),
+            "joins": joins,
             "elements": {str(k): v for k, v in self.result.elements.items()},
             "actors": whole,
             "skipped": list(self.planned.skipped),
@@ -279,7 +289,7 @@ def animate(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False
         if opened is not db:
             opened.close()
     result = synthesize_with(blend, tracks, fps, smoothness=smoothness, lock_feet=lock_feet, sway=sway)
-    return Animation(planned, result, fps, blend, float(smoothness))
+    return Animation(planned, result, fps, blend, float(smoothness), tuple(tracks))
 
 
 __all__ = ["Animation", "animate", "build_tracks"]

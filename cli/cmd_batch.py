@@ -156,7 +156,8 @@ def stage_animate(item: Item, cfg: Config) -> dict:
                  for e in report["time_table"]],
         "files": [os.path.basename(f) for f in files],
         "skating_ratio": max(a["skating_ratio"] for a in report["actors"].values()),
-        "join_skating_ratio": max((j["metrics"].get("skating_ratio", 0.0) for j in joins), default=0.0),
+        "join_skating_ratio": max((j["quality"]["join"]["skating_ratio"] for j in joins if "quality" in j),
+                                  default=0.0),
         "joins": len(joins),
         "warnings": report["warnings"],
     }

@@ -23,9 +23,12 @@ NAME = "compare"
 HELP = "join the same time table with several methods and compare foot skate, jerk, core fidelity"
 
 _HEAD = (("foot_skate_cm_s", "skate cm/s", "{:10.2f}"), ("slide_cm", "slide cm", "{:8.1f}"),
-         ("skating_ratio", "ratio", "{:6.3f}"), ("join_skating_ratio", "join ratio", "{:10.3f}"),
-         ("jerk_max", "jerk max", "{:8.0f}"), ("jerk_rms", "jerk rms", "{:8.0f}"),
-         ("core_fidelity_cm", "core cm", "{:7.1f}"), ("duration_s", "dur s", "{:6.2f}"))
+         ("skating_ratio", "ratio", "{:6.3f}"), ("root_pop", "pop m/s2", "{:8.1f}"),
+         ("jerk_p99", "jerk p99", "{:8.0f}"), ("floor_penetration_cm", "floor cm", "{:8.2f}"),
+         ("frozen_fraction", "frozen", "{:6.3f}"), ("join_skating_ratio", "join ratio", "{:10.3f}"),
+         ("join_root_pop", "join pop", "{:8.1f}"), ("join_jerk_p99", "join jerk", "{:9.0f}"),
+         ("joins_ok", "joins ok", "{:>8}"), ("core_fidelity_cm", "core cm", "{:7.1f}"),
+         ("duration_s", "dur s", "{:6.2f}"))
 
 
 class CompareError(ValueError):
@@ -74,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
         planned = plan_text(text, db, fps=args.fps, skip_unknown=args.skip_unknown)
         tracks = build_tracks(planned, db, args.fps)
     results = compare(tracks, args.fps, args.methods, args.smoothness)
-    anims = {m: Animation(planned, res, args.fps, m, args.smoothness) for m, (res, _) in results.items()}
+    anims = {m: Animation(planned, res, args.fps, m, args.smoothness, tuple(tracks)) for m, (res, _) in results.items()}
     written = []
     if out_dir is not None:
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -82,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
             written.extend(anim.save_bvh(out_dir / f"{m}.bvh"))
     if args.plot:
         written.append(_plot(anims, args.plot, text))
-    rows = {m: fig for m, (_, fig) in results.items()}
+    rows = {m: {**fig, **_quality_row(res, tracks)} for m, (res, fig) in results.items()}
     if args.json:
         doc = {"text": text, "fps": args.fps, "smoothness": args.smoothness, "methods": rows,
                "joins": {m: [j["blend"] for j in res.report()["joins"]] for m, (res, _) in results.items()},
@@ -100,6 +103,22 @@ def run(args: argparse.Namespace) -> int:
     if written:
         print("wrote " + ", ".join(str(p) for p in written))
     return 0
+
+
+def _quality_row(result, tracks) -> dict:
+    """The literature's figures of one method at 30 fps: the worst actor, the worst join window, and
+    ``joins_ok`` = "met/measured" joins meeting all five criteria against their sources."""
+    from text2anim.quality import actor_quality, join_quality
+
+    whole = list(actor_quality(result.motions).values())
+    joins = [q for q in join_quality(result, tracks) if q is not None]
+    row = {k: max((getattr(q, k) for q in whole), default=0.0)
+           for k in ("skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction")}
+    for k in ("skating_ratio", "root_pop", "jerk_p99"):
+        row[f"join_{k}"] = max((q["join"][k] for q in joins), default=0.0)
+    met = sum(all(q["meets"].values()) for q in joins if "meets" in q)
+    row["joins_ok"] = f"{met}/{sum('meets' in q for q in joins)}"
+    return row
 
 
 def _plot(anims: dict, path, title: str) -> Path:

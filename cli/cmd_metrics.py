@@ -1,4 +1,11 @@
-"""``text2anim metrics FILE.bvh [--json]``: the quality metrics of timetable.md §3."""
+"""``text2anim metrics FILE.bvh [--json]``: the quality metrics of timetable.md §3.
+
+Foot skate, jerk and body speeds at the file's own rate; then the figures the
+literature compares (GMD foot-skating ratio, root pop, joint jerk p99, floor
+penetration, frozen frames) after resampling to 30 fps, with the thresholds
+issue 11 holds motion made from the built-in library to
+(:data:`text2anim.core.metrics.BUILTIN_LIMITS`).
+"""
 from __future__ import annotations
 
 import json
@@ -7,7 +14,7 @@ import json
 from .bvh_options import add_read_options, read_options
 
 NAME = "metrics"
-HELP = "quality metrics of a BVH file: foot skate, skating ratio, body speeds, jerk"
+HELP = "quality metrics of a BVH file: skating ratio, root pop, jerk, floor penetration, frozen frames"
 
 
 def add_arguments(p):
@@ -18,7 +25,7 @@ def add_arguments(p):
 
 def run(args) -> int:
     from text2anim.core import read_bvh
-    from text2anim.core.metrics import compute_metrics
+    from text2anim.core.metrics import BUILTIN_LIMITS, MAX_FROZEN, compute_metrics
     m = read_bvh(args.file, **read_options(args))
     met = compute_metrics(m)
     if args.json:
@@ -28,7 +35,16 @@ def run(args) -> int:
     print(f"{'foot':6} {'contact frames':>14} {'skate cm/s':>11} {'slide cm':>9}")
     for side, fs in met.foot_skate.items():
         print(f"{side:6} {fs.contact_frames:14d} {fs.mean_speed_cm_s:11.2f} {fs.slide_cm:9.2f}")
-    print(f"foot-skating ratio (GMD): {met.skating_ratio:.4f}")
+    print(f"foot-skating ratio (GMD) at {met.fps:g} fps: {met.skating_ratio:.4f}")
     print(f"jerk: max {met.jerk.max:.1f} m/s^3, RMS {met.jerk.rms:.1f} m/s^3")
     print(f"mean speed: upper body {met.mean_upper_speed:.3f} m/s, lower body {met.mean_lower_speed:.3f} m/s")
+    q, lim = met.quality, BUILTIN_LIMITS
+    print(f"at {q.fps:g} fps (resampled; the rate figures are compared at)    value   built-in limit")
+    for label, value, limit in (
+            ("foot-skating ratio (GMD, either foot)", f"{q.skating_ratio:8.4f}", f"{lim['skating_ratio']:g}"),
+            ("root pop, hips' horizontal accel. m/s^2", f"{q.root_pop:8.2f}", f"{lim['root_pop']:g}"),
+            ("joint jerk p99 m/s^3", f"{q.jerk_p99:8.0f}", f"{lim['jerk_p99']:g}"),
+            ("floor penetration cm", f"{q.floor_penetration_cm:8.2f}", f"{lim['floor_penetration_cm']:g}"),
+            ("frozen frames (fraction)", f"{q.frozen_fraction:8.4f}", f"{MAX_FROZEN:g}")):
+        print(f"  {label:42} {value:>8}   {limit}")
     return 0

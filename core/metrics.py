@@ -1,19 +1,34 @@
 """Quality metrics of ``timetable.md`` §3, on world joint positions (metres, seconds).
 
+The figures the literature compares (:class:`Quality`, all taken after
+resampling to :data:`COMPARE_FPS` = 30 fps by :func:`quality`, because
+acceleration and jerk grow with the frame rate):
+
+- **foot-skating ratio** as the GMD benchmark's code computes it
+  (:func:`skating_pairs`): a frame pair counts when EITHER toe is below 5 cm
+  on both frames and slides faster than 0.5 m/s, also on a 5-frame average;
+- **root pop**: the largest horizontal acceleration of the hips (m/s²) after
+  a 3-frame moving average of their horizontal position;
+- **joint jerk p99**: the 99th percentile of the jerk magnitude (m/s³) of
+  every joint on every frame;
+- **floor penetration**: how far the lowest joint goes below y = 0 (cm);
+- **frozen frames**: the fraction of frame pairs on which every joint moves
+  slower than 0.5 cm/s.
+
+And the per-file figures of ``text2anim metrics`` at the file's own rate:
+
 - foot skate: per foot, mean horizontal speed (cm/s) of its lowest joint over
   its contact frames (see :mod:`core.contacts`), and the distance it
   slides while in contact (cm);
-- foot-skating ratio, as in the GMD benchmark's code: the fraction of frames
-  on which *both* feet skate, a foot skating when it is low (lowest joint
-  < 5 cm above the foot's floor level) while its horizontal speed, averaged
-  over 5 frames, exceeds 0.5 m/s. (Counting either foot would flag every
-  genuine low swing of real gait: 20-45 % of the CMU walks);
 - upper / lower body speed (Fig. 5 of the optimal-blending paper): lower is
   the mean world speed of left foot, right foot and hips; upper the mean of
   both hands, chest and head. Speeds are absolute world speeds (m/s), the
   root's own travel included;
 - jerk: the third time derivative of joint positions (m/s³), its largest
   magnitude and its RMS over joints and frames of a frame range.
+
+Thresholds (documented here, used by ``benchmarks/bench_quality.py`` and the
+report): see :data:`BUILTIN_LIMITS` and :func:`criteria`.
 """
 from __future__ import annotations
 
@@ -26,9 +41,192 @@ from .bodyparts import body_map
 from .contacts import detect_contacts, foot_tracks
 from .motion import Motion
 
-SKATE_HEIGHT = 0.05  # m
-SKATE_SPEED = 0.5  # m/s
-SKATE_WINDOW = 5  # frames
+# --------------------------------------------------------------------------- the literature's figures
+SKATE_HEIGHT = 0.05  # m above the floor (y = 0): GMD's thresh_height
+SKATE_SPEED = 0.5  # m/s, horizontal: GMD's thresh_vel
+SKATE_WINDOW = 5  # frames: GMD's avg_window (a centred moving average, zero beyond the ends)
+COMPARE_FPS = 30.0  # the common rate of every figure that compares motions (timetable.md §3)
+ROOT_POP_WINDOW = 3  # frames of the moving average of the hips' horizontal position
+FROZEN_SPEED = 0.005  # m/s: a frame pair on which every joint is slower than this is frozen
+JERK_PERCENTILE = 99.0
+
+#: Thresholds for motion made from the built-in library (issue 11): root pop (m/s²), joint jerk p99
+#: (m/s³), skating ratio, floor penetration (cm); the frozen-frame fraction is held to :data:`MAX_FROZEN`.
+BUILTIN_LIMITS = {"root_pop": 15.0, "jerk_p99": 2300.0, "skating_ratio": 0.02, "floor_penetration_cm": 1.0}
+MAX_PENETRATION_CM = 1.0  # a join may put no joint deeper than this below the floor
+MAX_FROZEN = 0.05  # nor hold more than this fraction of frozen frame pairs
+SKATING_MARGIN = 0.01  # a join may skate this much more than the more skating of its two sources
+SOURCE_FACTOR = 1.2  # and pop / jerk up to this factor above the larger of its sources'
+CRITERIA = ("skating", "root_pop", "jerk", "penetration", "frozen")
+
+
+def toe_joints(motion: Motion) -> list[int]:
+    """Indices of the left and right toe joints (the ankle on a skeleton without toes)."""
+    feet = body_map(motion.skeleton).feet
+    return [feet["left"][1], feet["right"][1]]
+
+
+def skating_pairs(motion: Motion, floor: float = 0.0) -> np.ndarray:
+    """Per frame pair ``(t, t+1)``, whether a foot skates, as the GMD benchmark's code decides, ``(T-1,)`` bool.
+
+    ``calculate_skating_ratio`` of korrawe/guided-motion-diffusion,
+    ``data_loaders/humanml/utils/metrics.py`` (commit 7bc73c0): the feet are
+    the toe joints (HumanML3D joints 10 and 11, the balls of the feet; here
+    the skeleton's toe joints); the horizontal (XZ) speed between frames t and
+    t+1 is the distance times the frame rate (GMD hard-codes its data's
+    20 fps; here ``motion.fps``); its 5-frame moving average is
+    ``uniform_filter1d(size=5, mode="constant", origin=0)``, centred, with
+    zeros beyond both ends; a foot is in contact when its height above
+    ``floor`` (m) is below 5 cm on both t and t+1; it skates when in contact
+    AND its speed > 0.5 m/s AND the averaged speed > 0.5 m/s; a pair counts
+    when EITHER foot skates (``np.logical_or``, whatever the comment above it says).
+    """
+    if motion.n_frames < 2:
+        return np.zeros(0, dtype=bool)
+    toes = motion.positions[:, toe_joints(motion)]  # (T, 2, 3)
+    speed = np.linalg.norm(np.diff(toes[..., [0, 2]], axis=0), axis=-1) * motion.fps  # (T-1, 2)
+    avg = uniform_filter1d(speed, size=SKATE_WINDOW, axis=0, mode="constant", origin=0)
+    low = toes[..., 1] - floor < SKATE_HEIGHT  # (T, 2)
+    skating = low[:-1] & low[1:] & (speed > SKATE_SPEED) & (avg > SKATE_SPEED)
+    return np.logical_or(skating[:, 0], skating[:, 1])
+
+
+def skating_ratio(motion: Motion, floor: float = 0.0) -> float:
+    """GMD foot-skating ratio at the motion's own rate: skating pairs / all frame pairs (:func:`skating_pairs`)."""
+    pairs = skating_pairs(motion, floor)
+    return float(pairs.mean()) if len(pairs) else 0.0
+
+
+@dataclass(frozen=True)
+class Series:
+    """Per-frame quality figures of one motion at ``fps``; NaN where a frame has no value.
+
+    ``skating``, ``frozen``: ``(T,)`` 1.0/0.0 for the frame pair (t, t+1), NaN on the last frame;
+    ``root_acc``: ``(T,)`` hips' horizontal acceleration (m/s²) centred on frame t, NaN on the 2 frames
+    at each end; ``jerk``: ``(T, J)`` jerk magnitude (m/s³) of frames t-1 .. t+2, NaN on frame 0 and the
+    last two; ``lowest``: ``(T,)`` height (m) of the lowest joint.
+    """
+
+    fps: float
+    skating: np.ndarray
+    frozen: np.ndarray
+    root_acc: np.ndarray
+    jerk: np.ndarray
+    lowest: np.ndarray
+
+
+def _padded(values: np.ndarray, before: int, n: int) -> np.ndarray:
+    out = np.full((n,) + values.shape[1:], np.nan)
+    out[before:before + len(values)] = values
+    return out
+
+
+def root_acceleration(motion: Motion) -> np.ndarray:
+    """Hips' horizontal acceleration magnitude (m/s²) after a 3-frame moving average of their XZ position.
+
+    Second differences of the averaged positions times fps²; only frames whose average needs no
+    padding are used, ``(T-4,)`` for frames 2 .. T-3.
+    """
+    w = ROOT_POP_WINDOW
+    if motion.n_frames < w + 2:
+        return np.zeros(0)
+    xz = motion.positions[:, 0][:, [0, 2]]
+    avg = np.lib.stride_tricks.sliding_window_view(xz, w, axis=0).mean(axis=-1)  # (T-w+1, 2)
+    return np.linalg.norm(np.diff(avg, n=2, axis=0), axis=-1) * motion.fps ** 2
+
+
+def series(motion: Motion, floor: float = 0.0) -> Series:
+    """The per-frame figures of :class:`Series` (positions after FK, at the motion's own rate)."""
+    n, fps = motion.n_frames, motion.fps
+    pos = motion.positions
+    frozen = np.zeros(0)
+    if n >= 2:
+        frozen = (np.linalg.norm(np.diff(pos, axis=0), axis=-1).max(axis=1) * fps < FROZEN_SPEED).astype(float)
+    jerk_tj = np.linalg.norm(np.diff(pos, n=3, axis=0), axis=-1) * fps ** 3 if n >= 4 else np.zeros((0, pos.shape[1]))
+    return Series(fps, _padded(skating_pairs(motion, floor).astype(float), 0, n), _padded(frozen, 0, n),
+                  _padded(root_acceleration(motion), (ROOT_POP_WINDOW - 1) // 2 + 1, n),
+                  _padded(jerk_tj, 1, n), pos[..., 1].min(axis=1) - floor if n else np.zeros(0))
+
+
+@dataclass(frozen=True)
+class Quality:
+    """The figures the literature compares, at ``fps`` over ``frames`` frames (see the module docstring)."""
+
+    fps: float
+    frames: int
+    skating_ratio: float
+    root_pop: float  # m/s²
+    jerk_p99: float  # m/s³
+    floor_penetration_cm: float
+    frozen_fraction: float
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def _nanreduce(fn, values: np.ndarray) -> float:
+    v = values[~np.isnan(values)]
+    return float(fn(v)) if v.size else 0.0
+
+
+def summarise(s: Series, start: int = 0, stop: int | None = None) -> Quality:
+    """The :class:`Quality` of frames ``[start, stop)`` of a :class:`Series` (a pair counts by its first frame)."""
+    n = len(s.lowest)
+    start, stop = max(0, start), n if stop is None else min(n, stop)
+    last_pair = min(stop, n - 1)  # the pair (t, t+1) needs t+1 inside the motion
+    sk, fr = s.skating[start:last_pair], s.frozen[start:last_pair]
+    low = s.lowest[start:stop]
+    return Quality(s.fps, max(0, stop - start), _nanreduce(np.mean, sk), _nanreduce(np.max, s.root_acc[start:stop]),
+                   _nanreduce(lambda v: np.percentile(v, JERK_PERCENTILE), s.jerk[start:stop].ravel()),
+                   max(0.0, -float(low.min()) * 100) if low.size else 0.0, _nanreduce(np.mean, fr))
+
+
+def at_rate(motion: Motion, fps: float | None = COMPARE_FPS) -> Motion:
+    """``motion`` resampled to ``fps`` (unchanged when ``fps`` is None or already its rate)."""
+    return motion if fps is None or motion.fps == fps else motion.resample(fps)
+
+
+def window_frames(fps: float, window: tuple[float, float]) -> tuple[int, int]:
+    """Frames ``[a, b)`` whose times lie in ``[t0, t1)`` seconds at ``fps``."""
+    return tuple(int(np.ceil(t * fps - 1e-9)) for t in window)
+
+
+def quality(motion: Motion, fps: float | None = COMPARE_FPS, window: tuple[float, float] | None = None,
+            floor: float = 0.0) -> Quality:
+    """The five figures of ``motion`` after resampling to ``fps`` (None: its own rate).
+
+    ``window`` = ``(t0, t1)`` seconds limits them to the frames in ``[t0, t1)``; the figures are
+    taken on the whole motion first, so a window's edges see the motion around them (a GMD
+    average near a window edge is not padded with zeros).
+    """
+    m = at_rate(motion, fps)
+    s = series(m, floor)
+    if window is None:
+        return summarise(s)
+    return summarise(s, *window_frames(m.fps, window))
+
+
+def against_sources(out: Quality, sources: list[Quality]) -> dict[str, bool]:
+    """Whether ``out`` (a join's output) meets each criterion of issue 11 against its source clips.
+
+    skating ≤ the sources' larger + 0.01; root pop and jerk p99 ≤ 1.2 × the sources' larger;
+    floor penetration ≤ 1 cm; frozen frames ≤ 5 %. Compare figures taken at one rate (30 fps).
+    """
+    worst = {k: max([getattr(q, k) for q in sources] or [0.0]) for k in ("skating_ratio", "root_pop", "jerk_p99")}
+    return {"skating": out.skating_ratio <= worst["skating_ratio"] + SKATING_MARGIN + 1e-12,
+            "root_pop": out.root_pop <= SOURCE_FACTOR * worst["root_pop"] + 1e-9,
+            "jerk": out.jerk_p99 <= SOURCE_FACTOR * worst["jerk_p99"] + 1e-9,
+            "penetration": out.floor_penetration_cm <= MAX_PENETRATION_CM,
+            "frozen": out.frozen_fraction <= MAX_FROZEN}
+
+
+def against_limits(out: Quality, limits: dict = BUILTIN_LIMITS) -> dict[str, bool]:
+    """Whether ``out`` meets the fixed thresholds of :data:`BUILTIN_LIMITS` (and :data:`MAX_FROZEN`)."""
+    return {"skating": out.skating_ratio <= limits["skating_ratio"],
+            "root_pop": out.root_pop <= limits["root_pop"],
+            "jerk": out.jerk_p99 <= limits["jerk_p99"],
+            "penetration": out.floor_penetration_cm <= limits["floor_penetration_cm"],
+            "frozen": out.frozen_fraction <= MAX_FROZEN}
 
 
 @dataclass(frozen=True)
@@ -41,6 +239,7 @@ class FootSkate:
 
 
 def foot_skate(motion: Motion) -> dict[str, FootSkate]:
+    """Per foot (``left``/``right``), its skate over the contact frames of :func:`core.contacts.detect_contacts`."""
     contacts = detect_contacts(motion)
     out = {}
     for side, tr in foot_tracks(motion).items():
@@ -50,17 +249,6 @@ def foot_skate(motion: Motion) -> dict[str, FootSkate]:
         slide = float(tr.speed[c].sum() / motion.fps * 100) if n else 0.0
         out[side] = FootSkate(mean, slide, n)
     return out
-
-
-def skating_ratio(motion: Motion) -> float:
-    """Fraction of frames on which both feet are low and faster than 0.5 m/s (5-frame average)."""
-    if motion.n_frames == 0:
-        return 0.0
-    skating = np.ones(motion.n_frames, dtype=bool)
-    for tr in foot_tracks(motion).values():
-        avg = uniform_filter1d(tr.speed, size=SKATE_WINDOW, mode="nearest")
-        skating &= (tr.height < SKATE_HEIGHT) & (avg > SKATE_SPEED)
-    return float(skating.mean())
 
 
 @dataclass(frozen=True)
@@ -109,7 +297,7 @@ def jerk(motion: Motion, start: int = 0, stop: int | None = None) -> Jerk:
 
 @dataclass(frozen=True)
 class Metrics:
-    """The whole-clip figures of ``text2anim metrics``."""
+    """The whole-clip figures of ``text2anim metrics``: at the file's rate, and ``quality`` at 30 fps."""
 
     frames: int
     fps: float
@@ -119,12 +307,14 @@ class Metrics:
     jerk: Jerk
     mean_upper_speed: float
     mean_lower_speed: float
+    quality: Quality
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
 def compute_metrics(motion: Motion) -> Metrics:
+    """Every figure of ``text2anim metrics`` for one motion."""
     curves = speed_curves(motion)
     n = motion.n_frames
     return Metrics(
@@ -136,4 +326,5 @@ def compute_metrics(motion: Motion) -> Metrics:
         jerk=jerk(motion),
         mean_upper_speed=float(curves.upper.mean()) if n else 0.0,
         mean_lower_speed=float(curves.lower.mean()) if n else 0.0,
+        quality=quality(motion),
     )

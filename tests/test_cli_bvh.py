@@ -23,7 +23,8 @@ def test_metrics_json():
     proc = text2anim("metrics", cmu("16_15_walk"), "--drop-first", "--json")
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
-    assert data["skating_ratio"] == 0
+    assert data["quality"]["fps"] == 30.0 and data["quality"]["skating_ratio"] <= 0.02  # GMD ratio at 30 fps
+    assert 2.0 < data["quality"]["root_pop"] < 7.0 and data["quality"]["frozen_fraction"] == 0.0
     assert set(data["foot_skate"]) == {"left", "right"}
     assert data["jerk"]["max"] > data["jerk"]["rms"] > 0
 

@@ -7,7 +7,7 @@ import pytest
 from shared_data import cmu
 from text2anim.core import Motion, read_bvh
 from text2anim.core.contacts import detect_contacts, hysteresis, runs
-from text2anim.core.metrics import compute_metrics, foot_skate, jerk, skating_ratio, speed_curves
+from text2anim.core.metrics import BUILTIN_LIMITS, compute_metrics, foot_skate, jerk, quality, skating_ratio, speed_curves
 
 
 def _steps(c):
@@ -81,7 +81,7 @@ def test_fast_slide_is_skating():
 
 def test_real_walk_does_not_skate_and_speed_curves_match_travel():
     m = read_bvh(cmu("16_15_walk"), drop_first=True)
-    assert skating_ratio(m) == 0
+    assert quality(m).skating_ratio <= BUILTIN_LIMITS["skating_ratio"]  # GMD ratio at 30 fps
     curves = speed_curves(m)
     hips = m.positions[:, 0]
     travel = np.linalg.norm(hips[-1, [0, 2]] - hips[0, [0, 2]]) / m.duration

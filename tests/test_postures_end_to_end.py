@@ -29,7 +29,7 @@ def test_plan_and_animate_keep_postures_continuous(db, text, clips):
     for e in seq:
         played = anim.result.elements[e.id]
         assert classify_posture(motion, int(round(played["start"] * anim.fps))) == planned.clips[e.id].start_posture
-    assert anim.report["actors"]["default"]["skating_ratio"] == 0.0
+    assert anim.report["actors"]["default"]["skating_ratio"] <= 0.02  # GMD ratio at 30 fps (issue 11)
 
 
 def test_a_wait_in_a_posture_is_not_filled_with_standing_idle(db):

@@ -1,0 +1,83 @@
+"""The literature's quality figures of a synthesised animation, per actor and per join (issue 11).
+
+Everything here is measured after resampling to 30 fps
+(:data:`core.metrics.COMPARE_FPS`), so a join compares with its source clips
+at one rate:
+
+- per actor, the whole motion's :class:`~core.metrics.Quality`;
+- per join, the same figures on a window around it (its blend intervals
+  widened by :data:`JOIN_MARGIN` on each side, where a velocity jump at a
+  blend's edge shows), next to the figures of the two source clips (each
+  whole clip) and whether the window meets each criterion of
+  :func:`core.metrics.against_sources` (skating ≤ the sources' larger + 0.01,
+  root pop and jerk p99 ≤ 1.2 × the sources' larger, floor penetration ≤ 1 cm,
+  frozen frames ≤ 5 %).
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from text2anim.core.metrics import (COMPARE_FPS, Quality, against_sources, at_rate, quality, series, summarise,
+                                    window_frames)
+
+JOIN_MARGIN = 0.5  # s added before and after a join's blend intervals
+
+
+def rounded(q: Quality) -> dict:
+    """A :class:`Quality` as JSON-ready numbers, rounded so reports are stable and readable."""
+    d = q.to_dict()
+    for k in ("skating_ratio", "frozen_fraction"):
+        d[k] = round(d[k], 4)
+    for k in ("root_pop", "jerk_p99", "floor_penetration_cm"):
+        d[k] = round(d[k], 2)
+    return d
+
+
+def join_window(join, duration: float, margin: float = JOIN_MARGIN) -> tuple[float, float] | None:
+    """``(t0, t1)`` seconds around a join's blend intervals (clamped to the motion), or None without any."""
+    ivs = [iv for iv in join.intervals if iv.end > iv.begin]
+    if not ivs:
+        return None
+    return max(0.0, min(iv.begin for iv in ivs) - margin), min(duration, max(iv.end for iv in ivs) + margin)
+
+
+def actor_quality(motions: dict, fps: float = COMPARE_FPS) -> dict:
+    """``{actor: Quality}`` of every actor's whole motion at ``fps``."""
+    return {a: quality(m, fps) for a, m in motions.items()}
+
+
+def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS) -> list[dict | None]:
+    """Per join of ``result`` (same order), the figures of its window and of its source clips at ``fps``.
+
+    Each entry: ``{"fps", "window_s": [t0, t1], "join": {...}, "sources": {"first": {...}, "second": {...}},
+    "meets": {criterion: bool}}``; ``sources`` and ``meets`` only when ``tracks`` (the synthesis input)
+    are given. None for a join without a blend interval (a motion not executed).
+    """
+    clips = {e.id: e.clip for t in tracks for e in t.elements}
+    by_actor: dict = {}
+    by_clip: dict = {}
+    out: list[dict | None] = []
+    for j in result.joins:
+        actor = result.elements.get(j.second, {}).get("actor")
+        motion = result.motions.get(actor)
+        window = join_window(j, motion.duration) if motion is not None else None
+        if window is None:
+            out.append(None)
+            continue
+        if actor not in by_actor:
+            by_actor[actor] = series(at_rate(motion, fps))
+        s = by_actor[actor]
+        here = summarise(s, *window_frames(s.fps, window))
+        entry = {"fps": fps, "window_s": [round(window[0], 3), round(window[1], 3)], "join": rounded(here)}
+        src = {}
+        for key, eid in (("first", j.first), ("second", j.second)):
+            clip = clips.get(eid)
+            if clip is not None:
+                if clip.name not in by_clip:
+                    by_clip[clip.name] = quality(clip.motion, fps)
+                src[key] = (clip.name, by_clip[clip.name])
+        if src:
+            entry["sources"] = {k: {"clip": name, **rounded(q)} for k, (name, q) in src.items()}
+            entry["meets"] = against_sources(here, [q for _, q in src.values()])
+        out.append(entry)
+    return out

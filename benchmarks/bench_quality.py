@@ -1,0 +1,359 @@
+"""Joins measured the way the literature does (issue 11): CMU pairs and built-in sentences, every method.
+
+1. **CMU pairs.** The clips of :data:`CLIPS` are cut from ``../shared/mocap/cmu/``
+   (walk and run: one gait cycle each, found by ``find_cycle``, and looped;
+   the other actions: a window around the action, as ``bench_blend.py`` cuts
+   them, with the core interval given; the long multi-action takes are used
+   only through such a window) and imported into a temporary SQLite motion
+   database with the verb of ``index.tsv`` (as ``text2anim db import --core``
+   would), read back and resampled to 30 fps as the pipeline does. Every
+   ordered pair of clips of different actions in :data:`ACTION_PAIRS` (each
+   action pair once, its clips taken in turn) is joined by each method
+   (optimal, constraint, pose, crossfade) through ``synthesize_with``; the time
+   table follows the scheduler: after a looping motion a *transition* (the
+   next clip starts at the last step of the first, ``transition_window``),
+   otherwise a *connection* (it starts when the first ends).
+   Each output is compared with its two source clips at 30 fps
+   (:func:`core.metrics.against_sources`): skating ratio ≤ the sources' larger
+   + 0.01; root pop ≤ 1.2 × the sources' larger; joint jerk p99 ≤ 1.2 × the
+   sources' larger; floor penetration ≤ 1 cm; frozen frames ≤ 5 %. Printed per
+   method: the share of pairs meeting each criterion and all five, and how
+   often optimal beats crossfade and pose on root pop and on skating.
+2. **Built-in sentences.** The sentences of ``tests/corpus/nlp_corpus.jsonl``
+   animated with the built-in library by each method, against the fixed
+   thresholds of :data:`core.metrics.BUILTIN_LIMITS` (root pop ≤ 15 m/s²,
+   jerk p99 ≤ 2,300 m/s³, skating ≤ 0.02, penetration ≤ 1 cm; frozen ≤ 5 %).
+3. **Fig. 5 speed curves** (PNG) of three pairs for each method in ``--out``.
+
+Run: ``python benchmarks/bench_quality.py [--pairs N] [--sentences N] [--methods ...] [--out DIR]
+[--json FILE] [--list]``. CPU and wall time are printed per part.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[1]
+CMU = REPO.parent / "shared" / "mocap" / "cmu"
+CORPUS = REPO / "tests" / "corpus" / "nlp_corpus.jsonl"
+FPS = 30.0
+METHODS = ("optimal", "constraint", "pose", "crossfade")
+CRITERIA = ("skating", "root_pop", "jerk", "penetration", "frozen")
+
+#: name: (file stem, cut (s) or "cycle", core (s, relative to the cut)); the action is the file's label
+CLIPS = {
+    "walk16": ("16_15_walk", "cycle", None),
+    "walk02": ("02_01_walk", "cycle", None),
+    "walk07": ("07_02_walk", "cycle", None),
+    "run16": ("16_35_run", "cycle", None),
+    "run02": ("02_03_run", "cycle", None),
+    "run127": ("127_07_run", "cycle", None),
+    "kick10_03": ("10_03_kick", (0.0, 2.8), (0.7, 1.5)),
+    "kick10_01": ("10_01_kick", (3.6, 6.6), (0.6, 1.8)),
+    "frontkick": ("135_04_kick", (1.7, 4.0), (0.8, 1.9)),
+    "jump_inplace": ("16_01_jump", (0.0, 2.6), (0.8, 1.8)),
+    "jump_forward": ("16_05_jump", (0.0, 2.4), (0.8, 1.8)),
+    "jump118": ("118_10_jump", (0.4, 3.0), (0.6, 1.8)),
+    "punch": ("02_05_punch", (0.6, 2.4), (0.3, 1.2)),
+    "lunge": ("135_09_punch", (1.4, 3.6), (0.5, 1.2)),
+    "pitch": ("124_01_throw", (1.8, 5.3), (0.6, 2.2)),
+    "shot": ("06_14_throw", (1.8, 4.0), (0.4, 1.5)),
+    "pickup": ("02_06_pickup", (0.2, 2.6), (0.5, 1.8)),
+    "dance": ("05_03_dance", (0.0, 3.6), (0.5, 3.0)),
+    "dance02": ("05_02_dance", (0.5, 4.0), (0.5, 3.0)),
+}
+#: ordered action pairs a sentence could ask for (歩いて走る, 走ってボールを蹴る, 踊ってから歩く, ...)
+ACTIONS = ("walk", "run", "jump", "kick", "throw", "punch", "pickup", "dance")
+ACTION_PAIRS = [(a, b) for a in ACTIONS for b in ACTIONS if a != b]
+CYCLIC_LENGTH = {"walk": 3.0, "run": 2.4}
+FIG5 = (("walk", "run"), ("run", "kick"), ("dance", "walk"))  # action pairs whose speed curves are drawn
+
+
+def action_of(stem: str, index: dict) -> str:
+    label = index[stem]["action"]
+    for a in ACTIONS:
+        if a in label or (a == "throw" and "pitch" in label) or (a == "pickup" and "pick up" in label):
+            return a
+    raise ValueError(f"{stem}: no action for {label!r}")
+
+
+def build_database(url: str) -> dict:
+    """Cut the clips, import them into the database at ``url`` with their verbs, read them back at 30 fps.
+
+    Returns ``{name: (action, ClipInfo, Clip)}``.
+    """
+    from text2anim.core import read_bvh
+    from text2anim.motiondb import ClipRecord, MotionDB
+    from text2anim.synthesis.plan import Clip
+    from text2anim.synthesis.timing import find_cycle
+
+    with open(CMU / "index.tsv", encoding="utf-8") as fh:
+        index = {r["file"][:-4]: r for r in csv.DictReader(fh, delimiter="\t")}
+    records, actions = [], {}
+    for name, (stem, cut, core) in CLIPS.items():
+        m = read_bvh(CMU / f"{stem}.bvh", drop_first=True)
+        if cut == "cycle":
+            try:
+                a, b = find_cycle(m)
+            except ValueError:  # a short run: the right foot lands twice
+                a, b = find_cycle(m, "right")
+            m, core = m[a:b], (0.0, (b - a) / m.fps)
+        else:
+            m = m.between(*cut)
+        actions[name] = action_of(stem, index)
+        records.append(ClipRecord(name=name, motion=m, verbs=(index[stem]["verb_ja"],), core=core,
+                                  cyclic=cut == "cycle", character="cmu", source=str(CMU / f"{stem}.bvh")))
+    with MotionDB.open(url, seed=False) as db:
+        db.add(records)
+        out = {}
+        for info in db.clips():
+            m = db.load(info)
+            clip = Clip(info.name, m.resample(FPS) if m.fps != FPS else m, tuple(info.core), info.cyclic)
+            out[info.name] = (actions[info.name], info, clip)
+    return out
+
+
+def pairs_of(clips: dict) -> list[tuple[str, str]]:
+    """One clip pair per action pair, the clips of each action taken in turn."""
+    by_action: dict[str, list[str]] = {}
+    for name, (action, _, _) in clips.items():
+        by_action.setdefault(action, []).append(name)
+    used = {a: 0 for a in by_action}
+    out = []
+    for a, b in ACTION_PAIRS:
+        if a in by_action and b in by_action:
+            x = by_action[a][used[a] % len(by_action[a])]
+            y = by_action[b][used[b] % len(by_action[b])]
+            used[a] += 1
+            used[b] += 1
+            out.append((x, y))
+    return out
+
+
+def track_of(clips: dict, first: str, second: str):
+    """The time table of a pair: a transition after a looping clip (the scheduler's window), else a connection."""
+    from text2anim.pipeline import timing
+    from text2anim.scheduler.lengths import transition_window
+    from text2anim.synthesis.plan import Element, Track
+
+    (act_a, ia, ca), (act_b, ib, cb) = clips[first], clips[second]
+    la = CYCLIC_LENGTH.get(act_a, ca.motion.duration) if ca.cyclic else ca.motion.duration
+    lb = CYCLIC_LENGTH.get(act_b, cb.motion.duration) if cb.cyclic else cb.motion.duration
+    how, start, end_a = "connection", la, la
+    if ca.cyclic:
+        win = transition_window(timing(ia), 1.0, 1, la)
+        if win is not None:
+            how, (start, end_a) = "transition", win
+    return Track(None, (Element(1, ca, 0.0, end_a, "initial"), Element(2, cb, start, start + lb, how, prev=1)))
+
+
+class Clock:
+    """CPU and wall seconds of a part."""
+
+    def __enter__(self):
+        self.cpu, self.wall = time.process_time(), time.perf_counter()
+        return self
+
+    def __exit__(self, *exc):
+        self.cpu, self.wall = time.process_time() - self.cpu, time.perf_counter() - self.wall
+
+
+def run_pairs(clips: dict, pairs: list, methods, smoothness: float) -> list[dict]:
+    from text2anim.core.metrics import against_sources, quality
+    from text2anim.synthesis.engines import synthesize_with
+
+    rows, src_q = [], {}
+    for first, second in pairs:
+        track = track_of(clips, first, second)
+        for name in (first, second):
+            if name not in src_q:
+                src_q[name] = quality(clips[name][2].motion)
+        sources = [src_q[first], src_q[second]]
+        for method in methods:
+            res = synthesize_with(method, [track], FPS, smoothness=smoothness)
+            motion = res.motions[None]
+            q = quality(motion)
+            rows.append({"pair": f"{first}→{second}", "actions": [clips[first][0], clips[second][0]],
+                         "how": track.elements[1].method, "method": method,
+                         "quality": q.to_dict(), "meets": against_sources(q, sources),
+                         "sources": [s.to_dict() for s in sources],
+                         "blend": ",".join(j.blend for j in res.joins), "_motion": motion, "_result": res})
+    return rows
+
+
+def run_sentences(texts: list[str], methods, db_url: str) -> list[dict]:
+    import text2anim
+    from text2anim.core.metrics import against_limits, quality
+    from text2anim.motiondb import MotionDB
+
+    rows = []
+    with MotionDB.open(db_url) as db:
+        for text in texts:
+            for method in methods:
+                try:
+                    anim = text2anim.animate(text, db, blend=method)
+                except Exception as exc:  # an unknown verb, a refused sentence: not animated
+                    if getattr(exc, "user_facing", False):
+                        break
+                    raise
+                for actor, m in anim.motions.items():
+                    q = quality(m)
+                    rows.append({"text": text, "actor": actor, "method": method, "quality": q.to_dict(),
+                                 "meets": against_limits(q)})
+    return rows
+
+
+def share_table(rows: list[dict], methods, title: str) -> None:
+    print(f"\n{title}")
+    print(f"{'method':11} {'n':>4} " + " ".join(f"{c:>11}" for c in CRITERIA) + f" {'all five':>9}")
+    for m in methods:
+        mine = [r for r in rows if r["method"] == m]
+        n = len(mine)
+        if not n:
+            continue
+        cells = [f"{100 * sum(r['meets'][c] for r in mine) / n:10.0f}%" for c in CRITERIA]
+        ok = 100 * sum(all(r["meets"].values()) for r in mine) / n
+        print(f"{m:11} {n:4d} " + " ".join(cells) + f" {ok:8.0f}%")
+
+
+def median_table(rows: list[dict], methods) -> None:
+    keys = ("skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction")
+    print(f"{'method':11} " + " ".join(f"{k:>21}" for k in ("skating", "root pop m/s2", "jerk p99 m/s3",
+                                                            "penetration cm", "frozen")) + "   (median / max)")
+    for m in methods:
+        mine = [r["quality"] for r in rows if r["method"] == m]
+        if mine:
+            cells = [f"{np.median([q[k] for q in mine]):10.3g} /{max(q[k] for q in mine):9.3g}" for k in keys]
+            print(f"{m:11} " + " ".join(cells))
+
+
+def beats_table(rows: list[dict]) -> None:
+    by = {(r["pair"], r["method"]): r["quality"] for r in rows}
+    pairs = sorted({r["pair"] for r in rows if (r["pair"], "optimal") in by})
+    print("\noptimal against the baselines, per pair (lower is better; 'ties' counts equal figures)")
+    print(f"{'against':10} {'figure':14} {'beats':>6} {'ties':>6} {'worse':>6} {'n':>4}")
+    for other in ("crossfade", "pose"):
+        for key, label in (("root_pop", "root pop"), ("skating_ratio", "skating"), ("jerk_p99", "jerk p99")):
+            both = [(by[p, "optimal"][key], by[p, other][key]) for p in pairs if (p, other) in by]
+            if both:
+                b = sum(o < x - 1e-9 for o, x in both)
+                t = sum(abs(o - x) <= 1e-9 for o, x in both)
+                print(f"{other:10} {label:14} {b:6d} {t:6d} {len(both) - b - t:6d} {len(both):4d}")
+
+
+def failing(rows: list[dict], method: str) -> None:
+    bad = [r for r in rows if r["method"] == method and not all(r["meets"].values())]
+    print(f"\n{method}: pairs that miss a criterion ({len(bad)}): figure (sources' larger)")
+    for r in bad:
+        q, s = r["quality"], r["sources"]
+        worst = {k: max(x[k] for x in s) for k in ("skating_ratio", "root_pop", "jerk_p99")}
+        miss = [c for c, ok in r["meets"].items() if not ok]
+        print(f"  {r['pair']:26} {r['how']:10} {','.join(miss):32} skate {q['skating_ratio']:.3f} "
+              f"({worst['skating_ratio']:.3f}) pop {q['root_pop']:5.1f} ({worst['root_pop']:4.1f}) "
+              f"jerk {q['jerk_p99']:5.0f} ({worst['jerk_p99']:4.0f}) floor {q['floor_penetration_cm']:.1f} "
+              f"frozen {q['frozen_fraction']:.2f}")
+
+
+def plot_fig5(rows: list[dict], out: Path) -> list[Path]:
+    from text2anim.core.plots import plot_speeds
+    from text2anim.core.viewer.types import Span
+
+    written = []
+    for r in rows:
+        if (r["actions"][0], r["actions"][1]) not in FIG5:
+            continue
+        res = r["_result"]
+        spans = [Span("default", f"{j.first}→{j.second} {iv.kind}", iv.begin, iv.end, "blend", iv.part)
+                 for j in res.joins for iv in j.intervals if iv.end > iv.begin]
+        path = out / f"fig5_{r['pair'].replace('→', '_to_')}_{r['method']}.png"
+        plot_speeds({r["method"]: r["_motion"]}, path, spans, title=f"{r['pair']} ({r['method']}, {r['how']})")
+        written.append(path)
+    return written
+
+
+def corpus_texts(n: int | None) -> list[str]:
+    from text2anim.cli.cmd_batch import load_corpus
+
+    items = [i for i in load_corpus(str(CORPUS)) if "error" not in (i.expect or {})]
+    texts = list(dict.fromkeys(i.text for i in items))
+    return texts if n is None else texts[:n]
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--pairs", type=int, default=None, help="only the first N CMU pairs (default all)")
+    ap.add_argument("--sentences", type=int, default=None, help="only the first N corpus sentences (default all)")
+    ap.add_argument("--methods", default=",".join(METHODS), help="comma-separated methods (default all four)")
+    ap.add_argument("--smoothness", type=float, default=0.5)
+    ap.add_argument("--out", default="bench_quality_out", help="folder for the Fig. 5 PNGs (default %(default)s)")
+    ap.add_argument("--json", help="write every figure to this file")
+    ap.add_argument("--list", action="store_true", help="also list the failing pairs and sentences")
+    args = ap.parse_args(argv)
+    methods = [m for m in args.methods.split(",") if m]
+    if not CMU.is_dir():
+        print(f"no CMU clips at {CMU}", file=sys.stderr)
+        return 2
+    from text2anim.synthesis.engines import METHODS as KNOWN
+
+    if bad := [m for m in methods if m not in KNOWN]:
+        print(f"unknown method(s) {','.join(bad)}; choose from {','.join(KNOWN)}", file=sys.stderr)
+        return 2
+    with tempfile.TemporaryDirectory() as tmp:
+        with Clock() as c_db:
+            clips = build_database(f"sqlite:///{tmp}/cmu.sqlite")
+        pairs = pairs_of(clips)[:args.pairs]
+        with Clock() as c_pairs:
+            rows = run_pairs(clips, pairs, methods, args.smoothness)
+        texts = corpus_texts(args.sentences)
+        with Clock() as c_sent:
+            sent = run_sentences(texts, methods, f"sqlite:///{tmp}/library.sqlite") if texts else []
+    print(f"CMU: {len(clips)} clips imported ({c_db.cpu:.1f} s CPU, {c_db.wall:.1f} s wall); {len(pairs)} pairs "
+          f"x {len(methods)} methods; all figures at 30 fps")
+    share_table(rows, methods, "CMU pairs: share meeting each criterion against their two source clips")
+    median_table(rows, methods)
+    if "optimal" in methods:
+        beats_table(rows)
+    print(f"(pairs: {c_pairs.cpu:.1f} s CPU, {c_pairs.wall:.1f} s wall)")
+    if sent:
+        n_texts = len({r["text"] for r in sent})
+        share_table(sent, methods, f"built-in library: {n_texts} corpus sentences, share of animations meeting "
+                                   "root pop <= 15 m/s2, jerk p99 <= 2300 m/s3, skating <= 0.02, floor <= 1 cm, "
+                                   "frozen <= 5 %")
+        median_table(sent, methods)
+        print(f"(sentences: {c_sent.cpu:.1f} s CPU, {c_sent.wall:.1f} s wall)")
+    if args.list:
+        for m in methods:
+            failing(rows, m)
+        for m in methods:
+            bad = [r for r in sent if r["method"] == m and not all(r["meets"].values())]
+            print(f"\n{m}: built-in sentences that miss a threshold ({len(bad)})")
+            for r in bad:
+                q = r["quality"]
+                miss = [c for c, ok in r["meets"].items() if not ok]
+                print(f"  {r['text']} [{r['actor']}] {','.join(miss)}: skate {q['skating_ratio']:.3f} pop "
+                      f"{q['root_pop']:.1f} jerk {q['jerk_p99']:.0f} floor {q['floor_penetration_cm']:.1f} "
+                      f"frozen {q['frozen_fraction']:.2f}")
+    out = Path(args.out)
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        print("Fig. 5 curves need text2anim[plot] (matplotlib); skipped", file=sys.stderr)
+    else:
+        out.mkdir(parents=True, exist_ok=True)
+        written = plot_fig5(rows, out)
+        print(f"\nFig. 5 speed curves: {len(written)} PNGs in {out}/")
+    if args.json:
+        doc = {"pairs": [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows], "sentences": sent}
+        Path(args.json).write_text(json.dumps(doc, ensure_ascii=False, indent=1) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
