@@ -53,7 +53,9 @@ class Laid:
 def shifted(parts: list[Element], delays: list) -> list[Element]:
     """Partial elements moved with the whole-body element they are laid on when a joiner moved it in time:
     ``delays`` lists ``(element id, seconds)``."""
-    moved = dict(delays)
+    moved: dict = {}
+    for eid, sec in delays:  # an element may be moved more than once (a join's room, then the post-pass)
+        moved[eid] = moved.get(eid, 0.0) + sec
     return [replace(e, start=e.start + moved[e.prev], end=e.end + moved[e.prev]) if e.prev in moved else e
             for e in parts]
 
@@ -163,21 +165,64 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
 
 def finish_joins(laid: Laid) -> None:
     """Run the join post-pass (:mod:`synthesis.joinpass`) on ``laid.motion`` in place; each join's
-    report gets what the pass did (``post``)."""
-    from .joinpass import Region, finish_track
+    report gets what the pass did (``post``). Where the pass gave a join more time (a region retimed
+    over more frames), the next element and every later one move later by as much: their placement,
+    the later joins' frames, and ``laid.delays`` (the partial elements laid on them follow)."""
+    from .joinpass import Region, finish_track, warp_frames
 
     idx, regions = [], []
     for k, (rep, spans, first, second, _extra) in enumerate(laid.joins):
         if spans is None or first is None or second is None:
             continue
         (w0, w1), (_r0, r1) = spans
-        idx.append(k)
         keep = (first.offset + first.core[1], second.offset + second.core[0])  # cores are kept (§4.2.5)
-        regions.append(Region(int(w0), int(w1), int(r1), (first.motion, second.motion), keep))
-    laid.motion, infos = finish_track(laid.motion, regions)
-    for k, info in zip(idx, infos):
-        rep, *rest = laid.joins[k]
-        laid.joins[k] = (replace(rep, metrics={**rep.metrics, "post": info}), *rest)
+        idx.append(k)
+        brake = first.offset + first.lead if first.cyclic else None  # a loop may take braking steps
+        fps = laid.motion.fps
+        seams = tuple(sorted({int(round(t * fps)) for i in rep.intervals for t in (i.begin, i.end)}))
+        sources = (first.element.clip.motion, second.element.clip.motion)  # as recorded: no loop seams, no holds
+        regions.append(Region(int(w0), int(w1), int(r1), sources, keep, brake, seams,
+                              rep.blend.startswith("motion_adaptation")))
+    laid.motion, infos, warps = finish_track(laid.motion, regions)
+    for k, info, (lo, hi, n_new, seam) in zip(idx, infos, warps):
+        rep, spans, first, second, extra = laid.joins[k]
+        delta = n_new - (hi - lo)
+        laid.joins[k] = (replace(rep, metrics={**rep.metrics, "post": info}), spans, first, second, extra)
+        if delta <= 0:
+            continue
+        src = warp_frames(hi - lo, n_new, seam)
+
+        def moved(f: int) -> int:
+            if f < lo:
+                return f
+            if f >= hi:
+                return f + delta
+            return lo + int(np.searchsorted(src, f - lo))
+
+        if first.cyclic:  # a loop's steps slowed for braking belong to the join, not to its core
+            first.core = (first.core[0], max(first.core[0], min(first.core[1], lo - first.offset)))
+        later = laid.placed[laid.placed.index(second):]
+        for p in later:
+            p.offset += delta
+        laid.delays.extend((p.element.id, delta / laid.motion.fps) for p in later if p.repetition == 0)
+        fps = laid.motion.fps
+        for j in range(k, len(laid.joins)):
+            r, sp, a, b, ex = laid.joins[j]
+            r = replace(r, intervals=tuple(replace(i, begin=moved(round(i.begin * fps)) / fps,
+                                                   end=moved(round(i.end * fps)) / fps) for i in r.intervals))
+            if "foot_locks" in r.metrics:
+                locks = [{**lk, **{key: moved(round(lk[key] * fps)) / fps for key in ("begin", "end", "release_end")}}
+                         for lk in r.metrics["foot_locks"]]
+                r = replace(r, metrics={**r.metrics, "foot_locks": locks})
+            if sp is not None:
+                sp = tuple((moved(x), moved(y)) for x, y in sp)
+            laid.joins[j] = (r, sp, a, b, [(moved(x), moved(y)) for x, y in ex])
+
+
+def same_length(motions: dict) -> dict:
+    """Every actor's motion held (eased) to the longest: a join the post-pass gave more time lengthens its track."""
+    n = max((m.n_frames for m in motions.values()), default=0)
+    return {a: (ease_hold(m, n) if m.n_frames < n else m) for a, m in motions.items()}
 
 
 def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> Result:
@@ -202,4 +247,4 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> 
         elements.update(els)
         warnings.extend(laid.warnings)
         motions[track.actor] = laid.motion
-    return Result(motions, reports, fps, elements, tuple(warnings))
+    return Result(same_length(motions) if post else motions, reports, fps, elements, tuple(warnings))

@@ -312,13 +312,13 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
                                    "release_end": lk.release_end / fps} for lk in locks]
         rep_ = JoinReport(prev.element.id, e.id, method, blend, intervals, None, info, tuple(join.warnings))
         joins.append((rep_, (join.window, (join.window[0], region_end)), prev, p, []))
-    from .assemble import Laid, compose_parts, finish_joins, finish_whole  # assemble builds on this module's pieces
+    from .assemble import Laid, compose_parts, finish_joins, finish_whole, shifted  # assemble builds on this module's pieces
 
     # a looped clip's margin after its end is not played; the track holds to the last scheduled end
     laid = Laid(finish_whole(tr, placed, track.elements), placed, joins, warnings)
     if lock:
         finish_joins(laid)
-    comps = compose_parts(laid, parts, whole, fps, sway)
+    comps = compose_parts(laid, shifted(parts, laid.delays), whole, fps, sway)
     return laid, comps
 
 
@@ -335,7 +335,7 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
     """
     if spread:
         tracks = spread_actors(tracks)
-    from .assemble import measure  # assemble builds on this module's pieces
+    from .assemble import measure, same_length  # assemble builds on this module's pieces
 
     motions, reports, elements, warnings = {}, [], {}, []
     for track in tracks:
@@ -345,4 +345,4 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
         reports.extend(reps)
         elements.update(els)
         motions[track.actor] = laid.motion
-    return Result(motions, reports, fps, elements, tuple(warnings))
+    return Result(same_length(motions) if lock_feet else motions, reports, fps, elements, tuple(warnings))

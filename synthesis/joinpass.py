@@ -42,9 +42,10 @@ from scipy.spatial.transform import Rotation
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.ik import set_world_rotation
+from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion, unroll_quaternions
 
-from .blend import ease, lerp, slerp
+from .blend import ease, lerp, sample, slerp
 from .footlock import solve_leg
 from .inertialize import inertialize_at
 
@@ -52,6 +53,9 @@ SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
 PAD = 0.25  # s: the filtered pose fades in and out over this on each side of a region
 SIGMAS = (0.0, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0)  # frames at 30 fps (scaled with the frame rate)
 SLACK = 1.0  # the region may reach the sources' own figure times this
+#: m/s²: the hips may always accelerate this much (the low end of captured walking, timetable.md §3): clips
+#: smoother than capture (the built-in library's: 1 m/s²) would otherwise have every join slowed down
+POP_FLOOR = 4.0
 FLOOR = 0.0  # m
 STILL = 0.15  # m/s: an ankle slower than this in the engine's output is held where it is
 
@@ -66,34 +70,15 @@ class Region:
     r1: int
     sources: tuple
     keep: tuple[int, int] = (0, 1 << 30)  # track frames the pass may touch: after A's core, before B's
-
-
-def jerk_p99(positions: np.ndarray, fps: float) -> float:
-    """99th percentile over frames and joints of the jerk magnitude (m/s³) of ``(T, J, 3)`` positions."""
-    if len(positions) < 4:
-        return 0.0
-    return float(np.percentile(np.linalg.norm(np.diff(positions, 3, axis=0), axis=-1) * fps ** 3, 99))
-
-
-def root_pop(hips: np.ndarray, fps: float) -> float:
-    """Largest horizontal acceleration (m/s²) of hips ``(T, 3)`` after a 3-frame moving average."""
-    if len(hips) < 3:
-        return 0.0
-    xz = uniform_filter1d(hips[:, [0, 2]], 3, axis=0, mode="nearest")
-    return float(np.linalg.norm(np.diff(xz, 2, axis=0), axis=1).max() * fps ** 2)
+    brake_from: int | None = None  # a looped first clip: the pass may slow its steps from this frame
+    seams: tuple[int, ...] = ()  # more frames where the engine switches blends (ends of its intervals)
+    into_core: bool = False  # the engine's own blends reach into the next core (an adaptation's return)
 
 
 def _limits(sources, fps: float) -> tuple[float, float]:
-    """The largest jerk p99 and root pop of the source clips (resampled to ``fps`` if they are not)."""
-    jk, pop = 0.0, 0.0
-    for m in sources:
-        if m is None or m.n_frames < 4:
-            continue
-        if abs(m.fps - fps) > 1e-6:
-            m = m.resample(fps)
-        jk = max(jk, jerk_p99(m.positions, fps))
-        pop = max(pop, root_pop(m.positions[:, 0], fps))
-    return jk, pop
+    """The largest jerk p99 (m/s³) and root pop (m/s²) of the source clips, at ``fps`` (:func:`core.metrics.quality`)."""
+    qs = [quality(m, fps) for m in sources if m is not None and m.n_frames >= 6]
+    return max([q.jerk_p99 for q in qs] or [0.0]), max([q.root_pop for q in qs] or [0.0])
 
 
 def _fade(n: int, pad: int) -> np.ndarray:
@@ -129,18 +114,15 @@ def _soft(mask: np.ndarray, fps: float) -> np.ndarray:
     return w
 
 
-def keep_feet(motion: Motion, ref: Motion, lo: int, hi: int, contacts) -> Motion:
-    """``motion`` with its legs solved over ``[lo, hi)`` so that every foot in contact in ``ref``
-    (``contacts``) has ``ref``'s ankle position and world orientation; the correction fades out around."""
+def keep_feet(motion: Motion, ref: Motion, lo: int, hi: int, planted: dict) -> Motion:
+    """``motion`` with its legs solved over ``[lo, hi)`` so that every foot ``planted`` in ``ref`` (per side,
+    ``(T,)`` bool) has ``ref``'s ankle position and world orientation; the correction fades out around."""
     if hi - lo < 2:
         return motion
     feet = body_map(motion.skeleton).feet
     out = motion
-    ref_p = ref.positions
     for side, (ankle, _toe) in feet.items():
-        still = np.zeros(ref.n_frames, dtype=bool)  # a foot the engine holds still counts too (its locks)
-        still[1:] = np.linalg.norm(np.diff(ref_p[:, ankle][:, [0, 2]], axis=0), axis=1) * ref.fps < STILL
-        c = _soft(contacts.of(side) | still, motion.fps)[lo:hi]
+        c = _soft(maximum_filter1d(planted[side], 3), motion.fps)[lo:hi]  # held a frame either side too
         if not c.any():
             continue
         sub = out[lo:hi]
@@ -221,49 +203,142 @@ def clear_swings(motion: Motion, lo: int, hi: int) -> Motion:
     return out
 
 
+#: stretch factors tried for a join's region (its new length over its old); below 2 the rate stays positive
+STRETCHES = (1.0, 1.4, 1.7, 1.9)
+BRAKE = 0.6  # s: how far before its blend a looped first clip may be slowed (its braking steps)
+
+
+def _smoothstep_area(u: np.ndarray) -> np.ndarray:
+    """``∫₀ᵘ (6x⁵ - 15x⁴ + 10x³) dx = u⁶ - 3u⁵ + 2.5u⁴`` (1/2 at ``u = 1``)."""
+    return u ** 6 - 3.0 * u ** 5 + 2.5 * u ** 4
+
+
+def warp_frames(n: int, n_new: int, seam: int | None = None) -> np.ndarray:
+    """``(n_new,)`` source positions (frames, in ``[0, n)``) of a region of ``n`` frames played over ``n_new``.
+
+    The playback rate is 1 at both ends (the velocity carried in and out is the motion's own) and dips
+    smoothly to ``1 - c`` where the region's frame ``seam`` plays (default: its middle), with
+    ``c = 2 (n_new - n) / n_new``: rising and falling by the quintic ``smoothstep``, so the rate is C2.
+    Slowed there, the motion's own changes of speed (a run that stops: the hips from 3 m/s to standing)
+    are spread over more time — the clip's own steps, time-warped — instead of happening in a frame.
+    """
+    if n_new <= n:
+        return np.arange(n, dtype=np.float64)
+    seam = n // 2 if seam is None else int(np.clip(seam, 1, n - 1))
+    c = 2.0 * (n_new - n) / n_new
+    ts = seam / (1.0 - c / 2.0)  # the new time at which the seam plays
+    tau = np.arange(n_new, dtype=np.float64)
+    before = ts * _smoothstep_area(np.clip(tau / ts, 0.0, 1.0))
+    after = (n_new - ts) * (0.5 - _smoothstep_area(np.clip((n_new - tau) / (n_new - ts), 0.0, 1.0)))
+    area = np.where(tau <= ts, before, ts / 2.0 + after)
+    return np.clip(tau - c * area, 0.0, n - 1e-9)
+
+
+def retime(motion: Motion, lo: int, hi: int, n_new: int, seam: int | None = None) -> Motion:
+    """``motion`` with frames ``[lo, hi)`` played over ``n_new`` frames by :func:`warp_frames` (later frames follow)."""
+    if n_new <= hi - lo:
+        return motion
+    from text2anim.core.motion import concatenate
+
+    mid = sample(motion, lo + warp_frames(hi - lo, n_new, seam))
+    return concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
+
+
+def _planted(ref: Motion, contacts) -> dict:
+    """Per side, ``(T,)``: the foot is in contact or held still by the engine (its ankle slower than :data:`STILL`)."""
+    out = {}
+    p = ref.positions
+    for side, (ankle, _toe) in body_map(ref.skeleton).feet.items():
+        still = np.zeros(ref.n_frames, dtype=bool)
+        still[1:] = np.linalg.norm(np.diff(p[:, ankle][:, [0, 2]], axis=0), axis=1) * ref.fps < STILL
+        out[side] = contacts.of(side)[:ref.n_frames] | still
+    return out
+
+
+def _hardest(m: Motion, lo: int, hi: int) -> int:
+    """The frame of ``[lo, hi)`` (relative to ``lo``) where the hips' horizontal speed changes fastest:
+    where a retiming slows the motion most (:func:`warp_frames`' ``seam``)."""
+    xz = m.root_positions[max(0, lo - 1):hi + 1, [0, 2]]
+    if len(xz) < 4:
+        return (hi - lo) // 2
+    speed = np.linalg.norm(np.diff(xz, axis=0), axis=1)
+    acc = np.abs(np.diff(uniform_filter1d(speed, 3, mode="nearest")))
+    return int(np.clip(np.argmax(acc) + (1 if lo > 0 else 0), 1, hi - lo - 1))
+
+
 def _figures(m: Motion, lo: int, hi: int) -> tuple[float, float]:
-    a, b = max(0, lo - 3), min(m.n_frames, hi + 3)
-    p = m[a:b].positions
-    return jerk_p99(p, m.fps), root_pop(p[:, 0], m.fps)
+    """Jerk p99 and root pop of ``m`` over ``[lo, hi)`` and 3 frames around (its own rate)."""
+    q = quality(m[max(0, lo - 3):min(m.n_frames, hi + 3)], None)
+    return q.jerk_p99, q.root_pop
 
 
-def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict]:
-    """One join finished (steps 1–3 of the module docstring); returns the motion and what was done."""
+def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int]]:
+    """One join finished (steps 1–4 of the module docstring).
+
+    Returns the motion, what was done, and ``(lo, hi, n_new, seam)``: the frames ``[lo, hi)`` now play
+    over ``n_new`` (:func:`warp_frames` with ``seam``; later frames are ``n_new - (hi - lo)`` later).
+    """
     fps = motion.fps
     T = motion.n_frames
-    pad = max(1, int(round(PAD * fps)))
-    lo = max(0, region.w0 - pad, min(region.keep[0], region.w0))
-    hi = min(T, max(region.r1, region.w1) + pad, max(region.keep[1], region.w1 + 1))
-    out = motion
-    for s in sorted({region.w0, region.w1}):
+    pad0 = max(1, int(round(PAD * fps)))
+    lo = max(0, region.w0 - pad0, min(region.keep[0], region.w0))
+    if region.brake_from is not None:
+        lo = max(0, min(lo, max(region.brake_from, region.w0 - int(round(BRAKE * fps)))))
+    # an adaptation returns to the next clip's own legs inside its core: the pass follows the engine there
+    hi = min(T, max(region.r1, region.w1) + pad0,
+             max(region.keep[1], region.w1 + 1, region.r1 if region.into_core else 0))
+    seamed = motion
+    for s in sorted({region.w0, region.w1, *(x for x in region.seams if lo < x < hi)}):
         if s < hi - 2:
-            out = inertialize_at(out, s, min(SEAM_DECAY, (hi - 1 - s) / fps))
-    pad = max(1, min(pad, (hi - lo) // 3))
+            seamed = inertialize_at(seamed, s, min(SEAM_DECAY, (hi - 1 - s) / fps))
+    planted = _planted(motion, contacts)
     jk_lim, pop_lim = _limits(region.sources, fps)
+    pop_lim = max(pop_lim, POP_FLOOR)
     scale = fps / 30.0
     best = None
-    for sigma in SIGMAS:
-        cand = keep_feet(low_pass(out, lo, hi, sigma * scale, pad), motion, lo, hi, contacts)
-        jk, pop = _figures(cand, lo, hi)
-        score = max(jk / max(jk_lim * SLACK, 1e-9), pop / max(pop_lim * SLACK, 1e-9))
-        if best is None or score < best[0] - 1e-9:
-            best = (score, sigma, cand, jk, pop)
-        if score <= 1.0:
+    whi = max(min(hi, region.keep[1]), region.w0 + 2)  # retimed: [lo, whi), never the next core
+    seam = _hardest(seamed, lo, whi)
+    for stretch in STRETCHES:
+        n_new = int(round((whi - lo) * stretch))
+        base, ref = retime(seamed, lo, whi, n_new, seam), retime(motion, lo, whi, n_new, seam)
+        idx = np.round(np.concatenate([np.arange(lo), lo + warp_frames(whi - lo, n_new, seam),
+                                       np.arange(whi, T)])).astype(int)
+        mask = {k: v[np.clip(idx, 0, T - 1)] for k, v in planted.items()}
+        h2 = hi + max(n_new, whi - lo) - (whi - lo)
+        pad = max(1, min(pad0, (h2 - lo) // 3))
+        for sigma in SIGMAS:
+            cand = keep_feet(low_pass(base, lo, h2, sigma * scale, pad), ref, lo, h2, mask)
+            jk, pop = _figures(cand, lo, h2)
+            score = max(jk / max(jk_lim * SLACK, 1e-9), pop / max(pop_lim * SLACK, 1e-9))
+            if best is None or score < best[0] - 1e-9:
+                best = (score, sigma, stretch, cand, jk, pop, h2)
+            if score <= 1.0:
+                break
+        if best[0] <= 1.0:
             break
-    score, sigma, cand, jk, pop = best
-    cand = lift_off_floor(clear_swings(cand, lo, hi), lo, hi)
-    info = {"smoothing_frames": sigma, "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1),
-            "root_pop": round(pop, 2), "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
-    return cand, info
+    score, sigma, stretch, cand, jk, pop, h2 = best
+    cand = lift_off_floor(clear_swings(cand, lo, h2), lo, h2)
+    info = {"smoothing_frames": sigma, "stretch": stretch, "added_s": round((h2 - hi) / fps, 3),
+            "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
+            "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
+    return cand, info, (lo, whi, whi - lo + (h2 - hi), seam)
 
 
-def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict]]:
+def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, int]]]:
     """All joins of a track finished in time order (the clips' own floor is the import's: only the joins'
-    regions are lifted off it)."""
-    contacts = detect_contacts(motion)
-    infos = []
+    regions are lifted off it). Returns the motion, per join what was done, and per join the retiming
+    ``(lo, hi, n_new, seam)`` in the frames of the motion as it was *before* that join (earlier joins' added
+    frames included)."""
+    infos, warps = [], []
     out = motion
+    added = 0
     for r in regions:
-        out, info = finish_region(out, r, contacts)
+        if added:
+            r = Region(r.w0 + added, r.w1 + added, r.r1 + added, r.sources, (r.keep[0] + added, r.keep[1] + added),
+                       None if r.brake_from is None else r.brake_from + added, tuple(x + added for x in r.seams),
+                       r.into_core)
+        out, info, warp = finish_region(out, r, detect_contacts(out))
         infos.append(info)
-    return out, infos
+        warps.append(warp)
+        added += warp[2] - (warp[1] - warp[0])
+    return out, infos, warps
