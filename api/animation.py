@@ -136,7 +136,7 @@ class Animation:
     fps: float
     blend: str = "optimal"
     smoothness: float = 0.5
-    tracks: tuple = ()  # the synthesis input (source clips per element), for the report's join figures
+    synthesis_tracks: tuple = ()  # the synthesis input (source clips per element), for the report's join figures
 
     @property
     def text(self) -> str:
@@ -167,7 +167,7 @@ class Animation:
                            "skating_ratio": round(q.skating_ratio, 4), "quality": rounded(q),
                            "foot_skate_cm_s": {s: round(f.mean_speed_cm_s, 3) for s, f in foot_skate(m).items()}}
         joins = self.result.report()["joins"]
-        for j, q in zip(joins, join_quality(self.result, self.tracks)):
+        for j, q in zip(joins, join_quality(self.result, self.synthesis_tracks)):
             if q is not None:
                 j["quality"] = q
         return {

@@ -27,8 +27,9 @@ And the per-file figures of ``text2anim metrics`` at the file's own rate:
 - jerk: the third time derivative of joint positions (m/s³), its largest
   magnitude and its RMS over joints and frames of a frame range.
 
-Thresholds (documented here, used by ``benchmarks/bench_quality.py`` and the
-report): see :data:`BUILTIN_LIMITS` and :func:`criteria`.
+Thresholds (used by ``benchmarks/bench_quality.py``, ``text2anim compare`` and
+the report): a join against its source clips, :func:`against_sources`; motion
+made from the built-in library, :data:`BUILTIN_LIMITS` and :func:`against_limits`.
 """
 from __future__ import annotations
 
@@ -89,6 +90,16 @@ def skating_pairs(motion: Motion, floor: float = 0.0) -> np.ndarray:
     low = toes[..., 1] - floor < SKATE_HEIGHT  # (T, 2)
     skating = low[:-1] & low[1:] & (speed > SKATE_SPEED) & (avg > SKATE_SPEED)
     return np.logical_or(skating[:, 0], skating[:, 1])
+
+
+def skating_by_frame(motion: Motion, floor: float = 0.0) -> np.ndarray:
+    """:func:`skating_pairs` per frame, ``(T,)`` bool: frame t skates when the pair (t, t+1) does (the last never).
+
+    For code that counts skating over a frame range ``[a, b)``: ``skating_by_frame(m)[a:b].mean()``.
+    """
+    out = np.zeros(motion.n_frames, dtype=bool)
+    out[:max(0, motion.n_frames - 1)] = skating_pairs(motion, floor)
+    return out
 
 
 def skating_ratio(motion: Motion, floor: float = 0.0) -> float:

@@ -12,8 +12,8 @@ from scipy.spatial.transform import Rotation
 
 from shared_data import cmu, requires_cmu
 from text2anim.core import Motion, read_bvh
-from text2anim.core.metrics import (against_limits, against_sources, quality, root_acceleration, skating_pairs,
-                                    skating_ratio, toe_joints)
+from text2anim.core.metrics import (against_limits, against_sources, quality, root_acceleration, skating_by_frame,
+                                    skating_pairs, skating_ratio, toe_joints)
 
 pytestmark = requires_cmu
 FPS = 30.0
@@ -70,7 +70,9 @@ def test_the_speed_must_also_hold_over_five_frames():
     m = _held(30, lambda t: step)
     assert skating_ratio(m) == 0.0
     step[15:, 0] = 3.0 / FPS  # 3 m/s -> average 0.6 m/s: skates, on that pair only
-    assert skating_pairs(_held(30, lambda t: step)).nonzero()[0].tolist() == [14]
+    m = _held(30, lambda t: step)
+    assert skating_pairs(m).nonzero()[0].tolist() == [14]
+    assert skating_by_frame(m).nonzero()[0].tolist() == [14] and len(skating_by_frame(m)) == 30
 
 
 def test_a_velocity_step_of_the_hips_gives_its_acceleration_spread_over_the_average():
