@@ -101,3 +101,17 @@ def inertialize_at(motion: Motion, s: int, duration: float, joints=None) -> Moti
     root = motion.root_positions.copy()
     root[s:s + n] += dp
     return motion.replace(root_positions=root, rotations=rots)
+
+
+def _reversed(motion: Motion) -> Motion:
+    return motion.replace(root_positions=motion.root_positions[::-1].copy(), rotations=motion.rotations[::-1].copy())
+
+
+def inertialize_before(motion: Motion, s: int, duration: float, joints=None) -> Motion:
+    """:func:`inertialize_at` backwards in time: the frames *before* ``s`` take the offset, decaying over
+    ``duration`` s into the past, so that they arrive at frame ``s`` with its own velocity; frames from ``s``
+    on are unchanged (a blend that must hand over to a core it may not touch)."""
+    T = motion.n_frames
+    if not 2 <= T - s < T - 1:
+        return motion
+    return _reversed(inertialize_at(_reversed(motion), T - s, duration, joints))

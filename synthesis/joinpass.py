@@ -47,15 +47,15 @@ from text2anim.core.motion import Motion, unroll_quaternions
 
 from .blend import ease, lerp, sample, slerp
 from .footlock import solve_leg
-from .inertialize import inertialize_at
+from .inertialize import inertialize_at, inertialize_before
 
 SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
 PAD = 0.25  # s: the filtered pose fades in and out over this on each side of a region
 SIGMAS = (0.0, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0)  # frames at 30 fps (scaled with the frame rate)
 SLACK = 1.0  # the region may reach the sources' own figure times this
-#: m/s²: the hips may always accelerate this much (the low end of captured walking, timetable.md §3): clips
+#: m/s²: the hips may always accelerate this much (half the low end of captured walking, timetable.md §3): clips
 #: smoother than capture (the built-in library's: 1 m/s²) would otherwise have every join slowed down
-POP_FLOOR = 4.0
+POP_FLOOR = 2.0
 FLOOR = 0.0  # m
 STILL = 0.15  # m/s: an ankle slower than this in the engine's output is held where it is
 
@@ -291,6 +291,9 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     for s in sorted({region.w0, region.w1, *(x for x in region.seams if lo < x < hi)}):
         if s < hi - 2:
             seamed = inertialize_at(seamed, s, min(SEAM_DECAY, (hi - 1 - s) / fps))
+        elif s - lo > 2:  # the blend hands over to the next core right here: the blend, not the core, takes the
+            # velocity difference (decaying backwards from the core's first frame)
+            seamed = inertialize_before(seamed, s, min(SEAM_DECAY, (s - lo - 1) / fps))
     planted = _planted(motion, contacts)
     jk_lim, pop_lim = _limits(region.sources, fps)
     pop_lim = max(pop_lim, POP_FLOOR)
