@@ -29,7 +29,8 @@ FPS = 30.0
 #: name: (file stem, cut (s) or None for one gait cycle, core (s, in the cut))
 CUTS = {"walk": ("02_01_walk", None, None), "run": ("02_03_run", None, None),
         "pitch": ("124_01_throw", (1.8, 5.3), (0.6, 2.2)), "pickup": ("02_06_pickup", (0.2, 2.6), (0.5, 1.8)),
-        "frontkick": ("135_04_kick", (1.7, 4.0), (0.8, 1.9)), "dance": ("05_03_dance", (0.0, 3.6), (0.5, 3.0))}
+        "frontkick": ("135_04_kick", (1.7, 4.0), (0.8, 1.9)), "dance": ("05_03_dance", (0.0, 3.6), (0.5, 3.0)),
+        "run127": ("127_07_run", None, None), "shot": ("06_14_throw", (1.8, 4.0), (0.4, 1.5))}
 
 
 @pytest.fixture(scope="module")
@@ -59,7 +60,7 @@ def clips(tmp_path_factory):
 
 
 #: seconds a looping clip plays, as in the benchmark
-LOOPED = {"walk": 3.0, "run": 2.4}
+LOOPED = {"walk": 3.0, "run": 2.4, "run127": 2.4}
 
 
 def track_of(clips, first: str, second: str) -> Track:
@@ -96,3 +97,13 @@ def test_a_run_that_stops_brakes_over_its_own_steps(clips):
     assert join.metrics["post"]["added_s"] > 0.2  # braking steps: time the schedule did not have
     out = quality(res.motions[None])
     assert out.root_pop <= 1.2 * max(quality(c.motion).root_pop for _, c in (clips["run"], clips["pickup"]))
+
+
+def test_a_join_rendered_by_the_fallback_engine_says_so(clips):
+    """run127 → basketball shot: optimal blending leaves a foot skating in its blend, so the actor is
+    rendered by the constraint engine; the warnings and every join of that actor say which engine made it."""
+    res = synthesize_with("optimal", [track_of(clips, "run127", "shot")], FPS)
+    (join,) = res.joins
+    assert (join.metrics["engine"], join.metrics["fallback_from"]) == ("constraint", "optimal")
+    assert any("rendered with the constraint engine" in w for w in res.warnings)
+    assert "post" in join.metrics  # the fallback runs the same join post-pass
