@@ -24,8 +24,8 @@ import numpy as np
 
 from .composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
-from .engine import (Placed, Result, _fidelity, _mirrored_if_needed, _on_skeleton, _part_fidelity,
-                     _window_metrics, max_slide, skating_frames)
+from .engine import (Placed, Result, core_fidelity, mirrored_if_needed, on_skeleton, part_fidelity,
+                     window_metrics, max_slide, skating_frames)
 from text2anim.core.metrics import jerk
 from text2anim.core.motion import Motion
 from .plan import BlendInterval, Element, JoinReport, Track
@@ -75,11 +75,11 @@ def compose_parts(laid: Laid, parts: list[Element], whole: list[Element], fps: f
     for e in parts:
         prep = prepare(e, fps, repeats_as_one=False)
         laid.warnings.extend(prep.warnings)
-        prep, _, note = _on_skeleton(prep, tr.skeleton, e)
+        prep, _, note = on_skeleton(prep, tr.skeleton, e)
         if note:
             laid.warnings.append(note)
         part = e.body_part or e.clip.body_part or "upper"
-        donor = _mirrored_if_needed(e.clip.body_part, part, prep.motion)
+        donor = mirrored_if_needed(e.clip.body_part, part, prep.motion)
         start = int(round(e.start * fps))
         end = start + donor.n_frames
         if end + 1 > tr.n_frames:
@@ -112,7 +112,7 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
     fid: dict = {}
     for p in laid.placed:
         key = p.element.id
-        f = _fidelity(tr, p)
+        f = core_fidelity(tr, p)
         fid[key] = max(fid.get(key, 0.0), f)
         c0, c1 = p.offset + p.core[0], p.offset + p.core[1]
         el = elements.setdefault(key, {"actor": track.actor, "start": (p.offset + p.lead) / fps,
@@ -126,12 +126,12 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
             from text2anim.core.bodyparts import body_map
 
             legs = list(body_map(tr.skeleton).joints("lower"))
-            el["core_fidelity_untouched_cm"] = _fidelity(tr, p, legs)
+            el["core_fidelity_untouched_cm"] = core_fidelity(tr, p, legs)
     for eid, why in laid.skipped.items():
         elements[eid] = {"actor": track.actor, "executed": False, "reason": why}
     for e, comp, donor, core in comps:
         elements[e.id] = {"actor": track.actor, "start": comp.timing.ta0 / fps, "end": comp.timing.ta1 / fps,
-                          "part": comp.part, "part_fidelity_cm": _part_fidelity(tr, comp, donor, core)}
+                          "part": comp.part, "part_fidelity_cm": part_fidelity(tr, comp, donor, core)}
     by_id = {p.element.id: p for p in laid.placed}
     reports = []
     for rep, spans, first, second, extra in laid.joins:
@@ -139,14 +139,14 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
             reports.append(rep)
             continue
         window, region = spans
-        m = _window_metrics(tr, window[0], window[1], contacts, ftracks, skating)
+        m = window_metrics(tr, window[0], window[1], contacts, ftracks, skating)
         for a, b in extra:
-            m2 = _window_metrics(tr, a, b, contacts, ftracks, skating)
+            m2 = window_metrics(tr, a, b, contacts, ftracks, skating)
             m["jerk_max"] = max(m["jerk_max"], m2["jerk_max"])
             m["jerk_rms"] = float(np.hypot(m["jerk_rms"], m2["jerk_rms"]) / np.sqrt(2))
             m["skating_ratio"] = max(m["skating_ratio"], m2["skating_ratio"])
             m["max_slide_cm_s"] = max(m["max_slide_cm_s"], m2["max_slide_cm_s"])
-        reg = _window_metrics(tr, region[0], region[1], contacts, ftracks, skating)
+        reg = window_metrics(tr, region[0], region[1], contacts, ftracks, skating)
         m["region"] = {k: reg[k] for k in ("frames", "skating_ratio", "max_slide_cm_s", "foot_skate")}
         srcs = [first, second] if first is not None else [by_id.get(rep.first), None]
         src_m = [p.motion for p in srcs if p is not None]
