@@ -2,32 +2,41 @@
 
 An engine lays whole-body clips and blends them at joins; this pass then makes
 every join hold up the way ``timetable.md`` §3 measures it, against the join's
-own two source clips:
+own two source clips (as recorded, at the track's rate):
 
-1. **Velocity carried over** at the join's seams (the first and last frame of
-   its blend window): the outgoing velocity of every joint's rotation and of the
+1. **Velocity carried over** at the join's seams (every end of its blend
+   intervals): the outgoing velocity of every joint's local rotation and of the
    hips is carried into what follows and decayed by inertialization
    (:func:`synthesis.inertialize.inertialize_at`, Bollo's quintic) over
-   :data:`SEAM_DECAY` s.
-2. **Accelerations of the clips themselves.** Over the join's region (blend,
-   foot locks and releases, padded by :data:`PAD` s) the local rotations and the
-   hips' path are low-passed (a Gaussian over frames, quaternions unrolled and
-   renormalised) by the smallest width of :data:`SIGMAS` that brings the region's
-   joint jerk (p99, m/s³) and hips' horizontal acceleration (m/s², after a
-   3-frame average) within those of the two source clips; the filtered pose is
-   faded in and out over the padding with the quintic ``smooth`` profile, so
-   the pass adds no step of its own. A run that must stop thus takes as long
-   to brake as the clips' own strides allow, not one frame.
-3. **Feet stay put.** Wherever a foot is in contact in the engine's output
-   (its locks already hold it; toes and heels: the ankle's position *and*
-   world orientation are kept, so the toe stays), the filtered leg is solved by
-   IK back onto that foot (:func:`synthesis.footlock.solve_leg`); the
-   correction fades out over the air phase around the contact.
-4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot
-   whose ankle or toe would go below it is lifted by IK by the deficit
-   (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm
-   is lifted clear (:func:`clear_swings`). Cores are never touched (the
-   region stops at the first clip's core end and the next one's core start).
+   :data:`SEAM_DECAY` s; where a blend ends on the first frame of the next
+   clip's core, the blend takes the difference instead, decaying backwards
+   (:func:`~synthesis.inertialize.inertialize_before`), and the core is not touched.
+2. **The clips' own accelerations.** The join's region (blend, foot locks and
+   releases, :data:`PAD` s either side; from up to :data:`BRAKE` s before the
+   blend when the first clip loops) is **retimed** (:func:`warp_frames`): played
+   over up to 1.9 times its frames, the rate 1 at both ends and dipping where the
+   hips' speed changes fastest — a run that must stop takes its last strides
+   slower, braking over its own steps instead of halting in a frame — and its
+   local rotations and hips' path are **low-passed** (a Gaussian over frames,
+   quaternions unrolled and renormalised, faded in and out with the quintic
+   ``smooth`` profile). The smallest stretch of :data:`STRETCHES` and width of
+   :data:`SIGMAS` that bring the region's joint jerk p99 (m/s³) and hips'
+   horizontal acceleration (m/s², :func:`core.metrics.quality`) within the two
+   sources' are kept; the time added is reported (``post.added_s``) and the
+   elements after the join start that much later.
+3. **Feet stay put.** Wherever a foot is in contact in the engine's output, or
+   held still by its locks (toes and heels: the ankle's position *and* world
+   orientation are kept, so the toe stays), the leg is solved by IK back onto
+   that foot (:func:`synthesis.footlock.solve_leg`); the correction fades out
+   over the air phase around it.
+4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
+   ankle or toe would go below it is lifted by IK by the deficit
+   (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm is
+   lifted clear (:func:`clear_swings`).
+
+**Cores** are kept: the region stops at the next clip's core (except where the
+engine's own adaptation returns inside it) and starts after the first clip's
+(a looped first clip is all core, and its braking strides become the join's).
 
 All vectorised over frames and joints; deterministic.
 """
