@@ -220,9 +220,23 @@ def finish_joins(laid: Laid) -> None:
 
 
 def same_length(motions: dict) -> dict:
-    """Every actor's motion held (eased) to the longest: a join the post-pass gave more time lengthens its track."""
+    """Every actor's motion made as long as the longest: a join the post-pass gave more time lengthens its
+    actor's track, and the others play their last second (at least twice the difference) that much slower
+    (:func:`synthesis.joinpass.retime`) rather than holding a frozen pose; a track too short for that is held."""
+    from .joinpass import retime
+
     n = max((m.n_frames for m in motions.values()), default=0)
-    return {a: (ease_hold(m, n) if m.n_frames < n else m) for a, m in motions.items()}
+    out = {}
+    for actor, m in motions.items():
+        delta = n - m.n_frames
+        k = min(m.n_frames, max(2 * delta + 2, int(round(m.fps))))
+        if delta <= 0:
+            out[actor] = m
+        elif k > delta + 1:
+            out[actor] = retime(m, m.n_frames - k, m.n_frames, k + delta)
+        else:
+            out[actor] = ease_hold(m, n)
+    return out
 
 
 def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> Result:
