@@ -221,7 +221,7 @@ def finish_joins(laid: Laid) -> None:
 
 def same_length(motions: dict) -> dict:
     """Every actor's motion made as long as the longest: a join the post-pass gave more time lengthens its
-    actor's track, and the others play their last second (at least twice the difference) that much slower
+    actor's track, and the others play their last 2 s (at least 4x the difference) that much slower
     (:func:`synthesis.joinpass.retime`) rather than holding a frozen pose; a track too short for that is held."""
     from .joinpass import retime
 
@@ -229,7 +229,7 @@ def same_length(motions: dict) -> dict:
     out = {}
     for actor, m in motions.items():
         delta = n - m.n_frames
-        k = min(m.n_frames, max(2 * delta + 2, int(round(m.fps))))
+        k = min(m.n_frames, max(4 * delta + 2, int(round(2 * m.fps))))
         if delta <= 0:
             out[actor] = m
         elif k > delta + 1:
