@@ -24,8 +24,8 @@ import numpy as np
 
 from .composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
-from .engine import (Placed, Result, _fidelity, _mirrored_if_needed, _on_skeleton, _part_fidelity,
-                     _window_metrics, max_slide, skating_frames)
+from .engine import (Placed, Result, core_fidelity, mirrored_if_needed, on_skeleton, part_fidelity,
+                     window_metrics, max_slide, skating_frames)
 from text2anim.core.metrics import jerk
 from text2anim.core.motion import Motion
 from .plan import BlendInterval, Element, JoinReport, Track
@@ -53,7 +53,9 @@ class Laid:
 def shifted(parts: list[Element], delays: list) -> list[Element]:
     """Partial elements moved with the whole-body element they are laid on when a joiner moved it in time:
     ``delays`` lists ``(element id, seconds)``."""
-    moved = dict(delays)
+    moved: dict = {}
+    for eid, sec in delays:  # an element may be moved more than once (a join's room, then the post-pass)
+        moved[eid] = moved.get(eid, 0.0) + sec
     return [replace(e, start=e.start + moved[e.prev], end=e.end + moved[e.prev]) if e.prev in moved else e
             for e in parts]
 
@@ -73,11 +75,11 @@ def compose_parts(laid: Laid, parts: list[Element], whole: list[Element], fps: f
     for e in parts:
         prep = prepare(e, fps, repeats_as_one=False)
         laid.warnings.extend(prep.warnings)
-        prep, _, note = _on_skeleton(prep, tr.skeleton, e)
+        prep, _, note = on_skeleton(prep, tr.skeleton, e)
         if note:
             laid.warnings.append(note)
         part = e.body_part or e.clip.body_part or "upper"
-        donor = _mirrored_if_needed(e.clip.body_part, part, prep.motion)
+        donor = mirrored_if_needed(e.clip.body_part, part, prep.motion)
         start = int(round(e.start * fps))
         end = start + donor.n_frames
         if end + 1 > tr.n_frames:
@@ -110,7 +112,7 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
     fid: dict = {}
     for p in laid.placed:
         key = p.element.id
-        f = _fidelity(tr, p)
+        f = core_fidelity(tr, p)
         fid[key] = max(fid.get(key, 0.0), f)
         c0, c1 = p.offset + p.core[0], p.offset + p.core[1]
         el = elements.setdefault(key, {"actor": track.actor, "start": (p.offset + p.lead) / fps,
@@ -124,12 +126,12 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
             from text2anim.core.bodyparts import body_map
 
             legs = list(body_map(tr.skeleton).joints("lower"))
-            el["core_fidelity_untouched_cm"] = _fidelity(tr, p, legs)
+            el["core_fidelity_untouched_cm"] = core_fidelity(tr, p, legs)
     for eid, why in laid.skipped.items():
         elements[eid] = {"actor": track.actor, "executed": False, "reason": why}
     for e, comp, donor, core in comps:
         elements[e.id] = {"actor": track.actor, "start": comp.timing.ta0 / fps, "end": comp.timing.ta1 / fps,
-                          "part": comp.part, "part_fidelity_cm": _part_fidelity(tr, comp, donor, core)}
+                          "part": comp.part, "part_fidelity_cm": part_fidelity(tr, comp, donor, core)}
     by_id = {p.element.id: p for p in laid.placed}
     reports = []
     for rep, spans, first, second, extra in laid.joins:
@@ -137,14 +139,14 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
             reports.append(rep)
             continue
         window, region = spans
-        m = _window_metrics(tr, window[0], window[1], contacts, ftracks, skating)
+        m = window_metrics(tr, window[0], window[1], contacts, ftracks, skating)
         for a, b in extra:
-            m2 = _window_metrics(tr, a, b, contacts, ftracks, skating)
+            m2 = window_metrics(tr, a, b, contacts, ftracks, skating)
             m["jerk_max"] = max(m["jerk_max"], m2["jerk_max"])
             m["jerk_rms"] = float(np.hypot(m["jerk_rms"], m2["jerk_rms"]) / np.sqrt(2))
             m["skating_ratio"] = max(m["skating_ratio"], m2["skating_ratio"])
             m["max_slide_cm_s"] = max(m["max_slide_cm_s"], m2["max_slide_cm_s"])
-        reg = _window_metrics(tr, region[0], region[1], contacts, ftracks, skating)
+        reg = window_metrics(tr, region[0], region[1], contacts, ftracks, skating)
         m["region"] = {k: reg[k] for k in ("frames", "skating_ratio", "max_slide_cm_s", "foot_skate")}
         srcs = [first, second] if first is not None else [by_id.get(rep.first), None]
         src_m = [p.motion for p in srcs if p is not None]
@@ -161,10 +163,87 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
     return reports, elements
 
 
-def assemble(tracks, fps: float, lay, sway: bool = True) -> Result:
+def finish_joins(laid: Laid) -> None:
+    """Run the join post-pass (:mod:`synthesis.joinpass`) on ``laid.motion`` in place; each join's
+    report gets what the pass did (``post``). Where the pass gave a join more time (a region retimed
+    over more frames), the next element and every later one move later by as much: their placement,
+    the later joins' frames, and ``laid.delays`` (the partial elements laid on them follow)."""
+    from .joinpass import Region, finish_track, warp_frames
+
+    idx, regions = [], []
+    for k, (rep, spans, first, second, _extra) in enumerate(laid.joins):
+        if spans is None or first is None or second is None:
+            continue
+        (w0, w1), (_r0, r1) = spans
+        keep = (first.offset + first.core[1], second.offset + second.core[0])  # cores are kept (§4.2.5)
+        idx.append(k)
+        brake = first.offset + first.lead if first.cyclic else None  # a loop may take braking steps
+        fps = laid.motion.fps
+        seams = tuple(sorted({int(round(t * fps)) for i in rep.intervals for t in (i.begin, i.end)}))
+        sources = (first.element.clip.motion, second.element.clip.motion)  # as recorded: no loop seams, no holds
+        regions.append(Region(int(w0), int(w1), int(r1), sources, keep, brake, seams,
+                              rep.blend.startswith("motion_adaptation")))
+    laid.motion, infos, warps = finish_track(laid.motion, regions)
+    for k, info, (lo, hi, n_new, seam) in zip(idx, infos, warps):
+        rep, spans, first, second, extra = laid.joins[k]
+        delta = n_new - (hi - lo)
+        laid.joins[k] = (replace(rep, metrics={**rep.metrics, "post": info}), spans, first, second, extra)
+        if delta <= 0:
+            continue
+        src = warp_frames(hi - lo, n_new, seam)
+
+        def moved(f: int) -> int:
+            if f < lo:
+                return f
+            if f >= hi:
+                return f + delta
+            return lo + int(np.searchsorted(src, f - lo))
+
+        if first.cyclic:  # a loop's steps slowed for braking belong to the join, not to its core
+            first.core = (first.core[0], max(first.core[0], min(first.core[1], lo - first.offset)))
+        later = laid.placed[laid.placed.index(second):]
+        for p in later:
+            p.offset += delta
+        laid.delays.extend((p.element.id, delta / laid.motion.fps) for p in later if p.repetition == 0)
+        fps = laid.motion.fps
+        for j in range(k, len(laid.joins)):
+            r, sp, a, b, ex = laid.joins[j]
+            r = replace(r, intervals=tuple(replace(i, begin=moved(round(i.begin * fps)) / fps,
+                                                   end=moved(round(i.end * fps)) / fps) for i in r.intervals))
+            if "foot_locks" in r.metrics:
+                locks = [{**lk, **{key: moved(round(lk[key] * fps)) / fps for key in ("begin", "end", "release_end")}}
+                         for lk in r.metrics["foot_locks"]]
+                r = replace(r, metrics={**r.metrics, "foot_locks": locks})
+            if sp is not None:
+                sp = tuple((moved(x), moved(y)) for x, y in sp)
+            laid.joins[j] = (r, sp, a, b, [(moved(x), moved(y)) for x, y in ex])
+
+
+def same_length(motions: dict) -> dict:
+    """Every actor's motion made as long as the longest: a join the post-pass gave more time lengthens its
+    actor's track, and the others play their last 2 s (at least 4x the difference) that much slower
+    (:func:`synthesis.joinpass.retime`) rather than holding a frozen pose; a track too short for that is held."""
+    from .joinpass import retime
+
+    n = max((m.n_frames for m in motions.values()), default=0)
+    out = {}
+    for actor, m in motions.items():
+        delta = n - m.n_frames
+        k = min(m.n_frames, max(4 * delta + 2, int(round(2 * m.fps))))
+        if delta <= 0:
+            out[actor] = m
+        elif k > delta + 1:
+            out[actor] = retime(m, m.n_frames - k, m.n_frames, k + delta)
+        else:
+            out[actor] = ease_hold(m, n)
+    return out
+
+
+def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> Result:
     """Lay every track with ``lay(track, whole_elements) -> Laid``, compose its partial elements, measure.
 
-    ``tracks`` are already spread (:func:`synthesis.engine.spread_actors`) if they should be.
+    ``tracks`` are already spread (:func:`synthesis.engine.spread_actors`) if they should be. ``post``
+    runs the join post-pass (:func:`finish_joins`) before the compositions are laid.
     """
     motions, reports, elements, warnings = {}, [], {}, []
     for track in tracks:
@@ -174,10 +253,12 @@ def assemble(tracks, fps: float, lay, sway: bool = True) -> Result:
             raise ValueError(f"actor {track.actor!r} has no whole-body motion to lay compositions onto")
         laid = lay(track, whole)
         laid.motion = finish_whole(laid.motion, laid.placed, track.elements)
+        if post:
+            finish_joins(laid)
         comps = compose_parts(laid, shifted(parts, laid.delays), whole, fps, sway)
         reps, els = measure(track, laid, comps, fps)
         reports.extend(reps)
         elements.update(els)
         warnings.extend(laid.warnings)
         motions[track.actor] = laid.motion
-    return Result(motions, reports, fps, elements, tuple(warnings))
+    return Result(same_length(motions) if post else motions, reports, fps, elements, tuple(warnings))

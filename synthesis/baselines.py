@@ -28,11 +28,11 @@ import numpy as np
 
 from .align import match
 from .assemble import Laid, assemble
-from .engine import Placed, Result, _expand, spread_actors
+from .engine import Placed, Result, spread_actors
 from .method_select import cyclic_core_begin, cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
-from .optimal import Incoming, TrackState, extend, incoming, place_first
+from .track import Incoming, TrackState, extend, lay_elements
 from .plan import BlendInterval, JoinReport, Track
 from .posedist import distance_matrix, features, root_headings
 from .transition import Join, apply_join
@@ -121,14 +121,7 @@ def lay_track(track: Track, whole, fps: float, method: str, blend_s: float = BLE
     """The whole-body elements of a track joined by ``method`` (``pose`` or ``crossfade``)."""
     if method not in METHODS:
         raise ValueError(f"unknown baseline {method!r}; known: {', '.join(METHODS)}")
-    state = TrackState()
-    for e, rep in _expand(whole):
-        inc = incoming(e, rep, fps, state)
-        if state.motion is None:
-            place_first(state, inc, track.origin, track.heading)
-            continue
-        _join(state, inc, fps, method, blend_s)
-    return Laid(state.motion, state.placed, state.joins, state.warnings, state.skipped, state.delays)
+    return lay_elements(track, whole, fps, lambda state, inc: _join(state, inc, fps, method, blend_s))
 
 
 def synthesize_baseline(tracks: Sequence[Track], fps: float = 30.0, method: str = "crossfade", *,

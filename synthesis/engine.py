@@ -154,7 +154,7 @@ def max_slide(motion: Motion) -> float:
                for s, tr in foot_tracks(motion).items())
 
 
-def _window_metrics(track: Motion, w0: int, w1: int, contacts: FootContacts, ftracks: dict,
+def window_metrics(track: Motion, w0: int, w1: int, contacts: FootContacts, ftracks: dict,
                     skating: np.ndarray) -> dict:
     w0, w1 = max(0, w0), min(track.n_frames, w1)
     fs = _foot_skate_window(track, contacts, ftracks, w0, w1)
@@ -166,7 +166,7 @@ def _window_metrics(track: Motion, w0: int, w1: int, contacts: FootContacts, ftr
             "jerk_max": jk.max, "jerk_rms": jk.rms}
 
 
-def _fidelity(track: Motion, placed: Placed, joints=None) -> float:
+def core_fidelity(track: Motion, placed: Placed, joints=None) -> float:
     """Largest joint position error (cm) in the element's core between the track and the placed clip."""
     c0, c1 = placed.core
     lo = max(placed.offset + c0, 0)
@@ -185,7 +185,7 @@ def hips_frame(points: np.ndarray, hips: np.ndarray, hips_rot: np.ndarray) -> np
     return np.einsum("tji,tkj->tki", hips_rot, points - hips[:, None, :])
 
 
-def _part_fidelity(track: Motion, comp: Composed, donor: Motion, core: tuple[int, int]) -> float:
+def part_fidelity(track: Motion, comp: Composed, donor: Motion, core: tuple[int, int]) -> float:
     """Largest error (cm) of the switched part's joints relative to the hips (the hips' frame) against
     the partial clip, over the frames of its core that are fully switched (outside the blends)."""
     t = comp.timing
@@ -212,7 +212,7 @@ def _part_fidelity(track: Motion, comp: Composed, donor: Motion, core: tuple[int
 
 
 # --------------------------------------------------------------------------------------------- engine
-def _expand(elements: Sequence[Element]) -> list[tuple[Element, int]]:
+def expand_repeats(elements: Sequence[Element]) -> list[tuple[Element, int]]:
     """Whole-body elements in time order, a repeated non-cyclic one as its repetitions."""
     out = []
     for e in sorted(elements, key=lambda e: (e.start, e.id)):
@@ -228,7 +228,7 @@ def _expand(elements: Sequence[Element]) -> list[tuple[Element, int]]:
     return out
 
 
-def _mirrored_if_needed(clip_part: str | None, want: str | None, motion: Motion) -> Motion:
+def mirrored_if_needed(clip_part: str | None, want: str | None, motion: Motion) -> Motion:
     if not clip_part or not want:
         return motion
     sides = {"left": "right", "right": "left"}
@@ -240,7 +240,7 @@ def _mirrored_if_needed(clip_part: str | None, want: str | None, motion: Motion)
     return motion
 
 
-def _on_skeleton(prep: Prepared, skeleton, e: Element):
+def on_skeleton(prep: Prepared, skeleton, e: Element):
     """The prepared clip played on the track's skeleton (the first element's); a note when bone lengths differ."""
     sk = prep.motion.skeleton
     if skeleton is None:
@@ -268,10 +268,10 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
     tr: Motion | None = None
     skeleton = None
     floor = 0
-    for e, rep in _expand(whole):
+    for e, rep in expand_repeats(whole):
         prep: Prepared = prepare(e, fps, margin=e.clip.cyclic)
         warnings.extend(prep.warnings)
-        prep, skeleton, note = _on_skeleton(prep, skeleton, e)
+        prep, skeleton, note = on_skeleton(prep, skeleton, e)
         if note and rep == 0:
             warnings.append(note)
         contacts = detect_contacts(prep.motion)
@@ -312,11 +312,13 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
                                    "release_end": lk.release_end / fps} for lk in locks]
         rep_ = JoinReport(prev.element.id, e.id, method, blend, intervals, None, info, tuple(join.warnings))
         joins.append((rep_, (join.window, (join.window[0], region_end)), prev, p, []))
-    from .assemble import Laid, compose_parts, finish_whole  # assemble builds on this module's pieces
+    from .assemble import Laid, compose_parts, finish_joins, finish_whole, shifted  # assemble builds on this module's pieces
 
     # a looped clip's margin after its end is not played; the track holds to the last scheduled end
     laid = Laid(finish_whole(tr, placed, track.elements), placed, joins, warnings)
-    comps = compose_parts(laid, parts, whole, fps, sway)
+    if lock:
+        finish_joins(laid)
+    comps = compose_parts(laid, shifted(parts, laid.delays), whole, fps, sway)
     return laid, comps
 
 
@@ -333,7 +335,7 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
     """
     if spread:
         tracks = spread_actors(tracks)
-    from .assemble import measure  # assemble builds on this module's pieces
+    from .assemble import measure, same_length  # assemble builds on this module's pieces
 
     motions, reports, elements, warnings = {}, [], {}, []
     for track in tracks:
@@ -343,4 +345,4 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
         reports.extend(reps)
         elements.update(els)
         motions[track.actor] = laid.motion
-    return Result(motions, reports, fps, elements, tuple(warnings))
+    return Result(same_length(motions) if lock_feet else motions, reports, fps, elements, tuple(warnings))

@@ -15,7 +15,9 @@ All return a :class:`synthesis.engine.Result`.
 ``optimal`` keeps planted feet planted above all: when one of an actor's
 joins still skates after its own fallbacks (a run pulled into a stop), that
 actor is rendered by ``constraint`` instead if that one does not skate, and
-the report's warnings say so.
+the report's warnings say so, and each of that actor's joins carries ``engine: "constraint"`` and
+``fallback_from: "optimal"`` in its metrics. The constraint engine runs the same join post-pass
+(:mod:`synthesis.joinpass`), so the fallback's joins are held to the same criteria.
 """
 from __future__ import annotations
 
@@ -94,7 +96,8 @@ def _feet_first(result, tracks: Sequence[Track], fps: float, sway: bool):
         motions[actor] = other.motions[actor]
         elements.update({k: v for k, v in other.elements.items() if v.get("actor") == actor})
     joins = [j for j in result.joins if result.elements.get(j.second, {}).get("actor") not in swap]
-    joins += [j for j in other.joins if other.elements.get(j.second, {}).get("actor") in swap]
+    joins += [replace(j, metrics={**j.metrics, "engine": "constraint", "fallback_from": "optimal"})
+              for j in other.joins if other.elements.get(j.second, {}).get("actor") in swap]
     warnings = list(result.warnings) + [
         f"{actor or 'default'}: optimal blending left feet skating at join "
         f"{', '.join(f'{a}→{b}' for a, b in bad[actor])}; rendered with the constraint engine instead"

@@ -92,7 +92,7 @@ def _ankle(motion: Motion, side: str) -> int:
 REACH = 0.998
 
 
-def _leg_ik(motion: Motion, side: str, targets: np.ndarray) -> Motion:
+def solve_leg(motion: Motion, side: str, targets: np.ndarray) -> Motion:
     """:func:`core.ik.leg_ik` with targets pulled within :data:`REACH` of the leg's length and the
     knee bending towards the thigh's forward direction."""
     ankle = _ankle(motion, side)
@@ -130,7 +130,7 @@ def release(motion: Motion, side: str, begin: int, end: int, offset: np.ndarray,
     sub = motion[b:e]
     pose = sub.pose
     r_own = Rotation.from_matrix(pose.rotations[:, ankle])
-    solved = _leg_ik(sub, side, pose.positions[:, ankle] + offset)
+    solved = solve_leg(sub, side, pose.positions[:, ankle] + offset)
     solved = set_world_rotation(solved, ankle, (r_own * turn).as_quat())
     w = ease(ratio(e - b), profile)  # eq. (4), eased
     legs = list(body_map(motion.skeleton).joints(f"{side}_leg"))
@@ -196,7 +196,7 @@ def lock_foot(motion: Motion, side: str, locks: list[Lock], first: int, position
             e[prev_end:i0] = prev_e + u * (e[i0] - prev_e)
         prev_end = lk.end - first
         prev_d, prev_e = d[prev_end - 1].copy(), e[prev_end - 1].copy()
-    solved = _leg_ik(sub, side, p + d)
+    solved = solve_leg(sub, side, p + d)
     solved = set_world_rotation(solved, ankle, (r * Rotation.from_rotvec(e)).as_quat())
     out = motion.rotations.copy()
     out[first:stop] = solved.rotations
@@ -256,7 +256,7 @@ def lift_swing(motion: Motion, side: str, begin: int, end: int,
     target = p.copy()
     target[:, 1] += height * 64.0 * (u * (1.0 - u)) ** 3
     rot = Rotation.from_matrix(pose.rotations[:, ankle]).as_quat()
-    solved = set_world_rotation(_leg_ik(sub, side, target), ankle, rot)
+    solved = set_world_rotation(solve_leg(sub, side, target), ankle, rot)
     out = motion.rotations.copy()
     out[b:e] = solved.rotations
     return motion.replace(rotations=out)

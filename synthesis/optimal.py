@@ -67,21 +67,21 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .adaptation import adapt, pin_feet
-from .align import Rigid, align_through_foot, headings, place_at, to_heading_frame
+from .align import Rigid, align_through_foot, headings, to_heading_frame
 from text2anim.core.bodyparts import body_map
 from .assemble import Laid, assemble
 from .blend import blend, ease, sample
 from .blend_ranges import Bounds, Range, after, ranges
 from .blend_search import Found, Weights, best, evaluate, evaluate_motions, preset
 from text2anim.core.contacts import FootContacts, detect_contacts
-from .engine import Placed, Result, _expand, _on_skeleton, skating_frames, spread_actors
+from .engine import Placed, Result, skating_frames, spread_actors
 from .method_select import (Choice, cyclic_core_begin, cyclic_core_end, phase_for, select, steps,
                             support_by_gap)
 from text2anim.core.motion import Motion, concatenate
 from .plan import BlendInterval, Element, JoinReport, Track
 from .posedist import distance, features, part_joints
 from .switching import foot_points
-from .timing import KNEE, ease_hold, ease_lead, hold, prepare
+from .track import Incoming, TrackState, extend, lay_elements
 from .transition import PLANTED_WEIGHT, Join, apply_join
 from .weights import hermite_weights, plan_partial, slope
 
@@ -91,41 +91,6 @@ MAX_SHIFT = 0.5  # s: the most an element is delayed for room
 CORE_TOLERANCE = 0.1  # s: cores overlapping by less than this are taken as touching (a frame of contact noise)
 SAME_FEET_CM = 1.0
 RUNNERS_UP = 5  # next-best lower-body intervals tried when the best one's join would skate  # cm: an adaptation moving no foot further needs no return step (S3)
-
-
-@dataclass(frozen=True)
-class Incoming:
-    """The next element, prepared and not yet placed: its frames (own), core ``[c0, c1)`` (own
-    frames), contacts, whether it loops, and where it is on the track: frame 0 at ``offset``, played
-    from own frame ``lead`` to ``stop`` (one past)."""
-
-    element: Element
-    motion: Motion
-    core: tuple[int, int]
-    contacts: FootContacts
-    cyclic: bool
-    lead: int
-    stop: int
-    offset: int
-    rep: int = 0
-
-    @property
-    def first(self) -> int:
-        """Track frame the element starts."""
-        return self.offset + self.lead
-
-    @property
-    def end(self) -> int:
-        """One past its last track frame."""
-        return self.offset + self.stop
-
-    def moved(self, frames: int) -> "Incoming":
-        """The element delayed by ``frames`` (all of it, start, core and end)."""
-        return replace(self, offset=self.offset + frames)
-
-    def at_phase(self, offset: int) -> "Incoming":
-        """A looped element entered at another phase: same start and end on the track, other offset."""
-        return replace(self, offset=offset, lead=self.first - offset, stop=self.end - offset)
 
 
 @dataclass(frozen=True)
@@ -600,16 +565,6 @@ def settle(out: Motion, locks, window: tuple[int, int], plan: Plan) -> Plan | No
     return replace(plan, rigid=rigid, placed=placed, info=info)
 
 
-def extend(tr: Motion, n: int, floor: int) -> Motion:
-    """The track held to ``n`` frames: eased into its last pose when the easing starts at or after
-    ``floor`` (frames before it are final), else simply held."""
-    if tr.n_frames >= n:
-        return tr
-    if tr.n_frames - 1 - KNEE * tr.fps >= floor:
-        return ease_hold(tr, n)
-    return hold(tr, n)
-
-
 # ---------------------------------------------------------------------------------------------- engine
 def report_of(prev: Placed, inc: Incoming, plan: Plan, fps: float, locks) -> JoinReport:
     """The join's :class:`~synthesis.plan.JoinReport` (timetable.md §2)."""
@@ -626,46 +581,6 @@ def report_of(prev: Placed, inc: Incoming, plan: Plan, fps: float, locks) -> Joi
                                "release_end": lk.release_end / fps} for lk in locks]
     return JoinReport(prev.element.id, e.id, method, plan.choice.method, intervals, plan.cost(), info,
                       tuple(plan.warnings))
-
-
-@dataclass
-class TrackState:
-    """A track being laid: the frames so far, the elements placed, the joins, the earliest frame a new
-    blend may start (``floor``), and the elements a join moved in time (``delays``: ``(id, s)``)."""
-
-    motion: Motion | None = None
-    placed: list = field(default_factory=list)
-    joins: list = field(default_factory=list)
-    warnings: list = field(default_factory=list)
-    skipped: dict = field(default_factory=dict)
-    floor: int = 0
-    delays: list = field(default_factory=list)
-    skeleton: object = None
-
-
-def incoming(e: Element, rep: int, fps: float, state: TrackState) -> Incoming:
-    """Prepare an element for the track (speed, loop with a margin cycle, hold/trim)."""
-    prep = prepare(e, fps, margin=e.clip.cyclic)
-    state.warnings.extend(prep.warnings)
-    prep, state.skeleton, note = _on_skeleton(prep, state.skeleton, e)
-    if note and rep == 0:
-        state.warnings.append(note)
-    lead = prep.lead
-    start = int(round(e.start * fps))
-    motion = prep.motion
-    if not motion.root_positions.flags.writeable:  # cached library clips are read-only; scipy's Rotation.apply
-        motion = motion.replace(root_positions=motion.root_positions.copy())  # (align.match) wants writable rows
-    return Incoming(e, motion, prep.core, detect_contacts(motion), e.clip.cyclic, lead,
-                    prep.motion.n_frames - lead, start - lead, rep)
-
-
-def place_first(state: TrackState, inc: Incoming, origin, heading: float) -> None:
-    """The first element of a track, at its origin and heading, its first pose held until it starts."""
-    rigid = place_at(inc.motion, origin, heading, frame=inc.lead)
-    m = rigid.apply(inc.motion)
-    state.motion = ease_lead(m[inc.lead:], inc.first)
-    state.placed.append(Placed(inc.element, m, inc.offset, inc.core, inc.contacts, inc.cyclic, rigid, inc.rep,
-                               inc.lead, inc.stop))
 
 
 def _eased(plan: Plan) -> Plan:
@@ -777,14 +692,7 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
 def lay_track(track: Track, whole: Sequence[Element], fps: float, weights: Weights, lock: bool = True,
               min_blend: float = MIN_BLEND) -> Laid:
     """The whole-body elements of one track joined by optimal blending (see the module docstring)."""
-    state = TrackState()
-    for e, rep in _expand(whole):
-        inc = incoming(e, rep, fps, state)
-        if state.motion is None:
-            place_first(state, inc, track.origin, track.heading)
-            continue
-        join_next(state, inc, fps, weights, lock, min_blend)
-    return Laid(state.motion, state.placed, state.joins, state.warnings, state.skipped, state.delays)
+    return lay_elements(track, whole, fps, lambda state, inc: join_next(state, inc, fps, weights, lock, min_blend))
 
 
 def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: float = 0.5, *,
@@ -811,4 +719,4 @@ def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: f
     def lay(track: Track, whole):
         return lay_track(track, whole, fps, weights, lock_feet, min_blend)
 
-    return assemble(tracks, fps, lay, sway)
+    return assemble(tracks, fps, lay, sway, post=lock_feet)

@@ -39,7 +39,8 @@ from .engine import Result
 from .method_select import cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
-from .optimal import MIN_BLEND, Skip, TrackState, extend, incoming, join_next, place_first, plan_join
+from .optimal import MIN_BLEND, Skip, join_next, plan_join
+from .track import TrackState, extend, incoming, place_first
 from .plan import Clip, Element
 from .timing import KNEE
 

@@ -78,6 +78,11 @@ def test_animate_takes_blend_and_smoothness(tmp_path, library_db):
     proc = run("歩いて、走る。", "--smoothness", "0", "-o", out, "--report", report, "--db", library_db)
     assert proc.returncode == 0, proc.stderr
     doc = json.loads(report.read_text())
-    assert doc["synthesis"]["blend"] == "optimal" and doc["joins"][0]["blend"] == "motion_transition"
-    assert {"time", "pose", "velocity", "total"} == set(doc["joins"][0]["cost"])
+    assert doc["synthesis"] == {"blend": "optimal", "smoothness": 0.0}
+    join = doc["joins"][0]
+    if join["metrics"].get("fallback_from") == "optimal":
+        # optimal blending left a foot skating on the captured clips: the join says which engine drew it
+        assert join["metrics"]["engine"] == "constraint" and any("constraint engine" in w for w in doc["warnings"])
+    else:
+        assert join["blend"] == "motion_transition" and {"time", "pose", "velocity", "total"} == set(join["cost"])
     assert_clean_error(run("歩く。", "--blend", "magic", "--db", library_db, cwd=tmp_path), "magic")

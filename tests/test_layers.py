@@ -35,15 +35,6 @@ MAY_IMPORT = {
 ALLOWED = {
     # engine.py and assemble.py import each other (assemble needs engine's helpers, engine calls assemble)
     ("cycle", "text2anim.synthesis.assemble", "text2anim.synthesis.engine"),
-    # engine.py's private helpers used by its neighbours
-    ("private", "text2anim.synthesis.assemble", "text2anim.synthesis.engine._fidelity"),
-    ("private", "text2anim.synthesis.assemble", "text2anim.synthesis.engine._mirrored_if_needed"),
-    ("private", "text2anim.synthesis.assemble", "text2anim.synthesis.engine._on_skeleton"),
-    ("private", "text2anim.synthesis.assemble", "text2anim.synthesis.engine._part_fidelity"),
-    ("private", "text2anim.synthesis.assemble", "text2anim.synthesis.engine._window_metrics"),
-    ("private", "text2anim.synthesis.baselines", "text2anim.synthesis.engine._expand"),
-    ("private", "text2anim.synthesis.optimal", "text2anim.synthesis.engine._expand"),
-    ("private", "text2anim.synthesis.optimal", "text2anim.synthesis.engine._on_skeleton"),
 }
 
 

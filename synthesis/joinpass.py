@@ -1,0 +1,356 @@
+"""The join post-pass every joining engine of ours runs on a laid track (optimal and constraint).
+
+An engine lays whole-body clips and blends them at joins; this pass then makes
+every join hold up the way ``timetable.md`` §3 measures it, against the join's
+own two source clips (as recorded, at the track's rate):
+
+1. **Velocity carried over** at the join's seams (every end of its blend
+   intervals): the outgoing velocity of every joint's local rotation and of the
+   hips is carried into what follows and decayed by inertialization
+   (:func:`synthesis.inertialize.inertialize_at`, Bollo's quintic) over
+   :data:`SEAM_DECAY` s; where a blend ends on the first frame of the next
+   clip's core, the blend takes the difference instead, decaying backwards
+   (:func:`~synthesis.inertialize.inertialize_before`), and the core is not touched.
+2. **The clips' own accelerations.** The join's region (blend, foot locks and
+   releases, :data:`PAD` s either side; from up to :data:`BRAKE` s before the
+   blend when the first clip loops) is **retimed** (:func:`warp_frames`): played
+   over up to 1.9 times its frames, the rate 1 at both ends and dipping where the
+   hips' speed changes fastest — a run that must stop takes its last strides
+   slower, braking over its own steps instead of halting in a frame — and its
+   local rotations and hips' path are **low-passed** (a Gaussian over frames,
+   quaternions unrolled and renormalised, faded in and out with the quintic
+   ``smooth`` profile). The smallest stretch of :data:`STRETCHES` and width of
+   :data:`SIGMAS` that bring the region's joint jerk p99 (m/s³) and hips'
+   horizontal acceleration (m/s², :func:`core.metrics.quality`) within the two
+   sources' are kept; the time added is reported (``post.added_s``) and the
+   elements after the join start that much later.
+3. **Feet stay put.** Wherever a foot is in contact in the engine's output, or
+   held still by its locks (toes and heels: the ankle's position *and* world
+   orientation are kept, so the toe stays), the leg is solved by IK back onto
+   that foot (:func:`synthesis.footlock.solve_leg`); the correction fades out
+   over the air phase around it.
+4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
+   ankle or toe would go below it is lifted by IK by the deficit
+   (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm is
+   lifted clear (:func:`clear_swings`).
+
+**Cores** are kept: the region stops at the next clip's core (except where the
+engine's own adaptation returns inside it) and starts after the first clip's
+(a looped first clip is all core, and its braking strides become the join's).
+
+All vectorised over frames and joints; deterministic.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import gaussian_filter1d, maximum_filter1d, uniform_filter1d
+from scipy.spatial.transform import Rotation
+
+from text2anim.core.bodyparts import body_map
+from text2anim.core.contacts import detect_contacts, runs
+from text2anim.core.ik import set_world_rotation
+from text2anim.core.metrics import quality
+from text2anim.core.motion import Motion, unroll_quaternions
+
+from .blend import ease, lerp, sample, slerp
+from .footlock import solve_leg
+from .inertialize import inertialize_at, inertialize_before
+
+SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
+PAD = 0.25  # s: the filtered pose fades in and out over this on each side of a region
+SIGMAS = (0.0, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0)  # frames at 30 fps (scaled with the frame rate)
+SLACK = 1.0  # the region may reach the sources' own figure times this
+#: m/s²: the hips may always accelerate this much (half the low end of captured walking, timetable.md §3): clips
+#: smoother than capture (the built-in library's: 1 m/s²) would otherwise have every join slowed down
+POP_FLOOR = 2.0
+FLOOR = 0.0  # m
+STILL = 0.15  # m/s: an ankle slower than this in the engine's output is held where it is
+
+
+@dataclass(frozen=True)
+class Region:
+    """One join to finish: blend window ``[w0, w1)`` and region end ``r1`` (track frames), and the
+    join's two source clips (their figures are the limits)."""
+
+    w0: int
+    w1: int
+    r1: int
+    sources: tuple
+    keep: tuple[int, int] = (0, 1 << 30)  # track frames the pass may touch: after A's core, before B's
+    brake_from: int | None = None  # a looped first clip: the pass may slow its steps from this frame
+    seams: tuple[int, ...] = ()  # more frames where the engine switches blends (ends of its intervals)
+    into_core: bool = False  # the engine's own blends reach into the next core (an adaptation's return)
+
+
+def _limits(sources, fps: float) -> tuple[float, float]:
+    """The largest jerk p99 (m/s³) and root pop (m/s²) of the source clips, at ``fps`` (:func:`core.metrics.quality`)."""
+    qs = [quality(m, fps) for m in sources if m is not None and m.n_frames >= 6]
+    return max([q.jerk_p99 for q in qs] or [0.0]), max([q.root_pop for q in qs] or [0.0])
+
+
+def _fade(n: int, pad: int) -> np.ndarray:
+    """``(n,)``: 0 → 1 over the first ``pad`` frames, 1, 1 → 0 over the last ``pad`` (quintic, C2)."""
+    e = np.ones(n)
+    if pad > 0:
+        up = ease(np.linspace(0.0, 1.0, pad + 1)[:-1], "smooth")
+        e[:pad] = up
+        e[n - pad:] = up[::-1]
+    return e
+
+
+def low_pass(motion: Motion, lo: int, hi: int, sigma: float, pad: int) -> Motion:
+    """``motion`` with local rotations and root position Gaussian-filtered (``sigma`` frames) over
+    ``[lo, hi)``, faded in and out over ``pad`` frames at each end."""
+    if sigma <= 0 or hi - lo < 2 * pad + 1:
+        return motion
+    q = unroll_quaternions(motion.rotations[lo:hi])
+    qs = gaussian_filter1d(q, sigma, axis=0, mode="nearest")
+    qs /= np.linalg.norm(qs, axis=-1, keepdims=True)
+    e = _fade(hi - lo, pad)
+    rots = motion.rotations.copy()
+    rots[lo:hi] = slerp(q, qs, e[:, None])
+    root = motion.root_positions.copy()
+    root[lo:hi] = lerp(root[lo:hi], gaussian_filter1d(root[lo:hi], sigma, axis=0, mode="nearest"), e)
+    return motion.replace(root_positions=root, rotations=rots)
+
+
+def _soft(mask: np.ndarray, fps: float) -> np.ndarray:
+    """A contact mask as a weight: 1 on contact frames, falling smoothly to 0 over about 0.1 s around them."""
+    w = np.clip(2.0 * gaussian_filter1d(mask.astype(np.float64), 0.05 * fps, mode="nearest"), 0.0, 1.0)
+    w[mask] = 1.0
+    return w
+
+
+def keep_feet(motion: Motion, ref: Motion, lo: int, hi: int, planted: dict) -> Motion:
+    """``motion`` with its legs solved over ``[lo, hi)`` so that every foot ``planted`` in ``ref`` (per side,
+    ``(T,)`` bool) has ``ref``'s ankle position and world orientation; the correction fades out around."""
+    if hi - lo < 2:
+        return motion
+    feet = body_map(motion.skeleton).feet
+    out = motion
+    for side, (ankle, _toe) in feet.items():
+        c = _soft(maximum_filter1d(planted[side], 3), motion.fps)[lo:hi]  # held a frame either side too
+        if not c.any():
+            continue
+        sub = out[lo:hi]
+        now = sub.pose
+        want = ref.pose
+        target = lerp(now.positions[:, ankle], want.positions[lo:hi, ankle], c)
+        r_now = now.quaternions()[:, ankle]
+        r_want = Rotation.from_matrix(want.rotations[lo:hi, ankle]).as_quat()
+        solved = set_world_rotation(solve_leg(sub, side, target), ankle, slerp(r_now, r_want, c))
+        rots = out.rotations.copy()
+        rots[lo:hi] = solved.rotations
+        out = out.replace(rotations=rots)
+    return out
+
+
+def lift_off_floor(motion: Motion, lo: int, hi: int, floor: float = FLOOR) -> Motion:
+    """``motion`` with every foot whose ankle or toe goes below ``floor`` over ``[lo, hi)`` lifted by IK by
+    the deficit (widened by 2 frames each side and smoothed, so the lift eases in and out)."""
+    feet = body_map(motion.skeleton).feet
+    out = motion
+    for side, joints in feet.items():
+        p = out.positions
+        deficit = np.maximum(0.0, floor - p[:, list(joints), 1].min(axis=1))
+        deficit[:lo] = 0.0
+        deficit[hi:] = 0.0
+        if not (deficit > 5e-4).any():
+            continue
+        d = gaussian_filter1d(maximum_filter1d(deficit, 5, mode="nearest"), 1.0, mode="nearest")
+        d = np.maximum(d, deficit)
+        ankle = joints[0]
+        for lo, hi in runs(d > 1e-5):
+            lo, hi = int(lo), int(hi)
+            sub = out[lo:hi]
+            pose = sub.pose
+            target = pose.positions[:, ankle] + np.stack([np.zeros(hi - lo), d[lo:hi], np.zeros(hi - lo)], 1)
+            rot = pose.quaternions()[:, ankle]
+            solved = set_world_rotation(solve_leg(sub, side, target), ankle, rot)
+            rots = out.rotations.copy()
+            rots[lo:hi] = solved.rotations
+            out = out.replace(rotations=rots)
+    return out
+
+
+SWING_CLEARANCE = 0.055  # m: a foot moving faster than SWING_SPEED keeps its toe this high (GMD counts < 5 cm)
+SWING_SPEED = 0.5  # m/s, the GMD skating speed
+
+
+def clear_swings(motion: Motion, lo: int, hi: int) -> Motion:
+    """``motion`` with every foot that skims the floor over ``[lo, hi)`` lifted: where its toe is lower than
+    :data:`SWING_CLEARANCE` while it moves faster than :data:`SWING_SPEED` (5-frame mean) — a shuffle a
+    blend of two foot placements makes, counted as skating — the ankle is raised by IK (world orientation
+    kept, so the toe rises as much), by the shortfall widened by 2 frames and smoothed."""
+    feet = body_map(motion.skeleton).feet
+    out = motion
+    fps = motion.fps
+    for side, (ankle, toe) in feet.items():
+        p = out.positions
+        xz = p[:, toe][:, [0, 2]]
+        v = np.zeros(len(p))
+        v[1:] = np.linalg.norm(np.diff(xz, axis=0), axis=1) * fps
+        fast = (v > SWING_SPEED) & (uniform_filter1d(v, 5, mode="nearest") > SWING_SPEED)
+        short = np.where(fast, np.maximum(0.0, SWING_CLEARANCE - p[:, toe, 1]), 0.0)
+        short[:lo] = 0.0
+        short[hi:] = 0.0
+        if not (short > 1e-3).any():
+            continue
+        d = gaussian_filter1d(maximum_filter1d(short, 5, mode="nearest"), 1.0, mode="nearest")
+        d = np.maximum(d, short)
+        for a, b in runs(d > 1e-5):
+            a, b = int(a), int(b)
+            sub = out[a:b]
+            pose = sub.pose
+            target = pose.positions[:, ankle] + np.stack([np.zeros(b - a), d[a:b], np.zeros(b - a)], 1)
+            solved = set_world_rotation(solve_leg(sub, side, target), ankle, pose.quaternions()[:, ankle])
+            rots = out.rotations.copy()
+            rots[a:b] = solved.rotations
+            out = out.replace(rotations=rots)
+    return out
+
+
+#: stretch factors tried for a join's region (its new length over its old); below 2 the rate stays positive
+STRETCHES = (1.0, 1.4, 1.7, 1.9)
+BRAKE = 0.6  # s: how far before its blend a looped first clip may be slowed (its braking steps)
+
+
+def _smoothstep_area(u: np.ndarray) -> np.ndarray:
+    """``∫₀ᵘ (6x⁵ - 15x⁴ + 10x³) dx = u⁶ - 3u⁵ + 2.5u⁴`` (1/2 at ``u = 1``)."""
+    return u ** 6 - 3.0 * u ** 5 + 2.5 * u ** 4
+
+
+def warp_frames(n: int, n_new: int, seam: int | None = None) -> np.ndarray:
+    """``(n_new,)`` source positions (frames, in ``[0, n)``) of a region of ``n`` frames played over ``n_new``.
+
+    The playback rate is 1 at both ends (the velocity carried in and out is the motion's own) and dips
+    smoothly to ``1 - c`` where the region's frame ``seam`` plays (default: its middle), with
+    ``c = 2 (n_new - n) / n_new``: rising and falling by the quintic ``smoothstep``, so the rate is C2.
+    Slowed there, the motion's own changes of speed (a run that stops: the hips from 3 m/s to standing)
+    are spread over more time — the clip's own steps, time-warped — instead of happening in a frame.
+    """
+    if n_new <= n:
+        return np.arange(n, dtype=np.float64)
+    seam = n // 2 if seam is None else int(np.clip(seam, 1, n - 1))
+    c = 2.0 * (n_new - n) / n_new
+    ts = seam / (1.0 - c / 2.0)  # the new time at which the seam plays
+    tau = np.arange(n_new, dtype=np.float64)
+    before = ts * _smoothstep_area(np.clip(tau / ts, 0.0, 1.0))
+    after = (n_new - ts) * (0.5 - _smoothstep_area(np.clip((n_new - tau) / (n_new - ts), 0.0, 1.0)))
+    area = np.where(tau <= ts, before, ts / 2.0 + after)
+    return np.clip(tau - c * area, 0.0, n - 1e-9)
+
+
+def retime(motion: Motion, lo: int, hi: int, n_new: int, seam: int | None = None) -> Motion:
+    """``motion`` with frames ``[lo, hi)`` played over ``n_new`` frames by :func:`warp_frames` (later frames follow)."""
+    if n_new <= hi - lo:
+        return motion
+    from text2anim.core.motion import concatenate
+
+    mid = sample(motion, lo + warp_frames(hi - lo, n_new, seam))
+    return concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
+
+
+def _planted(ref: Motion, contacts) -> dict:
+    """Per side, ``(T,)``: the foot is in contact or held still by the engine (its ankle slower than :data:`STILL`)."""
+    out = {}
+    p = ref.positions
+    for side, (ankle, _toe) in body_map(ref.skeleton).feet.items():
+        still = np.zeros(ref.n_frames, dtype=bool)
+        still[1:] = np.linalg.norm(np.diff(p[:, ankle][:, [0, 2]], axis=0), axis=1) * ref.fps < STILL
+        out[side] = contacts.of(side)[:ref.n_frames] | still
+    return out
+
+
+def _hardest(m: Motion, lo: int, hi: int) -> int:
+    """The frame of ``[lo, hi)`` (relative to ``lo``) where the hips' horizontal speed changes fastest:
+    where a retiming slows the motion most (:func:`warp_frames`' ``seam``)."""
+    xz = m.root_positions[max(0, lo - 1):hi + 1, [0, 2]]
+    if len(xz) < 4:
+        return (hi - lo) // 2
+    speed = np.linalg.norm(np.diff(xz, axis=0), axis=1)
+    acc = np.abs(np.diff(uniform_filter1d(speed, 3, mode="nearest")))
+    return int(np.clip(np.argmax(acc) + (1 if lo > 0 else 0), 1, hi - lo - 1))
+
+
+def _figures(m: Motion, lo: int, hi: int) -> tuple[float, float]:
+    """Jerk p99 and root pop of ``m`` over ``[lo, hi)`` and 3 frames around (its own rate)."""
+    q = quality(m[max(0, lo - 3):min(m.n_frames, hi + 3)], None)
+    return q.jerk_p99, q.root_pop
+
+
+def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int]]:
+    """One join finished (steps 1–4 of the module docstring).
+
+    Returns the motion, what was done, and ``(lo, hi, n_new, seam)``: the frames ``[lo, hi)`` now play
+    over ``n_new`` (:func:`warp_frames` with ``seam``; later frames are ``n_new - (hi - lo)`` later).
+    """
+    fps = motion.fps
+    T = motion.n_frames
+    pad0 = max(1, int(round(PAD * fps)))
+    lo = max(0, region.w0 - pad0, min(region.keep[0], region.w0))
+    if region.brake_from is not None:
+        lo = max(0, min(lo, max(region.brake_from, region.w0 - int(round(BRAKE * fps)))))
+    # an adaptation returns to the next clip's own legs inside its core: the pass follows the engine there
+    hi = min(T, max(region.r1, region.w1) + pad0,
+             max(region.keep[1], region.w1 + 1, region.r1 if region.into_core else 0))
+    seamed = motion
+    for s in sorted({region.w0, region.w1, *(x for x in region.seams if lo < x < hi)}):
+        if s < hi - 2:
+            seamed = inertialize_at(seamed, s, min(SEAM_DECAY, (hi - 1 - s) / fps))
+        elif s - lo > 2:  # the blend hands over to the next core right here: the blend, not the core, takes the
+            # velocity difference (decaying backwards from the core's first frame)
+            seamed = inertialize_before(seamed, s, min(SEAM_DECAY, (s - lo - 1) / fps))
+    planted = _planted(motion, contacts)
+    jk_lim, pop_lim = _limits(region.sources, fps)
+    pop_lim = max(pop_lim, POP_FLOOR)
+    scale = fps / 30.0
+    best = None
+    whi = max(min(hi, region.keep[1]), region.w0 + 2)  # retimed: [lo, whi), never the next core
+    seam = _hardest(seamed, lo, whi)
+    for stretch in STRETCHES:
+        n_new = int(round((whi - lo) * stretch))
+        base, ref = retime(seamed, lo, whi, n_new, seam), retime(motion, lo, whi, n_new, seam)
+        idx = np.round(np.concatenate([np.arange(lo), lo + warp_frames(whi - lo, n_new, seam),
+                                       np.arange(whi, T)])).astype(int)
+        mask = {k: v[np.clip(idx, 0, T - 1)] for k, v in planted.items()}
+        h2 = hi + max(n_new, whi - lo) - (whi - lo)
+        pad = max(1, min(pad0, (h2 - lo) // 3))
+        for sigma in SIGMAS:
+            cand = keep_feet(low_pass(base, lo, h2, sigma * scale, pad), ref, lo, h2, mask)
+            jk, pop = _figures(cand, lo, h2)
+            score = max(jk / max(jk_lim * SLACK, 1e-9), pop / max(pop_lim * SLACK, 1e-9))
+            if best is None or score < best[0] - 1e-9:
+                best = (score, sigma, stretch, cand, jk, pop, h2)
+            if score <= 1.0:
+                break
+        if best[0] <= 1.0:
+            break
+    score, sigma, stretch, cand, jk, pop, h2 = best
+    cand = lift_off_floor(clear_swings(cand, lo, h2), lo, h2)
+    info = {"smoothing_frames": sigma, "stretch": stretch, "added_s": round((h2 - hi) / fps, 3),
+            "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
+            "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
+    return cand, info, (lo, whi, whi - lo + (h2 - hi), seam)
+
+
+def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, int]]]:
+    """All joins of a track finished in time order (the clips' own floor is the import's: only the joins'
+    regions are lifted off it). Returns the motion, per join what was done, and per join the retiming
+    ``(lo, hi, n_new, seam)`` in the frames of the motion as it was *before* that join (earlier joins' added
+    frames included)."""
+    infos, warps = [], []
+    out = motion
+    added = 0
+    for r in regions:
+        if added:
+            r = Region(r.w0 + added, r.w1 + added, r.r1 + added, r.sources, (r.keep[0] + added, r.keep[1] + added),
+                       None if r.brake_from is None else r.brake_from + added, tuple(x + added for x in r.seams),
+                       r.into_core)
+        out, info, warp = finish_region(out, r, detect_contacts(out))
+        infos.append(info)
+        warps.append(warp)
+        added += warp[2] - (warp[1] - warp[0])
+    return out, infos, warps

@@ -1,0 +1,123 @@
+"""Laying one actor's track: the element coming in, the state of the track so far, the loop over elements.
+
+Every joiner of whole-body motions (optimal blending, the pose and crossfade baselines) lays a track the
+same way (:func:`lay_elements`): each element (a repeated non-cyclic one as its repetitions,
+:func:`synthesis.engine.expand_repeats`) is prepared (:func:`incoming`: speed, loop with a margin
+cycle, hold or trim); the first is placed at the track's origin and heading (:func:`place_first`), each
+next one is joined to the track so far by the joiner's own ``join(state, incoming)``. Frames on the
+track; seconds only in the report.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
+
+from text2anim.core.contacts import FootContacts, detect_contacts
+from text2anim.core.motion import Motion
+
+from .align import place_at
+from .assemble import Laid
+from .engine import Placed, expand_repeats, on_skeleton
+from .plan import Element, Track
+from .timing import KNEE, ease_hold, ease_lead, hold, prepare
+
+
+@dataclass(frozen=True)
+class Incoming:
+    """The next element, prepared and not yet placed: its frames (own), core ``[c0, c1)`` (own
+    frames), contacts, whether it loops, and where it is on the track: frame 0 at ``offset``, played
+    from own frame ``lead`` to ``stop`` (one past)."""
+
+    element: Element
+    motion: Motion
+    core: tuple[int, int]
+    contacts: FootContacts
+    cyclic: bool
+    lead: int
+    stop: int
+    offset: int
+    rep: int = 0
+
+    @property
+    def first(self) -> int:
+        """Track frame the element starts."""
+        return self.offset + self.lead
+
+    @property
+    def end(self) -> int:
+        """One past its last track frame."""
+        return self.offset + self.stop
+
+    def moved(self, frames: int) -> "Incoming":
+        """The element delayed by ``frames`` (all of it, start, core and end)."""
+        return replace(self, offset=self.offset + frames)
+
+    def at_phase(self, offset: int) -> "Incoming":
+        """A looped element entered at another phase: same start and end on the track, other offset."""
+        return replace(self, offset=offset, lead=self.first - offset, stop=self.end - offset)
+
+
+@dataclass
+class TrackState:
+    """A track being laid: the frames so far, the elements placed, the joins, the earliest frame a new
+    blend may start (``floor``), and the elements a join moved in time (``delays``: ``(id, s)``)."""
+
+    motion: Motion | None = None
+    placed: list = field(default_factory=list)
+    joins: list = field(default_factory=list)
+    warnings: list = field(default_factory=list)
+    skipped: dict = field(default_factory=dict)
+    floor: int = 0
+    delays: list = field(default_factory=list)
+    skeleton: object = None
+
+
+def incoming(e: Element, rep: int, fps: float, state: TrackState) -> Incoming:
+    """Prepare an element for the track (speed, loop with a margin cycle, hold/trim)."""
+    prep = prepare(e, fps, margin=e.clip.cyclic)
+    state.warnings.extend(prep.warnings)
+    prep, state.skeleton, note = on_skeleton(prep, state.skeleton, e)
+    if note and rep == 0:
+        state.warnings.append(note)
+    lead = prep.lead
+    start = int(round(e.start * fps))
+    motion = prep.motion
+    if not motion.root_positions.flags.writeable:  # cached library clips are read-only; scipy's Rotation.apply
+        motion = motion.replace(root_positions=motion.root_positions.copy())  # (align.match) wants writable rows
+    return Incoming(e, motion, prep.core, detect_contacts(motion), e.clip.cyclic, lead,
+                    prep.motion.n_frames - lead, start - lead, rep)
+
+
+def place_first(state: TrackState, inc: Incoming, origin, heading: float) -> None:
+    """The first element of a track, at its origin and heading, its first pose held until it starts."""
+    rigid = place_at(inc.motion, origin, heading, frame=inc.lead)
+    m = rigid.apply(inc.motion)
+    state.motion = ease_lead(m[inc.lead:], inc.first)
+    state.placed.append(Placed(inc.element, m, inc.offset, inc.core, inc.contacts, inc.cyclic, rigid, inc.rep,
+                               inc.lead, inc.stop))
+
+
+
+def extend(tr: Motion, n: int, floor: int) -> Motion:
+    """The track held to ``n`` frames: eased into its last pose when the easing starts at or after
+    ``floor`` (frames before it are final), else simply held."""
+    if tr.n_frames >= n:
+        return tr
+    if tr.n_frames - 1 - KNEE * tr.fps >= floor:
+        return ease_hold(tr, n)
+    return hold(tr, n)
+
+
+def lay_elements(track: Track, whole: Sequence[Element], fps: float,
+                 join: Callable[[TrackState, Incoming], object]) -> Laid:
+    """The whole-body elements of one track laid in time order: the first placed, each next one joined by
+    ``join(state, incoming)`` (which updates ``state``)."""
+    state = TrackState()
+    for e, rep in expand_repeats(whole):
+        inc = incoming(e, rep, fps, state)
+        if state.motion is None:
+            place_first(state, inc, track.origin, track.heading)
+            continue
+        join(state, inc)
+    return Laid(state.motion, state.placed, state.joins, state.warnings, state.skipped, state.delays)
+
