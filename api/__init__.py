@@ -11,27 +11,48 @@ The public Python API; the command line is a thin layer over it::
 """
 from __future__ import annotations
 
+import os
+from typing import TYPE_CHECKING
+
+from . import limits
+from .limits import InputError, InputTypeError, LimitError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from text2anim.motiondb import MotionDB
+
+    from .animation import Animation
+
 __version__ = "0.1.0"
 
 
-def plan(text: str, db=None, *, fps: float = 30.0, skip_unknown: bool = False):
+def plan(text: str, db: "MotionDB | str | os.PathLike | None" = None, *, fps: float = 30.0,
+         skip_unknown: bool = False, max_seconds: float = limits.MAX_SECONDS):
     """Analyse ``text`` and build its motion time table with clips from ``db``.
 
     ``db`` is a :class:`motiondb.MotionDB`, a database URL or path, or ``None``
     for the default database (created with the built-in library on first use).
+    The arguments are checked as :func:`animate` checks them (:mod:`text2anim.limits`).
     """
     from text2anim.motiondb import MotionDB
 
+    from .animation import check_options
     from .pipeline import plan_text
 
+    fps, max_seconds, _ = check_options(text, db, fps, max_seconds, skip_unknown=skip_unknown)
     if isinstance(db, MotionDB):
-        return plan_text(text, db, fps=fps, skip_unknown=skip_unknown)
+        return plan_text(text, db, fps=fps, skip_unknown=skip_unknown, max_seconds=max_seconds)
     with MotionDB.open(db) as opened:
-        return plan_text(text, opened, fps=fps, skip_unknown=skip_unknown)
+        return plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, max_seconds=max_seconds)
 
 
-def animate(text: str, db=None, **options):
-    """Text to animation; see :func:`text2anim.animation.animate` for the options."""
+def animate(text: str, *, db: "MotionDB | str | os.PathLike | None" = None, fps: float = 30.0,
+            skip_unknown: bool = False, lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
+            smoothness: float = 0.5, max_seconds: float = limits.MAX_SECONDS) -> "Animation":
+    """Text to animation; see :func:`text2anim.animation.animate` for the arguments and errors."""
     from .animation import animate as _animate
 
-    return _animate(text, db, **options)
+    return _animate(text, db=db, fps=fps, skip_unknown=skip_unknown, lock_feet=lock_feet, sway=sway,
+                    blend=blend, smoothness=smoothness, max_seconds=max_seconds)
+
+
+__all__ = ["InputError", "InputTypeError", "LimitError", "__version__", "animate", "limits", "plan"]

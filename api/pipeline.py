@@ -14,7 +14,7 @@ from text2anim.nlp.types import Analysis, MotionSpec
 from text2anim.scheduler import ClipTiming, ScheduleError, TimeTable, plan, without
 from text2anim.core.bodyparts import GROUPS
 
-from . import postures
+from . import limits, postures
 
 
 @dataclass(frozen=True)
@@ -93,13 +93,18 @@ def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbEr
     return out
 
 
-def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False) -> Planned:
+def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False,
+              max_seconds: float = limits.MAX_SECONDS) -> Planned:
     """Analyse ``text`` and schedule its motions with clips from ``db``.
 
     Unknown verbs raise :class:`UnknownVerbError` (naming the nearest verbs the
-    database has) unless ``skip_unknown``, which drops those motions.
+    database has) unless ``skip_unknown``, which drops those motions. A text
+    that asks for more than :mod:`text2anim.limits` allows (output over
+    ``max_seconds``) raises :class:`limits.LimitError` before any frame is made.
     """
+    limits.check_text(text)
     analysis = nlp.analyze(text)
+    limits.check_analysis(analysis, max_seconds)
     unknown = unknown_motions(analysis, db)
     skipped: tuple[str, ...] = ()
     if unknown:
@@ -116,4 +121,5 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
     if arranged.changed:
         analysis, finder = arranged.analysis, _Finder(db)
         table = plan(analysis, arranged.finder(finder), fps)
+    limits.check_table(table, fps, max_seconds)
     return Planned(analysis, table, dict(finder.chosen), skipped)

@@ -54,12 +54,12 @@ def main() -> int:
     t = time.perf_counter()
     db = MotionDB.open(url)
     print(f"first open + seeding the built-in library: {time.perf_counter() - t:.2f} s")
-    animate(SENTENCES[1], db)  # warm up the analyser and caches
+    animate(SENTENCES[1], db=db)  # warm up the analyser and caches
 
     print(f"\nsynthesis: {DEFAULT} blending (the default)")
     print(f"{'motions':>7} {'animation s':>11} {'end-to-end ms':>13} {'plan ms':>8} {'synth ms':>9} {'RT factor':>10}")
     for n, text in SENTENCES.items():
-        total, anim = median_time(lambda: animate(text, db), args.repeat)
+        total, anim = median_time(lambda: animate(text, db=db), args.repeat)
         plan_s, planned = median_time(lambda: plan_text(text, db), args.repeat)
         tracks = build_tracks(planned, db, 30.0)
         synth_s, result = median_time(lambda: synthesize_with(DEFAULT, tracks, 30.0), args.repeat)

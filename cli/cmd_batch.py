@@ -26,6 +26,10 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from functools import partial
 
+from text2anim.limits import MAX_SECONDS
+
+from .bvh_options import add_budget_option, fps_type
+
 NAME = "batch"
 HELP = ("run every line of a corpus through parse (and plan + animation with --out), print a "
         "summary and, with --check, fail when an expectation is not met")
@@ -77,7 +81,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="with --out: write the parse results only, do not plan or animate")
     parser.add_argument("--db", metavar="URL", help="motion database for --out (default: $TEXT2ANIM_DB "
                         "or the user's data directory)")
-    parser.add_argument("--fps", type=float, default=30.0, help="frame rate of the animations (default 30)")
+    parser.add_argument("--fps", type=fps_type, default=30.0, help="frame rate of the animations, 1 to 240 (default 30)")
+    add_budget_option(parser)
 
 
 @dataclass(frozen=True)
@@ -87,6 +92,7 @@ class Config:
     out: str | None = None
     db: str | None = None
     fps: float = 30.0
+    max_seconds: float = MAX_SECONDS
 
 
 # ---------------------------------------------------------------- corpus
@@ -145,7 +151,7 @@ def stage_animate(item: Item, cfg: Config) -> dict:
     from text2anim.animation import animate
 
     try:
-        anim = animate(item.text, _database(cfg.db), fps=cfg.fps)
+        anim = animate(item.text, db=_database(cfg.db), fps=cfg.fps, max_seconds=cfg.max_seconds)
     except UnknownVerbError as exc:
         return {"skipped": str(exc)}
     files = anim.save_bvh(os.path.join(cfg.out, f"line_{item.line:04d}.bvh"))
@@ -333,7 +339,7 @@ def run(args: argparse.Namespace) -> int:
         raise CorpusError(f"{args.corpus}: no lines to run")
     if args.out:
         os.makedirs(args.out, exist_ok=True)
-    cfg = Config(None if args.parse_only else args.out, args.db, args.fps)
+    cfg = Config(None if args.parse_only else args.out, args.db, args.fps, args.max_seconds)
     results = run_all(items, args.jobs, make_progress(), cfg)
     summary = summarize(results)
     if args.out:

@@ -24,7 +24,7 @@ def test_plan_and_animate_keep_postures_continuous(db, text, clips):
     planned = text2anim.plan(text, db)
     seq = sorted(planned.table.elements, key=lambda e: (e.start, e.id))
     assert [e.clip for e in seq] == clips
-    anim = text2anim.animate(text, db)
+    anim = text2anim.animate(text, db=db)
     (motion,) = anim.motions.values()
     for e in seq:
         played = anim.result.elements[e.id]
@@ -33,7 +33,7 @@ def test_plan_and_animate_keep_postures_continuous(db, text, clips):
 
 
 def test_a_wait_in_a_posture_is_not_filled_with_standing_idle(db):
-    anim = text2anim.animate("太郎は座る。3秒後に歩く。", db)
+    anim = text2anim.animate("太郎は座る。3秒後に歩く。", db=db)
     table_ids = {e.id for e in anim.table.elements}
     fillers = {k: v for k, v in anim.result.elements.items() if k not in table_ids}
     assert not any(v["start"] < 5.6 for v in fillers.values()), fillers  # no standing idle while seated
@@ -42,7 +42,7 @@ def test_a_wait_in_a_posture_is_not_filled_with_standing_idle(db):
 
 
 def test_an_actor_who_finishes_lying_is_not_stood_up_by_the_idle(db):
-    anim = text2anim.animate("花子が座るのと同時に太郎は転ぶ。そして起き上がる。", db)
+    anim = text2anim.animate("花子が座るのと同時に太郎は転ぶ。そして起き上がる。", db=db)
     hanako = anim.motions["花子"]
     assert classify_posture(hanako, hanako.n_frames - 1) == "seated"
     assert hanako.n_frames == anim.motions["太郎"].n_frames  # held to the end, on the same clock
