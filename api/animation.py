@@ -230,7 +230,7 @@ class Animation:
         if report is not None:
             add(report, (json.dumps(self.report, ensure_ascii=False, indent=2) + "\n").encode())
         if plot is not None:
-            add(plot, self._plot_bytes(Path(plot).suffix))
+            add(check_plot_path(plot), self._plot_bytes(Path(plot).suffix))
         return files
 
     def save(self, *, bvh=None, html=None, glb=None, report=None, plot=None) -> list[Path]:
@@ -273,6 +273,17 @@ class Animation:
                 os.replace(out, tmp)
 
         return draw
+
+
+def check_plot_path(path: str | os.PathLike) -> Path:
+    """A path for the speed plot: writable (:func:`core.atomic.check_output_path`), its suffix a picture format."""
+    from text2anim.core.plots import FORMATS, PlotError
+
+    path = check_output_path(path)
+    if path.suffix.lower().lstrip(".") not in FORMATS:
+        raise PlotError(f"{path}: cannot tell the image format from the suffix; use one of "
+                        + ", ".join("." + f for f in FORMATS))
+    return path
 
 
 def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: float = 30.0,

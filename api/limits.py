@@ -65,7 +65,10 @@ def real(name: str, value) -> float:
     """``value`` as a float if it is a real number (not a bool, not a string); else :class:`InputTypeError`."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise InputTypeError(f"{name} must be a number, not {type(value).__name__} {value!r}")
-    out = float(value)
+    try:
+        out = float(value)
+    except OverflowError:  # an int with hundreds of digits
+        out = math.inf
     if not math.isfinite(out):
         raise InputError(f"{name} must be a finite number, not {value!r}")
     return out
@@ -73,7 +76,7 @@ def real(name: str, value) -> float:
 
 def flag(name: str, value) -> bool:
     """``value`` if it is a bool (``numpy.bool_`` too); a string such as ``"no"`` is refused."""
-    if isinstance(value, bool) or type(value).__name__ == "bool_":
+    if isinstance(value, bool) or (type(value).__module__ == "numpy" and type(value).__name__ in ("bool", "bool_")):
         return bool(value)
     raise InputTypeError(f"{name} must be True or False, not {type(value).__name__} {value!r}")
 

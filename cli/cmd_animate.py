@@ -70,6 +70,10 @@ def check_outputs(args: argparse.Namespace) -> dict:
     outputs = {k: v for k, v in outputs.items() if v is not None}
     files = [check_output_path(v) for k, v in outputs.items() if not (k == "bvh" and v == "-")]
     check_distinct(files)
+    if args.plot:
+        from text2anim.animation import check_plot_path
+
+        check_plot_path(args.plot)
     return outputs
 
 

@@ -118,6 +118,7 @@ def _write_temp(path: Path, content: Content) -> Path:
     try:
         if callable(content):
             os.close(fd)
+            fd = -1
             content(tmp_path)
             fd = os.open(tmp_path, os.O_RDONLY)
         else:
