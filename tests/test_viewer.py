@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shared_data import cmu
+from shared_data import library_motion
 from text2anim.core import Motion, Skeleton, concatenate, read_bvh
 from text2anim.core.atomic import OutputError
 from text2anim.core.viewer import PALETTE, Span, Track, render_html, viewer_data
@@ -63,12 +63,13 @@ def _data_of(page: str) -> dict:
 
 @pytest.fixture(scope="module")
 def walk():
-    return read_bvh(cmu("02_01_walk"), drop_first=True).resample(30)
+    return library_motion("walk")
 
 
 @pytest.fixture(scope="module")
 def kick():
-    return read_bvh(cmu("10_01_kick"), drop_first=True)
+    """The built-in kick at a capture's rate (120 fps), which the page must resample."""
+    return library_motion("kick").resample(120)
 
 
 def _spans(actor="太郎"):
