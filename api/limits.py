@@ -113,6 +113,8 @@ def check_text(text) -> str:
     for i, ch in enumerate(text):
         if ch in _ALLOWED_CONTROLS:
             continue
+        if unicodedata.category(ch) == "Cs":  # undecodable bytes of a command line (surrogateescape)
+            raise InputError(f"the text is not valid UTF-8 (character {i + 1}); pass it as UTF-8")
         if unicodedata.category(ch) == "Cc" or ch in _BIDI_CONTROLS:
             kind = "a text-direction control" if ch in _BIDI_CONTROLS else "a control"
             raise InputError(f"the text contains {kind} character (U+{ord(ch):04X} at character {i + 1}); "

@@ -25,7 +25,12 @@ def read_text(arg: str) -> str:
     from text2anim.limits import MAX_TEXT_CHARS, check_text
 
     if arg == "-":
-        arg = sys.stdin.read(MAX_TEXT_CHARS * 4 + 1).strip()
+        try:
+            arg = sys.stdin.read(MAX_TEXT_CHARS * 4 + 1).strip()
+        except UnicodeDecodeError:
+            from text2anim.limits import InputError
+
+            raise InputError("standard input is not UTF-8 text") from None
     return check_text(arg)
 
 

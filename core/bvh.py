@@ -320,13 +320,27 @@ def _euler_to_quat(values: np.ndarray, order: str) -> np.ndarray:
     return Rotation.from_euler(order, values, degrees=True).as_quat()
 
 
+_JOINT_RE = re.compile(r"^[ \t]*(?:joint|root)\b", re.IGNORECASE | re.MULTILINE)
+
+
+def _check_joint_count(head: list[str], source: str) -> None:
+    """Refuse more than :data:`MAX_JOINTS` joints at C speed, before the hierarchy is tokenised."""
+    text = "\n".join(head)
+    for k, m in enumerate(_JOINT_RE.finditer(text)):
+        if k == MAX_JOINTS:
+            raise BVHError(f"{source}:{text.count(chr(10), 0, m.start()) + 1}: more than {MAX_JOINTS} joints")
+
+
 def _build_motion(skel: Skeleton, data: np.ndarray, fps: float) -> Motion:
     T, J = len(data), skel.n_joints
-    rotations = np.empty((T, J, 4))
+    rotations = np.zeros((T, J, 4))
+    rotations[..., 3] = 1.0  # joints without rotation channels keep the identity
     root = np.tile(skel.offsets[0], (T, 1))
     trans = None
     col = 0
     for j, chans in enumerate(skel.channels):
+        if not chans:
+            continue
         block = data[:, col:col + len(chans)]
         col += len(chans)
         rot_idx = [k for k, c in enumerate(chans) if c in ROTATION_CHANNELS]
@@ -380,7 +394,9 @@ def parse_bvh(text: str, *, source: str = "<bvh>", scale: float | str = "auto",
         text = text[1:]
     lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
     motion_idx = next((i for i, ln in enumerate(lines) if ln.strip().upper() == "MOTION"), None)
-    tok = _Tokens(lines[:motion_idx] if motion_idx is not None else lines, source)
+    head = lines[:motion_idx] if motion_idx is not None else lines
+    _check_joint_count(head, source)
+    tok = _Tokens(head, source)
     if motion_idx is not None:
         tok.items.append(("MOTION", motion_idx + 1, 0))
     names, parents, offsets, channels, end_sites = _parse_hierarchy(tok)

@@ -7,11 +7,14 @@ Refusals come before any frame is made, so these tests are fast.
 """
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
 import text2anim
-from cli_run import assert_clean_error, text2anim as run
+from cli_run import REPO, assert_clean_error, text2anim as run
 from text2anim.limits import (FPS_MAX, MAX_MOTIONS, MAX_REPEAT, MAX_SECONDS, MAX_TEXT_CHARS, InputError,
                               InputTypeError, LimitError)
 
@@ -148,3 +151,13 @@ def test_default_budget_is_documented():
     readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
     for figure in (f"{MAX_SECONDS:g} s", f"{MAX_REPEAT}", f"{MAX_MOTIONS}", f"{MAX_TEXT_CHARS:,}", "1 to 240"):
         assert figure in readme, figure
+
+
+def test_undecodable_text_is_one_line():
+    """Bytes that are not UTF-8, on the command line or standard input: one line, not a UnicodeError."""
+    env = {"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin", "LC_ALL": "C.UTF-8"}
+    for args, stdin in (([b"parse", b"\xff\xfe\xe6\xad\xa9\xe3\x81\x8f"], b""), ([b"parse", b"-"], b"\xff\xfe")):
+        proc = subprocess.run([sys.executable.encode(), b"-m", b"cli.main", *args], input=stdin, cwd=REPO, env=env,
+                              capture_output=True, timeout=120)
+        err = proc.stderr.decode()
+        assert proc.returncode == 2 and "Traceback" not in err and "UTF-8" in err, err
