@@ -230,7 +230,7 @@ class Animation:
         if report is not None:
             add(report, (json.dumps(self.report, ensure_ascii=False, indent=2) + "\n").encode())
         if plot is not None:
-            add(check_plot_path(plot), self._plot_bytes(Path(plot).suffix))
+            add(check_plot_path(plot), self._plot_writer(Path(plot).suffix))
         return files
 
     def save(self, *, bvh=None, html=None, glb=None, report=None, plot=None) -> list[Path]:
@@ -258,7 +258,7 @@ class Animation:
         """Upper/lower-body speed curves (Fig. 5 of paper 000) with the blend intervals shaded."""
         return self.save(plot=path)[0]
 
-    def _plot_bytes(self, suffix: str):
+    def _plot_writer(self, suffix: str):
         """A function drawing the speed plot into the path it is given (format from ``suffix``)."""
         from text2anim.core.plots import plot_speeds
 
