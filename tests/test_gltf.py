@@ -20,7 +20,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from shared_data import library_motion
-from text2anim.core import Motion, Skeleton, read_bvh
+from text2anim.core import Motion, Skeleton
 from text2anim.core.atomic import OutputError
 from text2anim.core.gltf import glb_bytes, write_glb
 from text2anim.core.viewer import Track

@@ -1,5 +1,8 @@
 """The self-contained HTML viewer: its data, its safety, and the page itself in headless Chromium.
 
+The motions are clips of the built-in library (walk, and kick resampled to a capture's 120 fps),
+so no shared data is needed.
+
 The browser tests run ``/usr/bin/chromium`` (Debian's package; ``.ci/run`` installs it)
 and skip when it is absent:
 
@@ -21,7 +24,7 @@ import numpy as np
 import pytest
 
 from shared_data import library_motion
-from text2anim.core import Motion, Skeleton, concatenate, read_bvh
+from text2anim.core import Motion, Skeleton, concatenate
 from text2anim.core.atomic import OutputError
 from text2anim.core.viewer import PALETTE, Span, Track, render_html, viewer_data
 
