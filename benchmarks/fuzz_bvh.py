@@ -215,6 +215,8 @@ def main(argv=None) -> int:
         outcome, wall, cpu, mb = run_case(text)
         if wall > LIMIT_S:  # tracemalloc's bookkeeping or a busy machine: time it again, untraced
             wall, cpu = retime(text)
+        if (case + 1) % 300 == 0:
+            print(f"  {case + 1} cases, {time.perf_counter() - t_start:.0f} s", file=sys.stderr, flush=True)
         r = rows[kind]
         r["cases"] += 1
         r[outcome if outcome in ("ok", "BVHError") else "other"] += 1

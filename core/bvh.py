@@ -15,7 +15,8 @@ a declared frame count that differs from the data lines present, a truncated
 file, a non-numeric or non-finite value, duplicate joint names, and more than
 one ROOT (this reader reads one character per file; split multi-character
 files first). Absurd values are refused too, so that no file makes the work
-unbounded or the numbers meaningless: more than :data:`MAX_JOINTS` joints, a
+unbounded or the numbers meaningless: more than :data:`MAX_JOINTS` joints or
+:data:`MAX_JOINT_FRAMES` frames x joints, a
 ``Frame Time`` outside :data:`FRAME_TIME_RANGE` seconds, an offset or position
 beyond :data:`MAX_LENGTH` file units, a rotation beyond :data:`MAX_DEGREES`.
 The writer needs no recursion: any hierarchy the reader accepts is written back.
@@ -44,6 +45,9 @@ CMU_UNIT = 0.0254 / 0.45
 
 #: At most this many joints (skeletons with fingers and face have a few hundred).
 MAX_JOINTS = 10_000
+#: At most this many joint-frames (frames x joints): the rotations alone take 32 bytes each, so a
+#: few hundred bytes of channel-less joints cannot ask for gigabytes (22 min of 31 joints at 120 fps).
+MAX_JOINT_FRAMES = 5_000_000
 #: ``Frame Time`` in seconds: 1e-5 (100 kHz) to an hour.
 FRAME_TIME_RANGE = (1e-5, 3600.0)
 #: Largest offset or position value, in file units (a kilometre in millimetres).
@@ -404,6 +408,9 @@ def parse_bvh(text: str, *, source: str = "<bvh>", scale: float | str = "auto",
         raise tok.error("unexpected text after the hierarchy")
     skel = Skeleton(names, parents, offsets, end_sites, channels)
     frames, frame_time, first = _parse_motion_header(lines, motion_idx + 1, source)
+    if frames * len(names) > MAX_JOINT_FRAMES:
+        raise BVHError(f"{source}:{motion_idx + 2}: {frames} frames of {len(names)} joints is more than "
+                       f"{MAX_JOINT_FRAMES:,} joint-frames; split the file")
     data = _parse_frames(lines, first, frames, channels, source)
     motion = _build_motion(skel, data, 1.0 / frame_time)
     if up.lower() == "z":

@@ -118,3 +118,16 @@ def test_absurd_offsets_are_refused(offset):
     text = _chain_file(2).replace("OFFSET 0 0.01 0", f"OFFSET 0 {offset} 0", 1)
     with pytest.raises(BVHError, match="OFFSET y is .* beyond"):
         parse_bvh(text, scale=1)
+
+
+def test_channel_less_joints_cannot_ask_for_gigabytes():
+    """2,000 joints without channels cost a few bytes of text each, but 32 bytes per frame in memory."""
+    from text2anim.core.bvh import MAX_JOINT_FRAMES
+
+    n = 2000
+    frames = MAX_JOINT_FRAMES // n + 1
+    text = ("HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 1 Xposition\n"
+            + "".join(f"JOINT j{k}\n{{\nOFFSET 0 0.001 0\nCHANNELS 0\n" for k in range(n)) + "}\n" * (n + 1)
+            + f"MOTION\nFrames: {frames}\nFrame Time: 0.01\n" + "0\n" * frames)
+    with pytest.raises(BVHError, match="joint-frames; split the file"):
+        parse_bvh(text, scale=1)
