@@ -74,7 +74,7 @@ def check_output_path(path: str | os.PathLike) -> Path:
     except OSError as exc:
         raise OutputError(f"{_shown(text)}: {exc.strerror or exc}") from None
     if st is not None and not stat.S_ISREG(st.st_mode):
-        what = "a folder" if stat.S_ISDIR(st.st_mode) else "not a regular file (a device, pipe or socket)"
+        what = "a directory" if stat.S_ISDIR(st.st_mode) else "not a regular file (a device, pipe or socket)"
         raise OutputError(f"{_shown(text)}: is {what}; only regular files are written")
     if not directory.is_dir():
         raise OutputError(f"{_shown(text)}: the folder {_shown(str(directory))} does not exist")

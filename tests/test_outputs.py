@@ -36,7 +36,7 @@ def test_a_fifo_or_a_link_to_one_is_never_replaced(tmp_path, library_db):
     assert stat.S_ISFIFO(os.lstat(fifo).st_mode) and (tmp_path / "out").is_symlink()
     with pytest.raises(OutputError, match="not a regular file"):
         atomic_write_bytes(fifo, b"x")
-    with pytest.raises(OutputError, match="is a folder"):
+    with pytest.raises(OutputError, match="is a directory"):
         atomic_write_bytes(tmp_path, b"x")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out", "pipe"]
 
@@ -72,7 +72,7 @@ def test_a_folder_in_the_way_of_the_second_actor_keeps_the_first_actors_file(tmp
     (tmp_path / "x_太郎.bvh").write_text("mine\n")
     (tmp_path / "x_花子.bvh").mkdir()
     proc = run(TWO, "-o", "x.bvh", "--db", library_db, cwd=tmp_path)
-    assert_clean_error(proc, "x_花子.bvh: is a folder")
+    assert_clean_error(proc, "x_花子.bvh: is a directory")
     assert (tmp_path / "x_太郎.bvh").read_text() == "mine\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["x_太郎.bvh", "x_花子.bvh"]
 
