@@ -14,6 +14,9 @@ from __future__ import annotations
 import os
 from typing import TYPE_CHECKING
 
+from . import limits
+from .limits import InputError, InputTypeError, LimitError
+
 if TYPE_CHECKING:  # `import text2anim` stays light: the stages load on first use
     from text2anim.animation import Animation
     from text2anim.motiondb import MotionDB
@@ -23,27 +26,34 @@ __version__ = "0.1.0"
 
 
 def plan(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: float = 30.0,
-         skip_unknown: bool = False, fallback: str = "strict") -> Planned:
+         skip_unknown: bool = False, fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS) -> Planned:
     """Analyse ``text`` and build its motion time table with clips from ``db``.
 
     ``db`` is a :class:`motiondb.MotionDB`, a database URL or path, or ``None``
     for the default database (created with the built-in library on first use).
+    The arguments are checked as :func:`animate` checks them (:mod:`text2anim.limits`).
     """
     from text2anim.motiondb import MotionDB
 
+    from .animation import check_options
     from .pipeline import plan_text
 
+    fps, max_seconds, _ = check_options(text, db, fps, max_seconds, skip_unknown=skip_unknown, fallback=fallback)
     if isinstance(db, MotionDB):
-        return plan_text(text, db, fps=fps, skip_unknown=skip_unknown, fallback=fallback)
+        return plan_text(text, db, fps=fps, skip_unknown=skip_unknown, fallback=fallback, max_seconds=max_seconds)
     with MotionDB.open(db) as opened:
-        return plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback)
+        return plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback,
+                         max_seconds=max_seconds)
 
 
-def animate(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: float = 30.0,
+def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: float = 30.0,
             skip_unknown: bool = False, lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
-            smoothness: float = 0.5, fallback: str = "strict") -> Animation:
-    """Text to animation: :func:`text2anim.animation.animate`, which documents the options."""
+            smoothness: float = 0.5, fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS) -> Animation:
+    """Text to animation; see :func:`text2anim.animation.animate` for the arguments and errors."""
     from .animation import animate as _animate
 
-    return _animate(text, db, fps=fps, skip_unknown=skip_unknown, lock_feet=lock_feet, sway=sway, blend=blend,
-                    smoothness=smoothness, fallback=fallback)
+    return _animate(text, db=db, fps=fps, skip_unknown=skip_unknown, lock_feet=lock_feet, sway=sway,
+                    blend=blend, smoothness=smoothness, fallback=fallback, max_seconds=max_seconds)
+
+
+__all__ = ["InputError", "InputTypeError", "LimitError", "__version__", "animate", "limits", "plan"]

@@ -3,16 +3,22 @@ from __future__ import annotations
 
 import json
 import os
+import tempfile
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from text2anim.motiondb import ClipInfo, MotionDB
 from text2anim.synthesis import plan as splan
-from text2anim.core.atomic import OutputError, atomic_write_bytes
+from text2anim.core.atomic import Content, check_distinct, check_output_path, write_all
 
+from . import limits
 from .pipeline import Planned, plan_text
 from .variants import Pick
+
+#: What ``fallback`` may be: ``strict`` refuses a verb the database lacks, ``nearest`` plays the
+#: database verb nearest in meaning (:mod:`text2anim.fallback`).
+FALLBACKS = ("strict", "nearest")
 
 if TYPE_CHECKING:
     from text2anim.core.motion import Motion
@@ -182,74 +188,118 @@ class Animation:
     # ------------------------------------------------------------------- saving
     def bvh_paths(self, path: str | os.PathLike) -> dict[str, Path]:
         """Where :meth:`save_bvh` writes: ``path`` itself for one actor, ``stem_ACTOR.bvh`` for several."""
-        path = Path(path)
+        path = check_output_path(path)
         names = list(self.motions)
         if len(names) == 1:
             return {names[0]: path}
         return {n: path.with_name(f"{path.stem}_{n}{path.suffix or '.bvh'}") for n in names}
 
-    def save_bvh(self, path: str | os.PathLike, export=None) -> list[Path]:
-        """One BVH per actor; ``export`` (:class:`text2anim.export.ExportOptions`): the user's rig,
-        root motion or in place, units, loop."""
+    def outputs(self, *, bvh=None, html=None, glb=None, report=None, plot=None, export=None) -> dict[Path, Content]:
+        """The files :meth:`save` writes, by path: their bytes (or, for the plot, a function that draws it).
+
+        ``export`` (:class:`text2anim.export.ExportOptions`) applies to the BVH files: the user's rig,
+        root motion or in place, units, loop.
+        """
         from text2anim.core.bvh import format_bvh
 
-        motions = self.motions
-        if export is not None and not export.is_default:
-            from .export import check_loopable, export_motion
+        files: dict[Path, Content] = {}
 
-            if export.loop:
-                check_loopable(list(self.table.elements),
-                               {k: bool(getattr(c, "cyclic", False)) for k, c in self.planned.clips.items()})
-            motions = {n: export_motion(m, export) for n, m in motions.items()}
-        files = {p: format_bvh(motions[n]).encode() for n, p in self.bvh_paths(path).items()}
-        return _write_all(files)
+        def add(path, content) -> None:
+            path = check_output_path(path)
+            check_distinct([*files, path])
+            files[path] = content
+
+        if bvh is not None:
+            motions = self.exported_motions(export)
+            for name, path in self.bvh_paths(bvh).items():
+                add(path, format_bvh(motions[name]).encode())
+        if html is not None:
+            from text2anim.core.viewer import render_html
+
+            add(html, render_html(self.tracks(), self.spans(), title=self.text).encode())
+        if glb is not None:
+            from text2anim.core.gltf import glb_bytes
+
+            add(glb, glb_bytes(self.tracks()))
+        if report is not None:
+            add(report, (json.dumps(self.report, ensure_ascii=False, indent=2) + "\n").encode())
+        if plot is not None:
+            add(check_plot_path(plot), self._plot_writer(Path(plot).suffix))
+        return files
+
+    def exported_motions(self, export=None) -> dict[str, Motion]:
+        """Each actor's motion as ``export`` asks for it (unchanged without one)."""
+        if export is None or export.is_default:
+            return self.motions
+        from .export import check_loopable, export_motion
+
+        if export.loop:
+            check_loopable(list(self.table.elements),
+                           {k: bool(getattr(c, "cyclic", False)) for k, c in self.planned.clips.items()})
+        return {n: export_motion(m, export) for n, m in self.motions.items()}
+
+    def save(self, *, bvh=None, html=None, glb=None, report=None, plot=None, export=None) -> list[Path]:
+        """Write the chosen outputs all-or-nothing (:func:`core.atomic.write_all`); returns their paths.
+
+        Two outputs on one path are refused before anything is written; if one
+        file cannot be written, none is, and files that existed are left as they were.
+        """
+        return write_all(self.outputs(bvh=bvh, html=html, glb=glb, report=report, plot=plot, export=export))
+
+    def save_bvh(self, path: str | os.PathLike, export=None) -> list[Path]:
+        """One BVH file per actor (see :meth:`bvh_paths`), all-or-nothing; ``export`` as in :meth:`outputs`."""
+        return self.save(bvh=path, export=export)
 
     def save_html(self, path: str | os.PathLike) -> Path:
-        from text2anim.core.viewer import render_html
-
-        html = render_html(self.tracks(), self.spans(), title=self.text)
-        return _write_all({Path(path): html.encode()})[0]
+        return self.save(html=path)[0]
 
     def save_glb(self, path: str | os.PathLike) -> Path:
-        from text2anim.core.gltf import glb_bytes
-
-        return _write_all({Path(path): glb_bytes(self.tracks())})[0]
+        return self.save(glb=path)[0]
 
     def save_report(self, path: str | os.PathLike) -> Path:
-        text = json.dumps(self.report, ensure_ascii=False, indent=2) + "\n"
-        return _write_all({Path(path): text.encode()})[0]
+        return self.save(report=path)[0]
 
     def save_plot(self, path: str | os.PathLike) -> Path:
         """Upper/lower-body speed curves (Fig. 5 of paper 000) with the blend intervals shaded."""
+        return self.save(plot=path)[0]
+
+    def _plot_writer(self, suffix: str):
+        """A function drawing the speed plot into the path it is given (format from ``suffix``)."""
         from text2anim.core.plots import plot_speeds
 
-        plot_speeds(self.motions, path, [s for s in self.spans() if s.kind == "blend"])
-        return Path(path)
+        spans = [s for s in self.spans() if s.kind == "blend"]
+
+        def draw(tmp: Path) -> None:
+            # plot_speeds picks the format from the name and writes atomically: draw into a
+            # private folder under that suffix, then move the picture onto the temporary.
+            with tempfile.TemporaryDirectory(dir=tmp.parent, prefix=".t2a-plot.") as d:
+                out = Path(d) / f"plot{suffix}"
+                plot_speeds(self.motions, out, spans)
+                os.replace(out, tmp)
+
+        return draw
 
 
-def _write_all(files: dict[Path, bytes]) -> list[Path]:
-    """Write every file atomically; if one fails, the ones this call wrote are removed again."""
-    written: list[Path] = []
-    try:
-        for path, data in files.items():
-            atomic_write_bytes(path, data)
-            written.append(path)
-    except BaseException:
-        for p in written:
-            p.unlink(missing_ok=True)
-        raise
-    return written
+def check_plot_path(path: str | os.PathLike) -> Path:
+    """A path for the speed plot: writable (:func:`core.atomic.check_output_path`), its suffix a picture format."""
+    from text2anim.core.plots import FORMATS, PlotError
+
+    path = check_output_path(path)
+    if path.suffix.lower().lstrip(".") not in FORMATS:
+        raise PlotError(f"{path}: cannot tell the image format from the suffix; use one of "
+                        + ", ".join("." + f for f in FORMATS))
+    return path
 
 
-def animate(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: float = 30.0, skip_unknown: bool = False,
-            lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
-            smoothness: float = 0.5, fallback: str = "strict") -> Animation:
+def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: float = 30.0,
+            skip_unknown: bool = False, lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
+            smoothness: float = 0.5, fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS) -> Animation:
     """Analyse ``text``, schedule it, and synthesise one motion per actor.
 
     Args:
         db: a :class:`motiondb.MotionDB`, a database URL or SQLite path, or
             ``None`` for the default database (the built-in library on first use).
-        fps: output frame rate.
+        fps: output frame rate, 1 to 240 frames per second.
         skip_unknown: drop motions whose verb the database lacks instead of failing.
         fallback: ``nearest`` animates such a motion with the database verb nearest in
             meaning (said in ``planned.fallbacks`` and the report); ``strict`` (default) refuses.
@@ -259,23 +309,48 @@ def animate(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: f
             see :mod:`synthesis.engines`.
         smoothness: ``W`` of paper 000 §4.3 for ``optimal``: 0 joins as fast as it can, 1 as
             smoothly as it can.
+        max_seconds: the output budget (seconds of animation summed over the actors; see
+            :mod:`text2anim.limits`).
+
+    Raises:
+        limits.InputTypeError: an argument of the wrong type (a ``TypeError``).
+        limits.InputError, limits.LimitError: a value out of range or a text that asks for
+            more than the limits allow (``ValueError``), checked before any work starts; and
+            the stages' own errors (``ValueError`` too) for a text they cannot serve.
     """
     from text2anim.synthesis.engines import check_method, synthesize_with
 
-    if not fps > 0:
-        raise OutputError(f"fps must be positive, not {fps}")
+    fps, max_seconds, smoothness = check_options(text, db, fps, max_seconds, smoothness, fallback,
+                                                 skip_unknown=skip_unknown, lock_feet=lock_feet, sway=sway)
+    if not isinstance(blend, str):
+        raise limits.InputTypeError(f"blend must be a str, not {type(blend).__name__}")
     check_method(blend)
-    if not 0.0 <= float(smoothness) <= 1.0:
-        raise OutputError(f"smoothness must be between 0 (time first) and 1 (smoothness first), not {smoothness}")
     opened = db if isinstance(db, MotionDB) else MotionDB.open(db)
     try:
-        planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback)
+        planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback,
+                            max_seconds=max_seconds)
         tracks = build_tracks(planned, opened, fps)
     finally:
         if opened is not db:
             opened.close()
     result = synthesize_with(blend, tracks, fps, smoothness=smoothness, lock_feet=lock_feet, sway=sway)
-    return Animation(planned, result, fps, blend, float(smoothness), tuple(tracks))
+    return Animation(planned, result, fps, blend, smoothness, tuple(tracks))
+
+
+def check_options(text, db, fps, max_seconds, smoothness: float = 0.5, fallback: str = "strict",
+                  **flags) -> tuple[float, float, float]:
+    """Type and range checks of the API's arguments; returns ``(fps, max_seconds, smoothness)`` as floats."""
+    limits.check_text(text)
+    if fallback not in FALLBACKS:
+        raise limits.InputError(f"fallback must be one of {', '.join(FALLBACKS)}, not {fallback!r}")
+    if not (db is None or isinstance(db, (MotionDB, str, os.PathLike))):
+        raise limits.InputTypeError(f"db must be a MotionDB, a database URL or path, or None, not {type(db).__name__}")
+    for name, value in flags.items():
+        limits.flag(name, value)
+    smooth = limits.real("smoothness", smoothness)
+    if not 0.0 <= smooth <= 1.0:
+        raise limits.InputError(f"smoothness must be between 0 (time first) and 1 (smoothness first), not {smoothness!r}")
+    return limits.check_fps(fps), limits.check_budget(max_seconds), smooth
 
 
 __all__ = ["Animation", "animate", "build_tracks"]

@@ -14,7 +14,7 @@ from text2anim.nlp.types import Analysis, MotionSpec
 from text2anim.scheduler import ClipTiming, ScheduleError, TimeTable, plan, without
 from text2anim.core.bodyparts import GROUPS
 
-from . import postures
+from . import limits, postures
 from .clip_timing import timing
 from .fillers import fill_waits
 from .variants import Pick, Variants
@@ -97,7 +97,7 @@ def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbEr
 
 
 def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False,
-              fallback: str = "strict") -> Planned:
+              fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS) -> Planned:
     """Analyse ``text`` and schedule its motions with clips from ``db``, the waits filled.
 
     The table holds everything that will play: the text's motions, the clips
@@ -106,15 +106,19 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
     (naming every missing verb as written and the database verbs nearest in meaning)
     unless ``skip_unknown``, which drops those motions, or ``fallback="nearest"``, which
     animates each with the database verb nearest in meaning (:mod:`text2anim.fallback`).
+    A text that asks for more than :mod:`text2anim.limits` allows (output over
+    ``max_seconds``) raises :class:`limits.LimitError` before any frame is made.
     """
+    limits.check_text(text)
     with db.memoised():  # the same motions are searched again by each step below
-        return _plan(text, db, fps, skip_unknown, fallback)
+        return _plan(text, db, fps, skip_unknown, fallback, max_seconds)
 
 
-def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str) -> Planned:
+def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str, max_seconds: float) -> Planned:
     from . import fallback as _fallback
 
     analysis = nlp.analyze(text)
+    limits.check_analysis(analysis, max_seconds)
     unknown = unknown_motions(analysis, db)
     skipped: tuple[str, ...] = ()
     subs: tuple = ()
@@ -135,6 +139,7 @@ def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str
     if arranged.changed:
         analysis, finder = arranged.analysis, ClipFinder(db)
         table = plan(analysis, arranged.finder(finder), fps)
+    limits.check_table(table, fps, max_seconds)
     filled = fill_waits(table, dict(finder.chosen), db, fps)
     return Planned(analysis, filled.table, filled.clips, skipped, filled.fillers, subs,
                    frozenset(finder.mirrored) | filled.mirrored, dict(finder.repeats))

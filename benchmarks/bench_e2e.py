@@ -54,12 +54,12 @@ def main() -> int:
     t = time.perf_counter()
     db = MotionDB.open(url)
     print(f"first open + seeding the built-in library: {time.perf_counter() - t:.2f} s")
-    animate(SENTENCES[1], db)  # warm up the analyser and caches
+    animate(SENTENCES[1], db=db)  # warm up the analyser and caches
 
     print(f"\nsynthesis: {DEFAULT} blending (the default)")
     print(f"{'motions':>7} {'animation s':>11} {'end-to-end ms':>13} {'plan ms':>8} {'synth ms':>9} {'RT factor':>10}")
     for n, text in SENTENCES.items():
-        total, anim = median_time(lambda: animate(text, db), args.repeat)
+        total, anim = median_time(lambda: animate(text, db=db), args.repeat)
         plan_s, planned = median_time(lambda: plan_text(text, db), args.repeat)
         tracks = build_tracks(planned, db, 30.0)
         synth_s, result = median_time(lambda: synthesize_with(DEFAULT, tracks, 30.0), args.repeat)
@@ -70,7 +70,7 @@ def main() -> int:
 
     env = {**os.environ, "PYTHONPATH": str(REPO)}
     def cli(*argv):
-        return subprocess.run([sys.executable, "-m", "cli.main", *argv], cwd=tmp, env=env,
+        return subprocess.run([sys.executable, "-m", "text2anim.cli.main", *argv], cwd=tmp, env=env,
                               capture_output=True, check=True)
     cold, _ = median_time(lambda: cli(SENTENCES[3], "-o", "x.bvh"), max(3, args.repeat // 2))
     parse, _ = median_time(lambda: cli("parse", SENTENCES[3]), max(3, args.repeat // 2))

@@ -100,7 +100,7 @@ def sentence_table(db_url: str, engine: str) -> None:
     worst = 0.0
     coactors = []
     for text in SENTENCES:
-        anim = text2anim.animate(text, db, blend=engine)
+        anim = text2anim.animate(text, db=db, blend=engine)
         report = anim.report
         names = {e["id"]: e["clip"] for e in report["time_table"]}
         for actor, m in anim.motions.items():

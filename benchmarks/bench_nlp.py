@@ -4,7 +4,7 @@ Prints one table:
 
 - parse throughput: sentences/s through ``nlp.analyze``, warm, one process,
   over the project corpus (tests/corpus/nlp_corpus.jsonl);
-- cold start: wall time of ``python -m cli.main parse TEXT --json`` as a whole
+- cold start: wall time of ``python -m text2anim.cli.main parse TEXT --json`` as a whole
   process (median of several runs), next to a bare ``python -c pass``;
 - GiNZA (only if ``ginza`` and ``ja_ginza`` are importable; install them in
   a development venv only, they are not a dependency): load time, throughput
@@ -67,7 +67,7 @@ def cold_start(runs: int) -> tuple[float, float, float]:
             times.append(time.perf_counter() - t)
         return statistics.median(times)
 
-    parse = median_of([sys.executable, "-m", "cli.main", "parse", COLD_TEXT, "--json"])
+    parse = median_of([sys.executable, "-m", "text2anim.cli.main", "parse", COLD_TEXT, "--json"])
     alone = median_of([sys.executable, "-c",
                        f"from text2anim import nlp; print(nlp.analyze({COLD_TEXT!r}).to_json())"])
     bare = median_of([sys.executable, "-c", "pass"])

@@ -198,7 +198,7 @@ def run_sentences(texts: list[str], methods, db_url: str) -> list[dict]:
         for text in texts:
             for method in methods:
                 try:
-                    anim = text2anim.animate(text, db, blend=method)
+                    anim = text2anim.animate(text, db=db, blend=method)
                 except Exception as exc:  # an unknown verb, a refused sentence: not animated
                     if getattr(exc, "user_facing", False):
                         break

@@ -101,10 +101,10 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
 
     url = f"sqlite:///{tmp}/motions.sqlite"
     db = MotionDB.open(url)
-    animate(TEXT3, db)  # warm: analyser, caches
+    animate(TEXT3, db=db)  # warm: analyser, caches
     for blend in ("optimal", "constraint"):
         def run():
-            anim = animate(TEXT3, db, blend=blend)
+            anim = animate(TEXT3, db=db, blend=blend)
             return [format_bvh(m) for m in anim.motions.values()]
         cpu, wall = median_timed(run, repeat)
         row(f"text -> BVH, 3 motions, warm API ({blend})", ms(cpu), ms(wall), "<= 30 ms")
@@ -146,16 +146,16 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
     try:
         for _ in range(max(1, repeat // 2)):
             for text in SENTENCES:
-                animate(text, db)
+                animate(text, db=db)
         p50, p95 = np.percentile(calls, [50, 95])
         row(f"join planning, built-in clips ({len(calls)} joins)", f"p50 {ms(p50)} p95 {ms(p95)}", "-", "p95 <= 1 ms")
         calls.clear()
         text2 = SENTENCES[1]
-        c, w, _ = timed(lambda: animate(text2, db, fps=120.0))
+        c, w, _ = timed(lambda: animate(text2, db=db, fps=120.0))
         worst = max(calls) if calls else float("nan")
         optimal.plan_join = real_plan
         tracemalloc.start()
-        animate(text2, db, fps=120.0)
+        animate(text2, db=db, fps=120.0)
         peak = tracemalloc.get_traced_memory()[1]
         tracemalloc.stop()
         row("join planning at 120 fps (largest join; peak traced mem)", f"{ms(worst)}; {peak / 2**20:.0f} MB",

@@ -21,6 +21,35 @@ def positive_float(text: str) -> float:
     return value
 
 
+def fps_type(text: str) -> float:
+    """A frame rate within the documented limits (:mod:`text2anim.limits`) for argparse."""
+    from text2anim.limits import FPS_MAX, FPS_MIN
+
+    value = positive_float(text)
+    if not FPS_MIN <= value <= FPS_MAX:
+        raise argparse.ArgumentTypeError(f"{text} is outside {FPS_MIN:g}-{FPS_MAX:g} frames per second")
+    return value
+
+
+def seconds_type(text: str) -> float:
+    """An output budget in seconds (``--max-seconds``) for argparse."""
+    from text2anim.limits import MAX_SECONDS_CEILING
+
+    value = positive_float(text)
+    if value > MAX_SECONDS_CEILING:
+        raise argparse.ArgumentTypeError(f"{text} is over {MAX_SECONDS_CEILING:g} s")
+    return value
+
+
+def add_budget_option(p: argparse.ArgumentParser) -> None:
+    """``--max-seconds``: the output budget of :mod:`text2anim.limits`."""
+    from text2anim.limits import BUDGET_FPS, MAX_SECONDS
+
+    p.add_argument("--max-seconds", type=seconds_type, default=MAX_SECONDS, metavar="S",
+                   help=f"output budget: at most S seconds of animation summed over the actors and S x "
+                        f"{BUDGET_FPS:g} frames (default {MAX_SECONDS:g}; raise it for long batch work)")
+
+
 def add_read_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--scale", default="auto", type=scale_type,
                    help="metres per file unit, or 'auto' to guess from the skeleton's size (default)")

@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .bvh_options import positive_float
+from .bvh_options import add_budget_option, fps_type
 from .cmd_parse import read_text
 from .export_options import add_export_arguments, export_options
 
@@ -15,13 +15,13 @@ HELP = "turn a text into animation (the default command: text2anim TEXT ...)"
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("text", metavar="TEXT", help="the text, or - to read it from standard input")
     p.add_argument("-o", "--output", default="animation.bvh",
-                   help="BVH file to write (default animation.bvh; with several actors, one file each: "
-                        "animation_太郎.bvh, ...)")
+                   help="BVH file to write, or - for standard output (default animation.bvh; with several "
+                        "actors, one file each: animation_太郎.bvh, ...)")
     p.add_argument("--html", metavar="FILE", help="also write a self-contained viewer page")
     p.add_argument("--glb", metavar="FILE", help="also write a glTF binary (skinned skeleton + animation)")
     p.add_argument("--report", metavar="FILE", help="also write the synthesis report (JSON)")
     p.add_argument("--plot", metavar="FILE", help="also plot upper/lower-body speeds (needs text2anim[plot])")
-    p.add_argument("--fps", type=positive_float, default=30.0, help="output frame rate (default 30)")
+    p.add_argument("--fps", type=fps_type, default=30.0, help="output frame rate, 1 to 240 (default 30)")
     p.add_argument("--db", metavar="URL", help="motion database (SQLAlchemy URL or SQLite path; "
                    "default: $TEXT2ANIM_DB or the user's data directory)")
     p.add_argument("--skip-unknown", action="store_true", help="drop motions whose verb the database lacks")
@@ -30,6 +30,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "nearest animates the database verb nearest in meaning and says so")
     p.add_argument("--no-foot-lock", action="store_true", help="do not lock planted feet during blends")
     p.add_argument("--no-sway", action="store_true", help="do not transfer sway in compositions")
+    add_budget_option(p)
     add_blend_arguments(p)
     add_export_arguments(p)
 
@@ -60,30 +61,61 @@ def _say(msg: str) -> None:
     print(f"text2anim: {msg}", file=sys.stderr, flush=True)
 
 
+class OutputArgumentError(ValueError):
+    """Outputs that cannot all be written (``-o -`` with several actors)."""
+
+    user_facing = True
+
+
+def check_outputs(args: argparse.Namespace) -> dict:
+    """The outputs asked for, checked before any work: each a writable path, no two on one file."""
+    from text2anim.core.atomic import check_distinct, check_output_path
+
+    outputs = {"bvh": args.output, "html": args.html, "glb": args.glb, "report": args.report, "plot": args.plot}
+    outputs = {k: v for k, v in outputs.items() if v is not None}
+    files = [check_output_path(v) for k, v in outputs.items() if not (k == "bvh" and v == "-")]
+    check_distinct(files)
+    if args.plot:
+        from text2anim.animation import check_plot_path
+
+        check_plot_path(args.plot)
+    return outputs
+
+
 def run(args: argparse.Namespace) -> int:
     import text2anim
 
+    outputs = check_outputs(args)
+    to_stdout = outputs.get("bvh") == "-"
     text = read_text(args.text)
     export = export_options(args)
     _say("analysing, retrieving clips and synthesising ...")
-    anim = text2anim.animate(text, args.db, fps=args.fps, skip_unknown=args.skip_unknown,
+    anim = text2anim.animate(text, db=args.db, fps=args.fps, skip_unknown=args.skip_unknown,
                              lock_feet=not args.no_foot_lock, sway=not args.no_sway, blend=args.blend,
-                             smoothness=args.smoothness, fallback=args.fallback)
+                             smoothness=args.smoothness, fallback=args.fallback, max_seconds=args.max_seconds)
     for sub in anim.planned.fallbacks:
         _say(f"fallback: {sub}")
     for verb in anim.planned.skipped:
         _say(f"skipped {verb}: not in the motion database")
     for w in anim.report["warnings"]:
         _say(f"warning: {w}")
-    written = anim.save_bvh(args.output, export)
-    for extra, save in ((args.html, anim.save_html), (args.glb, anim.save_glb),
-                        (args.report, anim.save_report), (args.plot, anim.save_plot)):
-        if extra:
-            written.append(save(extra))
+    if to_stdout:
+        if len(anim.motions) > 1:
+            raise OutputArgumentError(f"the text has {len(anim.motions)} actors and a BVH file holds one: "
+                                      "-o - cannot take them; give a file name (one file per actor)")
+        outputs.pop("bvh")
+    written = anim.save(**outputs, export=export)
+    summary = sys.stderr if to_stdout else sys.stdout  # standard output carries the BVH alone
     for e in anim.table.elements:
         actor = e.actor or "default"
-        print(f"{e.id:>2} {actor} {e.verb:8} {e.clip:18} {e.method:12} {e.start:6.2f}-{e.end:6.2f} s")
+        print(f"{e.id:>2} {actor} {e.verb:8} {e.clip:18} {e.method:12} {e.start:6.2f}-{e.end:6.2f} s", file=summary)
     for name, m in anim.motions.items():
-        print(f"{name}: {m.n_frames} frames at {m.fps:g} fps ({m.duration:.2f} s)")
-    print("wrote " + ", ".join(str(p) for p in written))
+        print(f"{name}: {m.n_frames} frames at {m.fps:g} fps ({m.duration:.2f} s)", file=summary)
+    if to_stdout:
+        from text2anim.core.bvh import format_bvh
+
+        sys.stdout.write(format_bvh(next(iter(anim.exported_motions(export).values()))))
+        sys.stdout.flush()
+    names = ["standard output"] if to_stdout else []
+    print("wrote " + ", ".join(names + [str(p) for p in written]), file=summary)
     return 0

@@ -19,6 +19,10 @@ from typing import Any
 
 from text2anim.batch import DEFAULT_CHUNK, Options, run_corpus
 
+from text2anim.limits import MAX_SECONDS
+
+from .bvh_options import add_budget_option, fps_type
+
 NAME = "batch"
 HELP = ("run every line of a corpus through parse (and plan + animation with --out), locally or on a "
         "Dask cluster; print a summary and, with --check, fail when an expectation is not met")
@@ -45,7 +49,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="with --out: write the parse results only, do not plan or animate")
     parser.add_argument("--db", metavar="URL", help="motion database for --out (default: $TEXT2ANIM_DB "
                         "or the user's data directory); SQLite is copied to each worker, PostgreSQL shared")
-    parser.add_argument("--fps", type=float, default=30.0, help="frame rate of the animations (default 30)")
+    parser.add_argument("--fps", type=fps_type, default=30.0, help="frame rate of the animations, 1 to 240 (default 30)")
+    add_budget_option(parser)
 
 
 class Progress:
@@ -80,7 +85,7 @@ class Progress:
 
 
 def run(args: argparse.Namespace) -> int:
-    opts = Options(out=args.out, db=args.db, fps=args.fps, parse_only=args.parse_only)
+    opts = Options(out=args.out, db=args.db, fps=args.fps, max_seconds=args.max_seconds, parse_only=args.parse_only)
     progress = Progress()
     try:
         outcome = run_corpus(args.corpus, opts, jobs=args.jobs, scheduler=args.scheduler, chunk=args.chunk,

@@ -15,7 +15,7 @@ import json
 import sys
 from pathlib import Path
 
-from .bvh_options import positive_float
+from .bvh_options import add_budget_option, fps_type
 from .cmd_animate import unit_float
 from .cmd_parse import read_text
 
@@ -58,9 +58,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print the figures as JSON")
     p.add_argument("--smoothness", type=unit_float, default=0.5, metavar="W",
                    help="W for the optimal method: 0 time first, 1 smoothness first (default 0.5)")
-    p.add_argument("--fps", type=positive_float, default=30.0, help="output frame rate (default 30)")
+    p.add_argument("--fps", type=fps_type, default=30.0, help="output frame rate, 1 to 240 (default 30)")
     p.add_argument("--db", metavar="URL", help="motion database (default: $TEXT2ANIM_DB or the user's data directory)")
     p.add_argument("--skip-unknown", action="store_true", help="drop motions whose verb the database lacks")
+    add_budget_option(p)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -73,8 +74,12 @@ def run(args: argparse.Namespace) -> int:
     out_dir = Path(args.out) if args.out else None
     if out_dir is not None and out_dir.exists() and not out_dir.is_dir():
         raise CompareError(f"{out_dir} is not a folder")
+    if args.plot:
+        from text2anim.core.atomic import check_output_path
+
+        check_output_path(args.plot)
     with MotionDB.open(args.db) as db:
-        planned = plan_text(text, db, fps=args.fps, skip_unknown=args.skip_unknown)
+        planned = plan_text(text, db, fps=args.fps, skip_unknown=args.skip_unknown, max_seconds=args.max_seconds)
         tracks = build_tracks(planned, db, args.fps)
     results = compare(tracks, args.fps, args.methods, args.smoothness)
     anims = {m: Animation(planned, res, args.fps, m, args.smoothness, tuple(tracks)) for m, (res, _) in results.items()}

@@ -17,10 +17,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def read_text(arg: str) -> str:
-    """TEXT itself, or standard input (surrounding whitespace removed) for ``-``."""
+    """TEXT itself, or standard input (surrounding whitespace removed) for ``-``.
+
+    Checked at the boundary (:func:`text2anim.limits.check_text`): a text with control
+    characters or over the length limit is refused with one line saying so.
+    """
+    from text2anim.limits import MAX_TEXT_CHARS, check_text
+
     if arg == "-":
-        return sys.stdin.read().strip()
-    return arg
+        try:
+            arg = sys.stdin.read(MAX_TEXT_CHARS * 4 + 1).strip()
+        except UnicodeDecodeError:
+            from text2anim.limits import InputError
+
+            raise InputError("standard input is not UTF-8 text") from None
+    return check_text(arg)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .bvh_options import add_budget_option, fps_type
 from .cmd_parse import read_text
 
 NAME = "plan"
@@ -15,15 +16,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print the JSON of timetable.md §1")
     p.add_argument("--db", metavar="URL", help="motion database (SQLAlchemy URL or SQLite path; "
                    "default: $TEXT2ANIM_DB or the user's data directory)")
-    p.add_argument("--fps", type=float, default=30.0, help="frame rate recorded in the table (default 30)")
+    p.add_argument("--fps", type=fps_type, default=30.0, help="frame rate recorded in the table, 1 to 240 (default 30)")
     p.add_argument("--skip-unknown", action="store_true", help="drop motions whose verb the database lacks")
+    add_budget_option(p)
 
 
 def run(args: argparse.Namespace) -> int:
     import text2anim
     from text2anim.scheduler import format_table
 
-    planned = text2anim.plan(read_text(args.text), args.db, fps=args.fps, skip_unknown=args.skip_unknown)
+    planned = text2anim.plan(read_text(args.text), args.db, fps=args.fps, skip_unknown=args.skip_unknown,
+                             max_seconds=args.max_seconds)
     for verb in planned.skipped:
         print(f"text2anim: skipped {verb}: not in the motion database", file=sys.stderr)
     sys.stdout.write(planned.table.to_json() + "\n" if args.json else format_table(planned.table))

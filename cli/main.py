@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 #: Sub-command modules, in the order ``--help`` lists them.
@@ -29,6 +30,7 @@ COMMAND_MODULES = [
 
 EXIT_USER_ERROR = 2
 EXIT_INTERRUPTED = 130
+EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell shows for a writer its reader left
 
 
 def _load_commands():
@@ -44,12 +46,40 @@ def _load_commands():
     return commands
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse whose "unrecognized arguments" error names the closest valid option (difflib)."""
+
+    def error(self, message: str):  # noqa: D401 - argparse's hook
+        from text2anim.limits import printable
+
+        if message.startswith("unrecognized arguments:"):
+            message += _suggestion(self, message.split(":", 1)[1].split())
+        super().error(printable(message))
+
+
+def _suggestion(parser: argparse.ArgumentParser, unknown: list[str]) -> str:
+    """``"; did you mean --fps?"`` for the first unknown option that is close to a valid one."""
+    import difflib
+
+    options = [s for a in parser._actions for s in a.option_strings if s.startswith("--")]
+    for word in unknown:
+        if not word.startswith("--"):
+            continue
+        close = difflib.get_close_matches(word.split("=", 1)[0], options, n=1, cutoff=0.6)
+        if close:
+            return f"; did you mean {close[0]}?"
+    return ""
+
+
 def build_parser(commands) -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    from text2anim import __version__
+
+    parser = _Parser(
         prog="text2anim",
         description="Turn Japanese text into character animation (BVH).",
     )
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    parser.add_argument("--version", action="version", version=f"text2anim {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name, mod in commands.items():
         p = sub.add_parser(name, help=mod.HELP, description=mod.HELP)
         mod.add_arguments(p)
@@ -57,9 +87,28 @@ def build_parser(commands) -> argparse.ArgumentParser:
     return parser
 
 
+def _parse(parser: argparse.ArgumentParser, argv: list[str]) -> argparse.Namespace:
+    """``parse_args``, but an unknown option is reported by the sub-command's parser, with a suggestion."""
+    args, extra = parser.parse_known_args(argv)
+    if extra:
+        sub = _subparser(parser, getattr(args, "command", None)) or parser
+        sub.error("unrecognized arguments: " + " ".join(extra))
+    return args
+
+
+def _subparser(parser: argparse.ArgumentParser, name: str | None):
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction) and name in action.choices:
+            return action.choices[name]
+    return None
+
+
+TOP_LEVEL_OPTIONS = ("-h", "--help", "--version")
+
+
 def _route_default(argv: list[str], commands) -> list[str]:
     """``text2anim "文"`` means ``text2anim animate "文"``."""
-    if "animate" in commands and argv and argv[0] not in commands and argv[0] not in ("-h", "--help"):
+    if "animate" in commands and argv and argv[0] not in commands and argv[0] not in TOP_LEVEL_OPTIONS:
         return ["animate", *argv]
     return argv
 
@@ -70,23 +119,43 @@ def is_user_error(exc: BaseException) -> bool:
     )
 
 
+def _quiet_broken_pipe() -> int:
+    """The reader went away (``text2anim info big.bvh | head -2``): stop without a word.
+
+    Standard output is pointed at /dev/null so that Python's flush at exit does
+    not raise again (the recipe of the ``signal`` module's documentation).
+    """
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
+    return EXIT_BROKEN_PIPE
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     commands = _load_commands()
     parser = build_parser(commands)
-    args = parser.parse_args(_route_default(argv, commands))
+    args = _parse(parser, _route_default(argv, commands))
     if not getattr(args, "_run", None):
         parser.print_help()
         return EXIT_USER_ERROR
     try:
-        return int(args._run(args) or 0)
+        status = int(args._run(args) or 0)
+        sys.stdout.flush()
+        return status
+    except BrokenPipeError:
+        return _quiet_broken_pipe()
     except KeyboardInterrupt:
         print("text2anim: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Exception as exc:  # noqa: BLE001 - the one place errors become messages
         if not is_user_error(exc):
             raise
-        print(f"text2anim: error: {exc}", file=sys.stderr)
+        from text2anim.limits import printable
+
+        print(f"text2anim: error: {printable(str(exc))}", file=sys.stderr)
         return EXIT_USER_ERROR
 
 

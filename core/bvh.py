@@ -14,7 +14,12 @@ What is refused with :class:`BVHError` (file and line number in the message):
 a declared frame count that differs from the data lines present, a truncated
 file, a non-numeric or non-finite value, duplicate joint names, and more than
 one ROOT (this reader reads one character per file; split multi-character
-files first).
+files first). Absurd values are refused too, so that no file makes the work
+unbounded or the numbers meaningless: more than :data:`MAX_JOINTS` joints or
+:data:`MAX_JOINT_FRAMES` frames x joints, a
+``Frame Time`` outside :data:`FRAME_TIME_RANGE` seconds, an offset or position
+beyond :data:`MAX_LENGTH` file units, a rotation beyond :data:`MAX_DEGREES`.
+The writer needs no recursion: any hierarchy the reader accepts is written back.
 
 Root position: the root's world position is its OFFSET plus its position
 channels (Blender's reading); the writer inverts that.
@@ -37,6 +42,18 @@ from .skeleton import POSITION_CHANNELS, ROTATION_CHANNELS, Skeleton
 
 #: CMU's ASF length unit in metres (1/0.45 inch), used by cgspeed's BVH release.
 CMU_UNIT = 0.0254 / 0.45
+
+#: At most this many joints (skeletons with fingers and face have a few hundred).
+MAX_JOINTS = 10_000
+#: At most this many joint-frames (frames x joints): the rotations alone take 32 bytes each, so a
+#: few hundred bytes of channel-less joints cannot ask for gigabytes (22 min of 31 joints at 120 fps).
+MAX_JOINT_FRAMES = 5_000_000
+#: ``Frame Time`` in seconds: 1e-5 (100 kHz) to an hour.
+FRAME_TIME_RANGE = (1e-5, 3600.0)
+#: Largest offset or position value, in file units (a kilometre in millimetres).
+MAX_LENGTH = 1e6
+#: Largest rotation value, in degrees (a thousand turns).
+MAX_DEGREES = 360_000.0
 
 _VALID_CHANNELS = {c.upper(): c for c in POSITION_CHANNELS + ROTATION_CHANNELS}
 
@@ -87,6 +104,8 @@ class _Tokens:
             raise self.error(f"expected a number for {what}, found {tok!r}", lineno) from None
         if not np.isfinite(value):
             raise self.error(f"{what} is not finite ({tok})", lineno)
+        if abs(value) > MAX_LENGTH:
+            raise self.error(f"{what} is {tok}, beyond ±{MAX_LENGTH:g} units", lineno)
         return value
 
     def rest_of_line(self, lineno: int) -> str:
@@ -115,11 +134,15 @@ def _parse_hierarchy(tok: _Tokens):
     stack: list[int] = []  # joint index per open brace, -2 for an End Site
     pending_parent = -1
     name = tok.rest_of_line(lineno)
+    seen: set[str] = set()  # a set: a file with 100k joints is refused at once, not after minutes
     while True:
         if not name:
             raise tok.error("joint without a name", lineno)
-        if name in names:
+        if name in seen:
             raise tok.error(f"duplicate joint name {name!r}", lineno)
+        if len(names) >= MAX_JOINTS:
+            raise tok.error(f"more than {MAX_JOINTS} joints", lineno)
+        seen.add(name)
         j = len(names)
         names.append(name)
         parents.append(pending_parent)
@@ -203,6 +226,10 @@ def _parse_motion_header(lines: list[str], start: int, source: str) -> tuple[int
         raise BVHError(f"{source}:{found['frames'][1]}: negative frame count {frames}")
     if not (np.isfinite(frame_time) and frame_time > 0):
         raise BVHError(f"{source}:{found['frame time'][1]}: frame time must be a positive number, found {frame_time}")
+    lo, hi = FRAME_TIME_RANGE
+    if not lo <= frame_time <= hi:
+        raise BVHError(f"{source}:{found['frame time'][1]}: frame time {frame_time:g} s is outside "
+                       f"{lo:g}-{hi:g} s ({1 / hi:g} to {1 / lo:g} frames per second)")
     return frames, frame_time, i
 
 
@@ -224,7 +251,8 @@ def _locate_bad_value(lines: list[str], first: int, n_channels: int, source: str
     return BVHError(f"{source}: malformed frame data")
 
 
-def _parse_frames(lines: list[str], first: int, frames: int, n_channels: int, source: str) -> np.ndarray:
+def _parse_frames(lines: list[str], first: int, frames: int, channels, source: str) -> np.ndarray:
+    n_channels = sum(len(c) for c in channels)
     data_lines = [ln for ln in lines[first:] if ln.strip()]
     if len(data_lines) != frames:
         where = f"{source}:{len(lines)}"
@@ -238,7 +266,22 @@ def _parse_frames(lines: list[str], first: int, frames: int, n_channels: int, so
         raise _locate_bad_value(lines, first, n_channels, source) from None
     if values.shape != (frames, n_channels) or not np.all(np.isfinite(values)):
         raise _locate_bad_value(lines, first, n_channels, source)
+    _check_ranges(values, channels, first, lines, source)
     return values
+
+
+def _check_ranges(values: np.ndarray, channels, first: int, lines: list[str], source: str) -> None:
+    """Refuse positions beyond :data:`MAX_LENGTH` units and rotations beyond :data:`MAX_DEGREES`, ``(T, C)``."""
+    flat = [c for chans in channels for c in chans]
+    limit = np.array([MAX_DEGREES if c in ROTATION_CHANNELS else MAX_LENGTH for c in flat])
+    bad = np.abs(values) > limit
+    if not bad.any():
+        return
+    f, k = np.argwhere(bad)[0]
+    data_lines = [i for i in range(first, len(lines)) if lines[i].strip()]
+    unit = "degrees" if flat[k] in ROTATION_CHANNELS else "units"
+    raise BVHError(f"{source}:{data_lines[f] + 1}: {flat[k]} value {values[f, k]:g} is beyond "
+                   f"±{limit[k]:g} {unit}")
 
 
 def guess_scale(skeleton: Skeleton) -> float:
@@ -283,17 +326,33 @@ def _rotation_columns(skel: Skeleton) -> dict[str, tuple[list[int], list[list[in
     return groups
 
 
+_JOINT_RE = re.compile(r"^[ \t]*(?:joint|root)\b", re.IGNORECASE | re.MULTILINE)
+
+
+def _check_joint_count(head: list[str], source: str) -> None:
+    """Refuse more than :data:`MAX_JOINTS` joints at C speed, before the hierarchy is tokenised."""
+    text = "\n".join(head)
+    for k, m in enumerate(_JOINT_RE.finditer(text)):
+        if k == MAX_JOINTS:
+            raise BVHError(f"{source}:{text.count(chr(10), 0, m.start()) + 1}: more than {MAX_JOINTS} joints")
+
+
 def _build_motion(skel: Skeleton, data: np.ndarray, fps: float) -> Motion:
     """Frame data ``(T, C)`` to a motion: one vectorised Euler conversion per distinct rotation order."""
     T, J = len(data), skel.n_joints
-    rotations = np.empty((T, J, 4))
+    rotations = np.zeros((T, J, 4))
+    rotations[..., 3] = 1.0  # joints without rotation channels keep the identity
     for order, (joints, columns) in _rotation_columns(skel).items():
+        if not order:
+            continue
         angles = data[:, np.array(columns, dtype=np.intp).reshape(len(joints), len(order))]  # (T, Jg, n)
         rotations[:, joints] = quat.from_euler(order, angles, degrees=True)
     root = np.tile(skel.offsets[0], (T, 1))
     trans = None
     col = 0
     for j, chans in enumerate(skel.channels):
+        if not chans:
+            continue
         block = data[:, col:col + len(chans)]
         col += len(chans)
         pos_idx = {c[0]: k for k, c in enumerate(chans) if c in POSITION_CHANNELS}
@@ -347,7 +406,9 @@ def parse_bvh(text: str, *, source: str = "<bvh>", scale: float | str = "auto",
         text = text[1:]
     lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
     motion_idx = next((i for i, ln in enumerate(lines) if ln.strip().upper() == "MOTION"), None)
-    tok = _Tokens(lines[:motion_idx] if motion_idx is not None else lines, source)
+    head = lines[:motion_idx] if motion_idx is not None else lines
+    _check_joint_count(head, source)
+    tok = _Tokens(head, source)
     if motion_idx is not None:
         tok.items.append(("MOTION", motion_idx + 1, 0))
     names, parents, offsets, channels, end_sites = _parse_hierarchy(tok)
@@ -355,8 +416,10 @@ def parse_bvh(text: str, *, source: str = "<bvh>", scale: float | str = "auto",
         raise tok.error("unexpected text after the hierarchy")
     skel = Skeleton(names, parents, offsets, end_sites, channels)
     frames, frame_time, first = _parse_motion_header(lines, motion_idx + 1, source)
-    n_channels = sum(len(c) for c in channels)
-    data = _parse_frames(lines, first, frames, n_channels, source)
+    if frames * len(names) > MAX_JOINT_FRAMES:
+        raise BVHError(f"{source}:{motion_idx + 2}: {frames} frames of {len(names)} joints is more than "
+                       f"{MAX_JOINT_FRAMES:,} joint-frames; split the file")
+    data = _parse_frames(lines, first, frames, channels, source)
     motion = _build_motion(skel, data, 1.0 / frame_time)
     if up.lower() == "z":
         motion = _z_up_to_y_up(motion)
@@ -431,19 +494,29 @@ def format_bvh(m: Motion) -> str:
     ends: dict[int, list[np.ndarray]] = {}
     for j, o in skel.end_sites:
         ends.setdefault(j, []).append(o)
+    children: dict[int, list[int]] = {}
+    for j, p in enumerate(skel.parents[1:], start=1):
+        children.setdefault(int(p), []).append(j)
     out = ["HIERARCHY"]
-    def emit(j: int, depth: int):
+    # An explicit stack, not recursion: a 1,000-deep chain the reader accepted is written back.
+    # ("open", j, depth) writes a joint's header and schedules its children; ("close", j, depth)
+    # writes its end sites and closing brace.
+    stack: list[tuple[str, int, int]] = [("open", 0, 0)]
+    while stack:
+        what, j, depth = stack.pop()
         ind = "\t" * depth
+        if what == "close":
+            for o in ends.get(j, []):
+                out.extend([f"{ind}\tEnd Site", f"{ind}\t{{", f"{ind}\t\tOFFSET {' '.join(_fmt(v) for v in o)}",
+                            f"{ind}\t}}"])
+            out.append(f"{ind}}}")
+            continue
         out.append(f"{ind}{'ROOT' if j == 0 else 'JOINT'} {skel.names[j]}")
         out.append(f"{ind}{{")
         out.append(f"{ind}\tOFFSET {' '.join(_fmt(v) for v in skel.offsets[j])}")
         out.append(f"{ind}\tCHANNELS {len(skel.channels[j])}{''.join(' ' + c for c in skel.channels[j])}")
-        for c in skel.children(j):
-            emit(c, depth + 1)
-        for o in ends.get(j, []):
-            out.extend([f"{ind}\tEnd Site", f"{ind}\t{{", f"{ind}\t\tOFFSET {' '.join(_fmt(v) for v in o)}", f"{ind}\t}}"])
-        out.append(f"{ind}}}")
-    emit(0, 0)
+        stack.append(("close", j, depth))
+        stack.extend(("open", c, depth + 1) for c in reversed(children.get(j, [])))
     values = _channel_values(m)
     out += ["MOTION", f"Frames: {m.n_frames}", f"Frame Time: {1.0 / m.fps:.8g}"]
     row = " ".join(["%.7f"] * values.shape[1])

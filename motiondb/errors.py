@@ -1,6 +1,6 @@
 """Errors of the motion database.
 
-Every class here is *user facing* (``user_facing = True``): the command line
+Every class here is a ``ValueError`` and *user facing* (``user_facing = True``): the command line
 prints its message as one line on stderr and exits with status 2, without a
 traceback. Messages name the thing at fault (the file, the clip, the verb,
 the database URL with its password hidden).
@@ -8,7 +8,7 @@ the database URL with its password hidden).
 from __future__ import annotations
 
 
-class DBError(Exception):
+class DBError(ValueError):
     """A database problem the user can fix: a bad URL, an unreachable server, bad input."""
 
     user_facing = True

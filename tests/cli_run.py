@@ -13,7 +13,7 @@ def text2anim(*args: str, input: str | None = None, cwd=None, env=None) -> subpr
     """``text2anim ARGS`` in ``cwd`` (the repo by default), this checkout's code first on the path."""
     env = {**os.environ, **(env or {})}
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(REPO), env.get("PYTHONPATH")]))
-    return subprocess.run([sys.executable, "-m", "cli.main", *map(str, args)], capture_output=True, text=True,
+    return subprocess.run([sys.executable, "-m", "text2anim.cli.main", *map(str, args)], capture_output=True, text=True,
                           input=input, cwd=cwd or REPO, env=env, timeout=300)
 
 

@@ -18,3 +18,17 @@ def cmu(name: str) -> Path:
     if not path.exists():
         pytest.skip(f"shared CMU file {path} not found")
     return path
+
+
+def library_motion(name: str, fps: float = 30.0):
+    """A clip of the built-in motion library by name (``walk``, ``kick``): real motion that needs no shared data.
+
+    Building the library takes a few seconds once per process (it is cached, and the
+    ``library_db`` fixture builds it too).
+    """
+    from text2anim.motiondb.library import builtin_clips
+
+    for record in builtin_clips(fps):
+        if record.name == name:
+            return record.motion
+    raise KeyError(f"no built-in clip named {name!r}")

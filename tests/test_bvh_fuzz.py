@@ -64,3 +64,70 @@ def test_deleted_lines(data):
 def test_degenerate_inputs(text):
     with pytest.raises(BVHError):
         parse_bvh(text)
+
+
+# ----------------------------------------------------------- edge cases of issue 9 (no CMU needed)
+def _chain_file(n: int, *, nested: bool = True, frame_time: str = "0.0333333", row: str | None = None) -> str:
+    """A BVH file with ``n`` joints, each the child of the last (``nested``) or all children of the root."""
+    lines = ["HIERARCHY", "ROOT j0", "{", "OFFSET 0 0 0", "CHANNELS 6 Xposition Yposition Zposition "
+             "Zrotation Xrotation Yrotation"]
+    for k in range(1, n):
+        lines += [f"JOINT j{k}", "{", "OFFSET 0 0.01 0", "CHANNELS 3 Zrotation Xrotation Yrotation"]
+        if not nested:
+            lines.append("}")
+    lines += ["End Site", "{", "OFFSET 0 0.01 0", "}"]
+    lines += ["}"] * (n if nested else 1)
+    values = row if row is not None else " ".join(["0"] * (6 + 3 * (n - 1)))
+    lines += ["MOTION", "Frames: 2", f"Frame Time: {frame_time}", values, values]
+    return "\n".join(lines) + "\n"
+
+
+def test_a_thousand_deep_hierarchy_reads_and_writes_back():
+    from text2anim.core import format_bvh
+
+    m = parse_bvh(_chain_file(1000), scale=1)
+    assert m.skeleton.n_joints == 1000 and m.skeleton.parents[-1] == 998
+    again = parse_bvh(format_bvh(m), scale=1)  # the writer needs no recursion
+    assert again.skeleton.names == m.skeleton.names
+    assert abs(again.positions[-1, -1, 1] - 9.99) < 1e-6
+
+
+def test_huge_joint_counts_are_refused():
+    from text2anim.core.bvh import MAX_JOINTS
+
+    with pytest.raises(BVHError, match=f"more than {MAX_JOINTS} joints"):
+        parse_bvh(_chain_file(MAX_JOINTS + 10_000, nested=False), scale=1)
+
+
+@pytest.mark.parametrize("frame_time", ["1e-320", "4.9e-324", "1e-9", "1e300"])
+def test_denormal_or_absurd_frame_time_is_refused(frame_time):
+    with pytest.raises(BVHError, match="frame time .* is outside"):
+        parse_bvh(_chain_file(3, frame_time=frame_time), scale=1)
+
+
+@pytest.mark.parametrize("values, channel", [("0 0 0 1e308 0 0", "Zrotation value 1e\\+308"),
+                                             ("0 1e300 0 0 0 0", "Yposition value 1e\\+300"),
+                                             ("0 0 0 0 0 -5e6", "Yrotation value -5e\\+06")])
+def test_absurd_channel_values_are_refused(values, channel):
+    with pytest.raises(BVHError, match=f":14: {channel} is beyond"):
+        parse_bvh(_chain_file(1, row=values), scale=1)
+
+
+@pytest.mark.parametrize("offset", ["1e308", "-2e7"])
+def test_absurd_offsets_are_refused(offset):
+    text = _chain_file(2).replace("OFFSET 0 0.01 0", f"OFFSET 0 {offset} 0", 1)
+    with pytest.raises(BVHError, match="OFFSET y is .* beyond"):
+        parse_bvh(text, scale=1)
+
+
+def test_channel_less_joints_cannot_ask_for_gigabytes():
+    """2,000 joints without channels cost a few bytes of text each, but 32 bytes per frame in memory."""
+    from text2anim.core.bvh import MAX_JOINT_FRAMES
+
+    n = 2000
+    frames = MAX_JOINT_FRAMES // n + 1
+    text = ("HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 1 Xposition\n"
+            + "".join(f"JOINT j{k}\n{{\nOFFSET 0 0.001 0\nCHANNELS 0\n" for k in range(n)) + "}\n" * (n + 1)
+            + f"MOTION\nFrames: {frames}\nFrame Time: 0.01\n" + "0\n" * frames)
+    with pytest.raises(BVHError, match="joint-frames; split the file"):
+        parse_bvh(text, scale=1)

@@ -146,13 +146,13 @@ def test_stand_up_starts_where_sit_down_ends():
 @pytest.mark.parametrize("text", ["太郎は走る。3秒後に花子が歩く。", "太郎は待つ。そして歩く。",
                                   "太郎は走って、ボールを蹴る。そして喜ぶ。", "花子は歩いて、座る。"])
 def test_no_output_holds_a_frozen_pose(library_db, text):
-    anim = text2anim.animate(text, library_db)
+    anim = text2anim.animate(text, db=library_db)
     for actor, m in anim.motions.items():
         assert frozen_share(m) == 0.0, actor
 
 
 def test_coactors_are_not_clones(library_db):
-    anim = text2anim.animate("太郎と花子が走る。", library_db)
+    anim = text2anim.animate("太郎と花子が走る。", db=library_db)
     taro, hanako = anim.table.elements
     assert anim.planned.clips[taro.id].name != anim.planned.clips[hanako.id].name
     a, b = anim.motions["太郎"], anim.motions["花子"]
@@ -161,14 +161,14 @@ def test_coactors_are_not_clones(library_db):
 
 
 def test_a_verb_with_one_clip_is_mirrored_for_the_second_actor(library_db):
-    anim = text2anim.animate("太郎と花子がお辞儀する。", library_db)
+    anim = text2anim.animate("太郎と花子がお辞儀する。", db=library_db)
     first, second = anim.table.elements
     assert anim.planned.clips[first.id].name == anim.planned.clips[second.id].name == "bow"
     assert second.id in anim.planned.mirrored and first.id not in anim.planned.mirrored
 
 
 def test_repeated_jumps_rebound_about_once_a_second_with_variants(library_db):
-    anim = text2anim.animate("太郎は3回跳ぶ。", library_db)
+    anim = text2anim.animate("太郎は3回跳ぶ。", db=library_db)
     (e,) = anim.table.elements
     picks = anim.planned.repeats[e.id]
     assert len(picks) == 3
@@ -184,7 +184,7 @@ def test_repeated_jumps_rebound_about_once_a_second_with_variants(library_db):
 
 def test_the_variant_choice_is_deterministic(library_db):
     def digest():
-        anim = text2anim.animate("太郎と花子が跳ぶ。そして太郎は2回跳ぶ。", library_db)
+        anim = text2anim.animate("太郎と花子が跳ぶ。そして太郎は2回跳ぶ。", db=library_db)
         return {k: format_bvh(m) for k, m in anim.motions.items()}
 
     assert digest() == digest()
@@ -194,7 +194,7 @@ def test_a_captured_run_played_alone_keeps_its_shape(library_db):
     """The run's seam is spread over its cycle by the engine: a few cm at most, and no skating."""
     with MotionDB.open(library_db) as db:
         source = db.load("run")
-    (m,) = text2anim.animate("走る。", library_db).motions.values()
+    (m,) = text2anim.animate("走る。", db=library_db).motions.values()
     n = min(len(m), len(source))
     here = np.linalg.norm(m.positions[:n] - m.positions[:n, :1], axis=-1)
     there = np.linalg.norm(source.positions[:n] - source.positions[:n, :1], axis=-1)

@@ -50,7 +50,7 @@ def test_the_stop_lasts_its_clip_as_played(db):
 @pytest.mark.parametrize("text", ["太郎は走る。3秒後に歩く。", "太郎は歩く。5秒後に花子が座る。",
                                   "花子が座るのと同時に太郎は転ぶ。そして起き上がる。"])
 def test_the_report_time_table_lists_every_element_that_played(db, text):
-    anim = text2anim.animate(text, db)
+    anim = text2anim.animate(text, db=db)
     report = anim.report
     table_ids = {e["id"] for e in report["time_table"]}
     assert {int(k) for k in report["elements"]} == table_ids

@@ -1,9 +1,10 @@
 """The GLB export, parsed back by hand: layout, skin, and forward kinematics of the animation.
 
-When Node.js and the npm packages ``three`` and ``gltf-validator`` are found (in
-``$T2A_NODE_MODULES``, default ``~/.cache/text2anim-node/node_modules``; install with
-``npm install --prefix ~/.cache/text2anim-node three gltf-validator``) the file is also
-loaded by three.js' GLTFLoader and checked by the Khronos validator; otherwise those tests skip.
+The motions are clips of the built-in library (no shared data needed). When Node.js and the
+npm packages ``three`` and ``gltf-validator`` are found (in ``tests/browser/node_modules``, pinned by
+``tests/browser/package.json`` and its lock file: ``npm ci --prefix tests/browser``, which ``.ci/run``
+does; ``$T2A_NODE_MODULES`` names another folder) the file is also loaded by three.js' GLTFLoader
+and checked by the Khronos validator; otherwise those tests skip, saying why.
 """
 from __future__ import annotations
 
@@ -18,13 +19,13 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from shared_data import cmu
-from text2anim.core import Motion, Skeleton, read_bvh
+from shared_data import library_motion
+from text2anim.core import Motion, Skeleton
 from text2anim.core.atomic import OutputError
 from text2anim.core.gltf import glb_bytes, write_glb
 from text2anim.core.viewer import Track
 
-NODE_MODULES = Path(os.environ.get("T2A_NODE_MODULES", Path.home() / ".cache" / "text2anim-node" / "node_modules"))
+NODE_MODULES = Path(os.environ.get("T2A_NODE_MODULES", Path(__file__).parent / "browser" / "node_modules"))
 CHECK_SCRIPT = Path(__file__).parent / "browser" / "gltf_check.mjs"
 
 _DTYPES = {5126: "<f4", 5121: "u1", 5123: "<u2", 5125: "<u4"}
@@ -101,12 +102,12 @@ def _fk(g: Glb, skin: dict, frame: int) -> np.ndarray:
 
 @pytest.fixture(scope="module")
 def walk():
-    return read_bvh(cmu("02_01_walk"), drop_first=True)
+    return library_motion("walk")
 
 
 @pytest.fixture(scope="module")
 def kick():
-    return read_bvh(cmu("10_01_kick"), drop_first=True)
+    return library_motion("kick")
 
 
 def _random_chain(T=12, translations=False):
@@ -229,7 +230,7 @@ def _node_check(path: Path, times: list[float], package: str) -> dict:
         pytest.skip("node not installed")
     if not (NODE_MODULES / package).is_dir():
         pytest.skip(f"npm package {package} not found in {NODE_MODULES} "
-                    "(npm install --prefix ~/.cache/text2anim-node three gltf-validator, or set T2A_NODE_MODULES)")
+                    "(npm ci --prefix tests/browser, or set T2A_NODE_MODULES)")
     proc = subprocess.run(["node", str(CHECK_SCRIPT), str(NODE_MODULES), str(path), json.dumps(times)],
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr[-3000:]

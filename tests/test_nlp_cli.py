@@ -61,7 +61,7 @@ def test_parse_user_errors_are_one_line(capsys, text, words):
 
 
 def test_parse_as_a_process():
-    proc = subprocess.run([sys.executable, "-m", "cli.main", "parse", TEXT, "--json"],
+    proc = subprocess.run([sys.executable, "-m", "text2anim.cli.main", "parse", TEXT, "--json"],
                           cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["motions"][2]["verb"] == "喜ぶ"

@@ -25,7 +25,7 @@ def test_plan_and_animate_keep_postures_continuous(db, text, clips):
     planned = text2anim.plan(text, db)
     seq = sorted(planned.table.elements, key=lambda e: (e.start, e.id))
     assert [e.clip for e in seq] == clips
-    anim = text2anim.animate(text, db)
+    anim = text2anim.animate(text, db=db)
     (motion,) = anim.motions.values()
     for e in seq:
         played = anim.result.elements[e.id]
@@ -35,7 +35,7 @@ def test_plan_and_animate_keep_postures_continuous(db, text, clips):
 
 
 def test_a_wait_in_a_posture_is_not_filled_with_standing_idle(db):
-    anim = text2anim.animate("太郎は座る。3秒後に歩く。", db)
+    anim = text2anim.animate("太郎は座る。3秒後に歩く。", db=db)
     fillers = {k: v for k, v in anim.result.elements.items() if k in anim.planned.fillers}
     early = [k for k, v in fillers.items() if v["start"] < 5.6]
     # no standing idle while seated: what fills the seated wait is the seated idle
@@ -45,7 +45,7 @@ def test_a_wait_in_a_posture_is_not_filled_with_standing_idle(db):
 
 
 def test_an_actor_who_finishes_lying_is_not_stood_up_by_the_idle(db):
-    anim = text2anim.animate("花子が座るのと同時に太郎は転ぶ。そして起き上がる。", db)
+    anim = text2anim.animate("花子が座るのと同時に太郎は転ぶ。そして起き上がる。", db=db)
     hanako = anim.motions["花子"]
     assert classify_posture(hanako, hanako.n_frames - 1) == "seated"
     assert hanako.n_frames == anim.motions["太郎"].n_frames  # held to the end, on the same clock

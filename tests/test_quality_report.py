@@ -15,7 +15,7 @@ FIGURES = {"fps", "frames", "skating_ratio", "root_pop", "jerk_p99", "floor_pene
 
 @pytest.fixture(scope="module")
 def anim(library_db):
-    return text2anim.animate(EXAMPLE, library_db)
+    return text2anim.animate(EXAMPLE, db=library_db)
 
 
 def test_every_join_is_measured_around_its_blend_next_to_its_source_clips(anim):

@@ -24,7 +24,7 @@ RIGS = {"mixamo_a_pose": mixamo_rig, "smpl": smpl_rig, "unreal": unreal_rig, "vr
 
 @pytest.fixture(scope="module")
 def walk(library_db):
-    return text2anim.animate("太郎は歩く。", library_db)
+    return text2anim.animate("太郎は歩く。", db=library_db)
 
 
 def _source(anim):
@@ -147,7 +147,7 @@ def test_loop_makes_a_single_cyclic_motion_loop_and_refuses_a_sequence(walk, lib
     out = read_bvh(walk.save_bvh(tmp_path / "l.bvh", ExportOptions(loop=True, in_place=True))[0], scale=1)
     assert _flows_into_first(out) and out.n_frames < _source(walk).n_frames
     assert np.linalg.norm(out.root_positions[-1, [0, 2]] - out.root_positions[0, [0, 2]]) < 0.05
-    two = text2anim.animate("太郎は歩いて、走る。", library_db)
+    two = text2anim.animate("太郎は歩いて、走る。", db=library_db)
     with pytest.raises(ExportError, match="single cyclic motion"):
         two.save_bvh(tmp_path / "two.bvh", ExportOptions(loop=True))
     assert not (tmp_path / "two.bvh").exists()

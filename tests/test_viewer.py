@@ -1,5 +1,8 @@
 """The self-contained HTML viewer: its data, its safety, and the page itself in headless Chromium.
 
+The motions are clips of the built-in library (walk, and kick resampled to a capture's 120 fps),
+so no shared data is needed.
+
 The browser tests run ``/usr/bin/chromium`` (Debian's package; ``.ci/run`` installs it)
 and skip when it is absent:
 
@@ -20,8 +23,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shared_data import cmu
-from text2anim.core import Motion, Skeleton, concatenate, read_bvh
+from shared_data import library_motion
+from text2anim.core import Motion, Skeleton, concatenate
 from text2anim.core.atomic import OutputError
 from text2anim.core.viewer import PALETTE, Span, Track, render_html, viewer_data
 
@@ -63,12 +66,13 @@ def _data_of(page: str) -> dict:
 
 @pytest.fixture(scope="module")
 def walk():
-    return read_bvh(cmu("02_01_walk"), drop_first=True).resample(30)
+    return library_motion("walk")
 
 
 @pytest.fixture(scope="module")
 def kick():
-    return read_bvh(cmu("10_01_kick"), drop_first=True)
+    """The built-in kick at a capture's rate (120 fps), which the page must resample."""
+    return library_motion("kick").resample(120)
 
 
 def _spans(actor="太郎"):

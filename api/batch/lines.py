@@ -27,6 +27,7 @@ import time
 from dataclasses import dataclass
 from typing import Callable, Iterable
 
+from ..limits import MAX_SECONDS
 from .corpus import Item, text_hash
 
 #: Output files per shard folder: ``DIR/0012/line_0012345.bvh`` keeps folders at 1000 entries.
@@ -45,6 +46,7 @@ class Options:
         db: the database URL the workers open (a shipped SQLite copy: ``shipped:KEY``).
         db_label: the database as the user named it (password hidden): part of :attr:`key`.
         fps: frame rate of the animations (frames/s).
+        max_seconds: the output budget of one line (:mod:`text2anim.limits`).
         parse_only: write the parses, do not plan or animate.
     """
 
@@ -52,6 +54,7 @@ class Options:
     db: str | None = None
     db_label: str = ""
     fps: float = 30.0
+    max_seconds: float = MAX_SECONDS
     parse_only: bool = False
 
     @property
@@ -64,7 +67,7 @@ class Options:
         from text2anim import __version__
 
         what = {"fps": self.fps, "animate": self.animating, "db": self.db_label if self.animating else "",
-                "version": __version__}
+                "version": __version__, **({"max_seconds": self.max_seconds} if self.max_seconds != MAX_SECONDS else {})}
         return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()[:16]
 
 
@@ -172,7 +175,7 @@ def _animate(item: Item, opts: Options) -> dict:
     from text2anim.animation import animate
 
     assert opts.out is not None, "animating needs an output folder"
-    anim = animate(item.text, database(opts.db), fps=opts.fps)
+    anim = animate(item.text, db=database(opts.db), fps=opts.fps, max_seconds=opts.max_seconds)
     rel = shard_path(item.line)
     path = os.path.join(opts.out, rel)
     os.makedirs(os.path.dirname(path), exist_ok=True)

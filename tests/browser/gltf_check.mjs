@@ -3,7 +3,7 @@
 //   node gltf_check.mjs NODE_MODULES_DIR FILE.glb '[t0, t1, ...]'
 //
 // NODE_MODULES_DIR holds the npm packages `three` and `gltf-validator`
-// (npm install --prefix DIR three gltf-validator; either may be missing).
+// (tests/browser/node_modules after `npm ci --prefix tests/browser`; either may be missing).
 // Prints JSON: {validator: {errors, warnings, infos, hints, messages} | null,
 //               three: {actors: [{name, bones: [names], frames: [per time: [[x,y,z] per bone]],
 //                        vertex: [per time: world position of vertex 0]}], animations, duration} | null}
@@ -35,7 +35,11 @@ if (fs.existsSync(threeDir)) {
   const meshes = [];
   scene.traverse((o) => { if (o.isSkinnedMesh) meshes.push(o); });
   const mixer = new THREE.AnimationMixer(scene);
-  mixer.clipAction(gltf.animations[0]).play();
+  // played once and held at its end, so t = duration is the last key frame (a looping action wraps to 0)
+  const action = mixer.clipAction(gltf.animations[0]);
+  action.setLoop(THREE.LoopOnce);
+  action.clampWhenFinished = true;
+  action.play();
   const actors = meshes.map((m) => ({ name: m.name, bones: m.skeleton.bones.map((b) => b.name), frames: [], vertex: [] }));
   for (const t of times) {
     mixer.setTime(t);

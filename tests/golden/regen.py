@@ -37,7 +37,7 @@ def digests(db) -> dict[str, str]:
     out = {}
     for engine in ENGINES:
         for text in SENTENCES:
-            anim = text2anim.animate(text, db, blend=engine)
+            anim = text2anim.animate(text, db=db, blend=engine)
             h = hashlib.sha256()
             for name, motion in sorted(anim.motions.items()):
                 h.update(name.encode() + b"\0" + format_bvh(motion).encode())
