@@ -76,7 +76,9 @@ def _join(state: TrackState, inc: Incoming, fps: float, method: str, blend_s: fl
     info: dict = {}
     if method == "pose":
         a_lo = max(c0_end, state.floor) + half
-        a_hi = max(a_lo, prev.offset + prev.stop - 1)
+        last = tr.n_frames - 1  # the incoming clip may end before the previous one would have
+        a_hi = min(last, max(a_lo, prev.offset + prev.stop - 1))
+        a_lo = min(a_lo, a_hi)
         b_lo = inc.lead
         b_hi = max(b_lo, c1_begin - inc.offset - (n - half))
         i, j, d = closest_pair(tr, (a_lo, a_hi), inc.motion, (b_lo, b_hi))

@@ -68,3 +68,14 @@ def test_an_unknown_method_is_the_users_error():
     with pytest.raises(UnknownMethodError, match="warp"):
         synthesize_with("warp", [track()], FPS)
     assert UnknownMethodError.user_facing
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_a_repeated_partial_motion_over_a_slow_walk_renders_with_every_method(method, library_db):
+    """The pose baseline searched the previous clip past the end of the track it had laid (an
+    IndexError on this corpus sentence once the built-in walk became a captured cycle)."""
+    import text2anim
+
+    anim = text2anim.animate("太郎はゆっくり歩きながら、右手を3回振る。", db=library_db, blend=method)
+    (motion,) = anim.motions.values()
+    assert motion.n_frames > 0 and np.all(np.isfinite(motion.positions))
