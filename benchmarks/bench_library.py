@@ -27,8 +27,7 @@ import numpy as np
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-#: Speed below which a joint counts as still (m/s), timetable.md §3.
-FROZEN_SPEED = 0.005
+from text2anim.core.metrics import FROZEN_SPEED  # noqa: E402  (m/s, timetable.md §3)
 
 SENTENCES = [
     "太郎は走って、ボールを蹴る。そして喜ぶ。",
