@@ -48,7 +48,7 @@ from text2anim.synthesis import optimal  # noqa: E402
 from text2anim.synthesis.engines import METHODS, synthesize_with  # noqa: E402
 from text2anim.core.metrics import foot_skate  # noqa: E402
 from text2anim.synthesis.plan import Clip, Element, Track  # noqa: E402
-from text2anim.synthesis.timing import find_cycle  # noqa: E402
+from text2anim.synthesis.timing import gait_cycle  # noqa: E402
 from text2anim.clip_timing import timing  # noqa: E402
 
 CMU = REPO.parent / "shared" / "mocap" / "cmu"
@@ -102,10 +102,7 @@ def build_database(url: str) -> dict:
     for name, (stem, cut, core, cyclic, part) in CLIPS.items():
         m = read_bvh(CMU / f"{stem}.bvh", drop_first=True)
         if cut == "cycle":
-            try:
-                a, b = find_cycle(m)
-            except ValueError:  # a short run: the right foot lands twice
-                a, b = find_cycle(m, "right")
+            a, b = gait_cycle(m)
             m = m[a:b]
             core = (0.0, m.duration)
         else:

@@ -1,7 +1,7 @@
 """Joins measured the way the literature does (issue 11): CMU pairs and built-in sentences, every method.
 
 1. **CMU pairs.** The clips of :data:`CLIPS` are cut from ``../shared/mocap/cmu/``
-   (walk and run: one gait cycle each, found by ``find_cycle``, and looped;
+   (walk and run: one gait cycle each, found by ``gait_cycle``, and looped;
    the other actions: a window around the action, as ``bench_blend.py`` cuts
    them, with the core interval given; the long multi-action takes are used
    only through such a window) and imported into a temporary SQLite motion
@@ -92,7 +92,7 @@ def build_database(url: str) -> dict:
     from text2anim.core import read_bvh
     from text2anim.motiondb import ClipRecord, MotionDB
     from text2anim.synthesis.plan import Clip
-    from text2anim.synthesis.timing import find_cycle
+    from text2anim.synthesis.timing import gait_cycle
 
     with open(CMU / "index.tsv", encoding="utf-8") as fh:
         index = {r["file"][:-4]: r for r in csv.DictReader(fh, delimiter="\t")}
@@ -100,10 +100,7 @@ def build_database(url: str) -> dict:
     for name, (stem, cut, core) in CLIPS.items():
         m = read_bvh(CMU / f"{stem}.bvh", drop_first=True)
         if cut == "cycle":
-            try:
-                a, b = find_cycle(m)
-            except ValueError:  # a short run: the right foot lands twice
-                a, b = find_cycle(m, "right")
+            a, b = gait_cycle(m)
             m, core = m[a:b], (0.0, (b - a) / m.fps)
         else:
             m = m.between(*cut)

@@ -283,6 +283,15 @@ def find_cycle(motion: Motion, side: str = "left", min_frames: int | None = None
     return best
 
 
+def gait_cycle(motion: Motion) -> tuple[int, int]:
+    """:func:`find_cycle` on the left foot, or on the right where the left lands fewer than twice
+    (a short run can land the right foot twice and the left only once)."""
+    try:
+        return find_cycle(motion)
+    except ValueError:
+        return find_cycle(motion, "right")
+
+
 @dataclass(frozen=True)
 class Prepared:
     """An element's clip at the output frame rate and played length.

@@ -19,7 +19,7 @@ from text2anim.pipeline import timing
 from text2anim.scheduler.lengths import transition_window
 from text2anim.synthesis.engines import synthesize_with
 from text2anim.synthesis.plan import Clip, Element, Track
-from text2anim.synthesis.timing import find_cycle
+from text2anim.synthesis.timing import gait_cycle
 
 from shared_data import cmu, requires_cmu
 
@@ -39,10 +39,7 @@ def clips(tmp_path_factory):
     for name, (stem, cut, core) in CUTS.items():
         m = read_bvh(cmu(stem), drop_first=True)
         if cut is None:
-            try:
-                a, b = find_cycle(m)
-            except ValueError:  # a short run: the right foot lands twice
-                a, b = find_cycle(m, "right")
+            a, b = gait_cycle(m)
             m, core = m[a:b], (0.0, (b - a) / m.fps)
         else:
             m = m.between(*cut)
