@@ -248,3 +248,26 @@ def test_glb_and_vrma_outputs_pass_the_khronos_validator(walk, tmp_path):
         # only notes that the validator does not know the VRM extensions, and VRMA's mesh-less leaf bones
         assert all(m.split(":")[0] in ("UNSUPPORTED_EXTENSION", "NODE_EMPTY", "INVALID_EXTENSION_NAME_FORMAT")
                    for m in report["messages"]), (f.name, report["messages"])
+
+
+@pytest.mark.parametrize("rig", list(RIGS))
+def test_blender_imports_the_animated_character(walk, tmp_path, rig):
+    """Needs a Python with Blender's ``bpy`` (``pip install bpy`` in a Python 3.11 venv) named by $T2A_BLENDER_PYTHON:
+    Blender's glTF importer finds the user's mesh and armature, and its bones go where the BVH on the rig puts them."""
+    py = os.environ.get("T2A_BLENDER_PYTHON")
+    if not py:
+        pytest.skip("set T2A_BLENDER_PYTHON to a Python that has bpy to import the GLB into Blender")
+    opts = ExportOptions(rig=RIGS[rig](tmp_path))
+    path, = walk.save_glb(tmp_path / "out.glb", opts)
+    bvh = read_bvh(walk.save_bvh(tmp_path / "out.bvh", opts)[0], scale=1)
+    frames = [0, bvh.n_frames // 2, bvh.n_frames - 1]
+    proc = subprocess.run([py, str(BROWSER / "blender_check.py"), str(path), str(round(bvh.fps)), json.dumps(frames)],
+                          capture_output=True, text=True, timeout=300)
+    line = next((ln for ln in proc.stdout.splitlines() if ln.startswith("JSON")), None)
+    assert proc.returncode == 0 and line, proc.stderr[-3000:]
+    out = json.loads(line[4:])
+    assert out["result"] == ["FINISHED"] and ["Body", "MESH"] in out["objects"]
+    idx = [bvh.skeleton.names.index(b) for b in out["bones"]]
+    for f in frames:
+        v = np.array(out["frames"][str(f)])
+        np.testing.assert_allclose(np.c_[v[:, 0], v[:, 2], -v[:, 1]], bvh.positions[f][idx], atol=1e-3)
