@@ -99,11 +99,19 @@ class ExportOptions:
             raise ExportError(f"{path}: --rig reads BVH (.bvh), glTF binary (.glb) and VRM (.vrm) files")
         return read_bvh(path).skeleton
 
-    def check(self) -> "ExportOptions":
-        """Read the rig and the map now and place the rig's joints, so a bad rig fails before any work."""
+    def check(self, glb: bool = False) -> "ExportOptions":
+        """Read the rig and the map now and place the rig's joints, so a bad rig fails before any work;
+        ``glb``: a GLB output is asked for too (``--root-motion`` then needs a glTF rig's own root bone)."""
         if self.skeleton is not None:
-            rig_roles(self.skeleton, self.target_map)
+            _, roles = rig_roles(self.skeleton, self.target_map)
+            if glb and self.root_motion and self.gltf_rig is not None and roles["hips"] == 0:
+                raise _no_root_bone(self.gltf_rig)
         return self
+
+
+def _no_root_bone(rig: GltfRig) -> ExportError:
+    return ExportError(f"--root-motion: {rig.path} has no root bone above its hips to carry the travel in a GLB "
+                       "(a BVH output gets a new root joint); use --in-place or a rig with a root bone")
 
 
 def export_motion(motion: Motion, opts: ExportOptions, *, units: bool = True) -> Motion:
@@ -144,8 +152,7 @@ def glb_files(motions: dict[str, Motion], opts: ExportOptions) -> dict[str, byte
     for name, m in motions.items():
         moved = export_motion(m, opts, units=False)
         if not moved.skeleton.same_hierarchy(rig.skeleton):
-            raise ExportError(f"--root-motion: {rig.path} has no root bone above its hips to carry the travel "
-                              "in a GLB (a BVH output gets a new root joint); use --in-place or a rig with a root bone")
+            raise _no_root_bone(rig)
         out[name] = rig_glb_bytes(rig, moved)
     return out
 

@@ -27,4 +27,5 @@ def export_options(args: argparse.Namespace):
     from text2anim.export import ExportOptions
 
     return ExportOptions(rig=args.rig, joint_map=args.joint_map, root_motion=args.root_motion,
-                         in_place=args.in_place, units=args.units, loop=args.loop).check()
+                         in_place=args.in_place, units=args.units, loop=args.loop).check(
+                             glb=getattr(args, "glb", None) is not None)

@@ -173,9 +173,13 @@ def test_bad_glb_rigs_are_refused_with_one_clear_message(tmp_path):
 
 
 def test_root_motion_on_a_glb_rig_without_a_root_bone_is_refused(walk, tmp_path):
+    rig = mixamo_glb(tmp_path / "m.glb")
     with pytest.raises(ExportError, match="no root bone"):
-        walk.save_glb(tmp_path / "r.glb", ExportOptions(rig=mixamo_glb(tmp_path / "m.glb"), root_motion=True))
+        walk.save_glb(tmp_path / "r.glb", ExportOptions(rig=rig, root_motion=True))
     assert not (tmp_path / "r.glb").exists()
+    proc = run_cli("太郎は歩く。", "--rig", rig, "--root-motion", "--glb", tmp_path / "r.glb", "-o", tmp_path / "r.bvh")
+    assert_clean_error(proc, "no root bone")
+    assert "synthesising" not in proc.stderr  # refused before any work
 
 
 def _vrma(path: Path) -> tuple[dict, dict[str, np.ndarray], dict[str, np.ndarray]]:
