@@ -11,8 +11,9 @@ world rest rotation ``W_j`` to translate back. A VRM file's humanoid bone map
 (:mod:`core.rigs`) of its joints.
 
 :func:`rig_glb_bytes` writes the input file again with one animation on the
-rig's nodes (mesh, skin, materials and extensions kept byte for byte; the
-file's own animations are replaced). A motion on our skeleton has local
+rig's nodes: mesh, skin, materials and extensions kept (the JSON written anew
+with the same content, the binary chunk's bytes kept and the animation's
+appended); the file's own animations are replaced. A motion on our skeleton has local
 rotations ``r_j`` relative to the rest pose; the node's glTF rotation is
 
     ``q_j = W_p^-1 r_j W_p L_j``  (``W_p`` the parent's world rest rotation, ``L_j`` the node's rest rotation),
