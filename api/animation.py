@@ -23,7 +23,7 @@ FALLBACKS = ("strict", "nearest")
 if TYPE_CHECKING:
     from text2anim.core.motion import Motion
     from text2anim.scheduler import TimeTable
-    from text2anim.synthesis.engine import Result
+    from text2anim.synthesis.result import Result
 
 DEFAULT_ACTOR = "default"
 

@@ -9,7 +9,7 @@ way; then, exactly as the seed-003 engine (:mod:`synthesis.engine`) does:
 2. every join is measured with the engine's own figures (``timetable.md`` §3:
    skating ratio and foot skate in the blend and its region, largest and RMS
    jerk against the source clips', core fidelity per element);
-3. a :class:`synthesis.engine.Result` is returned, so every method can be
+3. a :class:`synthesis.result.Result` is returned, so every method can be
    saved, viewed, reported and compared the same way.
 
 The per-join and per-element figures are the engine's functions; this module
@@ -24,8 +24,9 @@ import numpy as np
 
 from .composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
-from .engine import (Placed, Result, core_fidelity, mirrored_if_needed, on_skeleton, part_fidelity,
-                     window_metrics, max_slide, skating_frames)
+from .measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
+from .placed import Placed, mirrored_if_needed, on_skeleton
+from .result import Result
 from text2anim.core.metrics import jerk
 from text2anim.core.motion import Motion
 from .plan import BlendInterval, Element, JoinReport, Track
@@ -242,7 +243,7 @@ def same_length(motions: dict) -> dict:
 def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> Result:
     """Lay every track with ``lay(track, whole_elements) -> Laid``, compose its partial elements, measure.
 
-    ``tracks`` are already spread (:func:`synthesis.engine.spread_actors`) if they should be. ``post``
+    ``tracks`` are already spread (:func:`synthesis.actors.spread_actors`) if they should be. ``post``
     runs the join post-pass (:func:`finish_joins`) before the compositions are laid.
     """
     motions, reports, elements, warnings = {}, [], {}, []

@@ -28,7 +28,9 @@ import numpy as np
 
 from .align import match
 from .assemble import Laid, assemble
-from .engine import Placed, Result, spread_actors
+from .actors import spread_actors
+from .placed import Placed
+from .result import Result
 from .method_select import cyclic_core_begin, cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion

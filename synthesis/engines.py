@@ -10,7 +10,7 @@ method          what joins consecutive whole-body motions
 =============== =================================================================
 
 Compositions (a body part laid onto a motion) are the same for all of them.
-All return a :class:`synthesis.engine.Result`.
+All return a :class:`synthesis.result.Result`.
 
 ``optimal`` keeps planted feet planted above all: when one of an actor's
 joins still skates after its own fallbacks (a run pulled into a stop), that
@@ -45,7 +45,7 @@ def check_method(method: str) -> str:
 
 def synthesize_with(method: str, tracks: Sequence[Track], fps: float = 30.0, smoothness: float = 0.5,
                     lock_feet: bool = True, sway: bool = True):
-    """Tracks → :class:`~synthesis.engine.Result` with the joiner ``method`` (see the table above).
+    """Tracks → :class:`~synthesis.result.Result` with the joiner ``method`` (see the table above).
 
     ``smoothness`` (0 time first … 1 smoothness first) is used by ``optimal`` only; ``lock_feet`` by
     ``optimal`` and ``constraint`` (the baselines never lock feet: that is what they stand for).

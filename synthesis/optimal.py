@@ -74,7 +74,10 @@ from .blend import blend, ease, sample
 from .blend_ranges import Bounds, Range, after, ranges
 from .blend_search import Found, Weights, best, evaluate, evaluate_motions, preset
 from text2anim.core.contacts import FootContacts, detect_contacts
-from .engine import Placed, Result, skating_frames, spread_actors
+from .actors import spread_actors
+from .measure import skating_frames
+from .placed import Placed
+from .result import Result
 from .method_select import (Choice, cyclic_core_begin, cyclic_core_end, phase_for, select, steps,
                             support_by_gap)
 from text2anim.core.motion import Motion, concatenate
@@ -604,7 +607,7 @@ def _roots_mid(tr: Motion, plan: Plan) -> Plan:
 
 
 def _skating(motion: Motion, lo: int, hi: int) -> float:
-    """Skating ratio (both feet low and fast, :func:`synthesis.engine.skating_frames`) over ``[lo, hi)``."""
+    """Skating ratio (both feet low and fast, :func:`synthesis.measure.skating_frames`) over ``[lo, hi)``."""
     sk = skating_frames(motion)
     return float(sk[max(lo, 0):hi].mean()) if hi > lo else 0.0
 
@@ -706,10 +709,10 @@ def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: f
         smoothness: ``W`` of §4.3, 0 (time first: short blends) to 1 (smoothness first).
         lock_feet: lock planted feet during blends.
         sway: transfer the sway of composed clips.
-        spread: give actors sharing one origin :func:`~synthesis.engine.default_origins`.
+        spread: give actors sharing one origin :func:`~synthesis.actors.default_origins`.
         min_blend: the shortest blend interval, seconds.
 
-    Returns the same :class:`~synthesis.engine.Result` as :func:`synthesis.engine.synthesize`; each join's
+    Returns the same :class:`~synthesis.result.Result` as :func:`synthesis.engine.synthesize`; each join's
     report has ``blend`` (the §4.1 method), ``intervals`` (lower/upper, kinds), ``cost`` (eq. (10) terms).
     """
     weights = preset(smoothness)

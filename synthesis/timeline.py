@@ -35,7 +35,7 @@ import numpy as np
 
 from .assemble import finish_whole
 from .blend_search import preset
-from .engine import Result
+from .result import Result
 from .method_select import cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
@@ -91,7 +91,7 @@ class Timeline:
         return [j[0] for j in self.state.joins]
 
     def result(self) -> Result:
-        """The timeline as a :class:`~synthesis.engine.Result` (joins measured as the engines do)."""
+        """The timeline as a :class:`~synthesis.result.Result` (joins measured as the engines do)."""
         from .assemble import Laid, measure
         from .plan import Track
 
