@@ -27,7 +27,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from .align import match
-from .assemble import Laid, assemble
+from .assemble import assemble
+from .laid import Laid, LaidJoin
 from .actors import spread_actors
 from .placed import Placed
 from .result import Result
@@ -118,7 +119,7 @@ def _join(state: TrackState, inc: Incoming, fps: float, method: str, blend_s: fl
     state.placed.append(p)
     rep = JoinReport(prev.element.id, e.id, "connection" if inc.rep > 0 else e.method, method,
                      (BlendInterval("whole", "motion-motion", w0 / fps, (w1 - 1) / fps),), None, info, ())
-    state.joins.append((rep, ((w0, w1), (w0, w1)), prev, p, []))
+    state.joins.append(LaidJoin(rep, (w0, w1), (w0, w1), prev, p))
 
 
 def lay_track(track: Track, whole, fps: float, method: str, blend_s: float = BLEND) -> Laid:

@@ -30,8 +30,9 @@ from text2anim.core.motion import Motion
 
 from .actors import default_origins, spread_actors
 from .align import place_at
-from .assemble import Laid, compose_parts, finish_joins, finish_whole, measure, same_length, shifted
+from .assemble import compose_parts, finish_joins, finish_whole, measure, same_length, shifted
 from .measure import hips_frame
+from .laid import Laid, LaidJoin
 from .placed import Placed, expand_repeats, on_skeleton
 from .plan import BlendInterval, JoinReport, Track
 from .result import Result
@@ -49,7 +50,7 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
     if not whole:
         raise ValueError(f"actor {track.actor!r} has no whole-body motion to lay compositions onto")
     placed: list[Placed] = []
-    joins: list[tuple[JoinReport, tuple, Placed | None, Placed | None, list]] = []
+    joins: list[LaidJoin] = []
     tr: Motion | None = None
     skeleton = None
     floor = 0
@@ -96,7 +97,7 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
             info["foot_locks"] = [{"side": lk.side, "begin": lk.begin / fps, "end": lk.end / fps,
                                    "release_end": lk.release_end / fps} for lk in locks]
         rep_ = JoinReport(prev.element.id, e.id, method, blend, intervals, None, info, tuple(join.warnings))
-        joins.append((rep_, (join.window, (join.window[0], region_end)), prev, p, []))
+        joins.append(LaidJoin(rep_, join.window, (join.window[0], region_end), prev, p))
     # a looped clip's margin after its end is not played; the track holds to the last scheduled end
     laid = Laid(finish_whole(tr, placed, track.elements), placed, joins, warnings)
     if lock:

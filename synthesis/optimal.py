@@ -69,7 +69,8 @@ import numpy as np
 from .adaptation import adapt, pin_feet
 from .align import Rigid, align_through_foot, headings, to_heading_frame
 from text2anim.core.bodyparts import body_map
-from .assemble import Laid, assemble
+from .assemble import assemble
+from .laid import Laid, LaidJoin
 from .blend import blend, ease, sample
 from .blend_ranges import Bounds, Range, after, ranges
 from .blend_search import Found, Weights, best, evaluate, evaluate_motions, preset
@@ -664,7 +665,7 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
         state.warnings.append(plan.reason)
         rep = JoinReport(prev.element.id, e.id, "connection" if inc.rep > 0 else e.method, "not_executed", (),
                          None, {}, (plan.reason,))
-        state.joins.append((rep, None, prev, None, []))
+        state.joins.append(LaidJoin(rep, first=prev))
         return plan
     inc = plan.inc
     plan, out, locks, window = _carry_out(tr, plan, lock)
@@ -688,7 +689,7 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
     main = (min(ivs[n].t0 for n in ("S0", "S1")), max(ivs[n].t1 for n in ("S0", "S1")) + 1)
     # S0/S1 blend the two motions: their jerk and skating are the join's; the return to the next motion's own
     # lower body (S3) plays that motion's own step, its figures are in the region's
-    state.joins.append((rep, (main, (window[0], region_end)), prev, p, []))
+    state.joins.append(LaidJoin(rep, main, (window[0], region_end), prev, p))
     return plan
 
 

@@ -16,7 +16,7 @@ from text2anim.core.contacts import FootContacts, detect_contacts
 from text2anim.core.motion import Motion
 
 from .align import place_at
-from .assemble import Laid
+from .laid import Laid, LaidJoin
 from .placed import Placed, expand_repeats, on_skeleton
 from .plan import Element, Track
 from .timing import KNEE, ease_hold, ease_lead, hold, prepare
@@ -63,12 +63,12 @@ class TrackState:
     blend may start (``floor``), and the elements a join moved in time (``delays``: ``(id, s)``)."""
 
     motion: Motion | None = None
-    placed: list = field(default_factory=list)
-    joins: list = field(default_factory=list)
-    warnings: list = field(default_factory=list)
-    skipped: dict = field(default_factory=dict)
+    placed: list[Placed] = field(default_factory=list)
+    joins: list[LaidJoin] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    skipped: dict[int, str] = field(default_factory=dict)
     floor: int = 0
-    delays: list = field(default_factory=list)
+    delays: list[tuple[int, float]] = field(default_factory=list)
     skeleton: object = None
 
 
