@@ -145,7 +145,7 @@ def figures(res, motion) -> dict:
     fs = foot_skate(motion)
     n = sum(f.contact_frames for f in fs.values())
     js = [j for j in res.joins if j.metrics and j.method != "not_executed"]
-    fid = [v.get("core_fidelity_cm", v.get("part_fidelity_cm", 0.0)) or 0.0 for v in res.elements.values()]
+    fid = [v.fidelity_cm or 0.0 for v in res.elements.values()]
     return {"slide": sum(f.slide_cm for f in fs.values()),
             "skate": sum(f.mean_speed_cm_s * f.contact_frames for f in fs.values()) / max(n, 1),
             "ratio": max([j.metrics["skating_ratio"] for j in js] or [0.0]),

@@ -26,11 +26,11 @@ from .composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
 from .measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
 from .placed import Placed, mirrored_if_needed, on_skeleton
-from .result import Result
+from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
 from text2anim.core.metrics import jerk
 from text2anim.core.motion import Motion
 from .laid import Laid, LaidJoin, LaidPart
-from .plan import BlendInterval, Element, JoinReport, Track
+from .plan import Element, Track
 from .timing import ease_hold, prepare
 
 
@@ -85,39 +85,37 @@ def compose_parts(laid: Laid, parts: list[Element], whole: list[Element], fps: f
     return comps
 
 
-def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float) -> tuple[list, dict]:
+def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
+            ) -> tuple[list[JoinReport], dict[int, ElementReport]]:
     """Per-join reports with their metrics and per-element figures (the engine's, see the module doc)."""
     tr = laid.motion
     contacts = detect_contacts(tr)
     ftracks = foot_tracks(tr)
     skating = skating_frames(tr, ftracks)
     composed_at = [(c.composed.timing.ta0, c.composed.timing.ta1) for c in comps]
-    elements: dict = {}
-    fid: dict = {}
-    for p in laid.placed:
+    elements: dict[int, ElementReport] = {}
+    for p in laid.placed:  # a repeated element's repetitions: from the first one's start to the last one's end
         key = p.element.id
         f = core_fidelity(tr, p)
-        fid[key] = max(fid.get(key, 0.0), f)
         c0, c1 = p.offset + p.core[0], p.offset + p.core[1]
-        el = elements.setdefault(key, {"actor": track.actor, "start": (p.offset + p.lead) / fps,
-                                       "core": [c0 / fps, c1 / fps],
-                                       "placement": {"yaw": p.rigid.yaw, "x": p.rigid.offset[0],
-                                                     "z": p.rigid.offset[1]}})
-        el["end"] = (p.offset + p.stop) / fps
-        el["core"][1] = c1 / fps
-        el["core_fidelity_cm"] = fid[key]
+        el = elements.get(key) or ElementReport(
+            track.actor, start=(p.offset + p.lead) / fps, core=(c0 / fps, c1 / fps),
+            placement=Placement(p.rigid.yaw, p.rigid.offset[0], p.rigid.offset[1]))
+        assert el.core is not None
+        el = replace(el, end=(p.offset + p.stop) / fps, core=(el.core[0], c1 / fps),
+                     core_fidelity_cm=max(el.core_fidelity_cm or 0.0, f))
         if any(a < c1 and b > c0 for a, b in composed_at):
             from text2anim.core.bodyparts import body_map
 
             legs = list(body_map(tr.skeleton).joints("lower"))
-            el["core_fidelity_untouched_cm"] = core_fidelity(tr, p, legs)
+            el = replace(el, core_fidelity_untouched_cm=core_fidelity(tr, p, legs))
+        elements[key] = el
     for eid, why in laid.skipped.items():
-        elements[eid] = {"actor": track.actor, "executed": False, "reason": why}
+        elements[eid] = ElementReport(track.actor, reason=why)
     for c in comps:
         t = c.composed.timing
-        elements[c.element.id] = {"actor": track.actor, "start": t.ta0 / fps, "end": t.ta1 / fps,
-                                  "part": c.composed.part,
-                                  "part_fidelity_cm": part_fidelity(tr, c.composed, c.donor, c.core)}
+        elements[c.element.id] = ElementReport(track.actor, start=t.ta0 / fps, end=t.ta1 / fps, part=c.composed.part,
+                                               part_fidelity_cm=part_fidelity(tr, c.composed, c.donor, c.core))
     by_id = {p.element.id: p for p in laid.placed}
     reports = []
     for lj in laid.joins:
@@ -143,9 +141,9 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float) -> tupl
         m["source_max_slide_cm_s"] = max((max_slide(x) for x in src_m), default=0.0)
         m["source_jerk_max"] = max((j.max for j in src_j), default=0.0)
         m["source_jerk_rms"] = max((j.rms for j in src_j), default=0.0)
-        m["core_fidelity_cm"] = {str(rep.first): elements.get(rep.first, {}).get("core_fidelity_cm"),
-                                 str(rep.second): elements.get(rep.second, {}).get(
-                                     "core_fidelity_cm", elements.get(rep.second, {}).get("part_fidelity_cm"))}
+        a_el, b_el = elements.get(rep.first), elements.get(rep.second)
+        m["core_fidelity_cm"] = {str(rep.first): a_el.core_fidelity_cm if a_el is not None else None,
+                                 str(rep.second): b_el.fidelity_cm if b_el is not None else None}
         reports.append(replace(rep, metrics={**rep.metrics, **m}))
     return reports, elements
 

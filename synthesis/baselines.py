@@ -31,12 +31,12 @@ from .assemble import assemble
 from .laid import Laid, LaidJoin
 from .actors import spread_actors
 from .placed import Placed
-from .result import Result
+from .result import BlendInterval, JoinReport, Result
 from .method_select import cyclic_core_begin, cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 from .track import Incoming, TrackState, extend, lay_elements
-from .plan import BlendInterval, JoinReport, Track
+from .plan import Track
 from .posedist import distance_matrix, features, root_headings
 from .transition import Join, apply_join
 from .weights import linear_weights

@@ -40,7 +40,7 @@ def figures(result) -> dict:
             slide += f.slide_cm
         ratio = max(ratio, skating_ratio(m))
     joins = [j for j in result.joins if j.metrics and "jerk_max" in j.metrics]
-    fid = [v["core_fidelity_cm"] for v in result.elements.values() if v.get("core_fidelity_cm") is not None]
+    fid = [v.core_fidelity_cm for v in result.elements.values() if v.core_fidelity_cm is not None]
     return {
         "foot_skate_cm_s": speed_sum / frames if frames else 0.0,
         "slide_cm": slide,

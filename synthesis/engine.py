@@ -34,8 +34,8 @@ from .assemble import compose_parts, finish_joins, finish_whole, measure, same_l
 from .measure import hips_frame
 from .laid import Laid, LaidJoin
 from .placed import Placed, expand_repeats, on_skeleton
-from .plan import BlendInterval, JoinReport, Track
-from .result import Result
+from .plan import Track
+from .result import BlendInterval, JoinReport, Result
 from .timing import Prepared, ease_lead, prepare
 from .transition import Join, Side, apply_join, connection, transition
 

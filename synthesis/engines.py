@@ -72,7 +72,7 @@ def _skating_actors(result) -> dict:
     out: dict = {}
     for j in result.joins:
         if j.metrics.get("skating_ratio", 0.0) > 0:
-            actor = result.elements.get(j.second, {}).get("actor")
+            actor = result.actor_of(j.second)
             out.setdefault(actor, []).append((j.first, j.second))
     return out
 
@@ -94,10 +94,10 @@ def _feet_first(result, tracks: Sequence[Track], fps: float, sway: bool):
     motions, elements = dict(result.motions), dict(result.elements)
     for actor in swap:
         motions[actor] = other.motions[actor]
-        elements.update({k: v for k, v in other.elements.items() if v.get("actor") == actor})
-    joins = [j for j in result.joins if result.elements.get(j.second, {}).get("actor") not in swap]
+        elements.update({k: v for k, v in other.elements.items() if v.actor == actor})
+    joins = [j for j in result.joins if result.actor_of(j.second) not in swap]
     joins += [replace(j, metrics={**j.metrics, "engine": "constraint", "fallback_from": "optimal"})
-              for j in other.joins if other.elements.get(j.second, {}).get("actor") in swap]
+              for j in other.joins if other.actor_of(j.second) in swap]
     warnings = list(result.warnings) + [
         f"{actor or 'default'}: optimal blending left feet skating at join "
         f"{', '.join(f'{a}→{b}' for a, b in bad[actor])}; rendered with the constraint engine instead"

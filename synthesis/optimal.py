@@ -78,11 +78,11 @@ from text2anim.core.contacts import FootContacts, detect_contacts
 from .actors import spread_actors
 from .measure import skating_frames
 from .placed import Placed
-from .result import Result
+from .result import BlendInterval, JoinReport, Result
 from .method_select import (Choice, cyclic_core_begin, cyclic_core_end, phase_for, select, steps,
                             support_by_gap)
 from text2anim.core.motion import Motion, concatenate
-from .plan import BlendInterval, Element, JoinReport, Track
+from .plan import Element, Track
 from .posedist import distance, features, part_joints
 from .switching import foot_points
 from .track import Incoming, TrackState, extend, lay_elements
