@@ -42,7 +42,7 @@ from .transition import Join, apply_join
 from .weights import linear_weights
 
 BLEND = 0.5  # s, both baselines
-METHODS = ("pose", "crossfade")
+BASELINES = ("pose", "crossfade")
 
 
 def _cores(tr: Motion, prev: Placed, inc: Incoming) -> tuple[int, int]:
@@ -124,16 +124,16 @@ def _join(state: TrackState, inc: Incoming, fps: float, method: str, blend_s: fl
 
 def lay_track(track: Track, whole, fps: float, method: str, blend_s: float = BLEND) -> Laid:
     """The whole-body elements of a track joined by ``method`` (``pose`` or ``crossfade``)."""
-    if method not in METHODS:
-        raise ValueError(f"unknown baseline {method!r}; known: {', '.join(METHODS)}")
+    if method not in BASELINES:
+        raise ValueError(f"unknown baseline {method!r}; known: {', '.join(BASELINES)}")
     return lay_elements(track, whole, fps, lambda state, inc: _join(state, inc, fps, method, blend_s))
 
 
 def synthesize_baseline(tracks: Sequence[Track], fps: float = 30.0, method: str = "crossfade", *,
                         sway: bool = True, spread: bool = True, blend_s: float = BLEND) -> Result:
     """Tracks → one motion per actor by the ``pose`` or ``crossfade`` baseline (see the module docstring)."""
-    if method not in METHODS:
-        raise ValueError(f"unknown baseline {method!r}; known: {', '.join(METHODS)}")
+    if method not in BASELINES:
+        raise ValueError(f"unknown baseline {method!r}; known: {', '.join(BASELINES)}")
     if spread:
         tracks = spread_actors(tracks)
     return assemble(tracks, fps, lambda track, whole: lay_track(track, whole, fps, method, blend_s), sway)

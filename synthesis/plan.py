@@ -11,9 +11,9 @@ from dataclasses import dataclass
 
 from text2anim.core.motion import Motion
 
-from text2anim.core.methods import METHODS, Method
+from text2anim.core.methods import ELEMENT_METHODS, Method
 
-__all__ = ["METHODS", "Clip", "Element", "Method", "Track"]
+__all__ = ["Clip", "Element", "Track"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -45,7 +45,7 @@ class Element:
         start: when the element begins on the track (s).
         end: when it ends (s); ``end - start`` is the played length after
             speed, repeats, looping (cyclic clips) or holding/trimming.
-        method: one of :data:`METHODS`; how it joins ``prev``.
+        method: one of :data:`~text2anim.core.methods.ELEMENT_METHODS`; how it joins ``prev``.
         prev: id of the element it is joined to (the base motion for a
             composition); ``None`` for ``initial``.
         speed: time scale (2.0 plays twice as fast).
@@ -69,7 +69,7 @@ class Element:
     body_part: str | None = None
 
     def __post_init__(self):
-        if self.method not in METHODS:
+        if self.method not in ELEMENT_METHODS:
             raise ValueError(f"unknown method {self.method!r}")
         if self.end < self.start:
             raise ValueError(f"element {self.id} ends before it starts")
