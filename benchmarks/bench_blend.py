@@ -44,7 +44,7 @@ sys.path.insert(0, str(REPO))
 from text2anim.motiondb import ClipRecord, MotionDB  # noqa: E402
 from text2anim.scheduler.lengths import transition_window  # noqa: E402
 from text2anim.core import read_bvh  # noqa: E402
-from text2anim.synthesis import optimal  # noqa: E402
+from text2anim.synthesis.optimal import join as optimal  # noqa: E402  (join_next looks plan_join up there)
 from text2anim.synthesis.engines import METHODS, synthesize_with  # noqa: E402
 from text2anim.core.metrics import foot_skate  # noqa: E402
 from text2anim.synthesis.plan import Clip, Element, Track  # noqa: E402
