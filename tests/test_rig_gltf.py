@@ -282,3 +282,16 @@ def test_blender_imports_the_animated_character(walk, tmp_path, rig):
     for f in frames:
         v = np.array(out["frames"][str(f)])
         np.testing.assert_allclose(np.c_[v[:, 0], v[:, 2], -v[:, 1]], bvh.positions[f][idx], atol=1e-3)
+
+
+def test_the_glb_of_a_bvh_rig_carries_the_exported_motion(walk, tmp_path):
+    """With a BVH rig (and the engine options) the GLB shows the same motion the BVH holds, in metres."""
+    from rig_builders import mixamo_rig
+
+    opts = ExportOptions(rig=mixamo_rig(tmp_path / "m.bvh"), in_place=True, units="cm")
+    glb, = walk.save_glb(tmp_path / "out.glb", opts)
+    bvh = read_bvh(walk.save_bvh(tmp_path / "out.bvh", opts)[0], scale=0.01)
+    names, pos = glb_world_positions(glb)
+    assert names == list(bvh.skeleton.names)
+    assert np.abs(pos - bvh.positions).max() < 1e-4
+    assert np.abs(pos[:, 0, [0, 2]]).max() < 0.1  # in place
