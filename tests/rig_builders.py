@@ -266,9 +266,10 @@ def _vroid(role: str) -> str:
     return f"J_Bip_{side}_{part[0].upper()}{part[1:]}"
 
 
-def vrm_file(path: Path, scale: float = 0.85, version: str = "1.0") -> Path:
+def vrm_file(path: Path, scale: float = 0.85, version: str = "1.0", bone_axes: bool = False) -> Path:
     """A VRM avatar from the built-in skeleton: VRM T-pose, 15% shorter, VRoid-style joint names, the humanoid
-    bones in the ``VRMC_vrm`` 1.0 extension (facing +Z) or the ``VRM`` 0.x one (facing -Z, as 0.x models do)."""
+    bones in the ``VRMC_vrm`` 1.0 extension (facing +Z) or the ``VRM`` 0.x one (facing -Z, as 0.x models do);
+    ``bone_axes``: rest rotations along the bones (VRM 1.0 allows any)."""
     pos = {k: v * scale for k, v in _positions(_rest()).items()}
     lift = -min(p[1] for p in pos.values()) + 0.02
     flip = np.array([-1.0, 1.0, -1.0]) if version == "0.x" else np.ones(3)
@@ -288,7 +289,7 @@ def vrm_file(path: Path, scale: float = 0.85, version: str = "1.0") -> Path:
                                       "licenseUrl": "https://vrm.dev/licenses/1.0/"},
                              "humanoid": {"humanBones": {r: {"node": role_node[r]} for r in humanoid_roles}}}}
 
-    data, _ = skinned_glb(rows, pos, bone_axes=False, extensions=ext, names=names)
+    data, _ = skinned_glb(rows, pos, bone_axes=bone_axes, extensions=ext, names=names)
     path.write_bytes(data)
     return path
 

@@ -210,12 +210,13 @@ def test_the_vrma_holds_the_humanoid_in_a_vrm_t_pose(walk, tmp_path):
     assert np.ptp(trans["hips"][:, 2]) > 1.0  # the walk travels
 
 
-@pytest.mark.parametrize("version", ["1.0", "0.x"])
-def test_the_vrma_plays_on_a_vrm_avatar_in_three_vrm(walk, tmp_path, version):
+@pytest.mark.parametrize("version,bone_axes", [("1.0", False), ("1.0", True), ("0.x", False)])
+def test_the_vrma_plays_on_a_vrm_avatar_in_three_vrm(walk, tmp_path, version, bone_axes):
     """@pixiv/three-vrm-animation plays the file on the avatar: frames advance, the bones move, and the avatar's
-    joints go where our retargeting onto it puts them (within 1 cm; a 0.x avatar faces -Z and plays turned)."""
+    joints go where our retargeting onto it puts them (within 1 cm; a 0.x avatar faces -Z and plays turned;
+    an avatar whose bones have rest rotations plays the same)."""
     node = _node("three", "@pixiv/three-vrm", "@pixiv/three-vrm-animation")
-    avatar = vrm_file(tmp_path / "avatar.vrm", version=version)
+    avatar = vrm_file(tmp_path / "avatar.vrm", version=version, bone_axes=bone_axes)
     opts = ExportOptions(rig=avatar)
     vrma, = walk.save_vrma(tmp_path / "walk.vrma", opts)
     bvh = read_bvh(walk.save_bvh(tmp_path / "walk.bvh", opts)[0], scale=1)
