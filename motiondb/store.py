@@ -26,11 +26,11 @@ import os
 from collections.abc import Callable, Iterable, Sequence
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from sqlalchemy import case, func, select, text
+from sqlalchemy import Connection, case, func, select, text
 from sqlalchemy import exc as sa_exc
 from sqlalchemy.engine import Engine, make_url
-from sqlalchemy.orm import Session
 
 from text2anim.core.bodyparts import GROUPS
 from text2anim.core.motion import Motion
@@ -38,7 +38,6 @@ from text2anim.core.skeleton import Skeleton
 
 from . import search as _search
 from .blobs import decode_frames
-from .bvh_import import ImportOptions, Notify, Progress, read_clips
 from .connect import PG_LOCK_KEY, describe_error, first_line, make_engine
 from .errors import DBError, UnknownCharacterError, UnknownClipError, UnknownVerbError
 from .location import resolve_url
@@ -47,10 +46,14 @@ from .postures import classify_posture  # noqa: F401  (re-exported: it was defin
 from .reads import SkeletonCache, clip_infos
 from .readings import nearest, normalize
 from .records import prepare_record
-from .schema import SCHEMA_VERSION, Character, Clip, ClipFrames, ClipVerb, Verb
+from . import schema as tb
+from .schema import SCHEMA_VERSION
 from .seed import fill, seed_source, seeding_needed
 from .types import POSTURES, ClipInfo, ClipRecord, VerbInfo
 from .writes import delete_clips, store_clips
+
+if TYPE_CHECKING:  # BVH import brings scipy (retargeting): loaded by import_bvh only
+    from .bvh_import import ImportOptions, Notify, Progress
 
 
 # ----------------------------------------------------------------- the database
@@ -167,15 +170,14 @@ class MotionDB:
 
     @contextmanager
     def _session(self, write: bool = False):
-        """A session in one transaction, committed on success; writers serialised."""
+        """A connection in one transaction, committed on success; writers serialised."""
         if write and self._memo:
             self._memo.clear()
         with self._errors():
-            with Session(self._writer if write else self.engine, expire_on_commit=False) as session:
-                with session.begin():
-                    if write and self.backend == "postgresql":
-                        session.execute(text("SELECT pg_advisory_xact_lock(:k)"), {"k": PG_LOCK_KEY})
-                    yield session
+            with (self._writer if write else self.engine).begin() as conn:
+                if write and self.backend == "postgresql":
+                    conn.execute(text("SELECT pg_advisory_xact_lock(:k)"), {"k": PG_LOCK_KEY})
+                yield conn
 
     # ------------------------------------------------------- schema, seeding
     def _prepare(self, seed) -> None:
@@ -221,6 +223,8 @@ class MotionDB:
         ``progress(done, total, path)`` is called before each file and once at
         the end; ``notify(path, message)`` says what was done to a file.
         """
+        from .bvh_import import read_clips
+
         clips = read_clips(paths, options, progress, skeleton=self.character_skeleton(options.character),
                            notify=notify)
         with self._session(write=True) as s:
@@ -233,7 +237,8 @@ class MotionDB:
     def character_skeleton(self, character: str) -> Skeleton | None:
         """The skeleton every clip of ``character`` is stored on; ``None`` for a character with no clips."""
         with self._session() as s:
-            sid = s.scalar(select(Character.skeleton_id).where(Character.name == normalize(character)))
+            characters = tb.characters.c
+            sid = s.scalar(select(characters.skeleton_id).where(characters.name == normalize(character)))
             return None if sid is None else self._skeletons.get(s, sid)
 
     # ----------------------------------------------------------------- remove
@@ -245,7 +250,7 @@ class MotionDB:
         names = [names] if isinstance(names, str) else list(names)
         with self._session(write=True) as s:
             for n in names:
-                if s.scalar(select(Clip.id).where(Clip.name == normalize(n))) is None:
+                if s.scalar(select(tb.clips.c.id).where(tb.clips.c.name == normalize(n))) is None:
                     raise UnknownClipError(n, self._near_names(s, n))
             delete_clips(s, [normalize(n) for n in names])
 
@@ -298,9 +303,10 @@ class MotionDB:
             self._memo[key] = ()
         return []
 
-    def _unknown_verb(self, s: Session, verb: str) -> UnknownVerbError:
-        rows = s.execute(select(Verb.lemma, Verb.reading)
-                         .order_by(_search.binary_order(s, Verb.reading), _search.binary_order(s, Verb.lemma))).all()
+    def _unknown_verb(self, s: Connection, verb: str) -> UnknownVerbError:
+        verbs = tb.verbs.c
+        rows = s.execute(select(verbs.lemma, verbs.reading)
+                         .order_by(_search.binary_order(s, verbs.reading), _search.binary_order(s, verbs.lemma))).all()
         cands = {lemma: r for lemma, r in rows}
         near = nearest(verb, cands, n=5)
         return UnknownVerbError(verb, [(lemma, cands[lemma]) for lemma in near], n_verbs=len(cands))
@@ -309,12 +315,12 @@ class MotionDB:
     def clips(self, character: str | None = None) -> list[ClipInfo]:
         """Every clip (of one character when given), by name."""
         with self._session() as s:
-            stmt = select(Clip.id).order_by(_search.binary_order(s, Clip.name))
+            stmt = select(tb.clips.c.id).order_by(_search.binary_order(s, tb.clips.c.name))
             if character is not None:
                 cid = _search.character_id(s, normalize(character))
                 if cid is None:
                     raise UnknownCharacterError(character, self._character_names(s))
-                stmt = stmt.where(Clip.character_id == cid)
+                stmt = stmt.where(tb.clips.c.character_id == cid)
             return clip_infos(s, list(s.scalars(stmt)))
 
     def info(self, name: str) -> ClipInfo:
@@ -325,12 +331,13 @@ class MotionDB:
     def verbs(self) -> list[VerbInfo]:
         """Every verb with its reading and how many clips use it (by reading, then lemma)."""
         with self._session() as s:
-            primary = func.sum(case((ClipVerb.is_primary, 1), else_=0))
+            verbs, links = tb.verbs.c, tb.clip_verbs.c
+            primary = func.sum(case((links.is_primary, 1), else_=0))
             rows = s.execute(
-                select(Verb.lemma, Verb.reading, func.count(ClipVerb.clip_id), primary)
-                .join(ClipVerb, ClipVerb.verb_id == Verb.id)
-                .group_by(Verb.id, Verb.lemma, Verb.reading)
-                .order_by(_search.binary_order(s, Verb.reading), _search.binary_order(s, Verb.lemma))
+                select(verbs.lemma, verbs.reading, func.count(links.clip_id), primary)
+                .join(tb.clip_verbs, links.verb_id == verbs.id)
+                .group_by(verbs.id, verbs.lemma, verbs.reading)
+                .order_by(_search.binary_order(s, verbs.reading), _search.binary_order(s, verbs.lemma))
             ).all()
             return [VerbInfo(lemma, r, int(n), int(p or 0)) for lemma, r, n, p in rows]
 
@@ -345,8 +352,9 @@ class MotionDB:
         name = clip.name if isinstance(clip, ClipInfo) else clip
         with self._session() as s:
             cid = self._clip_id(s, name)
-            row = s.execute(select(Clip.name, Clip.fps, Clip.frames, Clip.skeleton_id).where(Clip.id == cid)).one()
-            enc, data = s.execute(select(ClipFrames.encoding, ClipFrames.data).where(ClipFrames.clip_id == cid)).one()
+            clips, frames = tb.clips.c, tb.clip_frames.c
+            row = s.execute(select(clips.name, clips.fps, clips.frames, clips.skeleton_id).where(clips.id == cid)).one()
+            enc, data = s.execute(select(frames.encoding, frames.data).where(frames.clip_id == cid)).one()
             skel = self._skeletons.get(s, row.skeleton_id)
         return decode_frames(data, skel, row.fps, encoding=enc, frames=row.frames, clip=row.name)
 
@@ -359,17 +367,19 @@ class MotionDB:
                           end_posture=info.end_posture)
 
     # --------------------------------------------------------------- helpers
-    def _clip_id(self, s: Session, name: str) -> int:
-        cid = s.scalar(select(Clip.id).where(Clip.name == normalize(name))) if isinstance(name, str) else None
+    def _clip_id(self, s: Connection, name: str) -> int:
+        cid = (s.scalar(select(tb.clips.c.id).where(tb.clips.c.name == normalize(name)))
+               if isinstance(name, str) else None)
         if cid is None:
             raise UnknownClipError(str(name), self._near_names(s, str(name)))
         return cid
 
-    def _near_names(self, s: Session, name: str) -> list[str]:
+    def _near_names(self, s: Connection, name: str) -> list[str]:
         import difflib
 
-        names = list(s.scalars(select(Clip.name).order_by(_search.binary_order(s, Clip.name))))
+        names = list(s.scalars(select(tb.clips.c.name).order_by(_search.binary_order(s, tb.clips.c.name))))
         return difflib.get_close_matches(normalize(name), names, n=5, cutoff=0.5)
 
-    def _character_names(self, s: Session) -> list[str]:
-        return list(s.scalars(select(Character.name).order_by(_search.binary_order(s, Character.name))))
+    def _character_names(self, s: Connection) -> list[str]:
+        names = tb.characters.c.name
+        return list(s.scalars(select(names).order_by(_search.binary_order(s, names))))
