@@ -41,6 +41,7 @@ their verbs, objects and contacts gathered in the same query.
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass
 from datetime import timezone
 from functools import lru_cache
@@ -205,3 +206,23 @@ def find(session: Connection, verb: str, *, object: str | None = None, character
     if limit is not None:
         params["limit"] = int(limit)
     return [_info(r) for r in session.execute(stmt, params)]
+
+
+def prefer(hits: Sequence[ClipInfo], *, body_part: str | None = None, character: str | None = None,
+           start_posture: str | None = None) -> list[ClipInfo]:
+    """``hits`` as :func:`find` ranks them for ``character`` and ``start_posture``, from hits it found
+    for the same verb, object, character filter and ``body_part`` without those two preferences.
+
+    Without the preferences their tiers (1 and 3 in the module docstring) are equal for every clip,
+    so ``hits`` are in the order of the other keys; a stable sort on (character, body part, posture)
+    puts them first, as the query's ``ORDER BY`` does.
+    """
+    if character is None and start_posture is None:
+        return list(hits)
+    preferred = normalize(character) if character else None
+    mirror = MIRROR_PART.get(body_part) if body_part else None
+
+    def tiers(c: ClipInfo) -> tuple[int, int, int]:
+        part = 0 if body_part is None or c.body_part == body_part else 1 if mirror and c.body_part == mirror else 2
+        return (c.character != preferred, part, c.start_posture != start_posture)
+    return sorted(hits, key=tiers)

@@ -283,24 +283,31 @@ class MotionDB:
             raise ValueError("limit must not be negative")
         if prefer_start_posture is not None and prefer_start_posture not in POSTURES:
             raise DBError(f"unknown posture {prefer_start_posture!r}; known: {', '.join(POSTURES)}")
-        key = (verb, object, character, body_part, prefer_character, limit, prefer_start_posture)
-        if self._memo is not None and key in self._memo:
-            return list(self._memo[key])
+        if self._memo is None:
+            return self._find(verb, object, character, body_part, prefer_character, limit, prefer_start_posture)
+        # memoised: one query per (verb, object, character, body part), ranked without the preferences;
+        # the preferred character and start posture are ranked here, as the query ranks them
+        key = (verb, object, character, body_part)
+        if key not in self._memo:
+            self._memo[key] = tuple(self._find(verb, object, character, body_part, None, None, None))
+        hits = _search.prefer(self._memo[key], body_part=body_part, character=prefer_character,
+                              start_posture=prefer_start_posture)
+        return hits if limit is None else hits[:limit]
+
+    def _find(self, verb: str, object: str | None, character: str | None, body_part: str | None,
+              prefer_character: str | None, limit: int | None, prefer_start_posture: str | None) -> list[ClipInfo]:
+        """:meth:`search` in the database (arguments checked)."""
         with self._session() as s:
             found = _search.find(s, verb, object=object, character=character, body_part=body_part,
                                  prefer_character=prefer_character, prefer_start_posture=prefer_start_posture,
                                  limit=limit)
             if found:
-                if self._memo is not None:
-                    self._memo[key] = tuple(found)
                 return found
             # nothing: say why when it is an unknown verb or character (these look-ups only run here)
             if not _search.match_verbs(s, verb).all:
                 raise self._unknown_verb(s, verb)
             if character is not None and _search.character_id(s, normalize(character)) is None:
                 raise UnknownCharacterError(character, self._character_names(s))
-        if self._memo is not None:
-            self._memo[key] = ()
         return []
 
     def _unknown_verb(self, s: Connection, verb: str) -> UnknownVerbError:
