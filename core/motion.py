@@ -135,6 +135,9 @@ class Motion:
         Computed once per motion; :meth:`frames` of a motion whose pose is known slices it
         (each frame's kinematics depends on that frame alone).
         """
+        source = self.__dict__.get("_pose_source")
+        if source is not None:
+            return self._pose_below(*source)
         # joint-major (J, T, ...) so that a depth's joints are gathered as whole blocks
         local_r = quat_to_matrix(self.rotations).transpose(1, 0, 2, 3).copy()
         local_t = self.local_translations().transpose(1, 0, 2).copy()
@@ -152,6 +155,48 @@ class Motion:
         world_r.setflags(write=False)
         world_p.setflags(write=False)
         return Pose(world_p, world_r)
+
+    def _pose_below(self, known: Pose, top: int) -> Pose:
+        """:attr:`pose` from ``known``, the pose of a motion that differs from this one only in the local
+        rotations of joint ``top`` and its descendants: their forward kinematics is redone, the other
+        joints' world transforms are kept. Each joint's arithmetic is :attr:`pose`'s, so the result is
+        bit for bit the full computation's."""
+        sub = self.skeleton.subtree(top)  # (n,) joints, parents first
+        slot = np.full(self.skeleton.n_joints, -1)
+        slot[sub] = np.arange(len(sub))
+        local_r = quat_to_matrix(self.rotations[:, sub]).transpose(1, 0, 2, 3).copy()
+        local_t = self.local_translations()[:, sub].transpose(1, 0, 2).copy()
+        world_r = np.empty_like(local_r)
+        world_p = np.empty_like(local_t)
+        outside = self.skeleton.parents[top]  # the one parent outside the subtree
+        top_r = np.ascontiguousarray(known.rotations[:, outside])[None]
+        top_p = np.ascontiguousarray(known.positions[:, outside])[None]
+        world_r[:1] = top_r @ local_r[:1]
+        world_p[:1] = top_p + np.einsum("ntij,ntj->nti", top_r, local_t[:1])
+        for joints, parents in self.skeleton.depth_levels():
+            inside = slot[joints] > 0
+            if not inside.any():
+                continue
+            j, p = slot[joints[inside]], slot[parents[inside]]
+            parent_r = world_r[p]
+            world_r[j] = parent_r @ local_r[j]
+            world_p[j] = world_p[p] + np.einsum("ntij,ntj->nti", parent_r, local_t[j])
+        rotations, positions = known.rotations.copy(), known.positions.copy()
+        rotations[:, sub] = world_r.transpose(1, 0, 2, 3)
+        positions[:, sub] = world_p.transpose(1, 0, 2)
+        rotations.setflags(write=False)
+        positions.setflags(write=False)
+        return Pose(positions, rotations)
+
+    def with_rotations(self, rotations: np.ndarray, top: int) -> "Motion":
+        """This motion with local ``rotations`` ``(T, J, 4)`` that differ from its own only at joint ``top``
+        and its descendants (an IK solve of a limb): the new motion's :attr:`pose`, when asked, redoes
+        the kinematics of that subtree only, from this motion's pose if it is known."""
+        out = self.replace(rotations=rotations)
+        known = self.__dict__.get("pose")
+        if known is not None and top > 0:
+            out.__dict__["_pose_source"] = (known, int(top))
+        return out
 
     @property
     def positions(self) -> np.ndarray:

@@ -78,3 +78,22 @@ def test_motion_rejects_mismatched_shapes():
         Motion(_chain(), 30, np.zeros((4, 3)), np.zeros((5, 3, 4)))
     with pytest.raises(ValueError):
         Motion(_chain(), 0, np.zeros((1, 3)), np.tile([0, 0, 0, 1.0], (1, 3, 1)))
+
+
+def test_a_limb_edit_redoes_only_its_subtree_and_gives_the_full_kinematics_bit_for_bit():
+    """``Motion.with_rotations`` (what IK returns) keeps the known pose outside the edited subtree."""
+    from conftest import make_motion
+
+    m = make_motion(40, 30.0, 3, translations=True)
+    m.pose  # known: the edited motion starts from it
+    rng = np.random.default_rng(5)
+    for top in range(1, m.skeleton.n_joints):
+        sub = m.skeleton.subtree(top)
+        assert sub[0] == top and all(m.skeleton.parents[j] in sub for j in sub[1:])
+        rots = m.rotations.copy()
+        r = rots[:, sub] + 0.2 * rng.standard_normal(rots[:, sub].shape)
+        rots[:, sub] = r / np.linalg.norm(r, axis=-1, keepdims=True)
+        edited = m.with_rotations(rots, top).pose
+        full = Motion(m.skeleton, m.fps, m.root_positions, rots, m.translations).pose
+        assert np.array_equal(edited.rotations, full.rotations)
+        assert np.array_equal(edited.positions, full.positions)
