@@ -138,6 +138,9 @@ class Motion:
         source = self.__dict__.get("_pose_source")
         if source is not None:
             return self._pose_below(*source)
+        same = self.__dict__.get("_pose_of")
+        if same is not None:
+            return same.pose
         # joint-major (J, T, ...) so that a depth's joints are gathered as whole blocks
         local_r = quat_to_matrix(self.rotations).transpose(1, 0, 2, 3).copy()
         local_t = self.local_translations().transpose(1, 0, 2).copy()
@@ -187,6 +190,14 @@ class Motion:
         rotations.setflags(write=False)
         positions.setflags(write=False)
         return Pose(positions, rotations)
+
+    def copy_sharing_pose(self) -> "Motion":
+        """The same frames in arrays of their own; its :attr:`pose` is this motion's, computed once for both
+        (a motion is not edited in place: edits make new motions)."""
+        out = Motion(self.skeleton, self.fps, self.root_positions.copy(), self.rotations.copy(),
+                     None if self.translations is None else self.translations.copy())
+        out.__dict__["_pose_of"] = self
+        return out
 
     def with_rotations(self, rotations: np.ndarray, top: int) -> "Motion":
         """This motion with local ``rotations`` ``(T, J, 4)`` that differ from its own only at joint ``top``

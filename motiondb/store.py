@@ -23,6 +23,7 @@ first (so a clip can follow one that ends seated, crouched or lying).
 from __future__ import annotations
 
 import os
+from collections import OrderedDict
 from collections.abc import Callable, Iterable, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -56,6 +57,10 @@ if TYPE_CHECKING:  # BVH import brings scipy (retargeting): loaded by import_bvh
     from .bvh_import import ImportOptions, Notify, Progress
 
 
+#: Decoded clips a :class:`MotionDB` keeps (least recently loaded dropped first).
+LOADED_CLIPS = 32
+
+
 # ----------------------------------------------------------------- the database
 class MotionDB:
     """A motion database behind an SQLAlchemy engine. Open it with :meth:`open`.
@@ -72,6 +77,7 @@ class MotionDB:
         self._writer = engine.execution_options(t2a_write=True)
         self._skeletons = SkeletonCache()
         self._memo: dict | None = None  # search answers inside memoised(), else None
+        self._loaded: OrderedDict[str, tuple[tuple, Motion]] = OrderedDict()  # name -> (row key, motion)
 
     # ------------------------------------------------------------- open/close
     @classmethod
@@ -355,15 +361,31 @@ class MotionDB:
 
     # ------------------------------------------------------------------ load
     def load(self, clip: ClipInfo | str) -> Motion:
-        """The frames of a clip (by :class:`ClipInfo` or name) as a :class:`synthesis.Motion`."""
+        """The frames of a clip (by :class:`ClipInfo` or name) as a :class:`synthesis.Motion`.
+
+        The last :data:`LOADED_CLIPS` clips loaded are kept decoded, with their forward kinematics
+        once asked: a clip loaded again while its row is the same (id, creation time, size; one
+        query checks it) is a copy of its frames whose pose is computed once for all copies.
+        """
         name = clip.name if isinstance(clip, ClipInfo) else clip
+        clips, frames = tb.clips.c, tb.clip_frames.c
         with self._session() as s:
-            cid = self._clip_id(s, name)
-            clips, frames = tb.clips.c, tb.clip_frames.c
-            row = s.execute(select(clips.name, clips.fps, clips.frames, clips.skeleton_id).where(clips.id == cid)).one()
-            enc, data = s.execute(select(frames.encoding, frames.data).where(frames.clip_id == cid)).one()
+            row = (s.execute(select(clips.id, clips.name, clips.fps, clips.frames, clips.skeleton_id, clips.created)
+                             .where(clips.name == normalize(name))).first() if isinstance(name, str) else None)
+            if row is None:
+                raise UnknownClipError(str(name), self._near_names(s, str(name)))
+            key = tuple(row)  # id, creation time, frames, fps, skeleton: a replaced clip differs
+            known = self._loaded.get(row.name)
+            if known is not None and known[0] == key:
+                self._loaded.move_to_end(row.name)
+                return known[1].copy_sharing_pose()
+            enc, data = s.execute(select(frames.encoding, frames.data).where(frames.clip_id == row.id)).one()
             skel = self._skeletons.get(s, row.skeleton_id)
-        return decode_frames(data, skel, row.fps, encoding=enc, frames=row.frames, clip=row.name)
+        motion = decode_frames(data, skel, row.fps, encoding=enc, frames=row.frames, clip=row.name)
+        self._loaded[row.name] = (key, motion)
+        while len(self._loaded) > LOADED_CLIPS:
+            self._loaded.popitem(last=False)
+        return motion.copy_sharing_pose()
 
     def record(self, name: str) -> ClipRecord:
         """A stored clip as a :class:`ClipRecord` (frames and metadata), e.g. to export or mirror it."""

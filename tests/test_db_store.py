@@ -67,6 +67,24 @@ def test_add_then_load_gives_back_the_same_frames(empty_db, record):
     assert empty_db.characters() == ["alice", "default"]
 
 
+def test_a_clip_loaded_again_is_decoded_once_and_follows_a_replacement(empty_db, record):
+    empty_db.add([record("walk", ("歩く",), seed=1)])
+    first = empty_db.load("walk")
+    seen: list[str] = []
+    event.listen(empty_db.engine, "before_cursor_execute", lambda conn, cur, statement, *a: seen.append(statement))
+    again = empty_db.load("walk")
+    assert not any("clip_frames" in s for s in seen)  # the frames were not read again
+    assert again is not first and np.array_equal(again.rotations, first.rotations)
+    assert again.pose is first.pose  # forward kinematics done once for both
+    again.rotations[:] = 0.0  # a caller's own arrays: editing them does not reach the next load
+    assert np.array_equal(empty_db.load("walk").rotations, first.rotations)
+    replacement = record("walk", ("歩く",), seed=2)
+    empty_db.add([replacement], replace=True)
+    assert np.array_equal(empty_db.load("walk").rotations, replacement.motion.rotations)
+    with pytest.raises(UnknownClipError):
+        empty_db.load("walkk")
+
+
 def test_record_round_trips_into_another_database(empty_db, record, tmp_path):
     empty_db.add([record("kick", ("蹴る", "キックする"), objects=("ボール",), core=(0.1, 0.5), body_part="right_leg")])
     rec = empty_db.record("kick")
