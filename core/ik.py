@@ -160,7 +160,7 @@ def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0
     rots = motion.rotations.copy()
     rots[idx, a_j] = Rotation.from_matrix(local_a).as_quat()
     rots[idx, b_j] = Rotation.from_matrix(local_b).as_quat()
-    return motion.with_rotations(rots, a_j)  # the limb below a_j is all that moved
+    return motion.replace(rotations=rots)
 
 
 def set_world_rotation(motion: Motion, joint, rotations, mask=None) -> Motion:
@@ -180,7 +180,7 @@ def set_world_rotation(motion: Motion, joint, rotations, mask=None) -> Motion:
         local = world
     rots = motion.rotations.copy()
     rots[mask, j] = local.as_quat()
-    return motion.with_rotations(rots, j)
+    return motion.replace(rotations=rots)
 
 
 def _limb(motion: Motion, side: str, kind: str) -> tuple[tuple[int, int, int], tuple[float, float, float]]:

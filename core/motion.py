@@ -199,16 +199,6 @@ class Motion:
         out.__dict__["_pose_of"] = self
         return out
 
-    def with_rotations(self, rotations: np.ndarray, top: int) -> "Motion":
-        """This motion with local ``rotations`` ``(T, J, 4)`` that differ from its own only at joint ``top``
-        and its descendants (an IK solve of a limb): the new motion's :attr:`pose`, when asked, redoes
-        the kinematics of that subtree only, from this motion's pose if it is known."""
-        out = self.replace(rotations=rotations)
-        known = self.__dict__.get("pose")
-        if known is not None and top > 0:
-            out.__dict__["_pose_source"] = (known, int(top))
-        return out
-
     @property
     def positions(self) -> np.ndarray:
         """World joint positions ``(T, J, 3)``, metres."""
@@ -225,17 +215,59 @@ class Motion:
 
     # ---------------------------------------------------------------- editing
     def replace(self, **changes) -> "Motion":
-        return replace(self, **changes)
+        """A new motion with some fields changed. When only the local rotations change, and only those
+        of some joints (an IK solve of a limb), the new motion's :attr:`pose`, when asked, redoes the
+        kinematics of the smallest subtree holding them, from this motion's pose (bit for bit the
+        full computation: :meth:`_pose_below`)."""
+        out = replace(self, **changes)
+        if changes.keys() == {"rotations"} and out.rotations.shape == self.rotations.shape:
+            self._carry_pose(out)
+        return out
+
+    def _carry_pose(self, out: "Motion") -> None:
+        """Tell ``out`` (this motion with other local rotations) how to get its pose from this one's."""
+        known = self._known_pose()
+        source = self.__dict__.get("_pose_source")
+        if known is None and source is None:
+            return
+        differs = (out.rotations.view(np.int64) != self.rotations.view(np.int64)).any(axis=(0, 2))
+        changed = np.flatnonzero(differs)
+        if len(changed) == 0:
+            if known is not None:
+                out.__dict__["pose"] = known
+            else:
+                out.__dict__["_pose_source"] = source
+            return
+        top = int(changed[0])
+        for j in changed[1:]:
+            top = self.skeleton.common_ancestor(top, int(j))
+        if known is None:  # edits on edits: redo the subtree holding them all, when asked
+            top = self.skeleton.common_ancestor(top, source[1])
+            known = source[0]
+        if top > 0:
+            out.__dict__["_pose_source"] = (known, top)
 
     def frames(self, start: int, stop: int | None = None) -> "Motion":
         """Frames ``start`` .. ``stop - 1`` (Python slice semantics)."""
         sl = slice(start, stop)
         out = Motion(self.skeleton, self.fps, self.root_positions[sl], self.rotations[sl],
                      None if self.translations is None else self.translations[sl])
-        known = self.__dict__.get("pose")
-        if known is not None:  # FK is per frame: the slice of the known pose is the pose of the slice
+        known = self._known_pose()
+        source = self.__dict__.get("_pose_source")
+        # FK is per frame: the slice of the known pose is the pose of the slice
+        if known is not None:
             out.__dict__["pose"] = Pose(known.positions[sl], known.rotations[sl])
+        elif source is not None:  # a limb edit not yet solved: solve it on the slice only, when asked
+            out.__dict__["_pose_source"] = (Pose(source[0].positions[sl], source[0].rotations[sl]), source[1])
         return out
+
+    def _known_pose(self) -> Pose | None:
+        """:attr:`pose` if it is computed (here or on the motion whose copy this is), else ``None``."""
+        known = self.__dict__.get("pose")
+        same = self.__dict__.get("_pose_of")
+        if known is None and same is not None:
+            known = same.__dict__.get("pose")
+        return known
 
     def __getitem__(self, sl: slice) -> "Motion":
         if not isinstance(sl, slice) or sl.step not in (None, 1):

@@ -81,19 +81,33 @@ def test_motion_rejects_mismatched_shapes():
 
 
 def test_a_limb_edit_redoes_only_its_subtree_and_gives_the_full_kinematics_bit_for_bit():
-    """``Motion.with_rotations`` (what IK returns) keeps the known pose outside the edited subtree."""
+    """``Motion.replace(rotations=...)`` that changes some joints (what IK does) redoes the kinematics of
+    their subtree only, from the known pose: the same bits as the full computation, edits on edits too."""
     from conftest import make_motion
 
     m = make_motion(40, 30.0, 3, translations=True)
-    m.pose  # known: the edited motion starts from it
+    m.pose  # known: the edited motions start from it
     rng = np.random.default_rng(5)
-    for top in range(1, m.skeleton.n_joints):
+
+    def edit(motion, joints):
+        rots = motion.rotations.copy()
+        r = rots[:, joints] + 0.2 * rng.standard_normal(rots[:, joints].shape)
+        rots[:, joints] = r / np.linalg.norm(r, axis=-1, keepdims=True)
+        return rots
+
+    def full(rots):
+        return Motion(m.skeleton, m.fps, m.root_positions, rots, m.translations).pose
+
+    J = m.skeleton.n_joints
+    for top in range(1, J):
         sub = m.skeleton.subtree(top)
         assert sub[0] == top and all(m.skeleton.parents[j] in sub for j in sub[1:])
-        rots = m.rotations.copy()
-        r = rots[:, sub] + 0.2 * rng.standard_normal(rots[:, sub].shape)
-        rots[:, sub] = r / np.linalg.norm(r, axis=-1, keepdims=True)
-        edited = m.with_rotations(rots, top).pose
-        full = Motion(m.skeleton, m.fps, m.root_positions, rots, m.translations).pose
-        assert np.array_equal(edited.rotations, full.rotations)
-        assert np.array_equal(edited.positions, full.positions)
+        rots = edit(m, [top, sub[-1]])
+        once = m.replace(rotations=rots)
+        twice = once.replace(rotations=edit(once, [int(rng.integers(1, J))]))  # its pose not asked before
+        cases = ((once, once, slice(None)), (twice[5:30], twice, slice(5, 30)), (twice, twice, slice(None)))
+        for motion, whole, sl in cases:  # the slice first: it solves the edit on its frames only
+            expect = full(whole.rotations)
+            assert np.array_equal(motion.pose.rotations, expect.rotations[sl])
+            assert np.array_equal(motion.pose.positions, expect.positions[sl])
+    assert m.replace(rotations=m.rotations.copy()).pose is not None
