@@ -8,11 +8,7 @@ from __future__ import annotations
 
 from sqlalchemy import Connection, Row, inspect, select, text
 
-from text2anim.core.bodyparts import BodyMapError
-
-from .blobs import decode_frames
 from .errors import DBError, SchemaVersionError
-from .postures import clip_postures
 from .reads import SkeletonCache
 from . import schema as tb
 from .schema import OLDEST_MIGRATABLE, SCHEMA_VERSION, TABLE_NAMES, utcnow
@@ -67,6 +63,11 @@ def migrate(s: Connection, version: int, skeletons: SkeletonCache) -> None:
     """Bring a database of schema ``version`` to :data:`SCHEMA_VERSION` in session ``s`` (under
     the write lock; the caller's transaction makes it all or nothing)."""
     if version < 2:
+        from text2anim.core.bodyparts import BodyMapError
+
+        from .blobs import decode_frames
+        from .postures import clip_postures
+
         # 1 -> 2: clip postures. The columns come with the default; then every stored clip is
         # classified from its frames (one clip at a time, so memory stays one clip's).
         for column in ("start_posture", "end_posture"):

@@ -11,11 +11,9 @@ from sqlalchemy import Connection, select
 
 from .errors import ClipValidationError, DBError, SeedWarning
 from .reads import SkeletonCache
-from .records import prepare_record
 from .migrate import set_version
 from . import schema as tb
 from .types import ClipRecord
-from .writes import delete_clips, store_clips
 
 #: ``source`` of the built-in library's clips (``builtin`` or ``builtin:<file>``).
 BUILTIN_SOURCE = "builtin"
@@ -89,6 +87,9 @@ def fill(s: Connection, source: SeedSource, library: str | None, url: str, skele
     clips go first. Clips whose names are taken are kept as they are (a
     :class:`SeedWarning` lists them); the tag is recorded in ``schema_version``.
     """
+    from .records import prepare_record
+    from .writes import delete_clips, store_clips
+
     try:
         prepared = [prepare_record(r) for r in source.records()]
     except ClipValidationError as exc:

@@ -43,18 +43,26 @@ from .connect import PG_LOCK_KEY, describe_error, first_line, make_engine
 from .errors import DBError, UnknownCharacterError, UnknownClipError, UnknownVerbError
 from .location import resolve_url
 from .migrate import create_schema, migrate, require_schema, schema_state
-from .postures import classify_posture  # noqa: F401  (re-exported: it was defined here)
 from .reads import SkeletonCache, clip_infos
 from .readings import nearest, normalize
-from .records import prepare_record
 from . import schema as tb
 from .schema import SCHEMA_VERSION
-from .seed import fill, seed_source, seeding_needed
+from .seed import seed_source, seeding_needed
 from .types import POSTURES, ClipInfo, ClipRecord, VerbInfo
-from .writes import delete_clips, store_clips
 
 if TYPE_CHECKING:  # BVH import brings scipy (retargeting): loaded by import_bvh only
     from .bvh_import import ImportOptions, Notify, Progress
+
+# Writing (records, contacts, writes, seeding) is imported by the methods that write: a command that
+# only reads (text2anim plan) does not load it.
+
+
+def __getattr__(name: str):
+    if name == "classify_posture":  # re-exported: it was defined here
+        from .postures import classify_posture
+
+        return classify_posture
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 #: Decoded clips a :class:`MotionDB` keeps (least recently loaded dropped first).
@@ -193,6 +201,8 @@ class MotionDB:
             version, library = schema_state(s, self.url)
         if version == SCHEMA_VERSION and not seeding_needed(library, source):
             return
+        from .seed import fill
+
         with self._session(write=True) as s:
             # again, under the write lock: another process may have done it
             version, library = schema_state(s, self.url)
@@ -212,6 +222,9 @@ class MotionDB:
         ``replace`` overwrites clips of the same names; otherwise an existing
         name raises :class:`ClipExistsError` and nothing is stored.
         """
+        from .records import prepare_record
+        from .writes import store_clips
+
         prepared = [prepare_record(r) for r in records]
         with self._session(write=True) as s:
             require_schema(s, self.url)
@@ -230,6 +243,7 @@ class MotionDB:
         the end; ``notify(path, message)`` says what was done to a file.
         """
         from .bvh_import import read_clips
+        from .writes import store_clips
 
         clips = read_clips(paths, options, progress, skeleton=self.character_skeleton(options.character),
                            notify=notify)
@@ -253,6 +267,8 @@ class MotionDB:
 
         Verbs, objects, characters and skeletons no remaining clip uses go with them.
         """
+        from .writes import delete_clips
+
         names = [names] if isinstance(names, str) else list(names)
         with self._session(write=True) as s:
             for n in names:

@@ -68,7 +68,8 @@ def store_clips(s: Connection, prepared: list[PreparedClip], cache: SkeletonCach
     s.execute(insert(tb.clip_frames), [dict(clip_id=ids[p.name], encoding=ENCODING, data=p.blob) for p in kept])
     s.execute(insert(tb.clip_verbs), [dict(clip_id=ids[p.name], verb_id=verb_ids[v], position=k, is_primary=k == 0)
                                       for p in kept for k, v in enumerate(p.verbs)])
-    links = [dict(clip_id=ids[p.name], object_id=object_ids[o], position=k) for p in kept for k, o in enumerate(p.objects)]
+    links = [dict(clip_id=ids[p.name], object_id=object_ids[o], position=k)
+             for p in kept for k, o in enumerate(p.objects)]
     if links:
         s.execute(insert(tb.clip_objects), links)
     contacts = [dict(clip_id=ids[p.name], side=side, start_frame=a, stop_frame=b)
@@ -89,7 +90,9 @@ def _place(s: Connection, prepared: list[PreparedClip], cache: SkeletonCache, co
     characters: dict[str, tuple[int, int] | None] = {}  # name -> (id, skeleton id)
     char_skel: dict[str, Skeleton] = {}
     skeletons: dict[str, int] = {}  # fingerprint -> id
-    keep, clip_skeleton, clip_character = [], {}, {}
+    keep: list[PreparedClip] = []
+    clip_skeleton: dict[str, int] = {}  # clip name -> skeleton id
+    clip_character: dict[str, int] = {}  # clip name -> character id
     for p in prepared:
         if p.character not in characters:
             row = s.execute(select(ch.id, ch.skeleton_id).where(ch.name == p.character)).first()
