@@ -18,23 +18,23 @@ from .skeleton import Skeleton
 
 
 def quat_to_matrix(q: np.ndarray) -> np.ndarray:
-    """Quaternions ``(..., 4)`` to rotation matrices ``(..., 3, 3)``."""
-    from scipy.spatial.transform import Rotation
+    """Quaternions ``(..., 4)`` to rotation matrices ``(..., 3, 3)`` (``Rotation.as_matrix``'s bits)."""
+    from . import rotkernels
 
     flat = q.reshape(-1, 4)
     if len(flat) == 0:
         return np.zeros(q.shape[:-1] + (3, 3))
-    return Rotation.from_quat(flat).as_matrix().reshape(q.shape[:-1] + (3, 3))
+    return rotkernels.as_matrix(flat).reshape(q.shape[:-1] + (3, 3))
 
 
 def matrix_to_quat(m: np.ndarray) -> np.ndarray:
-    """Rotation matrices ``(..., 3, 3)`` to quaternions ``(..., 4)``."""
-    from scipy.spatial.transform import Rotation
+    """Rotation matrices ``(..., 3, 3)`` to quaternions ``(..., 4)`` (``Rotation.from_matrix``'s bits)."""
+    from . import rotkernels
 
     flat = m.reshape(-1, 3, 3)
     if len(flat) == 0:
         return np.zeros(m.shape[:-2] + (4,))
-    return Rotation.from_matrix(flat).as_quat().reshape(m.shape[:-2] + (4,))
+    return rotkernels.from_matrix(flat).reshape(m.shape[:-2] + (4,))
 
 
 def unroll_quaternions(q: np.ndarray) -> np.ndarray:
