@@ -24,7 +24,7 @@ def quat_to_matrix(q: np.ndarray) -> np.ndarray:
     flat = q.reshape(-1, 4)
     if len(flat) == 0:
         return np.zeros(q.shape[:-1] + (3, 3))
-    return rotkernels.as_matrix(flat).reshape(q.shape[:-1] + (3, 3))
+    return rotkernels.as_matrix(rotkernels.from_quat(flat)).reshape(q.shape[:-1] + (3, 3))
 
 
 def matrix_to_quat(m: np.ndarray) -> np.ndarray:
@@ -34,7 +34,7 @@ def matrix_to_quat(m: np.ndarray) -> np.ndarray:
     flat = m.reshape(-1, 3, 3)
     if len(flat) == 0:
         return np.zeros(m.shape[:-2] + (4,))
-    return rotkernels.from_matrix(flat).reshape(m.shape[:-2] + (4,))
+    return rotkernels.as_quat(rotkernels.from_matrix(flat)).reshape(m.shape[:-2] + (4,))
 
 
 def unroll_quaternions(q: np.ndarray) -> np.ndarray:

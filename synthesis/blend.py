@@ -63,10 +63,10 @@ def slerp(qa: np.ndarray, qb: np.ndarray, w) -> np.ndarray:
     if int(np.prod(shape[:-1])) == 0:
         return np.zeros(shape)
     # A * exp(w log(A^-1 B)) by scipy's own kernels, without Rotation objects (the same bits, less overhead)
-    ra = rk.normalized(np.broadcast_to(qa, shape))
-    rb = rk.normalized(np.broadcast_to(qb, shape))
+    ra = rk.from_quat(np.broadcast_to(qa, shape))
+    rb = rk.from_quat(np.broadcast_to(qb, shape))
     rel = rk.as_rotvec(rk.compose(rk.inverse(ra), rb))
-    return rk.compose(ra, rk.from_rotvec(rel * w.reshape(-1, 1))).reshape(shape)
+    return rk.as_quat(rk.compose(ra, rk.from_rotvec(rel * w.reshape(-1, 1)))).reshape(shape)
 
 
 def lerp(a: np.ndarray, b: np.ndarray, w) -> np.ndarray:
