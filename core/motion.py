@@ -242,6 +242,7 @@ class Motion:
         for j in changed[1:]:
             top = self.skeleton.common_ancestor(top, int(j))
         if known is None:  # edits on edits: redo the subtree holding them all, when asked
+            assert source is not None
             top = self.skeleton.common_ancestor(top, source[1])
             known = source[0]
         if top > 0:

@@ -5,7 +5,7 @@ a batch is all or nothing.
 """
 from __future__ import annotations
 
-from sqlalchemy import Connection, delete, exists, insert, select
+from sqlalchemy import Connection, CursorResult, delete, exists, insert, select
 
 from text2anim.core.skeleton import Skeleton
 
@@ -113,16 +113,23 @@ def _place(s: Connection, prepared: list[PreparedClip], cache: SkeletonCache, co
         # the skeleton, stored once per fingerprint
         sid = skeletons.get(p.fingerprint) or s.scalar(select(sk.id).where(sk.fingerprint == p.fingerprint))
         if sid is None:
-            sid = s.execute(insert(tb.skeletons).values(fingerprint=p.fingerprint, n_joints=p.skeleton.n_joints,
-                                                         definition=p.skeleton_def)).inserted_primary_key[0]
+            sid = _new_id(s.execute(insert(tb.skeletons).values(
+                fingerprint=p.fingerprint, n_joints=p.skeleton.n_joints, definition=p.skeleton_def)))
         skeletons[p.fingerprint] = sid
         if known is None:
-            cid = s.execute(insert(tb.characters).values(name=p.character, skeleton_id=sid)).inserted_primary_key[0]
+            cid = _new_id(s.execute(insert(tb.characters).values(name=p.character, skeleton_id=sid)))
             characters[p.character] = known = (cid, sid)
             char_skel[p.character] = p.skeleton
         keep.append(p)
         clip_skeleton[p.name], clip_character[p.name] = sid, known[0]
     return keep, clip_skeleton, clip_character
+
+
+def _new_id(result: CursorResult) -> int:
+    """The primary key of the row an INSERT added."""
+    key = result.inserted_primary_key
+    assert key is not None
+    return int(key[0])
 
 
 def _names(s: Connection, table, column: str, names: list[str]) -> dict[str, int]:
