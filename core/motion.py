@@ -135,7 +135,7 @@ class Motion:
         Computed once per motion; :meth:`frames` of a motion whose pose is known slices it
         (each frame's kinematics depends on that frame alone).
         """
-        source = self.__dict__.get("_pose_source")
+        source = self.__dict__.pop("_pose_source", None)  # not kept once used: it holds another pose
         if source is not None:
             return self._pose_below(*source)
         same = self.__dict__.get("_pose_of")
