@@ -60,9 +60,10 @@ class Pose:
     positions: np.ndarray
     rotations: np.ndarray
 
-    def quaternions(self) -> np.ndarray:
-        """World rotations as ``(T, J, 4)`` quaternions."""
-        return matrix_to_quat(self.rotations)
+    def quaternions(self, joints=None) -> np.ndarray:
+        """World rotations as ``(T, J, 4)`` quaternions; of ``joints`` only (an index or a list) when given,
+        ``(T, 4)`` or ``(T, n, 4)``, converting those joints' matrices only."""
+        return matrix_to_quat(self.rotations if joints is None else self.rotations[:, joints])
 
 
 @dataclass(frozen=True, eq=False)

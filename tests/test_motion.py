@@ -111,3 +111,12 @@ def test_a_limb_edit_redoes_only_its_subtree_and_gives_the_full_kinematics_bit_f
             assert np.array_equal(motion.pose.rotations, expect.rotations[sl])
             assert np.array_equal(motion.pose.positions, expect.positions[sl])
     assert m.replace(rotations=m.rotations.copy()).pose is not None
+
+
+def test_world_quaternions_of_some_joints_are_those_of_all_joints():
+    from conftest import make_motion
+
+    pose = make_motion(30, 30.0, 4).pose
+    every = pose.quaternions()
+    assert np.array_equal(pose.quaternions(3), every[:, 3])
+    assert np.array_equal(pose.quaternions([5, 1]), every[:, [5, 1]])
