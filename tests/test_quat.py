@@ -47,9 +47,16 @@ def test_resample_slerps_like_scipy(fps):
     assert np.allclose(m.resample(fps).rotations, expect, atol=1e-12)
 
 
-def test_rotation_kernels_are_scipy_rotation_bit_for_bit():
-    """core.rotkernels calls scipy's compiled backend as Rotation does: the same bits, no objects."""
+@pytest.mark.parametrize("backend", ["compiled", "public"])
+def test_rotation_kernels_are_scipy_rotation_bit_for_bit(backend, monkeypatch):
+    """core.rotkernels calls scipy's compiled backend as Rotation does: the same bits, no objects; with
+    another scipy (no backend, or one that answers differently) the public methods give the same bits."""
     from text2anim.core import rotkernels as rk
+
+    if backend == "public":
+        monkeypatch.setattr(rk, "_cy", None)
+    else:
+        assert rk._cy is not None and rk._backend_answers(rk._cy)  # scipy as pinned in CI: the fast path runs
 
     rng = np.random.default_rng(11)
     for n in (1, 5, 31, 400):
