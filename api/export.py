@@ -19,14 +19,15 @@ import os
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from text2anim.core.bvh import read_bvh
-from text2anim.core.conventions import in_place, looped, root_motion, scaled
-from text2anim.core.gltf_rig import GLTF_SUFFIXES, GltfRig, read_gltf_rig
 from text2anim.core.motion import Motion
-from text2anim.core.retarget import retarget
 from text2anim.core.rigs import load_joint_map, rig_roles
 from text2anim.core.skeleton import Skeleton
+
+if TYPE_CHECKING:
+    from text2anim.core.gltf_rig import GltfRig
 
 #: ``--units``: metres per file unit.
 UNITS = {"m": 1.0, "cm": 100.0}
@@ -75,6 +76,8 @@ class ExportOptions:
     @cached_property
     def gltf_rig(self) -> GltfRig | None:
         """The rig's glTF character (``None`` without a rig or for a BVH rig)."""
+        from text2anim.core.gltf_rig import GLTF_SUFFIXES, read_gltf_rig
+
         if self.rig is None or Path(self.rig).suffix.lower() not in GLTF_SUFFIXES:
             return None
         return read_gltf_rig(Path(self.rig))
@@ -116,6 +119,12 @@ def _no_root_bone(rig: GltfRig) -> ExportError:
 
 def export_motion(motion: Motion, opts: ExportOptions, *, units: bool = True) -> Motion:
     """``motion`` as ``opts`` asks (see the module docstring for the order); ``units=False`` keeps metres."""
+    if opts.is_default:
+        return motion
+    # loaded here, not at import: scipy.signal and scipy.ndimage are ~0.3 s of a run's start
+    from text2anim.core.conventions import scaled
+    from text2anim.core.retarget import retarget
+
     if opts.skeleton is not None:
         motion = retarget(motion, opts.skeleton, target_map=opts.target_map)
     motion = _conventions(motion, opts, opts.target_map if opts.skeleton is not None else None)
@@ -127,6 +136,8 @@ def export_motion(motion: Motion, opts: ExportOptions, *, units: bool = True) ->
 def _conventions(motion: Motion, opts: ExportOptions, joint_map: dict[str, str] | None,
                  root: bool = True) -> Motion:
     """Loop, then root motion (with ``root``) or in place."""
+    from text2anim.core.conventions import in_place, looped, root_motion
+
     if opts.loop:
         motion = looped(motion)
     if opts.root_motion and root:
@@ -161,6 +172,7 @@ def vrma_motion(motion: Motion, opts: ExportOptions) -> Motion:
     """``motion`` on a VRMA skeleton (:func:`core.vrma.vrma_skeleton`): the user's VRM avatar's proportions
     when the rig is one, else the motion's own; looped and in place as ``opts`` asks (VRMA travel stays on
     the hips, so ``--root-motion`` does not apply)."""
+    from text2anim.core.retarget import retarget
     from text2anim.core.vrma import vrma_skeleton
 
     rig = opts.gltf_rig
