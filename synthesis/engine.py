@@ -335,6 +335,7 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
     """
     if spread:
         tracks = spread_actors(tracks)
+    from .alive import keep_alive
     from .assemble import measure, same_length  # assemble builds on this module's pieces
 
     motions, reports, elements, warnings = {}, [], {}, []
@@ -345,4 +346,5 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
         reports.extend(reps)
         elements.update(els)
         motions[track.actor] = laid.motion
-    return Result(same_length(motions) if lock_feet else motions, reports, fps, elements, tuple(warnings))
+    final = same_length(motions) if lock_feet else motions
+    return Result({actor: keep_alive(m) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))

@@ -81,6 +81,8 @@ def _feet_first(result, tracks: Sequence[Track], fps: float, sway: bool):
     """``result`` with every skating actor re-rendered by the constraint engine when that one is clean."""
     from dataclasses import replace
 
+    from .alive import keep_alive
+    from .assemble import same_length
     from .engine import synthesize
 
     bad = _skating_actors(result)
@@ -95,6 +97,8 @@ def _feet_first(result, tracks: Sequence[Track], fps: float, sway: bool):
     for actor in swap:
         motions[actor] = other.motions[actor]
         elements.update({k: v for k, v in other.elements.items() if v.get("actor") == actor})
+    # the two engines' post-passes give the joins different times: every actor as long as the longest again
+    motions = {actor: keep_alive(m) for actor, m in same_length(motions).items()}
     joins = [j for j in result.joins if result.elements.get(j.second, {}).get("actor") not in swap]
     joins += [replace(j, metrics={**j.metrics, "engine": "constraint", "fallback_from": "optimal"})
               for j in other.joins if other.elements.get(j.second, {}).get("actor") in swap]
