@@ -144,7 +144,8 @@ def lift_swings(motion: Motion) -> Motion:
     contacts = detect_contacts(motion)
     bm = body_map(motion.skeleton)
     pos = motion.positions
-    limbs, deficits = [], []
+    limbs: list = []
+    deficits: list[np.ndarray] = []
     for side, (ankle, toe) in bm.feet.items():
         swinging = ~contacts.of(side) & (horizontal_speed(pos[:, toe], motion.fps) > SPEED_THRESHOLD)
         low = np.maximum(0.0, FOOT_CLEARANCE + SWING_CLEARANCE - pos[:, toe, 1])
