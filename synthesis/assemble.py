@@ -11,7 +11,7 @@ way; then, exactly as the seed-003 engine (:mod:`synthesis.engine`) does:
    jerk against the source clips', core fidelity per element);
 3. a :class:`synthesis.result.Result` is returned, so every method can be
    saved, viewed, reported and compared the same way, every actor's motion
-   kept alive where it would hold a frozen pose (:func:`synthesis.alive.keep_alive`).
+   finished: swinging feet clear of the floor, no frozen pose (:func:`synthesis.finish.finish`).
 
 The per-join and per-element figures are the engine's functions; this module
 only repeats the engine's short loops around them (its ``synthesize`` does the
@@ -30,7 +30,7 @@ from .placed import Placed, mirrored_if_needed, on_skeleton
 from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
 from text2anim.core.metrics import jerk
 from text2anim.core.motion import Motion
-from .alive import keep_alive
+from .finish import finish
 from .laid import Laid, LaidJoin, LaidPart
 from .plan import Element, Track
 from .timing import ease_hold, prepare
@@ -258,4 +258,4 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> 
         warnings.extend(laid.warnings)
         motions[track.actor] = laid.motion
     final = same_length(motions) if post else motions
-    return Result({actor: keep_alive(m) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))
+    return Result({actor: finish(m) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))

@@ -29,7 +29,7 @@ from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 
 from .actors import default_origins, spread_actors
-from .alive import keep_alive
+from .finish import finish
 from .align import place_at
 from .assemble import compose_parts, finish_joins, finish_whole, measure, same_length, shifted
 from .measure import hips_frame
@@ -129,4 +129,4 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
         elements.update(els)
         motions[track.actor] = laid.motion
     final = same_length(motions) if lock_feet else motions
-    return Result({actor: keep_alive(m) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))
+    return Result({actor: finish(m) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))

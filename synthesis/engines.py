@@ -123,7 +123,7 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
     """``result`` with every skating actor re-rendered by the constraint engine when that one is clean."""
     from dataclasses import replace
 
-    from .alive import keep_alive
+    from .finish import finish
     from .assemble import same_length
     from .engine import synthesize
 
@@ -140,7 +140,7 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
         motions[actor] = other.motions[actor]
         elements.update({k: v for k, v in other.elements.items() if v.actor == actor})
     # the two engines' post-passes give the joins different times: every actor as long as the longest again
-    motions = {actor: keep_alive(m) for actor, m in same_length(motions).items()}
+    motions = {actor: finish(m) for actor, m in same_length(motions).items()}
     joins = [j for j in result.joins if result.actor_of(j.second) not in swap]
     joins += [replace(j, metrics={**j.metrics, "engine": "constraint", "fallback_from": "optimal"})
               for j in other.joins if other.actor_of(j.second) in swap]

@@ -15,8 +15,8 @@ For every take named in the cut list (each file read once), then every clip cut 
 3. low-pass the take where the cut list asks (``lowpass = Hz``: takes with capture glitches,
    :mod:`.smooth`), cut the clip's seconds (with ``blend`` seconds before them for a blended loop);
 4. resample to 30 fps (slerp), hold planted feet still, keep swinging feet clear of the floor
-   and feet and hands above it (:func:`.feet.lock_feet`, :func:`.feet.lift_swings`,
-   :func:`.feet.clear_floor`);
+   and feet and hands above it (:func:`.feet.lock_feet`, :func:`core.clearance.lift_swings`,
+   :func:`core.clearance.clear_floor`);
 5. turn it about +Y and move it so it starts at the origin facing +Z (``face = "travel"``:
    its travel points +Z);
 6. a looping clip has its last ``blend`` seconds blended into the frames before the cut, so
@@ -42,12 +42,13 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from text2anim.core.bvh import read_bvh
+from text2anim.core.clearance import clear_floor, lift_swings
 from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
 from text2anim.core.retarget import retarget
 
 from .capture import ARRAYS, FPS, Cut, cut_list
-from .feet import clear_floor, lift_swings, lock_feet
+from .feet import lock_feet
 from .smooth import lowpass
 from .skeleton import canonical_skeleton
 
