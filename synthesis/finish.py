@@ -10,7 +10,8 @@ floor (:func:`core.clearance.lift_swings`, the minimum toe clearance of
 human gait); :func:`finish` applies the same rule to the joined motion, then
 :func:`synthesis.alive.keep_alive`. Planted feet, the hips and everything
 above the knees' IK are left as they are; a motion with no low swing and no
-frozen stretch is returned unchanged.
+frozen stretch is returned unchanged. The joins' own figures in the report are
+measured before this step: they judge the join as the engine made it.
 """
 from __future__ import annotations
 
