@@ -258,4 +258,4 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> 
         warnings.extend(laid.warnings)
         motions[track.actor] = laid.motion
     final = same_length(motions) if post else motions
-    return Result({actor: finish(m) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))
+    return Result({actor: finish(m, feet=post) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))

@@ -129,4 +129,4 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
         elements.update(els)
         motions[track.actor] = laid.motion
     final = same_length(motions) if lock_feet else motions
-    return Result({actor: finish(m) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))
+    return Result({actor: finish(m, feet=lock_feet) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))

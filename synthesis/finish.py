@@ -21,6 +21,7 @@ from text2anim.core.clearance import lift_swings
 from .alive import keep_alive
 
 
-def finish(motion: Motion) -> Motion:
-    """``motion`` with its swinging feet clear of the floor and no frozen frame (see the module docstring)."""
-    return keep_alive(lift_swings(motion))
+def finish(motion: Motion, feet: bool = True) -> Motion:
+    """``motion`` with its swinging feet clear of the floor (``feet``: the engines that clean feet; the
+    baselines do not, that is what they stand for) and no frozen frame (see the module docstring)."""
+    return keep_alive(lift_swings(motion) if feet else motion)

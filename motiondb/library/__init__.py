@@ -23,7 +23,8 @@ the shared named poses (``stand``, ...). Generation is deterministic
    keyed heights are from the bare sole, the floor is where a shod foot
    stands. Knees and hands keyed onto the floor (kneeling, lying) then rest
    with their joint centres 1.8 cm higher too, 5-7 cm up: a knee's or wrist's
-   own thickness.
+   own thickness. Swinging feet keep the clearance every output keeps
+   (:func:`core.clearance.lift_swings`).
 
 A clip declared for the right side (``body_part="right_arm"``) serves a
 left-side request through :func:`core.mirror.mirror`.
@@ -45,6 +46,7 @@ from pathlib import Path
 import numpy as np
 
 from text2anim.motiondb.types import ClipRecord, Posture
+from text2anim.core.clearance import lift_swings
 from text2anim.core.floor import shifted
 from text2anim.core.motion import Motion
 
@@ -175,7 +177,7 @@ def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantRe
     motion = apply_reach(motion, clip.raw.get("reach", {}), times, clip.name)
     if margin:
         motion = motion.frames(margin, margin + n)
-    return _frozen(shifted(motion, SHOE_SOLE)), report
+    return _frozen(lift_swings(shifted(motion, SHOE_SOLE))), report
 
 
 @lru_cache(maxsize=8)
