@@ -10,7 +10,8 @@ way; then, exactly as the seed-003 engine (:mod:`synthesis.engine`) does:
    skating ratio and foot skate in the blend and its region, largest and RMS
    jerk against the source clips', core fidelity per element);
 3. a :class:`synthesis.result.Result` is returned, so every method can be
-   saved, viewed, reported and compared the same way.
+   saved, viewed, reported and compared the same way, every actor's motion
+   finished: swinging feet clear of the floor, no frozen pose (:func:`synthesis.finish.finish`).
 
 The per-join and per-element figures are the engine's functions; this module
 only repeats the engine's short loops around them (its ``synthesize`` does the
@@ -29,6 +30,7 @@ from .placed import Placed, mirrored_if_needed, on_skeleton
 from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
 from text2anim.core.metrics import jerk
 from text2anim.core.motion import Motion
+from .finish import finish
 from .laid import Laid, LaidJoin, LaidPart
 from .plan import Element, Track
 from .timing import ease_hold, prepare
@@ -255,4 +257,5 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> 
         elements.update(els)
         warnings.extend(laid.warnings)
         motions[track.actor] = laid.motion
-    return Result(same_length(motions) if post else motions, reports, fps, elements, tuple(warnings))
+    final = same_length(motions) if post else motions
+    return Result({actor: finish(m, feet=post) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))

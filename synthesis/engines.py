@@ -123,6 +123,8 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
     """``result`` with every skating actor re-rendered by the constraint engine when that one is clean."""
     from dataclasses import replace
 
+    from .finish import finish
+    from .assemble import same_length
     from .engine import synthesize
 
     bad = _skating_actors(result)
@@ -137,6 +139,8 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
     for actor in swap:
         motions[actor] = other.motions[actor]
         elements.update({k: v for k, v in other.elements.items() if v.actor == actor})
+    # the two engines' post-passes give the joins different times: every actor as long as the longest again
+    motions = {actor: finish(m) for actor, m in same_length(motions).items()}
     joins = [j for j in result.joins if result.actor_of(j.second) not in swap]
     joins += [replace(j, metrics={**j.metrics, "engine": "constraint", "fallback_from": "optimal"})
               for j in other.joins if other.actor_of(j.second) in swap]
