@@ -177,7 +177,8 @@ def vrma_motion(motion: Motion, opts: ExportOptions) -> Motion:
 
     rig = opts.gltf_rig
     if rig is not None and rig.vrm is not None:
-        skel = vrma_skeleton(rig.skeleton, rig_roles(rig.skeleton, opts.target_map)[1], turn=rig.vrm == "0.x")
+        skel = vrma_skeleton(rig.skeleton, rig_roles(rig.skeleton, opts.target_map)[1], turn=rig.vrm == "0.x",
+                             grounded=True)
     else:
         skel = vrma_skeleton(motion.skeleton, rig_roles(motion.skeleton)[1])
     return _conventions(retarget(motion, skel), opts, None, root=False)

@@ -32,19 +32,22 @@ _FLOAT = 5126
 _FEET = ("leftFoot", "rightFoot", "leftToes", "rightToes")
 
 
-def vrma_skeleton(skel: Skeleton, roles: dict[str, int], *, turn: bool = False) -> Skeleton:
+def vrma_skeleton(skel: Skeleton, roles: dict[str, int], *, turn: bool = False, grounded: bool = False) -> Skeleton:
     """The humanoid bones of ``skel`` (``{role: joint}``, :func:`core.rigs.rig_roles`) as a VRMA rest skeleton.
 
     Joints are named by role, each under its nearest placed ancestor role; positions are
-    ``skel``'s rest positions, with the lowest foot joint :data:`core.floor.FOOT_CLEARANCE`
-    above the floor (as our motions stand) and, with ``turn`` (a VRM 0.x avatar, which faces -Z),
-    turned half round about +Y. ``offsets[0]`` is the hips' rest position above the floor.
+    ``skel``'s rest positions: where they are (``grounded``: a VRM avatar's, which stands on
+    ``y = 0``; a player then scales the hips' travel by 1 on that avatar), else with the lowest foot
+    joint :data:`core.floor.FOOT_CLEARANCE` above the floor, as our motions stand; with ``turn``
+    (a VRM 0.x avatar, which faces -Z) turned half round about +Y. ``offsets[0]`` is the hips'
+    rest position.
     """
     placed = [r for r in ROLES if r in roles]
-    pos = skel.rest_positions()[[roles[r] for r in placed]]
+    pos = (skel.rest_positions() + skel.offsets[0])[[roles[r] for r in placed]]
     if turn:
         pos = pos * [-1.0, 1.0, -1.0]
-    pos = pos - [0.0, min(pos[placed.index(r), 1] for r in _FEET if r in placed) - FOOT_CLEARANCE, 0.0]
+    if not grounded:
+        pos = pos - [0.0, min(pos[placed.index(r), 1] for r in _FEET if r in placed) - FOOT_CLEARANCE, 0.0]
     parents = []
     for r in placed:
         p = ROLE_PARENT.get(r)

@@ -9,6 +9,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from text2anim.core import Motion, Skeleton, write_bvh
+from text2anim.core.floor import FOOT_CLEARANCE
 from text2anim.motiondb.library.skeleton import canonical_skeleton
 
 
@@ -250,9 +251,10 @@ def skinned_glb(rows, world: dict[str, np.ndarray], *, bone_axes: bool, armature
 
 def mixamo_glb(path: Path, scale: float = 1.08) -> Path:
     """A Mixamo character as Blender exports it: ``mixamorig:`` names, an A-pose rest, bone axes along the
-    bones, an armature scaled by 0.01 (joint translations in cm), a tiny skinned mesh; 8% taller; floor at 0."""
+    bones, an armature scaled by 0.01 (joint translations in cm), a tiny skinned mesh; 8% taller; standing as our
+    motions do (the lowest joint FOOT_CLEARANCE above y = 0)."""
     pos = {k: v * scale for k, v in _a_pose(_positions(_rest())).items()}
-    lift = -min(p[1] for p in pos.values()) + 0.02
+    lift = -min(p[1] for p in pos.values()) + FOOT_CLEARANCE
     pos = {k: v + [0.0, lift, 0.0] for k, v in pos.items()}
     data, _ = skinned_glb(_mixamo_rows(), pos, bone_axes=True, armature_scale=0.01)
     path.write_bytes(data)
@@ -271,7 +273,7 @@ def vrm_file(path: Path, scale: float = 0.85, version: str = "1.0", bone_axes: b
     bones in the ``VRMC_vrm`` 1.0 extension (facing +Z) or the ``VRM`` 0.x one (facing -Z, as 0.x models do);
     ``bone_axes``: rest rotations along the bones (VRM 1.0 allows any)."""
     pos = {k: v * scale for k, v in _positions(_rest()).items()}
-    lift = -min(p[1] for p in pos.values()) + 0.02
+    lift = -min(p[1] for p in pos.values()) + FOOT_CLEARANCE
     flip = np.array([-1.0, 1.0, -1.0]) if version == "0.x" else np.ones(3)
     pos = {k: (v + [0.0, lift, 0.0]) * flip for k, v in pos.items()}
     rows = [(r, p, r) for r, p, _ in _vrm_rows()]
