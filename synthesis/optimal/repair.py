@@ -78,5 +78,6 @@ def carry_out(tr: Motion, plan: Plan, lock: bool):
             if sk == 0.0:
                 _, p, out, locks, window = best
                 return p, out, locks, window
+    assert best is not None  # there is always the plan itself
     _, p, out, locks, window = best
     return p, out, locks, window
