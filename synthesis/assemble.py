@@ -26,7 +26,7 @@ from .composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
 from .engine import (Placed, Result, core_fidelity, mirrored_if_needed, on_skeleton, part_fidelity,
                      window_metrics, max_slide, skating_frames)
-from text2anim.core.metrics import jerk
+from text2anim.core.metrics import jerk, skating_ratio
 from text2anim.core.motion import Motion
 from .plan import BlendInterval, Element, JoinReport, Track
 from .timing import ease_hold, prepare
@@ -106,7 +106,7 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
     tr = laid.motion
     contacts = detect_contacts(tr)
     ftracks = foot_tracks(tr)
-    skating = skating_frames(tr, ftracks)
+    skating = skating_frames(tr)
     composed_at = [(c.timing.ta0, c.timing.ta1) for _, c, _, _ in comps]
     elements: dict = {}
     fid: dict = {}
@@ -154,6 +154,7 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
             src_m = [c[2] for c in comps if c[0].id == rep.second] + src_m
         src_j = [jerk(x) for x in src_m]
         m["source_max_slide_cm_s"] = max((max_slide(x) for x in src_m), default=0.0)
+        m["source_skating_ratio"] = max((skating_ratio(x) for x in src_m), default=0.0)
         m["source_jerk_max"] = max((j.max for j in src_j), default=0.0)
         m["source_jerk_rms"] = max((j.rms for j in src_j), default=0.0)
         m["core_fidelity_cm"] = {str(rep.first): elements.get(rep.first, {}).get("core_fidelity_cm"),

@@ -74,7 +74,8 @@ from .blend import blend, ease, sample
 from .blend_ranges import Bounds, Range, after, ranges
 from .blend_search import Found, Weights, best, evaluate, evaluate_motions, preset
 from text2anim.core.contacts import FootContacts, detect_contacts
-from .engine import Placed, Result, skating_frames, spread_actors
+from text2anim.core.metrics import skating_ratio
+from .engine import Placed, Result, skating_exceeds, skating_frames, spread_actors
 from .method_select import (Choice, cyclic_core_begin, cyclic_core_end, phase_for, select, steps,
                             support_by_gap)
 from text2anim.core.motion import Motion, concatenate
@@ -604,12 +605,12 @@ def _roots_mid(tr: Motion, plan: Plan) -> Plan:
 
 
 def _skating(motion: Motion, lo: int, hi: int) -> float:
-    """Skating ratio (both feet low and fast, :func:`synthesis.engine.skating_frames`) over ``[lo, hi)``."""
+    """GMD skating ratio (either foot, :func:`synthesis.engine.skating_frames`) over frames ``[lo, hi)``."""
     sk = skating_frames(motion)
     return float(sk[max(lo, 0):hi].mean()) if hi > lo else 0.0
 
 
-def _carry_out(tr: Motion, plan: Plan, lock: bool):
+def _carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0):
     """Render a plan — and make sure the join does not skate.
 
     The plan is rendered as the paper has it (eq. (16) weights, a foot held by a frozen pose stepping
@@ -617,7 +618,8 @@ def _carry_out(tr: Motion, plan: Plan, lock: bool):
     pulled into a standing pose: the mixed hips overshoot where the two motions' roots are far apart and
     the weight is steep at an end), the join is rendered again without the step, then with S0's weight
     eased to zero slope at both ends, then both; the first that does not skate is kept (else the one that
-    skates least), and the report says which (``fallback``). When none of those is clean, the same is
+    skates least). "Skates" is the benchmark's rule: the blend's GMD ratio above ``own`` (the two source
+    clips' larger ratio) + 0.01, and the report says which (``fallback``). When none of those is clean, the same is
     tried with the next-best lower-body intervals of eq. (10) (:data:`RUNNERS_UP` of them): the search's
     minimum subject to the join keeping its feet. Deterministic.
     """
@@ -642,7 +644,7 @@ def _carry_out(tr: Motion, plan: Plan, lock: bool):
                 p = replace(p, info=dict(p.info, fallback=name))
             if best is None or sk < best[0]:
                 best = (sk, p, out, locks, window)
-            if sk == 0.0:
+            if not skating_exceeds(sk, own):
                 _, p, out, locks, window = best
                 return p, out, locks, window
     _, p, out, locks, window = best
@@ -664,7 +666,8 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
         state.joins.append((rep, None, prev, None, []))
         return plan
     inc = plan.inc
-    plan, out, locks, window = _carry_out(tr, plan, lock)
+    own = max(skating_ratio(prev.motion), skating_ratio(inc.motion))  # the sources' larger GMD ratio
+    plan, out, locks, window = _carry_out(tr, plan, lock, own)
     region_end = max([window[1]] + [lk.release_end for lk in locks])
     state.motion = out
     state.floor = window[1]
