@@ -29,6 +29,7 @@ from scipy.spatial.transform import Rotation
 
 from .align import Rigid, headings, yaw_rotation
 from .blend import ease, sample, slerp
+from .loopfeet import plant_cycle
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion, unroll_quaternions
 from .plan import Element
@@ -99,15 +100,31 @@ def _take(motion: Motion, idx: np.ndarray) -> Motion:
 
 
 def _extrapolated(motion: Motion) -> tuple[np.ndarray, np.ndarray, float]:
-    """Root position, local rotations and heading one frame after the last (constant velocity)."""
-    if motion.n_frames < 2:
-        return motion.root_positions[-1], motion.rotations[-1], float(headings(motion)[-1])
-    r = Rotation.from_quat(motion.rotations[-2:].reshape(-1, 4)).as_quat().reshape(2, -1, 4)
-    step = Rotation.from_quat(r[0]).inv() * Rotation.from_quat(r[1])
-    q_next = (Rotation.from_quat(r[1]) * step).as_quat()
-    p_next = 2 * motion.root_positions[-1] - motion.root_positions[-2]
+    """Root position, local rotations and heading one frame after the last: the frame the next cycle's
+    frame 0 should be.
+
+    The step across the seam is taken as the mean of the clip's last step and its first (a central
+    estimate, exact under constant acceleration), not as the last step repeated: cycles are cut at a
+    landing (:func:`find_cycle`), where the landing leg's velocity changes fastest, and repeating the
+    last step would read that change as a mismatch of the cycle's ends — spread over the cycle by
+    :func:`make_cyclic`, it would bend the planted leg of every frame and slide its foot.
+    """
+    if motion.n_frames < 3:
+        if motion.n_frames < 2:
+            return motion.root_positions[-1], motion.rotations[-1], float(headings(motion)[-1])
+        r = Rotation.from_quat(motion.rotations[-2:].reshape(-1, 4)).as_quat().reshape(2, -1, 4)
+        step = Rotation.from_quat(r[0]).inv() * Rotation.from_quat(r[1])
+        h = headings(motion)
+        return (2 * motion.root_positions[-1] - motion.root_positions[-2],
+                (Rotation.from_quat(r[1]) * step).as_quat(), float(2 * h[-1] - h[-2]))
+    q = motion.rotations
+    last, prev, first, second = (Rotation.from_quat(q[k]) for k in (-1, -2, 0, 1))
+    step = Rotation.from_rotvec(0.5 * ((prev.inv() * last).as_rotvec() + (first.inv() * second).as_rotvec()))
+    q_next = (last * step).as_quat()
+    p = motion.root_positions
+    p_next = p[-1] + 0.5 * ((p[-1] - p[-2]) + (p[1] - p[0]))
     h = headings(motion)
-    return p_next, q_next, float(2 * h[-1] - h[-2])
+    return p_next, q_next, float(h[-1] + 0.5 * ((h[-1] - h[-2]) + (h[1] - h[0])))
 
 
 #: A cycle turning less than this (radians) is taken as going straight: a captured walk wobbles a few
@@ -138,7 +155,9 @@ def make_cyclic(motion: Motion) -> Motion:
     (each joint's local rotation, the root height and the root's sideways
     position in the cycle's own frame) is spread linearly over the cycle:
     frame ``k`` takes ``k / n`` of the correction; then the seam is smoothed
-    (:func:`smooth_seam`). A clip that already loops is only smoothed: the mismatch is the seam's second difference, and
+    (:func:`smooth_seam`), and the feet are put back by IK where the captured cycle has them planted
+    (:func:`synthesis.loopfeet.plant_cycle`: the spread correction would bend every stance leg and slide
+    its foot). A clip that already loops is only smoothed (and its feet planted): the mismatch is the seam's second difference, and
     when no joint's exceeds what that joint does inside the clip (a skip's
     landing at the seam accelerates as hard as its landings elsewhere) there
     is nothing to correct.
@@ -155,13 +174,13 @@ def make_cyclic(motion: Motion) -> Motion:
     q0[0] = (move.rotation() * Rotation.from_quat(q0[0])).as_quat()  # the next cycle's root is turned by the move
     err_rot = (Rotation.from_quat(q_next).inv() * Rotation.from_quat(q0)).as_rotvec()  # (J, 3)
     if _seam_within_clip(motion, err_rot, p0_next - p_next):
-        return smooth_seam(motion)
+        return plant_cycle(smooth_seam(motion), motion, move)
     corr = Rotation.from_rotvec(np.einsum("t,jk->tjk", u, err_rot).reshape(-1, 3))
     rots = (Rotation.from_quat(motion.rotations.reshape(-1, 4)) * corr).as_quat().reshape(motion.rotations.shape)
     # root position: by construction of the move only the height can disagree
     err_p = p0_next - p_next
     root = motion.root_positions + np.outer(u, err_p)
-    return smooth_seam(motion.replace(root_positions=root, rotations=rots))
+    return plant_cycle(smooth_seam(motion.replace(root_positions=root, rotations=rots)), motion, move)
 
 
 SEAM_SIGMA = 0.05  # s: width of the Gaussian that smooths a loop's seam
