@@ -32,7 +32,8 @@ own two source clips (as recorded, at the track's rate):
 4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
    ankle or toe would go below it is lifted by IK by the deficit
    (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm is
-   lifted clear (:func:`clear_swings`).
+   lifted clear (:func:`clear_swings`); after the last join the whole track is
+   lifted off the floor the same way (an adaptation's legs reach beyond the region).
 
 **Cores** are kept: the region stops at the next clip's core (except where the
 engine's own adaptation returns inside it) and starts after the first clip's
@@ -60,7 +61,7 @@ from .inertialize import inertialize_at, inertialize_before
 
 SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
 PAD = 0.25  # s: the filtered pose fades in and out over this on each side of a region
-SIGMAS = (0.0, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0)  # frames at 30 fps (scaled with the frame rate)
+SIGMAS = (0.0, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.5, 8.0)  # frames at 30 fps (scaled with the frame rate)
 SLACK = 1.0  # the region may reach the sources' own figure times this
 #: m/s²: the hips may always accelerate this much (half the low end of captured walking, timetable.md §3): clips
 #: smoother than capture (the built-in library's: 1 m/s²) would otherwise have every join slowed down
@@ -337,8 +338,9 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
 
 
 def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, int]]]:
-    """All joins of a track finished in time order (the clips' own floor is the import's: only the joins'
-    regions are lifted off it). Returns the motion, per join what was done, and per join the retiming
+    """All joins of a track finished in time order, then every foot of the track that is below the floor
+    lifted onto it (:func:`lift_off_floor`: an adaptation fits the next clip's legs to the previous feet
+    through its core, beyond the join's region; a clip imported clean is on the floor already). Returns the motion, per join what was done, and per join the retiming
     ``(lo, hi, n_new, seam)`` in the frames of the motion as it was *before* that join (earlier joins' added
     frames included)."""
     infos, warps = [], []
@@ -353,4 +355,6 @@ def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[di
         infos.append(info)
         warps.append(warp)
         added += warp[2] - (warp[1] - warp[0])
+    if regions:  # an adaptation's fitted legs reach through the next clip's core: no foot below the floor anywhere
+        out = lift_off_floor(out, 0, out.n_frames)
     return out, infos, warps

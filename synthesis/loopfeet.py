@@ -13,8 +13,9 @@ frame: each ankle on its captured position and world orientation (so toe and
 heel follow, and a foot rolls as captured), the hips and upper body keeping
 the correction. Each foot's own seam mismatch (where the next cycle's first
 frame has it against where the cycle's end is heading) is taken up while that
-foot is in the air — its height only where the toe is well clear of the floor —
-so a foot on the ground never slides nor skims it, and the loop closes.
+foot is in the air — its height only where the toe is well clear of the floor,
+and not for a foot standing across the seam (the strides' floors differ) — so a
+foot on the ground never slides, sinks or skims it, and the loop closes.
 
 Shapes: positions ``(T, 3)`` metres, rotations ``(T, 4)`` quaternions (x, y, z, w).
 """
@@ -69,7 +70,9 @@ def ankle_goals(original: Motion, planted: np.ndarray, ankle: int, toe: int, mov
     after = p[-1] if planted[-1] else p[-1] + 0.5 * ((p[-1] - p[-2]) + (p[1] - p[0]))
     d = move.apply_points(p[0]) - after
     goal = p + np.outer(swing_ramp(planted), d * np.array([1.0, 0.0, 1.0]))
-    goal[:, 1] += lift_ramp(planted, pos[:, toe, 1]) * d[1]
+    if not planted[-1]:  # a foot on the ground at the seam keeps its captured height (a lower next stride
+        # would sink it into the floor): the difference of the two strides' floors stays at the seam
+        goal[:, 1] += lift_ramp(planted, pos[:, toe, 1]) * d[1]
     return goal
 
 
