@@ -174,13 +174,14 @@ def make_cyclic(motion: Motion) -> Motion:
     q0[0] = (move.rotation() * Rotation.from_quat(q0[0])).as_quat()  # the next cycle's root is turned by the move
     err_rot = (Rotation.from_quat(q_next).inv() * Rotation.from_quat(q0)).as_rotvec()  # (J, 3)
     if _seam_within_clip(motion, err_rot, p0_next - p_next):
-        return plant_cycle(smooth_seam(motion), motion, move)
+        return plant_cycle(smooth_root_seam(smooth_seam(motion), move), motion, move)
     corr = Rotation.from_rotvec(np.einsum("t,jk->tjk", u, err_rot).reshape(-1, 3))
     rots = (Rotation.from_quat(motion.rotations.reshape(-1, 4)) * corr).as_quat().reshape(motion.rotations.shape)
     # root position: by construction of the move only the height can disagree
     err_p = p0_next - p_next
     root = motion.root_positions + np.outer(u, err_p)
-    return plant_cycle(smooth_seam(motion.replace(root_positions=root, rotations=rots)), motion, move)
+    return plant_cycle(smooth_root_seam(smooth_seam(motion.replace(root_positions=root, rotations=rots)), move),
+                       motion, move)
 
 
 SEAM_SIGMA = 0.05  # s: width of the Gaussian that smooths a loop's seam
@@ -213,6 +214,23 @@ def smooth_seam(motion: Motion, sigma: float = SEAM_SIGMA, width: float = SEAM_W
     w = 1.0 - ease(np.clip(d / k, 0.0, 1.0), "smooth")
     rots = slerp(ext_q[k:k + n], qs, w[:, None])
     return motion.replace(rotations=rots)
+
+
+def smooth_root_seam(motion: Motion, move: Rigid, sigma: float = SEAM_SIGMA, width: float = SEAM_WIDTH) -> Motion:
+    """A cyclic clip whose hips' path is low-passed across the seam (the clip's last frames continue into its
+    first, moved by the cycle's ``move``), so the hips' velocity does not jump from one cycle to the next (a
+    looped CMU run cycle: root pop 6.3 m/s² against 5.5 within the cycle). Faded in within ``width`` s of
+    either end, like :func:`smooth_seam`; the feet are put back afterwards (:func:`make_cyclic`)."""
+    n = motion.n_frames
+    k = min(int(round(width * motion.fps)), n // 3)
+    if k < 2:
+        return motion
+    p = motion.root_positions
+    ext = np.concatenate([move.inverse().apply_points(p[-k:]), p, move.apply_points(p[:k])])
+    ps = gaussian_filter1d(ext, sigma * motion.fps, axis=0, mode="nearest")[k:k + n]
+    d = np.minimum(np.arange(n), n - 1 - np.arange(n))
+    w = 1.0 - ease(np.clip(d / k, 0.0, 1.0), "smooth")
+    return motion.replace(root_positions=p + w[:, None] * (ps - p))
 
 
 #: The seam may accelerate this much more than the clip's own frames before it is corrected.
