@@ -9,7 +9,8 @@ own two source clips (as recorded, at the track's rate):
    hips is carried into what follows and decayed by inertialization
    (:func:`synthesis.inertialize.inertialize_at`, Bollo's quintic) over
    :data:`SEAM_DECAY` s; where a blend ends on the first frame of the next
-   clip's core, the blend takes the difference instead, decaying backwards
+   clip's core (or too near the region's end to decay after it), the blend
+   takes the difference instead, decaying backwards
    (:func:`~synthesis.inertialize.inertialize_before`), and the core is not touched.
 2. **The clips' own accelerations.** The join's region (blend, foot locks and
    releases, :data:`PAD` s either side; from up to :data:`BRAKE` s before the
@@ -299,11 +300,12 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
              max(region.keep[1], region.w1 + 1, region.r1 if region.into_core else 0))
     seamed = motion
     for s in sorted({region.w0, region.w1, *(x for x in region.seams if lo < x < hi)}):
-        if s < hi - 2:
-            seamed = inertialize_at(seamed, s, min(SEAM_DECAY, (hi - 1 - s) / fps))
-        elif s - lo > 2:  # the blend hands over to the next core right here: the blend, not the core, takes the
-            # velocity difference (decaying backwards from the core's first frame)
-            seamed = inertialize_before(seamed, s, min(SEAM_DECAY, (s - lo - 1) / fps))
+        after, before = (hi - 1 - s) / fps, (s - lo - 1) / fps
+        if s < hi - 2 and after >= min(SEAM_DECAY, before):
+            seamed = inertialize_at(seamed, s, min(SEAM_DECAY, after))
+        elif s - lo > 2:  # the blend hands over to the next core (or the track ends) right here: the blend, not
+            # what follows, takes the velocity difference (decaying backwards from the seam)
+            seamed = inertialize_before(seamed, s, min(SEAM_DECAY, before))
     planted = _planted(motion, contacts)
     jk_lim, pop_lim = _limits(region.sources, fps)
     pop_lim = max(pop_lim, POP_FLOOR)
@@ -320,7 +322,10 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
         h2 = hi + max(n_new, whi - lo) - (whi - lo)
         pad = max(1, min(pad0, (h2 - lo) // 3))
         for sigma in SIGMAS:
-            cand = keep_feet(low_pass(base, lo, h2, sigma * scale, pad), ref, lo, h2, mask)
+            # the filtered pose fades in and out over at least 2.5 sigma: a path low-passed where it accelerates
+            # lags the original, and a shorter fade would return it with a pop of its own
+            fade = max(pad, min(int(np.ceil(2.5 * sigma * scale)), (h2 - lo) // 3))
+            cand = keep_feet(low_pass(base, lo, h2, sigma * scale, fade), ref, lo, h2, mask)
             jk, pop = _figures(cand, lo, h2)
             score = max(jk / max(jk_lim * SLACK, 1e-9), pop / max(pop_lim * SLACK, 1e-9))
             if best is None or score < best[0] - 1e-9:
