@@ -30,6 +30,7 @@ from scipy.spatial.transform import Rotation
 from .align import Rigid, headings, yaw_rotation
 from .blend import ease, sample, slerp
 from .loopfeet import plant_cycle
+from text2anim.core.metrics import quality
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion, unroll_quaternions
 from .plan import Element
@@ -155,9 +156,10 @@ def make_cyclic(motion: Motion) -> Motion:
     (each joint's local rotation, the root height and the root's sideways
     position in the cycle's own frame) is spread linearly over the cycle:
     frame ``k`` takes ``k / n`` of the correction; then the seam is smoothed
-    (:func:`smooth_seam`), and the feet are put back by IK where the captured cycle has them planted
-    (:func:`synthesis.loopfeet.plant_cycle`: the spread correction would bend every stance leg and slide
-    its foot). A clip that already loops is only smoothed (and its feet planted): the mismatch is the seam's second difference, and
+    (:func:`smooth_seam`, and the hips' path, :func:`smooth_root_seam`), and the legs are put back by IK
+    on the captured cycle's (:func:`synthesis.loopfeet.plant_cycle`: the spread correction would bend every
+    stance leg and slide its foot) where that makes the loop skate less. A clip that already loops is only smoothed
+    (:func:`smooth_seam`): the mismatch is the seam's second difference, and
     when no joint's exceeds what that joint does inside the clip (a skip's
     landing at the seam accelerates as hard as its landings elsewhere) there
     is nothing to correct.
@@ -174,14 +176,26 @@ def make_cyclic(motion: Motion) -> Motion:
     q0[0] = (move.rotation() * Rotation.from_quat(q0[0])).as_quat()  # the next cycle's root is turned by the move
     err_rot = (Rotation.from_quat(q_next).inv() * Rotation.from_quat(q0)).as_rotvec()  # (J, 3)
     if _seam_within_clip(motion, err_rot, p0_next - p_next):
-        return plant_cycle(smooth_root_seam(smooth_seam(motion), move), motion, move)
+        return smooth_seam(motion)
     corr = Rotation.from_rotvec(np.einsum("t,jk->tjk", u, err_rot).reshape(-1, 3))
     rots = (Rotation.from_quat(motion.rotations.reshape(-1, 4)) * corr).as_quat().reshape(motion.rotations.shape)
     # root position: by construction of the move only the height can disagree
     err_p = p0_next - p_next
     root = motion.root_positions + np.outer(u, err_p)
-    return plant_cycle(smooth_root_seam(smooth_seam(motion.replace(root_positions=root, rotations=rots)), move),
-                       motion, move)
+    return _planted_if_better(smooth_root_seam(smooth_seam(motion.replace(root_positions=root, rotations=rots)), move),
+                              motion, move)
+
+
+def _planted_if_better(cycle: Motion, original: Motion, move: Rigid) -> Motion:
+    """``cycle`` with its legs put back on ``original``'s (:func:`synthesis.loopfeet.plant_cycle`) when that
+    makes two loops of it skate less (GMD ratio, then joint jerk p99): a cycle whose correction left its
+    feet where they were is kept as it is. Deterministic."""
+    planted = plant_cycle(cycle, original, move)
+    scores = []
+    for m in (cycle, planted):
+        q = quality(loop(m, 2 * m.n_frames), None)
+        scores.append((round(q.skating_ratio, 9), q.jerk_p99))
+    return planted if scores[1] < scores[0] else cycle
 
 
 SEAM_SIGMA = 0.05  # s: width of the Gaussian that smooths a loop's seam
@@ -227,6 +241,9 @@ def smooth_root_seam(motion: Motion, move: Rigid, sigma: float = SEAM_SIGMA, wid
         return motion
     p = motion.root_positions
     ext = np.concatenate([move.inverse().apply_points(p[-k:]), p, move.apply_points(p[:k])])
+    acc = np.linalg.norm(np.diff(ext[:, [0, 2]], 2, axis=0), axis=1)  # index i: ext frames i..i+2
+    if acc[k + n - 3:k + n - 1].max() <= SEAM_TOLERANCE * acc[k:k + n - 2].max():
+        return motion  # the hips cross the seam no harder than they move inside the cycle
     ps = gaussian_filter1d(ext, sigma * motion.fps, axis=0, mode="nearest")[k:k + n]
     d = np.minimum(np.arange(n), n - 1 - np.arange(n))
     w = 1.0 - ease(np.clip(d / k, 0.0, 1.0), "smooth")
