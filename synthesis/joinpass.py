@@ -284,7 +284,7 @@ def _figures(m: Motion, lo: int, hi: int) -> tuple[float, float]:
     return q.jerk_p99, q.root_pop
 
 
-def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int]]:
+def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int, int]]:
     """One join finished (steps 1–4 of the module docstring).
 
     Returns the motion, what was done, and ``(lo, hi, n_new, seam)``: the frames ``[lo, hi)`` now play
@@ -311,7 +311,7 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     jk_lim, pop_lim = _limits(region.sources, fps)
     pop_lim = max(pop_lim, POP_FLOOR)
     scale = fps / 30.0
-    best = None
+    best: tuple[float, float, float, Motion, float, float, int] | None = None
     whi = max(min(hi, region.keep[1]), region.w0 + 2)  # retimed: [lo, whi), never the next core
     seam = _hardest(seamed, lo, whi)
     for stretch in STRETCHES:
@@ -333,8 +333,9 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
                 best = (score, sigma, stretch, cand, jk, pop, h2)
             if score <= 1.0:
                 break
-        if best[0] <= 1.0:
+        if best is not None and best[0] <= 1.0:
             break
+    assert best is not None  # STRETCHES and SIGMAS are not empty
     score, sigma, stretch, cand, jk, pop, h2 = best
     cand = lift_off_floor(clear_swings(cand, lo, h2), lo, h2)
     info = {"smoothing_frames": sigma, "stretch": stretch, "added_s": round((h2 - hi) / fps, 3),

@@ -39,14 +39,14 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
               min_blend: float = MIN_BLEND, allow_shift: bool = True) -> Plan | Skip:
     """Join ``inc`` to the track's last element (plan, render, report); a :class:`Skip` leaves the track as it was."""
     prev = state.placed[-1]
-    tr = extend(state.motion, inc.offset + inc.motion.n_frames, state.floor)
+    tr = extend(state.laid(), inc.offset + inc.motion.n_frames, state.floor)
     plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
     carry = _carried_delay(state, prev, fps)
     if isinstance(plan, Skip) and carry:
         # the previous element was delayed for room and its core now covers this one's start: the element
         # scheduled after it follows it rather than being dropped (only then; others keep their times)
         inc = inc.moved(carry)
-        tr = extend(state.motion, inc.offset + inc.motion.n_frames, state.floor)
+        tr = extend(state.laid(), inc.offset + inc.motion.n_frames, state.floor)
         plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
     else:
         carry = 0

@@ -91,7 +91,8 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
                 best = (key, p, out, locks, window)
             if key[:2] == (False, 0.0):
                 break
-        if not best[0][0]:  # a rendering that does not skate: the runners-up are for feet, not for pops
+        if best is not None and not best[0][0]:  # a rendering that does not skate: the runners-up are for feet, not for pops
             break
+    assert best is not None  # there is always the plan itself
     _, p, out, locks, window = best
     return p, out, locks, window
