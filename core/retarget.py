@@ -47,8 +47,8 @@ Steps, each vectorised over frames (one numpy step per joint):
      wrists on the scaled source wrists, and the feet and hands get their
      step-2 world rotations back. The knee and elbow hinges come from the
      target's rest pose: a knee flexes backwards (``forward x thigh``), an
-     elbow forwards (``upper arm x forward``), the knee pointing forward and the elbow backward
-     as the upper bone's step-2 rotation turns them (:func:`_pole`), so a straight limb keeps its twist.
+     elbow forwards (``upper arm x forward``); the knee turns towards the thigh's own forward (a pole
+     in front of it), so a straight stance leg keeps its twist.
 
    Feet therefore plant where the scaled source's do and slide no more than
    they do (in proportion ``s``).
@@ -386,19 +386,11 @@ def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndar
     for name, chain, goal, end_world in goals:
         leg = name.endswith("leg")
         hinge = _hinge(out.skeleton, chain, fwd_t, leg)
-        out = two_bone_ik(out, chain, goal, pole=_pole(out, chain, fwd_t if leg else -fwd_t), hinge=tuple(hinge))
+        pole = None
+        if leg:  # the knee towards the thigh's own forward: with the knee itself as the pole, a nearly straight
+            # leg has no bend plane and the IK's twist about the hip-ankle line flips from frame to frame
+            pose = out.pose
+            pole = pose.positions[:, chain[1]] + 0.5 * np.einsum("tij,j->ti", pose.rotations[:, chain[0]], fwd_t)
+        out = two_bone_ik(out, chain, goal, pole=pole, hinge=tuple(hinge))
         out = set_world_rotation(out, chain[2], matrix_to_quat(end_world))
     return out
-
-
-def _pole(out: Motion, chain: tuple[int, int, int], bend: np.ndarray) -> np.ndarray:
-    """Where a knee (``bend`` = forward) or an elbow (backward) points, ``(T, 3)``: one bone length from the
-    middle joint along ``bend`` turned with the upper bone (its step-2 twist).
-
-    The IK's default pole, the middle joint itself, leaves the bend plane undefined on a nearly straight
-    limb, and the thigh's twist then flipped by up to 2.5 rad for a frame (10 flips in a 4 s walk).
-    """
-    pose = out.pose
-    rest = out.skeleton.rest_positions()
-    length = float(np.linalg.norm(rest[chain[1]] - rest[chain[0]]))
-    return pose.positions[:, chain[1]] + (pose.rotations[:, chain[0]] @ bend) * length

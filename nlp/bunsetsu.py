@@ -9,6 +9,7 @@ punctuation.  Formal nouns that make temporal connectives (まま, 前, 後, 間
 from __future__ import annotations
 
 from .lexicon import ASPECT_AUX, AUX_AFTER_TE, AUX_KANJI_MAIN, FORMAL_NOUNS, POLITE_AFTER_RENYOU
+from .pred import Pred
 from .types import Token
 
 FUNCTION_POS = frozenset(["助詞", "助動詞", "接尾辞", "補助記号", "空白"])
@@ -31,7 +32,14 @@ class Phrase:
         self.role = ""
         self.head: int | None = None
         self.why = ""
-        self.pred = None  # motions.Pred for predicate phrases
+        self.pred: Pred | None = None  # for predicate phrases
+
+    @property
+    def predicate(self) -> Pred:
+        """``pred`` of a phrase known to be a predicate (a ``ValueError`` for any other)."""
+        if self.pred is None:
+            raise ValueError(f"phrase {self.index} is not a predicate")
+        return self.pred
 
     @property
     def start(self) -> int:

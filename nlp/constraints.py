@@ -42,14 +42,14 @@ def build_constraints(phrases: list[Phrase], cues: list[TimeCue]) -> list[Constr
     groups = _motion_groups(phrases)
     edges: list[_Edge] = []
     for group in groups:
-        group_edges = [_dependency_edge(ph) for ph in group if ph.pred.head is not None]
+        group_edges = [_dependency_edge(ph) for ph in group if ph.predicate.head is not None]
         _make_tree(group_edges, group)
         edges.extend(group_edges)
     for prev, cur in zip(groups, groups[1:]):
         edges.append(_sentence_edge(prev, cur, edges))
     for cue in cues:
         _apply_cue(cue, edges, phrases)
-    ids = {ph.index: ph.pred.id for group in groups for ph in group}
+    ids = {ph.index: ph.predicate.id for group in groups for ph in group}
     out = [
         Constraint(ids[e.first], ids[e.second], e.relation, e.overlap,
                    e.delay, e.method, e.cue)
@@ -89,11 +89,13 @@ def _motion_groups(phrases: list[Phrase]) -> list[list[Phrase]]:
 
 
 def _dependency_edge(ph: Phrase) -> _Edge:
-    e = ENDINGS[ph.pred.ending]
-    a, b = ph.index, ph.pred.head
+    e = ENDINGS[ph.predicate.ending]
+    head = ph.predicate.head
+    assert head is not None  # only phrases with a head have an edge
+    a, b = ph.index, head
     if e.reversed:
         a, b = b, a
-    return _Edge(a, b, e.relation, e.overlap, None, e.method, ph.pred.cue or ph.pred.ending,
+    return _Edge(a, b, e.relation, e.overlap, None, e.method, ph.predicate.cue or ph.predicate.ending,
                  reversed=e.reversed)
 
 
@@ -179,7 +181,7 @@ def _sentence_edge(prev: list[Phrase], cur: list[Phrase], edges: list[_Edge]) ->
         src = nxt
     has_incoming = {e.second for e in edges}
     root = next((ph.index for ph in cur if ph.index not in has_incoming), cur[0].index)
-    cue = prev[-1].pred.cue or "。"
+    cue = prev[-1].predicate.cue or "。"
     return _Edge(src, root, "serial", False, None, "connection", cue)
 
 
@@ -191,9 +193,9 @@ def _apply_cue(cue: TimeCue, edges: list[_Edge], phrases: list[Phrase]) -> None:
             # the motion that opens its track (3秒後に太郎が歩く): no link to adjust,
             # the delay holds back its start
             if cue.delay:
-                phrases[target].pred.delay = cue.delay
+                phrases[target].predicate.delay = cue.delay
             return
-        dependent_of_target = phrases[edge.first].pred.head == target
+        dependent_of_target = phrases[edge.first].predicate.head == target
         if edge.relation == "parallel" and dependent_of_target and edge.first != target:
             target = edge.first  # 手を振りながら歩く: adjust the link into the group
             continue

@@ -14,7 +14,7 @@ from .endings import ENDINGS
 
 
 def level(ph: Phrase) -> int:
-    return ENDINGS[ph.pred.ending].level if ph.pred.ending in ENDINGS else 3
+    return ENDINGS[ph.predicate.ending].level if ph.predicate.ending in ENDINGS else 3
 
 
 def link_heads(phrases: list[Phrase]) -> None:
@@ -27,7 +27,7 @@ def link_heads(phrases: list[Phrase]) -> None:
             head = next((b for b in later if level(b) >= need), later[-1])
             skipped = [b for b in later if b.index < head.index]
             a.head = head.index
-            a.pred.head = head.index
+            a.predicate.head = head.index
             a.why = _why(a, head, skipped)
         for i, ph in enumerate(group):
             if ph.head is None and not (ph.pred and ph.pred.motion and ph is _last(motions)):
@@ -41,8 +41,8 @@ def _last(motions: list[Phrase]) -> Phrase | None:
 
 
 def _why(a: Phrase, head: Phrase, skipped: list[Phrase]) -> str:
-    ending = a.pred.ending
-    text = f"{ending} ({a.pred.cue or '-'}): next motion of level >= {level(a)}"
+    ending = a.predicate.ending
+    text = f"{ending} ({a.predicate.cue or '-'}): next motion of level >= {level(a)}"
     if skipped:
         text += ", skipping " + ", ".join(s.key for s in skipped)
     return text

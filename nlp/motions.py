@@ -15,7 +15,8 @@ from .lexicon import (
     BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, LIBRARY_VERBS, MANNER_TE, PERSON_NOUNS,
     SIDE_PREFIX, SPEED_WORDS,
 )
-from .predicates import Pred, find_predicate, settle_reason
+from .pred import Pred
+from .predicates import find_predicate, settle_reason
 from .tokens import is_name
 
 _SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
@@ -238,10 +239,10 @@ def _mark_embedded(phrases: list[Phrase]) -> None:
     """A clause without a comma right before a relative / の clause is inside it."""
     preds = [ph for ph in phrases if ph.pred]
     for a, b in zip(reversed(preds[:-1]), reversed(preds[1:])):
-        if a.group != b.group or a.has_comma() or a.pred.ending == "final":
+        if a.group != b.group or a.has_comma() or a.predicate.ending == "final":
             continue
-        if b.pred.reason in ("relative", "nominal", "embedded"):
-            a.pred.reason = a.pred.reason or "embedded"
+        if b.predicate.reason in ("relative", "nominal", "embedded"):
+            a.predicate.reason = a.predicate.reason or "embedded"
 
 
 def _assign_actors(phrases: list[Phrase]) -> None:
@@ -262,7 +263,9 @@ def _assign_actors(phrases: list[Phrase]) -> None:
                 topic, subject = subject, ()
             group = ph.group
         if ph.role == "actor":
-            names = (*_partners(phrases, i), _person(ph))
+            person = _person(ph)
+            assert person is not None  # the role is given to persons only (_noun_role)
+            names = (*_partners(phrases, i), person)
             if _case_particle(ph) == "が":
                 subject = names
             else:
@@ -306,7 +309,7 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         if target is None:
             continue
         ph.head = target.index
-        pred = target.pred
+        pred = target.predicate
         role = ph.role
         if role in ("connective", "delay"):
             cue = _time_cue(phrases, i, values)

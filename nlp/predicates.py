@@ -9,12 +9,11 @@ a bare する whose action noun is in the bunsetsu before (ジャンプをする
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from .bunsetsu import Phrase
 from .lexicon import (
     BODY_PARTS, LIBRARY_BY_READING, LIBRARY_VERBS, NON_ACTION_LEMMAS, VERB_ALIASES,
 )
+from .pred import Pred
 from .types import Token
 
 _NEGATIONS = frozenset(["ない", "ず", "ぬ", "無い"])
@@ -23,37 +22,6 @@ _FORMAL_ENDINGS = {
     "うち": "aida", "内": "aida", "時": "toki", "とき": "toki", "瞬間": "totan",
     "途端": "totan", "とたん": "totan",
 }
-
-
-@dataclass(slots=True)
-class Pred:
-    """A predicate under analysis; becomes a ``MotionSpec`` when ``reason`` is empty."""
-
-    phrase: int
-    verb: str
-    reading: str
-    lemma: str
-    start: int  # offsets of the predicate word in the normalised text (the span)
-    end: int
-    ending: str = "final"
-    cue: str = ""
-    reason: str = ""  # why this is not a motion (endings.NOT_MOTION key)
-    negated: bool = False
-    actor: str | None = None
-    co_actors: tuple[str, ...] = ()  # 太郎と花子が: the others who perform it too
-    object: str | None = None
-    body_part: str | None = None
-    repeat: int = 1
-    speed: float = 1.0
-    duration: float | None = None
-    delay: float | None = None  # seconds before a motion that opens its track
-    written: str = ""  # the verb in the user's spelling, dictionary form (登る where verb is 上る)
-    head: int | None = None  # phrase index of the head motion
-    id: int = 0
-
-    @property
-    def motion(self) -> bool:
-        return not self.reason
 
 
 def canonical_verb(tok: Token) -> str:

@@ -28,7 +28,7 @@ from text2anim.core.contacts import detect_contacts, foot_tracks
 from .measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
 from .placed import Placed, mirrored_if_needed, on_skeleton
 from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
-from text2anim.core.metrics import jerk
+from text2anim.core.metrics import jerk, skating_ratio
 from text2anim.core.motion import Motion
 from .finish import finish
 from .laid import Laid, LaidJoin, LaidPart
@@ -93,7 +93,7 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
     tr = laid.motion
     contacts = detect_contacts(tr)
     ftracks = foot_tracks(tr)
-    skating = skating_frames(tr, ftracks)
+    skating = skating_frames(tr)
     composed_at = [(c.composed.timing.ta0, c.composed.timing.ta1) for c in comps]
     elements: dict[int, ElementReport] = {}
     for p in laid.placed:  # a repeated element's repetitions: from the first one's start to the last one's end
@@ -141,6 +141,7 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
             src_m = [c.donor for c in comps if c.element.id == rep.second] + src_m
         src_j = [jerk(x) for x in src_m]
         m["source_max_slide_cm_s"] = max((max_slide(x) for x in src_m), default=0.0)
+        m["source_skating_ratio"] = max((skating_ratio(x) for x in src_m), default=0.0)
         m["source_jerk_max"] = max((j.max for j in src_j), default=0.0)
         m["source_jerk_rms"] = max((j.rms for j in src_j), default=0.0)
         a_el, b_el = elements.get(rep.first), elements.get(rep.second)

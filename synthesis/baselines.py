@@ -74,7 +74,7 @@ def _join(state: TrackState, inc: Incoming, fps: float, method: str, blend_s: fl
     prev = state.placed[-1]
     n = max(2, int(round(blend_s * fps)))
     half = n // 2
-    tr = extend(state.motion, inc.offset + inc.motion.n_frames + n, state.floor)
+    tr = extend(state.laid(), inc.offset + inc.motion.n_frames + n, state.floor)
     c0_end, c1_begin = _cores(tr, prev, inc)
     info: dict = {}
     if method == "pose":

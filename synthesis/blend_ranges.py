@@ -114,6 +114,7 @@ def ranges(choice: Choice, b: Bounds) -> list[Range]:
     m = choice.method
     if m == "motion_transition":
         p0, p1 = choice.p0, choice.p1
+        assert p0 is not None and p1 is not None  # a transition blends the steps P0 and P1
         t0 = (max(lo, b.b_first), p1.end - 1)
         t1 = (max(p0.begin + 1, b.b_first), c1b)
         p_len = int(round(0.5 * (p0.frames + p1.frames)))
@@ -122,6 +123,7 @@ def ranges(choice: Choice, b: Bounds) -> list[Range]:
                       None, ("A", "B"), "(2)")]
     if m == "motion_connection":
         p0 = choice.p0
+        assert p0 is not None  # a connection blends the step P0
         t0 = (p0.begin, p0.begin)
         t1 = (max(p0.begin + 1, b.b_first), c1b)
         s1_lo = max(p0.begin + 1, b.floor)
@@ -132,6 +134,7 @@ def ranges(choice: Choice, b: Bounds) -> list[Range]:
         t0_hi = max(b.a_end - 1, b.b_first, lo)
         t1_hi = b.m1_end - 1
         if m == "motion_adaptation_step":
+            assert choice.p1 is not None  # the step returned from
             t1_hi = min(t1_hi, choice.p1.begin)
         out = [Range("S0", "lower", "pose-pose", (lo, t0_hi), (max(lo + 1, b.b_first), t1_hi), None,
                      ("A", "Bad"), "(5)"),
@@ -139,6 +142,7 @@ def ranges(choice: Choice, b: Bounds) -> list[Range]:
                      ("A", "B"), "(6)")]
         if m == "motion_adaptation_step":
             p1 = choice.p1
+            assert p1 is not None
             s3_lo = max(p1.begin, c1b) if max(p1.begin, c1b) <= p1.end - L else p1.begin
             out.append(Range("S3", "lower", "pose-motion", (s3_lo, p1.end - L), (p1.end, p1.end), p1.frames,
                              ("Bad", "B"), "(8)"))

@@ -99,6 +99,7 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
                                    "release_end": lk.release_end / fps} for lk in locks]
         rep_ = JoinReport(prev.element.id, e.id, method, blend, intervals, None, info, tuple(join.warnings))
         joins.append(LaidJoin(rep_, join.window, (join.window[0], region_end), prev, p))
+    assert tr is not None  # there is a whole-body element (checked above)
     # a looped clip's margin after its end is not played; the track holds to the last scheduled end
     laid = Laid(finish_whole(tr, placed, track.elements), placed, joins, warnings)
     if lock:

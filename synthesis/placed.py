@@ -14,6 +14,7 @@ import numpy as np
 
 from text2anim.core.contacts import FootContacts
 from text2anim.core.motion import Motion
+from text2anim.core.skeleton import Skeleton
 
 from .align import Rigid
 from .plan import Element
@@ -26,7 +27,8 @@ class Placed:
     """An element (or one repetition of it) as laid on its track.
 
     ``motion`` is its prepared clip moved by ``rigid``; its frame 0 is at
-    track frame ``offset``; ``core`` is ``[c0, c1)`` in its own frames.
+    track frame ``offset``; ``core`` is ``[c0, c1)`` in its own frames; it plays from its own
+    frame ``lead`` to ``stop`` (one past); ``repetition`` counts from 0.
     """
 
     element: Element
@@ -36,9 +38,9 @@ class Placed:
     contacts: FootContacts
     cyclic: bool
     rigid: Rigid
-    repetition: int = 0
-    lead: int = 0
-    stop: int | None = None
+    repetition: int
+    lead: int
+    stop: int
 
     def side(self) -> Side:
         return Side(self.motion, self.offset, self.core, self.contacts, self.cyclic, self.lead, self.stop)
@@ -72,7 +74,7 @@ def mirrored_if_needed(clip_part: str | None, want: str | None, motion: Motion) 
     return motion
 
 
-def on_skeleton(prep: Prepared, skeleton, e: Element):
+def on_skeleton(prep: Prepared, skeleton: Skeleton | None, e: Element) -> tuple[Prepared, Skeleton, str | None]:
     """The prepared clip played on the track's skeleton (the first element's); a note when bone lengths differ."""
     sk = prep.motion.skeleton
     if skeleton is None:

@@ -38,6 +38,7 @@ from .blend_search import preset
 from .result import Result
 from .method_select import cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
+from text2anim.core.methods import Method
 from text2anim.core.motion import Motion
 from .optimal import MIN_BLEND, Skip, join_next, plan_join
 from .track import TrackState, extend, incoming, place_first
@@ -102,7 +103,7 @@ class Timeline:
         return Result({None: self.motion}, reps, self.fps, els, tuple(self.state.warnings))
 
     # ----------------------------------------------------------------------------------------- append
-    def _element(self, clip: Clip, start: int, speed: float, duration: float | None, method: str) -> Element:
+    def _element(self, clip: Clip, start: int, speed: float, duration: float | None, method: Method) -> Element:
         length = duration if duration is not None else clip.motion.duration / speed
         prev = self.elements[-1].id if self.elements else None
         return Element(self._ids + 1, clip, start / self.fps, start / self.fps + length, method, prev, speed)
@@ -149,7 +150,7 @@ class Timeline:
 
         def planned(start_f: int):
             inc = incoming(self._element(clip, start_f, speed, duration, "connection"), 0, fps, self.state)
-            tr = extend(self.state.motion, inc.offset + inc.motion.n_frames, floor)
+            tr = extend(self.state.laid(), inc.offset + inc.motion.n_frames, floor)
             return inc, plan_join(tr, prev, inc, fps, self.weights, floor, self.min_blend, allow_shift=False)
 
         inc, plan = planned(start)

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field, replace
 
 from text2anim.core.contacts import FootContacts, detect_contacts
 from text2anim.core.motion import Motion
+from text2anim.core.skeleton import Skeleton
 
 from .align import place_at
 from .laid import Laid, LaidJoin
@@ -69,7 +70,13 @@ class TrackState:
     skipped: dict[int, str] = field(default_factory=dict)
     floor: int = 0
     delays: list[tuple[int, float]] = field(default_factory=list)
-    skeleton: object = None
+    skeleton: Skeleton | None = None
+
+    def laid(self) -> Motion:
+        """The frames so far (a join is only made once the first element is placed)."""
+        if self.motion is None:
+            raise ValueError("no element is laid on the track yet")
+        return self.motion
 
 
 def incoming(e: Element, rep: int, fps: float, state: TrackState) -> Incoming:
@@ -119,5 +126,5 @@ def lay_elements(track: Track, whole: Sequence[Element], fps: float,
             place_first(state, inc, track.origin, track.heading)
             continue
         join(state, inc)
-    return Laid(state.motion, state.placed, state.joins, state.warnings, state.skipped, state.delays)
+    return Laid(state.laid(), state.placed, state.joins, state.warnings, state.skipped, state.delays)
 

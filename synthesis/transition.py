@@ -223,6 +223,7 @@ def connection(track: Motion, a: Side, b: Side, fps: float, overlap: bool = Fals
         if found.support is not None:
             sw = found
             break
+    assert sw is not None  # levels is never empty
     ta = a.offset + sw.a
     rigid = align_through_foot(track, ta, b.motion, sw.b, sw.support)
     if hold_mode:

@@ -51,8 +51,8 @@ from text2anim.core.floor import shifted
 from text2anim.core.motion import Motion
 
 from . import capture
-from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, PlantSpec, curves_to_motion, load_json_dir, parse_clip,
-                        sample_curves)
+from .keyframe_curves import curves_to_motion, sample_curves
+from .keyframes import CLIPS_DIR, ClipData, ClipDataError, PlantSpec, load_json_dir, parse_clip
 from .plant import FramePlant, PlantReport, plant_feet
 from .reach import apply_reach
 from .skeleton import ANKLE_HEIGHT, SHOE_SOLE, TOE_HEIGHT, canonical_skeleton

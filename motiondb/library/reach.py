@@ -28,7 +28,8 @@ from text2anim.core.bodyparts import body_map
 from text2anim.core.ik import arm_ik
 from text2anim.core.motion import Motion
 
-from .keyframes import ClipDataError, interpolator
+from .keyframe_curves import interpolator
+from .keyframes import ClipDataError
 
 
 def _curve(t: np.ndarray, v: np.ndarray, times: np.ndarray) -> np.ndarray:

@@ -20,6 +20,7 @@ def _supported(choice: Choice, contacts: FootContacts, latest: int) -> Choice:
     or blended from that instant has no foot to stand on. The first such frame of ``P0`` (no later than
     ``latest``); ``P0`` as it was when there is none (a jump)."""
     p0 = choice.p0
+    assert p0 is not None and choice.support is not None  # a connection steps with P0 on its support foot
     c = contacts.of(choice.support)
     f = np.arange(p0.begin, min(p0.end, latest + 1))
     f = f[(f < len(c)) & c[np.clip(f, 0, len(c) - 1)]]

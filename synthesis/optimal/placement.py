@@ -33,6 +33,7 @@ def alignment(choice: Choice, s0: Found, tr: Motion, tr_contacts: FootContacts, 
     """``(support, ta, tb)``: the foot (or ``None``: roots) and the track frames of A and B put together."""
     sup = choice.support
     if choice.method == "motion_transition":
+        assert sup is not None  # a transition is chosen for steps of one foot
         lo, hi = max(s0.t0, inc.first), s0.t1
         mid = (lo + hi) // 2
         both = tr_contacts.of(sup)[np.clip(np.arange(lo, hi + 1), 0, tr.n_frames - 1)]
@@ -44,6 +45,7 @@ def alignment(choice: Choice, s0: Found, tr: Motion, tr_contacts: FootContacts, 
             return sup, f, f
         return None, mid, mid  # no foot down in both: the roots meet in the middle of the blend
     if choice.method == "motion_connection":
+        assert sup is not None and choice.p0 is not None  # a connection steps with P0 on its support foot
         ta = _planted_near(tr_contacts, sup, choice.p0.begin - 2, s0.t1, s0.t1)
         tb = _planted_near(inc.contacts, sup, inc.first, inc.offset + inc.core[1], s0.t1, inc.offset)
         if ta is None or tb is None:

@@ -61,7 +61,7 @@ def plan_join(tr: Motion, prev: Placed, inc: Incoming, fps: float, weights: Weig
     rs = ranges(choice, bounds)
     if allow_shift:
         s0 = rs[0]
-        need = max(L, int(round(MIN_ROOM * fps)), s0.p_len if choice.method == "motion_connection" else 0)
+        need = max(L, int(round(MIN_ROOM * fps)), (s0.p_len or 0) if choice.method == "motion_connection" else 0)
         have = s0.t1[1] - s0.t0[0]
         if have < need:
             shift = min(need - have, int(round(MAX_SHIFT * fps)))

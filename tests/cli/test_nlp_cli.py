@@ -11,7 +11,7 @@ import pytest
 
 from text2anim.cli.main import main
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 TEXT = "太郎は走って、ボールを蹴る。そして喜ぶ。"
 
 

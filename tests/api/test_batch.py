@@ -13,7 +13,7 @@ from text2anim.batch import Options, compare, load_corpus, manifest, run_corpus,
 from text2anim.cli import cmd_batch
 from text2anim.cli.main import main
 
-CORPUS = Path(__file__).parent / "corpus" / "nlp_corpus.jsonl"
+CORPUS = Path(__file__).parents[1] / "corpus" / "nlp_corpus.jsonl"
 
 #: Categories of language.md §3 (and §1-§2) the corpus must cover.
 REQUIRED_CATEGORIES = {

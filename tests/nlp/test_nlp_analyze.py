@@ -12,7 +12,7 @@ from text2anim import nlp
 from text2anim.nlp import MAX_CHARS, NLPError, analyze
 from text2anim.nlp.lexicon import LIBRARY_VERBS
 
-CORPUS = Path(__file__).parent / "corpus" / "nlp_corpus.jsonl"
+CORPUS = Path(__file__).parents[1] / "corpus" / "nlp_corpus.jsonl"
 SENTENCES = [json.loads(line)["text"] for line in CORPUS.read_text(encoding="utf-8").splitlines()
              if line.startswith("{")]
 

@@ -14,7 +14,7 @@ from text2anim.motiondb.errors import SeedWarning
 from text2anim.motiondb.location import resolve_url
 from conftest import make_motion
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 
 
 def _records(n=3, verb="歩く"):

@@ -237,7 +237,7 @@ def test_a_person_can_drive_it(page, tmp_path):
     """Space, arrow keys, timeline click, orbit drag, wheel zoom, double-click reset, speed: through DevTools."""
     if shutil.which("node") is None:
         pytest.skip("node not installed: the page is driven through the DevTools protocol by a node script")
-    script = Path(__file__).parent / "browser" / "viewer_drive.mjs"
+    script = Path(__file__).parents[1] / "browser" / "viewer_drive.mjs"
     shot = tmp_path / "driven.png"
     proc = subprocess.run(["node", str(script), CHROMIUM, page.as_uri(), str(tmp_path / "prof"), str(shot)],
                           capture_output=True, text=True, timeout=90)

@@ -25,8 +25,8 @@ from text2anim.core.atomic import OutputError
 from text2anim.core.gltf import glb_bytes, write_glb
 from text2anim.core.viewer import Track
 
-NODE_MODULES = Path(os.environ.get("T2A_NODE_MODULES", Path(__file__).parent / "browser" / "node_modules"))
-CHECK_SCRIPT = Path(__file__).parent / "browser" / "gltf_check.mjs"
+NODE_MODULES = Path(os.environ.get("T2A_NODE_MODULES", Path(__file__).parents[1] / "browser" / "node_modules"))
+CHECK_SCRIPT = Path(__file__).parents[1] / "browser" / "gltf_check.mjs"
 
 _DTYPES = {5126: "<f4", 5121: "u1", 5123: "<u2", 5125: "<u4"}
 _N = {"SCALAR": 1, "VEC3": 3, "VEC4": 4, "MAT4": 16}
@@ -275,7 +275,7 @@ def test_blender_imports_it(tmp_path, walk):
     path = tmp_path / "a.glb"
     write_glb([Track("太郎", walk)], path)
     frames = [0, walk.n_frames // 2, walk.n_frames - 1]
-    proc = subprocess.run([py, str(Path(__file__).parent / "browser" / "blender_check.py"), str(path),
+    proc = subprocess.run([py, str(Path(__file__).parents[1] / "browser" / "blender_check.py"), str(path),
                            str(round(walk.fps)), json.dumps(frames)], capture_output=True, text=True, timeout=300)
     line = next((ln for ln in proc.stdout.splitlines() if ln.startswith("JSON")), None)
     assert proc.returncode == 0 and line, proc.stderr[-3000:]

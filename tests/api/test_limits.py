@@ -148,7 +148,7 @@ def test_every_stage_error_is_a_value_error(library_db):
 def test_default_budget_is_documented():
     from pathlib import Path
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
     for figure in (f"{MAX_SECONDS:g} s", f"{MAX_REPEAT}", f"{MAX_MOTIONS}", f"{MAX_TEXT_CHARS:,}", "1 to 240"):
         assert figure in readme, figure
 

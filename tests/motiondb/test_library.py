@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from text2anim.motiondb.library import build_all, builtin_clips, canonical_skeleton, keyframes
+from text2anim.motiondb.library import build_all, builtin_clips, canonical_skeleton, keyframe_curves, keyframes
 from text2anim.motiondb.types import ClipRecord
 from shared_data import CMU_FILES, requires_cmu
 from text2anim.core import read_bvh, write_bvh
@@ -165,7 +165,7 @@ def test_bad_data_is_refused_with_the_clip_named():
            "keys": [{"t": 0.0, "pose": "stand"}, {"t": 0.5, "set": {"LeftElbow": [0, 0, 0]}}]}
     clip = keyframes.parse_clip(raw)
     with pytest.raises(keyframes.ClipDataError, match="broken.*LeftElbow"):
-        keyframes.sample_curves(clip, poses, canonical_skeleton(), np.linspace(0, 1, 5))
+        keyframe_curves.sample_curves(clip, poses, canonical_skeleton(), np.linspace(0, 1, 5))
 
 
 # ------------------------------------------------------------ plausibility

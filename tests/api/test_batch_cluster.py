@@ -18,7 +18,7 @@ import pytest
 from text2anim.batch import Options, load_corpus, manifest, run_corpus
 from text2anim.cli.main import main
 
-CORPUS = Path(__file__).parent / "corpus" / "nlp_corpus.jsonl"
+CORPUS = Path(__file__).parents[1] / "corpus" / "nlp_corpus.jsonl"
 VARIES = ("time", "cpu", "options")  # wall and CPU time; the options key names the database
 
 

@@ -18,7 +18,7 @@ from text2anim.core import read_bvh
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, foot_tracks
 from text2anim.synthesis.engine import hips_frame, synthesize
-from text2anim.core.metrics import skating_ratio
+from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
 from text2anim.synthesis.plan import Clip, Element, Track
 from text2anim.synthesis.timing import find_cycle, prepare
 
@@ -58,10 +58,12 @@ def landings(m, lo, hi):
     return [s for _, s in sorted(out)]
 
 
-def assert_clean_join(j, jerk_factor=1.5):
+def assert_clean_join(j, jerk_factor=1.5, skating=None):
+    """``skating``: the GMD ratio the blend may reach where it is above its sources' (a measured ceiling)."""
     m = j.metrics
-    assert m["skating_ratio"] == 0.0, j
-    assert m["region"]["skating_ratio"] == 0.0, j
+    bound = max(m["source_skating_ratio"] + SKATING_MARGIN, skating or 0.0)
+    assert m["skating_ratio"] <= bound, j
+    assert m["region"]["skating_ratio"] <= bound, j
     # a foot in contact in the blend moves no faster than feet in contact do in the source clips
     assert m["max_slide_cm_s"] <= max(m["source_max_slide_cm_s"], 15.0) + 1.0
     assert m["jerk_max"] <= jerk_factor * m["source_jerk_max"]
@@ -156,7 +158,9 @@ def test_walk_and_wave_composition():
     _, base = one(Element(1, walk, 0.0, 4.0, "initial"))
     (j,) = res.joins
     assert j.method == "composition" and [i.part for i in j.intervals] == ["right_arm", "right_arm"]
-    assert_clean_join(j)
+    # the arm is laid on the looped walk, whose own feet skate on 2 of the 30 frames around it (GMD rule,
+    # either foot; the walk cycle as a whole: 0.03): a ceiling, issue 11
+    assert_clean_join(j, skating=0.07)
     t0, t1 = (round(x * FPS) for x in j.metrics["switch_s"])
     bm = body_map(m.skeleton)
     hand = bm.hands["right"]
@@ -235,7 +239,7 @@ def test_looping_a_walk_travels_on_without_a_pop():
     n = cyc.n_frames
     seams = [k * n - 1 for k in range(1, 5) if k * n - 1 < len(steps)]
     assert max(steps[seams]) < 1.5 * np.percentile(steps, 95)
-    assert skating_ratio(m) == 0.0
+    assert skating_ratio(m) <= skating_ratio(walk.motion) + SKATING_MARGIN  # no more than the captured cycle
 
 
 def test_repeated_kick_is_two_kicks_joined():

@@ -1,0 +1,35 @@
+"""A predicate under analysis (:class:`Pred`), held by its phrase (``Phrase.pred``) while the clause is read."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(slots=True)
+class Pred:
+    """A predicate under analysis; becomes a ``MotionSpec`` when ``reason`` is empty."""
+
+    phrase: int
+    verb: str
+    reading: str
+    lemma: str
+    start: int  # offsets of the predicate word in the normalised text (the span)
+    end: int
+    ending: str = "final"
+    cue: str = ""
+    reason: str = ""  # why this is not a motion (endings.NOT_MOTION key)
+    negated: bool = False
+    actor: str | None = None
+    co_actors: tuple[str, ...] = ()  # 太郎と花子が: the others who perform it too
+    object: str | None = None
+    body_part: str | None = None
+    repeat: int = 1
+    speed: float = 1.0
+    duration: float | None = None
+    delay: float | None = None  # seconds before a motion that opens its track
+    written: str = ""  # the verb in the user's spelling, dictionary form (登る where verb is 上る)
+    head: int | None = None  # phrase index of the head motion
+    id: int = 0
+
+    @property
+    def motion(self) -> bool:
+        return not self.reason
