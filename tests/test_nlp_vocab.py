@@ -55,6 +55,19 @@ def test_fallback_nearest_animates_and_says_so(library_db, tmp_path):
     assert [e["verb"] for e in data["time_table"]] == ["向かう"]
 
 
+def test_plan_takes_fallback_nearest_too(library_db):
+    """``text2anim plan --fallback nearest`` plans the stand-in and says so; strict refuses (exit 2)."""
+    strict = run("plan", "太郎は階段を降りて、座る。", "--db", library_db)
+    assert strict.returncode == 2 and "降りる" in strict.stderr and strict.stdout == ""
+    proc = run("plan", "太郎は階段を降りて、座る。", "--db", library_db, "--fallback", "nearest", "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert "fallback: 降りる → 向かう" in proc.stderr
+    table = json.loads(proc.stdout)
+    assert "向かう" in json.dumps(table, ensure_ascii=False) and "降りる" not in json.dumps(table, ensure_ascii=False)
+    bad = run("plan", "太郎は歩く。", "--db", library_db, "--fallback", "closest")
+    assert bad.returncode == 2 and "--fallback" in bad.stderr
+
+
 @pytest.mark.parametrize("text, verb", [("太郎は花びらを散らす。", "散らす"), ("太郎はガムを噛む。", "噛む")])
 def test_fallback_refuses_a_verb_nothing_is_near(library_db, text, verb):
     """散らす: no library verb is even loosely near; 噛む: ちぎる (tear) is the nearest library
