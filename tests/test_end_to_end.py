@@ -10,7 +10,7 @@ import pytest
 import text2anim
 from cli_run import assert_clean_error, text2anim as run
 from text2anim.core import read_bvh
-from text2anim.core.metrics import skating_ratio
+from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
 
 EXAMPLE = "太郎は走って、ボールを蹴る。そして喜ぶ。"
 
@@ -65,7 +65,7 @@ def test_report_has_every_join_with_metrics(example):
         (1, 2, "transition"), (2, 3, "connection")]
     for j in report["joins"]:
         assert j["intervals"] and all(iv["begin"] <= iv["end"] for iv in j["intervals"])
-        assert j["metrics"]["skating_ratio"] == 0
+        assert j["metrics"]["skating_ratio"] <= j["metrics"]["source_skating_ratio"] + SKATING_MARGIN
 
 
 def test_cli_writes_bvh_viewer_and_report(tmp_path, library_db):
@@ -115,6 +115,21 @@ def test_skip_unknown_animates_the_rest(tmp_path, library_db):
     assert proc.returncode == 0, proc.stderr
     assert "skipped 宇宙遊泳する" in proc.stderr
     assert (tmp_path / "a.bvh").exists()
+
+
+def test_a_chain_of_actions_plays_every_action(library_db):
+    """走り、跳び、転ぶ: the jump is delayed for room after the run; the fall scheduled after it follows it
+    instead of being dropped (it was: 'not executed', and the actor stood until the end)."""
+    anim = text2anim.animate("太郎は走り、跳び、転ぶ。", db=library_db)
+    assert not anim.report["warnings"] and not anim.report["skipped"]
+    (motion,) = anim.motions.values()
+    els = anim.report["elements"]
+    assert all(v.get("executed", True) for v in els.values())
+    jump, fall = els["2"], els["3"]
+    assert fall["core"][0] >= jump["core"][1] - 1e-9  # cores in the order written, not overlapping
+    hips = motion.positions[:, 0, 1]
+    end = int(fall["core"][1] * motion.fps)
+    assert hips[end - 1] < 0.5 * hips[0]  # the fall is played: the hips end near the floor
 
 
 def test_a_wait_is_standing_not_a_frozen_stride(library_db):

@@ -61,6 +61,7 @@ class Cut:
     face: str = "start"
     starts_from: str | None = None
     ease: float = 0.0
+    lowpass: float = 0.0  # Hz; 0: none (see .smooth)
     about: str = ""
 
     @property
@@ -85,7 +86,8 @@ def _cut(raw: dict) -> Cut:
                   cyclic=bool(raw.get("cyclic", False)), starts=raw.get("starts", "stand"),
                   ends=raw.get("ends", "stand"), replaces=raw.get("replaces"), loop=raw.get("loop"),
                   blend=float(raw.get("blend", 0.0)), face=raw.get("face", "start"),
-                  starts_from=raw.get("starts_from"), ease=float(raw.get("ease", 0.0)), about=raw.get("about", ""))
+                  starts_from=raw.get("starts_from"), ease=float(raw.get("ease", 0.0)),
+                  lowpass=float(raw.get("lowpass", 0.0)), about=raw.get("about", ""))
     except (KeyError, TypeError, ValueError) as exc:
         raise ClipDataError(f"capture.toml: clip {name}: {exc}") from None
     if not 0 <= t0 < t1:
@@ -99,6 +101,8 @@ def _cut(raw: dict) -> Cut:
             raise ClipDataError(f"capture.toml: clip {name}: unknown posture {word!r}")
     if cut.face not in ("start", "travel") or cut.loop not in (None, "blend", "stride"):
         raise ClipDataError(f"capture.toml: clip {name}: face must be start|travel, loop blend|stride or absent")
+    if not 0 <= cut.lowpass < 60:
+        raise ClipDataError(f"capture.toml: clip {name}: lowpass must be 0 (none) or a cut-off below 60 Hz")
     if cut.loop and not (cut.cyclic and cut.blend > 0):
         raise ClipDataError(f"capture.toml: clip {name}: a loop needs cyclic = true and blend > 0 seconds")
     return cut
