@@ -41,7 +41,7 @@ def test_every_cut_is_shipped_on_the_built_in_skeleton():
         m = r.motion
         assert m.skeleton.same_hierarchy(skel) and np.allclose(m.skeleton.offsets, skel.offsets)
         assert m.fps == 30.0
-        assert m.duration == pytest.approx(c.cut[1] - c.cut[0], abs=1.5 / 30)
+        assert m.duration == pytest.approx(c.cut[1] - c.cut[0] + c.extra, abs=1.5 / 30)
         assert np.allclose(np.linalg.norm(m.rotations, axis=-1), 1.0)
         assert r.source == f"builtin:capture:CMU {c.trial} {c.cut[0]:.2f}-{c.cut[1]:.2f}s"
         assert (CMU_DIR.parent / "cmu").name == "cmu" and c.file.startswith(c.trial)
