@@ -256,8 +256,16 @@ def _verbs(db, args) -> int:
     return 0
 
 
+def _romanised(word: str) -> str:
+    """``word`` in Latin letters: its reading in Hepburn romaji (ASCII words as they are)."""
+    from text2anim.motiondb.readings import reading, romaji
+
+    return word if word.isascii() else romaji(reading(word))
+
+
 def _preview(db, args) -> int:
     try:
+        from text2anim.core import fonts
         from text2anim.core.sheet import contact_sheet
     except ModuleNotFoundError as exc:
         if exc.name in ("text2anim.core.sheet", "matplotlib"):
@@ -266,7 +274,11 @@ def _preview(db, args) -> int:
     info = db.info(args.clip)
     motion = db.load(info)
     title = f"{info.name}: {'/'.join(info.verbs)} ({info.character}, {info.frames} frames, {info.fps:g} fps)"
-    contact_sheet(motion, args.output, title=title, core=info.core)
+    alt = None
+    if not fonts.drawable(title):  # no CJK font: the words romanised (odoru/dansusuru) instead of boxes
+        alt = (f"{_romanised(info.name)}: {'/'.join(_romanised(v) for v in info.verbs)} "
+               f"({_romanised(info.character)}, {info.frames} frames, {info.fps:g} fps)")
+    contact_sheet(motion, args.output, title=title, core=info.core, alt_title=alt)
     print(f"wrote {args.output}")
     return 0
 
