@@ -161,6 +161,16 @@ def test_dances_loop_on_the_spot(library_db):
         assert frozen_share(m) == 0.0
 
 
+def test_a_dance_after_a_walk_stands_on_the_floor(library_db):
+    """The join settles the dance onto the walk's locked foot by the foot's lowest point: the dancer
+    stands on the ball of her left foot (heel 14 cm up) where the walk's foot was flat, which read as the
+    whole dance sinking 6 cm through the floor."""
+    from text2anim.core.metrics import quality
+
+    (m,) = text2anim.animate("太郎は歩いて、踊る。", db=library_db).motions.values()
+    assert quality(m).floor_penetration_cm <= 1.0
+
+
 def test_the_wave_swings_the_right_hand_for_about_three_seconds(library_db):
     (m,) = text2anim.animate("太郎は手を振る。", db=library_db).motions.values()
     assert 2.5 < m.duration < 3.8
