@@ -23,7 +23,7 @@ FALLBACKS = ("strict", "nearest")
 if TYPE_CHECKING:
     from text2anim.core.motion import Motion
     from text2anim.scheduler import TimeTable
-    from text2anim.synthesis.engine import Result
+    from text2anim.synthesis.result import Result
 
 DEFAULT_ACTOR = "default"
 
@@ -155,7 +155,7 @@ class Animation:
             "synthesis": {"blend": self.blend, "smoothness": self.smoothness},
             "time_table": self.table.to_dict()["elements"],
             "joins": joins,
-            "elements": {str(k): v for k, v in self.result.elements.items()},
+            "elements": {str(k): v.to_dict() for k, v in self.result.elements.items()},
             "actors": whole,
             "skipped": list(self.planned.skipped),
             **({"fallbacks": [f.to_dict() for f in self.planned.fallbacks]} if self.planned.fallbacks else {}),
@@ -174,12 +174,13 @@ class Animation:
 
         out = []
         for e in self.table.elements:
-            played = self.result.elements.get(e.id, {})
-            start, end = played.get("start", e.start), played.get("end", e.end)
+            played = self.result.elements.get(e.id)
+            start = played.start if played is not None and played.start is not None else e.start
+            end = played.end if played is not None and played.end is not None else e.end
             part = f" [{e.body_part}]" if e.body_part else ""
             out.append(Span(e.actor or DEFAULT_ACTOR, f"{e.id} {e.verb} ({e.method}){part}", start, end, "element"))
         for j in self.result.joins:
-            actor = self.result.elements.get(j.second, {}).get("actor") or DEFAULT_ACTOR
+            actor = self.result.actor_of(j.second) or DEFAULT_ACTOR
             for iv in j.intervals:
                 if iv.end > iv.begin:
                     out.append(Span(actor, f"{j.first}→{j.second} {iv.kind}", iv.begin, iv.end, "blend", iv.part))

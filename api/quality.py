@@ -58,7 +58,7 @@ def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS) -> lis
     by_clip: dict = {}
     out: list[dict | None] = []
     for j in result.joins:
-        actor = result.elements.get(j.second, {}).get("actor")
+        actor = result.actor_of(j.second)
         motion = result.motions.get(actor)
         window = join_window(j, motion.duration) if motion is not None else None
         if window is None:

@@ -44,7 +44,7 @@ sys.path.insert(0, str(REPO))
 from text2anim.motiondb import ClipRecord, MotionDB  # noqa: E402
 from text2anim.scheduler.lengths import transition_window  # noqa: E402
 from text2anim.core import read_bvh  # noqa: E402
-from text2anim.synthesis import optimal  # noqa: E402
+from text2anim.synthesis.optimal import join as optimal  # noqa: E402  (join_next looks plan_join up there)
 from text2anim.synthesis.engines import METHODS, synthesize_with  # noqa: E402
 from text2anim.core.metrics import foot_skate  # noqa: E402
 from text2anim.synthesis.plan import Clip, Element, Track  # noqa: E402
@@ -145,7 +145,7 @@ def figures(res, motion) -> dict:
     fs = foot_skate(motion)
     n = sum(f.contact_frames for f in fs.values())
     js = [j for j in res.joins if j.metrics and j.method != "not_executed"]
-    fid = [v.get("core_fidelity_cm", v.get("part_fidelity_cm", 0.0)) or 0.0 for v in res.elements.values()]
+    fid = [v.fidelity_cm or 0.0 for v in res.elements.values()]
     return {"slide": sum(f.slide_cm for f in fs.values()),
             "skate": sum(f.mean_speed_cm_s * f.contact_frames for f in fs.values()) / max(n, 1),
             "ratio": max([j.metrics["skating_ratio"] for j in js] or [0.0]),

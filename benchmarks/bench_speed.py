@@ -96,7 +96,7 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
     from text2anim.core.bvh import format_bvh
     from text2anim.motiondb import MotionDB
     from text2anim.pipeline import plan_text
-    from text2anim.synthesis import optimal
+    from text2anim.synthesis.optimal import join as optimal  # join_next looks plan_join up there
     from text2anim.synthesis.engines import synthesize_with
 
     url = f"sqlite:///{tmp}/motions.sqlite"

@@ -34,6 +34,16 @@ def _core_type(text: str) -> tuple[float, float]:
     return b, e
 
 
+def _frame_count(text: str) -> int:
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if not 1 <= n <= 48:
+        raise argparse.ArgumentTypeError(f"{n} is outside 1-48 frames")
+    return n
+
+
 def _db_option(p: argparse.ArgumentParser, default=None) -> None:
     p.add_argument("--db", dest="db_url", metavar="URL", default=default,
                    help="database URL (sqlite:///FILE, postgresql+psycopg2://...) or SQLite file; "
@@ -93,9 +103,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     a = action("verbs", "list the verbs with their readings and clip counts")
     a.add_argument("--json", action="store_true", help="JSON instead of a table")
 
-    a = action("preview", "draw a clip as a contact sheet (stick figures, front and side view)")
-    a.add_argument("clip")
+    a = action("preview", "draw a clip or a BVH file (an animation you made) as a contact sheet "
+                          "(stick figures, front and side view)")
+    a.add_argument("clip", metavar="CLIP|FILE.bvh", help="a clip's name, or a BVH file to draw without a database")
     a.add_argument("-o", "--output", required=True, metavar="SHEET.png", help="the image to write")
+    a.add_argument("--frames", type=_frame_count, default=8, metavar="N",
+                   help="how many frames to draw, evenly spaced (default 8, at most 48)")
 
     p.set_defaults(_db_parser=p)
 
@@ -181,6 +194,8 @@ def run(args) -> int:
     if not getattr(args, "db_action", None):
         args._db_parser.print_help(sys.stderr)
         return 2
+    if args.db_action == "preview" and args.clip.lower().endswith(".bvh"):
+        return _preview_file(args)  # a file needs no database
     from text2anim.motiondb import ClipValidationError, MotionDB
 
     if args.db_action == "import" and args.name and len(args.files) != 1:
@@ -256,6 +271,16 @@ def _verbs(db, args) -> int:
     return 0
 
 
+def _contact_sheet():
+    try:
+        from text2anim.core.sheet import contact_sheet
+    except ModuleNotFoundError as exc:
+        if exc.name in ("text2anim.core.sheet", "matplotlib"):
+            raise PreviewUnavailable(f"db preview is not available: {exc.name} is not installed") from None
+        raise
+    return contact_sheet
+
+
 def _romanised(word: str) -> str:
     """``word`` in Latin letters: its reading in Hepburn romaji (ASCII words as they are)."""
     from text2anim.motiondb.readings import reading, romaji
@@ -263,22 +288,39 @@ def _romanised(word: str) -> str:
     return word if word.isascii() else romaji(reading(word))
 
 
+def _alt_title(title: str, words: list[str], rest: str) -> str | None:
+    """Without a font for ``title``'s glyphs (no CJK font): ``words`` romanised (odoru/dansusuru), then ``rest``."""
+    from text2anim.core import fonts
+
+    return None if fonts.drawable(title) else f"{': '.join(words)} {rest}"
+
+
 def _preview(db, args) -> int:
-    try:
-        from text2anim.core import fonts
-        from text2anim.core.sheet import contact_sheet
-    except ModuleNotFoundError as exc:
-        if exc.name in ("text2anim.core.sheet", "matplotlib"):
-            raise PreviewUnavailable(f"db preview is not available: {exc.name} is not installed") from None
-        raise
+    contact_sheet = _contact_sheet()
     info = db.info(args.clip)
     motion = db.load(info)
-    title = f"{info.name}: {'/'.join(info.verbs)} ({info.character}, {info.frames} frames, {info.fps:g} fps)"
-    alt = None
-    if not fonts.drawable(title):  # no CJK font: the words romanised (odoru/dansusuru) instead of boxes
-        alt = (f"{_romanised(info.name)}: {'/'.join(_romanised(v) for v in info.verbs)} "
-               f"({_romanised(info.character)}, {info.frames} frames, {info.fps:g} fps)")
-    contact_sheet(motion, args.output, title=title, core=info.core, alt_title=alt)
+    rest = f"({info.character}, {info.frames} frames, {info.fps:g} fps)"
+    title = f"{info.name}: {'/'.join(info.verbs)} {rest}"
+    alt = _alt_title(title, [_romanised(info.name), "/".join(_romanised(v) for v in info.verbs)],
+                     f"({_romanised(info.character)}, {info.frames} frames, {info.fps:g} fps)")
+    contact_sheet(motion, args.output, title=title, n=args.frames, core=info.core, alt_title=alt)
+    print(f"wrote {args.output}")
+    return 0
+
+
+def _preview_file(args) -> int:
+    """Draw a BVH file as it is (an output of ``text2anim``, or any capture) without opening a database."""
+    import os
+
+    from text2anim.core.bvh import read_bvh
+
+    contact_sheet = _contact_sheet()
+    motion = read_bvh(args.clip)
+    name = os.path.basename(args.clip)
+    rest = f"({motion.n_frames} frames, {motion.fps:g} fps, {motion.n_frames / motion.fps:.2f} s)"
+    title = f"{name} {rest}"
+    alt = _alt_title(title, [_romanised(name)], rest)
+    contact_sheet(motion, args.output, title=title, n=args.frames, alt_title=alt)
     print(f"wrote {args.output}")
     return 0
 

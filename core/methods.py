@@ -10,5 +10,6 @@ from __future__ import annotations
 from typing import Literal, get_args
 
 Method = Literal["initial", "connection", "transition", "composition"]
-#: Every :data:`Method`, in this order.
-METHODS: tuple[Method, ...] = get_args(Method)
+#: Every :data:`Method`, in this order. (``METHODS`` is another vocabulary: the joining methods,
+#: :data:`text2anim.synthesis.engines.METHODS`.)
+ELEMENT_METHODS: tuple[Method, ...] = get_args(Method)

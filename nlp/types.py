@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 #: Methods a constraint can ask for (timetable.md §1 uses the same names).
-METHODS = ("connection", "transition", "composition")
+CONSTRAINT_METHODS = ("connection", "transition", "composition")
 
 
 @dataclass(frozen=True, slots=True)
@@ -95,7 +95,7 @@ class Constraint:
 
     ``relation`` is ``serial`` or ``parallel``; ``overlap`` is ``None`` for a
     parallel relation; ``delay`` is seconds or ``None``; ``method`` is what the
-    time table records for ``second`` (see ``METHODS``).  ``cue`` names the
+    time table records for ``second`` (see ``CONSTRAINT_METHODS``).  ``cue`` names the
     words that produced the constraint (only in the extended JSON).
     """
 

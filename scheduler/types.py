@@ -5,9 +5,9 @@ import json
 from dataclasses import dataclass
 
 from text2anim.core.bodyparts import BodyPart
-from text2anim.core.methods import METHODS, Method
+from text2anim.core.methods import ELEMENT_METHODS, Method
 
-__all__ = ["METHODS", "ClipTiming", "Element", "Method", "TimeTable"]
+__all__ = ["ELEMENT_METHODS", "ClipTiming", "Element", "Method", "TimeTable"]
 
 
 

@@ -9,7 +9,7 @@ way; then, exactly as the seed-003 engine (:mod:`synthesis.engine`) does:
 2. every join is measured with the engine's own figures (``timetable.md`` §3:
    skating ratio and foot skate in the blend and its region, largest and RMS
    jerk against the source clips', core fidelity per element);
-3. a :class:`synthesis.engine.Result` is returned, so every method can be
+3. a :class:`synthesis.result.Result` is returned, so every method can be
    saved, viewed, reported and compared the same way.
 
 The per-join and per-element figures are the engine's functions; this module
@@ -18,36 +18,20 @@ same inline and is not split into callable steps).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 import numpy as np
 
 from .composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
-from .engine import (Placed, Result, core_fidelity, mirrored_if_needed, on_skeleton, part_fidelity,
-                     window_metrics, max_slide, skating_frames)
+from .measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
+from .placed import Placed, mirrored_if_needed, on_skeleton
+from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
 from text2anim.core.metrics import jerk
 from text2anim.core.motion import Motion
-from .plan import BlendInterval, Element, JoinReport, Track
+from .laid import Laid, LaidJoin, LaidPart
+from .plan import Element, Track
 from .timing import ease_hold, prepare
-
-
-@dataclass
-class Laid:
-    """One track after its whole-body elements are laid.
-
-    ``joins``: ``(report, (window, region) or None, first Placed, second Placed, extra windows)`` — a
-    ``None`` window for a join that was not carried out (nothing to measure). ``skipped``: element ids
-    not executed, with the reason. ``delays``: ``(element id, s)`` of elements the joiner moved in
-    time (the partial elements laid on them move too).
-    """
-
-    motion: Motion
-    placed: list[Placed]
-    joins: list = field(default_factory=list)
-    warnings: list = field(default_factory=list)
-    skipped: dict = field(default_factory=dict)
-    delays: list = field(default_factory=list)
 
 
 def shifted(parts: list[Element], delays: list) -> list[Element]:
@@ -68,7 +52,7 @@ def finish_whole(tr: Motion, placed: list[Placed], elements) -> Motion:
     return ease_hold(tr, n_end)
 
 
-def compose_parts(laid: Laid, parts: list[Element], whole: list[Element], fps: float, sway: bool) -> list:
+def compose_parts(laid: Laid, parts: list[Element], whole: list[Element], fps: float, sway: bool) -> list[LaidPart]:
     """Compose the partial elements onto ``laid.motion`` (in place); returns the compositions."""
     tr = laid.motion
     comps = []
@@ -94,53 +78,54 @@ def compose_parts(laid: Laid, parts: list[Element], whole: list[Element], fps: f
         base_id = e.prev if e.prev is not None and e.prev not in laid.skipped else whole[0].id
         rep = JoinReport(base_id, e.id, "composition", "composition", intervals,
                          {"start": t.cost_start, "end": t.cost_end}, info, ())
-        laid.joins.append((rep, ((t.ta0, t.ta0 + t.blend_in), (t.ta0, t.ta1)), None, None,
-                           [(t.ta1 - t.blend_out, t.ta1)]))
-        comps.append((e, comp, donor, prep.core))
+        laid.joins.append(LaidJoin(rep, (t.ta0, t.ta0 + t.blend_in), (t.ta0, t.ta1),
+                                   extra=((t.ta1 - t.blend_out, t.ta1),)))
+        comps.append(LaidPart(e, comp, donor, prep.core))
     laid.motion = tr
     return comps
 
 
-def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, dict]:
+def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
+            ) -> tuple[list[JoinReport], dict[int, ElementReport]]:
     """Per-join reports with their metrics and per-element figures (the engine's, see the module doc)."""
     tr = laid.motion
     contacts = detect_contacts(tr)
     ftracks = foot_tracks(tr)
     skating = skating_frames(tr, ftracks)
-    composed_at = [(c.timing.ta0, c.timing.ta1) for _, c, _, _ in comps]
-    elements: dict = {}
-    fid: dict = {}
-    for p in laid.placed:
+    composed_at = [(c.composed.timing.ta0, c.composed.timing.ta1) for c in comps]
+    elements: dict[int, ElementReport] = {}
+    for p in laid.placed:  # a repeated element's repetitions: from the first one's start to the last one's end
         key = p.element.id
         f = core_fidelity(tr, p)
-        fid[key] = max(fid.get(key, 0.0), f)
         c0, c1 = p.offset + p.core[0], p.offset + p.core[1]
-        el = elements.setdefault(key, {"actor": track.actor, "start": (p.offset + p.lead) / fps,
-                                       "core": [c0 / fps, c1 / fps],
-                                       "placement": {"yaw": p.rigid.yaw, "x": p.rigid.offset[0],
-                                                     "z": p.rigid.offset[1]}})
-        el["end"] = (p.offset + p.stop) / fps
-        el["core"][1] = c1 / fps
-        el["core_fidelity_cm"] = fid[key]
+        el = elements.get(key) or ElementReport(
+            track.actor, start=(p.offset + p.lead) / fps, core=(c0 / fps, c1 / fps),
+            placement=Placement(p.rigid.yaw, p.rigid.offset[0], p.rigid.offset[1]))
+        assert el.core is not None
+        el = replace(el, end=(p.offset + p.stop) / fps, core=(el.core[0], c1 / fps),
+                     core_fidelity_cm=max(el.core_fidelity_cm or 0.0, f))
         if any(a < c1 and b > c0 for a, b in composed_at):
             from text2anim.core.bodyparts import body_map
 
             legs = list(body_map(tr.skeleton).joints("lower"))
-            el["core_fidelity_untouched_cm"] = core_fidelity(tr, p, legs)
+            el = replace(el, core_fidelity_untouched_cm=core_fidelity(tr, p, legs))
+        elements[key] = el
     for eid, why in laid.skipped.items():
-        elements[eid] = {"actor": track.actor, "executed": False, "reason": why}
-    for e, comp, donor, core in comps:
-        elements[e.id] = {"actor": track.actor, "start": comp.timing.ta0 / fps, "end": comp.timing.ta1 / fps,
-                          "part": comp.part, "part_fidelity_cm": part_fidelity(tr, comp, donor, core)}
+        elements[eid] = ElementReport(track.actor, reason=why)
+    for c in comps:
+        t = c.composed.timing
+        elements[c.element.id] = ElementReport(track.actor, start=t.ta0 / fps, end=t.ta1 / fps, part=c.composed.part,
+                                               part_fidelity_cm=part_fidelity(tr, c.composed, c.donor, c.core))
     by_id = {p.element.id: p for p in laid.placed}
     reports = []
-    for rep, spans, first, second, extra in laid.joins:
-        if spans is None:
+    for lj in laid.joins:
+        rep, first, second = lj.report, lj.first, lj.second
+        if lj.window is None or lj.region is None:
             reports.append(rep)
             continue
-        window, region = spans
+        window, region = lj.window, lj.region
         m = window_metrics(tr, window[0], window[1], contacts, ftracks, skating)
-        for a, b in extra:
+        for a, b in lj.extra:
             m2 = window_metrics(tr, a, b, contacts, ftracks, skating)
             m["jerk_max"] = max(m["jerk_max"], m2["jerk_max"])
             m["jerk_rms"] = float(np.hypot(m["jerk_rms"], m2["jerk_rms"]) / np.sqrt(2))
@@ -151,14 +136,14 @@ def measure(track: Track, laid: Laid, comps: list, fps: float) -> tuple[list, di
         srcs = [first, second] if first is not None else [by_id.get(rep.first), None]
         src_m = [p.motion for p in srcs if p is not None]
         if rep.method == "composition":
-            src_m = [c[2] for c in comps if c[0].id == rep.second] + src_m
+            src_m = [c.donor for c in comps if c.element.id == rep.second] + src_m
         src_j = [jerk(x) for x in src_m]
         m["source_max_slide_cm_s"] = max((max_slide(x) for x in src_m), default=0.0)
         m["source_jerk_max"] = max((j.max for j in src_j), default=0.0)
         m["source_jerk_rms"] = max((j.rms for j in src_j), default=0.0)
-        m["core_fidelity_cm"] = {str(rep.first): elements.get(rep.first, {}).get("core_fidelity_cm"),
-                                 str(rep.second): elements.get(rep.second, {}).get(
-                                     "core_fidelity_cm", elements.get(rep.second, {}).get("part_fidelity_cm"))}
+        a_el, b_el = elements.get(rep.first), elements.get(rep.second)
+        m["core_fidelity_cm"] = {str(rep.first): a_el.core_fidelity_cm if a_el is not None else None,
+                                 str(rep.second): b_el.fidelity_cm if b_el is not None else None}
         reports.append(replace(rep, metrics={**rep.metrics, **m}))
     return reports, elements
 
@@ -171,10 +156,11 @@ def finish_joins(laid: Laid) -> None:
     from .joinpass import Region, finish_track, warp_frames
 
     idx, regions = [], []
-    for k, (rep, spans, first, second, _extra) in enumerate(laid.joins):
-        if spans is None or first is None or second is None:
+    for k, lj in enumerate(laid.joins):
+        rep, first, second = lj.report, lj.first, lj.second
+        if lj.window is None or lj.region is None or first is None or second is None:
             continue
-        (w0, w1), (_r0, r1) = spans
+        (w0, w1), r1 = lj.window, lj.region[1]
         keep = (first.offset + first.core[1], second.offset + second.core[0])  # cores are kept (§4.2.5)
         idx.append(k)
         brake = first.offset + first.lead if first.cyclic else None  # a loop may take braking steps
@@ -185,9 +171,11 @@ def finish_joins(laid: Laid) -> None:
                               rep.blend.startswith("motion_adaptation")))
     laid.motion, infos, warps = finish_track(laid.motion, regions)
     for k, info, (lo, hi, n_new, seam) in zip(idx, infos, warps):
-        rep, spans, first, second, extra = laid.joins[k]
+        lj = laid.joins[k]
+        first, second = lj.first, lj.second
+        assert first is not None and second is not None  # only carried-out joins of two placed elements
         delta = n_new - (hi - lo)
-        laid.joins[k] = (replace(rep, metrics={**rep.metrics, "post": info}), spans, first, second, extra)
+        laid.joins[k] = replace(lj, report=replace(lj.report, metrics={**lj.report.metrics, "post": info}))
         if delta <= 0:
             continue
         src = warp_frames(hi - lo, n_new, seam)
@@ -207,16 +195,22 @@ def finish_joins(laid: Laid) -> None:
         laid.delays.extend((p.element.id, delta / laid.motion.fps) for p in later if p.repetition == 0)
         fps = laid.motion.fps
         for j in range(k, len(laid.joins)):
-            r, sp, a, b, ex = laid.joins[j]
+            lj = laid.joins[j]
+            r = lj.report
             r = replace(r, intervals=tuple(replace(i, begin=moved(round(i.begin * fps)) / fps,
                                                    end=moved(round(i.end * fps)) / fps) for i in r.intervals))
             if "foot_locks" in r.metrics:
                 locks = [{**lk, **{key: moved(round(lk[key] * fps)) / fps for key in ("begin", "end", "release_end")}}
                          for lk in r.metrics["foot_locks"]]
                 r = replace(r, metrics={**r.metrics, "foot_locks": locks})
-            if sp is not None:
-                sp = tuple((moved(x), moved(y)) for x, y in sp)
-            laid.joins[j] = (r, sp, a, b, [(moved(x), moved(y)) for x, y in ex])
+            laid.joins[j] = replace(lj, report=r, window=_moved_span(lj.window, moved),
+                                    region=_moved_span(lj.region, moved),
+                                    extra=tuple((moved(x), moved(y)) for x, y in lj.extra))
+
+
+def _moved_span(span, moved):
+    """``span`` ``(begin, end)`` with both ends mapped by ``moved``; ``None`` stays ``None``."""
+    return None if span is None else (moved(span[0]), moved(span[1]))
 
 
 def same_length(motions: dict) -> dict:
@@ -242,7 +236,7 @@ def same_length(motions: dict) -> dict:
 def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> Result:
     """Lay every track with ``lay(track, whole_elements) -> Laid``, compose its partial elements, measure.
 
-    ``tracks`` are already spread (:func:`synthesis.engine.spread_actors`) if they should be. ``post``
+    ``tracks`` are already spread (:func:`synthesis.actors.spread_actors`) if they should be. ``post``
     runs the join post-pass (:func:`finish_joins`) before the compositions are laid.
     """
     motions, reports, elements, warnings = {}, [], {}, []

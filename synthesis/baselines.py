@@ -27,19 +27,22 @@ from collections.abc import Sequence
 import numpy as np
 
 from .align import match
-from .assemble import Laid, assemble
-from .engine import Placed, Result, spread_actors
+from .assemble import assemble
+from .laid import Laid, LaidJoin
+from .actors import spread_actors
+from .placed import Placed
+from .result import BlendInterval, JoinReport, Result
 from .method_select import cyclic_core_begin, cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 from .track import Incoming, TrackState, extend, lay_elements
-from .plan import BlendInterval, JoinReport, Track
+from .plan import Track
 from .posedist import distance_matrix, features, root_headings
 from .transition import Join, apply_join
 from .weights import linear_weights
 
 BLEND = 0.5  # s, both baselines
-METHODS = ("pose", "crossfade")
+BASELINES = ("pose", "crossfade")
 
 
 def _cores(tr: Motion, prev: Placed, inc: Incoming) -> tuple[int, int]:
@@ -116,21 +119,21 @@ def _join(state: TrackState, inc: Incoming, fps: float, method: str, blend_s: fl
     state.placed.append(p)
     rep = JoinReport(prev.element.id, e.id, "connection" if inc.rep > 0 else e.method, method,
                      (BlendInterval("whole", "motion-motion", w0 / fps, (w1 - 1) / fps),), None, info, ())
-    state.joins.append((rep, ((w0, w1), (w0, w1)), prev, p, []))
+    state.joins.append(LaidJoin(rep, (w0, w1), (w0, w1), prev, p))
 
 
 def lay_track(track: Track, whole, fps: float, method: str, blend_s: float = BLEND) -> Laid:
     """The whole-body elements of a track joined by ``method`` (``pose`` or ``crossfade``)."""
-    if method not in METHODS:
-        raise ValueError(f"unknown baseline {method!r}; known: {', '.join(METHODS)}")
+    if method not in BASELINES:
+        raise ValueError(f"unknown baseline {method!r}; known: {', '.join(BASELINES)}")
     return lay_elements(track, whole, fps, lambda state, inc: _join(state, inc, fps, method, blend_s))
 
 
 def synthesize_baseline(tracks: Sequence[Track], fps: float = 30.0, method: str = "crossfade", *,
                         sway: bool = True, spread: bool = True, blend_s: float = BLEND) -> Result:
     """Tracks → one motion per actor by the ``pose`` or ``crossfade`` baseline (see the module docstring)."""
-    if method not in METHODS:
-        raise ValueError(f"unknown baseline {method!r}; known: {', '.join(METHODS)}")
+    if method not in BASELINES:
+        raise ValueError(f"unknown baseline {method!r}; known: {', '.join(BASELINES)}")
     if spread:
         tracks = spread_actors(tracks)
     return assemble(tracks, fps, lambda track, whole: lay_track(track, whole, fps, method, blend_s), sway)

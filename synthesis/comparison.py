@@ -1,7 +1,7 @@
 """The same tracks joined by several methods, and the figures of ``timetable.md`` §3 side by side.
 
 :func:`compare` runs :func:`synthesis.engines.synthesize_with` once per
-method; :func:`figures` reduces a :class:`~synthesis.engine.Result` to one row:
+method; :func:`figures` reduces a :class:`~synthesis.result.Result` to one row:
 
 - ``foot_skate_cm_s``: mean horizontal speed of the feet while in contact,
   over every actor's whole motion (weighted by contact frames), cm/s;
@@ -30,7 +30,7 @@ FIELDS = ("foot_skate_cm_s", "slide_cm", "skating_ratio", "join_skating_ratio", 
 
 
 def figures(result) -> dict:
-    """One row of figures for a :class:`~synthesis.engine.Result` (see the module docstring)."""
+    """One row of figures for a :class:`~synthesis.result.Result` (see the module docstring)."""
     speed_sum = frames = slide = 0.0
     ratio = 0.0
     for m in result.motions.values():
@@ -40,7 +40,7 @@ def figures(result) -> dict:
             slide += f.slide_cm
         ratio = max(ratio, skating_ratio(m))
     joins = [j for j in result.joins if j.metrics and "jerk_max" in j.metrics]
-    fid = [v["core_fidelity_cm"] for v in result.elements.values() if v.get("core_fidelity_cm") is not None]
+    fid = [v.core_fidelity_cm for v in result.elements.values() if v.core_fidelity_cm is not None]
     return {
         "foot_skate_cm_s": speed_sum / frames if frames else 0.0,
         "slide_cm": slide,

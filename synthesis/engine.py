@@ -22,240 +22,26 @@ start inside each other.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy.ndimage import uniform_filter1d
 
-from .align import Rigid, place_at
-from .blend import sample
-from .composition import Composed
-from text2anim.core.contacts import FootContacts, detect_contacts, foot_tracks
-from text2anim.core.metrics import SKATE_HEIGHT, SKATE_SPEED, SKATE_WINDOW, jerk
+from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
-from .plan import BlendInterval, Element, JoinReport, Track
+
+from .actors import default_origins, spread_actors
+from .align import place_at
+from .assemble import compose_parts, finish_joins, finish_whole, measure, same_length, shifted
+from .measure import hips_frame
+from .laid import Laid, LaidJoin
+from .placed import Placed, expand_repeats, on_skeleton
+from .plan import Track
+from .result import BlendInterval, JoinReport, Result
 from .timing import Prepared, ease_lead, prepare
 from .transition import Join, Side, apply_join, connection, transition
 
-ACTOR_SPACING = 1.5  # m between actors placed by default
-
-
-def default_origins(n: int, spacing: float = ACTOR_SPACING) -> list[tuple[float, float]]:
-    """``n`` ground positions (x, z) in a row along X, ``spacing`` metres apart, centred on the origin.
-
-    Every actor faces +Z (heading 0) from there, side by side.
-    """
-    return [((i - (n - 1) / 2.0) * spacing, 0.0) for i in range(n)]
-
-
-def spread_actors(tracks: Sequence[Track], spacing: float = ACTOR_SPACING) -> tuple[Track, ...]:
-    """The tracks with default origins when several actors would otherwise start on the same spot.
-
-    Tracks keep their own ``origin`` unless two or more share one; then all
-    of them are put on :func:`default_origins` (order as given).
-    """
-    tracks = tuple(tracks)
-    if len(tracks) < 2:
-        return tracks
-    spots = {(round(t.origin[0], 3), round(t.origin[1], 3)) for t in tracks}
-    if len(spots) == len(tracks):
-        return tracks
-    return tuple(replace(t, origin=o) for t, o in zip(tracks, default_origins(len(tracks), spacing)))
-
-
-@dataclass
-class Placed:
-    """An element (or one repetition of it) as laid on its track.
-
-    ``motion`` is its prepared clip moved by ``rigid``; its frame 0 is at
-    track frame ``offset``; ``core`` is ``[c0, c1)`` in its own frames.
-    """
-
-    element: Element
-    motion: Motion
-    offset: int
-    core: tuple[int, int]
-    contacts: FootContacts
-    cyclic: bool
-    rigid: Rigid
-    repetition: int = 0
-    lead: int = 0
-    stop: int | None = None
-
-    def side(self) -> Side:
-        return Side(self.motion, self.offset, self.core, self.contacts, self.cyclic, self.lead, self.stop)
-
-
-@dataclass(frozen=True)
-class Result:
-    """What :func:`synthesize` returns.
-
-    Attributes:
-        motions: one motion per actor (key: the track's ``actor``), at ``fps``, starting at track time 0.
-        joins: one :class:`~synthesis.plan.JoinReport` per join (connections, transitions,
-            repetitions, compositions), in track and time order.
-        elements: per element id: ``actor``, ``start``/``end`` as played (s), ``core`` (s on the
-            track), ``core_fidelity_cm`` (and ``core_fidelity_untouched_cm`` when a
-            composition changed part of it), ``placement`` (yaw, x, z).
-        warnings: what could not be honoured.
-    """
-
-    motions: dict
-    joins: list
-    fps: float
-    elements: dict = field(default_factory=dict)
-    warnings: tuple[str, ...] = ()
-
-    def report(self) -> dict:
-        """The ``joins`` part of the synthesis report (``timetable.md`` §2) as plain JSON-ready data."""
-        return {"joins": [join_to_dict(j) for j in self.joins]}
-
-
-def join_to_dict(j: JoinReport) -> dict:
-    d = {"first": j.first, "second": j.second, "method": j.method, "blend": j.blend,
-         "intervals": [{"part": i.part, "kind": i.kind, "begin": round(i.begin, 3), "end": round(i.end, 3)}
-                       for i in j.intervals]}
-    if j.cost is not None:
-        d["cost"] = j.cost
-    d["metrics"] = j.metrics
-    if j.warnings:
-        d["warnings"] = list(j.warnings)
-    return d
-
-
-# ------------------------------------------------------------------------------------------ metrics
-def _foot_skate_window(track: Motion, contacts: FootContacts, tracks: dict, w0: int, w1: int) -> dict:
-    out = {}
-    for side, tr in tracks.items():
-        c = contacts.of(side)[w0:w1]
-        sp = tr.speed[w0:w1][c]
-        out[side] = {"mean_cm_s": float(sp.mean() * 100) if len(sp) else 0.0,
-                     "max_cm_s": float(sp.max() * 100) if len(sp) else 0.0,
-                     "slide_cm": float(sp.sum() / track.fps * 100) if len(sp) else 0.0,
-                     "contact_frames": int(c.sum())}
-    return out
-
-
-def skating_frames(motion: Motion, ftracks: dict | None = None) -> np.ndarray:
-    """Per frame, whether both feet skate, by the rule of :func:`core.metrics.skating_ratio`
-    (low and faster than 0.5 m/s over 5 frames) with each foot's floor level taken over the whole motion."""
-    ftracks = ftracks or foot_tracks(motion)
-    out = np.ones(motion.n_frames, dtype=bool)
-    for tr in ftracks.values():
-        avg = uniform_filter1d(tr.speed, size=SKATE_WINDOW, mode="nearest")
-        out &= (tr.height < SKATE_HEIGHT) & (avg > SKATE_SPEED)
-    return out
-
-
-def max_slide(motion: Motion) -> float:
-    """Largest horizontal speed (cm/s) of a foot while it is in contact, over a whole motion."""
-    c = detect_contacts(motion)
-    return max((float(tr.speed[c.of(s)].max() * 100) if c.of(s).any() else 0.0)
-               for s, tr in foot_tracks(motion).items())
-
-
-def window_metrics(track: Motion, w0: int, w1: int, contacts: FootContacts, ftracks: dict,
-                    skating: np.ndarray) -> dict:
-    w0, w1 = max(0, w0), min(track.n_frames, w1)
-    fs = _foot_skate_window(track, contacts, ftracks, w0, w1)
-    jk = jerk(track, w0, w1)
-    return {"frames": [w0, w1],
-            "skating_ratio": float(skating[w0:w1].mean()) if w1 > w0 else 0.0,
-            "foot_skate": fs,
-            "max_slide_cm_s": max(v["max_cm_s"] for v in fs.values()),
-            "jerk_max": jk.max, "jerk_rms": jk.rms}
-
-
-def core_fidelity(track: Motion, placed: Placed, joints=None) -> float:
-    """Largest joint position error (cm) in the element's core between the track and the placed clip."""
-    c0, c1 = placed.core
-    lo = max(placed.offset + c0, 0)
-    hi = min(placed.offset + c1, track.n_frames, placed.offset + placed.motion.n_frames)
-    if hi <= lo:
-        return 0.0
-    a = track[lo:hi].positions
-    b = placed.motion[lo - placed.offset:hi - placed.offset].positions
-    if joints is not None:
-        a, b = a[:, joints], b[:, joints]
-    return float(np.linalg.norm(a - b, axis=-1).max() * 100)
-
-
-def hips_frame(points: np.ndarray, hips: np.ndarray, hips_rot: np.ndarray) -> np.ndarray:
-    """World points ``(T, K, 3)`` in the hips' own frame (position ``(T, 3)``, rotation matrices ``(T, 3, 3)``)."""
-    return np.einsum("tji,tkj->tki", hips_rot, points - hips[:, None, :])
-
-
-def part_fidelity(track: Motion, comp: Composed, donor: Motion, core: tuple[int, int]) -> float:
-    """Largest error (cm) of the switched part's joints relative to the hips (the hips' frame) against
-    the partial clip, over the frames of its core that are fully switched (outside the blends)."""
-    t = comp.timing
-    n = t.ta1 - t.ta0
-    k = np.arange(t.blend_in, n - t.blend_out)
-    if len(k) == 0:
-        return 0.0
-    src = t.tb0 + k * (t.tb1 - t.tb0) / max(n, 1)
-    keep = (src >= core[0]) & (src <= core[1] - 1)
-    if not keep.any():
-        return 0.0
-    k, src = k[keep], src[keep]
-    ref = sample(donor, src)
-    out = track[t.ta0:t.ta1]
-    joints = list(comp.joints)
-
-    def rel(m: Motion, frames=None):
-        pose = m.pose
-        p = pose.positions if frames is None else pose.positions[frames]
-        r = pose.rotations[:, 0] if frames is None else pose.rotations[frames, 0]
-        return hips_frame(p[:, joints], p[:, 0], r)
-
-    return float(np.linalg.norm(rel(out, k) - rel(ref), axis=-1).max() * 100)
-
-
-# --------------------------------------------------------------------------------------------- engine
-def expand_repeats(elements: Sequence[Element]) -> list[tuple[Element, int]]:
-    """Whole-body elements in time order, a repeated non-cyclic one as its repetitions."""
-    out = []
-    for e in sorted(elements, key=lambda e: (e.start, e.id)):
-        n = max(1, int(e.repeat))
-        if e.clip.cyclic or n == 1:
-            out.append((e, 0))
-            continue
-        step = (e.end - e.start) / n
-        for k in range(n):
-            sub = replace(e, start=e.start + k * step, end=e.start + (k + 1) * step, repeat=1,
-                          method=e.method if k == 0 else "connection", prev=e.prev if k == 0 else e.id)
-            out.append((sub, k))
-    return out
-
-
-def mirrored_if_needed(clip_part: str | None, want: str | None, motion: Motion) -> Motion:
-    if not clip_part or not want:
-        return motion
-    sides = {"left": "right", "right": "left"}
-    for s, o in sides.items():
-        if clip_part.startswith(s + "_") and want == o + "_" + clip_part.split("_", 1)[1]:
-            from text2anim.core.mirror import mirror
-
-            return mirror(motion)
-    return motion
-
-
-def on_skeleton(prep: Prepared, skeleton, e: Element):
-    """The prepared clip played on the track's skeleton (the first element's); a note when bone lengths differ."""
-    sk = prep.motion.skeleton
-    if skeleton is None:
-        return prep, sk, None
-    if not sk.same_hierarchy(skeleton):
-        raise ValueError(f"element {e.id} ({e.clip.name}) uses another joint hierarchy than the actor's first clip")
-    if sk is skeleton:
-        return prep, skeleton, None
-    diff = float(np.abs(sk.offsets - skeleton.offsets).max())
-    note = None
-    if diff > 0.005:
-        note = (f"element {e.id} ({e.clip.name}) was recorded on other bone lengths (up to {100 * diff:.1f} cm "
-                f"different); it is played on the actor's skeleton")
-    return replace(prep, motion=prep.motion.replace(skeleton=skeleton)), skeleton, note
-
+#: Names users import from here (they live in :mod:`synthesis.actors`, :mod:`synthesis.measure`,
+#: :mod:`synthesis.result`).
+__all__ = ["Result", "default_origins", "hips_frame", "spread_actors", "synthesize"]
 
 def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
     warnings: list[str] = []
@@ -264,7 +50,7 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
     if not whole:
         raise ValueError(f"actor {track.actor!r} has no whole-body motion to lay compositions onto")
     placed: list[Placed] = []
-    joins: list[tuple[JoinReport, tuple, Placed | None, Placed | None, list]] = []
+    joins: list[LaidJoin] = []
     tr: Motion | None = None
     skeleton = None
     floor = 0
@@ -311,9 +97,7 @@ def _synthesize_track(track: Track, fps: float, lock: bool, sway: bool):
             info["foot_locks"] = [{"side": lk.side, "begin": lk.begin / fps, "end": lk.end / fps,
                                    "release_end": lk.release_end / fps} for lk in locks]
         rep_ = JoinReport(prev.element.id, e.id, method, blend, intervals, None, info, tuple(join.warnings))
-        joins.append((rep_, (join.window, (join.window[0], region_end)), prev, p, []))
-    from .assemble import Laid, compose_parts, finish_joins, finish_whole, shifted  # assemble builds on this module's pieces
-
+        joins.append(LaidJoin(rep_, join.window, (join.window[0], region_end), prev, p))
     # a looped clip's margin after its end is not played; the track holds to the last scheduled end
     laid = Laid(finish_whole(tr, placed, track.elements), placed, joins, warnings)
     if lock:
@@ -335,8 +119,6 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
     """
     if spread:
         tracks = spread_actors(tracks)
-    from .assemble import measure, same_length  # assemble builds on this module's pieces
-
     motions, reports, elements, warnings = {}, [], {}, []
     for track in tracks:
         laid, comps = _synthesize_track(track, fps, lock_feet, sway)

@@ -1,4 +1,5 @@
-"""One entry point for every joiner of consecutive motions: ``synthesize_with(method, tracks, fps, ...)``.
+"""The registry of joiners of consecutive motions (:data:`REGISTRY`) and one entry point for them all:
+``synthesize_with(method, tracks, fps, ...)``. ``METHODS`` means these names and nothing else in the package.
 
 =============== =================================================================
 method          what joins consecutive whole-body motions
@@ -10,7 +11,7 @@ method          what joins consecutive whole-body motions
 =============== =================================================================
 
 Compositions (a body part laid onto a motion) are the same for all of them.
-All return a :class:`synthesis.engine.Result`.
+All return a :class:`synthesis.result.Result`.
 
 ``optimal`` keeps planted feet planted above all: when one of an actor's
 joins still skates after its own fallbacks (a run pulled into a stop), that
@@ -21,13 +22,65 @@ the report's warnings say so, and each of that actor's joins carries ``engine: "
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:  # the command line reads METHODS without paying for scipy
+if TYPE_CHECKING:  # the command line reads METHODS without paying for scipy: engines are imported when run
     from .plan import Track
+    from .result import Result
 
-METHODS = ("optimal", "constraint", "pose", "crossfade")
+
+@dataclass(frozen=True)
+class Options:
+    """What a user may ask of every joiner; each uses what applies to it (see :func:`synthesize_with`)."""
+
+    smoothness: float = 0.5
+    lock_feet: bool = True
+    sway: bool = True
+
+
+@dataclass(frozen=True)
+class JoinMethod:
+    """One way of joining consecutive whole-body motions: its name (``--blend NAME``), what it stands for,
+    and ``run(tracks, fps, options) -> Result``."""
+
+    name: str
+    summary: str
+    run: Callable[[Sequence[Track], float, Options], Result]
+
+
+def _optimal(tracks: Sequence[Track], fps: float, o: Options) -> Result:
+    from .optimal import synthesize_optimal
+
+    result = synthesize_optimal(tracks, fps, o.smoothness, lock_feet=o.lock_feet, sway=o.sway)
+    return _feet_first(result, tracks, fps, o.sway) if o.lock_feet else result
+
+
+def _constraint(tracks: Sequence[Track], fps: float, o: Options) -> Result:
+    from .engine import synthesize
+
+    return synthesize(tracks, fps, lock_feet=o.lock_feet, sway=o.sway)
+
+
+def _baseline(name: str) -> Callable[[Sequence[Track], float, Options], Result]:
+    def run(tracks: Sequence[Track], fps: float, o: Options) -> Result:
+        from .baselines import synthesize_baseline
+
+        return synthesize_baseline(tracks, fps, name, sway=o.sway)
+
+    return run
+
+
+#: The joining methods by name, in the order of the table above (the only registry of them).
+REGISTRY: dict[str, JoinMethod] = {m.name: m for m in (
+    JoinMethod("optimal", "paper 000, optimal blending", _optimal),
+    JoinMethod("constraint", "paper 003 / [6], constraint-based joins", _constraint),
+    JoinMethod("pose", "closest poses, fixed-length linear blend", _baseline("pose")),
+    JoinMethod("crossfade", "fixed-length linear crossfade at the start", _baseline("crossfade")),
+)}
+#: Their names: the choices of ``--blend`` and ``text2anim compare --methods``.
+METHODS: tuple[str, ...] = tuple(REGISTRY)
 DEFAULT = "optimal"
 
 
@@ -38,14 +91,14 @@ class UnknownMethodError(ValueError):
 
 
 def check_method(method: str) -> str:
-    if method not in METHODS:
+    if method not in REGISTRY:
         raise UnknownMethodError(f"unknown blending method {method!r}; choose one of {', '.join(METHODS)}")
     return method
 
 
 def synthesize_with(method: str, tracks: Sequence[Track], fps: float = 30.0, smoothness: float = 0.5,
-                    lock_feet: bool = True, sway: bool = True):
-    """Tracks → :class:`~synthesis.engine.Result` with the joiner ``method`` (see the table above).
+                    lock_feet: bool = True, sway: bool = True) -> Result:
+    """Tracks → :class:`~synthesis.result.Result` with the joiner ``method`` (see the table above).
 
     ``smoothness`` (0 time first … 1 smoothness first) is used by ``optimal`` only; ``lock_feet`` by
     ``optimal`` and ``constraint`` (the baselines never lock feet: that is what they stand for).
@@ -53,31 +106,20 @@ def synthesize_with(method: str, tracks: Sequence[Track], fps: float = 30.0, smo
     check_method(method)
     if not 0.0 <= float(smoothness) <= 1.0:
         raise UnknownMethodError(f"smoothness must be between 0 and 1, got {smoothness}")
-    if method == "optimal":
-        from .optimal import synthesize_optimal
-
-        result = synthesize_optimal(tracks, fps, smoothness, lock_feet=lock_feet, sway=sway)
-        return _feet_first(result, tracks, fps, sway) if lock_feet else result
-    if method == "constraint":
-        from .engine import synthesize
-
-        return synthesize(tracks, fps, lock_feet=lock_feet, sway=sway)
-    from .baselines import synthesize_baseline
-
-    return synthesize_baseline(tracks, fps, method, sway=sway)
+    return REGISTRY[method].run(tracks, fps, Options(smoothness, lock_feet, sway))
 
 
-def _skating_actors(result) -> dict:
+def _skating_actors(result: Result) -> dict[str | None, list[tuple[int, int]]]:
     """Actor → the joins (first, second) of theirs whose blends skate."""
-    out: dict = {}
+    out: dict[str | None, list[tuple[int, int]]] = {}
     for j in result.joins:
         if j.metrics.get("skating_ratio", 0.0) > 0:
-            actor = result.elements.get(j.second, {}).get("actor")
+            actor = result.actor_of(j.second)
             out.setdefault(actor, []).append((j.first, j.second))
     return out
 
 
-def _feet_first(result, tracks: Sequence[Track], fps: float, sway: bool):
+def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool) -> Result:
     """``result`` with every skating actor re-rendered by the constraint engine when that one is clean."""
     from dataclasses import replace
 
@@ -94,10 +136,10 @@ def _feet_first(result, tracks: Sequence[Track], fps: float, sway: bool):
     motions, elements = dict(result.motions), dict(result.elements)
     for actor in swap:
         motions[actor] = other.motions[actor]
-        elements.update({k: v for k, v in other.elements.items() if v.get("actor") == actor})
-    joins = [j for j in result.joins if result.elements.get(j.second, {}).get("actor") not in swap]
+        elements.update({k: v for k, v in other.elements.items() if v.actor == actor})
+    joins = [j for j in result.joins if result.actor_of(j.second) not in swap]
     joins += [replace(j, metrics={**j.metrics, "engine": "constraint", "fallback_from": "optimal"})
-              for j in other.joins if other.elements.get(j.second, {}).get("actor") in swap]
+              for j in other.joins if other.actor_of(j.second) in swap]
     warnings = list(result.warnings) + [
         f"{actor or 'default'}: optimal blending left feet skating at join "
         f"{', '.join(f'{a}→{b}' for a, b in bad[actor])}; rendered with the constraint engine instead"

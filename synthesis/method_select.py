@@ -29,12 +29,15 @@ first frame and lands before its last), so both key frames are real.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Literal, get_args
 
 import numpy as np
 
 from text2anim.core.contacts import FootContacts
 
-METHODS = ("motion_transition", "motion_connection", "motion_adaptation_step", "motion_adaptation")
+#: The methods of §4.1 (a join report's ``blend``).
+Blend = Literal["motion_transition", "motion_connection", "motion_adaptation_step", "motion_adaptation"]
+BLENDS: tuple[Blend, ...] = get_args(Blend)
 
 #: Overlap (fraction of the longer interval) for two steps to be "at the same time" (a 3-frame shuffle
 #: inside a 16-frame step is not the same step).

@@ -1,18 +1,19 @@
 """What the synthesis stage is asked to do: clips placed on actor tracks.
 
-These frozen records are the contract between the pipeline (which turns the
-scheduler's time table and the database's clips into them) and the engines
-in this package. Times are seconds; ``start``/``end`` are on the actor's own
+These frozen records are the input half of the engines' contract with the
+pipeline (which turns the scheduler's time table and the database's clips into
+them); :mod:`synthesis.result` is the output half. Times are seconds; ``start``/``end`` are on the actor's own
 track (0 = the start of the animation).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from text2anim.core.motion import Motion
 
-#: How an element is joined to ``prev`` (timetable.md §1).
-METHODS = ("initial", "connection", "transition", "composition")
+from text2anim.core.methods import ELEMENT_METHODS, Method
+
+__all__ = ["Clip", "Element", "Track"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -44,7 +45,7 @@ class Element:
         start: when the element begins on the track (s).
         end: when it ends (s); ``end - start`` is the played length after
             speed, repeats, looping (cyclic clips) or holding/trimming.
-        method: one of :data:`METHODS`; how it joins ``prev``.
+        method: one of :data:`~text2anim.core.methods.ELEMENT_METHODS`; how it joins ``prev``.
         prev: id of the element it is joined to (the base motion for a
             composition); ``None`` for ``initial``.
         speed: time scale (2.0 plays twice as fast).
@@ -60,7 +61,7 @@ class Element:
     clip: Clip
     start: float
     end: float
-    method: str
+    method: Method
     prev: int | None = None
     speed: float = 1.0
     repeat: int = 1
@@ -68,7 +69,7 @@ class Element:
     body_part: str | None = None
 
     def __post_init__(self):
-        if self.method not in METHODS:
+        if self.method not in ELEMENT_METHODS:
             raise ValueError(f"unknown method {self.method!r}")
         if self.end < self.start:
             raise ValueError(f"element {self.id} ends before it starts")
@@ -86,28 +87,3 @@ class Track:
     elements: tuple[Element, ...]
     origin: tuple[float, float] = (0.0, 0.0)
     heading: float = 0.0
-
-
-@dataclass(frozen=True)
-class BlendInterval:
-    """One blend of a join: body ``part`` (``lower``/``upper``/``whole`` or a group), the blend
-    ``kind`` (``motion-motion``, ``pose-pose``, ``motion-pose``, ``pose-motion``) and its track times (s)."""
-
-    part: str
-    kind: str
-    begin: float
-    end: float
-
-
-@dataclass(frozen=True)
-class JoinReport:
-    """What the synthesizer decided for one join (timetable.md §2)."""
-
-    first: int
-    second: int
-    method: str
-    blend: str
-    intervals: tuple[BlendInterval, ...]
-    cost: dict | None = None
-    metrics: dict = field(default_factory=dict)
-    warnings: tuple[str, ...] = ()

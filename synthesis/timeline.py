@@ -35,7 +35,7 @@ import numpy as np
 
 from .assemble import finish_whole
 from .blend_search import preset
-from .engine import Result
+from .result import Result
 from .method_select import cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
@@ -88,11 +88,12 @@ class Timeline:
     @property
     def joins(self) -> list:
         """The :class:`~synthesis.plan.JoinReport` of every join so far (without metrics)."""
-        return [j[0] for j in self.state.joins]
+        return [j.report for j in self.state.joins]
 
     def result(self) -> Result:
-        """The timeline as a :class:`~synthesis.engine.Result` (joins measured as the engines do)."""
-        from .assemble import Laid, measure
+        """The timeline as a :class:`~synthesis.result.Result` (joins measured as the engines do)."""
+        from .assemble import measure
+        from .laid import Laid
         from .plan import Track
 
         laid = Laid(self.motion, self.state.placed, list(self.state.joins), list(self.state.warnings),

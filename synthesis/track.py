@@ -2,7 +2,7 @@
 
 Every joiner of whole-body motions (optimal blending, the pose and crossfade baselines) lays a track the
 same way (:func:`lay_elements`): each element (a repeated non-cyclic one as its repetitions,
-:func:`synthesis.engine.expand_repeats`) is prepared (:func:`incoming`: speed, loop with a margin
+:func:`synthesis.placed.expand_repeats`) is prepared (:func:`incoming`: speed, loop with a margin
 cycle, hold or trim); the first is placed at the track's origin and heading (:func:`place_first`), each
 next one is joined to the track so far by the joiner's own ``join(state, incoming)``. Frames on the
 track; seconds only in the report.
@@ -16,8 +16,8 @@ from text2anim.core.contacts import FootContacts, detect_contacts
 from text2anim.core.motion import Motion
 
 from .align import place_at
-from .assemble import Laid
-from .engine import Placed, expand_repeats, on_skeleton
+from .laid import Laid, LaidJoin
+from .placed import Placed, expand_repeats, on_skeleton
 from .plan import Element, Track
 from .timing import KNEE, ease_hold, ease_lead, hold, prepare
 
@@ -63,12 +63,12 @@ class TrackState:
     blend may start (``floor``), and the elements a join moved in time (``delays``: ``(id, s)``)."""
 
     motion: Motion | None = None
-    placed: list = field(default_factory=list)
-    joins: list = field(default_factory=list)
-    warnings: list = field(default_factory=list)
-    skipped: dict = field(default_factory=dict)
+    placed: list[Placed] = field(default_factory=list)
+    joins: list[LaidJoin] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    skipped: dict[int, str] = field(default_factory=dict)
     floor: int = 0
-    delays: list = field(default_factory=list)
+    delays: list[tuple[int, float]] = field(default_factory=list)
     skeleton: object = None
 
 

@@ -101,6 +101,23 @@ def test_preview_draws_a_contact_sheet(cli_db, capsys, record, tmp_path):
     assert sheet.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_preview_draws_an_animation_file_without_a_database(capsys, tmp_path, monkeypatch):
+    monkeypatch.setenv("TEXT2ANIM_DB", str(tmp_path / "never.sqlite"))
+    from text2anim.core.bvh import write_bvh
+    from text2anim.motiondb.library import builtin_clips
+
+    walk = next(c for c in builtin_clips() if c.name == "walk")
+    path = tmp_path / "walk out.bvh"
+    write_bvh(walk.motion, path)
+    sheet = tmp_path / "sheet.png"
+    code, out, err = run(capsys, "db", "preview", path, "-o", sheet, "--frames", "12")
+    assert code == 0, err
+    assert sheet.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and "wrote" in out
+    assert not (tmp_path / "never.sqlite").exists()  # a file is drawn without opening (or seeding) a database
+    code, _, err = run(capsys, "db", "preview", tmp_path / "missing.bvh", "-o", sheet)
+    assert code == 2 and err.count("\n") == 1 and "missing.bvh" in err
+
+
 @pytest.mark.parametrize("url, fragment", [
     ("sqlite:////no/such/folder/motions.sqlite", "the folder /no/such/folder does not exist"),
     ("nosuchdb://localhost/x", "unknown kind of database 'nosuchdb'"),

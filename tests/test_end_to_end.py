@@ -52,7 +52,7 @@ def test_example_animation_is_one_clean_motion(example):
     assert step.max() < 10 / motion.fps
     # The kick happens: one foot rises well above the other while the kick element plays.
     kick = example.result.elements[example.table.elements[1].id]  # as played
-    frames = slice(int(kick["start"] * 30), int(kick["end"] * 30))
+    frames = slice(int(kick.start * 30), int(kick.end * 30))
     from text2anim.core.bodyparts import body_map
     feet = body_map(motion.skeleton).feet
     y = motion.positions[frames][:, [feet["left"][0], feet["right"][0]], 1]

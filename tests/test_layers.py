@@ -5,10 +5,6 @@ Stages and what each may import (README "Layout"): ``core`` no stage; ``nlp`` co
 itself, folder ``api/``) anything but the command line; ``cli`` anything. Every import
 counts, at module level or inside a function, and under ``if TYPE_CHECKING`` too. No module
 imports another module's ``_private`` names, and no modules import each other in a cycle.
-
-Violations inside ``synthesis/`` (being restructured by its owner) are listed in
-:data:`ALLOWED`, one by one: the test fails on any violation not listed and on any listed
-one that is gone, so the list can only shrink.
 """
 from __future__ import annotations
 
@@ -29,14 +25,6 @@ MAY_IMPORT = {
     "api": {"api", "core", "nlp", "scheduler", "motiondb", "synthesis"},
     "cli": {"cli", "api", "core", "nlp", "scheduler", "motiondb", "synthesis"},
 }
-
-#: Known violations inside text2anim.synthesis, left to the engines' restructure. Remove an
-#: entry when it is fixed (the test fails while a listed violation no longer occurs).
-ALLOWED = {
-    # engine.py and assemble.py import each other (assemble needs engine's helpers, engine calls assemble)
-    ("cycle", "text2anim.synthesis.assemble", "text2anim.synthesis.engine"),
-}
-
 
 @dataclass(frozen=True)
 class Import:
@@ -248,12 +236,5 @@ def test_the_checker_finds_each_kind_of_violation(tmp_path):
 
 
 def test_no_stage_imports_a_later_stage_or_private_names_and_no_cycles():
-    found = violations(module_graph())
-    new = sorted(found - ALLOWED)
-    assert not new, "layering violations:\n" + "\n".join(map(str, new))
-    assert all(stage(v[1]) == "synthesis" for v in ALLOWED)  # the allowance is for synthesis/ alone
-
-
-def test_the_allow_list_only_shrinks():
-    gone = sorted(ALLOWED - violations(module_graph()))
-    assert not gone, "fixed, remove from ALLOWED:\n" + "\n".join(map(str, gone))
+    found = sorted(violations(module_graph()))
+    assert not found, "layering violations:\n" + "\n".join(map(str, found))

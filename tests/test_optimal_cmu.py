@@ -100,9 +100,9 @@ def test_report_is_json_and_cores_are_kept():
     (j,) = back["joins"]
     assert {"first", "second", "method", "blend", "intervals", "cost", "metrics"} <= set(j)
     assert {iv["part"] for iv in j["intervals"]} == {"lower", "upper"}
-    assert res.elements[2]["core_fidelity_cm"] < 2.0  # the kick is performed as captured (to 2 cm)
+    assert res.elements[2].core_fidelity_cm < 2.0  # the kick is performed as captured (to 2 cm)
     for iv in j["intervals"]:  # no blend reaches into the kick's core
-        assert iv["end"] <= res.elements[2]["core"][0] + 1e-6
+        assert iv["end"] <= res.elements[2].core[0] + 1e-6
 
 
 def test_the_next_motion_is_placed_through_the_support_foot():
@@ -159,7 +159,7 @@ def test_overlapping_cores_mean_the_later_motion_is_not_executed():
     first, second = res.joins
     assert (first.first, first.second, first.blend) == (1, 2, "not_executed")
     assert any("not executed" in w for w in res.warnings) and first.warnings
-    assert res.elements[2]["executed"] is False
+    assert res.elements[2].executed is False
     assert (second.first, second.second) == (1, 3)  # the walk joins the kick
     assert second.metrics["skating_ratio"] == 0.0
     alone = synthesize_optimal([Track(None, (Element(1, kick, 0.0, 2.8, "initial"),))], FPS).motions[None]

@@ -299,8 +299,8 @@ def test_the_animation_changes_posture_where_the_clips_do(db, text):
         played = result.elements[e.id]
         # the time table's start: a looping clip's played start also counts the lead-in the engine
         # blends from (0.7 s of the captured walk), while the clip before is still finishing
-        start = int(round(max(played["start"], e.start) * fps))
-        assert classify_posture(motion, start) == info.start_posture, (e.clip, played["start"], e.start)
+        start = int(round(max(played.start, e.start) * fps))
+        assert classify_posture(motion, start) == info.start_posture, (e.clip, played.start, e.start)
     assert classify_posture(motion, motion.n_frames - 1) == "standing"
 
 

@@ -29,7 +29,7 @@ def test_plan_and_animate_keep_postures_continuous(db, text, clips):
     (motion,) = anim.motions.values()
     for e in seq:
         played = anim.result.elements[e.id]
-        assert classify_posture(motion, int(round(played["start"] * anim.fps))) == planned.clips[e.id].start_posture
+        assert classify_posture(motion, int(round(played.start * anim.fps))) == planned.clips[e.id].start_posture
     bar = clips_skating(e.clip for e in anim.table.elements) + 0.01  # GMD ratio at 30 fps (issue 11)
     assert anim.report["actors"]["default"]["skating_ratio"] <= bar
 
@@ -37,7 +37,7 @@ def test_plan_and_animate_keep_postures_continuous(db, text, clips):
 def test_a_wait_in_a_posture_is_not_filled_with_standing_idle(db):
     anim = text2anim.animate("太郎は座る。3秒後に歩く。", db=db)
     fillers = {k: v for k, v in anim.result.elements.items() if k in anim.planned.fillers}
-    early = [k for k, v in fillers.items() if v["start"] < 5.6]
+    early = [k for k, v in fillers.items() if v.start < 5.6]
     # no standing idle while seated: what fills the seated wait is the seated idle
     assert all(anim.planned.clips[k].start_posture == "seated" for k in early), fillers
     (motion,) = anim.motions.values()

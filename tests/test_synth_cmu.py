@@ -85,7 +85,7 @@ def test_walk_to_run_transition(fps):
     assert speed[w1 + fps // 3:].mean() > 1.6 * speed[: w0 - fps // 3].mean()
     # cores are kept to within a centimetre: the join post-pass (synthesis.joinpass) stops at the run's core
     # start, but its legs are re-solved by IK up to there (measured 0.66-0.72 cm)
-    assert res.elements[1]["core_fidelity_cm"] < 1.0 and res.elements[2]["core_fidelity_cm"] < 1.0
+    assert res.elements[1].core_fidelity_cm < 1.0 and res.elements[2].core_fidelity_cm < 1.0
 
 
 def test_locked_foot_stays_put_during_the_blend():
@@ -120,7 +120,7 @@ def test_run_to_kick_is_a_connection_at_the_footstep():
     assert_clean_join(j)
     assert j.metrics["same_state"] and j.metrics["support"] in ("left", "right")
     assert abs(j.metrics["shift_s"]) < 0.35
-    assert res.elements[2]["core_fidelity_cm"] < 0.5
+    assert res.elements[2].core_fidelity_cm < 0.5
     # the join's support foot: the kick continues from where the run's foot is planted
     assert j.metrics["other_foot_gap_cm"] < 40
 
@@ -142,7 +142,7 @@ def test_connection_with_a_delay_holds_the_end_pose_then_starts():
     w1 = round(j.intervals[0].end * FPS)
     travel = np.linalg.norm(m.root_positions[w1 + 30, [0, 2]] - m.root_positions[w1, [0, 2]])
     assert travel > 0.6
-    assert res.elements[1]["core_fidelity_cm"] < 0.5 and res.elements[2]["core_fidelity_cm"] < 0.5
+    assert res.elements[1].core_fidelity_cm < 0.5 and res.elements[2].core_fidelity_cm < 0.5
 
 
 def test_walk_and_wave_composition():
@@ -215,7 +215,7 @@ def test_speed_two_halves_the_duration():
     fast = prepare(Element(1, kick, 0.0, d / 2, "initial", speed=2.0), FPS).motion
     assert fast.n_frames == pytest.approx(slow.n_frames / 2, abs=1)
     assert np.allclose(fast.positions[10], slow.positions[20], atol=0.02)  # the same pose, twice as early
-    assert res.elements[1]["core"][1] == pytest.approx(1.5 / 2, abs=1 / FPS)
+    assert res.elements[1].core[1] == pytest.approx(1.5 / 2, abs=1 / FPS)
 
 
 def test_looping_a_walk_travels_on_without_a_pop():
@@ -243,7 +243,7 @@ def test_repeated_kick_is_two_kicks_joined():
     (j,) = res.joins
     assert (j.first, j.second, j.blend) == (1, 1, "repeat")
     assert_clean_join(j)
-    assert res.elements[1]["core_fidelity_cm"] < 0.5  # both repetitions' cores kept
+    assert res.elements[1].core_fidelity_cm < 0.5  # both repetitions' cores kept
     # the kicking foot rises high twice
     foot = body_map(m.skeleton).feet["right"][0]
     y = m.positions[:, foot, 1]

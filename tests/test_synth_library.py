@@ -50,7 +50,7 @@ def test_walk_run_walk_transitions_are_clean():
         assert j.metrics["skating_ratio"] == 0.0 and j.metrics["region"]["skating_ratio"] == 0.0
         assert j.metrics["jerk_max"] <= 1.5 * j.metrics["source_jerk_max"]
     assert skating_ratio(m) == 0.0
-    assert all(e["core_fidelity_cm"] < 0.5 for e in res.elements.values())
+    assert all(e.core_fidelity_cm < 0.5 for e in res.elements.values())
     # the time table's 7 s and the time the joins took to change speed within the clips' own accelerations
     assert m.n_frames == 7 * FPS + round(sum(j.metrics["post"]["added_s"] for j in res.joins) * FPS)
 
@@ -70,7 +70,7 @@ def test_wave_while_walking_uses_the_asked_hand(part):
     head = m.positions[mid, bm.head, 1]
     assert (m.positions[mid, bm.hands[side], 1] > head - 0.25).mean() > 0.5  # raised to the head
     assert (m.positions[mid, bm.hands[other], 1] < head - 0.4).all()  # the other hand stays down
-    assert res.elements[2]["part_fidelity_cm"] < 3.0
+    assert res.elements[2].part_fidelity_cm < 3.0
 
 
 def test_connection_with_delay_and_gap_free_connection():
@@ -82,7 +82,7 @@ def test_connection_with_delay_and_gap_free_connection():
     res, m = run(Element(1, C["walk"], 0.0, 2.0, "initial"), Element(2, C["walk_back"], 2.0, 5.0, "connection", prev=1))
     (j,) = res.joins
     assert j.metrics["skating_ratio"] == 0.0 and skating_ratio(m) == 0.0
-    assert all(e["core_fidelity_cm"] < 0.5 for e in res.elements.values())
+    assert all(e.core_fidelity_cm < 0.5 for e in res.elements.values())
 
 
 def test_three_actors_side_by_side():

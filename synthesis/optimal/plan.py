@@ -1,0 +1,129 @@
+"""One join planned (no frames written): method, ranges, search, placement, adaptation and weights
+(:func:`plan_join`, steps 1–5 of :mod:`synthesis.optimal`), with the room and core rules."""
+from __future__ import annotations
+
+import numpy as np
+
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.motion import Motion
+
+from ..adaptation import adapt
+from ..align import align_through_foot
+from ..blend_ranges import after, ranges
+from ..blend_search import Weights
+from ..method_select import phase_for, steps
+from ..placed import Placed
+from ..switching import foot_points
+from ..track import Incoming
+from .curves import interval_weights
+from .method import geometry
+from .placement import alignment
+from .records import Plan, Skip
+from .search import Features, runners_up, search
+
+MIN_BLEND = 0.2  # s: the shortest blend interval (shorter pose changes read as pops)
+MIN_ROOM = 0.25  # s: the least room the lower-body range should leave
+MAX_SHIFT = 0.5  # s: the most an element is delayed for room
+CORE_TOLERANCE = 0.1  # s: cores overlapping by less than this are taken as touching (a frame of contact noise)
+SAME_FEET_CM = 1.0
+RUNNERS_UP = 5  # next-best lower-body intervals tried when the best one's join would skate  # cm: an adaptation moving no foot further needs no return step (S3)
+
+
+def plan_join(tr: Motion, prev: Placed, inc: Incoming, fps: float, weights: Weights, floor: int = 0,
+              min_blend: float = MIN_BLEND, allow_shift: bool = True) -> Plan | Skip:
+    """Method, ranges, search, placement and weights of one join (no frames written).
+
+    Args:
+        tr: the track so far, holding ``prev`` (extended, held, at least to the next element's last frame).
+        prev: the previous element as laid.
+        inc: the next element.
+        weights: eq. (10)'s weights (:func:`synthesis.blend_search.preset`).
+        floor: no blend starts before this track frame (the previous join's end; eq. (17)'s current time).
+        allow_shift: delay the next element for room (see the module docstring).
+    """
+    L = max(2, int(round(min_blend * fps)))
+    tr_contacts = detect_contacts(tr)
+    warnings: list[str] = []
+    choice, bounds, a_steps = geometry(tr_contacts, prev, inc, floor, L)
+    phase = 0
+    if inc.cyclic and choice.p0 is not None:  # a loop may enter at the phase whose step lifts with P0's
+        off = phase_for(choice.p0, steps(inc.contacts), inc.offset, inc.first)
+        if off is not None and inc.end - off <= inc.motion.n_frames and off != inc.offset:
+            moved = inc.at_phase(off)
+            c2, b2, _ = geometry(tr_contacts, prev, moved, floor, L)
+            if c2.method == "motion_transition":
+                phase, inc, choice, bounds = off - inc.offset, moved, c2, b2
+    if bounds.c1[0] < bounds.c0_end - int(round(CORE_TOLERANCE * fps)):
+        return Skip(f"element {inc.element.id} ({inc.element.clip.name}) is not executed: its core "
+                    f"({bounds.c1[0] / fps:.2f} s) would begin before the core of element {prev.element.id} "
+                    f"ends ({bounds.c0_end / fps:.2f} s); schedule it later to perform it (paper 000 §4.2.5)")
+    shift = 0
+    rs = ranges(choice, bounds)
+    if allow_shift:
+        s0 = rs[0]
+        need = max(L, int(round(MIN_ROOM * fps)), s0.p_len if choice.method == "motion_connection" else 0)
+        have = s0.t1[1] - s0.t0[0]
+        if have < need:
+            shift = min(need - have, int(round(MAX_SHIFT * fps)))
+            inc = inc.moved(shift)
+            choice, bounds, _ = geometry(tr_contacts, prev, inc, floor, L)
+            rs = ranges(choice, bounds)
+    for k, r in enumerate(rs):
+        if not r.feasible(L):
+            rs[k] = r.relax(L)
+            warnings.append(f"join {prev.element.id}→{inc.element.id}: the cores leave no room for the "
+                            f"{r.part}-body blend {r.name}; it overlaps a core")
+    byname = {r.name: r for r in rs}
+    feats = Features(tr, inc)
+    found = {"S0": search(byname["S0"], feats, fps, weights, L), "S1": search(byname["S1"], feats, fps, weights, L)}
+    support, ta, tb = alignment(choice, found["S0"], tr, tr_contacts, inc)
+    ta = int(np.clip(ta, 0, tr.n_frames - 1))
+    tb_own = int(np.clip(tb - inc.offset, 0, inc.motion.n_frames - 1))
+    rigid = align_through_foot(tr, ta, inc.motion, tb_own, support)
+    placed = rigid.apply(inc.motion)
+    adapted = None
+    info: dict = {}
+    if choice.method.startswith("motion_adaptation"):
+        fa, fb = foot_points(tr), foot_points(placed)
+        offsets = {s: fa[s][ta] - fb[s][tb_own] for s in ("left", "right")}
+        if support is not None:
+            offsets[support] = np.zeros(3)
+        adapted = adapt(placed, offsets)
+        info["adapt_offsets"] = offsets
+        info["adapt_offset_cm"] = {s: round(100 * float(np.hypot(v[0], v[2])), 2) for s, v in offsets.items()}
+        feats = Features(tr, inc, adapted)
+        found["S0"] = search(byname["S0"], feats, fps, weights, L)  # S0 again, onto the adapted lower body
+        if "S3" in byname and max(info["adapt_offset_cm"].values()) < SAME_FEET_CM:
+            del byname["S3"]  # the feet already agree: nothing to return from (S2 runs to the end, eq. (9))
+            info["return"] = "not needed: the feet already stand as the next motion has them"
+        if "S3" in byname:
+            byname["S3"] = after(byname["S3"], found["S0"].t1, L)
+            if not byname["S3"].feasible(L):
+                byname["S3"] = byname["S3"].relax(L)
+            found["S3"] = search(byname["S3"], feats, fps, weights, L)
+    intervals = {n: interval_weights(n, byname[n], f, feats, fps, L) for n, f in found.items()}
+    alternatives = []
+    if adapted is None:  # the next-best lower-body intervals, tried in turn if the best one's join skates
+        alternatives = [interval_weights("S0", byname["S0"], f, feats, fps, L)
+                        for f in runners_up(byname["S0"], feats, fps, weights, L, RUNNERS_UP)]
+    info.update({
+        "support": support, "align_frames_s": [ta / fps, tb / fps],
+        "p0_s": None if choice.p0 is None else [choice.p0.begin / fps, choice.p0.end / fps, choice.p0.side],
+        "p1_s": None if choice.p1 is None else [choice.p1.begin / fps, choice.p1.end / fps, choice.p1.side],
+        "cores_s": [bounds.c0_end / fps, bounds.c1[0] / fps],
+        "weight_cases": {n: iv.case for n, iv in intervals.items()},
+        "slopes": {n: [round(iv.slopes[0], 3), round(iv.slopes[1], 3)] for n, iv in intervals.items()},
+        "ranges_s": {n: {"eq": r.eq, "t0": [r.t0[0] / fps, r.t0[1] / fps], "t1": [r.t1[0] / fps, r.t1[1] / fps]}
+                     for n, r in byname.items()},
+        "shift_s": shift / fps, "phase_s": phase / fps,
+        "weights": {"time": weights.time, "pose": weights.pose, "velocity": weights.velocity},
+    })
+    if adapted is not None:
+        s2_end = intervals["S3"].t0 if "S3" in intervals else inc.end
+        info["adapted_s"] = [intervals["S0"].t1 / fps, s2_end / fps]  # eq. (7) / (9): S2
+    return Plan(inc, choice, intervals, rigid, support, placed, adapted, shift, phase, warnings, info, alternatives)
+
+
+def public_info(info: dict) -> dict:
+    """The plan's notes as they go into the report (plain JSON values)."""
+    return {k: v for k, v in info.items() if k != "adapt_offsets"}

@@ -1,0 +1,136 @@
+"""Step 6, rendering: a planned join written onto the track, lower and upper body blended by their own
+weights (slerp), planted feet held (a foot two held poses plant apart steps across), locks by
+:func:`synthesis.transition.apply_join`."""
+from __future__ import annotations
+
+import numpy as np
+
+from text2anim.core.bodyparts import body_map
+from text2anim.core.contacts import FootContacts, detect_contacts
+from text2anim.core.motion import Motion, concatenate
+
+from ..adaptation import adapt, pin_feet
+from ..blend import blend, sample
+from ..posedist import part_joints
+from ..transition import PLANTED_WEIGHT, Join, apply_join
+from .records import Interval, Plan
+
+
+def _schedule(iv: Interval, frames: np.ndarray):
+    """Per track frame: the first source's frame, the second source's frame, the second's weight."""
+    w = np.interp(frames, np.arange(iv.t0, iv.t1 + 1), iv.weights, left=0.0, right=1.0)
+    moving_from = iv.kind.startswith("motion")
+    moving_to = iv.kind.endswith("motion")
+    fa = np.where((frames < iv.t0) | moving_from, frames, iv.t0).astype(np.float64)
+    fb = np.where((frames > iv.t1) | moving_to, frames, iv.t1).astype(np.float64)
+    return fa, fb, w
+
+
+def _b_side(plan: Plan) -> Motion:
+    """The lower body's second source on the next motion's frames: the placed motion, or for an adaptation
+    the adapted one (S2, eqs. (7)/(9)), returned to its own over S3 (eq. (8)).
+
+    The return fades the adaptation's deformation by the S3 weight (§4.4.2 cases (a)/(b)): the motion's own
+    movement plays through it and the support foot stays put. Case (c) is the literal pose–pose blend of
+    the adapted pose at ``t0`` and the motion's pose at ``t1``, planted feet pinned.
+    """
+    if plan.adapted is None:
+        return plan.placed
+    if "S3" not in plan.intervals:
+        return plan.adapted
+    iv = plan.intervals["S3"]
+    off = plan.inc.offset
+    a, b = iv.t0 - off, iv.t1 - off
+    if iv.kind == "pose-motion":
+        scale = np.ones(plan.placed.n_frames)
+        scale[a:b + 1] = 1.0 - iv.weights
+        scale[b + 1:] = 0.0
+        return adapt(plan.placed, plan.info["adapt_offsets"], scale)
+    n = b - a + 1
+    frozen = sample(plan.adapted, np.full(n, float(a)))
+    own = plan.placed[a:b + 1] if iv.kind.endswith("motion") else sample(plan.placed, np.full(n, float(b)))
+    seg = blend(frozen, own, iv.weights)
+    ref = plan.placed[a:b + 1]
+    c = plan.inc.contacts
+    seg = pin_feet(seg, ref, {s: c.of(s)[a:b + 1] for s in ("left", "right")})
+    return concatenate([p for p in (plan.adapted[:a], seg, plan.placed[b + 1:]) if p.n_frames])
+
+
+def _contacts_at(c: FootContacts, idx: np.ndarray) -> dict:
+    i = np.clip(np.round(idx).astype(int), 0, len(c.left) - 1)
+    return {"left": c.left[i], "right": c.right[i]}
+
+
+#: m: a foot the two sides of a lower-body blend plant further apart than this has to step across
+STEP_GAP = 0.06
+#: the weights between which such a foot is in the air (it lifts from the first side's place once the
+#: second has this share, and lands on the second's when it has that share)
+STEP_WEIGHTS = (0.25, 0.75)
+
+
+def _planted(a_comp: Motion, b_comp: Motion, ca: dict, cb: dict, w: np.ndarray, step: bool = True) -> dict:
+    """Per foot, whether it is held on the ground on each frame of the window (for the foot locks).
+
+    A foot is down where the side that holds at least :data:`~synthesis.transition.PLANTED_WEIGHT` of the
+    blend has it down (the seed engine's rule) — except where the two sides plant it more than
+    :data:`STEP_GAP` apart: one foot cannot stand in two places, so it stays on the first side's place
+    until the second side has :data:`STEP_WEIGHTS` [0] of the blend, crosses in the air, and lands on
+    the second side's place once that has [1] (a frozen pose planted somewhere else would otherwise hold
+    the foot where the first motion left it, and let it go with a snap long after the blend). Only when
+    a side is a held pose (``step``): where both motions play (a gait transition) their planted feet
+    follow each other's rhythm and the seed engine's rule holds.
+    """
+    feet = body_map(a_comp.skeleton).feet
+    pa, pb = a_comp.positions, b_comp.positions
+    out = {}
+    for s in ("left", "right"):
+        ankle = feet[s][0]
+        apart = (np.hypot(*(pa[:, ankle] - pb[:, ankle])[:, [0, 2]].T) > STEP_GAP) & step
+        on_a = ca[s] & (1.0 - w >= PLANTED_WEIGHT) & ~(apart & (w > STEP_WEIGHTS[0]))
+        on_b = cb[s] & (w >= PLANTED_WEIGHT) & ~(apart & (w < STEP_WEIGHTS[1]))
+        out[s] = on_a | on_b
+    return out
+
+
+def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True):
+    """Write a planned join onto the track: returns ``(track, locks, (w0, w1))``.
+
+    The lower body of every frame of the window blends its two sources with the lower weight, the upper
+    body its two with the upper weight; :func:`synthesis.transition.apply_join` then writes the window and
+    the next motion after it and locks the planted feet (its blend is given the upper body already blended
+    on both sides, so only the lower weight is left to it).
+    """
+    inc = plan.inc
+    off = inc.offset
+    ivs = plan.intervals
+    w0 = min(iv.t0 for iv in ivs.values())
+    w1 = max(iv.t1 for iv in ivs.values()) + 1
+    frames = np.arange(w0, w1)
+    bside = _b_side(plan)
+    faL, fbL, wL = _schedule(ivs["S0"], frames)
+    if "S3" in ivs:  # after S0 the lower body is the second source alone (adapted, then back, inside bside)
+        fbL = np.where(frames > ivs["S0"].t1, frames, fbL)
+    faU, fbU, wU = _schedule(ivs["S1"], frames)
+    a_low, b_low = sample(tr, faL), sample(bside, fbL - off)
+    up = blend(sample(tr, faU), sample(bside, fbU - off), wU)
+    upper = part_joints(tr, "upper")
+
+    def with_upper(m: Motion) -> Motion:
+        r = m.rotations.copy()
+        r[:, upper] = up.rotations[:, upper]
+        return m.replace(rotations=r)
+
+    a_comp, b_comp = with_upper(a_low), with_upper(b_low)
+    tr_c = detect_contacts(tr)
+    b_c = detect_contacts(bside)
+    ca = _contacts_at(tr_c, faL)
+    cb = _contacts_at(b_c, fbL - off)
+    tail = bside[w1 - off:]
+    placed_b = concatenate([b_comp, tail]) if tail.n_frames else b_comp
+    b_contacts = FootContacts(tr.fps, *(np.concatenate([cb[s], b_c.of(s)[w1 - off:]]) for s in ("left", "right")))
+    planted = _planted(a_comp, b_comp, ca, cb, wL, step=step and ivs["S0"].kind != "motion-motion")
+    join = Join(plan.choice.method, plan.rigid, w0, (w0, w1), frames.astype(np.float64),
+                np.arange(w1 - w0, dtype=np.float64), wL, planted, ca)
+    track = concatenate([p for p in (tr[:w0], a_comp) if p.n_frames])
+    out, locks = apply_join(track, placed_b, b_contacts, join, lock=lock)
+    return out, locks, (w0, w1)

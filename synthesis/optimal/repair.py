@@ -1,0 +1,82 @@
+"""A join rendered until it does not skate: the paper's rendering first, then without the step, with
+S0's weight eased, placed by the roots, and with the next-best intervals of eq. (10) (:func:`carry_out`)."""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from text2anim.core.motion import Motion
+
+from ..align import align_through_foot
+from ..blend import ease
+from ..measure import skating_frames
+from .records import Plan
+from .placement import settle
+from .render import render
+
+
+def _eased(plan: Plan) -> Plan:
+    """The plan with the lower-body blend S0's weight eased (quintic, zero slope and curvature at both ends)
+    instead of eq. (16)'s Hermite — see :func:`carry_out`."""
+    iv = plan.intervals["S0"]
+    w = ease(np.linspace(0.0, 1.0, iv.t1 - iv.t0 + 1), "smooth")
+    return replace(plan, intervals={**plan.intervals, "S0": replace(iv, weights=w, case=iv.case + "+eased")})
+
+
+def _roots_mid(tr: Motion, plan: Plan) -> Plan:
+    """A motion–motion blend's next motion placed by the roots where the weight passes one half (instead of
+    through the support foot): two roots moving at different speeds are then apart by as much at the end
+    of the blend as at its start, in opposite directions, and the mix does not surge."""
+    iv = plan.intervals["S0"]
+    tm = iv.t0 + int(np.argmin(np.abs(iv.weights - 0.5)))
+    own = int(np.clip(tm - plan.inc.offset, 0, plan.inc.motion.n_frames - 1))
+    rigid = align_through_foot(tr, int(np.clip(tm, 0, tr.n_frames - 1)), plan.inc.motion, own, None)
+    info = dict(plan.info, align_frames_s=[tm / tr.fps, tm / tr.fps], support=None)
+    return replace(plan, rigid=rigid, placed=rigid.apply(plan.inc.motion), support=None, info=info)
+
+
+def _skating(motion: Motion, lo: int, hi: int) -> float:
+    """Skating ratio (both feet low and fast, :func:`synthesis.measure.skating_frames`) over ``[lo, hi)``."""
+    sk = skating_frames(motion)
+    return float(sk[max(lo, 0):hi].mean()) if hi > lo else 0.0
+
+
+def carry_out(tr: Motion, plan: Plan, lock: bool):
+    """Render a plan — and make sure the join does not skate.
+
+    The plan is rendered as the paper has it (eq. (16) weights, a foot held by a frozen pose stepping
+    across, :func:`_planted`), then settled (:func:`settle`). If its blend still skates (a run
+    pulled into a standing pose: the mixed hips overshoot where the two motions' roots are far apart and
+    the weight is steep at an end), the join is rendered again without the step, then with S0's weight
+    eased to zero slope at both ends, then both; the first that does not skate is kept (else the one that
+    skates least), and the report says which (``fallback``). When none of those is clean, the same is
+    tried with the next-best lower-body intervals of eq. (10) (:data:`RUNNERS_UP` of them): the search's
+    minimum subject to the join keeping its feet. Deterministic.
+    """
+    best = None
+    variants = [("", True, False), ("no_step", False, False), ("eased", True, True), ("eased_no_step", False, True)]
+    if plan.intervals["S0"].kind == "motion-motion":
+        variants.append(("roots_mid", False, False))
+    candidates = [("", plan)] + [(f"next_best_{k + 1}", replace(plan, intervals={**plan.intervals, "S0": iv}))
+                                 for k, iv in enumerate(plan.alternatives)]
+    for cname, cand in candidates:
+        for vname, step, eased in variants:
+            p = _eased(cand) if eased else (_roots_mid(tr, cand) if vname == "roots_mid" else cand)
+            out, locks, window = render(tr, p, lock, step)
+            moved = settle(out, locks, window, p)
+            if moved is not None:  # placed where the locked foot stands: the next motion's own step needs no release
+                p = moved
+                out, locks, window = render(tr, p, lock, step)
+            sk = _skating(out, window[0], window[1]) if lock else 0.0  # the blend (the clips' own skating after
+            # it, a jump's landing, is not the join's to fix)
+            name = "+".join(x for x in (cname, vname) if x)
+            if name:
+                p = replace(p, info=dict(p.info, fallback=name))
+            if best is None or sk < best[0]:
+                best = (sk, p, out, locks, window)
+            if sk == 0.0:
+                _, p, out, locks, window = best
+                return p, out, locks, window
+    _, p, out, locks, window = best
+    return p, out, locks, window

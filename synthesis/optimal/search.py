@@ -1,0 +1,73 @@
+"""§4.3, eqs. (10)–(15): the blend interval ``t0``, ``t1`` that minimises eq. (10) over a range.
+
+The features (Kovar's point clouds, :mod:`synthesis.posedist`) of the join's sources are looked up per
+body part once (:class:`Features`); :mod:`synthesis.blend_search` evaluates every candidate pair.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from text2anim.core.motion import Motion
+
+from ..blend_ranges import Range
+from ..blend_search import Found, Weights, best, evaluate, evaluate_motions
+from ..posedist import distance, features, part_joints
+from ..track import Incoming
+
+
+def _sources(tr: Motion, inc: Incoming, adapted: Motion | None):
+    """Source name → (motion, track frame of its frame 0)."""
+    return {"A": (tr, 0), "B": (inc.motion, inc.offset),
+            "Bad": (adapted if adapted is not None else inc.motion, inc.offset)}
+
+
+class Features:
+    """Kovar features of the join's sources, joints per part looked up once."""
+
+    def __init__(self, tr: Motion, inc: Incoming, adapted: Motion | None = None):
+        self.src = _sources(tr, inc, adapted)
+        self.joints = {p: part_joints(tr, p) for p in ("lower", "upper")}
+
+    def __call__(self, name: str, part: str, frames) -> np.ndarray:
+        motion, off = self.src[name]
+        return features(motion, self.joints[part], np.asarray(frames) - off)
+
+
+def grid(r: Range, feats: Features, fps: float, weights: Weights, min_len: int):
+    """eq. (10) over every candidate pair of the range (:mod:`synthesis.blend_search`)."""
+    if r.kind == "motion-motion":
+        f0 = np.arange(r.t0[0], r.t0[1] + 2)
+        f1 = np.arange(r.t1[0], r.t1[1] + 2)
+        return evaluate_motions(feats(r.src[0], r.part, f0), feats(r.src[1], r.part, f0),
+                                feats(r.src[0], r.part, f1), feats(r.src[1], r.part, f1), r.t0, r.t1, fps, weights,
+                                r.p_len, min_len)
+    f_from = feats(r.src[0], r.part, np.arange(r.t0[0], r.t0[1] + 2))
+    f_to = feats(r.src[1], r.part, np.arange(r.t1[0] - 1, r.t1[1] + 1))
+    return evaluate(f_from, f_to, r.t0, r.t1, fps, weights, r.p_len, min_len)
+
+
+def search(r: Range, feats: Features, fps: float, weights: Weights, min_len: int) -> Found:
+    """The global minimum of eq. (10) over the range."""
+    return best(grid(r, feats, fps, weights, min_len), weights, min_len)
+
+
+def runners_up(r: Range, feats: Features, fps: float, weights: Weights, min_len: int, k: int) -> list[Found]:
+    """The ``k`` next-best pairs of eq. (10) after the minimum, in order of cost (ties: earlier first)."""
+    g = grid(r, feats, fps, weights, min_len)
+    flat = g.cost.ravel()
+    order = np.argsort(flat, kind="stable")
+    order = order[np.isfinite(flat[order])][1:k + 1]
+    out = []
+    for o in order:
+        i, j = np.unravel_index(int(o), g.cost.shape)
+        out.append(Found(int(g.t0[i]), int(g.t1[j]), float(g.Qt[i, j]), float(g.D[i, j]), float(g.Qv[i, j]),
+                         float(g.V0[i, j]), float(g.V1[i, j]), float(g.cost[i, j]), weights))
+    return out
+
+
+def ends(feats: Features, r: Range, t0: int, t1: int, fps: float) -> tuple[float, float, float]:
+    """``D(t0, t1)`` and the eq. (14) speeds ``V(t0)``, ``V(t1)`` of an interval (m, m/s)."""
+    fa = feats(r.src[0], r.part, [t0, t0 + 1])
+    fb = feats(r.src[1], r.part, [t1 - 1, t1])
+    D = distance(fa[0], fb[1])
+    return D, (D - distance(fa[1], fb[1])) * fps, (D - distance(fa[0], fb[0])) * fps
