@@ -15,9 +15,7 @@ from functools import cached_property
 from pathlib import Path
 
 from text2anim.core.bvh import read_bvh
-from text2anim.core.conventions import in_place, looped, root_motion, scaled
 from text2anim.core.motion import Motion
-from text2anim.core.retarget import retarget
 from text2anim.core.rigs import load_joint_map, rig_roles
 from text2anim.core.skeleton import Skeleton
 
@@ -89,6 +87,12 @@ class ExportOptions:
 
 def export_motion(motion: Motion, opts: ExportOptions) -> Motion:
     """``motion`` as ``opts`` asks (see the module docstring for the order)."""
+    if opts.is_default:
+        return motion
+    # loaded here, not at import: scipy.signal and scipy.ndimage are ~0.3 s of a run's start
+    from text2anim.core.conventions import in_place, looped, root_motion, scaled
+    from text2anim.core.retarget import retarget
+
     joint_map = None
     if opts.skeleton is not None:
         motion = retarget(motion, opts.skeleton, target_map=opts.target_map)

@@ -43,15 +43,15 @@ from text2anim.motiondb import ClipRecord, MotionDB  # noqa: E402
 from text2anim.motiondb.blobs import ENCODING, encode_frames  # noqa: E402
 from text2anim.motiondb.readings import to_katakana  # noqa: E402
 from text2anim.motiondb.schema import (  # noqa: E402
-    Character,
-    Clip,
-    ClipFrames,
-    ClipObject,
-    ClipVerb,
-    Contact,
-    ObjectRow,
-    SkeletonRow,
-    Verb,
+    characters as Character,
+    clip_frames as ClipFrames,
+    clip_objects as ClipObject,
+    clip_verbs as ClipVerb,
+    clips as Clip,
+    contacts as Contact,
+    objects as ObjectRow,
+    skeletons as SkeletonRow,
+    verbs as Verb,
 )
 from text2anim.motiondb.blobs import skeleton_json  # noqa: E402
 

@@ -33,15 +33,28 @@ EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell shows for a writer its reader left
 
 
-def _load_commands():
+def _name(modname: str) -> str:
+    """The sub-command a module defines: ``text2anim.cli.cmd_plan`` -> ``plan`` (each module's ``NAME``)."""
+    return modname.rsplit(".cmd_", 1)[1]
+
+
+def _load_commands(argv: list[str] | None = None):
+    """The sub-command modules by name: only the one ``argv`` runs when it names one (or is a text to
+    animate), so a run imports no other command's dependencies; every module for ``--help`` and the rest."""
+    names = [_name(m) for m in COMMAND_MODULES]
+    wanted = COMMAND_MODULES
+    if argv and argv[0] not in TOP_LEVEL_OPTIONS:
+        first = argv[0] if argv[0] in names else "animate"
+        wanted = [m for m in COMMAND_MODULES if _name(m) == first]
     commands = {}
-    for modname in COMMAND_MODULES:
+    for modname in wanted:
         try:
             mod = importlib.import_module(modname)
         except ModuleNotFoundError as exc:  # a command still being written
             if exc.name == modname:
                 continue
             raise
+        assert mod.NAME == _name(modname), modname
         commands[mod.NAME] = mod
     return commands
 
@@ -135,7 +148,7 @@ def _quiet_broken_pipe() -> int:
 
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    commands = _load_commands()
+    commands = _load_commands(argv)
     parser = build_parser(commands)
     args = _parse(parser, _route_default(argv, commands))
     if not getattr(args, "_run", None):

@@ -28,8 +28,8 @@ rotation is left as it was (so its world orientation follows the chain);
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
+from . import rotkernels as rk
 from .bodyparts import body_map
 from .motion import Motion
 
@@ -54,8 +54,9 @@ def _rows(a, T: int, what: str) -> np.ndarray:
     return arr
 
 
-def _shortest_arc(src: np.ndarray, dst: np.ndarray) -> Rotation:
-    """Rotations ``(T)`` turning unit vectors ``src`` onto unit vectors ``dst`` by the shortest arc."""
+def _shortest_arc(src: np.ndarray, dst: np.ndarray) -> np.ndarray:
+    """Rotations ``(T, 4)`` (:mod:`core.rotkernels` stacks) turning unit vectors ``src`` onto unit vectors ``dst``
+    by the shortest arc."""
     axis = np.cross(src, dst)
     s = np.linalg.norm(axis, axis=-1)
     c = np.sum(src * dst, axis=-1)
@@ -68,7 +69,7 @@ def _shortest_arc(src: np.ndarray, dst: np.ndarray) -> Rotation:
         alt[bad] = np.cross(src[anti][bad], np.array([0.0, 1.0, 0.0]))
         axis[anti] = alt
     axis, _ = _unit(axis)
-    return Rotation.from_rotvec(axis * angle[:, None])
+    return rk.from_rotvec(axis * angle[:, None])
 
 
 def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0, 0.0, 0.0)) -> Motion:
@@ -130,9 +131,9 @@ def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0
     cos_arg = np.clip((k_ - p_) / np.maximum(r_, _EPS), -1.0, 1.0)
     phi = psi + np.arccos(cos_arg)  # flexion side of the straight configuration
     phi = (phi + np.pi) % (2 * np.pi) - np.pi
-    bend = Rotation.from_rotvec(n * phi[:, None])
-    Rb_bent = bend.as_matrix() @ Rb
-    c_bent = b + bend.apply(v)
+    bend = rk.from_rotvec(n * phi[:, None])
+    Rb_bent = rk.as_matrix(bend) @ Rb
+    c_bent = b + rk.apply(bend, v)
 
     # 2. Aim: upper->end onto upper->target.
     aim_dir, aim_len = _unit(targets - a)
@@ -142,7 +143,7 @@ def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0
     q1 = _shortest_arc(_unit(c_bent - a)[0], aim_dir)
 
     # 3. Twist about the aim line so the middle joint faces the pole.
-    b1 = a + q1.apply(w)
+    b1 = a + rk.apply(q1, w)
     p1 = b1 - a
     p2 = poles - a
     p1 = p1 - aim_dir * np.sum(p1 * aim_dir, axis=-1)[:, None]
@@ -150,16 +151,16 @@ def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0
     ok = (np.linalg.norm(p1, axis=-1) > 1e-6) & (np.linalg.norm(p2, axis=-1) > 1e-6)
     twist = np.arctan2(np.sum(aim_dir * np.cross(p1, p2), axis=-1), np.sum(p1 * p2, axis=-1))
     twist = np.where(ok, twist, 0.0)
-    q2 = Rotation.from_rotvec(aim_dir * twist[:, None])
-    G = (q2 * q1).as_matrix()
+    q2 = rk.from_rotvec(aim_dir * twist[:, None])
+    G = rk.as_matrix(rk.compose(q2, q1))
 
     Ra_new = G @ Ra
     local_a = np.swapaxes(Rp, -1, -2) @ Ra_new
     local_b = np.swapaxes(Ra, -1, -2) @ Rb_bent  # G cancels: R_a'^T (G R_b') = R_a^T R_b'
 
     rots = motion.rotations.copy()
-    rots[idx, a_j] = Rotation.from_matrix(local_a).as_quat()
-    rots[idx, b_j] = Rotation.from_matrix(local_b).as_quat()
+    rots[idx, a_j] = rk.as_quat(rk.from_matrix(local_a))
+    rots[idx, b_j] = rk.as_quat(rk.from_matrix(local_b))
     return motion.replace(rotations=rots)
 
 
@@ -172,14 +173,14 @@ def set_world_rotation(motion: Motion, joint, rotations, mask=None) -> Motion:
         return motion
     q = np.asarray(rotations, dtype=np.float64).reshape(T, 4)[mask]
     p = motion.skeleton.parents[j]
-    world = Rotation.from_quat(q)
+    world = rk.from_quat(q)
     if p >= 0:
-        parent = Rotation.from_matrix(motion.pose.rotations[mask, p])
-        local = parent.inv() * world
+        parent = rk.from_matrix(motion.pose.rotations[mask, p])
+        local = rk.compose(rk.inverse(parent), world)
     else:
         local = world
     rots = motion.rotations.copy()
-    rots[mask, j] = local.as_quat()
+    rots[mask, j] = rk.as_quat(local)
     return motion.replace(rotations=rots)
 
 

@@ -18,23 +18,23 @@ from .skeleton import Skeleton
 
 
 def quat_to_matrix(q: np.ndarray) -> np.ndarray:
-    """Quaternions ``(..., 4)`` to rotation matrices ``(..., 3, 3)``."""
-    from scipy.spatial.transform import Rotation
+    """Quaternions ``(..., 4)`` to rotation matrices ``(..., 3, 3)`` (``Rotation.as_matrix``'s bits)."""
+    from . import rotkernels
 
     flat = q.reshape(-1, 4)
     if len(flat) == 0:
         return np.zeros(q.shape[:-1] + (3, 3))
-    return Rotation.from_quat(flat).as_matrix().reshape(q.shape[:-1] + (3, 3))
+    return rotkernels.as_matrix(rotkernels.from_quat(flat)).reshape(q.shape[:-1] + (3, 3))
 
 
 def matrix_to_quat(m: np.ndarray) -> np.ndarray:
-    """Rotation matrices ``(..., 3, 3)`` to quaternions ``(..., 4)``."""
-    from scipy.spatial.transform import Rotation
+    """Rotation matrices ``(..., 3, 3)`` to quaternions ``(..., 4)`` (``Rotation.from_matrix``'s bits)."""
+    from . import rotkernels
 
     flat = m.reshape(-1, 3, 3)
     if len(flat) == 0:
         return np.zeros(m.shape[:-2] + (4,))
-    return Rotation.from_matrix(flat).as_quat().reshape(m.shape[:-2] + (4,))
+    return rotkernels.as_quat(rotkernels.from_matrix(flat)).reshape(m.shape[:-2] + (4,))
 
 
 def unroll_quaternions(q: np.ndarray) -> np.ndarray:
@@ -60,9 +60,10 @@ class Pose:
     positions: np.ndarray
     rotations: np.ndarray
 
-    def quaternions(self) -> np.ndarray:
-        """World rotations as ``(T, J, 4)`` quaternions."""
-        return matrix_to_quat(self.rotations)
+    def quaternions(self, joints=None) -> np.ndarray:
+        """World rotations as ``(T, J, 4)`` quaternions; of ``joints`` only (an index or a list) when given,
+        ``(T, 4)`` or ``(T, n, 4)``, converting those joints' matrices only."""
+        return matrix_to_quat(self.rotations if joints is None else self.rotations[:, joints])
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,6 +136,12 @@ class Motion:
         Computed once per motion; :meth:`frames` of a motion whose pose is known slices it
         (each frame's kinematics depends on that frame alone).
         """
+        source = self.__dict__.pop("_pose_source", None)  # not kept once used: it holds another pose
+        if source is not None:
+            return self._pose_below(*source)
+        same = self.__dict__.get("_pose_of")
+        if same is not None:
+            return same.pose
         # joint-major (J, T, ...) so that a depth's joints are gathered as whole blocks
         local_r = quat_to_matrix(self.rotations).transpose(1, 0, 2, 3).copy()
         local_t = self.local_translations().transpose(1, 0, 2).copy()
@@ -153,6 +160,46 @@ class Motion:
         world_p.setflags(write=False)
         return Pose(world_p, world_r)
 
+    def _pose_below(self, known: Pose, top: int) -> Pose:
+        """:attr:`pose` from ``known``, the pose of a motion that differs from this one only in the local
+        rotations of joint ``top`` and its descendants: their forward kinematics is redone, the other
+        joints' world transforms are kept. Each joint's arithmetic is :attr:`pose`'s, so the result is
+        bit for bit the full computation's."""
+        sub = self.skeleton.subtree(top)  # (n,) joints, parents first
+        slot = np.full(self.skeleton.n_joints, -1)
+        slot[sub] = np.arange(len(sub))
+        local_r = quat_to_matrix(self.rotations[:, sub]).transpose(1, 0, 2, 3).copy()
+        local_t = self.local_translations()[:, sub].transpose(1, 0, 2).copy()
+        world_r = np.empty_like(local_r)
+        world_p = np.empty_like(local_t)
+        outside = self.skeleton.parents[top]  # the one parent outside the subtree
+        top_r = np.ascontiguousarray(known.rotations[:, outside])[None]
+        top_p = np.ascontiguousarray(known.positions[:, outside])[None]
+        world_r[:1] = top_r @ local_r[:1]
+        world_p[:1] = top_p + np.einsum("ntij,ntj->nti", top_r, local_t[:1])
+        for joints, parents in self.skeleton.depth_levels():
+            inside = slot[joints] > 0
+            if not inside.any():
+                continue
+            j, p = slot[joints[inside]], slot[parents[inside]]
+            parent_r = world_r[p]
+            world_r[j] = parent_r @ local_r[j]
+            world_p[j] = world_p[p] + np.einsum("ntij,ntj->nti", parent_r, local_t[j])
+        rotations, positions = known.rotations.copy(), known.positions.copy()
+        rotations[:, sub] = world_r.transpose(1, 0, 2, 3)
+        positions[:, sub] = world_p.transpose(1, 0, 2)
+        rotations.setflags(write=False)
+        positions.setflags(write=False)
+        return Pose(positions, rotations)
+
+    def copy_sharing_pose(self) -> "Motion":
+        """The same frames in arrays of their own; its :attr:`pose` is this motion's, computed once for both
+        (a motion is not edited in place: edits make new motions)."""
+        out = Motion(self.skeleton, self.fps, self.root_positions.copy(), self.rotations.copy(),
+                     None if self.translations is None else self.translations.copy())
+        out.__dict__["_pose_of"] = self
+        return out
+
     @property
     def positions(self) -> np.ndarray:
         """World joint positions ``(T, J, 3)``, metres."""
@@ -169,17 +216,60 @@ class Motion:
 
     # ---------------------------------------------------------------- editing
     def replace(self, **changes) -> "Motion":
-        return replace(self, **changes)
+        """A new motion with some fields changed. When only the local rotations change, and only those
+        of some joints (an IK solve of a limb), the new motion's :attr:`pose`, when asked, redoes the
+        kinematics of the smallest subtree holding them, from this motion's pose (bit for bit the
+        full computation: :meth:`_pose_below`)."""
+        out = replace(self, **changes)
+        if changes.keys() == {"rotations"} and out.rotations.shape == self.rotations.shape:
+            self._carry_pose(out)
+        return out
+
+    def _carry_pose(self, out: "Motion") -> None:
+        """Tell ``out`` (this motion with other local rotations) how to get its pose from this one's."""
+        known = self._known_pose()
+        source = self.__dict__.get("_pose_source")
+        if known is None and source is None:
+            return
+        differs = (out.rotations.view(np.int64) != self.rotations.view(np.int64)).any(axis=(0, 2))
+        changed = np.flatnonzero(differs)
+        if len(changed) == 0:
+            if known is not None:
+                out.__dict__["pose"] = known
+            else:
+                out.__dict__["_pose_source"] = source
+            return
+        top = int(changed[0])
+        for j in changed[1:]:
+            top = self.skeleton.common_ancestor(top, int(j))
+        if known is None:  # edits on edits: redo the subtree holding them all, when asked
+            assert source is not None
+            top = self.skeleton.common_ancestor(top, source[1])
+            known = source[0]
+        if top > 0:
+            out.__dict__["_pose_source"] = (known, top)
 
     def frames(self, start: int, stop: int | None = None) -> "Motion":
         """Frames ``start`` .. ``stop - 1`` (Python slice semantics)."""
         sl = slice(start, stop)
         out = Motion(self.skeleton, self.fps, self.root_positions[sl], self.rotations[sl],
                      None if self.translations is None else self.translations[sl])
-        known = self.__dict__.get("pose")
-        if known is not None:  # FK is per frame: the slice of the known pose is the pose of the slice
+        known = self._known_pose()
+        source = self.__dict__.get("_pose_source")
+        # FK is per frame: the slice of the known pose is the pose of the slice
+        if known is not None:
             out.__dict__["pose"] = Pose(known.positions[sl], known.rotations[sl])
+        elif source is not None:  # a limb edit not yet solved: solve it on the slice only, when asked
+            out.__dict__["_pose_source"] = (Pose(source[0].positions[sl], source[0].rotations[sl]), source[1])
         return out
+
+    def _known_pose(self) -> Pose | None:
+        """:attr:`pose` if it is computed (here or on the motion whose copy this is), else ``None``."""
+        known = self.__dict__.get("pose")
+        same = self.__dict__.get("_pose_of")
+        if known is None and same is not None:
+            known = same.__dict__.get("pose")
+        return known
 
     def __getitem__(self, sl: slice) -> "Motion":
         if not isinstance(sl, slice) or sl.step not in (None, 1):

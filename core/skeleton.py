@@ -76,6 +76,23 @@ class Skeleton:
     def children(self, j: int) -> list[int]:
         return [int(c) for c in np.flatnonzero(self.parents == j)]
 
+    def subtree(self, j: int) -> np.ndarray:
+        """Joint ``j`` and its descendants, ``(n,)`` in topological order (``j`` first)."""
+        inside = np.zeros(self.n_joints, dtype=bool)
+        inside[j] = True
+        for k in range(j + 1, self.n_joints):
+            inside[k] = inside[self.parents[k]]
+        return np.flatnonzero(inside)
+
+    def common_ancestor(self, a: int, b: int) -> int:
+        """The deepest joint that is ``a`` or an ancestor of it and ``b`` or an ancestor of it."""
+        while a != b:
+            if a > b:  # topological order: a parent has a smaller index than its children
+                a = int(self.parents[a])
+            else:
+                b = int(self.parents[b])
+        return a
+
     def depth_levels(self) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
         """``(joints, their parents)`` per tree depth 1, 2, ... (the root, depth 0, is left out); cached."""
         levels = self.__dict__.get("_depth_levels")

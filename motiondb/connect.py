@@ -20,6 +20,9 @@ from .errors import DBError
 PG_LOCK_KEY = 0x7432614D
 #: Seconds an SQLite connection waits for another process's write lock.
 SQLITE_BUSY_TIMEOUT = 60.0
+#: SQLite page cache per connection, KiB (the default is 2 MiB): a search at 100k clips touches the
+#: rows of ~300 matching clips spread over the file; with them cached it takes a third less CPU.
+SQLITE_CACHE_KIB = 32768
 #: Seconds a PostgreSQL connection attempt may take.
 PG_CONNECT_TIMEOUT = 10
 
@@ -88,6 +91,7 @@ def _sqlite_transactions(engine: Engine) -> None:
         dbapi_conn.isolation_level = None
         cur = dbapi_conn.cursor()
         cur.execute("PRAGMA foreign_keys = ON")
+        cur.execute(f"PRAGMA cache_size = -{SQLITE_CACHE_KIB}")
         cur.close()
 
     @event.listens_for(engine, "begin")

@@ -5,14 +5,13 @@ from collections.abc import Iterator
 from datetime import timezone
 from typing import Any, TypeVar
 
-from sqlalchemy import BindParameter, bindparam, select
-from sqlalchemy.orm import Session
+from sqlalchemy import BindParameter, Connection, bindparam, select
 
 from text2anim.core.skeleton import Skeleton
 
 from .blobs import skeleton_from_json
 from .errors import DBError
-from .schema import Character, Clip, ClipObject, ClipVerb, Contact, ObjectRow, SkeletonRow, Verb
+from . import schema as tb
 from .types import ClipInfo
 
 #: Clip ids per ``IN (...)`` query.
@@ -33,11 +32,11 @@ class SkeletonCache:
     def __init__(self) -> None:
         self._by_id: dict[int, Skeleton] = {}
 
-    def get(self, s: Session, skeleton_id: int) -> Skeleton:
+    def get(self, s: Connection, skeleton_id: int) -> Skeleton:
         """The skeleton of row ``skeleton_id``, read in session ``s`` the first time."""
         skel = self._by_id.get(skeleton_id)
         if skel is None:
-            definition = s.scalar(select(SkeletonRow.definition).where(SkeletonRow.id == skeleton_id))
+            definition = s.scalar(select(tb.skeletons.c.definition).where(tb.skeletons.c.id == skeleton_id))
             if definition is None:
                 raise DBError(f"skeleton {skeleton_id} is missing from the database")
             skel = skeleton_from_json(definition)
@@ -46,27 +45,28 @@ class SkeletonCache:
 
 
 _IDS: BindParameter[list[int]] = bindparam("ids", expanding=True)
+_CL, _CH, _SK, _VB, _CV = tb.clips.c, tb.characters.c, tb.skeletons.c, tb.verbs.c, tb.clip_verbs.c
+_OB, _CO, _CT = tb.objects.c, tb.clip_objects.c, tb.contacts.c
 _INFO_CLIPS = (
-    select(Clip.id, Clip.name, Character.name.label("character"), Clip.fps, Clip.frames, Clip.duration,
-           Clip.core_begin, Clip.core_end, Clip.body_part, Clip.cyclic, Clip.source, Clip.created,
-           Clip.start_posture, Clip.end_posture, SkeletonRow.n_joints)
-    .join(Character, Character.id == Clip.character_id)
-    .join(SkeletonRow, SkeletonRow.id == Clip.skeleton_id)
-    .where(Clip.id.in_(_IDS))
+    select(_CL.id, _CL.name, _CH.name.label("character"), _CL.fps, _CL.frames, _CL.duration,
+           _CL.core_begin, _CL.core_end, _CL.body_part, _CL.cyclic, _CL.source, _CL.created,
+           _CL.start_posture, _CL.end_posture, _SK.n_joints)
+    .join(tb.characters, _CH.id == _CL.character_id)
+    .join(tb.skeletons, _SK.id == _CL.skeleton_id)
+    .where(_CL.id.in_(_IDS))
 )
-_INFO_VERBS = (select(ClipVerb.clip_id, Verb.lemma).join(Verb, Verb.id == ClipVerb.verb_id)
-               .where(ClipVerb.clip_id.in_(_IDS)).order_by(ClipVerb.clip_id, ClipVerb.position))
-_INFO_OBJECTS = (select(ClipObject.clip_id, ObjectRow.name).join(ObjectRow, ObjectRow.id == ClipObject.object_id)
-                 .where(ClipObject.clip_id.in_(_IDS)).order_by(ClipObject.clip_id, ClipObject.position))
-_INFO_CONTACTS = (select(Contact.clip_id, Contact.side, Contact.start_frame, Contact.stop_frame)
-                  .where(Contact.clip_id.in_(_IDS)).order_by(Contact.clip_id, Contact.start_frame))
+_INFO_VERBS = (select(_CV.clip_id, _VB.lemma).join(tb.verbs, _VB.id == _CV.verb_id)
+               .where(_CV.clip_id.in_(_IDS)).order_by(_CV.clip_id, _CV.position))
+_INFO_OBJECTS = (select(_CO.clip_id, _OB.name).join(tb.objects, _OB.id == _CO.object_id)
+                 .where(_CO.clip_id.in_(_IDS)).order_by(_CO.clip_id, _CO.position))
+_INFO_CONTACTS = (select(_CT.clip_id, _CT.side, _CT.start_frame, _CT.stop_frame)
+                  .where(_CT.clip_id.in_(_IDS)).order_by(_CT.clip_id, _CT.start_frame))
 
 
-def clip_infos(s: Session, ids: list[int]) -> list[ClipInfo]:
+def clip_infos(s: Connection, ids: list[int]) -> list[ClipInfo]:
     """ClipInfo for clip ids, in that order (metadata, verbs, objects, contacts; never frame data).
 
-    Plain column queries (four per 500 clips), not ORM objects: this is the
-    hot path of every search.
+    Plain column queries, four per 500 clips.
     """
     if not ids:
         return []

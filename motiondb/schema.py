@@ -1,4 +1,4 @@
-"""The database schema (SQLAlchemy 2.x ORM models) and its version.
+"""The database schema (SQLAlchemy Core tables) and its version.
 
 Tables (schema version :data:`SCHEMA_VERSION`)::
 
@@ -54,6 +54,11 @@ older database in place, in one transaction, under the writers' lock):
 Deleting a clip deletes its frames, verb/object links and contacts (ON DELETE
 CASCADE); verbs, objects, characters and skeletons no clip uses any more are
 removed with it.
+
+The tables are SQLAlchemy Core :class:`~sqlalchemy.Table` objects (``clips.c.name``), not ORM
+classes: every read and write is a plain statement, and a run never imports ``sqlalchemy.orm``
+(a tenth of a second of a command's start). Databases made by the earlier ORM models have the same
+tables, columns, constraints and index names.
 """
 from __future__ import annotations
 
@@ -62,21 +67,23 @@ from datetime import datetime, timezone
 from sqlalchemy import (
     Boolean,
     CheckConstraint,
+    Column,
     DateTime,
     Float,
     ForeignKey,
     Index,
     Integer,
     LargeBinary,
+    MetaData,
     String,
+    Table,
     Text,
     UniqueConstraint,
 )
-from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, relationship
 
 from .types import DEFAULT_POSTURE
 
-#: Bumped whenever a table or column changes meaning; see :class:`SchemaVersion` and the
+#: Bumped whenever a table or column changes meaning; see :data:`schema_version` and the
 #: migrations in the module docstring.
 SCHEMA_VERSION = 2
 #: The oldest schema version :meth:`motiondb.store.MotionDB.open` can migrate from.
@@ -91,148 +98,108 @@ def utcnow() -> datetime:
     return datetime.now(timezone.utc)
 
 
-class Base(DeclarativeBase):
-    pass
+metadata = MetaData()
 
+#: One row (``id = 1``): the schema version and which built-in library was seeded.
+#: ``builtin_library`` is NULL until the built-in clips have been stored (the library's
+#: version string, or ``"1"`` when it has none).
+schema_version = Table(
+    "schema_version", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("version", Integer, nullable=False),
+    Column("builtin_library", String(64), nullable=True),
+    Column("created", DateTime(timezone=True), nullable=False, default=utcnow),
+    Column("updated", DateTime(timezone=True), nullable=False, default=utcnow),
+)
 
-class SchemaVersion(Base):
-    """One row (``id = 1``): the schema version and which built-in library was seeded.
+skeletons = Table(
+    "skeletons", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("fingerprint", String(64), nullable=False, unique=True),
+    Column("n_joints", Integer, nullable=False),
+    Column("definition", Text, nullable=False),
+)
 
-    ``builtin_library`` is NULL until the built-in clips have been stored (the
-    library's version string, or ``"1"`` when it has none).
-    """
+characters = Table(
+    "characters", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("name", String(200), nullable=False, unique=True),
+    Column("skeleton_id", Integer, ForeignKey("skeletons.id"), nullable=False),
+)
 
-    __tablename__ = "schema_version"
-
-    id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    version: Mapped[int] = mapped_column(Integer, nullable=False)
-    builtin_library: Mapped[str | None] = mapped_column(String(64), nullable=True)
-    created: Mapped[datetime] = mapped_column(DateTime(timezone=True), nullable=False, default=utcnow)
-    updated: Mapped[datetime] = mapped_column(DateTime(timezone=True), nullable=False, default=utcnow)
-
-
-class SkeletonRow(Base):
-    __tablename__ = "skeletons"
-
-    id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    fingerprint: Mapped[str] = mapped_column(String(64), nullable=False, unique=True)
-    n_joints: Mapped[int] = mapped_column(Integer, nullable=False)
-    definition: Mapped[str] = mapped_column(Text, nullable=False)
-
-
-class Character(Base):
-    __tablename__ = "characters"
-
-    id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    name: Mapped[str] = mapped_column(String(200), nullable=False, unique=True)
-    skeleton_id: Mapped[int] = mapped_column(ForeignKey("skeletons.id"), nullable=False)
-
-
-class Clip(Base):
-    __tablename__ = "clips"
-    __table_args__ = (
-        CheckConstraint("fps > 0", name="ck_clips_fps"),
-        CheckConstraint("frames > 0", name="ck_clips_frames"),
-        CheckConstraint("core_begin >= 0 AND core_begin < core_end", name="ck_clips_core"),
-        Index("ix_clips_character", "character_id"),
-    )
-
-    id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    name: Mapped[str] = mapped_column(String(200), nullable=False, unique=True)
-    character_id: Mapped[int] = mapped_column(ForeignKey("characters.id"), nullable=False)
-    skeleton_id: Mapped[int] = mapped_column(ForeignKey("skeletons.id"), nullable=False)
-    fps: Mapped[float] = mapped_column(Float, nullable=False)
-    frames: Mapped[int] = mapped_column(Integer, nullable=False)
-    duration: Mapped[float] = mapped_column(Float, nullable=False)
-    core_begin: Mapped[float] = mapped_column(Float, nullable=False)
-    core_end: Mapped[float] = mapped_column(Float, nullable=False)
-    body_part: Mapped[str | None] = mapped_column(String(32), nullable=True)
-    cyclic: Mapped[bool] = mapped_column(Boolean, nullable=False, default=False)
-    source: Mapped[str] = mapped_column(Text, nullable=False, default="")
-    created: Mapped[datetime] = mapped_column(DateTime(timezone=True), nullable=False, default=utcnow)
+clips = Table(
+    "clips", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("name", String(200), nullable=False, unique=True),
+    Column("character_id", Integer, ForeignKey("characters.id"), nullable=False),
+    Column("skeleton_id", Integer, ForeignKey("skeletons.id"), nullable=False),
+    Column("fps", Float, nullable=False),
+    Column("frames", Integer, nullable=False),
+    Column("duration", Float, nullable=False),
+    Column("core_begin", Float, nullable=False),
+    Column("core_end", Float, nullable=False),
+    Column("body_part", String(32), nullable=True),
+    Column("cyclic", Boolean, nullable=False, default=False),
+    Column("source", Text, nullable=False, default=""),
+    Column("created", DateTime(timezone=True), nullable=False, default=utcnow),
     # schema version 2
-    start_posture: Mapped[str] = mapped_column(String(16), nullable=False, default=DEFAULT_POSTURE,
-                                               server_default=DEFAULT_POSTURE)
-    end_posture: Mapped[str] = mapped_column(String(16), nullable=False, default=DEFAULT_POSTURE,
-                                             server_default=DEFAULT_POSTURE)
+    Column("start_posture", String(16), nullable=False, default=DEFAULT_POSTURE, server_default=DEFAULT_POSTURE),
+    Column("end_posture", String(16), nullable=False, default=DEFAULT_POSTURE, server_default=DEFAULT_POSTURE),
+    CheckConstraint("fps > 0", name="ck_clips_fps"),
+    CheckConstraint("frames > 0", name="ck_clips_frames"),
+    CheckConstraint("core_begin >= 0 AND core_begin < core_end", name="ck_clips_core"),
+    Index("ix_clips_character", "character_id"),
+)
 
-    character: Mapped[Character] = relationship(lazy="joined", innerjoin=True)
-    verb_links: Mapped[list["ClipVerb"]] = relationship(
-        order_by=lambda: ClipVerb.position, lazy="selectin", cascade="all, delete-orphan", passive_deletes=True)
-    object_links: Mapped[list["ClipObject"]] = relationship(
-        order_by=lambda: ClipObject.position, lazy="selectin", cascade="all, delete-orphan", passive_deletes=True)
-    contacts: Mapped[list["Contact"]] = relationship(
-        order_by=lambda: [Contact.side, Contact.start_frame], lazy="selectin", cascade="all, delete-orphan",
-        passive_deletes=True)
-    # Frame data is never loaded through the clip: lazy="raise" turns an accidental read into an error.
-    frame_data: Mapped["ClipFrames"] = relationship(
-        lazy="raise", uselist=False, cascade="all, delete-orphan", passive_deletes=True)
+#: The frame data of one clip (see :mod:`motiondb.blobs`); never read by listing or searching.
+clip_frames = Table(
+    "clip_frames", metadata,
+    Column("clip_id", Integer, ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True),
+    Column("encoding", String(32), nullable=False),
+    Column("data", LargeBinary, nullable=False),
+)
 
+verbs = Table(
+    "verbs", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("lemma", String(100), nullable=False, unique=True),
+    Column("reading", String(200), nullable=False, index=True),
+)
 
-class ClipFrames(Base):
-    """The frame data of one clip (see :mod:`motiondb.blobs`)."""
+clip_verbs = Table(
+    "clip_verbs", metadata,
+    Column("clip_id", Integer, ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True),
+    Column("verb_id", Integer, ForeignKey("verbs.id"), primary_key=True),
+    Column("position", Integer, nullable=False),
+    Column("is_primary", Boolean, nullable=False),
+    UniqueConstraint("clip_id", "position", name="uq_clip_verbs_position"),
+    Index("ix_clip_verbs_verb", "verb_id", "clip_id"),
+)
 
-    __tablename__ = "clip_frames"
+objects = Table(
+    "objects", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("name", String(100), nullable=False, unique=True),
+    Column("reading", String(200), nullable=False, index=True),
+)
 
-    clip_id: Mapped[int] = mapped_column(ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True)
-    encoding: Mapped[str] = mapped_column(String(32), nullable=False)
-    data: Mapped[bytes] = mapped_column(LargeBinary, nullable=False)
+clip_objects = Table(
+    "clip_objects", metadata,
+    Column("clip_id", Integer, ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True),
+    Column("object_id", Integer, ForeignKey("objects.id"), primary_key=True),
+    Column("position", Integer, nullable=False),
+    Index("ix_clip_objects_object", "object_id", "clip_id"),
+)
 
-
-class Verb(Base):
-    __tablename__ = "verbs"
-
-    id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    lemma: Mapped[str] = mapped_column(String(100), nullable=False, unique=True)
-    reading: Mapped[str] = mapped_column(String(200), nullable=False, index=True)
-
-
-class ClipVerb(Base):
-    __tablename__ = "clip_verbs"
-    __table_args__ = (
-        UniqueConstraint("clip_id", "position", name="uq_clip_verbs_position"),
-        Index("ix_clip_verbs_verb", "verb_id", "clip_id"),
-    )
-
-    clip_id: Mapped[int] = mapped_column(ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True)
-    verb_id: Mapped[int] = mapped_column(ForeignKey("verbs.id"), primary_key=True)
-    position: Mapped[int] = mapped_column(Integer, nullable=False)
-    is_primary: Mapped[bool] = mapped_column(Boolean, nullable=False)
-
-    verb: Mapped[Verb] = relationship(lazy="joined", innerjoin=True)
-
-
-class ObjectRow(Base):
-    __tablename__ = "objects"
-
-    id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    name: Mapped[str] = mapped_column(String(100), nullable=False, unique=True)
-    reading: Mapped[str] = mapped_column(String(200), nullable=False, index=True)
-
-
-class ClipObject(Base):
-    __tablename__ = "clip_objects"
-    __table_args__ = (Index("ix_clip_objects_object", "object_id", "clip_id"),)
-
-    clip_id: Mapped[int] = mapped_column(ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True)
-    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id"), primary_key=True)
-    position: Mapped[int] = mapped_column(Integer, nullable=False)
-
-    object: Mapped[ObjectRow] = relationship(lazy="joined", innerjoin=True)
-
-
-class Contact(Base):
-    """A foot-contact interval: frames ``[start_frame, stop_frame)`` of one foot."""
-
-    __tablename__ = "contacts"
-    __table_args__ = (
-        CheckConstraint("side IN ('left', 'right')", name="ck_contacts_side"),
-        CheckConstraint("start_frame >= 0 AND start_frame < stop_frame", name="ck_contacts_range"),
-        Index("ix_contacts_clip", "clip_id"),
-    )
-
-    id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    clip_id: Mapped[int] = mapped_column(ForeignKey("clips.id", ondelete="CASCADE"), nullable=False)
-    side: Mapped[str] = mapped_column(String(8), nullable=False)
-    start_frame: Mapped[int] = mapped_column(Integer, nullable=False)
-    stop_frame: Mapped[int] = mapped_column(Integer, nullable=False)
+#: A foot-contact interval: frames ``[start_frame, stop_frame)`` of one foot.
+contacts = Table(
+    "contacts", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("clip_id", Integer, ForeignKey("clips.id", ondelete="CASCADE"), nullable=False),
+    Column("side", String(8), nullable=False),
+    Column("start_frame", Integer, nullable=False),
+    Column("stop_frame", Integer, nullable=False),
+    CheckConstraint("side IN ('left', 'right')", name="ck_contacts_side"),
+    CheckConstraint("start_frame >= 0 AND start_frame < stop_frame", name="ck_contacts_range"),
+    Index("ix_contacts_clip", "clip_id"),
+)

@@ -41,16 +41,16 @@ their verbs, objects and contacts gathered in the same query.
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass
 from datetime import timezone
 from functools import lru_cache
 from typing import Any
 
-from sqlalchemy import BindParameter, Integer, and_, bindparam, case, func, or_, select
-from sqlalchemy.orm import Session
+from sqlalchemy import BindParameter, Connection, Integer, and_, bindparam, case, func, or_, select
 
 from .readings import normalize, reading
-from .schema import Character, Clip, ClipObject, ClipVerb, Contact, ObjectRow, SkeletonRow, Verb
+from . import schema as tb
 from .types import ClipInfo
 
 #: The mirror side of each sided body part.
@@ -69,13 +69,13 @@ class VerbMatch:
         return self.exact + self.by_reading
 
 
-_MATCH_VERBS = (select(Verb.id, Verb.lemma)
-                .where(or_(Verb.lemma == bindparam("lemma"), Verb.reading == bindparam("reading")))
-                .order_by(Verb.id))
-_CHARACTER_ID = select(Character.id).where(Character.name == bindparam("name"))
+_MATCH_VERBS = (select(tb.verbs.c.id, tb.verbs.c.lemma)
+                .where(or_(tb.verbs.c.lemma == bindparam("lemma"), tb.verbs.c.reading == bindparam("reading")))
+                .order_by(tb.verbs.c.id))
+_CHARACTER_ID = select(tb.characters.c.id).where(tb.characters.c.name == bindparam("name"))
 
 
-def match_verbs(session: Session, verb: str) -> VerbMatch:
+def match_verbs(session: Connection, verb: str) -> VerbMatch:
     """The verbs whose lemma or reading equals ``verb``'s."""
     lemma = normalize(verb)
     rows = session.execute(_MATCH_VERBS, {"lemma": lemma, "reading": reading(lemma)}).all()
@@ -83,12 +83,12 @@ def match_verbs(session: Session, verb: str) -> VerbMatch:
     return VerbMatch(exact, tuple(i for i, lem in rows if lem != lemma))
 
 
-def binary_order(session: Session, column):
+def binary_order(session: Connection, column):
     """``column`` for ORDER BY in code-point order on every backend (PostgreSQL sorts by locale otherwise)."""
-    return column.collate("C") if session.get_bind().dialect.name == "postgresql" else column
+    return column.collate("C") if session.dialect.name == "postgresql" else column
 
 
-def character_id(session: Session, name: str) -> int | None:
+def character_id(session: Connection, name: str) -> int | None:
     return session.scalar(_CHARACTER_ID, {"name": name})
 
 
@@ -100,8 +100,8 @@ def _aggregate(postgres: bool, *columns):
     return func.json_group_array(func.json_array(*columns))
 
 
-_CL, _CH, _SK, _VB, _CV = Clip.__table__, Character.__table__, SkeletonRow.__table__, Verb.__table__, ClipVerb.__table__
-_OB, _CO, _CT = ObjectRow.__table__, ClipObject.__table__, Contact.__table__
+_CL, _CH, _SK, _VB, _CV = tb.clips, tb.characters, tb.skeletons, tb.verbs, tb.clip_verbs
+_OB, _CO, _CT = tb.objects, tb.clip_objects, tb.contacts
 
 
 @lru_cache(maxsize=256)
@@ -113,8 +113,7 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
     query, and the verbs, objects and contacts of those hits only are aggregated
     as JSON arrays by the outer one. The object, preferred character and start posture
     are always bound (``NULL`` when not asked: their tiers are then the same for every
-    clip), so a process compiles few variants. Built on the tables, not the ORM classes
-    (cheaper to compile).
+    clip), so a process compiles few variants.
     """
     lemma: BindParameter[str] = bindparam("lemma")
     exact = _VB.c.lemma == lemma
@@ -190,14 +189,14 @@ def _info(r) -> ClipInfo:
     )
 
 
-def find(session: Session, verb: str, *, object: str | None = None, character: str | None = None,
+def find(session: Connection, verb: str, *, object: str | None = None, character: str | None = None,
          body_part: str | None = None, prefer_character: str | None = None,
          prefer_start_posture: str | None = None, limit: int | None = None) -> list[ClipInfo]:
     """The matching clips' :class:`ClipInfo`, best first, in one SQL statement (names as the user wrote them)."""
     lemma = normalize(verb)
     obj = normalize(object) if object is not None else ""
     stmt = _search_statement(body_part, character is not None, limit is not None,
-                             session.get_bind().dialect.name == "postgresql")
+                             session.dialect.name == "postgresql")
     params: dict[str, Any] = {"lemma": lemma, "reading": reading(lemma), "object": obj or None,
                               "object_reading": reading(obj) if obj else None,
                               "prefer": normalize(prefer_character) if prefer_character else None,
@@ -207,3 +206,23 @@ def find(session: Session, verb: str, *, object: str | None = None, character: s
     if limit is not None:
         params["limit"] = int(limit)
     return [_info(r) for r in session.execute(stmt, params)]
+
+
+def prefer(hits: Sequence[ClipInfo], *, body_part: str | None = None, character: str | None = None,
+           start_posture: str | None = None) -> list[ClipInfo]:
+    """``hits`` as :func:`find` ranks them for ``character`` and ``start_posture``, from hits it found
+    for the same verb, object, character filter and ``body_part`` without those two preferences.
+
+    Without the preferences their tiers (1 and 3 in the module docstring) are equal for every clip,
+    so ``hits`` are in the order of the other keys; a stable sort on (character, body part, posture)
+    puts them first, as the query's ``ORDER BY`` does.
+    """
+    if character is None and start_posture is None:
+        return list(hits)
+    preferred = normalize(character) if character else None
+    mirror = MIRROR_PART.get(body_part) if body_part else None
+
+    def tiers(c: ClipInfo) -> tuple[int, int, int]:
+        part = 0 if body_part is None or c.body_part == body_part else 1 if mirror and c.body_part == mirror else 2
+        return (c.character != preferred, part, c.start_posture != start_posture)
+    return sorted(hits, key=tiers)

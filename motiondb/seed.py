@@ -7,16 +7,13 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
-from sqlalchemy import select
-from sqlalchemy.orm import Session
+from sqlalchemy import Connection, select
 
 from .errors import ClipValidationError, DBError, SeedWarning
 from .reads import SkeletonCache
-from .records import prepare_record
-from .migrate import version_row
-from .schema import Clip, utcnow
+from .migrate import set_version
+from . import schema as tb
 from .types import ClipRecord
-from .writes import delete_clips, store_clips
 
 #: ``source`` of the built-in library's clips (``builtin`` or ``builtin:<file>``).
 BUILTIN_SOURCE = "builtin"
@@ -83,31 +80,32 @@ def seed_source(seed) -> SeedSource | None:
     return SeedSource(files_tag(Path(next(iter(spec.submodule_search_locations)))), _builtin_records, builtin=True)
 
 
-def fill(s: Session, source: SeedSource, library: str | None, url: str, skeletons: SkeletonCache) -> None:
+def fill(s: Connection, source: SeedSource, library: str | None, url: str, skeletons: SkeletonCache) -> None:
     """Store ``source``'s clips in database ``url`` (session ``s``, under the write lock).
 
     ``library`` is the tag seeded before (``None`` for none): the old built-in
     clips go first. Clips whose names are taken are kept as they are (a
     :class:`SeedWarning` lists them); the tag is recorded in ``schema_version``.
     """
+    from .records import prepare_record
+    from .writes import delete_clips, store_clips
+
     try:
         prepared = [prepare_record(r) for r in source.records()]
     except ClipValidationError as exc:
         what = "the built-in motion library" if source.builtin else "the seed records"
         raise DBError(f"cannot fill {url} with {what}: {exc}") from None
     if library is not None:  # a newer built-in library: replace the old built-in clips
-        old = [n for n, src in s.execute(select(Clip.name, Clip.source))
+        old = [n for n, src in s.execute(select(tb.clips.c.name, tb.clips.c.source))
                if src == BUILTIN_SOURCE or src.startswith(BUILTIN_SOURCE + ":")]
         delete_clips(s, old)
     before = {p.name for p in prepared}
     stored = store_clips(s, prepared, skeletons, conflicts="skip")
     if len(stored) < len(before):
-        kept = set(s.scalars(select(Clip.name).where(Clip.id.in_(stored)))) if stored else set()
+        kept = set(s.scalars(select(tb.clips.c.name).where(tb.clips.c.id.in_(stored)))) if stored else set()
         skipped = sorted(before - kept)
         warnings.warn(SeedWarning(
             f"{len(skipped)} built-in clip(s) not stored because clips of those names or a character "
             f"'default' of another skeleton are already in {url}: {', '.join(skipped[:8])}"
             f"{'…' if len(skipped) > 8 else ''}"), stacklevel=4)
-    row = version_row(s)
-    row.builtin_library = source.tag
-    row.updated = utcnow()
+    set_version(s, builtin_library=source.tag)

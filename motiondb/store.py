@@ -23,14 +23,15 @@ first (so a clip can follow one that ends seated, crouched or lying).
 from __future__ import annotations
 
 import os
+from collections import OrderedDict
 from collections.abc import Callable, Iterable, Sequence
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from sqlalchemy import case, func, select, text
+from sqlalchemy import Connection, case, func, select, text
 from sqlalchemy import exc as sa_exc
 from sqlalchemy.engine import Engine, make_url
-from sqlalchemy.orm import Session
 
 from text2anim.core.bodyparts import GROUPS
 from text2anim.core.motion import Motion
@@ -38,19 +39,34 @@ from text2anim.core.skeleton import Skeleton
 
 from . import search as _search
 from .blobs import decode_frames
-from .bvh_import import ImportOptions, Notify, Progress, read_clips
 from .connect import PG_LOCK_KEY, describe_error, first_line, make_engine
 from .errors import DBError, UnknownCharacterError, UnknownClipError, UnknownVerbError
 from .location import resolve_url
 from .migrate import create_schema, migrate, require_schema, schema_state
-from .postures import classify_posture  # noqa: F401  (re-exported: it was defined here)
 from .reads import SkeletonCache, clip_infos
 from .readings import nearest, normalize
-from .records import prepare_record
-from .schema import SCHEMA_VERSION, Character, Clip, ClipFrames, ClipVerb, Verb
-from .seed import fill, seed_source, seeding_needed
+from . import schema as tb
+from .schema import SCHEMA_VERSION
+from .seed import seed_source, seeding_needed
 from .types import POSTURES, ClipInfo, ClipRecord, VerbInfo
-from .writes import delete_clips, store_clips
+
+if TYPE_CHECKING:  # BVH import brings scipy (retargeting): loaded by import_bvh only
+    from .bvh_import import ImportOptions, Notify, Progress
+
+# Writing (records, contacts, writes, seeding) is imported by the methods that write: a command that
+# only reads (text2anim plan) does not load it.
+
+
+def __getattr__(name: str):
+    if name == "classify_posture":  # re-exported: it was defined here
+        from .postures import classify_posture
+
+        return classify_posture
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+#: Decoded clips a :class:`MotionDB` keeps (least recently loaded dropped first).
+LOADED_CLIPS = 32
 
 
 # ----------------------------------------------------------------- the database
@@ -69,6 +85,7 @@ class MotionDB:
         self._writer = engine.execution_options(t2a_write=True)
         self._skeletons = SkeletonCache()
         self._memo: dict | None = None  # search answers inside memoised(), else None
+        self._loaded: OrderedDict[str, tuple[tuple, Motion]] = OrderedDict()  # name -> (row key, motion)
 
     # ------------------------------------------------------------- open/close
     @classmethod
@@ -167,15 +184,14 @@ class MotionDB:
 
     @contextmanager
     def _session(self, write: bool = False):
-        """A session in one transaction, committed on success; writers serialised."""
+        """A connection in one transaction, committed on success; writers serialised."""
         if write and self._memo:
             self._memo.clear()
         with self._errors():
-            with Session(self._writer if write else self.engine, expire_on_commit=False) as session:
-                with session.begin():
-                    if write and self.backend == "postgresql":
-                        session.execute(text("SELECT pg_advisory_xact_lock(:k)"), {"k": PG_LOCK_KEY})
-                    yield session
+            with (self._writer if write else self.engine).begin() as conn:
+                if write and self.backend == "postgresql":
+                    conn.execute(text("SELECT pg_advisory_xact_lock(:k)"), {"k": PG_LOCK_KEY})
+                yield conn
 
     # ------------------------------------------------------- schema, seeding
     def _prepare(self, seed) -> None:
@@ -185,6 +201,8 @@ class MotionDB:
             version, library = schema_state(s, self.url)
         if version == SCHEMA_VERSION and not seeding_needed(library, source):
             return
+        from .seed import fill
+
         with self._session(write=True) as s:
             # again, under the write lock: another process may have done it
             version, library = schema_state(s, self.url)
@@ -204,6 +222,9 @@ class MotionDB:
         ``replace`` overwrites clips of the same names; otherwise an existing
         name raises :class:`ClipExistsError` and nothing is stored.
         """
+        from .records import prepare_record
+        from .writes import store_clips
+
         prepared = [prepare_record(r) for r in records]
         with self._session(write=True) as s:
             require_schema(s, self.url)
@@ -221,6 +242,9 @@ class MotionDB:
         ``progress(done, total, path)`` is called before each file and once at
         the end; ``notify(path, message)`` says what was done to a file.
         """
+        from .bvh_import import read_clips
+        from .writes import store_clips
+
         clips = read_clips(paths, options, progress, skeleton=self.character_skeleton(options.character),
                            notify=notify)
         with self._session(write=True) as s:
@@ -233,7 +257,8 @@ class MotionDB:
     def character_skeleton(self, character: str) -> Skeleton | None:
         """The skeleton every clip of ``character`` is stored on; ``None`` for a character with no clips."""
         with self._session() as s:
-            sid = s.scalar(select(Character.skeleton_id).where(Character.name == normalize(character)))
+            characters = tb.characters.c
+            sid = s.scalar(select(characters.skeleton_id).where(characters.name == normalize(character)))
             return None if sid is None else self._skeletons.get(s, sid)
 
     # ----------------------------------------------------------------- remove
@@ -242,10 +267,12 @@ class MotionDB:
 
         Verbs, objects, characters and skeletons no remaining clip uses go with them.
         """
+        from .writes import delete_clips
+
         names = [names] if isinstance(names, str) else list(names)
         with self._session(write=True) as s:
             for n in names:
-                if s.scalar(select(Clip.id).where(Clip.name == normalize(n))) is None:
+                if s.scalar(select(tb.clips.c.id).where(tb.clips.c.name == normalize(n))) is None:
                     raise UnknownClipError(n, self._near_names(s, n))
             delete_clips(s, [normalize(n) for n in names])
 
@@ -278,29 +305,37 @@ class MotionDB:
             raise ValueError("limit must not be negative")
         if prefer_start_posture is not None and prefer_start_posture not in POSTURES:
             raise DBError(f"unknown posture {prefer_start_posture!r}; known: {', '.join(POSTURES)}")
-        key = (verb, object, character, body_part, prefer_character, limit, prefer_start_posture)
-        if self._memo is not None and key in self._memo:
-            return list(self._memo[key])
+        if self._memo is None:
+            return self._find(verb, object, character, body_part, prefer_character, limit, prefer_start_posture)
+        # memoised: one query per (verb, object, character, body part), ranked without the preferences;
+        # the preferred character and start posture are ranked here, as the query ranks them
+        key = (verb, object, character, body_part)
+        if key not in self._memo:
+            self._memo[key] = tuple(self._find(verb, object, character, body_part, None, None, None))
+        hits = _search.prefer(self._memo[key], body_part=body_part, character=prefer_character,
+                              start_posture=prefer_start_posture)
+        return hits if limit is None else hits[:limit]
+
+    def _find(self, verb: str, object: str | None, character: str | None, body_part: str | None,
+              prefer_character: str | None, limit: int | None, prefer_start_posture: str | None) -> list[ClipInfo]:
+        """:meth:`search` in the database (arguments checked)."""
         with self._session() as s:
             found = _search.find(s, verb, object=object, character=character, body_part=body_part,
                                  prefer_character=prefer_character, prefer_start_posture=prefer_start_posture,
                                  limit=limit)
             if found:
-                if self._memo is not None:
-                    self._memo[key] = tuple(found)
                 return found
             # nothing: say why when it is an unknown verb or character (these look-ups only run here)
             if not _search.match_verbs(s, verb).all:
                 raise self._unknown_verb(s, verb)
             if character is not None and _search.character_id(s, normalize(character)) is None:
                 raise UnknownCharacterError(character, self._character_names(s))
-        if self._memo is not None:
-            self._memo[key] = ()
         return []
 
-    def _unknown_verb(self, s: Session, verb: str) -> UnknownVerbError:
-        rows = s.execute(select(Verb.lemma, Verb.reading)
-                         .order_by(_search.binary_order(s, Verb.reading), _search.binary_order(s, Verb.lemma))).all()
+    def _unknown_verb(self, s: Connection, verb: str) -> UnknownVerbError:
+        verbs = tb.verbs.c
+        rows = s.execute(select(verbs.lemma, verbs.reading)
+                         .order_by(_search.binary_order(s, verbs.reading), _search.binary_order(s, verbs.lemma))).all()
         cands = {lemma: r for lemma, r in rows}
         near = nearest(verb, cands, n=5)
         return UnknownVerbError(verb, [(lemma, cands[lemma]) for lemma in near], n_verbs=len(cands))
@@ -309,12 +344,12 @@ class MotionDB:
     def clips(self, character: str | None = None) -> list[ClipInfo]:
         """Every clip (of one character when given), by name."""
         with self._session() as s:
-            stmt = select(Clip.id).order_by(_search.binary_order(s, Clip.name))
+            stmt = select(tb.clips.c.id).order_by(_search.binary_order(s, tb.clips.c.name))
             if character is not None:
                 cid = _search.character_id(s, normalize(character))
                 if cid is None:
                     raise UnknownCharacterError(character, self._character_names(s))
-                stmt = stmt.where(Clip.character_id == cid)
+                stmt = stmt.where(tb.clips.c.character_id == cid)
             return clip_infos(s, list(s.scalars(stmt)))
 
     def info(self, name: str) -> ClipInfo:
@@ -325,12 +360,13 @@ class MotionDB:
     def verbs(self) -> list[VerbInfo]:
         """Every verb with its reading and how many clips use it (by reading, then lemma)."""
         with self._session() as s:
-            primary = func.sum(case((ClipVerb.is_primary, 1), else_=0))
+            verbs, links = tb.verbs.c, tb.clip_verbs.c
+            primary = func.sum(case((links.is_primary, 1), else_=0))
             rows = s.execute(
-                select(Verb.lemma, Verb.reading, func.count(ClipVerb.clip_id), primary)
-                .join(ClipVerb, ClipVerb.verb_id == Verb.id)
-                .group_by(Verb.id, Verb.lemma, Verb.reading)
-                .order_by(_search.binary_order(s, Verb.reading), _search.binary_order(s, Verb.lemma))
+                select(verbs.lemma, verbs.reading, func.count(links.clip_id), primary)
+                .join(tb.clip_verbs, links.verb_id == verbs.id)
+                .group_by(verbs.id, verbs.lemma, verbs.reading)
+                .order_by(_search.binary_order(s, verbs.reading), _search.binary_order(s, verbs.lemma))
             ).all()
             return [VerbInfo(lemma, r, int(n), int(p or 0)) for lemma, r, n, p in rows]
 
@@ -341,14 +377,31 @@ class MotionDB:
 
     # ------------------------------------------------------------------ load
     def load(self, clip: ClipInfo | str) -> Motion:
-        """The frames of a clip (by :class:`ClipInfo` or name) as a :class:`synthesis.Motion`."""
+        """The frames of a clip (by :class:`ClipInfo` or name) as a :class:`synthesis.Motion`.
+
+        The last :data:`LOADED_CLIPS` clips loaded are kept decoded, with their forward kinematics
+        once asked: a clip loaded again while its row is the same (id, creation time, size; one
+        query checks it) is a copy of its frames whose pose is computed once for all copies.
+        """
         name = clip.name if isinstance(clip, ClipInfo) else clip
+        clips, frames = tb.clips.c, tb.clip_frames.c
         with self._session() as s:
-            cid = self._clip_id(s, name)
-            row = s.execute(select(Clip.name, Clip.fps, Clip.frames, Clip.skeleton_id).where(Clip.id == cid)).one()
-            enc, data = s.execute(select(ClipFrames.encoding, ClipFrames.data).where(ClipFrames.clip_id == cid)).one()
+            row = (s.execute(select(clips.id, clips.name, clips.fps, clips.frames, clips.skeleton_id, clips.created)
+                             .where(clips.name == normalize(name))).first() if isinstance(name, str) else None)
+            if row is None:
+                raise UnknownClipError(str(name), self._near_names(s, str(name)))
+            key = tuple(row)  # id, creation time, frames, fps, skeleton: a replaced clip differs
+            known = self._loaded.get(row.name)
+            if known is not None and known[0] == key:
+                self._loaded.move_to_end(row.name)
+                return known[1].copy_sharing_pose()
+            enc, data = s.execute(select(frames.encoding, frames.data).where(frames.clip_id == row.id)).one()
             skel = self._skeletons.get(s, row.skeleton_id)
-        return decode_frames(data, skel, row.fps, encoding=enc, frames=row.frames, clip=row.name)
+        motion = decode_frames(data, skel, row.fps, encoding=enc, frames=row.frames, clip=row.name)
+        self._loaded[row.name] = (key, motion)
+        while len(self._loaded) > LOADED_CLIPS:
+            self._loaded.popitem(last=False)
+        return motion.copy_sharing_pose()
 
     def record(self, name: str) -> ClipRecord:
         """A stored clip as a :class:`ClipRecord` (frames and metadata), e.g. to export or mirror it."""
@@ -359,17 +412,19 @@ class MotionDB:
                           end_posture=info.end_posture)
 
     # --------------------------------------------------------------- helpers
-    def _clip_id(self, s: Session, name: str) -> int:
-        cid = s.scalar(select(Clip.id).where(Clip.name == normalize(name))) if isinstance(name, str) else None
+    def _clip_id(self, s: Connection, name: str) -> int:
+        cid = (s.scalar(select(tb.clips.c.id).where(tb.clips.c.name == normalize(name)))
+               if isinstance(name, str) else None)
         if cid is None:
             raise UnknownClipError(str(name), self._near_names(s, str(name)))
         return cid
 
-    def _near_names(self, s: Session, name: str) -> list[str]:
+    def _near_names(self, s: Connection, name: str) -> list[str]:
         import difflib
 
-        names = list(s.scalars(select(Clip.name).order_by(_search.binary_order(s, Clip.name))))
+        names = list(s.scalars(select(tb.clips.c.name).order_by(_search.binary_order(s, tb.clips.c.name))))
         return difflib.get_close_matches(normalize(name), names, n=5, cutoff=0.5)
 
-    def _character_names(self, s: Session) -> list[str]:
-        return list(s.scalars(select(Character.name).order_by(_search.binary_order(s, Character.name))))
+    def _character_names(self, s: Connection) -> list[str]:
+        names = tb.characters.c.name
+        return list(s.scalars(select(names).order_by(_search.binary_order(s, names))))

@@ -5,31 +5,20 @@ a batch is all or nothing.
 """
 from __future__ import annotations
 
-from sqlalchemy import delete, exists, select
-from sqlalchemy.orm import Session
+from sqlalchemy import Connection, CursorResult, delete, exists, insert, select
 
 from text2anim.core.skeleton import Skeleton
 
+from . import schema as tb
+from .schema import utcnow
 from .blobs import ENCODING
 from .errors import ClipExistsError, ClipValidationError
 from .reads import SkeletonCache, chunks
 from .readings import reading
 from .records import PreparedClip
-from .schema import (
-    Character,
-    Clip,
-    ClipFrames,
-    ClipObject,
-    ClipVerb,
-    Contact,
-    ObjectRow,
-    SkeletonRow,
-    Verb,
-    utcnow,
-)
 
 
-def store_clips(s: Session, prepared: list[PreparedClip], cache: SkeletonCache, *, conflicts: str,
+def store_clips(s: Connection, prepared: list[PreparedClip], cache: SkeletonCache, *, conflicts: str,
                 where: dict[str, str] | None = None) -> list[int]:
     """Insert prepared clips in session ``s``; their ids, in order (skipped clips left out).
 
@@ -47,7 +36,7 @@ def store_clips(s: Session, prepared: list[PreparedClip], cache: SkeletonCache, 
         seen.add(p.name)
     existing: set[str] = set()
     for chunk in chunks([p.name for p in prepared]):
-        existing.update(s.scalars(select(Clip.name).where(Clip.name.in_(chunk))))
+        existing.update(s.scalars(select(tb.clips.c.name).where(tb.clips.c.name.in_(chunk))))
     if existing:
         if conflicts == "error":
             shown = sorted(existing)
@@ -61,18 +50,57 @@ def store_clips(s: Session, prepared: list[PreparedClip], cache: SkeletonCache, 
         else:
             prepared = [p for p in prepared if p.name not in existing]
 
-    characters: dict[str, Character] = {}
+    kept, clip_skeleton, clip_character = _place(s, prepared, cache, conflicts, where)
+    if not kept:
+        return []
+    verb_ids = _names(s, tb.verbs, "lemma", [v for p in kept for v in p.verbs])
+    object_ids = _names(s, tb.objects, "name", [o for p in kept for o in p.objects])
+    created = utcnow()
+    s.execute(insert(tb.clips), [
+        dict(name=p.name, character_id=clip_character[p.name], skeleton_id=clip_skeleton[p.name], fps=p.fps,
+             frames=p.frames, duration=p.duration, core_begin=p.core[0], core_end=p.core[1],
+             body_part=p.body_part, cyclic=p.cyclic, source=p.source, created=created,
+             start_posture=p.start_posture, end_posture=p.end_posture) for p in kept])
+    ids: dict[str, int] = {}
+    for chunk in chunks([p.name for p in kept]):
+        ids.update((n, i) for i, n in s.execute(select(tb.clips.c.id, tb.clips.c.name)
+                                                .where(tb.clips.c.name.in_(chunk))))
+    s.execute(insert(tb.clip_frames), [dict(clip_id=ids[p.name], encoding=ENCODING, data=p.blob) for p in kept])
+    s.execute(insert(tb.clip_verbs), [dict(clip_id=ids[p.name], verb_id=verb_ids[v], position=k, is_primary=k == 0)
+                                      for p in kept for k, v in enumerate(p.verbs)])
+    links = [dict(clip_id=ids[p.name], object_id=object_ids[o], position=k)
+             for p in kept for k, o in enumerate(p.objects)]
+    if links:
+        s.execute(insert(tb.clip_objects), links)
+    contacts = [dict(clip_id=ids[p.name], side=side, start_frame=a, stop_frame=b)
+                for p in kept for side, a, b in p.contacts]
+    if contacts:
+        s.execute(insert(tb.contacts), contacts)
+    return [ids[p.name] for p in kept]
+
+
+def _place(s: Connection, prepared: list[PreparedClip], cache: SkeletonCache, conflicts: str,
+           where: dict[str, str]) -> tuple[list[PreparedClip], dict[str, int], dict[str, int]]:
+    """The clips to store, with their skeleton and character ids (new skeletons and characters inserted).
+
+    A clip whose joint hierarchy is not its character's (the skeleton of the character's first
+    clip) raises :class:`ClipValidationError`, or is left out when ``conflicts`` is ``skip``.
+    """
+    sk, ch = tb.skeletons.c, tb.characters.c
+    characters: dict[str, tuple[int, int] | None] = {}  # name -> (id, skeleton id)
     char_skel: dict[str, Skeleton] = {}
-    skeletons: dict[str, SkeletonRow] = {}
-    verbs: dict[str, Verb] = {}
-    objects: dict[str, ObjectRow] = {}
-    keep = []
+    skeletons: dict[str, int] = {}  # fingerprint -> id
+    keep: list[PreparedClip] = []
+    clip_skeleton: dict[str, int] = {}  # clip name -> skeleton id
+    clip_character: dict[str, int] = {}  # clip name -> character id
     for p in prepared:
-        # the character's joint hierarchy (its skeleton: the first clip's) must match
-        ch = characters.get(p.character) or s.scalar(select(Character).where(Character.name == p.character))
-        if ch is not None:
+        if p.character not in characters:
+            row = s.execute(select(ch.id, ch.skeleton_id).where(ch.name == p.character)).first()
+            characters[p.character] = None if row is None else (row.id, row.skeleton_id)
+        known = characters[p.character]
+        if known is not None:
             if p.character not in char_skel:
-                char_skel[p.character] = cache.get(s, ch.skeleton_id)
+                char_skel[p.character] = cache.get(s, known[1])
             ref = char_skel[p.character]
             if not ref.same_hierarchy(p.skeleton):
                 if conflicts == "skip":
@@ -83,55 +111,53 @@ def store_clips(s: Session, prepared: list[PreparedClip], cache: SkeletonCache, 
                     f"character {p.character!r} ({ref.n_joints} joints); import it under another character "
                     "(--character NAME); nothing was stored")
         # the skeleton, stored once per fingerprint
-        srow = skeletons.get(p.fingerprint) or s.scalar(
-            select(SkeletonRow).where(SkeletonRow.fingerprint == p.fingerprint))
-        if srow is None:
-            srow = SkeletonRow(fingerprint=p.fingerprint, n_joints=p.skeleton.n_joints, definition=p.skeleton_def)
-            s.add(srow)
-            s.flush()
-        skeletons[p.fingerprint] = srow
-        if ch is None:
-            ch = Character(name=p.character, skeleton_id=srow.id)
-            s.add(ch)
-            s.flush()
+        sid = skeletons.get(p.fingerprint) or s.scalar(select(sk.id).where(sk.fingerprint == p.fingerprint))
+        if sid is None:
+            sid = _new_id(s.execute(insert(tb.skeletons).values(
+                fingerprint=p.fingerprint, n_joints=p.skeleton.n_joints, definition=p.skeleton_def)))
+        skeletons[p.fingerprint] = sid
+        if known is None:
+            cid = _new_id(s.execute(insert(tb.characters).values(name=p.character, skeleton_id=sid)))
+            characters[p.character] = known = (cid, sid)
             char_skel[p.character] = p.skeleton
-        characters[p.character] = ch
-        clip = Clip(name=p.name, character_id=ch.id, skeleton_id=srow.id, fps=p.fps, frames=p.frames,
-                    duration=p.duration, core_begin=p.core[0], core_end=p.core[1], body_part=p.body_part,
-                    cyclic=p.cyclic, source=p.source, created=utcnow(), start_posture=p.start_posture,
-                    end_posture=p.end_posture)
-        for k, lemma in enumerate(p.verbs):
-            v = verbs.get(lemma) or s.scalar(select(Verb).where(Verb.lemma == lemma))
-            if v is None:
-                v = Verb(lemma=lemma, reading=reading(lemma))
-                s.add(v)
-            verbs[lemma] = v
-            clip.verb_links.append(ClipVerb(verb=v, position=k, is_primary=(k == 0)))
-        for k, name in enumerate(p.objects):
-            o = objects.get(name) or s.scalar(select(ObjectRow).where(ObjectRow.name == name))
-            if o is None:
-                o = ObjectRow(name=name, reading=reading(name))
-                s.add(o)
-            objects[name] = o
-            clip.object_links.append(ClipObject(object=o, position=k))
-        clip.contacts = [Contact(side=side, start_frame=a, stop_frame=b) for side, a, b in p.contacts]
-        clip.frame_data = ClipFrames(encoding=ENCODING, data=p.blob)
-        s.add(clip)
-        keep.append(clip)
-    s.flush()
-    return [c.id for c in keep]
+        keep.append(p)
+        clip_skeleton[p.name], clip_character[p.name] = sid, known[0]
+    return keep, clip_skeleton, clip_character
 
 
-def delete_clips(s: Session, names: list[str]) -> None:
+def _new_id(result: CursorResult) -> int:
+    """The primary key of the row an INSERT added."""
+    key = result.inserted_primary_key
+    assert key is not None
+    return int(key[0])
+
+
+def _names(s: Connection, table, column: str, names: list[str]) -> dict[str, int]:
+    """Ids of the verbs or objects ``names`` (rows of ``table`` keyed by ``column``), the missing ones
+    inserted with their readings in order of first use."""
+    key = table.c[column]
+    wanted = list(dict.fromkeys(names))
+    ids: dict[str, int] = {}
+    for chunk in chunks(wanted):
+        ids.update((n, i) for i, n in s.execute(select(table.c.id, key).where(key.in_(chunk))))
+    missing = [n for n in wanted if n not in ids]
+    if missing:
+        s.execute(insert(table), [{column: n, "reading": reading(n)} for n in missing])
+        for chunk in chunks(missing):
+            ids.update((n, i) for i, n in s.execute(select(table.c.id, key).where(key.in_(chunk))))
+    return ids
+
+
+def delete_clips(s: Connection, names: list[str]) -> None:
     """Delete the named clips with their frames, links and contacts, and whatever no clip uses any more."""
-    ids = list(s.scalars(select(Clip.id).where(Clip.name.in_(names))))
+    ids = list(s.scalars(select(tb.clips.c.id).where(tb.clips.c.name.in_(names))))
     for chunk in chunks(ids):
-        for table in (ClipFrames, Contact, ClipVerb, ClipObject):
-            s.execute(delete(table).where(table.clip_id.in_(chunk)))
-        s.execute(delete(Clip).where(Clip.id.in_(chunk)))
-    s.execute(delete(Verb).where(~exists().where(ClipVerb.verb_id == Verb.id)))
-    s.execute(delete(ObjectRow).where(~exists().where(ClipObject.object_id == ObjectRow.id)))
-    s.execute(delete(Character).where(~exists().where(Clip.character_id == Character.id)))
-    s.execute(delete(SkeletonRow).where(~exists().where(Clip.skeleton_id == SkeletonRow.id),
-                                        ~exists().where(Character.skeleton_id == SkeletonRow.id)))
-    s.expire_all()
+        for table in (tb.clip_frames, tb.contacts, tb.clip_verbs, tb.clip_objects):
+            s.execute(delete(table).where(table.c.clip_id.in_(chunk)))
+        s.execute(delete(tb.clips).where(tb.clips.c.id.in_(chunk)))
+    cl, ch, sk = tb.clips.c, tb.characters.c, tb.skeletons.c
+    s.execute(delete(tb.verbs).where(~exists().where(tb.clip_verbs.c.verb_id == tb.verbs.c.id)))
+    s.execute(delete(tb.objects).where(~exists().where(tb.clip_objects.c.object_id == tb.objects.c.id)))
+    s.execute(delete(tb.characters).where(~exists().where(cl.character_id == ch.id)))
+    s.execute(delete(tb.skeletons).where(~exists().where(cl.skeleton_id == sk.id),
+                                         ~exists().where(ch.skeleton_id == sk.id)))

@@ -138,7 +138,7 @@ def keep_feet(motion: Motion, ref: Motion, lo: int, hi: int, planted: dict) -> M
         now = sub.pose
         want = ref.pose
         target = lerp(now.positions[:, ankle], want.positions[lo:hi, ankle], c)
-        r_now = now.quaternions()[:, ankle]
+        r_now = now.quaternions(ankle)
         r_want = Rotation.from_matrix(want.rotations[lo:hi, ankle]).as_quat()
         solved = set_world_rotation(solve_leg(sub, side, target), ankle, slerp(r_now, r_want, c))
         rots = out.rotations.copy()
@@ -167,7 +167,7 @@ def lift_off_floor(motion: Motion, lo: int, hi: int, floor: float = FLOOR) -> Mo
             sub = out[lo:hi]
             pose = sub.pose
             target = pose.positions[:, ankle] + np.stack([np.zeros(hi - lo), d[lo:hi], np.zeros(hi - lo)], 1)
-            rot = pose.quaternions()[:, ankle]
+            rot = pose.quaternions(ankle)
             solved = set_world_rotation(solve_leg(sub, side, target), ankle, rot)
             rots = out.rotations.copy()
             rots[lo:hi] = solved.rotations
@@ -205,7 +205,7 @@ def clear_swings(motion: Motion, lo: int, hi: int) -> Motion:
             sub = out[a:b]
             pose = sub.pose
             target = pose.positions[:, ankle] + np.stack([np.zeros(b - a), d[a:b], np.zeros(b - a)], 1)
-            solved = set_world_rotation(solve_leg(sub, side, target), ankle, pose.quaternions()[:, ankle])
+            solved = set_world_rotation(solve_leg(sub, side, target), ankle, pose.quaternions(ankle))
             rots = out.rotations.copy()
             rots[a:b] = solved.rotations
             out = out.replace(rotations=rots)

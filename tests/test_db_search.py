@@ -163,3 +163,37 @@ def test_memoised_searches_ask_the_database_once_until_something_changes(empty_d
     seen.clear()
     empty_db.search("歩く")
     assert len(seen) == 1  # outside the block every search asks the database
+
+
+def test_memoised_searches_rank_the_preferences_as_the_database_does(empty_db, record):
+    """Inside ``memoised()`` a verb is asked once; the preferred character and posture are ranked in
+    Python (:func:`motiondb.search.prefer`), which must give the query's own order for every combination."""
+    empty_db.add([
+        record("wave_r", ("振る",), body_part="right_arm"),
+        record("wave_l", ("振る",), body_part="left_arm", character="bob"),
+        record("wave_body", ("振る", "揺らす")),
+        record("shake", ("揺らす", "振る"), character="bob", start_posture="seated"),
+        record("wave_seated", ("振る",), start_posture="seated", objects=("旗",)),
+        record("wave_flag", ("振る",), character="bob", objects=("旗",), body_part="right_arm"),
+    ])
+    combos = [dict(object=o, body_part=p, prefer_character=c, prefer_start_posture=s, limit=n)
+              for o in (None, "旗") for p in (None, "right_arm", "left_arm") for c in (None, "bob", "default")
+              for s in (None, "seated", "standing") for n in (None, 2)]
+    direct = {i: names(empty_db.search("振る", **c)) for i, c in enumerate(combos)}
+    assert len({tuple(v) for v in direct.values()}) > 10  # the preferences do reorder these clips
+    with empty_db.memoised():
+        seen = _selects(empty_db)
+        for i, c in enumerate(combos):
+            assert names(empty_db.search("振る", **c)) == direct[i], c
+    assert len(seen) == 2 * 3  # one query per (object, body part)
+
+
+def test_planning_a_text_asks_the_database_once_per_motion(library_db):
+    from text2anim.motiondb import MotionDB
+    from text2anim.pipeline import plan_text
+
+    with MotionDB.open(library_db) as db:
+        seen = _selects(db)
+        planned = plan_text("太郎は走って、ボールを蹴る。そして喜ぶ。それから歩いて、座る。", db)
+    assert len(planned.analysis.motions) == 5
+    assert len(seen) == 5

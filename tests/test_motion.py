@@ -78,3 +78,45 @@ def test_motion_rejects_mismatched_shapes():
         Motion(_chain(), 30, np.zeros((4, 3)), np.zeros((5, 3, 4)))
     with pytest.raises(ValueError):
         Motion(_chain(), 0, np.zeros((1, 3)), np.tile([0, 0, 0, 1.0], (1, 3, 1)))
+
+
+def test_a_limb_edit_redoes_only_its_subtree_and_gives_the_full_kinematics_bit_for_bit():
+    """``Motion.replace(rotations=...)`` that changes some joints (what IK does) redoes the kinematics of
+    their subtree only, from the known pose: the same bits as the full computation, edits on edits too."""
+    from conftest import make_motion
+
+    m = make_motion(40, 30.0, 3, translations=True)
+    m.pose  # known: the edited motions start from it
+    rng = np.random.default_rng(5)
+
+    def edit(motion, joints):
+        rots = motion.rotations.copy()
+        r = rots[:, joints] + 0.2 * rng.standard_normal(rots[:, joints].shape)
+        rots[:, joints] = r / np.linalg.norm(r, axis=-1, keepdims=True)
+        return rots
+
+    def full(rots):
+        return Motion(m.skeleton, m.fps, m.root_positions, rots, m.translations).pose
+
+    J = m.skeleton.n_joints
+    for top in range(1, J):
+        sub = m.skeleton.subtree(top)
+        assert sub[0] == top and all(m.skeleton.parents[j] in sub for j in sub[1:])
+        rots = edit(m, [top, sub[-1]])
+        once = m.replace(rotations=rots)
+        twice = once.replace(rotations=edit(once, [int(rng.integers(1, J))]))  # its pose not asked before
+        cases = ((once, once, slice(None)), (twice[5:30], twice, slice(5, 30)), (twice, twice, slice(None)))
+        for motion, whole, sl in cases:  # the slice first: it solves the edit on its frames only
+            expect = full(whole.rotations)
+            assert np.array_equal(motion.pose.rotations, expect.rotations[sl])
+            assert np.array_equal(motion.pose.positions, expect.positions[sl])
+    assert m.replace(rotations=m.rotations.copy()).pose is not None
+
+
+def test_world_quaternions_of_some_joints_are_those_of_all_joints():
+    from conftest import make_motion
+
+    pose = make_motion(30, 30.0, 4).pose
+    every = pose.quaternions()
+    assert np.array_equal(pose.quaternions(3), every[:, 3])
+    assert np.array_equal(pose.quaternions([5, 1]), every[:, [5, 1]])
