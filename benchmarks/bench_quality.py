@@ -4,9 +4,13 @@
    (walk and run: one gait cycle each, found by ``gait_cycle``, and looped;
    the other actions: a window around the action, as ``bench_blend.py`` cuts
    them, with the core interval given; the long multi-action takes are used
-   only through such a window) and imported into a temporary SQLite motion
-   database with the verb of ``index.tsv`` (as ``text2anim db import --core``
-   would), read back and resampled to 30 fps as the pipeline does. Every
+   only through such a window), each cut written as a BVH file and imported
+   into a temporary SQLite motion database by ``MotionDB.import_bvh`` (what
+   ``text2anim db import --core ... [--cyclic]`` runs) with the verb of
+   ``index.tsv``: the floor found from the foot contacts and moved to y = 0,
+   clips of other subjects retargeted onto the first clip's skeleton. They are
+   read back and resampled to 30 fps as the pipeline does; the sources a join is
+   compared with are these imported clips. Every
    ordered pair of clips of different actions in :data:`ACTION_PAIRS` (each
    action pair once, its clips taken in turn) is joined by each method
    (optimal, constraint, pose, crossfade) through ``synthesize_with``; the time
@@ -84,31 +88,36 @@ def action_of(stem: str, index: dict) -> str:
     raise ValueError(f"{stem}: no action for {label!r}")
 
 
-def build_database(url: str) -> dict:
-    """Cut the clips, import them into the database at ``url`` with their verbs, read them back at 30 fps.
+def build_database(url: str, workdir: Path) -> dict:
+    """Cut the clips, import them into the database at ``url`` as ``text2anim db import`` does, read them back.
 
+    Each cut is written as a BVH file in ``workdir`` and imported by :meth:`MotionDB.import_bvh` (the
+    function ``text2anim db import`` calls) with its verb, core interval and looping flag, under one
+    character: every clip's floor is found from its foot contacts and moved to y = 0, and clips of other
+    capture subjects are retargeted onto the first clip's skeleton. Read back at 30 fps.
     Returns ``{name: (action, ClipInfo, Clip)}``.
     """
-    from text2anim.core import read_bvh
-    from text2anim.motiondb import ClipRecord, MotionDB
+    from text2anim.core import read_bvh, write_bvh
+    from text2anim.motiondb import ImportOptions, MotionDB
     from text2anim.synthesis.plan import Clip
     from text2anim.synthesis.timing import gait_cycle
 
     with open(CMU / "index.tsv", encoding="utf-8") as fh:
         index = {r["file"][:-4]: r for r in csv.DictReader(fh, delimiter="\t")}
-    records, actions = [], {}
-    for name, (stem, cut, core) in CLIPS.items():
-        m = read_bvh(CMU / f"{stem}.bvh", drop_first=True)
-        if cut == "cycle":
-            a, b = gait_cycle(m)
-            m, core = m[a:b], (0.0, (b - a) / m.fps)
-        else:
-            m = m.between(*cut)
-        actions[name] = action_of(stem, index)
-        records.append(ClipRecord(name=name, motion=m, verbs=(index[stem]["verb_ja"],), core=core,
-                                  cyclic=cut == "cycle", character="cmu", source=str(CMU / f"{stem}.bvh")))
+    actions = {}
     with MotionDB.open(url, seed=False) as db:
-        db.add(records)
+        for name, (stem, cut, core) in CLIPS.items():
+            m = read_bvh(CMU / f"{stem}.bvh", drop_first=True)
+            if cut == "cycle":
+                a, b = gait_cycle(m)
+                m, core = m[a:b], (0.0, (b - a) / m.fps)
+            else:
+                m = m.between(*cut)
+            actions[name] = action_of(stem, index)
+            path = workdir / f"{name}.bvh"
+            write_bvh(m, path)
+            db.import_bvh([path], ImportOptions(verbs=(index[stem]["verb_ja"],), character="cmu", core=core,
+                                                cyclic=cut == "cycle", scale=1.0))
         out = {}
         for info in db.clips():
             m = db.load(info)
@@ -309,7 +318,7 @@ def main(argv=None) -> int:
         return 2
     with tempfile.TemporaryDirectory() as tmp:
         with Clock() as c_db:
-            clips = build_database(f"sqlite:///{tmp}/cmu.sqlite")
+            clips = build_database(f"sqlite:///{tmp}/cmu.sqlite", Path(tmp))
         pairs = pairs_of(clips)[:args.pairs]
         with Clock() as c_pairs:
             rows = run_pairs(clips, pairs, methods, args.smoothness)

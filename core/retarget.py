@@ -47,7 +47,8 @@ Steps, each vectorised over frames (one numpy step per joint):
      wrists on the scaled source wrists, and the feet and hands get their
      step-2 world rotations back. The knee and elbow hinges come from the
      target's rest pose: a knee flexes backwards (``forward x thigh``), an
-     elbow forwards (``upper arm x forward``).
+     elbow forwards (``upper arm x forward``); the knee turns towards the thigh's own forward (a pole
+     in front of it), so a straight stance leg keeps its twist.
 
    Feet therefore plant where the scaled source's do and slide no more than
    they do (in proportion ``s``).
@@ -383,7 +384,13 @@ def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndar
     out = _drop_hips(out, [g for g in goals if g[0].endswith("leg")], mapping.target["hips"])
     out = _aim_torso(out, source, mapping, world)
     for name, chain, goal, end_world in goals:
-        hinge = _hinge(out.skeleton, chain, fwd_t, name.endswith("leg"))
-        out = two_bone_ik(out, chain, goal, hinge=tuple(hinge))
+        leg = name.endswith("leg")
+        hinge = _hinge(out.skeleton, chain, fwd_t, leg)
+        pole = None
+        if leg:  # the knee towards the thigh's own forward: with the knee itself as the pole, a nearly straight
+            # leg has no bend plane and the IK's twist about the hip-ankle line flips from frame to frame
+            pose = out.pose
+            pole = pose.positions[:, chain[1]] + 0.5 * np.einsum("tij,j->ti", pose.rotations[:, chain[0]], fwd_t)
+        out = two_bone_ik(out, chain, goal, pole=pole, hinge=tuple(hinge))
         out = set_world_rotation(out, chain[2], matrix_to_quat(end_world))
     return out

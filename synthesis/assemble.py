@@ -10,7 +10,8 @@ way; then, exactly as the seed-003 engine (:mod:`synthesis.engine`) does:
    skating ratio and foot skate in the blend and its region, largest and RMS
    jerk against the source clips', core fidelity per element);
 3. a :class:`synthesis.result.Result` is returned, so every method can be
-   saved, viewed, reported and compared the same way.
+   saved, viewed, reported and compared the same way, every actor's motion
+   finished: swinging feet clear of the floor, no frozen pose (:func:`synthesis.finish.finish`).
 
 The per-join and per-element figures are the engine's functions; this module
 only repeats the engine's short loops around them (its ``synthesize`` does the
@@ -27,8 +28,9 @@ from text2anim.core.contacts import detect_contacts, foot_tracks
 from .measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
 from .placed import Placed, mirrored_if_needed, on_skeleton
 from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
-from text2anim.core.metrics import jerk
+from text2anim.core.metrics import jerk, skating_ratio
 from text2anim.core.motion import Motion
+from .finish import finish
 from .laid import Laid, LaidJoin, LaidPart
 from .plan import Element, Track
 from .timing import ease_hold, prepare
@@ -91,7 +93,7 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
     tr = laid.motion
     contacts = detect_contacts(tr)
     ftracks = foot_tracks(tr)
-    skating = skating_frames(tr, ftracks)
+    skating = skating_frames(tr)
     composed_at = [(c.composed.timing.ta0, c.composed.timing.ta1) for c in comps]
     elements: dict[int, ElementReport] = {}
     for p in laid.placed:  # a repeated element's repetitions: from the first one's start to the last one's end
@@ -139,6 +141,7 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
             src_m = [c.donor for c in comps if c.element.id == rep.second] + src_m
         src_j = [jerk(x) for x in src_m]
         m["source_max_slide_cm_s"] = max((max_slide(x) for x in src_m), default=0.0)
+        m["source_skating_ratio"] = max((skating_ratio(x) for x in src_m), default=0.0)
         m["source_jerk_max"] = max((j.max for j in src_j), default=0.0)
         m["source_jerk_rms"] = max((j.rms for j in src_j), default=0.0)
         a_el, b_el = elements.get(rep.first), elements.get(rep.second)
@@ -255,4 +258,5 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> 
         elements.update(els)
         warnings.extend(laid.warnings)
         motions[track.actor] = laid.motion
-    return Result(same_length(motions) if post else motions, reports, fps, elements, tuple(warnings))
+    final = same_length(motions) if post else motions
+    return Result({actor: finish(m, feet=post) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))

@@ -29,6 +29,7 @@ from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 
 from .actors import default_origins, spread_actors
+from .finish import finish
 from .align import place_at
 from .assemble import compose_parts, finish_joins, finish_whole, measure, same_length, shifted
 from .measure import hips_frame
@@ -127,4 +128,5 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
         reports.extend(reps)
         elements.update(els)
         motions[track.actor] = laid.motion
-    return Result(same_length(motions) if lock_feet else motions, reports, fps, elements, tuple(warnings))
+    final = same_length(motions) if lock_feet else motions
+    return Result({actor: finish(m, feet=lock_feet) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))

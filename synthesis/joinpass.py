@@ -9,7 +9,8 @@ own two source clips (as recorded, at the track's rate):
    hips is carried into what follows and decayed by inertialization
    (:func:`synthesis.inertialize.inertialize_at`, Bollo's quintic) over
    :data:`SEAM_DECAY` s; where a blend ends on the first frame of the next
-   clip's core, the blend takes the difference instead, decaying backwards
+   clip's core (or too near the region's end to decay after it), the blend
+   takes the difference instead, decaying backwards
    (:func:`~synthesis.inertialize.inertialize_before`), and the core is not touched.
 2. **The clips' own accelerations.** The join's region (blend, foot locks and
    releases, :data:`PAD` s either side; from up to :data:`BRAKE` s before the
@@ -32,7 +33,8 @@ own two source clips (as recorded, at the track's rate):
 4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
    ankle or toe would go below it is lifted by IK by the deficit
    (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm is
-   lifted clear (:func:`clear_swings`).
+   lifted clear (:func:`clear_swings`); after an adaptation, whose fitted legs
+   reach through the next clip's core, up to the next join.
 
 **Cores** are kept: the region stops at the next clip's core (except where the
 engine's own adaptation returns inside it) and starts after the first clip's
@@ -60,7 +62,7 @@ from .inertialize import inertialize_at, inertialize_before
 
 SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
 PAD = 0.25  # s: the filtered pose fades in and out over this on each side of a region
-SIGMAS = (0.0, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0)  # frames at 30 fps (scaled with the frame rate)
+SIGMAS = (0.0, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.5, 8.0)  # frames at 30 fps (scaled with the frame rate)
 SLACK = 1.0  # the region may reach the sources' own figure times this
 #: m/s²: the hips may always accelerate this much (half the low end of captured walking, timetable.md §3): clips
 #: smoother than capture (the built-in library's: 1 m/s²) would otherwise have every join slowed down
@@ -100,19 +102,20 @@ def _fade(n: int, pad: int) -> np.ndarray:
     return e
 
 
-def low_pass(motion: Motion, lo: int, hi: int, sigma: float, pad: int) -> Motion:
+def low_pass(motion: Motion, lo: int, hi: int, sigma: float, pad: int, root_pad: int | None = None) -> Motion:
     """``motion`` with local rotations and root position Gaussian-filtered (``sigma`` frames) over
-    ``[lo, hi)``, faded in and out over ``pad`` frames at each end."""
-    if sigma <= 0 or hi - lo < 2 * pad + 1:
+    ``[lo, hi)``, faded in and out over ``pad`` frames at each end (the root over ``root_pad``, default ``pad``)."""
+    root_pad = pad if root_pad is None else root_pad
+    if sigma <= 0 or hi - lo < 2 * max(pad, root_pad) + 1:
         return motion
     q = unroll_quaternions(motion.rotations[lo:hi])
     qs = gaussian_filter1d(q, sigma, axis=0, mode="nearest")
     qs /= np.linalg.norm(qs, axis=-1, keepdims=True)
-    e = _fade(hi - lo, pad)
     rots = motion.rotations.copy()
-    rots[lo:hi] = slerp(q, qs, e[:, None])
+    rots[lo:hi] = slerp(q, qs, _fade(hi - lo, pad)[:, None])
     root = motion.root_positions.copy()
-    root[lo:hi] = lerp(root[lo:hi], gaussian_filter1d(root[lo:hi], sigma, axis=0, mode="nearest"), e)
+    root[lo:hi] = lerp(root[lo:hi], gaussian_filter1d(root[lo:hi], sigma, axis=0, mode="nearest"),
+                       _fade(hi - lo, root_pad))
     return motion.replace(root_positions=root, rotations=rots)
 
 
@@ -298,11 +301,12 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
              max(region.keep[1], region.w1 + 1, region.r1 if region.into_core else 0))
     seamed = motion
     for s in sorted({region.w0, region.w1, *(x for x in region.seams if lo < x < hi)}):
-        if s < hi - 2:
-            seamed = inertialize_at(seamed, s, min(SEAM_DECAY, (hi - 1 - s) / fps))
-        elif s - lo > 2:  # the blend hands over to the next core right here: the blend, not the core, takes the
-            # velocity difference (decaying backwards from the core's first frame)
-            seamed = inertialize_before(seamed, s, min(SEAM_DECAY, (s - lo - 1) / fps))
+        after, before = (hi - 1 - s) / fps, (s - lo - 1) / fps
+        if s < hi - 2 and after >= min(SEAM_DECAY, before):
+            seamed = inertialize_at(seamed, s, min(SEAM_DECAY, after))
+        elif s - lo > 2:  # the blend hands over to the next core (or the track ends) right here: the blend, not
+            # what follows, takes the velocity difference (decaying backwards from the seam)
+            seamed = inertialize_before(seamed, s, min(SEAM_DECAY, before))
     planted = _planted(motion, contacts)
     jk_lim, pop_lim = _limits(region.sources, fps)
     pop_lim = max(pop_lim, POP_FLOOR)
@@ -319,7 +323,10 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
         h2 = hi + max(n_new, whi - lo) - (whi - lo)
         pad = max(1, min(pad0, (h2 - lo) // 3))
         for sigma in SIGMAS:
-            cand = keep_feet(low_pass(base, lo, h2, sigma * scale, pad), ref, lo, h2, mask)
+            # the hips' filtered path fades in and out over at least 2.5 sigma: a path low-passed where it
+            # accelerates lags the original, and a shorter fade would return it with a pop of its own
+            fade = max(pad, min(int(np.ceil(2.5 * sigma * scale)), (h2 - lo) // 3))
+            cand = keep_feet(low_pass(base, lo, h2, sigma * scale, pad, fade), ref, lo, h2, mask)
             jk, pop = _figures(cand, lo, h2)
             score = max(jk / max(jk_lim * SLACK, 1e-9), pop / max(pop_lim * SLACK, 1e-9))
             if best is None or score < best[0] - 1e-9:
@@ -338,13 +345,14 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
 
 def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, int]]]:
     """All joins of a track finished in time order (the clips' own floor is the import's: only the joins'
-    regions are lifted off it). Returns the motion, per join what was done, and per join the retiming
+    regions are lifted off it, and after an adaptation, which fits the next clip's legs to the previous
+    feet through its core, everything up to the next join). Returns the motion, per join what was done, and per join the retiming
     ``(lo, hi, n_new, seam)`` in the frames of the motion as it was *before* that join (earlier joins' added
     frames included)."""
     infos, warps = [], []
     out = motion
     added = 0
-    for r in regions:
+    for k, r in enumerate(regions):
         if added:
             r = Region(r.w0 + added, r.w1 + added, r.r1 + added, r.sources, (r.keep[0] + added, r.keep[1] + added),
                        None if r.brake_from is None else r.brake_from + added, tuple(x + added for x in r.seams),
@@ -353,4 +361,7 @@ def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[di
         infos.append(info)
         warps.append(warp)
         added += warp[2] - (warp[1] - warp[0])
+        if r.into_core:  # an adaptation's fitted legs reach through the next clip's core, up to the next join
+            end = regions[k + 1].w0 + added if k + 1 < len(regions) else out.n_frames
+            out = lift_off_floor(out, r.w0, min(end, out.n_frames))
     return out, infos, warps

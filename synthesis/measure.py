@@ -5,10 +5,9 @@ Windows are ``[w0, w1)`` track frames; speeds cm/s, distances cm.
 from __future__ import annotations
 
 import numpy as np
-from scipy.ndimage import uniform_filter1d
 
 from text2anim.core.contacts import FootContacts, detect_contacts, foot_tracks
-from text2anim.core.metrics import SKATE_HEIGHT, SKATE_SPEED, SKATE_WINDOW, jerk
+from text2anim.core.metrics import SKATING_MARGIN, jerk, skating_by_frame
 from text2anim.core.motion import Motion
 
 from .blend import sample
@@ -28,15 +27,17 @@ def _foot_skate_window(track: Motion, contacts: FootContacts, tracks: dict, w0: 
     return out
 
 
-def skating_frames(motion: Motion, ftracks: dict | None = None) -> np.ndarray:
-    """Per frame, whether both feet skate, by the rule of :func:`core.metrics.skating_ratio`
-    (low and faster than 0.5 m/s over 5 frames) with each foot's floor level taken over the whole motion."""
-    ftracks = ftracks or foot_tracks(motion)
-    out = np.ones(motion.n_frames, dtype=bool)
-    for tr in ftracks.values():
-        avg = uniform_filter1d(tr.speed, size=SKATE_WINDOW, mode="nearest")
-        out &= (tr.height < SKATE_HEIGHT) & (avg > SKATE_SPEED)
-    return out
+def skating_frames(motion: Motion) -> np.ndarray:
+    """Per frame, whether a foot skates: the GMD rule of :func:`core.metrics.skating_by_frame` (either toe
+    below 5 cm on frames t and t+1, faster than 0.5 m/s and so over its centred 5-frame average), ``(T,)``
+    bool at the motion's own rate; the figure a join is judged by, as the benchmark judges the output."""
+    return skating_by_frame(motion)
+
+
+def skating_exceeds(ratio: float, sources: float) -> bool:
+    """Whether a join's skating ``ratio`` is beyond issue 11's bound: its sources' larger + 0.01
+    (:func:`core.metrics.against_sources`)."""
+    return ratio > sources + SKATING_MARGIN + 1e-12
 
 
 def max_slide(motion: Motion) -> float:

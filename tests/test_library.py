@@ -22,12 +22,14 @@ from text2anim.core.bodyparts import GROUPS, body_map
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.metrics import BUILTIN_LIMITS, foot_skate, jerk, skating_ratio
 from text2anim.core.mirror import mirror
+from text2anim.motiondb.library.skeleton import SHOE_SOLE
 
 BUILT = {b.record.name: b for b in build_all(30.0)}
 CLIPS = {name: b.record for name, b in BUILT.items()}
 #: Issue 11: built-in clips whose GMD skating ratio (either foot, 30 fps) is above the 0.02 threshold;
-#: measured ceilings so a regression still fails (benchmarks/QUALITY_BEFORE.md lists them).
-SKATING_ABOVE_LIMIT = {"dance": 0.051, "fall": 0.031, "stop": 0.031}
+#: measured ceilings so a regression still fails. Only the keyframed dance, which the captured one
+#: replaces (not seeded); fall and stop (0.031) meet it since the floor convention of core.floor.
+SKATING_ABOVE_LIMIT = {"dance": 0.034}
 NAMES = sorted(CLIPS)
 CMU_NAMES = ("Hips, LHipJoint, LeftUpLeg, LeftLeg, LeftFoot, LeftToeBase, RHipJoint, RightUpLeg, RightLeg, "
              "RightFoot, RightToeBase, LowerBack, Spine, Spine1, Neck, Neck1, Head, LeftShoulder, LeftArm, "
@@ -378,7 +380,8 @@ def test_get_up_goes_through_hands_and_knees_with_the_knees_on_the_floor():
     assert m.positions[:, knees, 1].min() > 0.03  # resting on the floor, never through it
     hands = [m.skeleton.index(n) for n in ("LeftHand", "RightHand")]
     on_floor = m.positions[: int(1.6 * 30), hands, 1]
-    assert np.abs(on_floor - 0.05).max() < 0.01  # both hands stay where fall put them until the step
+    # both hands stay where fall put them until the step: keyed 5 cm up, + the shoe sole every clip stands on
+    assert np.abs(on_floor - 0.05 - SHOE_SOLE).max() < 0.01
 
 
 def test_mirroring_serves_the_left_side():

@@ -12,9 +12,6 @@ from text2anim.core.metrics import BUILTIN_LIMITS, foot_skate, skating_ratio
 from text2anim.core.mirror import is_symmetric, mirror
 
 CLIPS = {c.name: c for c in builtin_clips()}
-#: Issue 11: built-in clips whose GMD skating ratio (either foot, 30 fps) is above the 0.02 threshold;
-#: measured ceilings so a regression still fails (benchmarks/QUALITY_BEFORE.md lists them).
-SKATING_ABOVE_LIMIT = {"dance": 0.051, "fall": 0.031, "stop": 0.031}
 REFLECT = np.array([-1.0, 1.0, 1.0])
 
 
@@ -70,6 +67,6 @@ def test_mirrored_clips_keep_feet_planted(name):
     for side, other in (("left", "right"), ("right", "left")):
         assert after[side].mean_speed_cm_s == pytest.approx(before[other].mean_speed_cm_s, abs=1e-6)
     if clip.source.startswith("builtin:keyframed"):
-        assert skating_ratio(m) <= SKATING_ABOVE_LIMIT.get(name, BUILTIN_LIMITS["skating_ratio"])
+        assert skating_ratio(m) <= BUILTIN_LIMITS["skating_ratio"]
         for side, fs in after.items():
             assert fs.mean_speed_cm_s < 0.5, (side, fs)

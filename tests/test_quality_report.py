@@ -48,4 +48,5 @@ def test_compare_prints_the_30_fps_figures_per_method(library_db):
     for m in ("optimal", "crossfade"):
         row = doc["methods"][m]
         assert {"root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction", "join_root_pop", "joins_ok"} <= set(row)
-        assert row["join_root_pop"] <= row["root_pop"] + 1e-9 and row["joins_ok"].endswith("/1")
+        # a part of the whole can pop no more than the whole (the join's figure is rounded to 0.01 m/s²)
+        assert row["join_root_pop"] <= row["root_pop"] + 0.005 and row["joins_ok"].endswith("/1")

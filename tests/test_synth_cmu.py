@@ -18,7 +18,7 @@ from text2anim.core import read_bvh
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, foot_tracks
 from text2anim.synthesis.engine import hips_frame, synthesize
-from text2anim.core.metrics import skating_ratio
+from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
 from text2anim.synthesis.plan import Clip, Element, Track
 from text2anim.synthesis.timing import find_cycle, prepare
 
@@ -58,10 +58,12 @@ def landings(m, lo, hi):
     return [s for _, s in sorted(out)]
 
 
-def assert_clean_join(j, jerk_factor=1.5):
+def assert_clean_join(j, jerk_factor=1.5, skating=None):
+    """``skating``: the GMD ratio the blend may reach where it is above its sources' (a measured ceiling)."""
     m = j.metrics
-    assert m["skating_ratio"] == 0.0, j
-    assert m["region"]["skating_ratio"] == 0.0, j
+    bound = max(m["source_skating_ratio"] + SKATING_MARGIN, skating or 0.0)
+    assert m["skating_ratio"] <= bound, j
+    assert m["region"]["skating_ratio"] <= bound, j
     # a foot in contact in the blend moves no faster than feet in contact do in the source clips
     assert m["max_slide_cm_s"] <= max(m["source_max_slide_cm_s"], 15.0) + 1.0
     assert m["jerk_max"] <= jerk_factor * m["source_jerk_max"]
@@ -133,11 +135,14 @@ def test_connection_with_a_delay_holds_the_end_pose_then_starts():
     (j,) = res.joins
     assert j.method == "connection" and j.intervals[0].kind.startswith("pose")
     assert_clean_join(j)
-    # during the delay the kick's end pose stands still
+    # during the delay the kick's end pose stands: feet and hips still, the chest breathing (issue 12: no
+    # frozen pose) by at most a few cm/s
     a, b = round((end + 0.3) * FPS), round((end + 0.6) * FPS)
-    still = np.abs(np.diff(m.positions[a:b], axis=0)).max() * FPS
-    assert still < 0.01
-    assert np.allclose(m.positions[a], m.positions[b], atol=2e-3)  # the join post-pass filters the hold's edges
+    bm = body_map(m.skeleton)
+    legs = [0] + [j for side in ("left", "right") for j in bm.feet[side]]
+    speed = np.linalg.norm(np.diff(m.positions[a:b], axis=0), axis=-1) * FPS
+    assert speed[:, legs].max() < 0.01 and 0.005 < speed.max() < 0.05
+    assert np.allclose(m.positions[a, legs], m.positions[b, legs], atol=2e-3)  # the post-pass filters the hold's edges
     # and after the join the character walks
     w1 = round(j.intervals[0].end * FPS)
     travel = np.linalg.norm(m.root_positions[w1 + 30, [0, 2]] - m.root_positions[w1, [0, 2]])
@@ -153,7 +158,9 @@ def test_walk_and_wave_composition():
     _, base = one(Element(1, walk, 0.0, 4.0, "initial"))
     (j,) = res.joins
     assert j.method == "composition" and [i.part for i in j.intervals] == ["right_arm", "right_arm"]
-    assert_clean_join(j)
+    # the arm is laid on the looped walk, whose own feet skate on 2 of the 30 frames around it (GMD rule,
+    # either foot; the walk cycle as a whole: 0.03): a ceiling, issue 11
+    assert_clean_join(j, skating=0.07)
     t0, t1 = (round(x * FPS) for x in j.metrics["switch_s"])
     bm = body_map(m.skeleton)
     hand = bm.hands["right"]
@@ -232,7 +239,7 @@ def test_looping_a_walk_travels_on_without_a_pop():
     n = cyc.n_frames
     seams = [k * n - 1 for k in range(1, 5) if k * n - 1 < len(steps)]
     assert max(steps[seams]) < 1.5 * np.percentile(steps, 95)
-    assert skating_ratio(m) == 0.0
+    assert skating_ratio(m) <= skating_ratio(walk.motion) + SKATING_MARGIN  # no more than the captured cycle
 
 
 def test_repeated_kick_is_two_kicks_joined():

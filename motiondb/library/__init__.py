@@ -18,7 +18,13 @@ the shared named poses (``stand``, ...). Generation is deterministic
 2. the feet are planted exactly by leg IK (:mod:`.plant`);
 3. hands are put on their ``reach`` targets by arm IK (:mod:`.reach`);
 4. cyclic clips are generated with one extra cycle on each side and cut,
-   so the last frame flows into the first.
+   so the last frame flows into the first;
+5. the clip is lifted by the shoe sole (:data:`.skeleton.SHOE_SOLE`, 1.8 cm):
+   keyed heights are from the bare sole, the floor is where a shod foot
+   stands. Knees and hands keyed onto the floor (kneeling, lying) then rest
+   with their joint centres 1.8 cm higher too, 5-7 cm up: a knee's or wrist's
+   own thickness. Swinging feet keep the clearance every output keeps
+   (:func:`core.clearance.lift_swings`).
 
 A clip declared for the right side (``body_part="right_arm"``) serves a
 left-side request through :func:`core.mirror.mirror`.
@@ -40,6 +46,8 @@ from pathlib import Path
 import numpy as np
 
 from text2anim.motiondb.types import ClipRecord, Posture
+from text2anim.core.clearance import lift_swings
+from text2anim.core.floor import shifted
 from text2anim.core.motion import Motion
 
 from . import capture
@@ -47,7 +55,7 @@ from .keyframes import (CLIPS_DIR, ClipData, ClipDataError, PlantSpec, curves_to
                         sample_curves)
 from .plant import FramePlant, PlantReport, plant_feet
 from .reach import apply_reach
-from .skeleton import ANKLE_HEIGHT, TOE_HEIGHT, canonical_skeleton
+from .skeleton import ANKLE_HEIGHT, SHOE_SOLE, TOE_HEIGHT, canonical_skeleton
 
 __all__ = ["BuiltClip", "ClipDataError", "LIBRARY_VERSION", "POSTURE_OF", "builtin_clips", "build_all",
            "canonical_skeleton"]
@@ -169,7 +177,7 @@ def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantRe
     motion = apply_reach(motion, clip.raw.get("reach", {}), times, clip.name)
     if margin:
         motion = motion.frames(margin, margin + n)
-    return _frozen(motion), report
+    return _frozen(lift_swings(shifted(motion, SHOE_SOLE))), report
 
 
 @lru_cache(maxsize=8)

@@ -12,9 +12,11 @@ For every take named in the cut list (each file read once), then every clip cut 
    (:func:`core.retarget.retarget`: world rotations carried over, hips scaled by leg length;
    without its IK re-placing of ankles and wrists, which flips a nearly straight leg's twist)
    and put that on the floor again;
-3. cut the clip's seconds (with ``blend`` seconds before them for a blended loop);
-4. resample to 30 fps (slerp), hold planted feet still and keep feet above the floor
-   (:func:`.feet.lock_feet`, :func:`.feet.clear_floor`);
+3. low-pass the take where the cut list asks (``lowpass = Hz``: takes with capture glitches,
+   :mod:`.smooth`), cut the clip's seconds (with ``blend`` seconds before them for a blended loop);
+4. resample to 30 fps (slerp), hold planted feet still, keep swinging feet clear of the floor
+   and feet and hands above it (:func:`.feet.lock_feet`, :func:`core.clearance.lift_swings`,
+   :func:`core.clearance.clear_floor`);
 5. turn it about +Y and move it so it starts at the origin facing +Z (``face = "travel"``:
    its travel points +Z);
 6. a looping clip has its last ``blend`` seconds blended into the frames before the cut, so
@@ -42,13 +44,15 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from text2anim.core.bvh import read_bvh
+from text2anim.core.clearance import clear_floor, lift_swings
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
 from text2anim.core.retarget import retarget
 
 from .capture import ARRAYS, FPS, Cut, cut_list
-from .feet import clear_floor, lock_feet
+from .feet import lock_feet
+from .smooth import lowpass
 from .skeleton import canonical_skeleton
 
 #: Rate of the CMU files (their Frame Time).
@@ -163,7 +167,7 @@ def spot_loop(take: Motion, m: Motion, pre: int, j0: int, j1: int) -> Motion:
     lead = lead.replace(root_positions=lead.root_positions + start)  # turned about the cycle's start, left in place
     m = m.replace(root_positions=np.concatenate([lead.root_positions, m.root_positions[pre:]]),
                   rotations=np.concatenate([lead.rotations, m.rotations[pre:]]))
-    return lock_feet(blend_loop(m, pre, None))
+    return lift_swings(lock_feet(blend_loop(m, pre, None)))
 
 
 def repeat_cycle(m: Motion, cut: Cut) -> Motion:
@@ -194,9 +198,10 @@ def cut_clip(take: Motion, cut: Cut) -> Motion:
         raise ValueError(f"{cut.name}: a {cut.blend} s blend needs {cut.blend} s before the cut at {t0}")
     if i1 > take.n_frames - (cut.loop in ("stride", "spot")):
         raise ValueError(f"{cut.name}: the cut ends at {t1} s, after the take's {take.duration:.2f} s")
-    m = clear_floor(lock_feet(take.frames(i0, i1).resample(FPS)))
+    src = lowpass(take, cut.lowpass) if cut.lowpass else take
+    m = clear_floor(lift_swings(lock_feet(src.frames(i0, i1).resample(FPS))))
     if cut.cycle is not None:
-        m = lock_feet(repeat_cycle(m, cut))
+        m = lift_swings(lock_feet(repeat_cycle(m, cut)))
     if cut.loop == "spot":
         m = spot_loop(take, m, pre, _frames(t0, take.fps), i1)
     elif cut.loop:
@@ -204,7 +209,7 @@ def cut_clip(take: Motion, cut: Cut) -> Motion:
         if cut.loop == "stride":  # one cycle's travel: from the cycle's first frame to the frame after it
             root = take.root_positions
             travel = root[i1, [0, 2]] - root[_frames(t0, take.fps), [0, 2]]
-        m = lock_feet(blend_loop(m, pre, travel))  # the blend moved a planted foot by the frames' difference
+        m = lift_swings(lock_feet(blend_loop(m, pre, travel)))  # the blend moved a planted foot by the frames' difference
     return face(m, cut.face)
 
 

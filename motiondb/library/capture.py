@@ -61,6 +61,7 @@ class Cut:
     face: str = "start"
     starts_from: str | None = None
     ease: float = 0.0
+    lowpass: float = 0.0  # Hz; 0: none (see .smooth)
     about: str = ""
     cycle: tuple[float, float] | None = None  # a stretch of the cut played ``cycles`` more times
     cycles: int = 0
@@ -92,7 +93,8 @@ def _cut(raw: dict) -> Cut:
                   cyclic=bool(raw.get("cyclic", False)), starts=raw.get("starts", "stand"),
                   ends=raw.get("ends", "stand"), replaces=raw.get("replaces"), loop=raw.get("loop"),
                   blend=float(raw.get("blend", 0.0)), face=raw.get("face", "start"),
-                  starts_from=raw.get("starts_from"), ease=float(raw.get("ease", 0.0)), about=raw.get("about", ""),
+                  starts_from=raw.get("starts_from"), ease=float(raw.get("ease", 0.0)),
+                  lowpass=float(raw.get("lowpass", 0.0)), about=raw.get("about", ""),
                   cycle=tuple(float(x) for x in raw["cycle"]) if "cycle" in raw else None,  # type: ignore[arg-type]
                   cycles=int(raw.get("cycles", 0)))
     except (KeyError, TypeError, ValueError) as exc:
@@ -112,6 +114,8 @@ def _cut(raw: dict) -> Cut:
                                       and cut.cycles > 0 and cut.blend > 0 and not cut.loop):
         raise ClipDataError(f"capture.toml: clip {name}: a cycle must lie inside the cut, with cycles > 0, "
                             "blend > 0 seconds and no loop")
+    if not 0 <= cut.lowpass < 60:
+        raise ClipDataError(f"capture.toml: clip {name}: lowpass must be 0 (none) or a cut-off below 60 Hz")
     if cut.loop and not (cut.cyclic and cut.blend > 0):
         raise ClipDataError(f"capture.toml: clip {name}: a loop needs cyclic = true and blend > 0 seconds")
     return cut

@@ -10,9 +10,8 @@ back, so heel and toe roll as captured while the foot does not slide. The
 offset eases in and out over :data:`RAMP` frames on either side (smoothstep),
 so a foot lifting off is not jerked. Nothing else changes.
 
-:func:`clear_floor` then lifts a foot whose ankle or ball dips below ``y = 0``
-(marker noise at a hard landing) by as much, eased over :data:`RAMP` frames
-either side, the same way (leg IK, foot rotation kept).
+Feet and hands kept above the floor and swinging feet clear of it are
+:mod:`core.clearance` (the engines apply the swing rule to joined motion too).
 
 Shapes: positions ``(T, J, 3)`` metres; offsets ``(T, 2)`` (x, z).
 """
@@ -71,37 +70,6 @@ def lock_feet(motion: Motion, contacts: FootContacts | None = None) -> Motion:
             continue
         target = pos[:, ankle].copy()
         target[:, [0, 2]] += off
-        out = leg_ik(out, side, target, mask=mask)
-        out = set_world_rotation(out, ankle, world[:, ankle], mask=mask)
-    return out
-
-
-def lift_offsets(deficit: np.ndarray) -> np.ndarray:
-    """``deficit`` ``(T,)`` (metres below the floor, 0 where above) spread over :data:`RAMP` frames
-    either side: the largest of the neighbours' deficits, each scaled by a smoothstep of its distance."""
-    T = len(deficit)
-    out = deficit.copy()
-    for k in range(1, RAMP + 1):
-        w = _smooth(np.array(1.0 - k / (RAMP + 1)))
-        out[k:] = np.maximum(out[k:], w * deficit[:T - k])
-        out[:T - k] = np.maximum(out[:T - k], w * deficit[k:])
-    return out
-
-
-def clear_floor(motion: Motion) -> Motion:
-    """``motion`` with no ankle or toe joint below ``y = 0`` (see the module docstring)."""
-    bm = body_map(motion.skeleton)
-    pos = motion.positions
-    world = motion.pose.quaternions()
-    out = motion
-    for side, (ankle, toe) in bm.feet.items():
-        deficit = np.maximum(0.0, -np.minimum(pos[:, ankle, 1], pos[:, toe, 1]))
-        if not deficit.any():
-            continue
-        lift = lift_offsets(deficit)
-        target = pos[:, ankle].copy()
-        target[:, 1] += lift
-        mask = lift > 0
         out = leg_ik(out, side, target, mask=mask)
         out = set_world_rotation(out, ankle, world[:, ankle], mask=mask)
     return out

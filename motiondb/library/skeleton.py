@@ -7,10 +7,16 @@ joint's axes aligned with the world: arms along +-X (palms down), legs
 straight down, feet flat and pointing +Z. Channels are CMU-style: the root
 has XYZ position + ZYX rotation, every other joint ZYX rotation.
 
-Heights in the rest pose with the root at :data:`REST_ROOT_HEIGHT` (0.94 m):
-ankle 0.075, ball of the foot (toe joint) 0.02, hip joints 0.88, chest
-(Spine1) 1.22, shoulders 1.37, neck base 1.42, skull base 1.54, top of the
-head 1.70 m. The skeleton is exactly left/right symmetric.
+Heights in the rest pose with the root at :data:`REST_ROOT_HEIGHT` (0.94 m),
+measured from the bare sole: ankle 0.075, ball of the foot (toe joint) 0.02,
+hip joints 0.88, chest (Spine1) 1.22, shoulders 1.37, neck base 1.42, skull
+base 1.54, top of the head 1.70 m. The skeleton is exactly left/right symmetric.
+
+The character stands on a shoe sole :data:`SHOE_SOLE` (1.8 cm) thick: the
+library's floor convention (:data:`core.floor.FOOT_CLEARANCE`) puts a planted
+toe joint 3.8 cm above the floor, where the calibrated floors of the CMU
+capture sessions put it (subjects in shoes). Keyframed poses are written from
+the bare sole and lifted by :data:`SHOE_SOLE` when generated.
 """
 from __future__ import annotations
 
@@ -18,13 +24,16 @@ from functools import lru_cache
 
 import numpy as np
 
+from text2anim.core.floor import FOOT_CLEARANCE
 from text2anim.core.skeleton import Skeleton
 
 #: Root height of the rest pose (straight legs, feet flat on y = 0).
 REST_ROOT_HEIGHT = 0.94
-#: Height of the toe joint (ball of the foot) above the sole.
+#: Height of the toe joint (ball of the foot) above the bare sole.
 TOE_HEIGHT = 0.02
-#: Ankle joint centre above the sole.
+#: Shoe sole under the bare sole (m): a planted toe joint is FOOT_CLEARANCE above the floor.
+SHOE_SOLE = FOOT_CLEARANCE - TOE_HEIGHT
+#: Ankle joint centre above the bare sole.
 ANKLE_HEIGHT = 0.075
 
 # name, parent, offset from parent (metres); left side only, the right is mirrored.

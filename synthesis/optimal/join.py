@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 
+from text2anim.core.metrics import quality
+
 from ..blend_search import Weights
 from ..laid import Laid, LaidJoin
 from ..placed import Placed
@@ -48,7 +50,9 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
         state.joins.append(LaidJoin(rep, first=prev))
         return plan
     inc = plan.inc
-    plan, out, locks, window = carry_out(tr, plan, lock)
+    src = [quality(prev.motion, None), quality(inc.motion, None)]  # the sources' figures at the track's rate
+    own, own_pop = max(q.skating_ratio for q in src), max(q.root_pop for q in src)
+    plan, out, locks, window = carry_out(tr, plan, lock, own, own_pop)
     region_end = max([window[1]] + [lk.release_end for lk in locks])
     state.motion = out
     state.floor = window[1]

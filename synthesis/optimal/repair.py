@@ -1,16 +1,18 @@
-"""A join rendered until it does not skate: the paper's rendering first, then without the step, with
-S0's weight eased, placed by the roots, and with the next-best intervals of eq. (10) (:func:`carry_out`)."""
+"""A join rendered until it does not skate (nor pop, where another rendering does not): the paper's
+rendering first, then without the step, with S0's weight eased, placed by the roots, and with the
+next-best intervals of eq. (10) (:func:`carry_out`)."""
 from __future__ import annotations
 
 from dataclasses import replace
 
 import numpy as np
 
+from text2anim.core.metrics import SOURCE_FACTOR, quality
 from text2anim.core.motion import Motion
 
 from ..align import align_through_foot
 from ..blend import ease
-from ..measure import skating_frames
+from ..measure import skating_exceeds, skating_frames
 from .records import Plan
 from .placement import settle
 from .render import render
@@ -37,22 +39,31 @@ def _roots_mid(tr: Motion, plan: Plan) -> Plan:
 
 
 def _skating(motion: Motion, lo: int, hi: int) -> float:
-    """Skating ratio (both feet low and fast, :func:`synthesis.measure.skating_frames`) over ``[lo, hi)``."""
+    """GMD skating ratio (either foot, :func:`synthesis.measure.skating_frames`) over frames ``[lo, hi)``."""
     sk = skating_frames(motion)
     return float(sk[max(lo, 0):hi].mean()) if hi > lo else 0.0
 
 
-def carry_out(tr: Motion, plan: Plan, lock: bool):
-    """Render a plan — and make sure the join does not skate.
+def _window_pop(out: Motion, window: tuple[int, int]) -> float:
+    """Root pop (m/s², :func:`core.metrics.quality` at the track's rate) of the blend window and 3 frames around."""
+    return quality(out[max(0, window[0] - 3):min(out.n_frames, window[1] + 3)], None).root_pop
+
+
+def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: float = float("inf")):
+    """Render a plan — and make sure the join does not skate, nor pop where another rendering would not.
 
     The plan is rendered as the paper has it (eq. (16) weights, a foot held by a frozen pose stepping
-    across, :func:`_planted`), then settled (:func:`settle`). If its blend still skates (a run
+    across, :func:`_planted`), then settled (:func:`settle`). If its blend skates (a run
     pulled into a standing pose: the mixed hips overshoot where the two motions' roots are far apart and
-    the weight is steep at an end), the join is rendered again without the step, then with S0's weight
-    eased to zero slope at both ends, then both; the first that does not skate is kept (else the one that
-    skates least), and the report says which (``fallback``). When none of those is clean, the same is
-    tried with the next-best lower-body intervals of eq. (10) (:data:`RUNNERS_UP` of them): the search's
-    minimum subject to the join keeping its feet. Deterministic.
+    the weight is steep at an end) or its hips pop, the join is rendered again without the step, then with
+    S0's weight eased to zero slope at both ends, then both (and placed by the roots' midpoint for a
+    motion–motion blend). "Skates" is the benchmark's rule: the blend's GMD ratio above ``own`` (the two
+    source clips' larger ratio) + 0.01; "pops": the window's root pop above 1.2 x ``own_pop`` (the
+    sources' larger, :func:`core.metrics.against_sources`). The first rendering that does neither is kept,
+    else of those that do not skate the one that pops least, else the one that skates least; the report
+    says which (``fallback``). When every rendering skates, the same is tried with the next-best lower-body
+    intervals of eq. (10) (:data:`RUNNERS_UP` of them): the search's minimum subject to the join keeping
+    its feet. Deterministic.
     """
     best = None
     variants = [("", True, False), ("no_step", False, False), ("eased", True, True), ("eased_no_step", False, True)]
@@ -70,13 +81,17 @@ def carry_out(tr: Motion, plan: Plan, lock: bool):
                 out, locks, window = render(tr, p, lock, step)
             sk = _skating(out, window[0], window[1]) if lock else 0.0  # the blend (the clips' own skating after
             # it, a jump's landing, is not the join's to fix)
+            over = max(0.0, _window_pop(out, window) - SOURCE_FACTOR * own_pop)
             name = "+".join(x for x in (cname, vname) if x)
             if name:
                 p = replace(p, info=dict(p.info, fallback=name))
-            if best is None or sk < best[0]:
-                best = (sk, p, out, locks, window)
-            if sk == 0.0:
-                _, p, out, locks, window = best
-                return p, out, locks, window
+            skates = skating_exceeds(sk, own)
+            key = (skates, 0.0 if skates else over, sk)
+            if best is None or key < best[0]:
+                best = (key, p, out, locks, window)
+            if key[:2] == (False, 0.0):
+                break
+        if not best[0][0]:  # a rendering that does not skate: the runners-up are for feet, not for pops
+            break
     _, p, out, locks, window = best
     return p, out, locks, window
