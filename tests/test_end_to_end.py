@@ -117,6 +117,21 @@ def test_skip_unknown_animates_the_rest(tmp_path, library_db):
     assert (tmp_path / "a.bvh").exists()
 
 
+def test_a_chain_of_actions_plays_every_action(library_db):
+    """走り、跳び、転ぶ: the jump is delayed for room after the run; the fall scheduled after it follows it
+    instead of being dropped (it was: 'not executed', and the actor stood until the end)."""
+    anim = text2anim.animate("太郎は走り、跳び、転ぶ。", db=library_db)
+    assert not anim.report["warnings"] and not anim.report["skipped"]
+    (motion,) = anim.motions.values()
+    els = anim.report["elements"]
+    assert all(v.get("executed", True) for v in els.values())
+    jump, fall = els["2"], els["3"]
+    assert fall["core"][0] >= jump["core"][1] - 1e-9  # cores in the order written, not overlapping
+    hips = motion.positions[:, 0, 1]
+    end = int(fall["core"][1] * motion.fps)
+    assert hips[end - 1] < 0.5 * hips[0]  # the fall is played: the hips end near the floor
+
+
 def test_a_wait_is_standing_not_a_frozen_stride(library_db):
     anim = text2anim.animate("走る。3秒後に歩く。", db=library_db)
     (motion,) = anim.motions.values()

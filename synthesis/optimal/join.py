@@ -41,6 +41,15 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
     prev = state.placed[-1]
     tr = extend(state.motion, inc.offset + inc.motion.n_frames, state.floor)
     plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
+    carry = _carried_delay(state, prev, fps)
+    if isinstance(plan, Skip) and carry:
+        # the previous element was delayed for room and its core now covers this one's start: the element
+        # scheduled after it follows it rather than being dropped (only then; others keep their times)
+        inc = inc.moved(carry)
+        tr = extend(state.motion, inc.offset + inc.motion.n_frames, state.floor)
+        plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
+    else:
+        carry = 0
     e = inc.element
     if isinstance(plan, Skip):
         state.skipped[e.id] = plan.reason
@@ -56,14 +65,14 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
     region_end = max([window[1]] + [lk.release_end for lk in locks])
     state.motion = out
     state.floor = window[1]
-    if plan.shift:  # this element only: later ones keep their scheduled times
-        state.delays.append((e.id, plan.shift / fps))
+    if plan.shift or carry:  # this element only: later ones keep their scheduled times unless dropped otherwise
+        state.delays.append((e.id, (plan.shift + carry) / fps))
     core = inc.core
     if inc.cyclic:  # a looped clip is all core: the join is taken out of it
         core = (max(core[0], region_end - inc.offset), core[1])
     if prev.cyclic:
         prev.core = (prev.core[0], min(prev.core[1], window[0] - prev.offset))
-    shown = replace(e, start=inc.first / fps, end=inc.end / fps) if (plan.shift or plan.phase) else e
+    shown = replace(e, start=inc.first / fps, end=inc.end / fps) if (plan.shift or plan.phase or carry) else e
     p = Placed(shown, plan.placed, inc.offset, core, inc.contacts, inc.cyclic, plan.rigid, inc.rep, inc.lead,
                inc.stop)
     state.placed.append(p)
@@ -75,6 +84,11 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
     # lower body (S3) plays that motion's own step, its figures are in the region's
     state.joins.append(LaidJoin(rep, main, (window[0], region_end), prev, p))
     return plan
+
+
+def _carried_delay(state: TrackState, prev: Placed, fps: float) -> int:
+    """Frames the previous element was delayed by its own join (0 if it kept its scheduled time)."""
+    return sum(int(round(d * fps)) for i, d in state.delays if i == prev.element.id)
 
 
 def lay_track(track: Track, whole: Sequence[Element], fps: float, weights: Weights, lock: bool = True,
