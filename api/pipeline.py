@@ -40,6 +40,11 @@ class Planned:
     repeats: dict[int, tuple[Pick, ...]] = field(default_factory=dict)
 
 
+def _kana_only(word: str) -> bool:
+    """Whether ``word`` is written in hiragana/katakana only (``とぶ``, ``ジャンプする``)."""
+    return all("\u3041" <= ch <= "\u30ff" for ch in word)
+
+
 class ClipFinder:
     """Retrieves the best clip for each motion and remembers it (``chosen``: motion id -> clip)."""
 
@@ -52,13 +57,24 @@ class ClipFinder:
 
     def search(self, spec: MotionSpec, prefer: str | None) -> list[ClipInfo]:
         part = spec.body_part if spec.body_part in GROUPS else None
+        if spec.written and spec.written != spec.verb:
+            # The dictionary's lemma may be another word of the same sound (撮る -> 取る, 閉める ->
+            # 締める, 指す -> 差す): a clip declaring the verb as the user spelled it comes first.
+            try:
+                hits = self.db.search(spec.written, object=spec.object, body_part=part, prefer_character=prefer)
+            except UnknownVerbError:
+                hits = []
+            if hits and spec.written in hits[0].verbs:
+                return hits
         try:
             hits = self.db.search(spec.verb, object=spec.object, body_part=part, prefer_character=prefer)
         except UnknownVerbError:
-            if not spec.reading or spec.reading == spec.verb:
+            if not spec.reading or spec.reading == spec.verb or not _kana_only(spec.written or spec.verb):
                 raise
-            # A spelling the database lacks may share a reading with one it has; if not, the
-            # error about the verb as written (with its suggestions) is the one to show.
+            # A verb written in kana (とぶ) may be a spelling the database has in kanji; if not, the
+            # error about the verb as written (with its suggestions) is the one to show. A verb
+            # written in kanji that the database lacks is another word, not another spelling, of
+            # any verb sharing its sound (吹く is not 拭く, 吐く is not 掃く).
             try:
                 hits = self.db.search(spec.reading, object=spec.object, body_part=part, prefer_character=prefer)
             except UnknownVerbError:
@@ -67,7 +83,20 @@ class ClipFinder:
                 return self.db.search(spec.verb)  # raises UnknownVerbError for the written verb
         if not hits and part:
             hits = self.db.search(spec.verb, object=spec.object, prefer_character=prefer)
-        return hits
+        return self._same_word(spec, hits)
+
+    @staticmethod
+    def _same_word(spec: MotionSpec, hits: list[ClipInfo]) -> list[ClipInfo]:
+        """``hits`` without clips the database matched by the verb's sound only, for a verb
+        written in kanji (吹く matches 拭く's clip by フク: another word); raises
+        :class:`UnknownVerbError` when nothing else is left."""
+        written = spec.written or spec.verb
+        if _kana_only(written):
+            return hits
+        same = [h for h in hits if spec.verb in h.verbs or written in h.verbs]
+        if hits and not same:
+            raise UnknownVerbError(written)
+        return same
 
     def __call__(self, spec: MotionSpec, prefer: str | None) -> ClipTiming:
         hits = self.search(spec, prefer)

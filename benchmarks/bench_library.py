@@ -9,7 +9,10 @@ Prints three tables:
 2. per sentence (the golden set and the issue's cases): length, the share of frozen frames
    (``timetable.md`` §3: every joint slower than 0.5 cm/s), the longest frozen run, the
    foot-skating ratio, and for repeats the seconds per repetition;
-3. co-actors: whether two actors doing the same verb play identical joint angles.
+3. co-actors: whether two actors doing the same verb play identical joint angles;
+4. loops and repeats: each looping captured clip's cycle and the hips' net travel over it (a
+   dance loops on the spot, a gait cycle moves on by a stride), and for repeated and long
+   sentences the seconds per repetition and how far the hips get from where they started.
 
 Frozen frames are measured on the output at 30 fps: a frame pair (t, t+1) is frozen when no
 joint moves 0.5 cm/s or more.
@@ -128,6 +131,36 @@ def sentence_table(db_url: str, engine: str) -> None:
     db.close()
 
 
+LOOP_SENTENCES = ["太郎は3回跳ぶ。", "花子は20秒踊る。", "太郎と花子は20秒踊る。", "太郎は手を振る。"]
+
+
+def loop_table(db_url: str, engine: str) -> None:
+    import text2anim
+    from text2anim.motiondb import MotionDB
+    from text2anim.motiondb.library import capture
+
+    print()
+    print("| looping clip | cycle (s) | hips' net travel a cycle (m) |")
+    print("| --- | ---: | ---: |")
+    for r in capture.capture_records():
+        if r.cyclic:
+            root = r.motion.root_positions
+            print(f"| {r.name} | {r.motion.duration:.2f} | {np.linalg.norm(root[-1, [0, 2]] - root[0, [0, 2]]):.2f} |")
+    db = MotionDB.open(db_url)
+    print()
+    print("| sentence | actor | seconds | per repetition (s) | hips furthest from start (m) |")
+    print("| --- | --- | ---: | ---: | ---: |")
+    for text in LOOP_SENTENCES:
+        anim = text2anim.animate(text, db=db, blend=engine)
+        for e in anim.table.elements:
+            m = anim.motions[e.actor or "default"]
+            n = len(anim.planned.repeats.get(e.id, ())) or 1
+            hips = m.root_positions[:, [0, 2]]
+            far = float(np.linalg.norm(hips - hips[0], axis=1).max())
+            print(f"| {text} | {e.actor or 'default'} | {m.duration:.2f} | {(e.end - e.start) / n:.2f} | {far:.2f} |")
+    db.close()
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--engine", default="optimal")
@@ -137,6 +170,7 @@ def main() -> None:
         url = args.db or str(Path(tmp) / "bench.sqlite")
         library_table(url)
         sentence_table(url, args.engine)
+        loop_table(url, args.engine)
 
 
 if __name__ == "__main__":

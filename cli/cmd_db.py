@@ -281,12 +281,29 @@ def _contact_sheet():
     return contact_sheet
 
 
+def _romanised(word: str) -> str:
+    """``word`` in Latin letters: its reading in Hepburn romaji (ASCII words as they are)."""
+    from text2anim.motiondb.readings import reading, romaji
+
+    return word if word.isascii() else romaji(reading(word))
+
+
+def _alt_title(title: str, words: list[str], rest: str) -> str | None:
+    """Without a font for ``title``'s glyphs (no CJK font): ``words`` romanised (odoru/dansusuru), then ``rest``."""
+    from text2anim.core import fonts
+
+    return None if fonts.drawable(title) else f"{': '.join(words)} {rest}"
+
+
 def _preview(db, args) -> int:
     contact_sheet = _contact_sheet()
     info = db.info(args.clip)
     motion = db.load(info)
-    title = f"{info.name}: {'/'.join(info.verbs)} ({info.character}, {info.frames} frames, {info.fps:g} fps)"
-    contact_sheet(motion, args.output, title=title, n=args.frames, core=info.core)
+    rest = f"({info.character}, {info.frames} frames, {info.fps:g} fps)"
+    title = f"{info.name}: {'/'.join(info.verbs)} {rest}"
+    alt = _alt_title(title, [_romanised(info.name), "/".join(_romanised(v) for v in info.verbs)],
+                     f"({_romanised(info.character)}, {info.frames} frames, {info.fps:g} fps)")
+    contact_sheet(motion, args.output, title=title, n=args.frames, core=info.core, alt_title=alt)
     print(f"wrote {args.output}")
     return 0
 
@@ -300,8 +317,10 @@ def _preview_file(args) -> int:
     contact_sheet = _contact_sheet()
     motion = read_bvh(args.clip)
     name = os.path.basename(args.clip)
-    title = f"{name} ({motion.n_frames} frames, {motion.fps:g} fps, {motion.n_frames / motion.fps:.2f} s)"
-    contact_sheet(motion, args.output, title=title, n=args.frames)
+    rest = f"({motion.n_frames} frames, {motion.fps:g} fps, {motion.n_frames / motion.fps:.2f} s)"
+    title = f"{name} {rest}"
+    alt = _alt_title(title, [_romanised(name)], rest)
+    contact_sheet(motion, args.output, title=title, n=args.frames, alt_title=alt)
     print(f"wrote {args.output}")
     return 0
 

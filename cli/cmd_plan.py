@@ -18,6 +18,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    "default: $TEXT2ANIM_DB or the user's data directory)")
     p.add_argument("--fps", type=fps_type, default=30.0, help="frame rate recorded in the table, 1 to 240 (default 30)")
     p.add_argument("--skip-unknown", action="store_true", help="drop motions whose verb the database lacks")
+    p.add_argument("--fallback", choices=("strict", "nearest"), default="strict",
+                   help="a verb the database lacks: strict (default) stops with the nearest verbs by meaning; "
+                        "nearest plans the database verb nearest in meaning and says so")
     add_budget_option(p)
 
 
@@ -26,7 +29,9 @@ def run(args: argparse.Namespace) -> int:
     from text2anim.scheduler import format_table
 
     planned = text2anim.plan(read_text(args.text), args.db, fps=args.fps, skip_unknown=args.skip_unknown,
-                             max_seconds=args.max_seconds)
+                             fallback=args.fallback, max_seconds=args.max_seconds)
+    for sub in planned.fallbacks:
+        print(f"text2anim: fallback: {sub}", file=sys.stderr)
     for verb in planned.skipped:
         print(f"text2anim: skipped {verb}: not in the motion database", file=sys.stderr)
     sys.stdout.write(planned.table.to_json() + "\n" if args.json else format_table(planned.table))

@@ -22,27 +22,21 @@ from __future__ import annotations
 
 import io
 import os
-import re
 import warnings
 from collections.abc import Iterable, Mapping
 from contextlib import contextmanager
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
+from . import fonts
 from .atomic import OutputError, atomic_write_bytes
 from .motion import Motion
 from .viewer.types import Span, as_spans
 
 __all__ = ["PlotDependencyError", "PlotError", "plot_gantt", "plot_speeds"]
 
-#: Families tried, in order, for Japanese text.
-CJK_FAMILIES = ("Noto Sans CJK JP", "Noto Sans JP", "IPAexGothic", "IPAPGothic", "IPAGothic", "TakaoPGothic",
-                "TakaoGothic", "VL PGothic", "VL Gothic", "Source Han Sans JP", "Source Han Sans",
-                "Hiragino Sans", "Hiragino Kaku Gothic ProN", "Yu Gothic", "Meiryo", "MS Gothic",
-                "Noto Sans CJK SC", "Noto Sans CJK TC", "WenQuanYi Zen Hei", "Droid Sans Fallback")
-BASE_FAMILY = "DejaVu Sans"
+CJK_FAMILIES, BASE_FAMILY = fonts.CJK_FAMILIES, fonts.BASE_FAMILY
 UPPER_COLOR = "#d9a400"
 LOWER_COLOR = "#2e9e6a"
 FORMATS = ("png", "svg", "pdf")
@@ -72,44 +66,18 @@ def _matplotlib():
     return matplotlib, Figure, FigureCanvasAgg
 
 
-@lru_cache(maxsize=1)
 def _fonts() -> tuple[str | None, frozenset]:
-    """The CJK fallback family (or ``None``) and the code points the chosen fonts can draw."""
-    from matplotlib import font_manager
-    from matplotlib.ft2font import FT2Font
-
-    by_name: dict[str, str] = {}
-    for f in font_manager.fontManager.ttflist:
-        by_name.setdefault(f.name, f.fname)
-    chars: set[int] = set()
-    cjk = next((fam for fam in CJK_FAMILIES if fam in by_name), None)
-    for fam in (BASE_FAMILY, cjk):
-        if fam is None:
-            continue
-        path = by_name.get(fam) or font_manager.findfont(fam, fallback_to_default=True)
-        try:
-            chars.update(FT2Font(path).get_charmap())
-        except Exception:  # an unreadable font file: rely on the other
-            continue
-    return cjk, frozenset(chars)
+    """The CJK fallback family (or ``None``) and the code points the chosen fonts can draw (:mod:`.fonts`)."""
+    return fonts.available()
 
 
 def _drawable(text: str) -> bool:
-    chars = _fonts()[1]
-    return all(c.isspace() or ord(c) in chars for c in text)
+    return fonts.drawable(text, _fonts()[1])
 
 
 def _label(text: str, alt: str | None = None, fallback: str = "?") -> str:
     """``text`` if the fonts can draw it, else ``alt``, else ``text`` without what cannot be drawn."""
-    text = str(text)
-    if _drawable(text):
-        return text
-    if alt and _drawable(alt):
-        return alt
-    kept = "".join(c for c in text if _drawable(c))
-    kept = re.sub(r"\(\s*\)|\[\s*\]", "", kept)
-    kept = re.sub(r"\s+", " ", kept).strip(" -_:")
-    return kept if re.search(r"\w", kept) else fallback
+    return fonts.label(text, alt, fallback, _fonts()[1])
 
 
 @contextmanager

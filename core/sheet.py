@@ -11,7 +11,8 @@ foot that slides moves against them). A foot in contact (as
 :func:`core.contacts.detect_contacts` labels it) is marked with a green
 dot. Frames inside the ``core`` interval have a bold title. A strip under the
 frames plots root and foot heights over the whole clip with the contact
-intervals shaded, and the core interval if given.
+intervals shaded, and the core interval if given. A Japanese title needs a CJK
+font; without one a romanised alternative is drawn (:mod:`.fonts`).
 
 matplotlib is an optional extra (``pip install text2anim[plot]``); it is
 imported only when a sheet is drawn.
@@ -24,6 +25,7 @@ import warnings
 
 import numpy as np
 
+from . import fonts
 from .atomic import atomic_write_bytes
 from .bodyparts import body_map, side_of
 from .contacts import detect_contacts, foot_tracks
@@ -49,18 +51,6 @@ def _matplotlib():
     return Figure, FigureCanvasAgg
 
 
-#: Fonts tried for Japanese titles (the first installed one is used after DejaVu Sans).
-CJK_FONTS = ("Noto Sans CJK JP", "IPAexGothic", "IPAGothic", "Hiragino Sans", "Yu Gothic", "TakaoGothic",
-             "Noto Sans JP", "Source Han Sans JP", "Droid Sans Fallback")
-
-
-def _font_families() -> list[str]:
-    from matplotlib import font_manager
-
-    have = {f.name for f in font_manager.fontManager.ttflist}
-    return ["DejaVu Sans"] + [f for f in CJK_FONTS if f in have][:1]
-
-
 _COLOURS = {"left": "#1f5fbf", "right": "#c62828", None: "#222222"}
 
 
@@ -75,14 +65,20 @@ def _segments(motion: Motion):
 
 
 def contact_sheet(motion: Motion, path: str | os.PathLike, title: str = "", n: int = 8,
-                  *, core: tuple[float, float] | None = None, dpi: int = 80) -> None:
-    """Draw ``n`` frames of ``motion`` (front and side views) and a height strip to a PNG at ``path``."""
+                  *, core: tuple[float, float] | None = None, dpi: int = 80, alt_title: str | None = None) -> None:
+    """Draw ``n`` frames of ``motion`` (front and side views) and a height strip to a PNG at ``path``.
+
+    ``title`` is drawn as given when the installed fonts have all its glyphs (Japanese needs a CJK
+    font, :mod:`.fonts`); otherwise ``alt_title`` (a romanised title), else the title without what
+    cannot be drawn: never boxes.
+    """
     Figure, FigureCanvasAgg = _matplotlib()
     import matplotlib
 
-    with matplotlib.rc_context({"font.family": _font_families()}), warnings.catch_warnings():
+    with matplotlib.rc_context({"font.family": fonts.families()}), warnings.catch_warnings():
         warnings.filterwarnings("ignore", message="Glyph .* missing from")
-        data = _draw(Figure, FigureCanvasAgg, motion, title, n, core, dpi)
+        shown = fonts.label(title, alt_title, fallback="") if title else ""
+        data = _draw(Figure, FigureCanvasAgg, motion, shown, n, core, dpi)
     atomic_write_bytes(path, data)
 
 

@@ -10,6 +10,9 @@ kana spelling always meets the word it spells. Input is NFKC-normalised first
 The first morpheme is read in its dictionary form when it is written in that
 form (``箱`` → ``ハコ``, not the compound form ``バコ``); later morphemes as
 written (``歩き出す`` → ``アルキダス``).
+
+:func:`romaji` writes a reading in Latin letters (Hepburn: ``オドル`` → ``odoru``,
+``ジャンプスル`` → ``janpusuru``), for figures drawn without a Japanese font.
 """
 from __future__ import annotations
 
@@ -80,3 +83,44 @@ def nearest(word: str, candidates: dict[str, str], n: int = 5, cutoff: float = 0
             scored.append((-score, cand_reading, cand))
     scored.sort()
     return [c for _, _, c in scored[:n]]
+
+
+_GOJUON = ("a i u e o ka ki ku ke ko sa shi su se so ta chi tsu te to na ni nu ne no "
+           "ha hi fu he ho ma mi mu me mo ya yu yo ra ri ru re ro wa wi we wo n "
+           "ga gi gu ge go za ji zu ze zo da ji zu de do ba bi bu be bo pa pi pu pe po vu").split()
+_KANA = ("アイウエオカキクケコサシスセソタチツテトナニヌネノハヒフヘホマミムメモヤユヨラリルレロワヰヱヲン"
+         "ガギグゲゴザジズゼゾダヂヅデドバビブベボパピプペポヴ")
+_ROMAJI = dict(zip(_KANA, _GOJUON))
+_ROMAJI.update({"ァ": "a", "ィ": "i", "ゥ": "u", "ェ": "e", "ォ": "o", "ャ": "ya", "ュ": "yu", "ョ": "yo", "ヮ": "wa"})
+_SMALL_Y = {"ャ": "a", "ュ": "u", "ョ": "o"}
+
+
+def romaji(text: str) -> str:
+    """``text``'s kana in Latin letters (Hepburn; katakana or hiragana), anything else kept:
+    ``キャッチスル`` → ``kyatchisuru``, ``シャ`` → ``sha``; ``ー`` repeats the vowel before it (``ポーズ`` → ``poozu``)."""
+    kana = to_katakana(normalize(text))
+    out: list[str] = []
+    i = 0
+    double = False
+    while i < len(kana):
+        c = kana[i]
+        nxt = kana[i + 1] if i + 1 < len(kana) else ""
+        if c == "ッ":
+            double = True
+            i += 1
+            continue
+        if c == "ー":
+            out.append(out[-1][-1] if out and out[-1][-1] in "aeiou" else "-")
+            i += 1
+            continue
+        syl = _ROMAJI.get(c, c)
+        if nxt in _SMALL_Y and c in _ROMAJI and syl.endswith("i") and len(syl) > 1:  # キャ kya, シャ sha, ジャ ja
+            stem = syl[:-1]
+            syl = stem + ("" if stem in ("sh", "ch", "j") else "y") + _SMALL_Y[nxt]
+            i += 1
+        if double and syl[:1].isalpha():
+            syl = ("t" if syl.startswith("ch") else syl[0]) + syl
+        double = False
+        out.append(syl)
+        i += 1
+    return "".join(out)

@@ -19,12 +19,15 @@ Ranking (each key breaks the ties of the one before):
 3. start posture (when asked): clips whose ``start_posture`` is
    ``prefer_start_posture`` (the posture the previous clip ends in) first, the
    others after (in the order of the keys below);
-4. object: when an object is asked, clips declaring it < clips declaring no
+4. spelling: clips declaring the query itself (as primary verb or synonym) before clips
+   matched only by its reading (a homophone: 取る finds 撮る's clip by トル, 指す finds 刺す's
+   by サス; another word, whatever objects either declares);
+5. object: when an object is asked, clips declaring it < clips declaring no
    object < clips declaring other objects; when none is asked, clips declaring
    no object come first;
-5. verb: the query is the clip's primary verb < one of its synonyms < the
+6. verb: the query is the clip's primary verb < one of its synonyms < the
    primary verb only by reading (another spelling) < a synonym only by reading;
-6. the clip's name (so the order is total and deterministic).
+7. the clip's name (so the order is total and deterministic).
 
 Hence "verb+object over verb over synonym": 蹴る + ボール puts a kick clip that
 declares ボール before a plain kick, and a clip whose primary verb is 蹴る before
@@ -119,7 +122,8 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
     exact = _VB.c.lemma == lemma
     verb_tier = case((and_(exact, _CV.c.is_primary), 0), (exact, 1), (_CV.c.is_primary, 2), else_=3)
     per_clip = (
-        select(_CV.c.clip_id.label("clip_id"), func.min(verb_tier).label("verb_tier"))
+        select(_CV.c.clip_id.label("clip_id"), func.min(verb_tier).label("verb_tier"),
+               func.min(case((exact, 0), else_=1)).label("spelling_tier"))
         .join(_VB, _VB.c.id == _CV.c.verb_id)
         .where(or_(exact, _VB.c.reading == bindparam("reading")))
         .group_by(_CV.c.clip_id)
@@ -131,7 +135,8 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
         select(func.min(case((matched, 0), else_=2))).select_from(_CO)
         .join(_OB, _OB.c.id == _CO.c.object_id)
         .where(_CO.c.clip_id == _CL.c.id).scalar_subquery(), 1)
-    keys = [object_tier.label("object_tier"), per_clip.c.verb_tier.label("verb_tier")]
+    keys = [per_clip.c.spelling_tier.label("spelling_tier"), object_tier.label("object_tier"),
+            per_clip.c.verb_tier.label("verb_tier")]
     stmt = (select(_CL.c.id.label("id"), _CL.c.name.label("name")).join(per_clip, per_clip.c.clip_id == _CL.c.id)
             .join(_CH, _CH.c.id == _CL.c.character_id))
     keys.insert(0, case((_CH.c.name == bindparam("prefer"), 0), else_=1).label("character_tier"))
@@ -140,8 +145,8 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
         parts = [body_part] + ([mirror] if mirror else [])
         stmt = stmt.where(or_(_CL.c.body_part.in_(parts), _CL.c.body_part.is_(None)))
         whens = [(_CL.c.body_part == body_part, 0)] + ([(_CL.c.body_part == mirror, 1)] if mirror else [])
-        keys.insert(len(keys) - 2, case(*whens, else_=2).label("part_tier"))
-    keys.insert(len(keys) - 2, case((_CL.c.start_posture == bindparam("posture"), 0), else_=1).label("posture_tier"))
+        keys.insert(len(keys) - 3, case(*whens, else_=2).label("part_tier"))
+    keys.insert(len(keys) - 3, case((_CL.c.start_posture == bindparam("posture"), 0), else_=1).label("posture_tier"))
     if character:
         stmt = stmt.where(_CH.c.name == bindparam("character"))
     tiers = stmt.add_columns(*keys).subquery()  # each key computed once per matching clip

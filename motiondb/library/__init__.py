@@ -53,6 +53,7 @@ from text2anim.core.motion import Motion
 from . import capture
 from .keyframe_curves import curves_to_motion, sample_curves
 from .keyframes import CLIPS_DIR, ClipData, ClipDataError, PlantSpec, load_json_dir, parse_clip
+from .near import with_near_synonyms
 from .plant import FramePlant, PlantReport, plant_feet
 from .reach import apply_reach
 from .skeleton import ANKLE_HEIGHT, SHOE_SOLE, TOE_HEIGHT, canonical_skeleton
@@ -207,7 +208,8 @@ def build_all(fps: float = 30.0) -> tuple[BuiltClip, ...]:
 
 def builtin_clips(fps: float = 30.0) -> list[ClipRecord]:
     """The built-in library as :class:`ClipRecord` s on :func:`canonical_skeleton` (deterministic, cached):
-    the keyframed clips no capture replaces, then the captured ones."""
+    the keyframed clips no capture replaces, then the captured ones, with the near-synonyms of
+    ``near.json`` (:mod:`motiondb.library.near`) added to their verbs."""
     gone = capture.replaced()
     keyed = [b.record for b in build_all(float(fps)) if b.record.name not in gone]
-    return keyed + list(capture.capture_records(float(fps)))
+    return with_near_synonyms(keyed + list(capture.capture_records(float(fps))))

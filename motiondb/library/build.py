@@ -22,7 +22,9 @@ For every take named in the cut list (each file read once), then every clip cut 
 6. a looping clip has its last ``blend`` seconds blended into the frames before the cut, so
    its last frame flows into its first: in place (``loop = "blend"``, the idle) or moved on by
    the cycle's travel (``loop = "stride"``, a gait cycle), so the synthesizer finds nothing
-   to correct at the seam;
+   to correct at the seam; a dance (``loop = "spot"``) has its net travel taken out first and
+   loops on the spot, turned by its own net turn (:func:`spot_loop`); a ``cycle`` of the cut is
+   played ``cycles`` more times (:func:`repeat_cycle`: a wave's swing);
 7. a clip that ``starts_from`` another (standing up after sitting down) is turned to that
    clip's last heading and eased out of its last pose over ``ease`` seconds.
 
@@ -43,6 +45,7 @@ from scipy.spatial.transform import Rotation
 
 from text2anim.core.bvh import read_bvh
 from text2anim.core.clearance import clear_floor, lift_swings
+from text2anim.core.contacts import detect_contacts
 from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
 from text2anim.core.retarget import retarget
@@ -129,6 +132,62 @@ def blend_loop(m: Motion, pre: int, travel: np.ndarray | None = None) -> Motion:
     return body.replace(root_positions=root, rotations=rots)
 
 
+def remove_drift(m: Motion, pre: int, drift: np.ndarray) -> Motion:
+    """``m`` with the hips' net travel ``drift`` (root ``(dx, dz)``, metres) taken out of frames ``pre``..
+    (frame ``pre`` keeps its place, the frame after the last comes back onto it).
+
+    The correction grows with the distance the hips have moved horizontally so far (the cumulative
+    path length, normalised to 1 over the cycle): where the dancer stands it does not change, where she
+    steps it shortens the steps, so a planted foot that :func:`.feet.lock_feet` holds still afterwards
+    needs its leg to bend by little. ``m``: ``(pre + N)`` frames; the first ``pre`` (the lead-in) are kept.
+    """
+    root = m.root_positions.copy()
+    step = np.linalg.norm(np.diff(root[pre - 1:, [0, 2]], axis=0), axis=1)  # (N,): into each frame of the cycle
+    path = np.concatenate([[0.0], np.cumsum(step[1:])])
+    end = path[-1] + step[-1] if len(step) else 1.0  # plus the step out of the last frame (about the one into it)
+    root[pre:, [0, 2]] -= np.outer(path / max(end, 1e-9), drift)
+    return m.replace(root_positions=root)
+
+
+def spot_loop(take: Motion, m: Motion, pre: int, j0: int, j1: int) -> Motion:
+    """A loop danced on the spot (``loop = "spot"``): the cycle ends where it began, turned by its own
+    net turn (so repeated cycles turn in place instead of travelling away).
+
+    ``take``: the whole take at its own rate; ``j0``, ``j1``: the take's frames of the cycle's start and
+    of the frame after its end; ``m``: the cut at :data:`FPS` with ``pre`` lead-in frames. The hips' net
+    travel over the cycle is removed (:func:`remove_drift`), the lead-in turned by the cycle's turn
+    about the cycle's start, and the cycle's last frames blended into it (:func:`blend_loop`).
+    """
+    drift = take.root_positions[j1, [0, 2]] - take.root_positions[j0, [0, 2]]
+    turn = _heading(take, slice(j1, j1 + 1)) - _heading(take, slice(j0, j0 + 1))
+    turn = (turn + np.pi) % (2 * np.pi) - np.pi
+    m = lock_feet(remove_drift(m, pre, drift), detect_contacts(m))  # planted where they were planted before
+    lead = _yaw_about_origin(m.frames(0, pre), turn, m.root_positions[pre, [0, 2]])
+    start = m.root_positions[pre] * [1.0, 0.0, 1.0]
+    lead = lead.replace(root_positions=lead.root_positions + start)  # turned about the cycle's start, left in place
+    m = m.replace(root_positions=np.concatenate([lead.root_positions, m.root_positions[pre:]]),
+                  rotations=np.concatenate([lead.rotations, m.rotations[pre:]]))
+    return lift_swings(lock_feet(blend_loop(m, pre, None)))
+
+
+def repeat_cycle(m: Motion, cut: Cut) -> Motion:
+    """The cut ``m`` (at :data:`FPS`) with its ``cut.cycle`` played ``cut.cycles`` more times (a wave's
+    swing, where the take goes on to something else): the cycle is made to loop in place
+    (:func:`blend_loop`, its last ``blend`` seconds blended into the frames before it) and inserted
+    before itself, so the frames before the cycle flow into it, each copy into the next, the last
+    into the cycle as captured and the rest of the cut.
+    """
+    assert cut.cycle is not None
+    a, b = (_frames(t - cut.cut[0], FPS) for t in cut.cycle)
+    pre = _frames(cut.blend, FPS)
+    if a < pre:
+        raise ValueError(f"{cut.name}: a {cut.blend} s blend needs {cut.blend} s of the cut before its cycle")
+    c = blend_loop(m.frames(a - pre, b), pre, None)
+    parts = [m.frames(0, a)] + [c] * cut.cycles + [m.frames(a)]
+    return m.replace(root_positions=np.concatenate([p.root_positions for p in parts]),
+                     rotations=np.concatenate([p.rotations for p in parts]))
+
+
 def cut_clip(take: Motion, cut: Cut) -> Motion:
     """One clip of the cut list from its (retargeted, floored) take, at :data:`FPS`, facing +Z."""
     t0, t1 = cut.cut
@@ -137,11 +196,15 @@ def cut_clip(take: Motion, cut: Cut) -> Motion:
     i1 = _frames(t1, take.fps)
     if i0 < 0:
         raise ValueError(f"{cut.name}: a {cut.blend} s blend needs {cut.blend} s before the cut at {t0}")
-    if i1 > take.n_frames - (cut.loop == "stride"):
+    if i1 > take.n_frames - (cut.loop in ("stride", "spot")):
         raise ValueError(f"{cut.name}: the cut ends at {t1} s, after the take's {take.duration:.2f} s")
     src = lowpass(take, cut.lowpass) if cut.lowpass else take
     m = clear_floor(lift_swings(lock_feet(src.frames(i0, i1).resample(FPS))))
-    if cut.loop:
+    if cut.cycle is not None:
+        m = lift_swings(lock_feet(repeat_cycle(m, cut)))
+    if cut.loop == "spot":
+        m = spot_loop(take, m, pre, _frames(t0, take.fps), i1)
+    elif cut.loop:
         travel = None
         if cut.loop == "stride":  # one cycle's travel: from the cycle's first frame to the frame after it
             root = take.root_positions

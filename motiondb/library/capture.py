@@ -63,6 +63,13 @@ class Cut:
     ease: float = 0.0
     lowpass: float = 0.0  # Hz; 0: none (see .smooth)
     about: str = ""
+    cycle: tuple[float, float] | None = None  # a stretch of the cut played ``cycles`` more times
+    cycles: int = 0
+
+    @property
+    def extra(self) -> float:
+        """Seconds the repeated ``cycle`` adds to the cut."""
+        return self.cycles * (self.cycle[1] - self.cycle[0]) if self.cycle else 0.0
 
     @property
     def trial(self) -> str:
@@ -87,7 +94,9 @@ def _cut(raw: dict) -> Cut:
                   ends=raw.get("ends", "stand"), replaces=raw.get("replaces"), loop=raw.get("loop"),
                   blend=float(raw.get("blend", 0.0)), face=raw.get("face", "start"),
                   starts_from=raw.get("starts_from"), ease=float(raw.get("ease", 0.0)),
-                  lowpass=float(raw.get("lowpass", 0.0)), about=raw.get("about", ""))
+                  lowpass=float(raw.get("lowpass", 0.0)), about=raw.get("about", ""),
+                  cycle=tuple(float(x) for x in raw["cycle"]) if "cycle" in raw else None,  # type: ignore[arg-type]
+                  cycles=int(raw.get("cycles", 0)))
     except (KeyError, TypeError, ValueError) as exc:
         raise ClipDataError(f"capture.toml: clip {name}: {exc}") from None
     if not 0 <= t0 < t1:
@@ -99,8 +108,12 @@ def _cut(raw: dict) -> Cut:
     for word in (cut.starts, cut.ends):
         if word not in _POSTURE:
             raise ClipDataError(f"capture.toml: clip {name}: unknown posture {word!r}")
-    if cut.face not in ("start", "travel") or cut.loop not in (None, "blend", "stride"):
-        raise ClipDataError(f"capture.toml: clip {name}: face must be start|travel, loop blend|stride or absent")
+    if cut.face not in ("start", "travel") or cut.loop not in (None, "blend", "stride", "spot"):
+        raise ClipDataError(f"capture.toml: clip {name}: face must be start|travel, loop blend|stride|spot or absent")
+    if cut.cycle is not None and not (len(cut.cycle) == 2 and t0 < cut.cycle[0] < cut.cycle[1] < t1
+                                      and cut.cycles > 0 and cut.blend > 0 and not cut.loop):
+        raise ClipDataError(f"capture.toml: clip {name}: a cycle must lie inside the cut, with cycles > 0, "
+                            "blend > 0 seconds and no loop")
     if not 0 <= cut.lowpass < 60:
         raise ClipDataError(f"capture.toml: clip {name}: lowpass must be 0 (none) or a cut-off below 60 Hz")
     if cut.loop and not (cut.cyclic and cut.blend > 0):
@@ -151,7 +164,8 @@ def capture_records(fps: float = FPS) -> tuple[ClipRecord, ...]:
         if c.core is None:
             core = (0.0, motion.duration)
         else:
-            core = (round(c.core[0] - c.cut[0], 6), min(round(c.core[1] - c.cut[0], 6), motion.duration))
+            extra = c.extra if c.cycle and c.core[1] > c.cycle[0] else 0.0  # the repeated cycle lengthens the core
+            core = (round(c.core[0] - c.cut[0], 6), min(round(c.core[1] - c.cut[0] + extra, 6), motion.duration))
         out.append(ClipRecord(name=c.name, motion=motion, verbs=c.verbs, objects=c.objects, character="default",
                               core=core, body_part=c.body_part, cyclic=c.cyclic, source=c.source,
                               start_posture=_POSTURE[c.starts], end_posture=_POSTURE[c.ends]))

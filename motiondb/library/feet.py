@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from text2anim.core.bodyparts import body_map
-from text2anim.core.contacts import detect_contacts, horizontal_speed
+from text2anim.core.contacts import FootContacts, detect_contacts, horizontal_speed
 from text2anim.core.ik import leg_ik, set_world_rotation
 from text2anim.core.motion import Motion
 
@@ -54,9 +54,10 @@ def pin_offsets(joint: np.ndarray, speed: np.ndarray, intervals: list[tuple[int,
     return off
 
 
-def lock_feet(motion: Motion) -> Motion:
-    """``motion`` with each planted foot held still (see the module docstring)."""
-    contacts = detect_contacts(motion)
+def lock_feet(motion: Motion, contacts: FootContacts | None = None) -> Motion:
+    """``motion`` with each planted foot held still (see the module docstring); ``contacts``: where the
+    feet are planted when not as detected on ``motion`` itself (a clip whose hips were moved after)."""
+    contacts = contacts if contacts is not None else detect_contacts(motion)
     bm = body_map(motion.skeleton)
     pos = motion.positions
     world = motion.pose.quaternions()

@@ -63,6 +63,19 @@ def test_synonyms_and_kana_spellings_meet_on_the_same_clips(empty_db, record):
     assert (verbs["跳ぶ"].clips, verbs["跳ぶ"].primary) == (2, 1)
 
 
+def test_a_clip_declaring_the_verb_ranks_before_a_homophones_whatever_the_objects(empty_db, record):
+    """取る and 撮る share the reading トル: another word, so the clip that declares the query comes
+    first even when it declares an object and the homophone's clip declares none."""
+    empty_db.add([
+        record("pick_up", ("拾う", "取る"), objects=("ボール",)),
+        record("take_photo", ("撮る",)),
+    ])
+    assert names(empty_db.search("取る")) == ["pick_up", "take_photo"]
+    assert names(empty_db.search("取る", object="本")) == ["pick_up", "take_photo"]
+    assert names(empty_db.search("撮る")) == ["take_photo", "pick_up"]
+    assert names(empty_db.search("とる")) == ["take_photo", "pick_up"]  # kana: reading only, objects decide
+
+
 def test_an_unknown_verb_lists_the_nearest_verbs_by_reading(empty_db, record):
     with pytest.raises(UnknownVerbError, match="no verbs yet"):
         empty_db.search("歩く")

@@ -34,33 +34,67 @@ def test_written_form_is_kept_beside_the_lemma():
 
 
 def test_error_names_every_missing_verb_as_written(library_db):
+    """降りる is analysed as the lemma 下りる; 泳ぐ's nearest library verb by meaning is 潜る."""
     with MotionDB.open(library_db) as db, pytest.raises(UnknownVerbError) as exc:
-        text2anim.plan("太郎は山に登って、本を読む。そして座る。", db)
+        text2anim.plan("太郎は階段を降りて、泳ぐ。そして座る。", db)
     msg = str(exc.value)
-    assert "登る" in msg and "読む" in msg and "上る" not in msg
-    assert "nearest by meaning" in msg and "見る" in msg.split("読む")[1]
+    assert "降りる" in msg and "泳ぐ" in msg and "下りる" not in msg
+    assert "nearest by meaning" in msg and "潜る" in msg.split("泳ぐ")[1]
 
 
 def test_fallback_nearest_animates_and_says_so(library_db, tmp_path):
     out, report = tmp_path / "a.bvh", tmp_path / "r.json"
-    strict = run("太郎は山に登る。", "-o", out, "--db", library_db)
-    assert strict.returncode == 2 and not out.exists() and "登る" in strict.stderr
-    proc = run("太郎は山に登る。", "-o", out, "--db", library_db, "--fallback", "nearest", "--report", report)
+    strict = run("太郎は階段を降りる。", "-o", out, "--db", library_db)
+    assert strict.returncode == 2 and not out.exists() and "降りる" in strict.stderr
+    proc = run("太郎は階段を降りる。", "-o", out, "--db", library_db, "--fallback", "nearest", "--report", report)
     assert proc.returncode == 0, proc.stderr
-    assert "fallback: 登る → 歩く" in proc.stderr
+    assert "fallback: 降りる → 向かう" in proc.stderr
     data = json.loads(report.read_text())
-    assert [(f["id"], f["asked"], f["animated_as"]) for f in data["fallbacks"]] == [(1, "登る", "歩く")]
+    assert [(f["id"], f["asked"], f["animated_as"]) for f in data["fallbacks"]] == [(1, "降りる", "向かう")]
     assert data["fallbacks"][0]["similarity"] >= meaning.MIN_SIMILARITY
-    assert [e["verb"] for e in data["time_table"]] == ["歩く"]
+    assert [e["verb"] for e in data["time_table"]] == ["向かう"]
 
 
-@pytest.mark.parametrize("text, verb", [("太郎は掃除する。", "掃除する"), ("太郎は本を読む。", "読む")])
+def test_plan_takes_fallback_nearest_too(library_db):
+    """``text2anim plan --fallback nearest`` plans the stand-in and says so; strict refuses (exit 2)."""
+    strict = run("plan", "太郎は階段を降りて、座る。", "--db", library_db)
+    assert strict.returncode == 2 and "降りる" in strict.stderr and strict.stdout == ""
+    proc = run("plan", "太郎は階段を降りて、座る。", "--db", library_db, "--fallback", "nearest", "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert "fallback: 降りる → 向かう" in proc.stderr
+    table = json.loads(proc.stdout)
+    assert "向かう" in json.dumps(table, ensure_ascii=False) and "降りる" not in json.dumps(table, ensure_ascii=False)
+    bad = run("plan", "太郎は歩く。", "--db", library_db, "--fallback", "closest")
+    assert bad.returncode == 2 and "--fallback" in bad.stderr
+
+
+@pytest.mark.parametrize("text, verb", [("太郎は花びらを散らす。", "散らす"), ("太郎はガムを噛む。", "噛む")])
 def test_fallback_refuses_a_verb_nothing_is_near(library_db, text, verb):
-    """掃除する: no library verb is even loosely near; 読む: 見る (look around) is the
-    nearest library verb but only its ~60th neighbour, so no stand-in is played."""
+    """散らす: no library verb is even loosely near; 噛む: ちぎる (tear) is the nearest library
+    verb by cosine but not among 噛む's nearest words, so no stand-in is played."""
     with MotionDB.open(library_db) as db, pytest.raises(UnknownVerbError) as exc:
         plan_text(text, db, fallback="nearest")
     assert verb in str(exc.value) and "near enough" in str(exc.value)
+
+
+@pytest.mark.parametrize("text, clip", [
+    ("太郎は写真を撮る。", "take_photo"),   # lemma 取る: the spelling as written decides
+    ("太郎は本を取る。", "pick_up"),        # not 撮る's clip, though 本 is no object of pick_up
+    ("花子はドアを閉める。", "close_door"),  # lemma 締める
+    ("太郎は右手で指す。", "point"),        # lemma 差す, also the reading of 刺す (stab)
+    ("太郎は歯を磨く。", "brush_teeth"),    # the object picks among the clips of 磨く
+    ("はなこはたべる。", "eat"),            # kana: found by its reading
+])
+def test_the_clip_is_the_word_written_not_a_homophone(library_db, text, clip):
+    with MotionDB.open(library_db) as db:
+        assert [e.clip for e in text2anim.plan(text, db).table.elements] == [clip]
+
+
+def test_a_kanji_verb_is_not_animated_as_another_word_of_the_same_sound(library_db):
+    """吐く (spit) sounds as 掃く (sweep, in the library): it is a missing verb, not a sweep."""
+    with MotionDB.open(library_db) as db, pytest.raises(UnknownVerbError) as exc:
+        text2anim.plan("太郎はつばを吐く。", db)
+    assert "吐く" in str(exc.value)
 
 
 def test_neighbour_rank_is_required_beside_the_cosine():
