@@ -32,7 +32,7 @@ from text2anim.core.retarget import map_skeletons
 from text2anim.core.rigs import REQUIRED, RigError
 from text2anim.export import ExportError, ExportOptions
 
-BROWSER = Path(__file__).parent / "browser"
+BROWSER = Path(__file__).parents[1] / "browser"
 NODE_MODULES = Path(os.environ.get("T2A_NODE_MODULES", BROWSER / "node_modules"))
 RIGS = {"mixamo_glb": lambda p: mixamo_glb(p / "mixamo.glb"), "vrm1": lambda p: vrm_file(p / "avatar.vrm"),
         "vrm0": lambda p: vrm_file(p / "avatar0.vrm", version="0.x")}
