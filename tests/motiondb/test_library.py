@@ -8,7 +8,6 @@ pop, locomotion with alternating steps at human speeds and cadences.
 from __future__ import annotations
 
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -142,12 +141,10 @@ def test_nlp_library_verbs_all_exist():
 
 
 # ------------------------------------------------------ generation itself
-def test_generation_is_deterministic_and_fast():
+def test_generation_is_deterministic():
+    """The same clips bit for bit when built again (its cost is benchmarks/bench_speed.py's seeding row)."""
     build_all.cache_clear()
-    t0 = time.process_time()
     again = {b.record.name: b.record for b in build_all(30.0)}
-    elapsed = time.process_time() - t0
-    assert elapsed < 8.0  # CPU seconds (the machine's load does not count): about 3 s for ~100 clips
     for name, clip in CLIPS.items():
         a, b = clip.motion, again[name].motion
         assert a.rotations.tobytes() == b.rotations.tobytes(), name
