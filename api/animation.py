@@ -187,19 +187,23 @@ class Animation:
         return out
 
     # ------------------------------------------------------------------- saving
-    def bvh_paths(self, path: str | os.PathLike) -> dict[str, Path]:
-        """Where :meth:`save_bvh` writes: ``path`` itself for one actor, ``stem_ACTOR.bvh`` for several."""
+    def bvh_paths(self, path: str | os.PathLike, suffix: str = ".bvh") -> dict[str, Path]:
+        """Where :meth:`save_bvh` writes: ``path`` itself for one actor, ``stem_ACTOR.bvh`` for several
+        (also the per-actor ``.glb`` on a glTF rig and ``.vrma`` files, with their ``suffix``)."""
         path = check_output_path(path)
         names = list(self.motions)
         if len(names) == 1:
             return {names[0]: path}
-        return {n: path.with_name(f"{path.stem}_{n}{path.suffix or '.bvh'}") for n in names}
+        return {n: path.with_name(f"{path.stem}_{n}{path.suffix or suffix}") for n in names}
 
-    def outputs(self, *, bvh=None, html=None, glb=None, report=None, plot=None, export=None) -> dict[Path, Content]:
+    def outputs(self, *, bvh=None, html=None, glb=None, report=None, plot=None, export=None,
+                vrma=None) -> dict[Path, Content]:
         """The files :meth:`save` writes, by path: their bytes (or, for the plot, a function that draws it).
 
-        ``export`` (:class:`text2anim.export.ExportOptions`) applies to the BVH files: the user's rig,
-        root motion or in place, units, loop.
+        ``export`` (:class:`text2anim.export.ExportOptions`) applies to the BVH files (the user's rig,
+        root motion or in place, units, loop), to the GLB (all but units; with a glTF/VRM rig, one file
+        per actor: the user's character animated) and to the VRM Animation ``vrma`` (one per actor:
+        the rig's proportions when it is a VRM avatar; loop and in place).
         """
         from text2anim.core.bvh import format_bvh
 
@@ -221,7 +225,27 @@ class Animation:
         if glb is not None:
             from text2anim.core.gltf import glb_bytes
 
-            add(glb, glb_bytes(self.tracks()))
+            if export is None or export.is_default:
+                add(glb, glb_bytes(self.tracks()))
+            else:
+                from .export import glb_files
+
+                self._check_loop(export)
+                out = glb_files(self.motions, export)
+                if isinstance(out, bytes):
+                    add(glb, out)
+                else:
+                    for name, path in self.bvh_paths(glb, ".glb").items():
+                        add(path, out[name])
+        if vrma is not None:
+            from text2anim.core.vrma import vrma_bytes
+
+            from .export import ExportOptions, vrma_motion
+
+            export = export or ExportOptions()
+            self._check_loop(export)
+            for name, path in self.bvh_paths(vrma, ".vrma").items():
+                add(path, vrma_bytes(vrma_motion(self.motions[name], export)))
         if report is not None:
             add(report, (json.dumps(self.report, ensure_ascii=False, indent=2) + "\n").encode())
         if plot is not None:
@@ -232,20 +256,27 @@ class Animation:
         """Each actor's motion as ``export`` asks for it (unchanged without one)."""
         if export is None or export.is_default:
             return self.motions
-        from .export import check_loopable, export_motion
+        from .export import export_motion
+
+        self._check_loop(export)
+        return {n: export_motion(m, export) for n, m in self.motions.items()}
+
+    def _check_loop(self, export) -> None:
+        """``--loop`` on a text that is not one cyclic motion: :class:`text2anim.export.ExportError`."""
+        from .export import check_loopable
 
         if export.loop:
             check_loopable(list(self.table.elements),
                            {k: bool(getattr(c, "cyclic", False)) for k, c in self.planned.clips.items()})
-        return {n: export_motion(m, export) for n, m in self.motions.items()}
 
-    def save(self, *, bvh=None, html=None, glb=None, report=None, plot=None, export=None) -> list[Path]:
+    def save(self, *, bvh=None, html=None, glb=None, report=None, plot=None, export=None, vrma=None) -> list[Path]:
         """Write the chosen outputs all-or-nothing (:func:`core.atomic.write_all`); returns their paths.
 
         Two outputs on one path are refused before anything is written; if one
         file cannot be written, none is, and files that existed are left as they were.
         """
-        return write_all(self.outputs(bvh=bvh, html=html, glb=glb, report=report, plot=plot, export=export))
+        return write_all(self.outputs(bvh=bvh, html=html, glb=glb, report=report, plot=plot, export=export,
+                                      vrma=vrma))
 
     def save_bvh(self, path: str | os.PathLike, export=None) -> list[Path]:
         """One BVH file per actor (see :meth:`bvh_paths`), all-or-nothing; ``export`` as in :meth:`outputs`."""
@@ -254,8 +285,13 @@ class Animation:
     def save_html(self, path: str | os.PathLike) -> Path:
         return self.save(html=path)[0]
 
-    def save_glb(self, path: str | os.PathLike) -> Path:
-        return self.save(glb=path)[0]
+    def save_glb(self, path: str | os.PathLike, export=None) -> list[Path]:
+        """The GLB (one per actor on a glTF rig); ``export`` as in :meth:`outputs`."""
+        return self.save(glb=path, export=export)
+
+    def save_vrma(self, path: str | os.PathLike, export=None) -> list[Path]:
+        """One VRM Animation file per actor; ``export`` as in :meth:`outputs`."""
+        return self.save(vrma=path, export=export)
 
     def save_report(self, path: str | os.PathLike) -> Path:
         return self.save(report=path)[0]

@@ -6,6 +6,12 @@
 Order: retarget onto the rig (:func:`core.retarget.retarget`), loop
 (:func:`core.conventions.looped`), root motion or in place
 (:mod:`core.conventions`), then units (:func:`core.conventions.scaled`).
+
+A rig is a BVH file or a skinned glTF character (``.glb``, ``.vrm``: :mod:`core.gltf_rig`;
+a VRM's humanoid bone map names its joints). The same options give the GLB
+(:func:`glb_files`: the user's own character file animated, when the rig is glTF)
+and the VRM Animation (:func:`vrma_motion`, :mod:`core.vrma`); glTF is in metres,
+so ``units`` applies to BVH only.
 """
 from __future__ import annotations
 
@@ -13,11 +19,15 @@ import os
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from text2anim.core.bvh import read_bvh
 from text2anim.core.motion import Motion
 from text2anim.core.rigs import load_joint_map, rig_roles
 from text2anim.core.skeleton import Skeleton
+
+if TYPE_CHECKING:
+    from text2anim.core.gltf_rig import GltfRig
 
 #: ``--units``: metres per file unit.
 UNITS = {"m": 1.0, "cm": 100.0}
@@ -34,8 +44,8 @@ class ExportOptions:
     """How motions are written for another tool.
 
     Attributes:
-        rig: a BVH file whose skeleton the motion is retargeted onto (its rest pose, any of T/A pose);
-            ``None`` keeps the built-in skeleton.
+        rig: a BVH, glTF binary or VRM file whose skeleton the motion is retargeted onto (its rest
+            pose, any of T/A pose); ``None`` keeps the built-in skeleton.
         joint_map: a JSON file ``{role: joint name}`` for the rig's joints no known rig names
             (:func:`core.rigs.load_joint_map`).
         root_motion: travel and heading on a root bone at the floor, the hips relative to it.
@@ -57,15 +67,28 @@ class ExportOptions:
         if self.units not in UNITS:
             raise ExportError(f"unknown units {self.units!r}; known: {', '.join(UNITS)}")
         if self.joint_map is not None and self.rig is None:
-            raise ExportError("--map names joints of a rig: give the rig with --rig FILE.bvh")
+            raise ExportError("--map names joints of a rig: give the rig with --rig FILE.bvh|.glb|.vrm")
 
     @property
     def is_default(self) -> bool:
         return self == ExportOptions()
 
     @cached_property
+    def gltf_rig(self) -> GltfRig | None:
+        """The rig's glTF character (``None`` without a rig or for a BVH rig)."""
+        from text2anim.core.gltf_rig import GLTF_SUFFIXES, read_gltf_rig
+
+        if self.rig is None or Path(self.rig).suffix.lower() not in GLTF_SUFFIXES:
+            return None
+        return read_gltf_rig(Path(self.rig))
+
+    @cached_property
     def target_map(self) -> dict[str, str] | None:
-        return None if self.joint_map is None else load_joint_map(Path(self.joint_map))
+        """``{role: joint name}``: a VRM rig's humanoid bones, then the ``--map`` file's entries over them."""
+        out = dict(self.gltf_rig.humanoid) if self.gltf_rig is not None else {}
+        if self.joint_map is not None:
+            out.update(load_joint_map(Path(self.joint_map)))
+        return out or None
 
     @cached_property
     def skeleton(self) -> Skeleton | None:
@@ -73,42 +96,92 @@ class ExportOptions:
         if self.rig is None:
             return None
         path = Path(self.rig)
+        if self.gltf_rig is not None:
+            return self.gltf_rig.skeleton
         if path.suffix.lower() != ".bvh":
-            raise ExportError(f"{path}: --rig reads BVH files (.bvh); glTF/VRM rigs are not supported yet")
+            raise ExportError(f"{path}: --rig reads BVH (.bvh), glTF binary (.glb) and VRM (.vrm) files")
         return read_bvh(path).skeleton
 
-
-    def check(self) -> "ExportOptions":
-        """Read the rig and the map now and place the rig's joints, so a bad rig fails before any work."""
+    def check(self, glb: bool = False) -> "ExportOptions":
+        """Read the rig and the map now and place the rig's joints, so a bad rig fails before any work;
+        ``glb``: a GLB output is asked for too (``--root-motion`` then needs a glTF rig's own root bone)."""
         if self.skeleton is not None:
-            rig_roles(self.skeleton, self.target_map)
+            _, roles = rig_roles(self.skeleton, self.target_map)
+            if glb and self.root_motion and self.gltf_rig is not None and roles["hips"] == 0:
+                raise _no_root_bone(self.gltf_rig)
         return self
 
 
-def export_motion(motion: Motion, opts: ExportOptions) -> Motion:
-    """``motion`` as ``opts`` asks (see the module docstring for the order)."""
+def _no_root_bone(rig: GltfRig) -> ExportError:
+    return ExportError(f"--root-motion: {rig.path} has no root bone above its hips to carry the travel in a GLB "
+                       "(a BVH output gets a new root joint); use --in-place or a rig with a root bone")
+
+
+def export_motion(motion: Motion, opts: ExportOptions, *, units: bool = True) -> Motion:
+    """``motion`` as ``opts`` asks (see the module docstring for the order); ``units=False`` keeps metres."""
     if opts.is_default:
         return motion
     # loaded here, not at import: scipy.signal and scipy.ndimage are ~0.3 s of a run's start
-    from text2anim.core.conventions import in_place, looped, root_motion, scaled
+    from text2anim.core.conventions import scaled
     from text2anim.core.retarget import retarget
 
-    joint_map = None
     if opts.skeleton is not None:
         motion = retarget(motion, opts.skeleton, target_map=opts.target_map)
-        joint_map = opts.target_map
+    motion = _conventions(motion, opts, opts.target_map if opts.skeleton is not None else None)
+    if units and UNITS[opts.units] != 1.0:
+        motion = scaled(motion, UNITS[opts.units])
+    return motion
+
+
+def _conventions(motion: Motion, opts: ExportOptions, joint_map: dict[str, str] | None,
+                 root: bool = True) -> Motion:
+    """Loop, then root motion (with ``root``) or in place."""
+    from text2anim.core.conventions import in_place, looped, root_motion
+
     if opts.loop:
         motion = looped(motion)
-    if opts.root_motion:
+    if opts.root_motion and root:
         try:
             motion = root_motion(motion, joint_map)
         except ValueError as exc:
             raise ExportError(f"--root-motion: {exc}") from None
     elif opts.in_place:
         motion = in_place(motion, joint_map)
-    if UNITS[opts.units] != 1.0:
-        motion = scaled(motion, UNITS[opts.units])
     return motion
+
+
+def glb_files(motions: dict[str, Motion], opts: ExportOptions) -> dict[str, bytes] | bytes:
+    """The GLB output: with a glTF rig, the user's file animated, one per actor (``{actor: bytes}``);
+    else one file with every actor's exported motion on a skinned box skeleton (:func:`core.gltf.glb_bytes`)."""
+    from text2anim.core.gltf import glb_bytes
+    from text2anim.core.gltf_rig import rig_glb_bytes
+
+    rig = opts.gltf_rig
+    if rig is None:
+        return glb_bytes({n: export_motion(m, opts, units=False) for n, m in motions.items()})
+    out = {}
+    for name, m in motions.items():
+        moved = export_motion(m, opts, units=False)
+        if not moved.skeleton.same_hierarchy(rig.skeleton):
+            raise _no_root_bone(rig)
+        out[name] = rig_glb_bytes(rig, moved)
+    return out
+
+
+def vrma_motion(motion: Motion, opts: ExportOptions) -> Motion:
+    """``motion`` on a VRMA skeleton (:func:`core.vrma.vrma_skeleton`): the user's VRM avatar's proportions
+    when the rig is one, else the motion's own; looped and in place as ``opts`` asks (VRMA travel stays on
+    the hips, so ``--root-motion`` does not apply)."""
+    from text2anim.core.retarget import retarget
+    from text2anim.core.vrma import vrma_skeleton
+
+    rig = opts.gltf_rig
+    if rig is not None and rig.vrm is not None:
+        skel = vrma_skeleton(rig.skeleton, rig_roles(rig.skeleton, opts.target_map)[1], turn=rig.vrm == "0.x",
+                             grounded=True)
+    else:
+        skel = vrma_skeleton(motion.skeleton, rig_roles(motion.skeleton)[1])
+    return _conventions(retarget(motion, skel), opts, None, root=False)
 
 
 def check_loopable(elements: list, cyclic: dict[int, bool]) -> None:
@@ -120,4 +193,4 @@ def check_loopable(elements: list, cyclic: dict[int, bool]) -> None:
                           + ("" if len(whole) != 1 else " that does not loop"))
 
 
-__all__ = ["UNITS", "ExportError", "ExportOptions", "check_loopable", "export_motion"]
+__all__ = ["UNITS", "ExportError", "ExportOptions", "check_loopable", "export_motion", "glb_files", "vrma_motion"]

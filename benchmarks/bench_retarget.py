@@ -20,11 +20,14 @@ the built-in skeleton. Printed per file:
 - skate: the skating ratio of the source and the output, both resampled to
   30 fps (timetable.md §3): ``core`` is ``core.metrics.skating_ratio``; ``gmd``
   is the either-foot toe definition of §3, computed here;
+- twist: the largest frame-to-frame turn of a thigh (rad; a flip of the knee's bend plane shows as
+  more than 1);
 - cpu: CPU time of floor + retarget (ms), beside wall time.
 
 A third table retargets the built-in library's animation of a few sentences
 (a temporary database) onto the test rigs of ``tests/rig_builders.py``
-(Mixamo names with an A-pose rest, SMPL, Unreal mannequin, VRM names), with the
+(Mixamo names with an A-pose rest, SMPL, Unreal mannequin, VRM names, and the glTF
+characters: a Mixamo GLB as Blender exports it and a VRM 1.0 avatar), with the
 same error and skating columns (``--no-rigs`` skips it).
 """
 from __future__ import annotations
@@ -73,6 +76,18 @@ def effector_errors(src, out, mapping) -> list[float]:
     return res
 
 
+def thigh_twist(m, roles: dict[str, int]) -> float:
+    """The largest frame-to-frame turn (rad) of either thigh's world rotation (``roles``: ``{role: joint}``)."""
+    from scipy.spatial.transform import Rotation
+
+    R = m.pose.rotations
+    out = 0.0
+    for j in (roles["leftUpperLeg"], roles["rightUpperLeg"]):
+        step = (Rotation.from_matrix(R[1:, j]).inv() * Rotation.from_matrix(R[:-1, j])).magnitude()
+        out = max(out, float(step.max(initial=0.0)))
+    return out
+
+
 def row(name: str, target) -> list[str]:
     from text2anim.core.bvh import read_bvh
     from text2anim.core.floor import find_floor, place_on_floor
@@ -95,7 +110,7 @@ def row(name: str, target) -> list[str]:
     return [name, f"{100 * floor.height:+.2f}", floor.method, f"{100 * find_floor(out).height:+.2f}",
             f"{bones:.2f}", f"{after:.2f}", f"{mapping.scale:.3f}", f"{hmax:.2f}/{h95:.2f}", f"{tmax:.2f}/{t95:.2f}", f"{amax:.2f}/{a95:.2f}",
             f"{skating_ratio(s30):.3f}>{skating_ratio(o30):.3f}", f"{gmd_skating_ratio(s30):.3f}>{gmd_skating_ratio(o30):.3f}",
-            f"{1000 * cpu:.0f}/{1000 * wall:.0f}"]
+            f"{thigh_twist(out, mapping.target):.2f}", f"{1000 * cpu:.0f}/{1000 * wall:.0f}"]
 
 
 SENTENCES = ("太郎は歩く。", "太郎は走って、ボールを蹴る。")
@@ -107,23 +122,28 @@ def rig_rows(tmp: Path) -> list[list[str]]:
     from text2anim.core.retarget import map_skeletons, retarget
 
     sys.path.insert(0, str(REPO / "tests"))
-    from rig_builders import mixamo_rig, smpl_rig, unreal_rig, vrm_rig
+    from rig_builders import mixamo_glb, mixamo_rig, smpl_rig, unreal_rig, vrm_file, vrm_rig
     from text2anim.core.bvh import read_bvh
+    from text2anim.core.gltf_rig import read_gltf_rig
 
-    rigs = {f.__name__: read_bvh(f(tmp / f"{f.__name__}.bvh")).skeleton
+    rigs = {f.__name__: (read_bvh(f(tmp / f"{f.__name__}.bvh")).skeleton, None)
             for f in (mixamo_rig, smpl_rig, unreal_rig, vrm_rig)}
+    for f, suffix in ((mixamo_glb, ".glb"), (vrm_file, ".vrm")):
+        gr = read_gltf_rig(f(tmp / f"{f.__name__}{suffix}"))
+        rigs[f.__name__] = (gr.skeleton, gr.humanoid or None)
     rows = []
     for text in SENTENCES:
-        (src,) = text2anim.animate(text, str(tmp / "db.sqlite")).motions.values()
-        for name, skel in rigs.items():
+        (src,) = text2anim.animate(text, db=str(tmp / "db.sqlite")).motions.values()
+        for name, (skel, roles) in rigs.items():
             c0 = time.process_time()
-            out = retarget(src, skel)
+            out = retarget(src, skel, target_map=roles)
             cpu = time.process_time() - c0
-            m = map_skeletons(src.skeleton, skel)
+            m = map_skeletons(src.skeleton, skel, target_map=roles)
             hmax, h95, tmax, t95, amax, a95 = effector_errors(src, out, m)
             rows.append([text, name, f"{m.scale:.3f}", f"{hmax:.2f}/{h95:.2f}", f"{tmax:.2f}/{t95:.2f}",
                          f"{amax:.2f}/{a95:.2f}", f"{skating_ratio(src):.3f}>{skating_ratio(out):.3f}",
-                         f"{gmd_skating_ratio(src):.3f}>{gmd_skating_ratio(out):.3f}", f"{1000 * cpu:.0f}"])
+                         f"{gmd_skating_ratio(src):.3f}>{gmd_skating_ratio(out):.3f}", f"{thigh_twist(out, m.target):.2f}",
+                         f"{1000 * cpu:.0f}"])
     return rows
 
 
@@ -144,7 +164,7 @@ def main() -> None:
     from text2anim.motiondb.library.skeleton import canonical_skeleton
 
     head = ["clip", "floor cm", "how", "after", "bones cm", "after", "legs s", "hands cm max/p95",
-            "toes max/p95", "ankles max/p95", "skate core 30fps", "skate gmd 30fps", "cpu/wall ms"]
+            "toes max/p95", "ankles max/p95", "skate core 30fps", "skate gmd 30fps", "twist", "cpu/wall ms"]
     for label, target in ((f"character = {args.character}'s skeleton", read_bvh(CMU / f"{args.character}.bvh").skeleton),
                           ("character = the built-in skeleton", canonical_skeleton())):
         print(f"\n## {label}\n")
@@ -155,7 +175,7 @@ def main() -> None:
         print("\n## the built-in library's animation on the test rigs (30 fps)\n")
         with tempfile.TemporaryDirectory() as tmp:
             print(table(rig_rows(Path(tmp)), ["text", "rig", "legs s", "hands cm max/p95", "toes max/p95",
-                                              "ankles max/p95", "skate core", "skate gmd", "cpu ms"]))
+                                              "ankles max/p95", "skate core", "skate gmd", "twist", "cpu ms"]))
 
 
 if __name__ == "__main__":

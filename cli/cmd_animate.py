@@ -18,7 +18,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="BVH file to write, or - for standard output (default animation.bvh; with several "
                         "actors, one file each: animation_太郎.bvh, ...)")
     p.add_argument("--html", metavar="FILE", help="also write a self-contained viewer page")
-    p.add_argument("--glb", metavar="FILE", help="also write a glTF binary (skinned skeleton + animation)")
+    p.add_argument("--glb", metavar="FILE", help="also write a glTF binary (skinned skeleton + animation; with "
+                   "--rig CHARACTER.glb|.vrm, your character animated)")
+    p.add_argument("--vrma", metavar="FILE", help="also write a VRM Animation (.vrma) for VRM avatars")
     p.add_argument("--report", metavar="FILE", help="also write the synthesis report (JSON)")
     p.add_argument("--plot", metavar="FILE", help="also plot upper/lower-body speeds (needs text2anim[plot])")
     p.add_argument("--fps", type=fps_type, default=30.0, help="output frame rate, 1 to 240 (default 30)")
@@ -71,7 +73,8 @@ def check_outputs(args: argparse.Namespace) -> dict:
     """The outputs asked for, checked before any work: each a writable path, no two on one file."""
     from text2anim.core.atomic import check_distinct, check_output_path
 
-    outputs = {"bvh": args.output, "html": args.html, "glb": args.glb, "report": args.report, "plot": args.plot}
+    outputs = {"bvh": args.output, "html": args.html, "glb": args.glb, "report": args.report, "plot": args.plot,
+               "vrma": args.vrma}
     outputs = {k: v for k, v in outputs.items() if v is not None}
     files = [check_output_path(v) for k, v in outputs.items() if not (k == "bvh" and v == "-")]
     check_distinct(files)

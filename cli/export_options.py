@@ -1,15 +1,15 @@
-"""``--rig``, ``--map``, ``--root-motion``, ``--in-place``, ``--units``, ``--loop``: BVH for another tool."""
+"""``--rig``, ``--map``, ``--root-motion``, ``--in-place``, ``--units``, ``--loop``: output for another tool."""
 from __future__ import annotations
 
 import argparse
 
 
 def add_export_arguments(p: argparse.ArgumentParser) -> None:
-    """The export options of ``text2anim TEXT`` (they apply to the BVH output)."""
-    g = p.add_argument_group("BVH for your rig and engine")
-    g.add_argument("--rig", metavar="CHARACTER.bvh",
-                   help="retarget the animation onto this BVH's skeleton (Mixamo, VRM, SMPL, Unreal, CMU joint "
-                        "names; T- or A-pose rest)")
+    """The export options of ``text2anim TEXT`` (BVH, GLB and VRMA outputs; ``--units`` is BVH's alone)."""
+    g = p.add_argument_group("your rig and engine")
+    g.add_argument("--rig", metavar="CHARACTER",
+                   help="retarget the animation onto this character: a BVH, glTF binary (.glb) or VRM (.vrm) "
+                        "skeleton (Mixamo, VRM, SMPL, Unreal, CMU joint names or a VRM humanoid; T- or A-pose rest)")
     g.add_argument("--map", dest="joint_map", metavar="FILE",
                    help='JSON {role: joint name} for rig joints with other names, e.g. {"hips": "pelvis"}; '
                         "roles are VRM humanoid bone names")
@@ -27,4 +27,5 @@ def export_options(args: argparse.Namespace):
     from text2anim.export import ExportOptions
 
     return ExportOptions(rig=args.rig, joint_map=args.joint_map, root_motion=args.root_motion,
-                         in_place=args.in_place, units=args.units, loop=args.loop).check()
+                         in_place=args.in_place, units=args.units, loop=args.loop).check(
+                             glb=getattr(args, "glb", None) is not None)

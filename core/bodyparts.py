@@ -53,9 +53,10 @@ def side_of(name: str) -> str | None:
         return "left"
     if "right" in low:
         return "right"
-    if re.match(r"^L(?=[A-Z_.\-])", n) or re.search(r"[_.\-][Ll]$", n) or re.match(r"^l[_.\-]", n):
+    # L_Arm, Arm_L, l_arm, and VRoid's J_Bip_L_UpperArm
+    if re.match(r"^L(?=[A-Z_.\-])", n) or re.search(r"[_.\-][Ll]($|[_.\-])", n) or re.match(r"^l[_.\-]", n):
         return "left"
-    if re.match(r"^R(?=[A-Z_.\-])", n) or re.search(r"[_.\-][Rr]$", n) or re.match(r"^r[_.\-]", n):
+    if re.match(r"^R(?=[A-Z_.\-])", n) or re.search(r"[_.\-][Rr]($|[_.\-])", n) or re.match(r"^r[_.\-]", n):
         return "right"
     return None
 

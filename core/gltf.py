@@ -33,7 +33,7 @@ import numpy as np
 from .atomic import atomic_write_bytes
 from .motion import Motion, unroll_quaternions
 
-__all__ = ["glb_bytes", "write_glb"]
+__all__ = ["BufferBuilder", "glb_bytes", "pack_glb", "write_glb"]
 
 _FLOAT, _UBYTE, _USHORT, _UINT = 5126, 5121, 5123, 5125
 _ARRAY_BUFFER, _ELEMENT_ARRAY_BUFFER = 34962, 34963
@@ -41,11 +41,13 @@ _NP = {_FLOAT: "<f4", _UBYTE: "u1", _USHORT: "<u2", _UINT: "<u4"}
 _COMPONENTS = {"SCALAR": 1, "VEC3": 3, "VEC4": 4, "MAT4": 16}
 
 
-class _Builder:
-    def __init__(self):
-        self.bin = bytearray()
-        self.views: list[dict] = []
-        self.accessors: list[dict] = []
+class BufferBuilder:
+    """Accessors and buffer views over one growing binary buffer (the GLB's BIN chunk)."""
+
+    def __init__(self, data: bytes = b"", views: list[dict] | None = None, accessors: list[dict] | None = None):
+        self.bin = bytearray(data)
+        self.views: list[dict] = list(views or [])
+        self.accessors: list[dict] = list(accessors or [])
 
     def accessor(self, data: np.ndarray, ctype: int, atype: str, *, target: int | None = None,
                  minmax: bool = False, normalized: bool = False) -> int:
@@ -139,7 +141,7 @@ def _radii(motion: Motion, parents: list[int], points: np.ndarray) -> np.ndarray
     return radii
 
 
-def _actor(b: _Builder, gl: dict, name: str, motion: Motion, color: str, multi: bool) -> None:
+def _actor(b: BufferBuilder, gl: dict, name: str, motion: Motion, color: str, multi: bool, animate: bool) -> None:
     skel = motion.skeleton
     J = skel.n_joints
     if motion.n_frames == 0:
@@ -199,8 +201,13 @@ def _actor(b: _Builder, gl: dict, name: str, motion: Motion, color: str, multi: 
                   "mesh": len(gl["meshes"]) - 1, "skin": len(gl["skins"]) - 1})
     gl["scenes"][0]["nodes"].append(len(nodes) - 1)
 
-    # animation
-    anim = gl["animations"][0]
+    if animate:
+        _animate(b, gl["animations"][0], first, motion)
+
+
+def _animate(b: BufferBuilder, anim: dict, first: int, motion: Motion) -> None:
+    """Channels of ``motion`` on the joint nodes ``first ...`` (see the module docstring)."""
+    J = motion.skeleton.n_joints
     times = b.accessor(motion.times, _FLOAT, "SCALAR", minmax=True)
 
     def channel(node: int, path: str, values: np.ndarray, atype: str):
@@ -217,9 +224,10 @@ def _actor(b: _Builder, gl: dict, name: str, motion: Motion, color: str, multi: 
         channel(first + j, "rotation", quats[:, j], "VEC4")
 
 
-def glb_bytes(tracks) -> bytes:
+def glb_bytes(tracks, animate: bool = True) -> bytes:
     """The ``.glb`` file of ``tracks`` (a list of :class:`~core.viewer.types.Track`,
-    a ``{name: Motion}`` dict or one :class:`~core.motion.Motion`)."""
+    a ``{name: Motion}`` dict or one :class:`~core.motion.Motion`); ``animate=False``: the skinned
+    characters in their bind pose, no animation."""
     from .viewer.types import as_tracks
     from .viewer import PALETTE
 
@@ -228,7 +236,7 @@ def glb_bytes(tracks) -> bytes:
         for what, arr in (("root positions", t.motion.root_positions), ("rotations", t.motion.rotations)):
             if not np.all(np.isfinite(arr)):
                 raise ValueError(f"track {t.name!r}: non-finite {what}")
-    b = _Builder()
+    b = BufferBuilder()
     gl: dict = {
         "asset": {"version": "2.0", "generator": "text2anim"},
         "scene": 0,
@@ -237,9 +245,18 @@ def glb_bytes(tracks) -> bytes:
         "animations": [{"name": "text2anim", "channels": [], "samplers": []}],
     }
     for i, t in enumerate(tracks):
-        _actor(b, gl, t.name, t.motion, PALETTE[i % len(PALETTE)], len(tracks) > 1)
+        _actor(b, gl, t.name, t.motion, PALETTE[i % len(PALETTE)], len(tracks) > 1, animate)
+    if not animate:
+        del gl["animations"]
+    gl["buffers"] = [{}]
+    return pack_glb(gl, b)
+
+
+def pack_glb(gl: dict, b: BufferBuilder) -> bytes:
+    """The ``.glb`` bytes of the glTF JSON ``gl`` whose buffer 0 is ``b``'s binary (its views and accessors
+    appended to ``gl``'s own): the JSON chunk padded with spaces, the BIN chunk with zeros."""
     b.bin.extend(b"\0" * ((-len(b.bin)) % 4))
-    gl["buffers"] = [{"byteLength": len(b.bin)}]
+    gl["buffers"][0]["byteLength"] = len(b.bin)
     gl["bufferViews"] = b.views
     gl["accessors"] = b.accessors
     js = json.dumps(gl, ensure_ascii=False, separators=(",", ":"), allow_nan=False).encode("utf-8")

@@ -191,3 +191,27 @@ def test_convert_puts_a_capture_on_the_users_rig_in_centimetres(tmp_path):
         err = np.linalg.norm(out_m.positions[planted, m.target[role]] - m.scale * src.positions[planted, m.source[role]],
                              axis=-1)
         assert err.max() < 0.03, (role, err.max())  # the capture's arms reach 2.9 cm further than this rig's can
+
+
+@requires_cmu
+@pytest.mark.parametrize("take", ["07_02_walk", "02_03_run"])
+def test_replanting_keeps_the_thighs_twist_on_straight_legs(take):
+    """The ankle IK re-placing a captured walk or run keeps every thigh and upper arm turning smoothly: no
+    frame-to-frame step beyond 0.3 rad (the bend plane of a nearly straight leg once flipped it by up to
+    2.5 rad), and the toes still plant where the source's do."""
+    from text2anim.core.retarget import retarget
+    from text2anim.motiondb.library.skeleton import canonical_skeleton
+
+    src, _ = place_on_floor(read_bvh(cmu(take), scale="auto").frames(1))
+    out = retarget(src, canonical_skeleton())
+    R = out.pose.rotations
+    for name in ("LeftUpLeg", "RightUpLeg", "LeftArm", "RightArm"):
+        j = out.skeleton.index(name)
+        step = (Rotation.from_matrix(R[1:, j]).inv() * Rotation.from_matrix(R[:-1, j])).magnitude()
+        assert step.max() < 0.3, (name, step.max())
+    m = map_skeletons(src.skeleton, out.skeleton)
+    fc = detect_contacts(src)
+    for side, mask in (("left", fc.left), ("right", fc.right)):
+        role = f"{side}Toes"
+        err = np.linalg.norm(out.positions[mask, m.target[role]] - m.scale * src.positions[mask, m.source[role]], axis=-1)
+        assert err.max() < 0.02, (role, err.max())
