@@ -48,7 +48,7 @@ from text2anim.synthesis.optimal import join as optimal  # noqa: E402  (join_nex
 from text2anim.synthesis.engines import METHODS, synthesize_with  # noqa: E402
 from text2anim.core.metrics import foot_skate  # noqa: E402
 from text2anim.synthesis.plan import Clip, Element, Track  # noqa: E402
-from text2anim.synthesis.timing import gait_cycle  # noqa: E402
+from text2anim.synthesis.cycles import gait_cycle  # noqa: E402
 from text2anim.clip_timing import timing  # noqa: E402
 
 CMU = REPO.parent / "shared" / "mocap" / "cmu"

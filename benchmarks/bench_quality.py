@@ -100,7 +100,7 @@ def build_database(url: str, workdir: Path) -> dict:
     from text2anim.core import read_bvh, write_bvh
     from text2anim.motiondb import ImportOptions, MotionDB
     from text2anim.synthesis.plan import Clip
-    from text2anim.synthesis.timing import gait_cycle
+    from text2anim.synthesis.cycles import gait_cycle
 
     with open(CMU / "index.tsv", encoding="utf-8") as fh:
         index = {r["file"][:-4]: r for r in csv.DictReader(fh, delimiter="\t")}

@@ -20,7 +20,7 @@ from text2anim.pipeline import timing
 from text2anim.scheduler.lengths import transition_window
 from text2anim.synthesis.engines import synthesize_with
 from text2anim.synthesis.plan import Clip, Element, Track
-from text2anim.synthesis.timing import gait_cycle, loop, make_cyclic
+from text2anim.synthesis.cycles import gait_cycle, loop, make_cyclic
 
 from shared_data import cmu, requires_cmu
 

@@ -11,7 +11,7 @@ from text2anim.synthesis.baselines import BLEND, closest_pair
 from text2anim.synthesis.engines import METHODS, UnknownMethodError, synthesize_with
 from text2anim.synthesis.plan import Clip, Element, Track
 from text2anim.synthesis.posedist import distance, features
-from text2anim.synthesis.timing import find_cycle
+from text2anim.synthesis.cycles import find_cycle
 
 from shared_data import cmu, requires_cmu
 

@@ -21,7 +21,7 @@ from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
 from text2anim.synthesis.optimal import synthesize_optimal
 from text2anim.synthesis.plan import Clip, Element, Track
 from text2anim.synthesis.switching import foot_points
-from text2anim.synthesis.timing import find_cycle
+from text2anim.synthesis.cycles import find_cycle
 
 from shared_data import cmu, requires_cmu
 

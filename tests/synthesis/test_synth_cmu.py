@@ -20,7 +20,8 @@ from text2anim.core.contacts import detect_contacts, foot_tracks
 from text2anim.synthesis.engine import hips_frame, synthesize
 from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
 from text2anim.synthesis.plan import Clip, Element, Track
-from text2anim.synthesis.timing import find_cycle, prepare
+from text2anim.synthesis.cycles import find_cycle
+from text2anim.synthesis.timing import prepare
 
 from shared_data import cmu, requires_cmu
 

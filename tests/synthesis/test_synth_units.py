@@ -15,7 +15,8 @@ from text2anim.core.motion import Motion
 from text2anim.synthesis.plan import Track
 from text2anim.core.skeleton import Skeleton
 from text2anim.synthesis.switching import find_switch, planted_for, swings
-from text2anim.synthesis.timing import at_speed, cycle_move, ease_hold, hold, loop, make_cyclic, soft_clip, trim
+from text2anim.synthesis.cycles import cycle_move, loop, make_cyclic
+from text2anim.synthesis.timing import at_speed, ease_hold, hold, soft_clip, trim
 
 
 def _skeleton() -> Skeleton:

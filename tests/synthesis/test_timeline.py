@@ -16,7 +16,7 @@ from text2anim.core import read_bvh
 from text2anim.core.metrics import BUILTIN_LIMITS, SKATING_MARGIN, skating_ratio
 from text2anim.synthesis.plan import Clip
 from text2anim.synthesis.timeline import GAP, Timeline
-from text2anim.synthesis.timing import find_cycle
+from text2anim.synthesis.cycles import find_cycle
 
 from shared_data import cmu
 
