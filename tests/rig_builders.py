@@ -67,18 +67,7 @@ def _write(skel: Skeleton, path: Path, unit: float = 1.0) -> Path:
 def mixamo_rig(path: Path, scale: float = 1.08) -> Path:
     """Mixamo joint names (``mixamorig:``), an A-pose rest, ZXY channels, fingers, 8% taller; written in cm."""
     pos = {k: v * scale for k, v in _a_pose(_positions(_rest())).items()}
-    m = "mixamorig:"
-    rows = [(m + "Hips", None, "hips"), (m + "Spine", m + "Hips", "spine"), (m + "Spine1", m + "Spine", "chest"),
-            (m + "Spine2", m + "Spine1", "upperChest"), (m + "Neck", m + "Spine2", "neck"),
-            (m + "Head", m + "Neck", "head")]
-    for side, L in (("left", "Left"), ("right", "Right")):
-        rows += [(f"{m}{L}Shoulder", m + "Spine2", f"{side}Shoulder"),
-                 (f"{m}{L}Arm", f"{m}{L}Shoulder", f"{side}UpperArm"),
-                 (f"{m}{L}ForeArm", f"{m}{L}Arm", f"{side}LowerArm"), (f"{m}{L}Hand", f"{m}{L}ForeArm", f"{side}Hand"),
-                 (f"{m}{L}HandIndex1", f"{m}{L}Hand", f"{side}Index")]
-    for side, L in (("left", "Left"), ("right", "Right")):
-        rows += [(f"{m}{L}UpLeg", m + "Hips", f"{side}UpperLeg"), (f"{m}{L}Leg", f"{m}{L}UpLeg", f"{side}LowerLeg"),
-                 (f"{m}{L}Foot", f"{m}{L}Leg", f"{side}Foot"), (f"{m}{L}ToeBase", f"{m}{L}Foot", f"{side}Toes")]
+    rows, m = _mixamo_rows(), "mixamorig:"
     zxy = ("Zrotation", "Xrotation", "Yrotation")
     chans = lambda n, j: (("Xposition", "Yposition", "Zposition") + zxy) if j == 0 else zxy  # noqa: E731
     ends = {m + "Head": (0, 0.17 * scale, 0), m + "LeftToeBase": (0, 0, 0.06), m + "RightToeBase": (0, 0, 0.06)}
