@@ -30,7 +30,8 @@ import numpy as np
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from text2anim.core.metrics import FROZEN_SPEED  # noqa: E402  (m/s, timetable.md §3)
+from text2anim.core.contacts import runs  # noqa: E402
+from text2anim.core.metrics import FROZEN_SPEED, frozen_pairs  # noqa: E402  (m/s, timetable.md §3)
 
 SENTENCES = [
     "太郎は走って、ボールを蹴る。そして喜ぶ。",
@@ -53,16 +54,12 @@ SENTENCES = [
 
 
 def frozen(motion) -> tuple[float, float]:
-    """``(share of frozen frame pairs, longest frozen run in seconds)`` of ``motion``."""
-    p = motion.positions
-    if len(p) < 2:
+    """``(share of frozen frame pairs, longest frozen run in seconds)`` of ``motion`` (:func:`frozen_pairs`)."""
+    still = frozen_pairs(motion)
+    if not len(still):
         return 0.0, 0.0
-    speed = np.linalg.norm(np.diff(p, axis=0), axis=-1).max(axis=1) * motion.fps
-    still = speed < FROZEN_SPEED
-    longest, run = 0, 0
-    for s in still:
-        run = run + 1 if s else 0
-        longest = max(longest, run)
+    spans = runs(still)
+    longest = int((spans[:, 1] - spans[:, 0]).max()) if len(spans) else 0
     return float(still.mean()), longest / motion.fps
 
 

@@ -146,13 +146,18 @@ def root_acceleration(motion: Motion) -> np.ndarray:
     return np.linalg.norm(np.diff(avg, n=2, axis=0), axis=-1) * motion.fps ** 2
 
 
+def frozen_pairs(motion: Motion) -> np.ndarray:
+    """``(T-1,)`` bool: frame pairs (t, t+1) on which every joint moves slower than :data:`FROZEN_SPEED`."""
+    if motion.n_frames < 2:
+        return np.zeros(0, dtype=bool)
+    return np.linalg.norm(np.diff(motion.positions, axis=0), axis=-1).max(axis=1) * motion.fps < FROZEN_SPEED
+
+
 def series(motion: Motion, floor: float = 0.0) -> Series:
     """The per-frame figures of :class:`Series` (positions after FK, at the motion's own rate)."""
     n, fps = motion.n_frames, motion.fps
     pos = motion.positions
-    frozen = np.zeros(0)
-    if n >= 2:
-        frozen = (np.linalg.norm(np.diff(pos, axis=0), axis=-1).max(axis=1) * fps < FROZEN_SPEED).astype(float)
+    frozen = frozen_pairs(motion).astype(float)
     jerk_tj = np.linalg.norm(np.diff(pos, n=3, axis=0), axis=-1) * fps ** 3 if n >= 4 else np.zeros((0, pos.shape[1]))
     return Series(fps, _padded(skating_pairs(motion, floor).astype(float), 0, n), _padded(frozen, 0, n),
                   _padded(root_acceleration(motion), (ROOT_POP_WINDOW - 1) // 2 + 1, n),
