@@ -33,19 +33,8 @@ sys.path.insert(0, str(REPO))
 from text2anim.core.contacts import runs  # noqa: E402
 from text2anim.core.metrics import FROZEN_SPEED, frozen_pairs  # noqa: E402  (m/s, timetable.md §3)
 
-SENTENCES = [
-    "太郎は走って、ボールを蹴る。そして喜ぶ。",
-    "太郎は走って、右手を振りながら歩く。",
-    "太郎は走る。3秒後に花子が歩く。",
-    "花子は歩いて、座る。",
-    "ボールを拾って、投げる。",
-    "太郎は3回跳ぶ。",
-    "太郎はゆっくり歩いて、止まる。",
-    "花子は踊る。そして笑う。",
-    "太郎は構えて、殴る。",
-    "左手を振る。",
-    "太郎と花子が走る。",
-    "太郎は座って、立ち上がる。",
+#: The golden sentences (tests/golden/sentences.txt, one a line), then a few more.
+SENTENCES = (REPO / "tests" / "golden" / "sentences.txt").read_text(encoding="utf-8").splitlines() + [
     "太郎は待つ。そして歩く。",
     "太郎はしゃがむ。そして跳ぶ。",
     "太郎と花子が跳ぶ。",

@@ -12,20 +12,8 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-SENTENCES = [
-    "太郎は走って、ボールを蹴る。そして喜ぶ。",
-    "太郎は走って、右手を振りながら歩く。",
-    "太郎は走る。3秒後に花子が歩く。",
-    "花子は歩いて、座る。",
-    "ボールを拾って、投げる。",
-    "太郎は3回跳ぶ。",
-    "太郎はゆっくり歩いて、止まる。",
-    "花子は踊る。そして笑う。",
-    "太郎は構えて、殴る。",
-    "左手を振る。",
-    "太郎と花子が走る。",
-    "太郎は座って、立ち上がる。",
-]
+#: The golden sentences, one a line (benchmarks/bench_library.py animates them too).
+SENTENCES = (HERE / "sentences.txt").read_text(encoding="utf-8").splitlines()
 ENGINES = ("optimal", "constraint")
 
 
