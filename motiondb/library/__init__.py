@@ -38,10 +38,8 @@ the pipeline can chain clips whose postures meet (``sit_down`` then
 """
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass
 from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
 
@@ -58,25 +56,10 @@ from .plant import FramePlant, PlantReport, plant_feet
 from .reach import apply_reach
 from .skeleton import ANKLE_HEIGHT, SHOE_SOLE, TOE_HEIGHT, canonical_skeleton
 
-__all__ = ["BuiltClip", "ClipDataError", "LIBRARY_VERSION", "POSTURE_OF", "builtin_clips", "build_all",
+__all__ = ["BuiltClip", "ClipDataError", "POSTURE_OF", "builtin_clips", "build_all",
            "canonical_skeleton"]
 
 SOURCE = "builtin:keyframed"
-
-
-def _version() -> str:
-    """A hash of the library's code and data (keyframes, cut list, arrays): the database re-seeds
-    its built-in clips when it changes."""
-    root = Path(__file__).parent
-    h = hashlib.sha256()
-    for path in sorted(p for p in root.rglob("*") if p.suffix in (".py", ".json", ".toml", ".npz") and p.is_file()):
-        h.update(path.relative_to(root).as_posix().encode("utf-8") + b"\0")
-        h.update(path.read_bytes() + b"\0")
-    return "sha256:" + h.hexdigest()[:32]
-
-
-#: Tag of this library's contents (see :func:`_version`).
-LIBRARY_VERSION = _version()
 
 #: The data's ``starts``/``ends`` words -> the database's posture (``hold``: standing with
 #: an object in the hands; ``floor``: lying face down, as ``fall`` ends).
