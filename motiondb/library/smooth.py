@@ -20,19 +20,10 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import butter, filtfilt
 
-from text2anim.core.motion import Motion
+from text2anim.core.motion import Motion, unroll_quaternions
 
 #: Order of the Butterworth filter (run twice by filtfilt: 4th order in effect).
 ORDER = 2
-
-
-def continuous(q: np.ndarray) -> np.ndarray:
-    """Quaternions ``(T, J, 4)`` with signs flipped so each is in the hemisphere of the frame before."""
-    q = np.array(q, dtype=np.float64)
-    flip = np.sum(q[1:] * q[:-1], axis=-1) < 0
-    sign = np.cumprod(np.where(flip, -1.0, 1.0), axis=0)
-    q[1:] *= sign[..., None]
-    return q
 
 
 def lowpass(motion: Motion, hz: float) -> Motion:
@@ -43,7 +34,7 @@ def lowpass(motion: Motion, hz: float) -> Motion:
     b, a = butter(ORDER, hz / nyquist)
     if motion.n_frames <= 3 * max(len(a), len(b)):  # filtfilt's padding needs this many frames
         return motion
-    q = filtfilt(b, a, continuous(motion.rotations), axis=0)
+    q = filtfilt(b, a, unroll_quaternions(np.asarray(motion.rotations, dtype=np.float64)), axis=0)
     q /= np.linalg.norm(q, axis=-1, keepdims=True)
     root = filtfilt(b, a, motion.root_positions, axis=0)
     return motion.replace(root_positions=root, rotations=q)
