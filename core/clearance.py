@@ -52,15 +52,6 @@ def lift_offsets(deficit: np.ndarray) -> np.ndarray:
     return out
 
 
-def _subtree(parents: np.ndarray, root: int) -> list[int]:
-    """``root`` and every joint below it."""
-    out = [root]
-    for j in range(root + 1, len(parents)):
-        if parents[j] in out:
-            out.append(j)
-    return out
-
-
 def lift(motion: Motion, limbs: list, deficits: list[np.ndarray]) -> Motion:
     """``motion`` with each limb's end joint raised by its ``(T,)`` deficit (m), eased (:func:`lift_offsets`)
     and solved by the limb's IK (``limbs``: ``(ik, side, end joint)``), the end's world rotation kept."""
@@ -84,7 +75,7 @@ def clear_floor(motion: Motion) -> Motion:
     bm = body_map(motion.skeleton)
     y = motion.positions[..., 1]
     limbs = [(leg_ik, side, ankle, [ankle, toe]) for side, (ankle, toe) in bm.feet.items()]
-    limbs += [(arm_ik, side, wrist, _subtree(motion.skeleton.parents, wrist)) for side, wrist in bm.hands.items()]
+    limbs += [(arm_ik, side, wrist, motion.skeleton.subtree(wrist)) for side, wrist in bm.hands.items()]
     deficits = [np.maximum(0.0, -y[:, joints].min(axis=1)) for *_, joints in limbs]
     return lift(motion, [limb[:3] for limb in limbs], deficits)
 
