@@ -162,19 +162,25 @@ def lift_off_floor(motion: Motion, lo: int, hi: int, floor: float = FLOOR) -> Mo
         deficit[hi:] = 0.0
         if not (deficit > 5e-4).any():
             continue
-        d = gaussian_filter1d(maximum_filter1d(deficit, 5, mode="nearest"), 1.0, mode="nearest")
-        d = np.maximum(d, deficit)
-        ankle = joints[0]
-        for lo, hi in runs(d > 1e-5):
-            lo, hi = int(lo), int(hi)
-            sub = out[lo:hi]
-            pose = sub.pose
-            target = pose.positions[:, ankle] + np.stack([np.zeros(hi - lo), d[lo:hi], np.zeros(hi - lo)], 1)
-            rot = pose.quaternions(ankle)
-            solved = set_world_rotation(solve_leg(sub, side, target), ankle, rot)
-            rots = out.rotations.copy()
-            rots[lo:hi] = solved.rotations
-            out = out.replace(rotations=rots)
+        out = _raise_ankle(out, side, joints[0], deficit)
+    return out
+
+
+def _raise_ankle(motion: Motion, side: str, ankle: int, short: np.ndarray) -> Motion:
+    """``motion`` with ``side``'s ankle raised by ``short`` ``(T,)`` (m), widened by 2 frames each side and
+    smoothed so the lift eases in and out, by leg IK with the ankle's world rotation kept."""
+    d = gaussian_filter1d(maximum_filter1d(short, 5, mode="nearest"), 1.0, mode="nearest")
+    d = np.maximum(d, short)
+    out = motion
+    for a, b in runs(d > 1e-5):
+        a, b = int(a), int(b)
+        sub = out[a:b]
+        pose = sub.pose
+        target = pose.positions[:, ankle] + np.stack([np.zeros(b - a), d[a:b], np.zeros(b - a)], 1)
+        solved = set_world_rotation(solve_leg(sub, side, target), ankle, pose.quaternions(ankle))
+        rots = out.rotations.copy()
+        rots[a:b] = solved.rotations
+        out = out.replace(rotations=rots)
     return out
 
 
@@ -201,17 +207,7 @@ def clear_swings(motion: Motion, lo: int, hi: int) -> Motion:
         short[hi:] = 0.0
         if not (short > 1e-3).any():
             continue
-        d = gaussian_filter1d(maximum_filter1d(short, 5, mode="nearest"), 1.0, mode="nearest")
-        d = np.maximum(d, short)
-        for a, b in runs(d > 1e-5):
-            a, b = int(a), int(b)
-            sub = out[a:b]
-            pose = sub.pose
-            target = pose.positions[:, ankle] + np.stack([np.zeros(b - a), d[a:b], np.zeros(b - a)], 1)
-            solved = set_world_rotation(solve_leg(sub, side, target), ankle, pose.quaternions(ankle))
-            rots = out.rotations.copy()
-            rots[a:b] = solved.rotations
-            out = out.replace(rotations=rots)
+        out = _raise_ankle(out, side, ankle, short)
     return out
 
 
