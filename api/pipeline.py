@@ -68,7 +68,7 @@ class ClipFinder:
                 return hits
         try:
             hits = self.db.search(spec.verb, object=spec.object, body_part=part, prefer_character=prefer)
-        except UnknownVerbError:
+        except UnknownVerbError as unknown:
             if not spec.reading or spec.reading == spec.verb or not _kana_only(spec.written or spec.verb):
                 raise
             # A verb written in kana (とぶ) may be a spelling the database has in kanji; if not, the
@@ -80,7 +80,7 @@ class ClipFinder:
             except UnknownVerbError:
                 hits = None
             if hits is None:
-                return self.db.search(spec.verb)  # raises UnknownVerbError for the written verb
+                raise unknown from None  # the error about the written verb, with its suggestions
         if not hits and part:
             hits = self.db.search(spec.verb, object=spec.object, prefer_character=prefer)
         return self._same_word(spec, hits)
