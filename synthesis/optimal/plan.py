@@ -10,7 +10,7 @@ from text2anim.core.motion import Motion
 from ..adaptation import adapt
 from ..align import align_through_foot
 from ..blend_ranges import after, ranges
-from ..blend_search import Weights
+from ..blend_search import Weights, best
 from ..method_select import phase_for, steps
 from ..placed import Placed
 from ..switching import foot_points
@@ -19,7 +19,7 @@ from .curves import interval_weights
 from .method import geometry
 from .placement import alignment
 from .records import Plan, Skip
-from .search import Features, runners_up, search
+from .search import Features, grid, runners_up, search
 
 MIN_BLEND = 0.2  # s: the shortest blend interval (shorter pose changes read as pops)
 MIN_ROOM = 0.25  # s: the least room the lower-body range should leave
@@ -75,7 +75,8 @@ def plan_join(tr: Motion, prev: Placed, inc: Incoming, fps: float, weights: Weig
                             f"{r.part}-body blend {r.name}; it overlaps a core")
     byname = {r.name: r for r in rs}
     feats = Features(tr, inc)
-    found = {"S0": search(byname["S0"], feats, fps, weights, L), "S1": search(byname["S1"], feats, fps, weights, L)}
+    grid0 = grid(byname["S0"], feats, fps, weights, L)  # evaluated once: its minimum, and its runners-up below
+    found = {"S0": best(grid0, weights, L), "S1": search(byname["S1"], feats, fps, weights, L)}
     support, ta, tb = alignment(choice, found["S0"], tr, tr_contacts, inc)
     ta = int(np.clip(ta, 0, tr.n_frames - 1))
     tb_own = int(np.clip(tb - inc.offset, 0, inc.motion.n_frames - 1))
@@ -105,7 +106,7 @@ def plan_join(tr: Motion, prev: Placed, inc: Incoming, fps: float, weights: Weig
     alternatives = []
     if adapted is None:  # the next-best lower-body intervals, tried in turn if the best one's join skates
         alternatives = [interval_weights("S0", byname["S0"], f, feats, fps, L)
-                        for f in runners_up(byname["S0"], feats, fps, weights, L, RUNNERS_UP)]
+                        for f in runners_up(grid0, weights, RUNNERS_UP)]
     info.update({
         "support": support, "align_frames_s": [ta / fps, tb / fps],
         "p0_s": None if choice.p0 is None else [choice.p0.begin / fps, choice.p0.end / fps, choice.p0.side],

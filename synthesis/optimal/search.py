@@ -51,9 +51,9 @@ def search(r: Range, feats: Features, fps: float, weights: Weights, min_len: int
     return best(grid(r, feats, fps, weights, min_len), weights, min_len)
 
 
-def runners_up(r: Range, feats: Features, fps: float, weights: Weights, min_len: int, k: int) -> list[Found]:
-    """The ``k`` next-best pairs of eq. (10) after the minimum, in order of cost (ties: earlier first)."""
-    g = grid(r, feats, fps, weights, min_len)
+def runners_up(g, weights: Weights, k: int) -> list[Found]:
+    """The ``k`` next-best pairs of eq. (10) after the minimum of the evaluated :func:`grid` ``g``, in order
+    of cost (ties: earlier first)."""
     flat = g.cost.ravel()
     order = np.argsort(flat, kind="stable")
     order = order[np.isfinite(flat[order])][1:k + 1]
