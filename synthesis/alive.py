@@ -25,7 +25,7 @@ import numpy as np
 from scipy.ndimage import distance_transform_edt
 from scipy.spatial.transform import Rotation
 
-from text2anim.core.metrics import FROZEN_SPEED
+from text2anim.core.metrics import frozen_pairs
 from text2anim.core.motion import Motion
 
 #: (joint, cone half-angle in degrees, frequency Hz) of the breathing layer.
@@ -36,12 +36,11 @@ FADE = 0.4
 
 
 def frozen_frames(motion: Motion) -> np.ndarray:
-    """``(T,)`` bool: frames on which every joint moves slower than FROZEN_SPEED (either neighbouring pair)."""
+    """``(T,)`` bool: frames on which every joint moves slower than FROZEN_SPEED (:func:`core.metrics.frozen_pairs`, either neighbouring pair)."""
     T = motion.n_frames
     if T < 2:
         return np.zeros(T, dtype=bool)
-    pos = motion.positions
-    pair = np.linalg.norm(np.diff(pos, axis=0), axis=-1).max(axis=1) * motion.fps < FROZEN_SPEED  # (T-1,)
+    pair = frozen_pairs(motion)  # (T-1,)
     out = np.zeros(T, dtype=bool)
     out[:-1] |= pair
     out[1:] |= pair
