@@ -16,9 +16,6 @@ from text2anim.motiondb import MotionDB, UnknownVerbError
 from text2anim.nlp import meaning
 from text2anim.nlp.types import Analysis, MotionSpec
 
-#: ``--fallback`` values: ``strict`` refuses a missing verb, ``nearest`` stands in the nearest by meaning.
-FALLBACKS = ("strict", "nearest")
-
 
 @dataclass(frozen=True)
 class Substitution:

@@ -19,7 +19,6 @@ from typing import Any
 
 from text2anim.batch import DEFAULT_CHUNK, Options, run_corpus
 
-from text2anim.limits import MAX_SECONDS
 
 from .bvh_options import add_budget_option, fps_type
 
