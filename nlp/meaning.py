@@ -79,8 +79,10 @@ def _phrase(verb: str) -> bool:
     return any(w.feature.pos2 == "格助詞" for w in tagger()(verb))
 
 
+@lru_cache(maxsize=4096)
 def vector(verb: str) -> np.ndarray | None:
-    """The unit vector ``(D,)`` of ``verb`` (first spelling of ``forms`` in the table), or None."""
+    """The unit vector ``(D,)`` of ``verb`` (first spelling of ``forms`` in the table), or None; cached: a
+    nearest-verb search asks it of every database verb, and each lookup runs the tagger (the table's own row)."""
     index, vecs = _table()
     for w in forms(verb):
         if w in index:
