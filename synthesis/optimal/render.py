@@ -92,8 +92,9 @@ def _planted(a_comp: Motion, b_comp: Motion, ca: dict, cb: dict, w: np.ndarray, 
     return out
 
 
-def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True):
-    """Write a planned join onto the track: returns ``(track, locks, (w0, w1))``.
+def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True, tr_contacts: FootContacts | None = None):
+    """Write a planned join onto the track: returns ``(track, locks, (w0, w1))``. ``tr_contacts``: the
+    track's foot contacts when the caller has them (:func:`carry_out` renders one track several times).
 
     The lower body of every frame of the window blends its two sources with the lower weight, the upper
     body its two with the upper weight; :func:`synthesis.transition.apply_join` then writes the window and
@@ -121,7 +122,7 @@ def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True):
         return m.replace(rotations=r)
 
     a_comp, b_comp = with_upper(a_low), with_upper(b_low)
-    tr_c = detect_contacts(tr)
+    tr_c = tr_contacts if tr_contacts is not None else detect_contacts(tr)
     b_c = detect_contacts(bside)
     ca = _contacts_at(tr_c, faL)
     cb = _contacts_at(b_c, fbL - off)

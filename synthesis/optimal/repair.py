@@ -7,6 +7,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from text2anim.core.contacts import detect_contacts
 from text2anim.core.metrics import SOURCE_FACTOR, quality
 from text2anim.core.motion import Motion
 
@@ -66,6 +67,7 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     its feet. Deterministic.
     """
     best = None
+    tr_c = detect_contacts(tr)  # the track before the join: the same for every rendering
     variants = [("", True, False), ("no_step", False, False), ("eased", True, True), ("eased_no_step", False, True)]
     if plan.intervals["S0"].kind == "motion-motion":
         variants.append(("roots_mid", False, False))
@@ -74,11 +76,11 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     for cname, cand in candidates:
         for vname, step, eased in variants:
             p = _eased(cand) if eased else (_roots_mid(tr, cand) if vname == "roots_mid" else cand)
-            out, locks, window = render(tr, p, lock, step)
+            out, locks, window = render(tr, p, lock, step, tr_c)
             moved = settle(out, locks, window, p)
             if moved is not None:  # placed where the locked foot stands: the next motion's own step needs no release
                 p = moved
-                out, locks, window = render(tr, p, lock, step)
+                out, locks, window = render(tr, p, lock, step, tr_c)
             sk = _skating(out, window[0], window[1]) if lock else 0.0  # the blend (the clips' own skating after
             # it, a jump's landing, is not the join's to fix)
             over = max(0.0, _window_pop(out, window) - SOURCE_FACTOR * own_pop)
