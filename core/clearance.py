@@ -75,7 +75,7 @@ def clear_floor(motion: Motion) -> Motion:
     bm = body_map(motion.skeleton)
     y = motion.positions[..., 1]
     limbs = [(leg_ik, side, ankle, [ankle, toe]) for side, (ankle, toe) in bm.feet.items()]
-    limbs += [(arm_ik, side, wrist, motion.skeleton.subtree(wrist)) for side, wrist in bm.hands.items()]
+    limbs += [(arm_ik, side, wrist, [int(j) for j in motion.skeleton.subtree(wrist)]) for side, wrist in bm.hands.items()]
     deficits = [np.maximum(0.0, -y[:, joints].min(axis=1)) for *_, joints in limbs]
     return lift(motion, [limb[:3] for limb in limbs], deficits)
 
