@@ -108,14 +108,19 @@ def low_pass(motion: Motion, lo: int, hi: int, sigma: float, pad: int, root_pad:
     root_pad = pad if root_pad is None else root_pad
     if sigma <= 0 or hi - lo < 2 * max(pad, root_pad) + 1:
         return motion
-    q = unroll_quaternions(motion.rotations[lo:hi])
-    qs = gaussian_filter1d(q, sigma, axis=0, mode="nearest")
+    # the filter reads the motion up to 4 sigma beyond the region (only the region is written): near its
+    # edges it then averages the frames that really follow, not the edge frame held still ("nearest"),
+    # which bent a moving hips' path towards a standstill right where the fade hands back to the clip
+    ext = int(np.ceil(4.0 * sigma))
+    a, b = max(0, lo - ext), min(motion.n_frames, hi + ext)
+    q = unroll_quaternions(motion.rotations[a:b])
+    qs = gaussian_filter1d(q, sigma, axis=0, mode="nearest")[lo - a:hi - a]
     qs /= np.linalg.norm(qs, axis=-1, keepdims=True)
     rots = motion.rotations.copy()
-    rots[lo:hi] = slerp(q, qs, _fade(hi - lo, pad)[:, None])
+    rots[lo:hi] = slerp(q[lo - a:hi - a], qs, _fade(hi - lo, pad)[:, None])
     root = motion.root_positions.copy()
-    root[lo:hi] = lerp(root[lo:hi], gaussian_filter1d(root[lo:hi], sigma, axis=0, mode="nearest"),
-                       _fade(hi - lo, root_pad))
+    smooth_root = gaussian_filter1d(root[a:b], sigma, axis=0, mode="nearest")[lo - a:hi - a]
+    root[lo:hi] = lerp(root[lo:hi], smooth_root, _fade(hi - lo, root_pad))
     return motion.replace(root_positions=root, rotations=rots)
 
 
