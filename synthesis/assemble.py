@@ -1,21 +1,17 @@
 """What every whole-body joiner shares after laying its clips: compositions, measurement, the Result.
 
-The optimal engine (:mod:`synthesis.optimal`) and the baselines
-(:mod:`synthesis.baselines`) lay the whole-body elements of a track their own
-way; then, exactly as the seed-003 engine (:mod:`synthesis.engine`) does:
+Every joiner (paper 003's :mod:`synthesis.engine`, the optimal engine
+:mod:`synthesis.optimal`, the baselines :mod:`synthesis.baselines`) lays the
+whole-body elements of a track its own way; then :func:`assemble`:
 
 1. the partial elements are composed onto the track
    (:func:`synthesis.composition.compose`, sway transfer and all);
-2. every join is measured with the engine's own figures (``timetable.md`` §3:
+2. every join is measured with the same figures (``timetable.md`` §3:
    skating ratio and foot skate in the blend and its region, largest and RMS
    jerk against the source clips', core fidelity per element);
 3. a :class:`synthesis.result.Result` is returned, so every method can be
    saved, viewed, reported and compared the same way, every actor's motion
    finished: swinging feet clear of the floor, no frozen pose (:func:`synthesis.finish.finish`).
-
-The per-join and per-element figures are the engine's functions; this module
-only repeats the engine's short loops around them (its ``synthesize`` does the
-same inline and is not split into callable steps).
 """
 from __future__ import annotations
 
