@@ -138,15 +138,16 @@ class Animation:
         """
         from text2anim.core.metrics import foot_skate
 
-        from .quality import actor_quality, join_quality, rounded
+        from .quality import actor_quality, actor_series, join_quality, rounded
 
+        per_actor = actor_series(self.result.motions)  # resampled and measured once for both
         whole = {}
-        for (name, m), q in zip(self.motions.items(), actor_quality(self.motions).values()):
+        for (name, m), q in zip(self.motions.items(), actor_quality(self.result.motions, series_of=per_actor).values()):
             whole[name] = {"frames": m.n_frames, "duration": round(m.duration, 3),
                            "skating_ratio": round(q.skating_ratio, 4), "quality": rounded(q),
                            "foot_skate_cm_s": {s: round(f.mean_speed_cm_s, 3) for s, f in foot_skate(m).items()}}
         joins = self.result.report()["joins"]
-        for j, q in zip(joins, join_quality(self.result, self.synthesis_tracks)):
+        for j, q in zip(joins, join_quality(self.result, self.synthesis_tracks, series_of=per_actor)):
             if q is not None:
                 j["quality"] = q
         return {

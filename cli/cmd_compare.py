@@ -102,10 +102,11 @@ def run(args: argparse.Namespace) -> int:
 def _quality_row(result, tracks) -> dict:
     """The literature's figures of one method at 30 fps: the worst actor, the worst join window, and
     ``joins_ok`` = "met/measured" joins meeting all five criteria against their sources."""
-    from text2anim.quality import actor_quality, join_quality
+    from text2anim.quality import actor_quality, actor_series, join_quality
 
-    whole = list(actor_quality(result.motions).values())
-    joins = [q for q in join_quality(result, tracks) if q is not None]
+    per_actor = actor_series(result.motions)  # resampled and measured once for both
+    whole = list(actor_quality(result.motions, series_of=per_actor).values())
+    joins = [q for q in join_quality(result, tracks, series_of=per_actor) if q is not None]
     row = {k: max((getattr(q, k) for q in whole), default=0.0)
            for k in ("skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction")}
     for k in ("skating_ratio", "root_pop", "jerk_p99"):
