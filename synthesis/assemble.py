@@ -154,6 +154,7 @@ def finish_joins(laid: Laid) -> None:
     the later joins' frames, and ``laid.delays`` (the partial elements laid on them follow)."""
     from .joinpass import Region, finish_track, warp_frames
 
+    fps = laid.motion.fps  # the post-pass retimes frames, never the rate
     idx, regions = [], []
     for k, lj in enumerate(laid.joins):
         rep, first, second = lj.report, lj.first, lj.second
@@ -163,7 +164,6 @@ def finish_joins(laid: Laid) -> None:
         keep = (first.offset + first.core[1], second.offset + second.core[0])  # cores are kept (§4.2.5)
         idx.append(k)
         brake = first.offset + first.lead if first.cyclic else None  # a loop may take braking steps
-        fps = laid.motion.fps
         seams = tuple(sorted({int(round(t * fps)) for i in rep.intervals for t in (i.begin, i.end)}))
         sources = (first.element.clip.motion, second.element.clip.motion)  # as recorded: no loop seams, no holds
         regions.append(Region(int(w0), int(w1), int(r1), sources, keep, brake, seams,
@@ -191,8 +191,7 @@ def finish_joins(laid: Laid) -> None:
         later = laid.placed[laid.placed.index(second):]
         for p in later:
             p.offset += delta
-        laid.delays.extend((p.element.id, delta / laid.motion.fps) for p in later if p.repetition == 0)
-        fps = laid.motion.fps
+        laid.delays.extend((p.element.id, delta / fps) for p in later if p.repetition == 0)
         for j in range(k, len(laid.joins)):
             lj = laid.joins[j]
             r = lj.report
