@@ -231,11 +231,12 @@ def same_length(motions: dict) -> dict:
     return out
 
 
-def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> Result:
+def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False, finished: bool = True) -> Result:
     """Lay every track with ``lay(track, whole_elements) -> Laid``, compose its partial elements, measure.
 
     ``tracks`` are already spread (:func:`synthesis.actors.spread_actors`) if they should be. ``post``
-    runs the join post-pass (:func:`finish_joins`) before the compositions are laid.
+    runs the join post-pass (:func:`finish_joins`) before the compositions are laid. ``finished=False``
+    leaves the motions before :func:`synthesis.finish.finish` (for a caller that finishes them itself).
     """
     motions, reports, elements, warnings = {}, [], {}, []
     for track in tracks:
@@ -254,4 +255,6 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> 
         warnings.extend(laid.warnings)
         motions[track.actor] = laid.motion
     final = same_length(motions) if post else motions
-    return Result({actor: finish(m, feet=post) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))
+    if finished:
+        final = {actor: finish(m, feet=post) for actor, m in final.items()}
+    return Result(final, reports, fps, elements, tuple(warnings))

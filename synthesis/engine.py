@@ -81,7 +81,7 @@ def lay_track(track: Track, whole: Sequence[Element], fps: float, lock: bool) ->
 
 
 def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = True, sway: bool = True,
-               spread: bool = True) -> Result:
+               spread: bool = True, finished: bool = True) -> Result:
     """Turn actor tracks into one motion per actor (paper 003 §4) and report every join.
 
     Args:
@@ -90,7 +90,9 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
         lock_feet: lock planted feet during blends (turn off only to measure what it does).
         sway: transfer the sway of composed clips (§4.4.3).
         spread: give actors sharing one origin the :func:`default_origins`.
+        finished: ``False`` leaves the motions before :func:`synthesis.finish.finish` (the caller finishes them).
     """
     if spread:
         tracks = spread_actors(tracks)
-    return assemble(tracks, fps, lambda track, whole: lay_track(track, whole, fps, lock_feet), sway, post=lock_feet)
+    return assemble(tracks, fps, lambda track, whole: lay_track(track, whole, fps, lock_feet), sway, post=lock_feet,
+                    finished=finished)
