@@ -207,12 +207,14 @@ def _locate_bad_value(lines: list[str], first: int, n_channels: int, source: str
             return BVHError(f"{source}:{k}: {len(toks)} values on a frame line, the hierarchy declares {n_channels} channels")
         for t in toks:
             try:
+                if not t.isascii() or "_" in t:  # float() takes '1_000' and '１２'; numpy's reader takes neither
+                    raise ValueError(t)
                 v = float(t)
             except ValueError:
                 return BVHError(f"{source}:{k}: {t!r} is not a number")
             if not np.isfinite(v):
                 return BVHError(f"{source}:{k}: {t!r} is not a finite number")
-    return BVHError(f"{source}: malformed frame data")
+    return BVHError(f"{source}: malformed frame data")  # numpy refused what float() reads: not seen
 
 
 def parse_frames(lines: list[str], first: int, frames: int, channels, source: str) -> np.ndarray:
@@ -236,7 +238,7 @@ def parse_frames(lines: list[str], first: int, frames: int, channels, source: st
 
 def _check_values(values: np.ndarray, channels, first: int, lines: list[str], source: str) -> None:
     """Refuse non-finite values, positions beyond :data:`MAX_LENGTH` units and rotations beyond
-    :data:`MAX_DEGREES`, ``(T, C)``, in one pass (NaN and infinity fail the bound too)."""
+    :data:`MAX_DEGREES`, ``(T, C)``: one bound check covers all three (NaN and infinity fail it too)."""
     flat = [c for chans in channels for c in chans]
     limit = np.array([MAX_DEGREES if c in ROTATION_CHANNELS else MAX_LENGTH for c in flat])
     if (np.abs(values) <= limit).all():

@@ -125,6 +125,8 @@ def test_zero_frames_is_an_empty_motion():
     (lambda t: t.replace("motion", "ROOT Other\n{\nOFFSET 0 0 0\n}\nmotion"), "more than one ROOT"),
     (lambda t: t.replace("90 1 2 3", "90 1 two 3"), "'two' is not a number"),
     (lambda t: t.replace("90 1 2 3", "90 1 nan 3"), "not a finite number"),
+    (lambda t: t.replace("90 1 2 3", "90 1 1_000 3"), "'1_000' is not a number"),  # float() reads these two
+    (lambda t: t.replace("90 1 2 3", "90 1 \uff11\uff12 3"), "'\uff11\uff12' is not a number"),
     (lambda t: t.replace("Xrotation Yrotation\n\t\tJOINT", "Qrotation Yrotation\n\t\tJOINT"), "unknown channel"),
     (lambda t: t.replace("frame time: 3.3333333e-02", "frame time: 0"), "frame time must be a positive"),
 ])
