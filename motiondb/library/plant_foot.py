@@ -112,7 +112,7 @@ class Foot:
         v = self.vlock
         gv = Gaps(v, ramp=V_RAMP_FRAMES)
         gh = Gaps(h, source=v)
-        gh.retime(self.F[:, [0, 2]], MIN_STEP_SPEED / self.fps)
+        gh.retime(self.F[:, [0, 2]], MIN_STEP_SPEED / self.fps, self.fps)
         lock_xz = self.P[np.maximum(self.owner, 0)] if len(self.P) else np.zeros((T, 2))
         xz = gh.path(self.F[:, [0, 2]]) + gh.blend(lock_xz, self.F[:, [0, 2]])
 
@@ -129,7 +129,7 @@ class Foot:
             q[keep] = self.keep_rot[keep]
             flat = Rotation.from_quat(q)
         y = gv.path(self.F[:, [1]]) + gv.blend(lock_y[:, None], self.F[:, [1]])
-        y[:, 0] = np.maximum(y[:, 0], self.toe_y + SWING_CLEARANCE * clearance(v))  # the clip's edge gaps
+        y[:, 0] = np.maximum(y[:, 0], self.toe_y + SWING_CLEARANCE * clearance(v))  # all but short swings
         between = swing_heights(v, lock_y, self.F[:, 1], self.fps, SWING_CLEARANCE)
         y[:, 0] = np.where(np.isnan(between), y[:, 0], between)
         target = np.stack([xz[:, 0], y[:, 0], xz[:, 1]], axis=1)

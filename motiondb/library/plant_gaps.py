@@ -12,11 +12,17 @@ from text2anim.core.contacts import runs
 EDGE_FADE_FRAMES = 12.0
 #: Frames over which a swing's speed ramps up from (down to) zero at a lock.
 RAMP_FRAMES = 2.5
-#: The clearance hump next to a lock on a clip's first or last gap (the foot swinging off a clip
-#: edge): rises over RISE frames, held HOLD frames, released over RELEASE frames (its height is
-#: :data:`~text2anim.motiondb.library.plant_foot.SWING_CLEARANCE`). Gaps between two locks take
-#: :func:`swing_heights` instead.
+#: The clearance hump next to a lock (on all but short swings): rises over RISE frames, held HOLD
+#: frames, released over RELEASE frames (its height is
+#: :data:`~text2anim.motiondb.library.plant_foot.SWING_CLEARANCE`). Short swings between two locks
+#: take :func:`swing_heights` instead.
 CLEAR_RISE, CLEAR_HOLD, CLEAR_RELEASE = 2.5, 2.0, 3.0
+#: A gap between two locks at most this long (s, lock to lock) is a short swing: a step of a turn, a
+#: skip's hop (0.16-0.2 s), shorter than any walking or running swing (0.35 s and more). Its height
+#: is :func:`swing_heights`' and its keyed path is re-timed (:meth:`Gaps.retime`): the keys' own
+#: timing and the clearance humps next to its locks have no room there (they met in a square wave
+#: that snapped the knee). Longer swings keep them.
+SHORT_SWING_SECONDS = 0.3
 #: Seconds over which a swing's lift rises from a lock (and falls back to the next), when the
 #: swing is long enough; a shorter swing rises over half its length.
 SWING_RISE_SECONDS = 0.15
@@ -98,8 +104,9 @@ class Gaps:
             self.src_next[a:b] = -1 if s is None else int(round(src_hi))
         self.locked = locked
 
-    def retime(self, values: np.ndarray, min_step: float) -> None:
-        """Replay ``values`` ``(T, k)`` (the keyed path) over each gap between two locks at an even pace
+    def retime(self, values: np.ndarray, min_step: float, fps: float) -> None:
+        """Replay ``values`` ``(T, k)`` (the keyed path) over each short gap between two locks (at most
+        :data:`SHORT_SWING_SECONDS` s at ``fps``) at an even pace
         along its length instead of the keys' own timing: the fraction of the path's length covered
         by ``u`` (0 to 1 across the gap) is ``(1 - a) * smootherstep(u) + a * u``, with ``a`` the least
         (at most 1) that moves the foot ``min_step`` (m) on the gap's first and last frames. The keyed
@@ -120,6 +127,8 @@ class Gaps:
             if total <= 1e-6:
                 continue
             span = b - (a - 1)
+            if span > SHORT_SWING_SECONDS * fps:
+                continue
             u = np.arange(1, span) / span
             first = float(smootherstep(1.0 / span))
             need = (min_step / total - first) / max(1.0 / span - first, 1e-12)
@@ -213,7 +222,8 @@ def lift_height(profile: np.ndarray, fps: float, cap: float, max_jerk: float = L
 
 def swing_heights(locked: np.ndarray, lock: np.ndarray, keyed: np.ndarray, fps: float,
                   clearance: float) -> np.ndarray:
-    """``(T,)`` heights (m) of a foot's ball across each gap between two locks, NaN elsewhere.
+    """``(T,)`` heights (m) of a foot's ball across each short gap between two locks (at most
+    :data:`SHORT_SWING_SECONDS` s), NaN elsewhere.
 
     ``lock`` and ``keyed`` ``(T,)``: the ball's height on the locks and along the keyed path. Across a gap
     from lock frame ``lo`` to ``hi`` the ball goes from ``lock[lo]`` to ``lock[hi]`` along a
@@ -233,6 +243,8 @@ def swing_heights(locked: np.ndarray, lock: np.ndarray, keyed: np.ndarray, fps: 
             continue
         lo, hi = a - 1, b
         span = hi - lo
+        if span > SHORT_SWING_SECONDS * fps:
+            continue
         w = smootherstep(np.arange(1, span) / span)
         base = lock[lo] + (lock[hi] - lock[lo]) * w
         rel = keyed[a:b] - (keyed[lo] + (keyed[hi] - keyed[lo]) * w)
