@@ -7,6 +7,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from text2anim.core.contacts import runs
+from text2anim.core.easing import smootherstep, smoothstep
 
 #: Frames over which a correction fades out after a clip's last lock (in before its first).
 EDGE_FADE_FRAMES = 12.0
@@ -33,17 +34,6 @@ SWING_RISE_SECONDS = 0.15
 LIFT_JERK = 1000.0
 #: Width (m) of the smooth maximum of the clearance and the keyed swing (:func:`smooth_max`).
 LIFT_BLEND = 0.01
-
-
-def smoothstep(u):
-    u = np.clip(u, 0.0, 1.0)
-    return u * u * (3 - 2 * u)
-
-
-def smootherstep(u):
-    """``6u^5 - 15u^4 + 10u^3`` on ``u`` clipped to [0, 1]: 0 to 1 with zero velocity and acceleration at both ends."""
-    u = np.clip(u, 0.0, 1.0)
-    return u * u * u * (u * (6 * u - 15) + 10)
 
 
 def _warp_curve(r_in: float, r_out: float, n: int = 257) -> tuple[np.ndarray, np.ndarray]:
