@@ -23,7 +23,12 @@ module makes the plants exact and keeps the swings smooth:
   minus keyed) blended by a smoothstep from one lock's value to the next's.
   Near lift-off and touchdown the ball is kept at least
   :data:`~.plant_foot.SWING_CLEARANCE` above its planted height (a smooth hump), so a
-  step clears the ground instead of shuffling.
+  step clears the ground instead of shuffling. A short swing (at most
+  :data:`~.plant_gaps.SHORT_SWING_SECONDS`: a turn's step, a skip's hop) has no room
+  for two humps: its height is one smooth lift across the gap, bounded by a jerk
+  budget (:func:`~.plant_gaps.swing_heights`), and its keyed path is re-timed evenly
+  along its length, leaving and landing at :data:`~.plant_foot.MIN_STEP_SPEED`
+  (:meth:`~.plant_gaps.Gaps.retime`).
   Horizontally, the keyed swing (from the end of one vertical lock to the
   start of the next) is replayed over the real gap, eased in and out by a
   time-warp (its speed ramps from zero at a lock over :data:`~.plant_gaps.RAMP_FRAMES`

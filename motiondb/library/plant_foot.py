@@ -13,17 +13,24 @@ from text2anim.core.motion import Motion
 
 from text2anim.core.easing import smoothstep
 
-from .plant_gaps import Gaps, clearance, distance_to
+from .plant_gaps import Gaps, clearance, distance_to, swing_heights
 
 #: Gaussian smoothing (frames) of swing paths away from the locks.
 SWING_SMOOTH = 1.2
 #: Frames over which a swing's vertical speed ramps up from (down to) zero at a lock: shorter than the
 #: horizontal :data:`~text2anim.motiondb.library.plant_gaps.RAMP_FRAMES`, a foot pushes off and touches down briskly.
 V_RAMP_FRAMES = 1.5
-#: A stepping foot's ball rises at least this high above its planted height near lift-off and
-#: touchdown (over RISE frames, held HOLD frames, released over RELEASE frames), so it clears the
-#: contact detector's "low" band instead of shuffling.
+#: A stepping foot's ball rises this high above its planted height (less on a short swing, see
+#: :func:`~text2anim.motiondb.library.plant_gaps.swing_heights`), so it clears the contact detector's
+#: "low" band instead of shuffling.
 SWING_CLEARANCE = 0.06
+#: A swing's ball leaves and reaches its locks at least this fast (m/s, horizontally, on the gap's first and
+#: last frame, when its step is long enough). The contact detector's speed is a central difference
+#: (limit 0.4 m/s): at 0.75 m/s the first swing frame, whose difference spans two moving frames, is not
+#: taken for standing, so the lock does not grow into the swing and crowd the step into the frames
+#: left (a skip's 37 cm hop into three frames), while the lock's own last frame (its difference spans
+#: one moving frame: 0.375 m/s) stays a contact, as a walk's double support needs.
+MIN_STEP_SPEED = 0.75
 
 
 @dataclass(frozen=True)
@@ -64,6 +71,7 @@ class Foot:
         self.knee_pos = pose.positions[:, self.knee].copy()
         self.thigh_fwd = np.einsum("tij,j->ti", pose.rotations[:, self.hip], [0.0, 0.0, 1.0])
         self.ground = ground
+        self.fps = motion.fps
         self.toe_y = ground + toe_height
         self.owner = np.full(T, -1)
         self.vlock = np.zeros(T, dtype=bool)
@@ -106,6 +114,7 @@ class Foot:
         v = self.vlock
         gv = Gaps(v, ramp=V_RAMP_FRAMES)
         gh = Gaps(h, source=v)
+        gh.retime(self.F[:, [0, 2]], MIN_STEP_SPEED / self.fps, self.fps)
         lock_xz = self.P[np.maximum(self.owner, 0)] if len(self.P) else np.zeros((T, 2))
         xz = gh.path(self.F[:, [0, 2]]) + gh.blend(lock_xz, self.F[:, [0, 2]])
 
@@ -122,7 +131,9 @@ class Foot:
             q[keep] = self.keep_rot[keep]
             flat = Rotation.from_quat(q)
         y = gv.path(self.F[:, [1]]) + gv.blend(lock_y[:, None], self.F[:, [1]])
-        y[:, 0] = np.maximum(y[:, 0], self.toe_y + SWING_CLEARANCE * clearance(v))
+        y[:, 0] = np.maximum(y[:, 0], self.toe_y + SWING_CLEARANCE * clearance(v))  # all but short swings
+        between = swing_heights(v, lock_y, self.F[:, 1], self.fps, SWING_CLEARANCE)
+        y[:, 0] = np.where(np.isnan(between), y[:, 0], between)
         target = np.stack([xz[:, 0], y[:, 0], xz[:, 1]], axis=1)
         # Soften the swing's frame-scale corners (never the locks, nor the clearance): a Gaussian of
         # SWING_SMOOTH frames on the horizontal path, faded in away from the locks.

@@ -1,21 +1,39 @@
 """Between a foot's locks (:mod:`~text2anim.motiondb.library.plant`): the keyed path replayed over each gap,
 time-warped to leave and land without a velocity jump, the corrections blended across it, and the
-clearance hump next to each lock. Frames throughout."""
+swing's height between two locks (:func:`swing_heights`). Frames throughout, unless a name says seconds."""
 from __future__ import annotations
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from text2anim.core.contacts import runs
-from text2anim.core.easing import smoothstep
+from text2anim.core.easing import smootherstep, smoothstep
 
 #: Frames over which a correction fades out after a clip's last lock (in before its first).
 EDGE_FADE_FRAMES = 12.0
 #: Frames over which a swing's speed ramps up from (down to) zero at a lock.
 RAMP_FRAMES = 2.5
-#: The clearance hump next to a lock: rises over RISE frames, held HOLD frames, released over RELEASE
-#: frames (its height is :data:`~text2anim.motiondb.library.plant_foot.SWING_CLEARANCE`).
+#: The clearance hump next to a lock (on all but short swings): rises over RISE frames, held HOLD
+#: frames, released over RELEASE frames (its height is
+#: :data:`~text2anim.motiondb.library.plant_foot.SWING_CLEARANCE`). Short swings between two locks
+#: take :func:`swing_heights` instead.
 CLEAR_RISE, CLEAR_HOLD, CLEAR_RELEASE = 2.5, 2.0, 3.0
+#: A gap between two locks at most this long (s, lock to lock) is a short swing: a step of a turn, a
+#: skip's hop (0.16-0.2 s), shorter than any walking or running swing (0.35 s and more). Its height
+#: is :func:`swing_heights`' and its keyed path is re-timed (:meth:`Gaps.retime`): the keys' own
+#: timing and the clearance humps next to its locks have no room there (they met in a square wave
+#: that snapped the knee). Longer swings keep them.
+SHORT_SWING_SECONDS = 0.3
+#: Seconds over which a swing's lift rises from a lock (and falls back to the next), when the
+#: swing is long enough; a shorter swing rises over half its length.
+SWING_RISE_SECONDS = 0.15
+#: Largest jerk (m/s³) the lift profile alone may give the ball of a swinging foot. The leg IK
+#: turns the ball's jerk into up to about twice as much at the knee, and the issue's limit for a
+#: whole animation is a 99th percentile of 2,300 m/s³ over all joints: a short swing (0.16 s, a
+#: step in a turn, a skip's hop) lifts less than a long one rather than snapping up.
+LIFT_JERK = 1000.0
+#: Width (m) of the smooth maximum of the clearance and the keyed swing (:func:`smooth_max`).
+LIFT_BLEND = 0.01
 
 
 def _warp_curve(r_in: float, r_out: float, n: int = 257) -> tuple[np.ndarray, np.ndarray]:
@@ -76,6 +94,47 @@ class Gaps:
             self.src_next[a:b] = -1 if s is None else int(round(src_hi))
         self.locked = locked
 
+    def retime(self, values: np.ndarray, min_step: float, fps: float) -> None:
+        """Replay ``values`` ``(T, k)`` (the keyed path) over each short gap between two locks (at most
+        :data:`SHORT_SWING_SECONDS` s at ``fps``) at an even pace
+        along its length instead of the keys' own timing: the fraction of the path's length covered
+        by ``u`` (0 to 1 across the gap) is ``(1 - a) * smootherstep(u) + a * u``, with ``a`` the least
+        (at most 1) that moves the foot ``min_step`` (m) on the gap's first and last frames. The keyed
+        path keeps its shape; a swing whose keys bunch its travel into a frame or two (a skip's hop
+        covers 30 of its 37 cm in two frames) is spread over the gap, and the foot leaves and lands
+        at a pace the contact detector does not take for standing."""
+        T = len(values)
+        for a, b in runs(~self.locked):
+            a, b = int(a), int(b)
+            if a == 0 or b == T:
+                continue
+            lo, hi = float(self.tau[a - 1]), float(self.tau[b])
+            src = np.arange(int(np.floor(lo)), int(np.ceil(hi)) + 1)
+            knots = np.unique(np.clip(np.concatenate([[lo], src, [hi]]), lo, hi))
+            pts = self.path_at(values, knots)
+            length = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+            total = float(length[-1])
+            if total <= 1e-6:
+                continue
+            span = b - (a - 1)
+            if span > SHORT_SWING_SECONDS * fps:
+                continue
+            u = np.arange(1, span) / span
+            first = float(smootherstep(1.0 / span))
+            need = (min_step / total - first) / max(1.0 / span - first, 1e-12)
+            mix = float(np.clip(need, 0.0, 1.0))
+            q = (1 - mix) * smootherstep(u) + mix * u
+            length = length + np.linspace(0.0, 1e-9, len(length))  # strictly increasing where the keys stand still
+            self.tau[a:b] = np.interp(q * length[-1], length, knots)
+
+    def path_at(self, values: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        """``values`` ``(T, k)`` at fractional frames ``tau`` (linear between frames)."""
+        T = len(values)
+        i0 = np.clip(np.floor(tau).astype(int), 0, T - 1)
+        i1 = np.clip(i0 + 1, 0, T - 1)
+        f = (tau - i0)[:, None]
+        return values[i0] * (1 - f) + values[i1] * f
+
     def path(self, values: np.ndarray) -> np.ndarray:
         """``values`` ``(T, k)`` sampled at the warped frames (linear between frames)."""
         T = len(values)
@@ -126,6 +185,63 @@ class Gaps:
         mixed = r0 * Rotation.from_rotvec((r0.inv() * r1).as_rotvec() * w[:, None])
         exact = (lock * keyed.inv()).as_quat()
         return Rotation.from_quat(np.where(self.locked[:, None], exact, mixed.as_quat()))
+
+
+def smooth_max(a, b, width: float):
+    """A C-infinity maximum of ``a`` and ``b``: ``(a + b + sqrt((a - b)^2 + width^2)) / 2`` (at most
+    ``width / 2`` above the larger)."""
+    return 0.5 * (a + b + np.sqrt((a - b) ** 2 + width ** 2))
+
+
+def swing_profile(span: int, rise: float) -> np.ndarray:
+    """``(span - 1,)`` in (0, 1]: the unit lift on the frames between two locks ``span`` frames apart,
+    ``S(k / R) * S((span - k) / R)`` with ``S`` :func:`smootherstep` and ``R = min(rise, span / 2)``
+    frames; it leaves both locks with zero velocity and acceleration."""
+    k = np.arange(1, span, dtype=float)
+    r = min(rise, span / 2.0)
+    return smootherstep(k / r) * smootherstep((span - k) / r)
+
+
+def lift_height(profile: np.ndarray, fps: float, cap: float, max_jerk: float = LIFT_JERK) -> float:
+    """The largest height (m, at most ``cap``) whose ``height * profile`` between two still locks
+    has no third difference above ``max_jerk`` m/s³ at ``fps`` frames per second."""
+    padded = np.concatenate([np.zeros(3), profile, np.zeros(3)])
+    unit = float(np.abs(np.diff(padded, n=3)).max()) * fps ** 3
+    return cap if unit <= 0 else min(cap, max_jerk / unit)
+
+
+def swing_heights(locked: np.ndarray, lock: np.ndarray, keyed: np.ndarray, fps: float,
+                  clearance: float) -> np.ndarray:
+    """``(T,)`` heights (m) of a foot's ball across each short gap between two locks (at most
+    :data:`SHORT_SWING_SECONDS` s), NaN elsewhere.
+
+    ``lock`` and ``keyed`` ``(T,)``: the ball's height on the locks and along the keyed path. Across a gap
+    from lock frame ``lo`` to ``hi`` the ball goes from ``lock[lo]`` to ``lock[hi]`` along a
+    :func:`smootherstep` of time, plus ``p * smooth_max(h, rel)``: ``p`` the :func:`swing_profile`,
+    ``rel`` the keyed path above its own smootherstep from ``keyed[lo]`` to ``keyed[hi]`` (the keyed
+    swing's shape), ``h`` the clearance (``clearance`` m, less on a short swing: :func:`lift_height`).
+    The swing thus leaves and reaches the locks with zero vertical velocity and acceleration, and
+    its lift is one smooth profile across the whole gap (not humps at its ends that meet in a
+    square wave on a short one).
+    """
+    T = len(locked)
+    out = np.full(T, np.nan)
+    rise = SWING_RISE_SECONDS * fps
+    for a, b in runs(~locked):
+        a, b = int(a), int(b)
+        if a == 0 or b == T:
+            continue
+        lo, hi = a - 1, b
+        span = hi - lo
+        if span > SHORT_SWING_SECONDS * fps:
+            continue
+        w = smootherstep(np.arange(1, span) / span)
+        base = lock[lo] + (lock[hi] - lock[lo]) * w
+        rel = keyed[a:b] - (keyed[lo] + (keyed[hi] - keyed[lo]) * w)
+        p = swing_profile(span, rise)
+        h = lift_height(p, fps, clearance)
+        out[a:b] = base + p * smooth_max(h, rel, LIFT_BLEND)
+    return out
 
 
 def clearance(locked: np.ndarray) -> np.ndarray:
