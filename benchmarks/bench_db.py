@@ -54,6 +54,7 @@ from text2anim.motiondb.schema import (  # noqa: E402
     verbs as Verb,
 )
 from text2anim.motiondb.blobs import skeleton_json  # noqa: E402
+from text2anim.motiondb.ranks import fill as fill_ranks  # noqa: E402
 
 sys.path.insert(0, str(REPO / "tests"))
 from conftest import make_motion  # noqa: E402
@@ -116,6 +117,7 @@ def build(path: Path, n_clips: int, seed: int = 0) -> tuple[list[str], list[str]
             if objs:
                 conn.execute(insert(ClipObject), objs)
             conn.execute(insert(Contact), contacts)
+        fill_ranks(conn)  # the search's ranking table, as storing clips through the API writes it
     db.close()
     return verbs, objects, characters, len(blob) * n_clips
 

@@ -53,6 +53,7 @@ from typing import Any
 from sqlalchemy import BindParameter, Connection, Integer, and_, bindparam, case, func, or_, select
 
 from .readings import normalize, reading
+from .ranks import candidates
 from . import schema as tb
 from .types import ClipInfo
 
@@ -108,7 +109,8 @@ _OB, _CO, _CT = tb.objects, tb.clip_objects, tb.contacts
 
 
 @lru_cache(maxsize=256)
-def _search_statement(body_part: str | None, character: bool, limit: bool, postgres: bool):
+def _search_statement(body_part: str | None, character: bool, limit: bool, postgres: bool,
+                      asked: tuple[bool, bool, bool] = (False, False, False)):
     """Matching, ranking and every :class:`ClipInfo` field of the hits in one SELECT (see the module docstring).
 
     The verb, object and character names are bound parameters matched inside the
@@ -116,19 +118,27 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
     query, and the verbs, objects and contacts of those hits only are aggregated
     as JSON arrays by the outer one. The object, preferred character and start posture
     are always bound (``NULL`` when not asked: their tiers are then the same for every
-    clip), so a process compiles few variants.
+    clip), so a process compiles few variants. With a ``limit``, only the clips
+    :func:`motiondb.ranks.candidates` picks are ranked (``asked``: whether the object,
+    the preferred character and the start posture were asked), so the work does not grow
+    with the number of clips of the verb.
     """
     lemma: BindParameter[str] = bindparam("lemma")
     exact = _VB.c.lemma == lemma
     verb_tier = case((and_(exact, _CV.c.is_primary), 0), (exact, 1), (_CV.c.is_primary, 2), else_=3)
-    per_clip = (
+    per_clip: Any = (
         select(_CV.c.clip_id.label("clip_id"), func.min(verb_tier).label("verb_tier"),
                func.min(case((exact, 0), else_=1)).label("spelling_tier"))
         .join(_VB, _VB.c.id == _CV.c.verb_id)
         .where(or_(exact, _VB.c.reading == bindparam("reading")))
         .group_by(_CV.c.clip_id)
-        .subquery()
     )
+    if limit:
+        obj, prefer, posture = asked
+        per_clip = per_clip.where(_CV.c.clip_id.in_(candidates(
+            body_part=body_part, mirror=MIRROR_PART.get(body_part) if body_part else None, character=character,
+            prefer=prefer, posture=posture, obj=obj)))
+    per_clip = per_clip.subquery()
     # clips declaring the object (0) < clips declaring none (1) < clips declaring others (2)
     matched = or_(_OB.c.name == bindparam("object"), _OB.c.reading == bindparam("object_reading"))
     object_tier = func.coalesce(
@@ -201,7 +211,8 @@ def find(session: Connection, verb: str, *, object: str | None = None, character
     lemma = normalize(verb)
     obj = normalize(object) if object is not None else ""
     stmt = _search_statement(body_part, character is not None, limit is not None,
-                             session.dialect.name == "postgresql")
+                             session.dialect.name == "postgresql",
+                             (bool(obj), bool(prefer_character), prefer_start_posture is not None))
     params: dict[str, Any] = {"lemma": lemma, "reading": reading(lemma), "object": obj or None,
                               "object_reading": reading(obj) if obj else None,
                               "prefer": normalize(prefer_character) if prefer_character else None,
