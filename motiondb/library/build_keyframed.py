@@ -6,8 +6,9 @@ Run after changing a clip's JSON or the generator (keyframes, planting, reach)::
 
 This is the one place the seeded keyframed frames are generated: every clip of
 :func:`motiondb.library.build_all` at :data:`.keyframed.FPS` that no captured clip replaces,
-with its metadata and the :func:`.keyframed.sources_hash` of what it was made from. The same
-sources give the same bytes. ``--check`` builds in memory and exits 1 when the file differs.
+with its metadata and the :func:`.keyframed.sources_hash` of what it was made from, and the
+foot contacts of every seeded clip (the captured ones from ``capture.npz``: rerun this after
+rebuilding that). The same sources give the same bytes. ``--check`` builds in memory and exits 1 when the file differs.
 """
 from __future__ import annotations
 
@@ -18,7 +19,18 @@ from pathlib import Path
 
 import numpy as np
 
-from .keyframed import ARRAYS, FPS, meta_array, sources_hash, to_planes
+from .keyframed import ARRAYS, FPS, meta_array, records_of, sources_hash, to_planes
+
+
+def contacts(records) -> dict[str, list[list]]:
+    """``{name: [[side, start, stop], ...]}``: what storing each record computes (:func:`core.contacts.detect_contacts`)."""
+    from text2anim.core.contacts import detect_contacts
+
+    out = {}
+    for r in records:
+        fc = detect_contacts(r.motion)
+        out[r.name] = [[side, a, b] for side in ("left", "right") for a, b in fc.intervals(side)]
+    return out
 
 
 def arrays() -> dict[str, np.ndarray]:
@@ -39,7 +51,11 @@ def arrays() -> dict[str, np.ndarray]:
                       "cyclic": bool(r.cyclic), "source": r.source, "start_posture": r.start_posture,
                       "end_posture": r.end_posture})
         out[r.name] = to_planes(np.concatenate([m.root_positions, m.rotations.reshape(m.n_frames, -1)], axis=1))
-    return {"_meta": meta_array({"sources": sources_hash(), "fps": FPS, "clips": clips}), **out}
+    meta = {"sources": sources_hash(), "fps": FPS, "clips": clips}
+    # the contacts of the clips as seeded: the keyframed ones as read back from these arrays, the captured ones
+    seeded = records_of(meta, out) + capture.capture_records(FPS)
+    meta["contacts"] = contacts(seeded)
+    return {"_meta": meta_array(meta), **out}
 
 
 def build(out: Path = ARRAYS, log=print) -> int:

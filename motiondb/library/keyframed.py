@@ -8,7 +8,10 @@ and timestamps, so the same sources give the same bytes) holds:
 
 - ``_meta``: UTF-8 JSON as ``uint8``: ``{"sources": SOURCES_HASH, "fps": 30.0, "clips": [{"name",
   "verbs", "objects", "core", "body_part", "cyclic", "source", "start_posture", "end_posture"},
-  ...]}``, the clips in library order (the keyframed clips no captured clip replaces);
+  ...], "contacts": {name: [[side, start, stop], ...]}}``: the clips in library order (the keyframed
+  clips no captured clip replaces), and the foot contacts (:func:`core.contacts.detect_contacts`,
+  frames ``[start, stop)``) of every clip a database is seeded with, the captured ones too, as
+  storing them would compute them: seeding needs no forward kinematics (nor scipy);
 - per clip ``<name>``: its frames ``(T, 3 + 4J)`` (root position, metres, then the joints' local
   quaternions ``(x, y, z, w)``) as float32, stored byte-plane by byte-plane (``(4, 3 + 4J, T)``
   ``uint8``: byte ``k`` of every value of a channel, frame after frame), which deflates to
@@ -87,25 +90,40 @@ def _motion(frames: np.ndarray) -> Motion:
     return Motion(skel, FPS, root, rots)
 
 
+#: Foot contacts per clip name: ``[(side, start, stop), ...]`` (frames, ``[start, stop)``).
+Contacts = dict[str, list[tuple[str, int, int]]]
+
+
+def records_of(meta: dict, planes) -> tuple[ClipRecord, ...]:
+    """The keyframed records the ``_meta`` JSON ``meta`` describes, frames from ``planes[name]``."""
+    return tuple(ClipRecord(
+        name=c["name"], motion=_motion(from_planes(planes[c["name"]])), verbs=tuple(c["verbs"]),
+        objects=tuple(c["objects"]), character="default", core=(float(c["core"][0]), float(c["core"][1])),
+        body_part=c["body_part"], cyclic=bool(c["cyclic"]), source=c["source"],
+        start_posture=c["start_posture"], end_posture=c["end_posture"]) for c in meta["clips"])
+
+
 @lru_cache(maxsize=1)
-def shipped(path: Path = ARRAYS) -> tuple[str, tuple[ClipRecord, ...]]:
-    """``(sources hash, records)`` of the shipped file: the keyframed clips at :data:`FPS`, read-only."""
+def shipped(path: Path = ARRAYS) -> tuple[str, tuple[ClipRecord, ...], Contacts]:
+    """``(sources hash, records, contacts)`` of the shipped file: the keyframed clips at :data:`FPS`
+    (read-only motions) and the foot contacts of every seeded clip."""
     try:
         with np.load(path) as data:
             meta = json.loads(data["_meta"].tobytes().decode("utf-8"))
-            out = []
-            for c in meta["clips"]:
-                out.append(ClipRecord(
-                    name=c["name"], motion=_motion(from_planes(data[c["name"]])), verbs=tuple(c["verbs"]),
-                    objects=tuple(c["objects"]), character="default", core=(float(c["core"][0]), float(c["core"][1])),
-                    body_part=c["body_part"], cyclic=bool(c["cyclic"]), source=c["source"],
-                    start_posture=c["start_posture"], end_posture=c["end_posture"]))
+            records = records_of(meta, data)
+        contacts = {name: [(str(side), int(a), int(b)) for side, a, b in rows]
+                    for name, rows in meta["contacts"].items()}
     except (OSError, KeyError, ValueError) as exc:
         raise ClipDataError(f"{path.name} cannot be read ({exc}): rebuild it "
                             "(python -m text2anim.motiondb.library.build_keyframed)") from None
-    return str(meta["sources"]), tuple(out)
+    return str(meta["sources"]), records, contacts
 
 
 def keyframed_records() -> tuple[ClipRecord, ...]:
     """The seeded keyframed clips at :data:`FPS`, from the shipped file (cached, read-only motions)."""
     return shipped()[1]
+
+
+def seeded_contacts() -> Contacts:
+    """The foot contacts of every clip a database is seeded with, by name, as shipped."""
+    return shipped()[2]

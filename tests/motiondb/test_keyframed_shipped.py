@@ -12,7 +12,7 @@ REBUILD = "python -m text2anim.motiondb.library.build_keyframed"
 
 
 def test_the_shipped_file_was_built_from_the_current_json_and_generator():
-    stored, _ = keyframed.shipped()
+    stored = keyframed.shipped()[0]
     assert stored == keyframed.sources_hash(), f"clips/*.json or the generator changed: run {REBUILD}"
 
 
@@ -53,3 +53,16 @@ def test_a_new_database_holds_every_generated_keyframed_clip(db_url):
             assert m.n_frames == g.motion.n_frames
             np.testing.assert_allclose(m.root_positions, g.motion.root_positions, rtol=0, atol=1e-6)
             np.testing.assert_allclose(m.rotations, g.motion.rotations, rtol=0, atol=2e-7)
+
+
+def test_the_shipped_contacts_are_what_storing_each_builtin_clip_computes():
+    from text2anim.core.contacts import detect_contacts
+    from text2anim.motiondb.library import builtin_clips
+
+    shipped = keyframed.seeded_contacts()
+    records = builtin_clips()
+    assert sorted(shipped) == sorted(r.name for r in records), f"run {REBUILD} (after capture.npz changed?)"
+    for r in records:
+        fc = detect_contacts(r.motion)
+        assert shipped[r.name] == [(side, a, b) for side in ("left", "right") for a, b in fc.intervals(side)], \
+            f"{r.name}: run {REBUILD}"
