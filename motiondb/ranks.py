@@ -28,6 +28,9 @@ from sqlalchemy import (ColumnElement, CompoundSelect, Connection, Integer, Sele
 from . import schema as tb
 from .reads import chunks
 
+#: One answer to a ranking question: the condition its rows meet (``None``: any row).
+Answer = ColumnElement[bool] | None
+
 _R, _CV, _CL, _CO = tb.search_ranks.c, tb.clip_verbs.c, tb.clips.c, tb.clip_objects.c
 _COLUMNS = ["verb_id", "clip_id", "object_id", "secondary", "has_objects", "character_id", "start_posture",
             "body_part", "name"]
@@ -67,17 +70,17 @@ def candidates(*, body_part: str | None, mirror: str | None, character: bool, pr
     base: list[ColumnElement[bool]] = []
     if character:
         base.append(_R.character_id == select(ch.id).where(ch.name == bindparam("character")).scalar_subquery())
-    parts: list[ColumnElement[bool] | None] = [None]
+    parts: list[Answer] = []  # a body part's tier: exact < mirror side < whole body
     if body_part is not None:
         allowed = [body_part] + ([mirror] if mirror else [])
         base.append((_R.body_part.in_(allowed)) | _R.body_part.is_(None))
-        parts = [_R.body_part == body_part] + ([_R.body_part == mirror] if mirror else []) + [_R.body_part.is_(None)]
+        parts += [_R.body_part == p for p in allowed] + [_R.body_part.is_(None)]
     own = _R.object_id == 0
-    objects = [own]
+    objects: list[Answer] = [own]
     if obj:
         matched = select(ob.id).where((ob.name == bindparam("object")) | (ob.reading == bindparam("object_reading")))
         objects.append(_R.object_id.in_(matched))
-    questions: list[list[ColumnElement[bool] | None]] = [objects, parts]
+    questions: list[list[Answer]] = [objects, parts or [None]]
     if prefer:
         questions.append([None, _R.character_id == select(ch.id).where(ch.name == bindparam("prefer"))
                           .scalar_subquery()])

@@ -196,7 +196,8 @@ def _info(r) -> ClipInfo:
     (name, character, fps, frames, duration, core_begin, core_end, body_part, cyclic, source, created,
      start_posture, end_posture, n_joints, lists) = r  # unpacked: a Row's attributes cost ~1 us each
     verbs, objects, contacts = _lists(lists)
-    left, right = [], []
+    left: list[tuple[int, int]] = []
+    right: list[tuple[int, int]] = []
     for side, a, b in sorted(contacts, key=lambda c: (c[1], c[2], c[0])):
         (left if side == "left" else right).append((int(a), int(b)))
     return ClipInfo(
