@@ -82,12 +82,8 @@ def _motion(frames: np.ndarray) -> Motion:
     J = skel.n_joints
     if frames.ndim != 2 or frames.shape[1] != 3 + 4 * J:
         raise ClipDataError(f"keyframed.npz: frames of shape {frames.shape} do not fit the {J}-joint skeleton")
-    root = np.array(frames[:, :3])
     rots = frames[:, 3:].reshape(len(frames), J, 4)
-    rots = rots / np.linalg.norm(rots, axis=-1, keepdims=True)
-    root.setflags(write=False)
-    rots.setflags(write=False)
-    return Motion(skel, FPS, root, rots)
+    return Motion(skel, FPS, np.array(frames[:, :3]), rots / np.linalg.norm(rots, axis=-1, keepdims=True)).read_only()
 
 
 #: Foot contacts per clip name: ``[(side, start, stop), ...]`` (frames, ``[start, stop)``).
