@@ -14,12 +14,13 @@
 2. Storing clips through the API (``MotionDB.add``, validation and contact
    detection included), clips per second.
 3. First-run seeding: a fresh process opening a new database file, which
-   generates the built-in library (``motiondb.library.builtin_clips``) and
-   stores it in one transaction.
+   reads the built-in library (``motiondb.library.builtin_clips``: the shipped
+   ``capture.npz`` and ``keyframed.npz``) and stores it in one transaction.
 4. Database file sizes.
 
 The synthetic databases are written with bulk inserts (not the API) so that
-100k clips take seconds; the schema is the real one.
+100k clips take seconds; the schema is the real one, the ranking table filled
+as storing through the API fills it.
 """
 from __future__ import annotations
 
