@@ -147,6 +147,26 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
     return reports, elements
 
 
+NEAR_CORE = 0.1  # s of a clip's core its join side keeps (the 3-frame average and differences reach that far)
+
+
+def join_side(clip, side: str, whole: bool = False) -> Motion:
+    """The frames of a source ``clip`` a join replaces, as recorded: after its core when the join leaves
+    it (``side="out"``), before its core when the join enters it (``"in"``), each with :data:`NEAR_CORE` s
+    of the core. A looped clip (every step is core), a part under 0.2 s, or ``whole``: the whole clip.
+
+    The join post-pass prefers the smoothing that brings a join within these parts' figures (at the time
+    its whole clips' figures asked for): a kick's or a landing's accelerations inside its core are no
+    licence for the join next to it to move as hard.
+    """
+    m = clip.motion
+    if whole or clip.cyclic:
+        return m
+    c0, c1 = clip.core
+    part = m.between(max(0.0, c1 - NEAR_CORE), m.duration + 1.0) if side == "out" else m.between(0.0, c0 + NEAR_CORE)
+    return part if part.duration >= 0.2 else m
+
+
 def finish_joins(laid: Laid) -> None:
     """Run the join post-pass (:mod:`synthesis.joinpass`) on ``laid.motion`` in place; each join's
     report gets what the pass did (``post``). Where the pass gave a join more time (a region retimed
@@ -165,9 +185,10 @@ def finish_joins(laid: Laid) -> None:
         idx.append(k)
         brake = first.offset + first.lead if first.cyclic else None  # a loop may take braking steps
         seams = tuple(sorted({int(round(t * fps)) for i in rep.intervals for t in (i.begin, i.end)}))
+        into_core = rep.blend.startswith("motion_adaptation")
         sources = (first.element.clip.motion, second.element.clip.motion)  # as recorded: no loop seams, no holds
-        regions.append(Region(int(w0), int(w1), int(r1), sources, keep, brake, seams,
-                              rep.blend.startswith("motion_adaptation")))
+        near = (join_side(first.element.clip, "out"), join_side(second.element.clip, "in", whole=into_core))
+        regions.append(Region(int(w0), int(w1), int(r1), sources, keep, brake, seams, into_core, near))
     laid.motion, infos, warps = finish_track(laid.motion, regions)
     for k, info, (lo, hi, n_new, seam) in zip(idx, infos, warps):
         lj = laid.joins[k]

@@ -24,7 +24,11 @@ own two source clips (as recorded, at the track's rate):
    :data:`SIGMAS` that bring the region's joint jerk p99 (m/s³) and hips'
    horizontal acceleration (m/s², :func:`core.metrics.quality`) within the two
    sources' are kept; the time added is reported (``post.added_s``) and the
-   elements after the join start that much later.
+   elements after the join start that much later. At that stretch a wider
+   smoothing is taken instead when it is no worse on either figure and nearer
+   the figures of the frames the join replaces (``Region.near``: the first
+   clip after its core, the second before it, :func:`synthesis.assemble.join_side`):
+   a kick's accelerations in its core are no licence for the join beside it.
 3. **Feet stay put.** Wherever a foot is in contact in the engine's output, or
    held still by its locks (toes and heels: the ankle's position *and* world
    orientation are kept, so the toe stays), the leg is solved by IK back onto
@@ -85,6 +89,7 @@ class Region:
     brake_from: int | None = None  # a looped first clip: the pass may slow its steps from this frame
     seams: tuple[int, ...] = ()  # more frames where the engine switches blends (ends of its intervals)
     into_core: bool = False  # the engine's own blends reach into the next core (an adaptation's return)
+    near: tuple = ()  # the parts of the sources the join replaces (their figures are the preferred limits)
 
 
 def _limits(sources, fps: float) -> tuple[float, float]:
@@ -109,14 +114,19 @@ def low_pass(motion: Motion, lo: int, hi: int, sigma: float, pad: int, root_pad:
     root_pad = pad if root_pad is None else root_pad
     if sigma <= 0 or hi - lo < 2 * max(pad, root_pad) + 1:
         return motion
-    q = unroll_quaternions(motion.rotations[lo:hi])
-    qs = gaussian_filter1d(q, sigma, axis=0, mode="nearest")
+    # the filter reads the motion up to 4 sigma beyond the region (only the region is written): near its
+    # edges it then averages the frames that really follow, not the edge frame held still ("nearest"),
+    # which bent a moving hips' path towards a standstill right where the fade hands back to the clip
+    ext = int(np.ceil(4.0 * sigma))
+    a, b = max(0, lo - ext), min(motion.n_frames, hi + ext)
+    q = unroll_quaternions(motion.rotations[a:b])
+    qs = gaussian_filter1d(q, sigma, axis=0, mode="nearest")[lo - a:hi - a]
     qs /= np.linalg.norm(qs, axis=-1, keepdims=True)
     rots = motion.rotations.copy()
-    rots[lo:hi] = slerp(q, qs, _fade(hi - lo, pad)[:, None])
+    rots[lo:hi] = slerp(q[lo - a:hi - a], qs, _fade(hi - lo, pad)[:, None])
     root = motion.root_positions.copy()
-    root[lo:hi] = lerp(root[lo:hi], gaussian_filter1d(root[lo:hi], sigma, axis=0, mode="nearest"),
-                       _fade(hi - lo, root_pad))
+    smooth_root = gaussian_filter1d(root[a:b], sigma, axis=0, mode="nearest")[lo - a:hi - a]
+    root[lo:hi] = lerp(root[lo:hi], smooth_root, _fade(hi - lo, root_pad))
     return motion.replace(root_positions=root, rotations=rots)
 
 
@@ -302,8 +312,11 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     planted = _planted(motion, contacts)
     jk_lim, pop_lim = _limits(region.sources, fps)
     pop_lim = max(pop_lim, POP_FLOOR)
+    jk_near, pop_near = _limits(region.near, fps) if region.near else (jk_lim, pop_lim)
+    jk_near, pop_near = min(jk_near, jk_lim), max(min(pop_near, pop_lim), POP_FLOOR)
     scale = fps / 30.0
     best: tuple[float, float, float, Motion, float, float, int] | None = None
+    kept: tuple[float, float, float, Motion, float, float, int] | None = None  # within the limits, nearest
     whi = max(min(hi, region.keep[1]), region.w0 + 2)  # retimed: [lo, whi), never the next core
     seam = _hardest(seamed, lo, whi)
     for stretch in STRETCHES:
@@ -323,12 +336,17 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
             score = max(jk / max(jk_lim * SLACK, 1e-9), pop / max(pop_lim * SLACK, 1e-9))
             if best is None or score < best[0] - 1e-9:
                 best = (score, sigma, stretch, cand, jk, pop, h2)
-            if score <= 1.0:
-                break
-        if best is not None and best[0] <= 1.0:
+            if score <= 1.0:  # within the whole clips' figures: no more time. A wider smoothing is taken if it
+                # is no worse on either figure and nearer the figures of the parts the join replaces
+                near = max(jk / max(jk_near * SLACK, 1e-9), pop / max(pop_near * SLACK, 1e-9))
+                if kept is None or (near < kept[0] - 1e-9 and jk <= kept[4] + 1e-9 and pop <= kept[5] + 1e-9):
+                    kept = (near, sigma, stretch, cand, jk, pop, h2)
+                if kept[0] <= 1.0:
+                    break
+        if kept is not None:
             break
     assert best is not None  # STRETCHES and SIGMAS are not empty
-    score, sigma, stretch, cand, jk, pop, h2 = best
+    score, sigma, stretch, cand, jk, pop, h2 = kept or best
     cand = lift_off_floor(clear_swings(cand, lo, h2), lo, h2)
     info = {"smoothing_frames": sigma, "stretch": stretch, "added_s": round((h2 - hi) / fps, 3),
             "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
@@ -349,7 +367,7 @@ def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[di
         if added:
             r = Region(r.w0 + added, r.w1 + added, r.r1 + added, r.sources, (r.keep[0] + added, r.keep[1] + added),
                        None if r.brake_from is None else r.brake_from + added, tuple(x + added for x in r.seams),
-                       r.into_core)
+                       r.into_core, r.near)
         out, info, warp = finish_region(out, r, detect_contacts(out))
         infos.append(info)
         warps.append(warp)

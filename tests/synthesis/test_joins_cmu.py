@@ -58,7 +58,9 @@ def track_of(clips, first: str, second: str) -> Track:
     ("dance02", "walk07"),  # an adaptation: the next clip's legs fitted to the dance's feet went 1.4 cm underground
     ("walk07", "lunge"),  # a looped cycle whose stance foot sank into the floor where its strides' floors differ
     ("dance02", "shot"),  # an adaptation whose return step ends 4 frames before the track does
-    ("frontkick", "walk"), ("run127", "shot")])
+    ("frontkick", "walk"), ("run127", "shot"),
+    ("pickup", "run")])  # the post-pass hands over to the run as captured where the run speeds up: its low-pass
+    # took the region's edge frame as held still ("nearest") and returned the hips with a pop of 6.7 m/s2 (> 6.6)
 def test_default_engine_joins_real_capture_within_its_sources(clips, first, second):
     res = synthesize_with("optimal", [track_of(clips, first, second)], FPS)
     out = quality(res.motions[None])
