@@ -9,7 +9,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from text2anim.motiondb import ClipInfo, MotionDB
-from text2anim.synthesis import plan as splan
 from text2anim.core.atomic import Content, check_distinct, check_output_path, write_all
 
 from . import limits
@@ -20,8 +19,9 @@ from .variants import Pick
 #: database verb nearest in meaning (:mod:`text2anim.fallback`).
 FALLBACKS = ("strict", "nearest")
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never imports it
     from text2anim.core.motion import Motion
+    from text2anim.synthesis import plan as splan
     from text2anim.scheduler import TimeTable
     from text2anim.synthesis.result import Result
 
@@ -48,21 +48,25 @@ class _Clips:
                 plain = self.get(info)
                 self.cache[key] = replace(plain, name=info.name + MIRRORED, motion=mirror(plain.motion))
             else:
+                from text2anim.synthesis.plan import Clip
+
                 motion = self.db.load(info)
                 if motion.fps != self.fps:
                     motion = motion.resample(self.fps)
-                self.cache[key] = splan.Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
+                self.cache[key] = Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
         return self.cache[key]
 
 
 def _repetitions(e, picks: tuple[Pick, ...], clips: _Clips, first_id: int) -> list[splan.Element]:
     """A repeated element as one element per repetition, each its own variant (ids: ``e.id``, then
     ``first_id``, ``first_id + 1``, ...), of equal length, each joined to the one before."""
+    from text2anim.synthesis.plan import Element
+
     step = (e.end - e.start) / len(picks)
     out: list[splan.Element] = []
     for k, p in enumerate(picks):
         eid = e.id if k == 0 else first_id + k - 1
-        out.append(splan.Element(eid, clips.get(p.clip, p.mirrored), e.start + k * step, e.start + (k + 1) * step,
+        out.append(Element(eid, clips.get(p.clip, p.mirrored), e.start + k * step, e.start + (k + 1) * step,
                                  e.method if k == 0 else "connection", e.prev if k == 0 else out[-1].id,
                                  e.speed, 1, False, e.body_part))
     return out
@@ -76,6 +80,8 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
     and a repeated one in ``planned.repeats`` plays as one element per repetition (ids
     above the table's; a later element joined to it is joined to its last repetition).
     """
+    from text2anim.synthesis.plan import Element, Track
+
     clips = _Clips(db, fps)
     table = planned.table
     next_id = max(e.id for e in table.elements) + 1
@@ -96,9 +102,9 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
                 last_of[e.id] = reps[-1].id
                 elements.extend(reps)
                 continue
-            elements.append(splan.Element(e.id, clips.get(planned.clips[e.id], e.id in planned.mirrored), e.start,
+            elements.append(Element(e.id, clips.get(planned.clips[e.id], e.id in planned.mirrored), e.start,
                                           e.end, e.method, prev, e.speed, e.repeat, e.hold, e.body_part))
-        tracks.append(splan.Track(actor, tuple(elements)))
+        tracks.append(Track(actor, tuple(elements)))
     return tracks
 
 

@@ -14,12 +14,13 @@
 2. Storing clips through the API (``MotionDB.add``, validation and contact
    detection included), clips per second.
 3. First-run seeding: a fresh process opening a new database file, which
-   generates the built-in library (``motiondb.library.builtin_clips``) and
-   stores it in one transaction.
+   reads the built-in library (``motiondb.library.builtin_clips``: the shipped
+   ``capture.npz`` and ``keyframed.npz``) and stores it in one transaction.
 4. Database file sizes.
 
 The synthetic databases are written with bulk inserts (not the API) so that
-100k clips take seconds; the schema is the real one.
+100k clips take seconds; the schema is the real one, the ranking table filled
+as storing through the API fills it.
 """
 from __future__ import annotations
 
@@ -54,6 +55,7 @@ from text2anim.motiondb.schema import (  # noqa: E402
     verbs as Verb,
 )
 from text2anim.motiondb.blobs import skeleton_json  # noqa: E402
+from text2anim.motiondb.ranks import fill as fill_ranks  # noqa: E402
 
 sys.path.insert(0, str(REPO / "tests"))
 from conftest import make_motion  # noqa: E402
@@ -116,6 +118,7 @@ def build(path: Path, n_clips: int, seed: int = 0) -> tuple[list[str], list[str]
             if objs:
                 conn.execute(insert(ClipObject), objs)
             conn.execute(insert(Contact), contacts)
+        fill_ranks(conn)  # the search's ranking table, as storing clips through the API writes it
     db.close()
     return verbs, objects, characters, len(blob) * n_clips
 

@@ -85,6 +85,12 @@ def migrate(s: Connection, version: int, skeletons: SkeletonCache) -> None:
             except (DBError, BodyMapError, ValueError):
                 continue  # a clip that cannot be read keeps the default; loading it will say why
             s.execute(clips.update().where(clips.c.id == row.id).values(start_posture=start, end_posture=end))
+    if version < 3:
+        from .ranks import fill
+
+        # 2 -> 3: the ranking table, filled from the stored clips (after their postures, above)
+        tb.search_ranks.create(s)
+        fill(s)
     set_version(s, version=SCHEMA_VERSION)
 
 

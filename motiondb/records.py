@@ -76,9 +76,12 @@ def _check_name(name, what: str, where: str) -> str:
     return n
 
 
-def prepare_record(rec: ClipRecord, where: str | None = None) -> PreparedClip:
+def prepare_record(rec: ClipRecord, where: str | None = None, *,
+                   contacts: list[tuple[str, int, int]] | None = None) -> PreparedClip:
     """Validate a record and compute its blob, skeleton fingerprint and foot contacts.
 
+    ``contacts`` (``(side, start, stop)`` frames) are the record's foot contacts when already
+    known (the built-in library ships them): they are not computed again.
     Raises :class:`ClipValidationError` naming ``where`` (a file) or the clip.
     """
     where = where or f"clip {getattr(rec, 'name', '?')!r}"
@@ -116,11 +119,14 @@ def prepare_record(rec: ClipRecord, where: str | None = None) -> PreparedClip:
         core = (b, min(e, duration))
     if rec.body_part is not None and rec.body_part not in GROUPS:
         raise ClipValidationError(f"{where}: unknown body part {rec.body_part!r}; known: {', '.join(GROUPS)}")
-    try:
-        fc = detect_contacts(m)
-    except BodyMapError as exc:
-        raise ClipValidationError(f"{where}: cannot compute foot contacts: {exc}") from None
-    contacts = [(side, a, b) for side in ("left", "right") for a, b in fc.intervals(side)]
+    if contacts is None:
+        try:
+            fc = detect_contacts(m)
+        except BodyMapError as exc:
+            raise ClipValidationError(f"{where}: cannot compute foot contacts: {exc}") from None
+        contacts = [(side, a, b) for side in ("left", "right") for a, b in fc.intervals(side)]
+    elif not all(side in ("left", "right") and 0 <= a < b <= m.n_frames for side, a, b in contacts):
+        raise ClipValidationError(f"{where}: foot contacts outside the clip's {m.n_frames} frames")
     postures = []
     for what, declared, frame in (("start", rec.start_posture, 0), ("end", rec.end_posture, -1)):
         if declared is None:

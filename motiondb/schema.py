@@ -14,6 +14,8 @@ Tables (schema version :data:`SCHEMA_VERSION`)::
     objects         id, name (unique), reading (indexed)
     clip_objects    clip_id -> clips, object_id -> objects, position
     contacts        id, clip_id -> clips, side ('left'|'right'), start_frame, stop_frame
+    search_ranks    verb_id -> verbs, clip_id -> clips, object_id (0 or -> objects), secondary,
+                    has_objects, character_id, start_posture, body_part, name
 
 Meaning and units:
 
@@ -42,6 +44,12 @@ Meaning and units:
 - ``objects``: object nouns (ボール, 箱) with readings, linked to clips in order.
 - ``contacts``: foot-contact intervals ``[start_frame, stop_frame)`` per foot,
   computed with :func:`core.contacts.detect_contacts` when the clip is stored.
+- ``search_ranks``: what a search ranks by, copied from the tables above when a clip is
+  stored (:mod:`motiondb.ranks`): one row per ``clip_verbs`` row (``object_id`` 0) and
+  one more per object the clip declares (``object_id``), with ``secondary`` (0 for the
+  primary verb), ``has_objects`` and the clip's character, start posture, body part and
+  name. Its indexes list a verb's clips in ranking order, so a search with a ``limit``
+  reads a few rows per ranking tier instead of every clip of the verb.
 
 Versions and migrations (:func:`motiondb.store.MotionDB.open` migrates an
 older database in place, in one transaction, under the writers' lock):
@@ -49,7 +57,8 @@ older database in place, in one transaction, under the writers' lock):
 - 1: the first schema;
 - 2: ``clips.start_posture`` and ``clips.end_posture`` (``VARCHAR(16) NOT NULL
   DEFAULT 'standing'``). Migrating from 1 adds them with ``ALTER TABLE ... ADD
-  COLUMN`` and classifies every stored clip from its first and last frames.
+  COLUMN`` and classifies every stored clip from its first and last frames;
+- 3: ``search_ranks``. Migrating from 2 creates it and fills it from the stored clips.
 
 Deleting a clip deletes its frames, verb/object links and contacts (ON DELETE
 CASCADE); verbs, objects, characters and skeletons no clip uses any more are
@@ -85,13 +94,13 @@ from .types import DEFAULT_POSTURE
 
 #: Bumped whenever a table or column changes meaning; see :data:`schema_version` and the
 #: migrations in the module docstring.
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
 #: The oldest schema version :meth:`motiondb.store.MotionDB.open` can migrate from.
 OLDEST_MIGRATABLE = 1
 
 #: The tables of this schema, for detecting a database that holds someone else's tables.
 TABLE_NAMES = ("schema_version", "skeletons", "characters", "clips", "clip_frames", "verbs",
-               "clip_verbs", "objects", "clip_objects", "contacts")
+               "clip_verbs", "objects", "clip_objects", "contacts", "search_ranks")
 
 
 def utcnow() -> datetime:
@@ -202,4 +211,29 @@ contacts = Table(
     CheckConstraint("side IN ('left', 'right')", name="ck_contacts_side"),
     CheckConstraint("start_frame >= 0 AND start_frame < stop_frame", name="ck_contacts_range"),
     Index("ix_contacts_clip", "clip_id"),
+)
+
+
+#: The name column of :data:`search_ranks`: ordered by code point on every backend (PostgreSQL's
+#: ``C`` collation), as searches order clip names, so its indexes serve that order.
+_RANK_NAME = String(200).with_variant(String(200, collation="C"), "postgresql")
+_RANK_ORDER = ("has_objects", "secondary", "name")
+
+#: A verb's clips in ranking order (see :mod:`motiondb.ranks`); schema version 3.
+search_ranks = Table(
+    "search_ranks", metadata,
+    Column("verb_id", Integer, ForeignKey("verbs.id"), primary_key=True),
+    Column("clip_id", Integer, ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True),
+    Column("object_id", Integer, primary_key=True),  # 0: the clip's own row, else one it declares
+    Column("secondary", Integer, nullable=False),  # 0: the clip's primary verb, 1: a synonym
+    Column("has_objects", Integer, nullable=False),
+    Column("character_id", Integer, nullable=False),
+    Column("start_posture", String(16), nullable=False),
+    Column("body_part", String(32), nullable=True),
+    Column("name", _RANK_NAME, nullable=False),
+    Index("ix_search_ranks_order", "verb_id", "object_id", *_RANK_ORDER),
+    Index("ix_search_ranks_character", "verb_id", "object_id", "character_id", *_RANK_ORDER),
+    Index("ix_search_ranks_posture", "verb_id", "object_id", "start_posture", *_RANK_ORDER),
+    Index("ix_search_ranks_part", "verb_id", "object_id", "body_part", *_RANK_ORDER),
+    Index("ix_search_ranks_clip", "clip_id"),
 )

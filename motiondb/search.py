@@ -53,6 +53,7 @@ from typing import Any
 from sqlalchemy import BindParameter, Connection, Integer, and_, bindparam, case, func, or_, select
 
 from .readings import normalize, reading
+from .ranks import candidates
 from . import schema as tb
 from .types import ClipInfo
 
@@ -108,7 +109,8 @@ _OB, _CO, _CT = tb.objects, tb.clip_objects, tb.contacts
 
 
 @lru_cache(maxsize=256)
-def _search_statement(body_part: str | None, character: bool, limit: bool, postgres: bool):
+def _search_statement(body_part: str | None, character: bool, limit: bool, postgres: bool,
+                      asked: tuple[bool, bool, bool] = (False, False, False)):
     """Matching, ranking and every :class:`ClipInfo` field of the hits in one SELECT (see the module docstring).
 
     The verb, object and character names are bound parameters matched inside the
@@ -116,19 +118,27 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
     query, and the verbs, objects and contacts of those hits only are aggregated
     as JSON arrays by the outer one. The object, preferred character and start posture
     are always bound (``NULL`` when not asked: their tiers are then the same for every
-    clip), so a process compiles few variants.
+    clip), so a process compiles few variants. With a ``limit``, only the clips
+    :func:`motiondb.ranks.candidates` picks are ranked (``asked``: whether the object,
+    the preferred character and the start posture were asked), so the work does not grow
+    with the number of clips of the verb.
     """
     lemma: BindParameter[str] = bindparam("lemma")
     exact = _VB.c.lemma == lemma
     verb_tier = case((and_(exact, _CV.c.is_primary), 0), (exact, 1), (_CV.c.is_primary, 2), else_=3)
-    per_clip = (
+    per_clip: Any = (
         select(_CV.c.clip_id.label("clip_id"), func.min(verb_tier).label("verb_tier"),
                func.min(case((exact, 0), else_=1)).label("spelling_tier"))
         .join(_VB, _VB.c.id == _CV.c.verb_id)
         .where(or_(exact, _VB.c.reading == bindparam("reading")))
         .group_by(_CV.c.clip_id)
-        .subquery()
     )
+    if limit:
+        obj, prefer, posture = asked
+        per_clip = per_clip.where(_CV.c.clip_id.in_(candidates(
+            body_part=body_part, mirror=MIRROR_PART.get(body_part) if body_part else None, character=character,
+            prefer=prefer, posture=posture, obj=obj)))
+    per_clip = per_clip.subquery()
     # clips declaring the object (0) < clips declaring none (1) < clips declaring others (2)
     matched = or_(_OB.c.name == bindparam("object"), _OB.c.reading == bindparam("object_reading"))
     object_tier = func.coalesce(
@@ -162,10 +172,12 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
             .where(_CO.c.clip_id == _CL.c.id).scalar_subquery())
     contacts = (select(_aggregate(postgres, _CT.c.side, _CT.c.start_frame, _CT.c.stop_frame))
                 .where(_CT.c.clip_id == _CL.c.id).scalar_subquery())
+    # the three lists in one JSON value: one decoding per hit (json() keeps SQLite's arrays nested)
+    lists = (func.json_build_array(verbs, objs, contacts) if postgres
+             else func.json_array(func.json(verbs), func.json(objs), func.json(contacts)))
     return (select(_CL.c.name, _CH.c.name.label("character"), _CL.c.fps, _CL.c.frames, _CL.c.duration,
                    _CL.c.core_begin, _CL.c.core_end, _CL.c.body_part, _CL.c.cyclic, _CL.c.source, _CL.c.created,
-                   _CL.c.start_posture, _CL.c.end_posture, _SK.c.n_joints,
-                   verbs.label("verbs"), objs.label("objects"), contacts.label("contacts"))
+                   _CL.c.start_posture, _CL.c.end_posture, _SK.c.n_joints, lists.label("lists"))
             .select_from(hits)
             .join(_CL, _CL.c.id == hits.c.id)
             .join(_CH, _CH.c.id == _CL.c.character_id)
@@ -173,24 +185,28 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
             .order_by(hits.c.rank))
 
 
-def _rows(value) -> list:
-    """A JSON aggregate as a list (PostgreSQL's driver decodes it; SQLite gives text; no rows may be NULL)."""
-    if value is None:
-        return []
-    return json.loads(value) if isinstance(value, str) else list(value)
+def _lists(value) -> list[list]:
+    """The ``[verbs, objects, contacts]`` JSON of a hit as lists (PostgreSQL's driver decodes it, SQLite gives
+    text; an aggregate of no rows is NULL on PostgreSQL)."""
+    lists = json.loads(value) if isinstance(value, str) else value
+    return [x or [] for x in lists]
 
 
 def _info(r) -> ClipInfo:
-    created = r.created if r.created.tzinfo else r.created.replace(tzinfo=timezone.utc)
-    contacts: dict[str, list[tuple[int, int]]] = {"left": [], "right": []}
-    for side, a, b in sorted(_rows(r.contacts), key=lambda c: (c[1], c[2], c[0])):
-        contacts[side].append((int(a), int(b)))
+    (name, character, fps, frames, duration, core_begin, core_end, body_part, cyclic, source, created,
+     start_posture, end_posture, n_joints, lists) = r  # unpacked: a Row's attributes cost ~1 us each
+    verbs, objects, contacts = _lists(lists)
+    left: list[tuple[int, int]] = []
+    right: list[tuple[int, int]] = []
+    for side, a, b in sorted(contacts, key=lambda c: (c[1], c[2], c[0])):
+        (left if side == "left" else right).append((int(a), int(b)))
     return ClipInfo(
-        name=r.name, character=r.character, verbs=tuple(v for _, v in sorted(_rows(r.verbs))),
-        objects=tuple(o for _, o in sorted(_rows(r.objects))), fps=r.fps, frames=r.frames, duration=r.duration,
-        core=(r.core_begin, r.core_end), body_part=r.body_part, cyclic=bool(r.cyclic), source=r.source,
-        created=created, joints=int(r.n_joints), left_contacts=tuple(contacts["left"]),
-        right_contacts=tuple(contacts["right"]), start_posture=r.start_posture, end_posture=r.end_posture,
+        name=name, character=character, verbs=tuple(v for _, v in sorted(verbs)),
+        objects=tuple(o for _, o in sorted(objects)), fps=fps, frames=frames, duration=duration,
+        core=(core_begin, core_end), body_part=body_part, cyclic=bool(cyclic), source=source,
+        created=created if created.tzinfo else created.replace(tzinfo=timezone.utc), joints=int(n_joints),
+        left_contacts=tuple(left), right_contacts=tuple(right), start_posture=start_posture,
+        end_posture=end_posture,
     )
 
 
@@ -201,7 +217,8 @@ def find(session: Connection, verb: str, *, object: str | None = None, character
     lemma = normalize(verb)
     obj = normalize(object) if object is not None else ""
     stmt = _search_statement(body_part, character is not None, limit is not None,
-                             session.dialect.name == "postgresql")
+                             session.dialect.name == "postgresql",
+                             (bool(obj), bool(prefer_character), prefer_start_posture is not None))
     params: dict[str, Any] = {"lemma": lemma, "reading": reading(lemma), "object": obj or None,
                               "object_reading": reading(obj) if obj else None,
                               "prefer": normalize(prefer_character) if prefer_character else None,

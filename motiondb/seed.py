@@ -26,6 +26,8 @@ class SeedSource:
     tag: str  # stored in schema_version.builtin_library
     records: Callable[[], Iterable[ClipRecord]]
     builtin: bool  # the built-in library (refreshed when its tag changes)
+    #: the records' foot contacts by clip name where known (the built-in library ships them)
+    contacts: Callable[[], dict[str, list[tuple[str, int, int]]]] | None = None
 
 
 def seeding_needed(library: str | None, source: SeedSource | None) -> bool:
@@ -61,6 +63,12 @@ def _builtin_records() -> Iterable[ClipRecord]:
     return importlib.import_module(_LIBRARY).builtin_clips()
 
 
+def _builtin_contacts() -> dict[str, list[tuple[str, int, int]]]:
+    import importlib
+
+    return importlib.import_module(_LIBRARY + ".keyframed").seeded_contacts()
+
+
 def seed_source(seed) -> SeedSource | None:
     """What to seed a new database with; ``None`` for nothing (or the built-in library is absent).
 
@@ -77,7 +85,8 @@ def seed_source(seed) -> SeedSource | None:
     spec = importlib.util.find_spec(_LIBRARY)
     if spec is None or not spec.submodule_search_locations:
         return None  # the built-in library is not there (yet)
-    return SeedSource(files_tag(Path(next(iter(spec.submodule_search_locations)))), _builtin_records, builtin=True)
+    return SeedSource(files_tag(Path(next(iter(spec.submodule_search_locations)))), _builtin_records, builtin=True,
+                      contacts=_builtin_contacts)
 
 
 def fill(s: Connection, source: SeedSource, library: str | None, url: str, skeletons: SkeletonCache) -> None:
@@ -91,7 +100,8 @@ def fill(s: Connection, source: SeedSource, library: str | None, url: str, skele
     from .writes import delete_clips, store_clips
 
     try:
-        prepared = [prepare_record(r) for r in source.records()]
+        known = source.contacts() if source.contacts is not None else {}
+        prepared = [prepare_record(r, contacts=known.get(r.name)) for r in source.records()]
     except ClipValidationError as exc:
         what = "the built-in motion library" if source.builtin else "the seed records"
         raise DBError(f"cannot fill {url} with {what}: {exc}") from None

@@ -13,6 +13,7 @@ from . import schema as tb
 from .schema import utcnow
 from .blobs import ENCODING
 from .errors import ClipExistsError, ClipValidationError
+from .ranks import fill as fill_ranks
 from .reads import SkeletonCache, chunks
 from .readings import reading
 from .records import PreparedClip
@@ -76,7 +77,9 @@ def store_clips(s: Connection, prepared: list[PreparedClip], cache: SkeletonCach
                 for p in kept for side, a, b in p.contacts]
     if contacts:
         s.execute(insert(tb.contacts), contacts)
-    return [ids[p.name] for p in kept]
+    stored = [ids[p.name] for p in kept]
+    fill_ranks(s, stored)
+    return stored
 
 
 def _place(s: Connection, prepared: list[PreparedClip], cache: SkeletonCache, conflicts: str,
@@ -152,7 +155,7 @@ def delete_clips(s: Connection, names: list[str]) -> None:
     """Delete the named clips with their frames, links and contacts, and whatever no clip uses any more."""
     ids = list(s.scalars(select(tb.clips.c.id).where(tb.clips.c.name.in_(names))))
     for chunk in chunks(ids):
-        for table in (tb.clip_frames, tb.contacts, tb.clip_verbs, tb.clip_objects):
+        for table in (tb.search_ranks, tb.clip_frames, tb.contacts, tb.clip_verbs, tb.clip_objects):
             s.execute(delete(table).where(table.c.clip_id.in_(chunk)))
         s.execute(delete(tb.clips).where(tb.clips.c.id.in_(chunk)))
     cl, ch, sk = tb.clips.c, tb.characters.c, tb.skeletons.c

@@ -54,7 +54,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicHermiteSpline
 from scipy.spatial.transform import Rotation
 
 from .align import headings, to_heading_frame
@@ -205,6 +204,8 @@ def hermite_sway(rotations: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndar
     and the sway ``exp(h(t))^-1 exp(r(t))`` ``(T, J, 4)``: a rotation that is
     the identity, with zero rate, at both ends.
     """
+    from scipy.interpolate import CubicHermiteSpline  # only a partial clip's sway needs it (~0.08 s to import)
+
     T, J, _ = rotations.shape
     if T < 3:
         ident = np.zeros((T, J, 4))

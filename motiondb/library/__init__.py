@@ -12,7 +12,10 @@ The keyframed clips are data:
 ``clips/*.json`` hold key poses, timing, root travel, foot plants, the core
 interval and the verbs (format in :mod:`.keyframes`); ``clips/_poses.json``
 the shared named poses (``stand``, ...). Generation is deterministic
-(the same bytes on every run) and cached per frame rate:
+(the same bytes on every run) and cached per frame rate; a database is seeded
+from its result at 30 fps shipped as ``keyframed.npz`` (:mod:`.keyframed`,
+rebuilt by ``python -m text2anim.motiondb.library.build_keyframed``), so the
+first run generates nothing. Generating (:func:`build_all`) goes:
 
 1. the keyed curves are sampled with scipy splines (:mod:`.keyframes`);
 2. the feet are planted exactly by leg IK (:mod:`.plant`);
@@ -40,21 +43,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from text2anim.motiondb.types import ClipRecord, Posture
-from text2anim.core.clearance import lift_swings
-from text2anim.core.floor import shifted
 from text2anim.core.motion import Motion
 
-from . import capture
-from .keyframe_curves import curves_to_motion, sample_curves
+from . import capture, keyframed
 from .keyframes import CLIPS_DIR, POSTURE_OF, ClipData, ClipDataError, PlantSpec, load_json_dir, parse_clip
 from .near import with_near_synonyms
-from .plant import FramePlant, PlantReport, plant_feet
-from .reach import apply_reach
 from .skeleton import ANKLE_HEIGHT, SHOE_SOLE, TOE_HEIGHT, canonical_skeleton
+
+if TYPE_CHECKING:  # the generator (scipy.interpolate, IK) is imported by build_clip only: seeding reads keyframed.npz
+    from .plant import FramePlant, PlantReport
 
 __all__ = ["BuiltClip", "ClipDataError", "POSTURE_OF", "builtin_clips", "build_all",
            "canonical_skeleton"]
@@ -105,6 +107,8 @@ def _posture(raw: dict, key: str, name: str) -> Posture:
 
 
 def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> list[FramePlant]:
+    from .plant import FramePlant
+
     n = int(round((t_last - t_first) / h)) + 1
     always = [FramePlant(p.side, 0, n - 1, int(round(-t_first / h))) for p in clip.plants if np.isinf(p.t0)]
     plants = [p for p in clip.plants if not np.isinf(p.t0)]
@@ -126,6 +130,13 @@ def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> li
 
 def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantReport | None]:
     """Generate one clip's motion at ``fps`` (cyclic clips: an exact whole number of frames per cycle)."""
+    from text2anim.core.clearance import lift_swings
+    from text2anim.core.floor import shifted
+
+    from .keyframe_curves import curves_to_motion, sample_curves
+    from .plant import plant_feet
+    from .reach import apply_reach
+
     skel = canonical_skeleton()
     if clip.cyclic:
         per = max(2, int(round(clip.period * fps)))
@@ -179,7 +190,14 @@ def build_all(fps: float = 30.0) -> tuple[BuiltClip, ...]:
 def builtin_clips(fps: float = 30.0) -> list[ClipRecord]:
     """The built-in library as :class:`ClipRecord` s on :func:`canonical_skeleton` (deterministic, cached):
     the keyframed clips no capture replaces, then the captured ones, with the near-synonyms of
-    ``near.json`` (:mod:`motiondb.library.near`) added to their verbs."""
-    gone = capture.replaced()
-    keyed = [b.record for b in build_all(float(fps)) if b.record.name not in gone]
+    ``near.json`` (:mod:`motiondb.library.near`) added to their verbs.
+
+    At the shipped rate (:data:`.keyframed.FPS`, 30 fps, what a database is seeded with) the
+    keyframed clips are read from ``keyframed.npz`` (:mod:`.keyframed`); at another rate they
+    are generated (:func:`build_all`: a cyclic clip keeps a whole number of frames per cycle)."""
+    if float(fps) == keyframed.FPS:
+        keyed = list(keyframed.keyframed_records())
+    else:
+        gone = capture.replaced()
+        keyed = [b.record for b in build_all(float(fps)) if b.record.name not in gone]
     return with_near_synonyms(keyed + list(capture.capture_records(float(fps))))

@@ -281,8 +281,20 @@ def test_an_unknown_posture_is_refused(empty_db, record):
     assert empty_db.clips() == []
 
 
+def _make_version_2(url: str) -> None:
+    """Turn a database of this version into what schema version 2 wrote (no ranking table)."""
+    engine = create_engine(url)
+    try:
+        with engine.begin() as conn:
+            conn.execute(text("DROP TABLE search_ranks"))
+            conn.execute(text("UPDATE schema_version SET version = 2"))
+    finally:
+        engine.dispose()
+
+
 def _make_version_1(url: str) -> None:
     """Turn a database of this version into what schema version 1 wrote (no posture columns)."""
+    _make_version_2(url)
     engine = create_engine(url)
     try:
         with engine.begin() as conn:
@@ -319,7 +331,7 @@ def test_a_version_1_database_is_migrated_in_place(db_url, record):
     engine = create_engine(db_url)
     try:
         with engine.connect() as conn:
-            assert conn.execute(text("SELECT version FROM schema_version")).scalar() == SCHEMA_VERSION == 2
+            assert conn.execute(text("SELECT version FROM schema_version")).scalar() == SCHEMA_VERSION == 3
             # the columns were added with their default, for rows written by other tools
             conn.execute(text("SELECT start_posture, end_posture FROM clips")).all()
     finally:
@@ -353,5 +365,5 @@ def test_a_schema_older_than_any_migration_is_refused(db_url):
             conn.execute(update(schema_version).values(version=0))
     finally:
         engine.dispose()
-    with pytest.raises(SchemaVersionError, match="version 0, which this text2anim cannot upgrade to 2"):
+    with pytest.raises(SchemaVersionError, match=f"version 0, which this text2anim cannot upgrade to {SCHEMA_VERSION}"):
         MotionDB.open(db_url)
