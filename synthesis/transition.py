@@ -341,6 +341,8 @@ def blend_join(track: Motion, placed_b: Motion, join: Join) -> Blended:
     a_w = sample(track, join.src_a)
     b_w = sample(placed_b, join.src_b)
     mix = blend(a_w, b_w, join.weights)
+    for m in (a_w, b_w, mix):  # the window's kinematics (the locks ask for them): the tracks concatenated
+        m.pose  # from these and known poses below then know theirs without redoing every frame's
     parts = [mix]
     head = track[:w0]
     if join.pre is not None and len(join.pre):

@@ -121,10 +121,10 @@ def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts
     b_c = detect_contacts(bside)
     ca = _contacts_at(tr_c, faL)
     cb = _contacts_at(b_c, fbL - off)
-    tail = bside[w1 - off:]
-    placed_b = concatenate([b_comp, tail]) if tail.n_frames else b_comp
-    b_contacts = FootContacts(tr.fps, *(np.concatenate([cb[s], b_c.of(s)[w1 - off:]]) for s in ("left", "right")))
     planted = _planted(a_comp, b_comp, ca, cb, wL, step=step and ivs["S0"].kind != "motion-motion")
+    tail = bside[w1 - off:]
+    placed_b = concatenate([b_comp, tail]) if tail.n_frames else b_comp  # (both poses known: so is its)
+    b_contacts = FootContacts(tr.fps, *(np.concatenate([cb[s], b_c.of(s)[w1 - off:]]) for s in ("left", "right")))
     join = Join(plan.choice.method, plan.rigid, w0, (w0, w1), frames.astype(np.float64),
                 np.arange(w1 - w0, dtype=np.float64), wL, planted, ca)
     track = concatenate([p for p in (tr[:w0], a_comp) if p.n_frames])
