@@ -90,6 +90,9 @@ def _c_map(fn, *args: np.ndarray) -> np.ndarray:
     return np.fromiter(map(fn, *(a.tolist() for a in args)), np.float64, len(args[0]))
 
 
+_ORTHOGONAL = 1e-12 + 1e-5 * np.eye(3)
+
+
 def from_matrix(m) -> np.ndarray:
     """``Rotation.from_matrix(m)`` for matrices ``(..., 3, 3)``: a non-positive determinant is an error,
     matrices not orthogonal to 1e-12 are orthogonalised by SVD (``U Vt``), then the quaternion is
@@ -104,12 +107,8 @@ def from_matrix(m) -> np.ndarray:
     if (det <= 0).any():  # only its sign is asked: the cofactor expansion, not LAPACK's
         raise ValueError(f"Non-positive determinant (left-handed or null coordinate frame) in rotation matrix "
                          f"{int(np.flatnonzero(det <= 0)[0])}")
-    rows = (c[0:3], c[3:6], c[6:9])
-    orthogonal = np.ones(len(m), dtype=bool)
-    for i in range(3):  # isclose(M Mt, I, atol=1e-12) (rtol 1e-5 on the diagonal), as the backend asks
-        for j in range(i, 3):
-            g = rows[i][0] * rows[j][0] + rows[i][1] * rows[j][1] + rows[i][2] * rows[j][2]
-            orthogonal &= np.abs(g - (i == j)) <= (1e-12 + 1e-5 * (i == j))
+    # isclose(M Mt, I, atol=1e-12) (rtol 1e-5 on the diagonal): the backend's test, by the same product
+    orthogonal = (np.abs(np.matmul(m, m.transpose(0, 2, 1)) - np.eye(3)) <= _ORTHOGONAL).all(axis=(1, 2))
     if not orthogonal.all():
         u, _, vt = np.linalg.svd(m[~orthogonal], full_matrices=False)
         m = m.copy()
