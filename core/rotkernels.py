@@ -140,7 +140,7 @@ def compose(p: np.ndarray, q: np.ndarray) -> np.ndarray:
         raise ValueError(f"cannot compose {len(p)} rotations with {len(q)}")
     px, py, pz, pw = p.T
     qx, qy, qz, qw = q.T
-    out = np.empty((max(len(p), len(q)), 4))
+    out = np.empty((len(p) if len(q) == 1 else len(q), 4))
     out[:, 0] = pw * qx + qw * px + (py * qz - pz * qy)
     out[:, 1] = pw * qy + qw * py + (pz * qx - px * qz)
     out[:, 2] = pw * qz + qw * pz + (px * qy - py * qx)
