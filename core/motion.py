@@ -179,7 +179,10 @@ class Motion:
         slot = np.full(self.skeleton.n_joints, -1)
         slot[sub] = np.arange(len(sub))
         local_r = quat_to_matrix(self.rotations[:, sub]).transpose(1, 0, 2, 3).copy()
-        local_t = self.local_translations()[:, sub].transpose(1, 0, 2).copy()
+        # the subtree's rows of local_translations() (the root, whose row is its position, is not in it)
+        own_t = self.translations[:, sub] if self.translations is not None else \
+            np.broadcast_to(self.skeleton.offsets[sub], (self.n_frames, len(sub), 3))
+        local_t = own_t.transpose(1, 0, 2).copy()
         world_r = np.empty_like(local_r)
         world_p = np.empty_like(local_t)
         outside = self.skeleton.parents[top]  # the one parent outside the subtree
