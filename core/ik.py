@@ -39,7 +39,8 @@ _EPS = 1e-12
 def _norm(v: np.ndarray, keepdims: bool = False) -> np.ndarray:
     """``np.linalg.norm(v, axis=-1)``: its arithmetic (the sum of squares along the last axis, square
     root) without its checks, which cost more than the sum on a join's few frames."""
-    return np.sqrt(np.add.reduce(v * v, axis=-1, keepdims=keepdims))
+    squares = np.add.reduce(v * v, axis=-1, keepdims=True) if keepdims else np.add.reduce(v * v, axis=-1)
+    return np.sqrt(squares)
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
