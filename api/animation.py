@@ -138,15 +138,16 @@ class Animation:
         """
         from text2anim.core.metrics import foot_skate
 
-        from .quality import actor_quality, join_quality, rounded
+        from .quality import actor_quality, actor_series, join_quality, rounded
 
+        per_actor = actor_series(self.result.motions)  # resampled and measured once for both
         whole = {}
-        for (name, m), q in zip(self.motions.items(), actor_quality(self.motions).values()):
+        for (name, m), q in zip(self.motions.items(), actor_quality(self.result.motions, series_of=per_actor).values()):
             whole[name] = {"frames": m.n_frames, "duration": round(m.duration, 3),
                            "skating_ratio": round(q.skating_ratio, 4), "quality": rounded(q),
                            "foot_skate_cm_s": {s: round(f.mean_speed_cm_s, 3) for s, f in foot_skate(m).items()}}
         joins = self.result.report()["joins"]
-        for j, q in zip(joins, join_quality(self.result, self.synthesis_tracks)):
+        for j, q in zip(joins, join_quality(self.result, self.synthesis_tracks, series_of=per_actor)):
             if q is not None:
                 j["quality"] = q
         return {
@@ -214,8 +215,13 @@ class Animation:
             check_distinct([*files, path])
             files[path] = content
 
+        moved = None  # each actor's motion as ``export`` asks, in metres: retargeted once for the BVH and the GLB
+        if export is not None and not export.is_default and (bvh is not None or glb is not None):
+            moved = self.exported_motions(export, units=False)
         if bvh is not None:
-            motions = self.exported_motions(export)
+            from .export import in_units
+
+            motions = self.motions if moved is None else {n: in_units(m, export) for n, m in moved.items()}
             for name, path in self.bvh_paths(bvh).items():
                 add(path, format_bvh(motions[name]).encode())
         if html is not None:
@@ -225,13 +231,12 @@ class Animation:
         if glb is not None:
             from text2anim.core.gltf import glb_bytes
 
-            if export is None or export.is_default:
+            if moved is None:
                 add(glb, glb_bytes(self.tracks()))
             else:
                 from .export import glb_files
 
-                self._check_loop(export)
-                out = glb_files(self.motions, export)
+                out = glb_files(moved, export)
                 if isinstance(out, bytes):
                     add(glb, out)
                 else:
@@ -252,14 +257,14 @@ class Animation:
             add(check_plot_path(plot), self._plot_writer(Path(plot).suffix))
         return files
 
-    def exported_motions(self, export=None) -> dict[str, Motion]:
-        """Each actor's motion as ``export`` asks for it (unchanged without one)."""
+    def exported_motions(self, export=None, *, units: bool = True) -> dict[str, Motion]:
+        """Each actor's motion as ``export`` asks for it (unchanged without one); ``units=False`` keeps metres."""
         if export is None or export.is_default:
             return self.motions
         from .export import export_motion
 
         self._check_loop(export)
-        return {n: export_motion(m, export) for n, m in self.motions.items()}
+        return {n: export_motion(m, export, units=units) for n, m in self.motions.items()}
 
     def _check_loop(self, export) -> None:
         """``--loop`` on a text that is not one cyclic motion: :class:`text2anim.export.ExportError`."""

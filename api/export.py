@@ -122,15 +122,19 @@ def export_motion(motion: Motion, opts: ExportOptions, *, units: bool = True) ->
     if opts.is_default:
         return motion
     # loaded here, not at import: scipy.signal and scipy.ndimage are ~0.3 s of a run's start
-    from text2anim.core.conventions import scaled
     from text2anim.core.retarget import retarget
 
     if opts.skeleton is not None:
         motion = retarget(motion, opts.skeleton, target_map=opts.target_map)
     motion = _conventions(motion, opts, opts.target_map if opts.skeleton is not None else None)
-    if units and UNITS[opts.units] != 1.0:
-        motion = scaled(motion, UNITS[opts.units])
-    return motion
+    return in_units(motion, opts) if units else motion
+
+
+def in_units(motion: Motion, opts: ExportOptions) -> Motion:
+    """``motion`` (metres) in the BVH length unit ``opts.units`` asks for."""
+    from text2anim.core.conventions import scaled
+
+    return scaled(motion, UNITS[opts.units]) if UNITS[opts.units] != 1.0 else motion
 
 
 def _conventions(motion: Motion, opts: ExportOptions, joint_map: dict[str, str] | None,
@@ -150,18 +154,18 @@ def _conventions(motion: Motion, opts: ExportOptions, joint_map: dict[str, str] 
     return motion
 
 
-def glb_files(motions: dict[str, Motion], opts: ExportOptions) -> dict[str, bytes] | bytes:
-    """The GLB output: with a glTF rig, the user's file animated, one per actor (``{actor: bytes}``);
-    else one file with every actor's exported motion on a skinned box skeleton (:func:`core.gltf.glb_bytes`)."""
+def glb_files(exported: dict[str, Motion], opts: ExportOptions) -> dict[str, bytes] | bytes:
+    """The GLB output of every actor's motion as ``opts`` asks for it, in metres (``exported``: by
+    :func:`export_motion` with ``units=False``): with a glTF rig, the user's file animated, one per actor
+    (``{actor: bytes}``); else one file with every actor on a skinned box skeleton (:func:`core.gltf.glb_bytes`)."""
     from text2anim.core.gltf import glb_bytes
     from text2anim.core.gltf_rig import rig_glb_bytes
 
     rig = opts.gltf_rig
     if rig is None:
-        return glb_bytes({n: export_motion(m, opts, units=False) for n, m in motions.items()})
+        return glb_bytes(exported)
     out = {}
-    for name, m in motions.items():
-        moved = export_motion(m, opts, units=False)
+    for name, moved in exported.items():
         if not moved.skeleton.same_hierarchy(rig.skeleton):
             raise _no_root_bone(rig)
         out[name] = rig_glb_bytes(rig, moved)
@@ -193,4 +197,5 @@ def check_loopable(elements: list, cyclic: dict[int, bool]) -> None:
                           + ("" if len(whole) != 1 else " that does not loop"))
 
 
-__all__ = ["UNITS", "ExportError", "ExportOptions", "check_loopable", "export_motion", "glb_files", "vrma_motion"]
+__all__ = ["UNITS", "ExportError", "ExportOptions", "check_loopable", "export_motion", "glb_files", "in_units",
+           "vrma_motion"]

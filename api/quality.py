@@ -16,9 +16,10 @@ at one rate:
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
-from text2anim.core.metrics import (COMPARE_FPS, Quality, against_sources, at_rate, quality, series, summarise,
-                                    window_frames)
+from text2anim.core.metrics import (COMPARE_FPS, Quality, Series, against_sources, at_rate, quality, series,
+                                    summarise, window_frames)
 
 JOIN_MARGIN = 0.5  # s added before and after a join's blend intervals
 
@@ -41,20 +42,30 @@ def join_window(join, duration: float, margin: float = JOIN_MARGIN) -> tuple[flo
     return max(0.0, min(iv.begin for iv in ivs) - margin), min(duration, max(iv.end for iv in ivs) + margin)
 
 
-def actor_quality(motions: dict, fps: float = COMPARE_FPS) -> dict:
-    """``{actor: Quality}`` of every actor's whole motion at ``fps``."""
-    return {a: quality(m, fps) for a, m in motions.items()}
+def actor_series(motions: dict, fps: float = COMPARE_FPS) -> dict[Any, Series]:
+    """``{actor: Series}``: every actor's per-frame figures at ``fps`` (resampled, FK once), for
+    :func:`actor_quality` and :func:`join_quality` both."""
+    return {a: series(at_rate(m, fps)) for a, m in motions.items()}
 
 
-def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS) -> list[dict | None]:
+def actor_quality(motions: dict, fps: float = COMPARE_FPS, series_of: dict | None = None) -> dict:
+    """``{actor: Quality}`` of every actor's whole motion at ``fps``; ``series_of``: their
+    :func:`actor_series`, when already taken."""
+    per_actor = actor_series(motions, fps) if series_of is None else series_of
+    return {a: summarise(per_actor[a]) for a in motions}
+
+
+def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS,
+                 series_of: dict | None = None) -> list[dict | None]:
     """Per join of ``result`` (same order), the figures of its window and of its source clips at ``fps``.
 
     Each entry: ``{"fps", "window_s": [t0, t1], "join": {...}, "sources": {"first": {...}, "second": {...}},
     "meets": {criterion: bool}}``; ``sources`` and ``meets`` only when ``tracks`` (the synthesis input)
-    are given. None for a join without a blend interval (a motion not executed).
+    are given. None for a join without a blend interval (a motion not executed). ``series_of``: the
+    :func:`actor_series` of ``result.motions`` when already taken (else taken here, as needed).
     """
     clips = {e.id: e.clip for t in tracks for e in t.elements}
-    by_actor: dict = {}
+    by_actor: dict = dict(series_of or {})
     by_clip: dict = {}
     out: list[dict | None] = []
     for j in result.joins:

@@ -40,16 +40,15 @@ import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
+sys.path.insert(0, str(REPO / "tests"))  # cmu_pairs: the CMU pairs the join tests use too
 
 from text2anim.motiondb import ClipRecord, MotionDB  # noqa: E402
-from text2anim.scheduler.lengths import transition_window  # noqa: E402
-from text2anim.core import read_bvh  # noqa: E402
 from text2anim.synthesis.optimal import join as optimal  # noqa: E402  (join_next looks plan_join up there)
 from text2anim.synthesis.engines import METHODS, synthesize_with  # noqa: E402
 from text2anim.core.metrics import foot_skate  # noqa: E402
 from text2anim.synthesis.plan import Clip, Element, Track  # noqa: E402
-from text2anim.synthesis.cycles import gait_cycle  # noqa: E402
-from text2anim.clip_timing import timing  # noqa: E402
+
+from cmu_pairs import cut_take, pair_track, read_back  # noqa: E402
 
 CMU = REPO.parent / "shared" / "mocap" / "cmu"
 FPS = 30.0
@@ -100,23 +99,12 @@ def build_database(url: str) -> dict:
     """Cut the clips, store them in the database at ``url``, read them back at :data:`FPS`."""
     records = []
     for name, (stem, cut, core, cyclic, part) in CLIPS.items():
-        m = read_bvh(CMU / f"{stem}.bvh", drop_first=True)
-        if cut == "cycle":
-            a, b = gait_cycle(m)
-            m = m[a:b]
-            core = (0.0, m.duration)
-        else:
-            m = m.between(*cut)
+        m, core = cut_take(CMU / f"{stem}.bvh", cut, core)
         records.append(ClipRecord(name=name, motion=m, verbs=("動く",), core=core, cyclic=cyclic, body_part=part,
                                   source=str(CMU / f"{stem}.bvh")))
     with MotionDB.open(url, seed=False) as db:
         db.add(records)
-        out = {}
-        for info in db.clips():
-            m = db.load(info)
-            out[info.name] = (info, Clip(info.name, m.resample(FPS) if m.fps != FPS else m, tuple(info.core),
-                                          info.cyclic, info.body_part))
-    return out
+        return read_back(db, FPS)
 
 
 def played(info, clip: Clip) -> float:
@@ -131,14 +119,7 @@ def track_of(clips: dict, first: str, second: str, how: str) -> Track:
     if how == "composition":
         return Track(None, (Element(1, ca, 0.0, la, "initial"),
                             Element(2, cb, 0.6, 0.6 + lb, "composition", prev=1, body_part=cb.body_part)))
-    start, end_a = la, la
-    if how == "transition":
-        win = transition_window(timing(ia), 1.0, 1, la)
-        if win is not None:
-            start, end_a = win[0], win[1]
-        else:
-            how = "transition"
-    return Track(None, (Element(1, ca, 0.0, end_a, "initial"), Element(2, cb, start, start + lb, how, prev=1)))
+    return pair_track((ia, ca), (ib, cb), (la, lb), how == "transition")
 
 
 def figures(res, motion) -> dict:

@@ -45,6 +45,7 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO / "tests"))  # cmu_pairs: the CMU pairs the join tests use too
 CMU = REPO.parent / "shared" / "mocap" / "cmu"
 CORPUS = REPO / "tests" / "corpus" / "nlp_corpus.jsonl"
 FPS = 30.0
@@ -97,33 +98,19 @@ def build_database(url: str, workdir: Path) -> dict:
     capture subjects are retargeted onto the first clip's skeleton. Read back at 30 fps.
     Returns ``{name: (action, ClipInfo, Clip)}``.
     """
-    from text2anim.core import read_bvh, write_bvh
-    from text2anim.motiondb import ImportOptions, MotionDB
-    from text2anim.synthesis.plan import Clip
-    from text2anim.synthesis.cycles import gait_cycle
+    from text2anim.motiondb import MotionDB
+
+    from cmu_pairs import cut_take, import_cut, read_back
 
     with open(CMU / "index.tsv", encoding="utf-8") as fh:
         index = {r["file"][:-4]: r for r in csv.DictReader(fh, delimiter="\t")}
     actions = {}
     with MotionDB.open(url, seed=False) as db:
         for name, (stem, cut, core) in CLIPS.items():
-            m = read_bvh(CMU / f"{stem}.bvh", drop_first=True)
-            if cut == "cycle":
-                a, b = gait_cycle(m)
-                m, core = m[a:b], (0.0, (b - a) / m.fps)
-            else:
-                m = m.between(*cut)
+            m, core = cut_take(CMU / f"{stem}.bvh", cut, core)
             actions[name] = action_of(stem, index)
-            path = workdir / f"{name}.bvh"
-            write_bvh(m, path)
-            db.import_bvh([path], ImportOptions(verbs=(index[stem]["verb_ja"],), character="cmu", core=core,
-                                                cyclic=cut == "cycle", scale=1.0))
-        out = {}
-        for info in db.clips():
-            m = db.load(info)
-            clip = Clip(info.name, m.resample(FPS) if m.fps != FPS else m, tuple(info.core), info.cyclic)
-            out[info.name] = (actions[info.name], info, clip)
-    return out
+            import_cut(db, workdir, name, m, core, cut == "cycle", index[stem]["verb_ja"])
+        return {name: (actions[name], info, clip) for name, (info, clip) in read_back(db, FPS).items()}
 
 
 def pairs_of(clips: dict) -> list[tuple[str, str]]:
@@ -145,19 +132,12 @@ def pairs_of(clips: dict) -> list[tuple[str, str]]:
 
 def track_of(clips: dict, first: str, second: str):
     """The time table of a pair: a transition after a looping clip (the scheduler's window), else a connection."""
-    from text2anim.pipeline import timing
-    from text2anim.scheduler.lengths import transition_window
-    from text2anim.synthesis.plan import Element, Track
+    from cmu_pairs import pair_track
 
     (act_a, ia, ca), (act_b, ib, cb) = clips[first], clips[second]
     la = CYCLIC_LENGTH.get(act_a, ca.motion.duration) if ca.cyclic else ca.motion.duration
     lb = CYCLIC_LENGTH.get(act_b, cb.motion.duration) if cb.cyclic else cb.motion.duration
-    how, start, end_a = "connection", la, la
-    if ca.cyclic:
-        win = transition_window(timing(ia), 1.0, 1, la)
-        if win is not None:
-            how, (start, end_a) = "transition", win
-    return Track(None, (Element(1, ca, 0.0, end_a, "initial"), Element(2, cb, start, start + lb, how, prev=1)))
+    return pair_track((ia, ca), (ib, cb), (la, lb), ca.cyclic)
 
 
 class Clock:

@@ -1,44 +1,9 @@
-"""Options shared by the commands that read BVH files, and argument types."""
+"""Options shared by the commands that read BVH files, and the output budget."""
 from __future__ import annotations
 
 import argparse
 
-
-def scale_type(text: str):
-    """``auto`` or a positive number (metres per file unit)."""
-    if text == "auto":
-        return text
-    return positive_float(text)
-
-
-def positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not value > 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive number")
-    return value
-
-
-def fps_type(text: str) -> float:
-    """A frame rate within the documented limits (:mod:`text2anim.limits`) for argparse."""
-    from text2anim.limits import FPS_MAX, FPS_MIN
-
-    value = positive_float(text)
-    if not FPS_MIN <= value <= FPS_MAX:
-        raise argparse.ArgumentTypeError(f"{text} is outside {FPS_MIN:g}-{FPS_MAX:g} frames per second")
-    return value
-
-
-def seconds_type(text: str) -> float:
-    """An output budget in seconds (``--max-seconds``) for argparse."""
-    from text2anim.limits import MAX_SECONDS_CEILING
-
-    value = positive_float(text)
-    if value > MAX_SECONDS_CEILING:
-        raise argparse.ArgumentTypeError(f"{text} is over {MAX_SECONDS_CEILING:g} s")
-    return value
+from .arg_types import scale_type, seconds_type
 
 
 def add_budget_option(p: argparse.ArgumentParser) -> None:

@@ -4,7 +4,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .bvh_options import add_budget_option, fps_type
+from .arg_types import fps_type, unit_float
+from .bvh_options import add_budget_option
 from .cmd_parse import read_text
 from .export_options import add_export_arguments, export_options
 
@@ -46,17 +47,6 @@ def add_blend_arguments(p: argparse.ArgumentParser) -> None:
                         "(paper 003), pose (closest poses, linear), crossfade (linear, fixed length)")
     p.add_argument("--smoothness", type=unit_float, default=0.5, metavar="W",
                    help="for --blend optimal: 0 joins as fast as it can, 1 as smoothly as it can (default 0.5)")
-
-
-def unit_float(text: str) -> float:
-    """A number in [0, 1] for argparse."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not 0.0 <= value <= 1.0:
-        raise argparse.ArgumentTypeError(f"{text} is not between 0 and 1")
-    return value
 
 
 def _say(msg: str) -> None:

@@ -20,7 +20,8 @@ from typing import Any
 from text2anim.batch import DEFAULT_CHUNK, Options, run_corpus
 
 
-from .bvh_options import add_budget_option, fps_type
+from .arg_types import fps_type
+from .bvh_options import add_budget_option
 
 NAME = "batch"
 HELP = ("run every line of a corpus through parse (and plan + animation with --out), locally or on a "

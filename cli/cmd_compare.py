@@ -15,8 +15,8 @@ import json
 import sys
 from pathlib import Path
 
-from .bvh_options import add_budget_option, fps_type
-from .cmd_animate import unit_float
+from .arg_types import fps_type, method_list, unit_float
+from .bvh_options import add_budget_option
 from .cmd_parse import read_text
 
 NAME = "compare"
@@ -37,20 +37,9 @@ class CompareError(ValueError):
     user_facing = True
 
 
-def _methods(text: str) -> list[str]:
-    from text2anim.synthesis.engines import METHODS
-
-    names = [m.strip() for m in text.split(",") if m.strip()]
-    bad = [m for m in names if m not in METHODS]
-    if bad or not names:
-        raise argparse.ArgumentTypeError(f"unknown method(s) {', '.join(bad) or '(none)'}; "
-                                         f"choose from {','.join(METHODS)}")
-    return list(dict.fromkeys(names))
-
-
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("text", metavar="TEXT", help="the text, or - to read it from standard input")
-    p.add_argument("--methods", type=_methods, default=["optimal", "constraint", "pose", "crossfade"],
+    p.add_argument("--methods", type=method_list, default=["optimal", "constraint", "pose", "crossfade"],
                    help="comma-separated methods (default optimal,constraint,pose,crossfade)")
     p.add_argument("--out", metavar="DIR", help="write one BVH per method into DIR (DIR/optimal.bvh, ...)")
     p.add_argument("--plot", metavar="FILE", help="plot every method's upper/lower-body speeds (Fig. 5 of "
@@ -113,10 +102,11 @@ def run(args: argparse.Namespace) -> int:
 def _quality_row(result, tracks) -> dict:
     """The literature's figures of one method at 30 fps: the worst actor, the worst join window, and
     ``joins_ok`` = "met/measured" joins meeting all five criteria against their sources."""
-    from text2anim.quality import actor_quality, join_quality
+    from text2anim.quality import actor_quality, actor_series, join_quality
 
-    whole = list(actor_quality(result.motions).values())
-    joins = [q for q in join_quality(result, tracks) if q is not None]
+    per_actor = actor_series(result.motions)  # resampled and measured once for both
+    whole = list(actor_quality(result.motions, series_of=per_actor).values())
+    joins = [q for q in join_quality(result, tracks, series_of=per_actor) if q is not None]
     row = {k: max((getattr(q, k) for q in whole), default=0.0)
            for k in ("skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction")}
     for k in ("skating_ratio", "root_pop", "jerk_p99"):

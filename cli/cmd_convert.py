@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import sys
 
-from .bvh_options import add_read_options, fps_type, read_options
+from .arg_types import fps_type
+from .bvh_options import add_read_options, read_options
 from .export_options import add_export_arguments, export_options
 
 NAME = "convert"

@@ -14,6 +14,7 @@ import unicodedata
 
 from text2anim.core.bodyparts import GROUPS
 
+from .arg_types import core_span, frame_count
 from .bvh_options import add_read_options, read_options
 
 NAME = "db"
@@ -22,26 +23,6 @@ HELP = "the motion database: import BVH clips, list, show, export, remove, verbs
 _PARTS = GROUPS
 #: motiondb.types.POSTURES (repeated here so that building the parser imports no database code).
 _POSTURES = ("standing", "seated", "crouched", "kneeling", "lying")
-
-
-def _core_type(text: str) -> tuple[float, float]:
-    try:
-        b, e = (float(x) for x in text.split(":"))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not BEGIN:END in seconds (e.g. 0.4:1.6)") from None
-    if not (0 <= b < e < float("inf")):
-        raise argparse.ArgumentTypeError(f"{text!r}: need 0 <= BEGIN < END")
-    return b, e
-
-
-def _frame_count(text: str) -> int:
-    try:
-        n = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
-    if not 1 <= n <= 48:
-        raise argparse.ArgumentTypeError(f"{n} is outside 1-48 frames")
-    return n
 
 
 def _db_option(p: argparse.ArgumentParser, default=None) -> None:
@@ -65,7 +46,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="a verb lemma that retrieves the clips; repeat for synonyms (the first is the primary verb)")
     a.add_argument("--object", action="append", default=[], metavar="NOUN", help="an object the action is about (ボール)")
     a.add_argument("--character", default="default", help="the character the clips belong to (default: default)")
-    a.add_argument("--core", type=_core_type, metavar="BEGIN:END",
+    a.add_argument("--core", type=core_span, metavar="BEGIN:END",
                    help="the part that must be kept, seconds (default: the whole clip)")
     a.add_argument("--part", choices=_PARTS, help="the body part a partial action is declared for")
     a.add_argument("--cyclic", action="store_true", help="the clips loop (locomotion)")
@@ -107,7 +88,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                           "(stick figures, front and side view)")
     a.add_argument("clip", metavar="CLIP|FILE.bvh", help="a clip's name, or a BVH file to draw without a database")
     a.add_argument("-o", "--output", required=True, metavar="SHEET.png", help="the image to write")
-    a.add_argument("--frames", type=_frame_count, default=8, metavar="N",
+    a.add_argument("--frames", type=frame_count, default=8, metavar="N",
                    help="how many frames to draw, evenly spaced (default 8, at most 48)")
 
     p.set_defaults(_db_parser=p)

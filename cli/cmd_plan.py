@@ -4,7 +4,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .bvh_options import add_budget_option, fps_type
+from .arg_types import fps_type
+from .bvh_options import add_budget_option
 from .cmd_parse import read_text
 
 NAME = "plan"

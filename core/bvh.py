@@ -36,8 +36,8 @@ from pathlib import Path
 import numpy as np
 
 from . import quat
-from .bvh_text import (FRAME_TIME_RANGE, MAX_DEGREES, MAX_JOINT_FRAMES, MAX_JOINTS, MAX_LENGTH, BVHError, Tokens,
-                       check_joint_count, parse_frames, parse_hierarchy, parse_motion_header)
+from .bvh_text import (FRAME_TIME_RANGE, MAX_DEGREES, MAX_JOINT_FRAMES, MAX_JOINTS, MAX_LENGTH, BVHError,
+                       parse_channels)
 from .bvh_write import format_bvh, write_bvh
 from .motion import Motion
 from .skeleton import POSITION_CHANNELS, ROTATION_CHANNELS, Skeleton
@@ -45,7 +45,7 @@ from .skeleton import POSITION_CHANNELS, ROTATION_CHANNELS, Skeleton
 #: The reader's and the writer's names, importable from here as before the split into
 #: :mod:`~text2anim.core.bvh_text` (the grammar) and :mod:`~text2anim.core.bvh_write` (the writer).
 __all__ = ["CMU_UNIT", "FRAME_TIME_RANGE", "MAX_DEGREES", "MAX_JOINTS", "MAX_JOINT_FRAMES", "MAX_LENGTH", "BVHError",
-           "format_bvh", "guess_scale", "parse_bvh", "read_bvh", "write_bvh"]
+           "format_bvh", "guess_scale", "parse_bvh", "parse_channels", "read_bvh", "write_bvh"]
 
 #: CMU's ASF length unit in metres (1/0.45 inch), used by cgspeed's BVH release.
 CMU_UNIT = 0.0254 / 0.45
@@ -98,13 +98,19 @@ def _rotation_columns(skel: Skeleton) -> dict[str, tuple[list[int], list[list[in
 def _build_motion(skel: Skeleton, data: np.ndarray, fps: float) -> Motion:
     """Frame data ``(T, C)`` to a motion: one vectorised Euler conversion per distinct rotation order."""
     T, J = len(data), skel.n_joints
-    rotations = np.zeros((T, J, 4))
-    rotations[..., 3] = 1.0  # joints without rotation channels keep the identity
-    for order, (joints, columns) in _rotation_columns(skel).items():
-        if not order:
-            continue
-        angles = data[:, np.array(columns, dtype=np.intp).reshape(len(joints), len(order))]  # (T, Jg, n)
-        rotations[:, joints] = quat.from_euler(order, angles, degrees=True)
+    groups = _rotation_columns(skel)
+    if len(groups) == 1 and "" not in groups:  # every joint in one order (CMU, most exporters): no scatter
+        ((order, (_, columns)),) = groups.items()
+        angles = data.take(np.ravel(columns), axis=1).reshape(T, J, len(order))  # C order, unlike data[:, cols]
+        rotations = quat.from_euler(order, angles, degrees=True)
+    else:
+        rotations = np.zeros((T, J, 4))
+        rotations[..., 3] = 1.0  # joints without rotation channels keep the identity
+        for order, (joints, columns) in groups.items():
+            if not order:
+                continue
+            angles = data[:, np.array(columns, dtype=np.intp).reshape(len(joints), len(order))]  # (T, Jg, n)
+            rotations[:, joints] = quat.from_euler(order, angles, degrees=True)
     root = np.tile(skel.offsets[0], (T, 1))
     trans = None
     col = 0
@@ -160,26 +166,7 @@ def parse_bvh(text: str, *, source: str = "<bvh>", scale: float | str = "auto",
         up: ``"y"`` (as is) or ``"z"`` (the file is Z-up; converted to Y-up).
         drop_first: drop frame 0 (the T-pose that some exporters, cgspeed among them, prepend).
     """
-    if text.startswith("\ufeff"):
-        text = text[1:]
-    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
-    motion_idx = next((i for i, ln in enumerate(lines) if ln.strip().upper() == "MOTION"), None)
-    head = lines[:motion_idx] if motion_idx is not None else lines
-    check_joint_count(head, source)
-    tok = Tokens(head, source)
-    if motion_idx is not None:
-        tok.items.append(("MOTION", motion_idx + 1, 0))
-    names, parents, offsets, channels, end_sites = parse_hierarchy(tok)
-    if tok.pos != len(tok.items) - 1:
-        raise tok.error("unexpected text after the hierarchy")
-    skel = Skeleton(names, parents, offsets, end_sites, channels)
-    if motion_idx is None:  # the hierarchy ends in MOTION, so it was refused above; this keeps it explicit
-        raise BVHError(f"{source}: no MOTION section")
-    frames, frame_time, first = parse_motion_header(lines, motion_idx + 1, source)
-    if frames * len(names) > MAX_JOINT_FRAMES:
-        raise BVHError(f"{source}:{motion_idx + 2}: {frames} frames of {len(names)} joints is more than "
-                       f"{MAX_JOINT_FRAMES:,} joint-frames; split the file")
-    data = parse_frames(lines, first, frames, channels, source)
+    skel, frame_time, data = parse_channels(text, source)
     motion = _build_motion(skel, data, 1.0 / frame_time)
     if up.lower() == "z":
         motion = _z_up_to_y_up(motion)

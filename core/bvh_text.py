@@ -7,7 +7,7 @@ import re
 
 import numpy as np
 
-from .skeleton import POSITION_CHANNELS, ROTATION_CHANNELS
+from .skeleton import POSITION_CHANNELS, ROTATION_CHANNELS, Skeleton
 
 #: At most this many joints (skeletons with fingers and face have a few hundred).
 MAX_JOINTS = 10_000
@@ -207,12 +207,14 @@ def _locate_bad_value(lines: list[str], first: int, n_channels: int, source: str
             return BVHError(f"{source}:{k}: {len(toks)} values on a frame line, the hierarchy declares {n_channels} channels")
         for t in toks:
             try:
+                if not t.isascii() or "_" in t:  # float() takes '1_000' and '１２'; numpy's reader takes neither
+                    raise ValueError(t)
                 v = float(t)
             except ValueError:
                 return BVHError(f"{source}:{k}: {t!r} is not a number")
             if not np.isfinite(v):
                 return BVHError(f"{source}:{k}: {t!r} is not a finite number")
-    return BVHError(f"{source}: malformed frame data")
+    return BVHError(f"{source}: malformed frame data")  # numpy refused what float() reads: not seen
 
 
 def parse_frames(lines: list[str], first: int, frames: int, channels, source: str) -> np.ndarray:
@@ -228,19 +230,22 @@ def parse_frames(lines: list[str], first: int, frames: int, channels, source: st
         values = np.loadtxt(data_lines, dtype=np.float64, comments=None, ndmin=2)
     except ValueError:
         raise _locate_bad_value(lines, first, n_channels, source) from None
-    if values.shape != (frames, n_channels) or not np.all(np.isfinite(values)):
+    if values.shape != (frames, n_channels):
         raise _locate_bad_value(lines, first, n_channels, source)
-    _check_ranges(values, channels, first, lines, source)
+    _check_values(values, channels, first, lines, source)
     return values
 
 
-def _check_ranges(values: np.ndarray, channels, first: int, lines: list[str], source: str) -> None:
-    """Refuse positions beyond :data:`MAX_LENGTH` units and rotations beyond :data:`MAX_DEGREES`, ``(T, C)``."""
+def _check_values(values: np.ndarray, channels, first: int, lines: list[str], source: str) -> None:
+    """Refuse non-finite values, positions beyond :data:`MAX_LENGTH` units and rotations beyond
+    :data:`MAX_DEGREES`, ``(T, C)``: one bound check covers all three (NaN and infinity fail it too)."""
     flat = [c for chans in channels for c in chans]
     limit = np.array([MAX_DEGREES if c in ROTATION_CHANNELS else MAX_LENGTH for c in flat])
-    bad = np.abs(values) > limit
-    if not bad.any():
+    if (np.abs(values) <= limit).all():
         return
+    if not np.all(np.isfinite(values)):
+        raise _locate_bad_value(lines, first, len(flat), source)
+    bad = np.abs(values) > limit
     f, k = np.argwhere(bad)[0]
     data_lines = [i for i in range(first, len(lines)) if lines[i].strip()]
     unit = "degrees" if flat[k] in ROTATION_CHANNELS else "units"
@@ -257,3 +262,31 @@ def check_joint_count(head: list[str], source: str) -> None:
     for k, m in enumerate(_JOINT_RE.finditer(text)):
         if k == MAX_JOINTS:
             raise BVHError(f"{source}:{text.count(chr(10), 0, m.start()) + 1}: more than {MAX_JOINTS} joints")
+
+
+def parse_channels(text: str, source: str = "<bvh>") -> tuple[Skeleton, float, np.ndarray]:
+    """BVH text to its skeleton (file units, as written), ``Frame Time`` in seconds and the frame data
+    ``(T, C)`` in the file's channel order, every limit above checked; :func:`~text2anim.core.bvh.parse_bvh`
+    turns these into a motion."""
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    if "\r" in text:
+        text = text.replace("\r\n", "\n").replace("\r", "\n")
+    lines = text.split("\n")
+    motion_idx = next((i for i, ln in enumerate(lines) if ln.strip().upper() == "MOTION"), None)
+    head = lines[:motion_idx] if motion_idx is not None else lines
+    check_joint_count(head, source)
+    tok = Tokens(head, source)
+    if motion_idx is not None:
+        tok.items.append(("MOTION", motion_idx + 1, 0))
+    names, parents, offsets, channels, end_sites = parse_hierarchy(tok)
+    if tok.pos != len(tok.items) - 1:
+        raise tok.error("unexpected text after the hierarchy")
+    skel = Skeleton(names, parents, offsets, end_sites, channels)
+    if motion_idx is None:  # the hierarchy ends in MOTION, so it was refused above; this keeps it explicit
+        raise BVHError(f"{source}: no MOTION section")
+    frames, frame_time, first = parse_motion_header(lines, motion_idx + 1, source)
+    if frames * len(names) > MAX_JOINT_FRAMES:
+        raise BVHError(f"{source}:{motion_idx + 2}: {frames} frames of {len(names)} joints is more than "
+                       f"{MAX_JOINT_FRAMES:,} joint-frames; split the file")
+    return skel, frame_time, parse_frames(lines, first, frames, channels, source)

@@ -25,6 +25,7 @@ import numpy as np
 
 from .bodyparts import body_map
 from .contacts import SPEED_THRESHOLD, detect_contacts, horizontal_speed
+from .easing import smoothstep
 from .floor import FOOT_CLEARANCE
 from .ik import arm_ik, leg_ik, set_world_rotation
 from .motion import Motion
@@ -36,17 +37,13 @@ RAMP = 3
 SWING_CLEARANCE = 0.015
 
 
-def _smooth(u: np.ndarray) -> np.ndarray:
-    return u * u * (3 - 2 * u)
-
-
 def lift_offsets(deficit: np.ndarray) -> np.ndarray:
     """``deficit`` ``(T,)`` (metres below the floor, 0 where above) spread over :data:`RAMP` frames
     either side: the largest of the neighbours' deficits, each scaled by a smoothstep of its distance."""
     T = len(deficit)
     out = deficit.copy()
     for k in range(1, RAMP + 1):
-        w = _smooth(np.array(1.0 - k / (RAMP + 1)))
+        w = smoothstep(np.array(1.0 - k / (RAMP + 1)))
         out[k:] = np.maximum(out[k:], w * deficit[:T - k])
         out[:T - k] = np.maximum(out[:T - k], w * deficit[k:])
     return out

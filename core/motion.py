@@ -317,6 +317,15 @@ class Motion:
             trans = np.stack([np.interp(t_new, t_old, flat[:, k]) for k in range(flat.shape[1])], axis=1)
         return Motion(self.skeleton, fps, root, rots, trans)
 
+    def read_only(self) -> "Motion":
+        """The same frames in read-only arrays of their own: a motion cached and shared by callers
+        (the built-in library's clips), which nobody may edit in place."""
+        arrays = [self.root_positions, self.rotations] + ([] if self.translations is None else [self.translations])
+        own = [np.array(a) for a in arrays]
+        for a in own:
+            a.setflags(write=False)
+        return Motion(self.skeleton, self.fps, *own)
+
     def then(self, *others: "Motion") -> "Motion":
         """Frames of ``self`` followed by those of ``others`` (same skeleton and fps, no alignment)."""
         return concatenate([self, *others])

@@ -25,6 +25,7 @@ import numpy as np
 from scipy.ndimage import distance_transform_edt
 from scipy.spatial.transform import Rotation
 
+from text2anim.core.easing import smoothstep
 from text2anim.core.metrics import frozen_pairs
 from text2anim.core.motion import Motion
 
@@ -52,8 +53,7 @@ def layer_weight(frozen: np.ndarray, fade_frames: int) -> np.ndarray:
     if not frozen.any():
         return np.zeros(len(frozen))
     d = distance_transform_edt(~frozen)  # frames to the nearest frozen frame
-    u = np.clip(1.0 - d / (fade_frames + 1), 0.0, 1.0)
-    return u * u * (3 - 2 * u)
+    return smoothstep(1.0 - d / (fade_frames + 1))
 
 
 def _cone(t: np.ndarray, deg: float, hz: float) -> Rotation:

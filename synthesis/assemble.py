@@ -1,21 +1,17 @@
 """What every whole-body joiner shares after laying its clips: compositions, measurement, the Result.
 
-The optimal engine (:mod:`synthesis.optimal`) and the baselines
-(:mod:`synthesis.baselines`) lay the whole-body elements of a track their own
-way; then, exactly as the seed-003 engine (:mod:`synthesis.engine`) does:
+Every joiner (paper 003's :mod:`synthesis.engine`, the optimal engine
+:mod:`synthesis.optimal`, the baselines :mod:`synthesis.baselines`) lays the
+whole-body elements of a track its own way; then :func:`assemble`:
 
 1. the partial elements are composed onto the track
    (:func:`synthesis.composition.compose`, sway transfer and all);
-2. every join is measured with the engine's own figures (``timetable.md`` §3:
+2. every join is measured with the same figures (``timetable.md`` §3:
    skating ratio and foot skate in the blend and its region, largest and RMS
    jerk against the source clips', core fidelity per element);
 3. a :class:`synthesis.result.Result` is returned, so every method can be
    saved, viewed, reported and compared the same way, every actor's motion
    finished: swinging feet clear of the floor, no frozen pose (:func:`synthesis.finish.finish`).
-
-The per-join and per-element figures are the engine's functions; this module
-only repeats the engine's short loops around them (its ``synthesize`` does the
-same inline and is not split into callable steps).
 """
 from __future__ import annotations
 
@@ -158,6 +154,7 @@ def finish_joins(laid: Laid) -> None:
     the later joins' frames, and ``laid.delays`` (the partial elements laid on them follow)."""
     from .joinpass import Region, finish_track, warp_frames
 
+    fps = laid.motion.fps  # the post-pass retimes frames, never the rate
     idx, regions = [], []
     for k, lj in enumerate(laid.joins):
         rep, first, second = lj.report, lj.first, lj.second
@@ -167,7 +164,6 @@ def finish_joins(laid: Laid) -> None:
         keep = (first.offset + first.core[1], second.offset + second.core[0])  # cores are kept (§4.2.5)
         idx.append(k)
         brake = first.offset + first.lead if first.cyclic else None  # a loop may take braking steps
-        fps = laid.motion.fps
         seams = tuple(sorted({int(round(t * fps)) for i in rep.intervals for t in (i.begin, i.end)}))
         sources = (first.element.clip.motion, second.element.clip.motion)  # as recorded: no loop seams, no holds
         regions.append(Region(int(w0), int(w1), int(r1), sources, keep, brake, seams,
@@ -195,8 +191,7 @@ def finish_joins(laid: Laid) -> None:
         later = laid.placed[laid.placed.index(second):]
         for p in later:
             p.offset += delta
-        laid.delays.extend((p.element.id, delta / laid.motion.fps) for p in later if p.repetition == 0)
-        fps = laid.motion.fps
+        laid.delays.extend((p.element.id, delta / fps) for p in later if p.repetition == 0)
         for j in range(k, len(laid.joins)):
             lj = laid.joins[j]
             r = lj.report
@@ -236,11 +231,12 @@ def same_length(motions: dict) -> dict:
     return out
 
 
-def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> Result:
+def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False, finished: bool = True) -> Result:
     """Lay every track with ``lay(track, whole_elements) -> Laid``, compose its partial elements, measure.
 
     ``tracks`` are already spread (:func:`synthesis.actors.spread_actors`) if they should be. ``post``
-    runs the join post-pass (:func:`finish_joins`) before the compositions are laid.
+    runs the join post-pass (:func:`finish_joins`) before the compositions are laid. ``finished=False``
+    leaves the motions before :func:`synthesis.finish.finish` (for a caller that finishes them itself).
     """
     motions, reports, elements, warnings = {}, [], {}, []
     for track in tracks:
@@ -259,4 +255,6 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False) -> 
         warnings.extend(laid.warnings)
         motions[track.actor] = laid.motion
     final = same_length(motions) if post else motions
-    return Result({actor: finish(m, feet=post) for actor, m in final.items()}, reports, fps, elements, tuple(warnings))
+    if finished:
+        final = {actor: finish(m, feet=post) for actor, m in final.items()}
+    return Result(final, reports, fps, elements, tuple(warnings))

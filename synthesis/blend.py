@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from text2anim.core import rotkernels as rk
+from text2anim.core.easing import smootherstep
 from text2anim.core.motion import Motion
 
 PROFILES = ("linear", "smooth")
@@ -37,11 +38,10 @@ def ratio(n: int) -> np.ndarray:
 
 def ease(u: np.ndarray, profile: str = "smooth") -> np.ndarray:
     """A weight profile applied to a ratio in ``[0, 1]``."""
-    u = np.clip(np.asarray(u, dtype=np.float64), 0.0, 1.0)
     if profile == "linear":
-        return u
+        return np.clip(np.asarray(u, dtype=np.float64), 0.0, 1.0)
     if profile == "smooth":
-        return u * u * u * (u * (6.0 * u - 15.0) + 10.0)
+        return smootherstep(u)
     raise ValueError(f"unknown blend profile {profile!r}; known: {', '.join(PROFILES)}")
 
 

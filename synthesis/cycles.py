@@ -63,6 +63,11 @@ def cycle_move(motion: Motion, straight_below: float = STRAIGHT_BELOW) -> Rigid:
     than ``straight_below`` radians is dropped (see :data:`STRAIGHT_BELOW`).
     """
     p_next, _, h_next = _extrapolated(motion)
+    return _move_onto(motion, p_next, h_next, straight_below)
+
+
+def _move_onto(motion: Motion, p_next: np.ndarray, h_next: float, straight_below: float = STRAIGHT_BELOW) -> Rigid:
+    """:func:`cycle_move` given the extrapolated frame's root position ``(3,)`` and heading (radians)."""
     h0 = float(headings(motion)[0])
     yaw = h_next - h0
     if abs(yaw) < straight_below:
@@ -89,8 +94,8 @@ def make_cyclic(motion: Motion) -> Motion:
     n = motion.n_frames
     if n < 3:
         return motion
-    p_next, q_next, _ = _extrapolated(motion)
-    move = cycle_move(motion)
+    p_next, q_next, h_next = _extrapolated(motion)
+    move = _move_onto(motion, p_next, h_next)
     # where frame 0 is, seen from the next cycle: the extrapolated frame should coincide with it
     p0_next = move.apply_points(motion.root_positions[0])
     u = np.arange(n) / n

@@ -54,8 +54,10 @@ class JoinMethod:
 def _optimal(tracks: Sequence[Track], fps: float, o: Options) -> Result:
     from .optimal import synthesize_optimal
 
-    result = synthesize_optimal(tracks, fps, o.smoothness, lock_feet=o.lock_feet, sway=o.sway)
-    return _feet_first(result, tracks, fps, o.sway) if o.lock_feet else result
+    if not o.lock_feet:
+        return synthesize_optimal(tracks, fps, o.smoothness, lock_feet=False, sway=o.sway)
+    raw = synthesize_optimal(tracks, fps, o.smoothness, lock_feet=True, sway=o.sway, finished=False)
+    return _feet_first(raw, tracks, fps, o.sway)
 
 
 def _constraint(tracks: Sequence[Track], fps: float, o: Options) -> Result:
@@ -125,7 +127,8 @@ def _skating_actors(result: Result) -> dict[str | None, list[tuple[int, int]]]:
 
 
 def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool) -> Result:
-    """``result`` with every skating actor re-rendered by the constraint engine when that one is clean."""
+    """``result`` (its motions not yet finished) with every skating actor re-rendered by the constraint
+    engine when that one is clean; every actor's motion finished (:func:`synthesis.finish.finish`), once."""
     from dataclasses import replace
 
     from .finish import finish
@@ -133,13 +136,11 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
     from .engine import synthesize
 
     bad = _skating_actors(result)
-    if not bad:
-        return result
-    other = synthesize(tracks, fps, lock_feet=True, sway=sway)
-    still = _skating_actors(other)
+    other = synthesize(tracks, fps, lock_feet=True, sway=sway, finished=False) if bad else None
+    still = _skating_actors(other) if other is not None else {}
     swap = [a for a in bad if a not in still]
-    if not swap:
-        return result
+    if other is None or not swap:
+        return replace(result, motions={actor: finish(m) for actor, m in result.motions.items()})
     motions, elements = dict(result.motions), dict(result.elements)
     for actor in swap:
         motions[actor] = other.motions[actor]

@@ -52,6 +52,7 @@ from scipy.spatial.transform import Rotation
 
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, runs
+from text2anim.core.easing import smootherstep_area
 from text2anim.core.ik import set_world_rotation
 from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion, unroll_quaternions
@@ -216,11 +217,6 @@ STRETCHES = (1.0, 1.4, 1.7, 1.9)
 BRAKE = 0.6  # s: how far before its blend a looped first clip may be slowed (its braking steps)
 
 
-def _smoothstep_area(u: np.ndarray) -> np.ndarray:
-    """``∫₀ᵘ (6x⁵ - 15x⁴ + 10x³) dx = u⁶ - 3u⁵ + 2.5u⁴`` (1/2 at ``u = 1``)."""
-    return u ** 6 - 3.0 * u ** 5 + 2.5 * u ** 4
-
-
 def warp_frames(n: int, n_new: int, seam: int | None = None) -> np.ndarray:
     """``(n_new,)`` source positions (frames, in ``[0, n)``) of a region of ``n`` frames played over ``n_new``.
 
@@ -236,8 +232,8 @@ def warp_frames(n: int, n_new: int, seam: int | None = None) -> np.ndarray:
     c = 2.0 * (n_new - n) / n_new
     ts = seam / (1.0 - c / 2.0)  # the new time at which the seam plays
     tau = np.arange(n_new, dtype=np.float64)
-    before = ts * _smoothstep_area(np.clip(tau / ts, 0.0, 1.0))
-    after = (n_new - ts) * (0.5 - _smoothstep_area(np.clip((n_new - tau) / (n_new - ts), 0.0, 1.0)))
+    before = ts * smootherstep_area(np.clip(tau / ts, 0.0, 1.0))
+    after = (n_new - ts) * (0.5 - smootherstep_area(np.clip((n_new - tau) / (n_new - ts), 0.0, 1.0)))
     area = np.where(tau <= ts, before, ts / 2.0 + after)
     return np.clip(tau - c * area, 0.0, n - 1e-9)
 

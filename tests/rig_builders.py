@@ -112,17 +112,7 @@ def unreal_rig(path: Path, scale: float = 1.02) -> Path:
 def vrm_rig(path: Path, scale: float = 0.85) -> Path:
     """VRM humanoid bone names (a T-pose avatar 15% shorter), with an index finger left at rest."""
     pos = {k: v * scale for k, v in _positions(_rest()).items()}
-    rows = [("hips", None, "hips"), ("spine", "hips", "spine"), ("chest", "spine", "chest"),
-            ("upperChest", "chest", "upperChest"), ("neck", "upperChest", "neck"), ("head", "neck", "head")]
-    for side in ("left", "right"):
-        rows += [(f"{side}Shoulder", "upperChest", f"{side}Shoulder"),
-                 (f"{side}UpperArm", f"{side}Shoulder", f"{side}UpperArm"),
-                 (f"{side}LowerArm", f"{side}UpperArm", f"{side}LowerArm"),
-                 (f"{side}Hand", f"{side}LowerArm", f"{side}Hand"),
-                 (f"{side}IndexProximal", f"{side}Hand", f"{side}Index")]
-    for side in ("left", "right"):
-        rows += [(f"{side}UpperLeg", "hips", f"{side}UpperLeg"), (f"{side}LowerLeg", f"{side}UpperLeg", f"{side}LowerLeg"),
-                 (f"{side}Foot", f"{side}LowerLeg", f"{side}Foot"), (f"{side}Toes", f"{side}Foot", f"{side}Toes")]
+    rows = [(name + "Proximal" if name.endswith("Index") else name, parent, role) for name, parent, role in _vrm_rows()]
     chans = lambda n, j: Skeleton.default_channels(2)[0 if j == 0 else 1]  # noqa: E731
     return _write(_skeleton(rows, pos, chans, {"head": (0, 0.15, 0)}), path)
 
@@ -265,7 +255,7 @@ def vrm_file(path: Path, scale: float = 0.85, version: str = "1.0", bone_axes: b
     lift = -min(p[1] for p in pos.values()) + FOOT_CLEARANCE
     flip = np.array([-1.0, 1.0, -1.0]) if version == "0.x" else np.ones(3)
     pos = {k: (v + [0.0, lift, 0.0]) * flip for k, v in pos.items()}
-    rows = [(r, p, r) for r, p, _ in _vrm_rows()]
+    rows = _vrm_rows()
     names = {r[0]: _vroid(r[0]) for r in rows}
     humanoid_roles = [r[0] for r in rows if not r[0].endswith("Index")]
 
@@ -286,14 +276,14 @@ def vrm_file(path: Path, scale: float = 0.85, version: str = "1.0", bone_axes: b
 
 
 def _vrm_rows() -> list[tuple[str, str | None, str]]:
-    rows: list[tuple[str, str | None, str]] = [
-        ("hips", None, "hips"), ("spine", "hips", "spine"), ("chest", "spine", "chest"),
-        ("upperChest", "chest", "upperChest"), ("neck", "upperChest", "neck"), ("head", "neck", "head")]
+    """The VRM humanoid's bones as rows (name, parent name, role): each named after its role."""
+    pairs: list[tuple[str, str | None]] = [("hips", None), ("spine", "hips"), ("chest", "spine"),
+                                           ("upperChest", "chest"), ("neck", "upperChest"), ("head", "neck")]
     for side in ("left", "right"):
-        rows += [(f"{side}Shoulder", "upperChest", ""), (f"{side}UpperArm", f"{side}Shoulder", ""),
-                 (f"{side}LowerArm", f"{side}UpperArm", ""), (f"{side}Hand", f"{side}LowerArm", ""),
-                 (f"{side}Index", f"{side}Hand", "")]
+        pairs += [(f"{side}Shoulder", "upperChest"), (f"{side}UpperArm", f"{side}Shoulder"),
+                  (f"{side}LowerArm", f"{side}UpperArm"), (f"{side}Hand", f"{side}LowerArm"),
+                  (f"{side}Index", f"{side}Hand")]
     for side in ("left", "right"):
-        rows += [(f"{side}UpperLeg", "hips", ""), (f"{side}LowerLeg", f"{side}UpperLeg", ""),
-                 (f"{side}Foot", f"{side}LowerLeg", ""), (f"{side}Toes", f"{side}Foot", "")]
-    return rows
+        pairs += [(f"{side}UpperLeg", "hips"), (f"{side}LowerLeg", f"{side}UpperLeg"),
+                  (f"{side}Foot", f"{side}LowerLeg"), (f"{side}Toes", f"{side}Foot")]
+    return [(name, parent, name) for name, parent in pairs]

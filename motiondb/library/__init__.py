@@ -50,7 +50,7 @@ from text2anim.core.motion import Motion
 
 from . import capture
 from .keyframe_curves import curves_to_motion, sample_curves
-from .keyframes import CLIPS_DIR, ClipData, ClipDataError, PlantSpec, load_json_dir, parse_clip
+from .keyframes import CLIPS_DIR, POSTURE_OF, ClipData, ClipDataError, PlantSpec, load_json_dir, parse_clip
 from .near import with_near_synonyms
 from .plant import FramePlant, PlantReport, plant_feet
 from .reach import apply_reach
@@ -60,11 +60,6 @@ __all__ = ["BuiltClip", "ClipDataError", "POSTURE_OF", "builtin_clips", "build_a
            "canonical_skeleton"]
 
 SOURCE = "builtin:keyframed"
-
-#: The data's ``starts``/``ends`` words -> the database's posture (``hold``: standing with
-#: an object in the hands; ``floor``: lying face down, as ``fall`` ends).
-POSTURE_OF: dict[str, Posture] = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched",
-              "floor": "lying"}
 
 #: Sole points (heel, ball) in the ankle's frame: what touches the ground.
 SOLE = np.array([
@@ -129,14 +124,6 @@ def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> li
     return always + out
 
 
-def _frozen(m: Motion) -> Motion:
-    root = np.array(m.root_positions)
-    rots = np.array(m.rotations)
-    root.setflags(write=False)
-    rots.setflags(write=False)
-    return Motion(m.skeleton, m.fps, root, rots)
-
-
 def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantReport | None]:
     """Generate one clip's motion at ``fps`` (cyclic clips: an exact whole number of frames per cycle)."""
     skel = canonical_skeleton()
@@ -161,7 +148,7 @@ def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantRe
     motion = apply_reach(motion, clip.raw.get("reach", {}), times, clip.name)
     if margin:
         motion = motion.frames(margin, margin + n)
-    return _frozen(lift_swings(shifted(motion, SHOE_SOLE))), report
+    return lift_swings(shifted(motion, SHOE_SOLE)).read_only(), report
 
 
 @lru_cache(maxsize=8)

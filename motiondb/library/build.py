@@ -46,6 +46,7 @@ from scipy.spatial.transform import Rotation
 from text2anim.core.bvh import read_bvh
 from text2anim.core.clearance import clear_floor, lift_swings
 from text2anim.core.contacts import detect_contacts
+from text2anim.core.easing import smoothstep
 from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
 from text2anim.core.retarget import retarget
@@ -119,7 +120,7 @@ def blend_loop(m: Motion, pre: int, travel: np.ndarray | None = None) -> Motion:
         lead_root[:, [0, 2]] += travel
     # rising to 1 on the last two frames: they are the lead-in's last two, whose motion flows into frame 0
     u = np.minimum(1.0, (np.arange(pre) + 1) / max(1, pre - 1))
-    w = u * u * (3 - 2 * u)
+    w = smoothstep(u)
     root = body.root_positions.copy()
     rots = body.rotations.copy()
     tail = slice(n - pre, n)
@@ -223,7 +224,7 @@ def start_from(m: Motion, before: Motion, n: int) -> Motion:
     turn = _heading(before, slice(-1, None)) - _heading(m, slice(0, 1))
     m = _yaw_about_origin(m, turn, m.root_positions[0, [0, 2]])
     u = np.minimum(1.0, np.arange(m.n_frames) / max(1, n))
-    w = (u * u * (3 - 2 * u))[:, None]
+    w = smoothstep(u)[:, None]
     last = np.broadcast_to(before.rotations[-1], m.rotations.shape).reshape(-1, 4)
     a = Rotation.from_quat(last)
     rel = (a.inv() * Rotation.from_quat(m.rotations.reshape(-1, 4))).as_rotvec()

@@ -23,9 +23,9 @@ import numpy as np
 
 from text2anim.core.bodyparts import GROUPS, BodyPart
 from text2anim.core.motion import Motion
-from text2anim.motiondb.types import ClipRecord, Posture
+from text2anim.motiondb.types import ClipRecord
 
-from .keyframes import ClipDataError
+from .keyframes import POSTURE_OF, ClipDataError
 from .skeleton import canonical_skeleton
 
 if sys.version_info >= (3, 11):
@@ -37,8 +37,6 @@ CUT_LIST = Path(__file__).with_name("capture.toml")
 ARRAYS = Path(__file__).with_name("capture.npz")
 #: Frame rate of the shipped arrays.
 FPS = 30.0
-#: The database's posture words for the cut list's ``starts``/``ends`` (as :data:`.POSTURE_OF`).
-_POSTURE: dict[str, Posture] = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched", "floor": "lying"}
 
 
 @dataclass(frozen=True)
@@ -106,7 +104,7 @@ def _cut(raw: dict) -> Cut:
     if cut.body_part is not None and cut.body_part not in GROUPS:
         raise ClipDataError(f"capture.toml: clip {name}: unknown body part {cut.body_part!r}")
     for word in (cut.starts, cut.ends):
-        if word not in _POSTURE:
+        if word not in POSTURE_OF:
             raise ClipDataError(f"capture.toml: clip {name}: unknown posture {word!r}")
     if cut.face not in ("start", "travel") or cut.loop not in (None, "blend", "stride", "spot"):
         raise ClipDataError(f"capture.toml: clip {name}: face must be start|travel, loop blend|stride|spot or absent")
@@ -142,13 +140,6 @@ def _motion(root: np.ndarray, rot: np.ndarray, fps: float) -> Motion:
     return Motion(canonical_skeleton(), FPS, root.astype(np.float64), q).resample(fps)
 
 
-def _frozen(m: Motion) -> Motion:
-    root, rots = np.array(m.root_positions), np.array(m.rotations)
-    root.setflags(write=False)
-    rots.setflags(write=False)
-    return Motion(m.skeleton, m.fps, root, rots)
-
-
 @lru_cache(maxsize=8)
 def capture_records(fps: float = FPS) -> tuple[ClipRecord, ...]:
     """The captured clips as :class:`ClipRecord` s at ``fps`` (read-only motions, cached)."""
@@ -160,7 +151,7 @@ def capture_records(fps: float = FPS) -> tuple[ClipRecord, ...]:
         if f"{c.name}.rot" not in arrays:
             raise ClipDataError(f"capture.npz has no clip {c.name!r}: rebuild it "
                                 "(python -m text2anim.motiondb.library.build)")
-        motion = _frozen(_motion(arrays[f"{c.name}.root"], arrays[f"{c.name}.rot"], float(fps)))
+        motion = _motion(arrays[f"{c.name}.root"], arrays[f"{c.name}.rot"], float(fps)).read_only()
         if c.core is None:
             core = (0.0, motion.duration)
         else:
@@ -168,7 +159,7 @@ def capture_records(fps: float = FPS) -> tuple[ClipRecord, ...]:
             core = (round(c.core[0] - c.cut[0], 6), min(round(c.core[1] - c.cut[0] + extra, 6), motion.duration))
         out.append(ClipRecord(name=c.name, motion=motion, verbs=c.verbs, objects=c.objects, character="default",
                               core=core, body_part=c.body_part, cyclic=c.cyclic, source=c.source,
-                              start_posture=_POSTURE[c.starts], end_posture=_POSTURE[c.ends]))
+                              start_posture=POSTURE_OF[c.starts], end_posture=POSTURE_OF[c.ends]))
     return tuple(out)
 
 

@@ -21,15 +21,12 @@ import numpy as np
 
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts, detect_contacts, horizontal_speed
+from text2anim.core.easing import smoothstep
 from text2anim.core.ik import leg_ik, set_world_rotation
 from text2anim.core.motion import Motion
 
 #: Frames over which the pinning offset eases in before a contact and out after it.
 RAMP = 3
-
-
-def _smooth(u: np.ndarray) -> np.ndarray:
-    return u * u * (3 - 2 * u)
 
 
 def pin_offsets(joint: np.ndarray, speed: np.ndarray, intervals: list[tuple[int, int]]) -> np.ndarray:
@@ -42,7 +39,7 @@ def pin_offsets(joint: np.ndarray, speed: np.ndarray, intervals: list[tuple[int,
     off = np.zeros((T, 2))
     weight = np.zeros(T)
     inside = np.zeros(T, dtype=bool)
-    fade = _smooth(np.arange(1, RAMP + 1) / (RAMP + 1))  # rising towards the contact
+    fade = smoothstep(np.arange(1, RAMP + 1) / (RAMP + 1))  # rising towards the contact
     for a, b in intervals:
         k = a + int(np.argmin(speed[a:b]))
         d = joint[k, [0, 2]] - joint[a:b][:, [0, 2]]

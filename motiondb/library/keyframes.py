@@ -11,7 +11,7 @@ clip), ``starts``/``ends`` (the posture at either end: ``stand`` by default,
 else ``sit`` (on a 0.45 m seat), ``crouch`` (squatting on flat feet, the
 ``crouch`` pose), ``floor`` (lying face down, as ``fall`` ends), ``hold``
 (standing, an object in the hands); stored as the database's postures, see
-:data:`motiondb.library.POSTURE_OF`), ``about`` (a note for readers);
+:data:`POSTURE_OF`), ``about`` (a note for readers);
 
 timing: ``duration`` seconds (one-shot clips), or for cyclic clips
 ``period`` (seconds of one cycle), ``cycles`` (>= 2) and ``travel``
@@ -78,8 +78,14 @@ import numpy as np
 
 from text2anim.core.bodyparts import BodyPart
 from text2anim.core.skeleton import Skeleton
+from text2anim.motiondb.types import Posture
 
 CLIPS_DIR = Path(__file__).with_name("clips")
+
+#: The data's ``starts``/``ends`` words (keyframe clips and the capture cut list) -> the database's
+#: posture (``hold``: standing with an object in the hands; ``floor``: lying face down, as ``fall`` ends).
+POSTURE_OF: dict[str, Posture] = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched",
+                                  "floor": "lying"}
 
 
 class ClipDataError(ValueError):

@@ -59,7 +59,9 @@ from text2anim.core.ik import leg_ik
 from text2anim.core.motion import Motion
 
 from .plant_foot import FramePlant, Foot
-from .plant_gaps import distance_to, nearest_index, smoothstep
+from text2anim.core.easing import smoothstep
+
+from .plant_gaps import distance_to, nearest_index
 
 __all__ = ["FramePlant", "PlantReport", "plant_feet"]
 

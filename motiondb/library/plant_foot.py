@@ -11,7 +11,9 @@ from scipy.spatial.transform import Rotation
 from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
 
-from .plant_gaps import Gaps, clearance, distance_to, smoothstep
+from text2anim.core.easing import smoothstep
+
+from .plant_gaps import Gaps, clearance, distance_to
 
 #: Gaussian smoothing (frames) of swing paths away from the locks.
 SWING_SMOOTH = 1.2

@@ -7,6 +7,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from text2anim.core.contacts import runs
+from text2anim.core.easing import smoothstep
 
 #: Frames over which a correction fades out after a clip's last lock (in before its first).
 EDGE_FADE_FRAMES = 12.0
@@ -15,11 +16,6 @@ RAMP_FRAMES = 2.5
 #: The clearance hump next to a lock: rises over RISE frames, held HOLD frames, released over RELEASE
 #: frames (its height is :data:`~text2anim.motiondb.library.plant_foot.SWING_CLEARANCE`).
 CLEAR_RISE, CLEAR_HOLD, CLEAR_RELEASE = 2.5, 2.0, 3.0
-
-
-def smoothstep(u):
-    u = np.clip(u, 0.0, 1.0)
-    return u * u * (3 - 2 * u)
 
 
 def _warp_curve(r_in: float, r_out: float, n: int = 257) -> tuple[np.ndarray, np.ndarray]:

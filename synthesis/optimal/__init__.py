@@ -84,7 +84,7 @@ __all__ = ["CORE_TOLERANCE", "MAX_SHIFT", "MIN_BLEND", "MIN_ROOM", "RUNNERS_UP",
 
 def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: float = 0.5, *,
                        lock_feet: bool = True, sway: bool = True, spread: bool = True,
-                       min_blend: float = MIN_BLEND) -> Result:
+                       min_blend: float = MIN_BLEND, finished: bool = True) -> Result:
     """Tracks → one motion per actor by optimal blending (paper 000), compositions as the seed engine does.
 
     Args:
@@ -95,6 +95,7 @@ def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: f
         sway: transfer the sway of composed clips.
         spread: give actors sharing one origin :func:`~synthesis.actors.default_origins`.
         min_blend: the shortest blend interval, seconds.
+        finished: ``False`` leaves the motions before :func:`synthesis.finish.finish` (the caller finishes them).
 
     Returns the same :class:`~synthesis.result.Result` as :func:`synthesis.engine.synthesize`; each join's
     report has ``blend`` (the §4.1 method), ``intervals`` (lower/upper, kinds), ``cost`` (eq. (10) terms).
@@ -106,4 +107,4 @@ def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: f
     def lay(track: Track, whole):
         return lay_track(track, whole, fps, weights, lock_feet, min_blend)
 
-    return assemble(tracks, fps, lay, sway, post=lock_feet)
+    return assemble(tracks, fps, lay, sway, post=lock_feet, finished=finished)

@@ -7,7 +7,7 @@ from scipy.spatial.transform import Rotation
 
 from shared_data import CMU_FILES, cmu, requires_cmu
 from text2anim.core import BVHError, format_bvh, parse_bvh, read_bvh, write_bvh
-from text2anim.core.bvh import CMU_UNIT
+from text2anim.core.bvh import CMU_UNIT, parse_channels
 
 
 @requires_cmu
@@ -23,6 +23,26 @@ def test_every_cmu_file_round_trips(path):
     np.testing.assert_allclose(again.positions, m.positions, atol=1e-6)
     np.testing.assert_allclose(again.end_site_positions(), m.end_site_positions(), atol=1e-6)
 
+
+
+@requires_cmu
+def test_raw_channels_are_the_files_numbers_and_rotations_are_scipys():
+    path = cmu("16_35_run")
+    text = path.read_text()
+    skel, frame_time, values = parse_channels(text, str(path))
+    lines = [ln for ln in text.split("Frame Time:")[1].splitlines()[1:] if ln.strip()]
+    assert frame_time == float(text.split("Frame Time:")[1].split()[0])
+    assert values.shape == (len(lines), sum(len(c) for c in skel.channels))
+    for k in (0, len(lines) // 2, len(lines) - 1):
+        assert np.array_equal(values[k], [float(x) for x in lines[k].split()])
+    m = parse_bvh(text, scale=1)
+    assert np.array_equal(m.skeleton.offsets, skel.offsets)
+    col = 0
+    for j, chans in enumerate(skel.channels):  # each joint's Euler angles, as scipy turns them into quaternions
+        rot = [col + i for i, c in enumerate(chans) if c.endswith("rotation")]
+        expect = Rotation.from_euler(skel.rotation_order(j), values[:, rot], degrees=True).as_quat()
+        assert np.array_equal(m.rotations[:, j], expect), skel.names[j]
+        col += len(chans)
 
 def test_cmu_units_become_metres():
     m = read_bvh(cmu("02_01_walk"), drop_first=True)
@@ -105,6 +125,8 @@ def test_zero_frames_is_an_empty_motion():
     (lambda t: t.replace("motion", "ROOT Other\n{\nOFFSET 0 0 0\n}\nmotion"), "more than one ROOT"),
     (lambda t: t.replace("90 1 2 3", "90 1 two 3"), "'two' is not a number"),
     (lambda t: t.replace("90 1 2 3", "90 1 nan 3"), "not a finite number"),
+    (lambda t: t.replace("90 1 2 3", "90 1 1_000 3"), "'1_000' is not a number"),  # float() reads these two
+    (lambda t: t.replace("90 1 2 3", "90 1 \uff11\uff12 3"), "'\uff11\uff12' is not a number"),
     (lambda t: t.replace("Xrotation Yrotation\n\t\tJOINT", "Qrotation Yrotation\n\t\tJOINT"), "unknown channel"),
     (lambda t: t.replace("frame time: 3.3333333e-02", "frame time: 0"), "frame time must be a positive"),
 ])

@@ -17,6 +17,15 @@ def test_from_euler_is_scipy_bit_for_bit(order):
     assert np.array_equal(got, expect)
 
 
+
+def test_from_euler_is_scipy_bit_for_bit_across_blocks():
+    """A long clip is converted in blocks (``quat._BLOCK`` rotations each): the blocks join without a seam."""
+    rng = np.random.default_rng(3)
+    angles = rng.uniform(-400, 400, (2 * quat._BLOCK // 5 + 7, 5, 3))  # 2.4 blocks, the last one partial
+    angles[::11] = 0.0
+    expect = Rotation.from_euler("ZXY", angles.reshape(-1, 3), degrees=True).as_quat()
+    assert np.array_equal(quat.from_euler("ZXY", angles).reshape(-1, 4), expect)
+
 def test_from_euler_empty_order_is_identity():
     assert np.array_equal(quat.from_euler("", np.zeros((3, 0))), np.tile([0.0, 0.0, 0.0, 1.0], (3, 1)))
 

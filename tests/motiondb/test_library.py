@@ -156,6 +156,10 @@ def test_cached_and_read_only():
     assert all(a.motion is b.motion for a, b in zip(first, second))
     with pytest.raises(ValueError):
         first[0].motion.rotations[0, 0, 0] = 1.0
+    for clip in first:  # keyframed and captured alike: a shared clip cannot be edited in place
+        assert not clip.motion.rotations.flags.writeable, clip.name
+        assert not clip.motion.root_positions.flags.writeable, clip.name
+    assert {c.source.split(":")[1] for c in first} == {"keyframed", "capture"}
 
 
 def test_other_frame_rates():

@@ -13,24 +13,22 @@ from __future__ import annotations
 
 import pytest
 
-from text2anim.core import read_bvh, write_bvh
 from text2anim.core.metrics import MAX_PENETRATION_CM, SKATING_MARGIN, SOURCE_FACTOR, against_sources, quality
-from text2anim.motiondb import ImportOptions, MotionDB
-from text2anim.pipeline import timing
-from text2anim.scheduler.lengths import transition_window
+from text2anim.motiondb import MotionDB
 from text2anim.synthesis.engines import synthesize_with
-from text2anim.synthesis.plan import Clip, Element, Track
-from text2anim.synthesis.cycles import gait_cycle, loop, make_cyclic
+from text2anim.synthesis.plan import Track
+from text2anim.synthesis.cycles import loop, make_cyclic
 
+from cmu_pairs import cut_take, import_cut, pair_track, read_back
 from shared_data import cmu, requires_cmu
 
 pytestmark = requires_cmu
 FPS = 30.0
 
-#: name: (file stem, cut (s) or None for one gait cycle, core (s, in the cut)); the first is the character's skeleton
-CUTS = {"walk16": ("16_15_walk", None, None), "walk": ("02_01_walk", None, None),
-        "walk07": ("07_02_walk", None, None), "run": ("02_03_run", None, None),
-        "run127": ("127_07_run", None, None), "pickup": ("02_06_pickup", (0.2, 2.6), (0.5, 1.8)),
+#: name: (file stem, cut (s) or "cycle", core (s, in the cut)); the first is the character's skeleton
+CUTS = {"walk16": ("16_15_walk", "cycle", None), "walk": ("02_01_walk", "cycle", None),
+        "walk07": ("07_02_walk", "cycle", None), "run": ("02_03_run", "cycle", None),
+        "run127": ("127_07_run", "cycle", None), "pickup": ("02_06_pickup", (0.2, 2.6), (0.5, 1.8)),
         "lunge": ("135_09_punch", (1.4, 3.6), (0.5, 1.2)), "frontkick": ("135_04_kick", (1.7, 4.0), (0.8, 1.9)),
         "dance02": ("05_02_dance", (0.5, 4.0), (0.5, 3.0)), "shot": ("06_14_throw", (1.8, 4.0), (0.4, 1.5))}
 
@@ -40,21 +38,9 @@ def clips(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("cmu")
     with MotionDB.open(f"sqlite:///{tmp}/cmu.sqlite", seed=False) as db:
         for name, (stem, cut, core) in CUTS.items():
-            m = read_bvh(cmu(stem), drop_first=True)
-            if cut is None:
-                a, b = gait_cycle(m)
-                m, core = m[a:b], (0.0, (b - a) / m.fps)
-            else:
-                m = m.between(*cut)
-            write_bvh(m, tmp / f"{name}.bvh")
-            db.import_bvh([tmp / f"{name}.bvh"], ImportOptions(verbs=("動く",), character="cmu", core=core,
-                                                                 cyclic=cut is None, scale=1.0))
-        out = {}
-        for info in db.clips():
-            m = db.load(info)
-            out[info.name] = (info, Clip(info.name, m.resample(FPS) if m.fps != FPS else m, tuple(info.core),
-                                         info.cyclic))
-    return out
+            m, core = cut_take(cmu(stem), cut, core)
+            import_cut(db, tmp, name, m, core, cut == "cycle", "動く")
+        return read_back(db, FPS)
 
 
 #: seconds a looping clip plays, as in the benchmark
@@ -62,15 +48,9 @@ LOOPED = {"walk": 3.0, "run": 2.4}
 
 
 def track_of(clips, first: str, second: str) -> Track:
-    (ia, ca), (ib, cb) = clips[first], clips[second]
-    la = LOOPED[first.rstrip("0123456789")] if ca.cyclic else ca.motion.duration
-    lb = LOOPED[second.rstrip("0123456789")] if cb.cyclic else cb.motion.duration
-    how, start, end_a = "connection", la, la
-    if ca.cyclic:
-        win = transition_window(timing(ia), 1.0, 1, la)
-        if win is not None:
-            how, (start, end_a) = "transition", win
-    return Track(None, (Element(1, ca, 0.0, end_a, "initial"), Element(2, cb, start, start + lb, how, prev=1)))
+    played = [LOOPED[n.rstrip("0123456789")] if clips[n][1].cyclic else clips[n][1].motion.duration
+              for n in (first, second)]
+    return pair_track(clips[first], clips[second], (played[0], played[1]), clips[first][1].cyclic)
 
 
 @pytest.mark.parametrize("first, second", [
