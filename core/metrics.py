@@ -141,9 +141,16 @@ def root_acceleration(motion: Motion) -> np.ndarray:
     w = ROOT_POP_WINDOW
     if motion.n_frames < w + 2:
         return np.zeros(0)
-    xz = motion.positions[:, 0][:, [0, 2]]
+    xz = motion.root_positions[:, [0, 2]]  # the root joint's world positions (no kinematics needed)
     avg = np.lib.stride_tricks.sliding_window_view(xz, w, axis=0).mean(axis=-1)  # (T-w+1, 2)
     return np.linalg.norm(np.diff(avg, n=2, axis=0), axis=-1) * motion.fps ** 2
+
+
+def root_pop(motion: Motion) -> float:
+    """:class:`Quality` ``root_pop`` of a whole motion at its own rate (``quality(motion, None).root_pop``)
+    from its root positions alone, m/s²."""
+    acc = root_acceleration(motion)
+    return float(acc.max()) if acc.size else 0.0
 
 
 def frozen_pairs(motion: Motion) -> np.ndarray:

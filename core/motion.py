@@ -160,16 +160,29 @@ class Motion:
         world_p.setflags(write=False)
         return Pose(world_p, world_r)
 
-    def _pose_below(self, known: Pose, top: int) -> Pose:
+    def _pose_below(self, known: Pose, tops: tuple[int, ...]) -> Pose:
         """:attr:`pose` from ``known``, the pose of a motion that differs from this one only in the local
-        rotations of joint ``top`` and its descendants: their forward kinematics is redone, the other
-        joints' world transforms are kept. Each joint's arithmetic is :attr:`pose`'s, so the result is
-        bit for bit the full computation's."""
+        rotations of the joints ``tops`` and their descendants (no top below another): their forward
+        kinematics is redone, the other joints' world transforms are kept. Each joint's arithmetic is
+        :attr:`pose`'s, so the result is bit for bit the full computation."""
+        rotations, positions = known.rotations.copy(), known.positions.copy()
+        for top in tops:
+            self._subtree_pose(known, top, rotations, positions)
+        rotations.setflags(write=False)
+        positions.setflags(write=False)
+        return Pose(positions, rotations)
+
+    def _subtree_pose(self, known: Pose, top: int, rotations: np.ndarray, positions: np.ndarray) -> None:
+        """Write the world transforms of ``top``'s subtree into ``rotations`` ``(T, J, 3, 3)`` and
+        ``positions`` ``(T, J, 3)``, from ``known``'s transform of its parent (see :meth:`_pose_below`)."""
         sub = self.skeleton.subtree(top)  # (n,) joints, parents first
         slot = np.full(self.skeleton.n_joints, -1)
         slot[sub] = np.arange(len(sub))
         local_r = quat_to_matrix(self.rotations[:, sub]).transpose(1, 0, 2, 3).copy()
-        local_t = self.local_translations()[:, sub].transpose(1, 0, 2).copy()
+        # the subtree's rows of local_translations() (the root, whose row is its position, is not in it)
+        own_t = self.translations[:, sub] if self.translations is not None else \
+            np.broadcast_to(self.skeleton.offsets[sub], (self.n_frames, len(sub), 3))
+        local_t = own_t.transpose(1, 0, 2).copy()
         world_r = np.empty_like(local_r)
         world_p = np.empty_like(local_t)
         outside = self.skeleton.parents[top]  # the one parent outside the subtree
@@ -185,12 +198,8 @@ class Motion:
             parent_r = world_r[p]
             world_r[j] = parent_r @ local_r[j]
             world_p[j] = world_p[p] + np.einsum("ntij,ntj->nti", parent_r, local_t[j])
-        rotations, positions = known.rotations.copy(), known.positions.copy()
         rotations[:, sub] = world_r.transpose(1, 0, 2, 3)
         positions[:, sub] = world_p.transpose(1, 0, 2)
-        rotations.setflags(write=False)
-        positions.setflags(write=False)
-        return Pose(positions, rotations)
 
     def copy_sharing_pose(self) -> "Motion":
         """The same frames in arrays of their own; its :attr:`pose` is this motion's, computed once for both
@@ -218,7 +227,7 @@ class Motion:
     def replace(self, **changes) -> "Motion":
         """A new motion with some fields changed. When only the local rotations change, and only those
         of some joints (an IK solve of a limb), the new motion's :attr:`pose`, when asked, redoes the
-        kinematics of the smallest subtree holding them, from this motion's pose (bit for bit the
+        kinematics of the subtrees holding them, from this motion's pose (bit for bit the
         full computation: :meth:`_pose_below`)."""
         out = replace(self, **changes)
         if changes.keys() == {"rotations"} and out.rotations.shape == self.rotations.shape:
@@ -239,15 +248,21 @@ class Motion:
             else:
                 out.__dict__["_pose_source"] = source
             return
-        top = int(changed[0])
-        for j in changed[1:]:
-            top = self.skeleton.common_ancestor(top, int(j))
-        if known is None:  # edits on edits: redo the subtree holding them all, when asked
+        tops = {int(j) for j in changed}
+        if known is None:  # edits on edits: redo the subtrees holding them all, when asked
             assert source is not None
-            top = self.skeleton.common_ancestor(top, source[1])
+            tops |= set(source[1])
             known = source[0]
-        if top > 0:
-            out.__dict__["_pose_source"] = (known, top)
+        parents = self.skeleton.parents
+        minimal = []
+        for j in sorted(tops):  # the edited joints no other edited joint is an ancestor of
+            a = int(parents[j])
+            while a >= 0 and a not in tops:
+                a = int(parents[a])
+            if a < 0:
+                minimal.append(j)
+        if 0 not in minimal:
+            out.__dict__["_pose_source"] = (known, tuple(minimal))
 
     def frames(self, start: int, stop: int | None = None) -> "Motion":
         """Frames ``start`` .. ``stop - 1`` (Python slice semantics)."""
@@ -343,6 +358,17 @@ def concatenate(motions: list[Motion]) -> Motion:
     trans = None
     if any(m.translations is not None for m in motions):
         trans = np.concatenate([m.local_translations() for m in motions])
-    return Motion(first.skeleton, first.fps,
-                  np.concatenate([m.root_positions for m in motions]),
-                  np.concatenate([m.rotations for m in motions]), trans)
+    out = Motion(first.skeleton, first.fps,
+                 np.concatenate([m.root_positions for m in motions]),
+                 np.concatenate([m.rotations for m in motions]), trans)
+    # FK is per frame: when every part's pose is known (and its bones are the first's), so is the whole's
+    poses = [m._known_pose() for m in motions]
+    if all(p is not None for p in poses) and all(
+            m.skeleton is first.skeleton or np.array_equal(m.skeleton.offsets, first.skeleton.offsets)
+            for m in motions[1:]):
+        positions = np.concatenate([p.positions for p in poses])  # type: ignore[union-attr]
+        rotations = np.concatenate([p.rotations for p in poses])  # type: ignore[union-attr]
+        positions.setflags(write=False)
+        rotations.setflags(write=False)
+        out.__dict__["pose"] = Pose(positions, rotations)
+    return out

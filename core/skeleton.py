@@ -77,12 +77,16 @@ class Skeleton:
         return [int(c) for c in np.flatnonzero(self.parents == j)]
 
     def subtree(self, j: int) -> np.ndarray:
-        """Joint ``j`` and its descendants, ``(n,)`` in topological order (``j`` first)."""
-        inside = np.zeros(self.n_joints, dtype=bool)
-        inside[j] = True
-        for k in range(j + 1, self.n_joints):
-            inside[k] = inside[self.parents[k]]
-        return np.flatnonzero(inside)
+        """Joint ``j`` and its descendants, ``(n,)`` in topological order (``j`` first); cached, read-only."""
+        known = self.__dict__.setdefault("_subtrees", {})
+        if j not in known:
+            inside = np.zeros(self.n_joints, dtype=bool)
+            inside[j] = True
+            for k in range(j + 1, self.n_joints):
+                inside[k] = inside[self.parents[k]]
+            known[j] = np.flatnonzero(inside)
+            known[j].setflags(write=False)
+        return known[j]
 
     def common_ancestor(self, a: int, b: int) -> int:
         """The deepest joint that is ``a`` or an ancestor of it and ``b`` or an ancestor of it."""

@@ -12,6 +12,7 @@ heading ``h`` faces ``(sin h, 0, cos h)``.
 """
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,12 +31,23 @@ def wrap_angle(a):
     return np.pi - np.mod(np.pi - np.asarray(a, dtype=np.float64), 2 * np.pi)
 
 
+_REST_FORWARD: "weakref.WeakKeyDictionary[Skeleton, np.ndarray]" = weakref.WeakKeyDictionary()
+
+
 def rest_forward(skeleton: Skeleton) -> np.ndarray:
-    """The direction the rest pose faces, in the root's frame (unit, horizontal).
+    """The direction the rest pose faces, in the root's frame (unit, horizontal), ``(3,)``.
 
     From the legs: ``left - right`` is the character's left, and forward is
     ``left x up`` (right-handed, Y up). A CMU-like skeleton gives ``+Z``.
+    Computed once per skeleton (a skeleton's arrays are read-only); a copy of it is returned.
     """
+    known = _REST_FORWARD.get(skeleton)
+    if known is None:
+        known = _REST_FORWARD[skeleton] = _rest_forward(skeleton)
+    return known.copy()
+
+
+def _rest_forward(skeleton: Skeleton) -> np.ndarray:
     bm = body_map(skeleton)
     rest = skeleton.rest_positions()
     across = rest[list(bm.joints("left_leg"))].mean(axis=0) - rest[list(bm.joints("right_leg"))].mean(axis=0)

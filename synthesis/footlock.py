@@ -29,10 +29,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial.transform import Rotation
-
 from .align import rest_forward
 from .blend import ease, ratio, slerp
+from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import runs
 from text2anim.core.ik import leg_ik, set_world_rotation
@@ -49,14 +48,15 @@ class Lock:
     release_end: int
 
 
-def planted_targets(start_pos: np.ndarray, start_rot: Rotation, positions: list[np.ndarray],
-                    rotations: list[Rotation], weights: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+def planted_targets(start_pos: np.ndarray, start_rot: np.ndarray, positions: list[np.ndarray],
+                    rotations: list[np.ndarray], weights: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """Ankle targets of a lock: the start pose moved by the weighted motion of the planted sources.
 
     Args:
-        start_pos: ``(3,)`` the ankle on the lock's first frame; ``start_rot`` its world rotation.
+        start_pos: ``(3,)`` the ankle on the lock's first frame; ``start_rot`` its world rotation, a
+            quaternion ``(4,)`` or ``(1, 4)``.
         positions: per source, the ankle's world positions ``(T, 3)`` over the lock.
-        rotations: per source, the ankle's world rotations (``T`` of them).
+        rotations: per source, the ankle's world rotations, quaternions ``(T, 4)``.
         weights: per source ``(T,)``: its blend weight where the foot is planted in it, else 0.
 
     Returns:
@@ -74,11 +74,12 @@ def planted_targets(start_pos: np.ndarray, start_rot: Rotation, positions: list[
         if T < 2:
             break
         step_p = np.diff(p, axis=0)
-        step_r = (r[:-1].inv() * r[1:]).as_rotvec()
+        step_r = rk.as_rotvec(rk.compose(rk.inverse(r[:-1]), r[1:]))
         dp[1:] += share[s, 1:, None] * step_p
         dr[1:] += share[s, 1:, None] * step_r
     targets = start_pos + np.cumsum(dp, axis=0)
-    rots = (start_rot * Rotation.from_rotvec(np.cumsum(dr, axis=0))).as_quat()
+    start = np.reshape(start_rot, (-1, 4))  # a rotation already (not normalised again: scipy's bits)
+    rots = rk.as_quat(rk.compose(start, rk.from_rotvec(np.cumsum(dr, axis=0))))
     return targets, rots
 
 
@@ -114,12 +115,12 @@ def solve_leg(motion: Motion, side: str, targets: np.ndarray) -> Motion:
     return leg_ik(motion, side, h + v * scale[:, None], pole=pole)
 
 
-def release(motion: Motion, side: str, begin: int, end: int, offset: np.ndarray, turn: Rotation,
+def release(motion: Motion, side: str, begin: int, end: int, offset: np.ndarray, turn: np.ndarray,
             profile: str = "smooth") -> Motion:
     """Release a locked foot over ``[begin, end)`` while it is in the air (eq. (3)).
 
     The lock's last offset (``offset`` metres and ``turn``, the ankle's rotation
-    relative to its own) rides on the motion's own foot, solved by IK; the
+    relative to its own, a quaternion ``(1, 4)``) rides on the motion's own foot, solved by IK; the
     leg's joint angles are then blended from that solution to the motion's own,
     ``angle = (1 - ratio) * locked + ratio * own`` with the ratio of eq. (4).
     """
@@ -129,9 +130,9 @@ def release(motion: Motion, side: str, begin: int, end: int, offset: np.ndarray,
     ankle = _ankle(motion, side)
     sub = motion[b:e]
     pose = sub.pose
-    r_own = Rotation.from_matrix(pose.rotations[:, ankle])
+    r_own = rk.from_matrix(pose.rotations[:, ankle])
     solved = solve_leg(sub, side, pose.positions[:, ankle] + offset)
-    solved = set_world_rotation(solved, ankle, (r_own * turn).as_quat())
+    solved = set_world_rotation(solved, ankle, rk.as_quat(rk.compose(r_own, turn)))
     w = ease(ratio(e - b), profile)  # eq. (4), eased
     legs = list(body_map(motion.skeleton).joints(f"{side}_leg"))
     rots = sub.rotations.copy()
@@ -169,7 +170,7 @@ def lock_foot(motion: Motion, side: str, locks: list[Lock], first: int, position
     sub = motion[first:stop]
     pose = sub.pose
     p = pose.positions[:, ankle]
-    r = Rotation.from_matrix(pose.rotations[:, ankle])
+    r = rk.from_matrix(pose.rotations[:, ankle])  # (T, 4) quaternions (core.rotkernels: scipy's bits)
     T = len(p)
     d = np.zeros((T, 3))
     e = np.zeros((T, 3))
@@ -180,13 +181,13 @@ def lock_foot(motion: Motion, side: str, locks: list[Lock], first: int, position
         if tot > 1e-9:
             share = w[:, i0] / tot
             start = sum(share[k] * positions[k][i0] for k in range(len(positions)))
-            start_rot = Rotation.from_matrix(rotations[int(np.argmax(share))][i0])
+            start_rot = rk.from_matrix(rotations[int(np.argmax(share))][i0])
         else:
-            start, start_rot = p[i0], r[i0]
+            start, start_rot = p[i0], r[i0:i0 + 1]
         tp, tr = planted_targets(start, start_rot, [x[i0:i1] for x in positions],
-                                 [Rotation.from_matrix(x[i0:i1]) for x in rotations], [x[i0:i1] for x in w])
+                                 [rk.from_matrix(x[i0:i1]) for x in rotations], [x[i0:i1] for x in w])
         d[i0:i1] = tp - p[i0:i1]
-        e[i0:i1] = (r[i0:i1].inv() * Rotation.from_quat(tr)).as_rotvec()
+        e[i0:i1] = rk.as_rotvec(rk.compose(rk.inverse(r[i0:i1]), rk.from_quat(tr)))
     prev_end, prev_d, prev_e = 0, np.zeros(3), np.zeros(3)
     for lk in locks:  # the approaches: the offset eases from the previous state to the lock's
         i0 = lk.begin - first
@@ -197,12 +198,12 @@ def lock_foot(motion: Motion, side: str, locks: list[Lock], first: int, position
         prev_end = lk.end - first
         prev_d, prev_e = d[prev_end - 1].copy(), e[prev_end - 1].copy()
     solved = solve_leg(sub, side, p + d)
-    solved = set_world_rotation(solved, ankle, (r * Rotation.from_rotvec(e)).as_quat())
+    solved = set_world_rotation(solved, ankle, rk.as_quat(rk.compose(r, rk.from_rotvec(e))))
     out = motion.rotations.copy()
     out[first:stop] = solved.rotations
     motion = motion.replace(rotations=out)
     last = locks[-1]
-    return release(motion, side, last.end, last.release_end, prev_d, Rotation.from_rotvec(prev_e), profile)
+    return release(motion, side, last.end, last.release_end, prev_d, rk.from_rotvec(prev_e), profile)
 
 
 CLEARANCE_SLOPE = 0.3  # m of height per m of horizontal distance from the nearer end of a swing
@@ -255,7 +256,7 @@ def lift_swing(motion: Motion, side: str, begin: int, end: int,
     u = np.arange(m) / (m - 1)
     target = p.copy()
     target[:, 1] += height * 64.0 * (u * (1.0 - u)) ** 3
-    rot = Rotation.from_matrix(pose.rotations[:, ankle]).as_quat()
+    rot = rk.as_quat(rk.from_matrix(pose.rotations[:, ankle]))
     solved = set_world_rotation(solve_leg(sub, side, target), ankle, rot)
     out = motion.rotations.copy()
     out[b:e] = solved.rotations

@@ -19,6 +19,8 @@ arms (:mod:`core.bodyparts`).
 """
 from __future__ import annotations
 
+import weakref
+
 import numpy as np
 from scipy.spatial.transform import Rotation
 
@@ -34,11 +36,20 @@ def part_joints(motion: Motion, part: str) -> list[int]:
     return list(body_map(motion.skeleton).joints(part))
 
 
+_HEADINGS: "weakref.WeakKeyDictionary[Motion, np.ndarray]" = weakref.WeakKeyDictionary()
+
+
 def root_headings(motion: Motion) -> np.ndarray:
-    """The root's own facing angle per frame (radians about +Y, 0 faces +Z), ``(T,)``, not smoothed:
-    Kovar aligns each pose by its root's yaw."""
-    fwd = Rotation.from_quat(motion.rotations[:, 0]).apply(rest_forward(motion.skeleton))
-    return np.arctan2(fwd[:, 0], fwd[:, 2])
+    """The root's own facing angle per frame (radians about +Y, 0 faces +Z), ``(T,)`` read-only, not
+    smoothed: Kovar aligns each pose by its root's yaw. Computed once per motion (motions are not edited
+    in place: a join's search asks for the same clip's features many times)."""
+    known = _HEADINGS.get(motion)
+    if known is None:
+        fwd = Rotation.from_quat(motion.rotations[:, 0]).apply(rest_forward(motion.skeleton))
+        known = np.arctan2(fwd[:, 0], fwd[:, 2])
+        known.setflags(write=False)
+        _HEADINGS[motion] = known
+    return known
 
 
 def features(motion: Motion, joints, frames=None) -> np.ndarray:

@@ -313,14 +313,36 @@ def apply_join(track: Motion, placed_b: Motion, b_contacts: FootContacts, join: 
                lock: bool = True) -> tuple[Motion, list[Lock]]:
     """Write a join: the track up to the window, the blend, then all of placed ``B``; feet locked.
 
-    Returns the new track (it ends with ``B``'s last frame) and the locks applied.
+    Returns the new track (it ends with ``B``'s last frame) and the locks applied. In two steps:
+    :func:`blend_join` and :func:`lock_join`.
     """
+    blended = blend_join(track, placed_b, join)
+    if not lock:
+        return blended.out, []
+    return lock_join(blended, b_contacts, join)
+
+
+@dataclass(frozen=True)
+class Blended:
+    """A join written but its feet not yet locked (:func:`blend_join`): ``out`` the new track; ``a_w``,
+    ``b_line`` the first source over the window and the second from the window on (for the locks' targets).
+    Locking changes only joint rotations: ``out``'s root positions are the final track's."""
+
+    out: Motion
+    a_w: Motion
+    b_line: Motion
+
+
+def blend_join(track: Motion, placed_b: Motion, join: Join) -> Blended:
+    """The first half of :func:`apply_join`: the track up to the window, the blend, then all of placed ``B``."""
     w0, w1 = join.window
     if w0 > track.n_frames:  # B starts after everything so far: hold the last frame until then
         track = hold(track, w0)
     a_w = sample(track, join.src_a)
     b_w = sample(placed_b, join.src_b)
     mix = blend(a_w, b_w, join.weights)
+    for m in (a_w, b_w, mix):  # the window's kinematics (the locks ask for them): the tracks concatenated
+        m.pose  # from these and known poses below then know theirs without redoing every frame's
     parts = [mix]
     head = track[:w0]
     if join.pre is not None and len(join.pre):
@@ -330,9 +352,13 @@ def apply_join(track: Motion, placed_b: Motion, b_contacts: FootContacts, join: 
     parts.append(placed_b[max(0, w1 - join.offset):])
     b_line = concatenate([b_w] + parts[1:])  # B alone over [w0, end)
     out = concatenate([p for p in [head] + parts if p.n_frames])
-    locks: list[Lock] = []
-    if not lock:
-        return out, locks
+    return Blended(out, a_w, b_line)
+
+
+def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[Motion, list[Lock]]:
+    """The second half of :func:`apply_join`: the planted feet of a :func:`blend_join` locked, swings lifted."""
+    out, a_w, b_line = blended.out, blended.a_w, blended.b_line
+    w0, w1 = join.window
     n = out.n_frames
     nb = n - w0
     after = np.arange(w1, n) - join.offset

@@ -1,6 +1,6 @@
 """Step 6, rendering: a planned join written onto the track, lower and upper body blended by their own
 weights (slerp), planted feet held (a foot two held poses plant apart steps across), locks by
-:func:`synthesis.transition.apply_join`."""
+:func:`synthesis.transition.apply_join` (a rendering in two steps: :func:`prepare`, then :func:`finish`)."""
 from __future__ import annotations
 
 import numpy as np
@@ -12,7 +12,7 @@ from text2anim.core.motion import Motion, concatenate
 from ..adaptation import adapt, pin_feet
 from ..blend import blend, sample
 from ..posedist import part_joints
-from ..transition import PLANTED_WEIGHT, Join, apply_join
+from ..transition import PLANTED_WEIGHT, Blended, Join, blend_join, lock_join
 from .records import Interval, Plan
 
 
@@ -92,15 +92,10 @@ def _planted(a_comp: Motion, b_comp: Motion, ca: dict, cb: dict, w: np.ndarray, 
     return out
 
 
-def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True, tr_contacts: FootContacts | None = None):
-    """Write a planned join onto the track: returns ``(track, locks, (w0, w1))``. ``tr_contacts``: the
-    track's foot contacts when the caller has them (:func:`carry_out` renders one track several times).
-
-    The lower body of every frame of the window blends its two sources with the lower weight, the upper
-    body its two with the upper weight; :func:`synthesis.transition.apply_join` then writes the window and
-    the next motion after it and locks the planted feet (its blend is given the upper body already blended
-    on both sides, so only the lower weight is left to it).
-    """
+def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts | None = None):
+    """What :func:`render` hands :func:`synthesis.transition.apply_join`: ``(track, placed_b, b_contacts,
+    join)`` — the window's two sides composed and the feet it holds (the cheap part of a rendering:
+    :func:`render`'s output is a function of these alone)."""
     inc = plan.inc
     off = inc.offset
     ivs = plan.intervals
@@ -126,12 +121,39 @@ def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True, tr_cont
     b_c = detect_contacts(bside)
     ca = _contacts_at(tr_c, faL)
     cb = _contacts_at(b_c, fbL - off)
-    tail = bside[w1 - off:]
-    placed_b = concatenate([b_comp, tail]) if tail.n_frames else b_comp
-    b_contacts = FootContacts(tr.fps, *(np.concatenate([cb[s], b_c.of(s)[w1 - off:]]) for s in ("left", "right")))
     planted = _planted(a_comp, b_comp, ca, cb, wL, step=step and ivs["S0"].kind != "motion-motion")
+    tail = bside[w1 - off:]
+    placed_b = concatenate([b_comp, tail]) if tail.n_frames else b_comp  # (both poses known: so is its)
+    b_contacts = FootContacts(tr.fps, *(np.concatenate([cb[s], b_c.of(s)[w1 - off:]]) for s in ("left", "right")))
     join = Join(plan.choice.method, plan.rigid, w0, (w0, w1), frames.astype(np.float64),
                 np.arange(w1 - w0, dtype=np.float64), wL, planted, ca)
     track = concatenate([p for p in (tr[:w0], a_comp) if p.n_frames])
-    out, locks = apply_join(track, placed_b, b_contacts, join, lock=lock)
-    return out, locks, (w0, w1)
+    return track, placed_b, b_contacts, join
+
+
+def finish(prepared, lock: bool = True, blended: Blended | None = None):
+    """:func:`render` from :func:`prepare` 's output (and its :func:`blended` when the caller has it):
+    ``(track, locks, (w0, w1))``."""
+    track, placed_b, b_contacts, join = prepared
+    if blended is None:
+        blended = blend_join(track, placed_b, join)
+    out, locks = lock_join(blended, b_contacts, join) if lock else (blended.out, [])
+    return out, locks, join.window
+
+
+def blended(prepared) -> Blended:
+    """The join of :func:`prepare` 's output written, its feet not yet locked: the root is already final."""
+    track, placed_b, _, join = prepared
+    return blend_join(track, placed_b, join)
+
+
+def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True, tr_contacts: FootContacts | None = None):
+    """Write a planned join onto the track: returns ``(track, locks, (w0, w1))``. ``tr_contacts``: the
+    track's foot contacts when the caller has them (:func:`carry_out` renders one track several times).
+
+    The lower body of every frame of the window blends its two sources with the lower weight, the upper
+    body its two with the upper weight; :func:`synthesis.transition.apply_join` then writes the window and
+    the next motion after it and locks the planted feet (its blend is given the upper body already blended
+    on both sides, so only the lower weight is left to it). In two steps, :func:`prepare` and :func:`finish`.
+    """
+    return finish(prepare(tr, plan, step, tr_contacts), lock)

@@ -8,7 +8,7 @@ from dataclasses import replace
 import numpy as np
 
 from text2anim.core.contacts import detect_contacts
-from text2anim.core.metrics import SOURCE_FACTOR, quality
+from text2anim.core.metrics import SOURCE_FACTOR, root_pop
 from text2anim.core.motion import Motion
 
 from ..align import align_through_foot
@@ -16,7 +16,7 @@ from ..blend import ease
 from ..measure import skating_exceeds, skating_frames
 from .records import Plan
 from .placement import settle
-from .render import render
+from .render import blended, finish, prepare
 
 
 def _eased(plan: Plan) -> Plan:
@@ -46,8 +46,15 @@ def _skating(motion: Motion, lo: int, hi: int) -> float:
 
 
 def _window_pop(out: Motion, window: tuple[int, int]) -> float:
-    """Root pop (m/s², :func:`core.metrics.quality` at the track's rate) of the blend window and 3 frames around."""
-    return quality(out[max(0, window[0] - 3):min(out.n_frames, window[1] + 3)], None).root_pop
+    """Root pop (m/s², :func:`core.metrics.quality` at the track's rate) of the blend window and 3 frames
+    around: the root's alone, so the same before the feet are locked (locks turn joints, never the root)."""
+    return root_pop(out[max(0, window[0] - 3):min(out.n_frames, window[1] + 3)])
+
+
+def _held(prepared) -> bytes:
+    """The feet a prepared rendering holds (:func:`.render.prepare`), as bytes to compare."""
+    planted = prepared[3].planted
+    return b"".join(np.asarray(planted[s], dtype=bool).tobytes() for s in ("left", "right"))
 
 
 def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: float = float("inf")):
@@ -73,14 +80,47 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
         variants.append(("roots_mid", False, False))
     candidates = [("", plan)] + [(f"next_best_{k + 1}", replace(plan, intervals={**plan.intervals, "S0": iv}))
                                  for k, iv in enumerate(plan.alternatives)]
+    # A rendering is a function of its plan and the feet it holds (render.prepare); "without the step" holds
+    # the same feet as with it where no foot has to step across (always in a motion-motion blend): such a
+    # variant is the rendering before it again, no better, and is not rendered twice (nor measured).
+    # Locking the feet (the costly half of a rendering) turns joints, never the root: a rendering's pop is
+    # known before it, and one that pops more than a best that does not skate cannot win (its key is
+    # larger whatever it skates) — it is not locked (``None`` in ``seen``).
+    seen: dict = {}
+
+    def hopeless(bl, prepared) -> bool:
+        over = max(0.0, _window_pop(bl.out, prepared[3].window) - SOURCE_FACTOR * own_pop)
+        return best is not None and not best[0][0] and over > best[0][1]
+
     for cname, cand in candidates:
         for vname, step, eased in variants:
             p = _eased(cand) if eased else (_roots_mid(tr, cand) if vname == "roots_mid" else cand)
-            out, locks, window = render(tr, p, lock, step, tr_c)
-            moved = settle(out, locks, window, p)
+            first = prepare(tr, p, step, tr_c)
+            key: tuple = (cname, eased, vname == "roots_mid", _held(first))
+            again = key in seen
+            if not again:
+                bl = blended(first)
+                if (p.adapted is not None or not lock) and hopeless(bl, first):  # settle moves nothing: final
+                    seen[key] = None
+                    continue
+                out, locks, window = finish(first, lock, bl)
+                seen[key] = (out, locks, window, settle(out, locks, window, p))
+            if seen[key] is None:
+                continue
+            out, locks, window, moved = seen[key]
             if moved is not None:  # placed where the locked foot stands: the next motion's own step needs no release
                 p = moved
-                out, locks, window = render(tr, p, lock, step, tr_c)
+                second = prepare(tr, p, step, tr_c)
+                key = (key, _held(second))
+                again = key in seen
+                if not again:
+                    bl = blended(second)
+                    seen[key] = None if hopeless(bl, second) else (*finish(second, lock, bl), None)
+                if seen[key] is None:
+                    continue
+                out, locks, window, _ = seen[key]
+            if again:  # the same rendering as an earlier variant's: its key is that one's, which did not pass
+                continue
             sk = _skating(out, window[0], window[1]) if lock else 0.0  # the blend (the clips' own skating after
             # it, a jump's landing, is not the join's to fix)
             over = max(0.0, _window_pop(out, window) - SOURCE_FACTOR * own_pop)

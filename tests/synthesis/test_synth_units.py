@@ -187,13 +187,13 @@ def test_planted_targets_follow_only_planted_sources():
     T = 10
     still = np.zeros((T, 3))
     moving = np.stack([np.linspace(0, 1, T), np.zeros(T), np.zeros(T)], axis=1)
-    ident = Rotation.identity(T)
+    ident = Rotation.identity(T).as_quat()  # quaternions (T, 4)
     # the source that moves is not planted: the target stays
-    p, _ = planted_targets(np.zeros(3), Rotation.identity(), [still, moving], [ident, ident],
+    p, _ = planted_targets(np.zeros(3), Rotation.identity().as_quat(), [still, moving], [ident, ident],
                            [np.ones(T), np.zeros(T)])
     assert np.allclose(p, 0)
     # only the moving one is planted: the target moves with it
-    p, _ = planted_targets(np.zeros(3), Rotation.identity(), [still, moving], [ident, ident],
+    p, _ = planted_targets(np.zeros(3), Rotation.identity().as_quat(), [still, moving], [ident, ident],
                            [np.zeros(T), np.ones(T)])
     assert np.allclose(p, moving)
 
