@@ -4,11 +4,12 @@ from __future__ import annotations
 import json
 import os
 import tempfile
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from text2anim.motiondb import ClipInfo, MotionDB
+from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
 from text2anim.core.atomic import Content, check_distinct, check_output_path, write_all
 
 from . import limits
@@ -26,6 +27,8 @@ if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never
     from text2anim.synthesis.result import Result
 
 DEFAULT_ACTOR = "default"
+#: The verb of the clips a held pose plays (a cyclic one: the built-in ``wait``, captured).
+IDLE_VERB = "待つ"
 
 
 #: Suffix of a mirrored clip's name on a track (a co-actor's or a repetition's variant).
@@ -55,6 +58,20 @@ class _Clips:
                     motion = motion.resample(self.fps)
                 self.cache[key] = Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
         return self.cache[key]
+
+    def idle(self, character: str, posture: str | None) -> Callable[[], Motion | None]:
+        """The captured idle a track of ``character`` holds its poses with (the best cyclic clip of
+        :data:`IDLE_VERB` for that character in ``posture``; none for a posture without one, such as
+        lying), looked up when first asked."""
+        def fetch() -> Motion | None:
+            try:
+                hits = self.db.search(IDLE_VERB, character=character, prefer_start_posture=posture, limit=1)
+            except UnknownVerbError:
+                return None
+            fits = hits and hits[0].cyclic and hits[0].start_posture == posture
+            return self.get(hits[0]).motion if fits else None
+
+        return fetch
 
 
 def _repetitions(e, picks: tuple[Pick, ...], clips: _Clips, first_id: int) -> list[splan.Element]:
@@ -104,7 +121,10 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
                 continue
             elements.append(Element(e.id, clips.get(planned.clips[e.id], e.id in planned.mirrored), e.start,
                                           e.end, e.method, prev, e.speed, e.repeat, e.hold, e.body_part))
-        tracks.append(Track(actor, tuple(elements)))
+        whole = [e for e in mine if e.method != "composition"]  # the body's posture is the whole-body clips'
+        last = planned.clips[whole[-1].id] if whole else None
+        idle = clips.idle(last.character, last.end_posture) if last is not None else None
+        tracks.append(Track(actor, tuple(elements), idle=idle))
     return tracks
 
 

@@ -277,5 +277,6 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False, fin
         motions[track.actor] = laid.motion
     final = same_length(motions) if post else motions
     if finished:
-        final = {actor: finish(m, feet=post) for actor, m in final.items()}
+        idles = {t.actor: t.idle for t in tracks}
+        final = {actor: finish(m, feet=post, idle=idles[actor]) for actor, m in final.items()}
     return Result(final, reports, fps, elements, tuple(warnings))

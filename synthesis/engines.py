@@ -139,14 +139,15 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
     other = synthesize(tracks, fps, lock_feet=True, sway=sway, finished=False) if bad else None
     still = _skating_actors(other) if other is not None else {}
     swap = [a for a in bad if a not in still]
+    idles = {t.actor: t.idle for t in tracks}
     if other is None or not swap:
-        return replace(result, motions={actor: finish(m) for actor, m in result.motions.items()})
+        return replace(result, motions={actor: finish(m, idle=idles[actor]) for actor, m in result.motions.items()})
     motions, elements = dict(result.motions), dict(result.elements)
     for actor in swap:
         motions[actor] = other.motions[actor]
         elements.update({k: v for k, v in other.elements.items() if v.actor == actor})
     # the two engines' post-passes give the joins different times: every actor as long as the longest again
-    motions = {actor: finish(m) for actor, m in same_length(motions).items()}
+    motions = {actor: finish(m, idle=idles[actor]) for actor, m in same_length(motions).items()}
     joins = [j for j in result.joins if result.actor_of(j.second) not in swap]
     joins += [replace(j, metrics={**j.metrics, "engine": "constraint", "fallback_from": "optimal"})
               for j in other.joins if other.actor_of(j.second) in swap]

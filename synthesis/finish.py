@@ -8,12 +8,14 @@ the second's lower body (dance → laugh: toes 1.2-2.5 cm up, sliding at
 0.7-1.5 m/s). The built-in library keeps swinging feet 1.5 cm clear of the
 floor (:func:`core.clearance.lift_swings`, the minimum toe clearance of
 human gait); :func:`finish` applies the same rule to the joined motion, then
-:func:`synthesis.alive.keep_alive`. Planted feet, the hips and everything
+:func:`synthesis.alive.keep_alive` (held poses play the track's captured idle and breathe). Planted feet, the hips and everything
 above the knees' IK are left as they are; a motion with no low swing and no
 frozen stretch is returned unchanged. The joins' own figures in the report are
 measured before this step: they judge the join as the engine made it.
 """
 from __future__ import annotations
+
+from collections.abc import Callable
 
 from text2anim.core.motion import Motion
 from text2anim.core.clearance import lift_swings
@@ -21,7 +23,8 @@ from text2anim.core.clearance import lift_swings
 from .alive import keep_alive
 
 
-def finish(motion: Motion, feet: bool = True) -> Motion:
+def finish(motion: Motion, feet: bool = True, idle: Callable[[], Motion | None] | None = None) -> Motion:
     """``motion`` with its swinging feet clear of the floor (``feet``: the engines that clean feet; the
-    baselines do not, that is what they stand for) and no frozen frame (see the module docstring)."""
-    return keep_alive(lift_swings(motion) if feet else motion)
+    baselines do not, that is what they stand for) and no frozen frame: held poses play ``idle`` (the
+    track's captured idle) where it fits the skeleton, and breathe (see the module docstring)."""
+    return keep_alive(lift_swings(motion) if feet else motion, idle)

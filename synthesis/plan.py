@@ -7,6 +7,7 @@ track (0 = the start of the animation).
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from text2anim.core.motion import Motion
@@ -80,10 +81,15 @@ class Track:
     """All elements of one actor, and where the actor stands at time 0.
 
     ``origin`` is the (x, z) ground position in metres and ``heading`` the
-    facing angle in radians about +Y (0 faces +Z).
+    facing angle in radians about +Y (0 faces +Z). ``idle`` gives a captured
+    idle of the actor's character when first asked (a database read only a
+    track that holds a pose pays for): where the actor would hold a pose, it
+    plays that, looped (:mod:`synthesis.alive`); ``None``, no clip, or a
+    skeleton other than the actor's leaves the breathing layer alone.
     """
 
     actor: str | None
     elements: tuple[Element, ...]
     origin: tuple[float, float] = (0.0, 0.0)
     heading: float = 0.0
+    idle: Callable[[], Motion | None] | None = None

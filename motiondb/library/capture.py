@@ -140,6 +140,17 @@ def _motion(root: np.ndarray, rot: np.ndarray, fps: float) -> Motion:
     return Motion(canonical_skeleton(), FPS, root.astype(np.float64), q).resample(fps)
 
 
+@lru_cache(maxsize=4)
+def captured_clip(name: str, fps: float = FPS) -> Motion:
+    """One captured clip's motion at ``fps`` (read-only, cached), read alone from the arrays: what a stage
+    needs when it wants a clip of the built-in character without the whole library (the idle, for one)."""
+    with np.load(ARRAYS) as data:
+        if f"{name}.rot" not in data.files:
+            raise ClipDataError(f"capture.npz has no clip {name!r}: rebuild it "
+                                "(python -m text2anim.motiondb.library.build)")
+        return _motion(data[f"{name}.root"], data[f"{name}.rot"], float(fps)).read_only()
+
+
 @lru_cache(maxsize=8)
 def capture_records(fps: float = FPS) -> tuple[ClipRecord, ...]:
     """The captured clips as :class:`ClipRecord` s at ``fps`` (read-only motions, cached)."""
