@@ -22,16 +22,6 @@ from text2anim.export import ExportError, ExportOptions
 RIGS = {"mixamo_a_pose": mixamo_rig, "smpl": smpl_rig, "unreal": unreal_rig, "vrm": vrm_rig}
 
 
-@pytest.fixture(scope="module")
-def walk(library_db):
-    return text2anim.animate("太郎は歩く。", db=library_db)
-
-
-def _source(anim):
-    (motion,) = anim.motions.values()
-    return motion
-
-
 def _angles(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Angle in degrees between quaternions ``a`` and ``b`` (same shape ``(..., 4)``)."""
     d = Rotation.from_quat(a.reshape(-1, 4)).inv() * Rotation.from_quat(b.reshape(-1, 4))
@@ -39,10 +29,10 @@ def _angles(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 @pytest.mark.parametrize("rig", list(RIGS))
-def test_the_animation_is_written_on_the_users_rig(walk, tmp_path, rig):
+def test_the_animation_is_written_on_the_users_rig(walk, tmp_path, rig, walk_motion):
     rig_file = RIGS[rig](tmp_path / f"{rig}.bvh")
     out_file = walk.save_bvh(tmp_path / "out.bvh", ExportOptions(rig=rig_file))[0]
-    src, out, user = _source(walk), read_bvh(out_file), read_bvh(rig_file).skeleton
+    src, out, user = walk_motion, read_bvh(out_file), read_bvh(rig_file).skeleton
     assert out.skeleton.names == user.names and np.allclose(out.skeleton.offsets, user.offsets, atol=1e-6)
     assert out.skeleton.channels == user.channels
     m = map_skeletons(src.skeleton, out.skeleton)
@@ -57,11 +47,11 @@ def test_the_animation_is_written_on_the_users_rig(walk, tmp_path, rig):
     assert abs(find_floor(out).height) < 0.01
 
 
-def test_an_a_pose_rest_is_not_copied_into_the_motion(walk, tmp_path):
+def test_an_a_pose_rest_is_not_copied_into_the_motion(walk, tmp_path, walk_motion):
     """The A-pose rig's arms hang as the source's do: upper-arm directions agree (its rest would put them 45° off;
     the captured walk's arm swing, issue 12, leaves up to 7°)."""
     out = read_bvh(walk.save_bvh(tmp_path / "a.bvh", ExportOptions(rig=mixamo_rig(tmp_path / "m.bvh")))[0])
-    src = _source(walk)
+    src = walk_motion
     m = map_skeletons(src.skeleton, out.skeleton)
     for side in ("left", "right"):
         def direction(motion, roles):
@@ -85,8 +75,8 @@ def test_a_rig_with_unknown_names_is_refused_and_a_joint_map_places_it(walk, tmp
     assert "Thigh_Left" in out.skeleton.names and abs(find_floor(out).height) < 0.01
 
 
-def test_root_motion_puts_the_travel_on_a_root_bone_at_the_floor(walk, tmp_path):
-    src = _source(walk)
+def test_root_motion_puts_the_travel_on_a_root_bone_at_the_floor(walk, tmp_path, walk_motion):
+    src = walk_motion
     out = read_bvh(walk.save_bvh(tmp_path / "r.bvh", ExportOptions(root_motion=True))[0], scale=1)
     assert out.skeleton.names[0] == "root" and out.skeleton.names[1:] == src.skeleton.names
     assert np.allclose(out.positions[:, 1:], src.positions, atol=1e-5)  # the motion itself is unchanged
@@ -106,8 +96,8 @@ def test_root_motion_puts_the_travel_on_a_root_bone_at_the_floor(walk, tmp_path)
     assert np.abs(unreal.local_translations()[:, m.target["hips"]][:, [0, 2]]).max() < 0.1
 
 
-def test_in_place_removes_the_hips_travel(walk, tmp_path):
-    src = _source(walk)
+def test_in_place_removes_the_hips_travel(walk, tmp_path, walk_motion):
+    src = walk_motion
     out = read_bvh(walk.save_bvh(tmp_path / "i.bvh", ExportOptions(in_place=True))[0], scale=1)
     hips = out.root_positions
     assert np.linalg.norm(src.root_positions[-1] - src.root_positions[0]) > 1.0
@@ -143,9 +133,9 @@ def test_a_captured_walk_is_cut_and_blended_into_a_loop():
     assert loop.n_frames >= capture.n_frames // 2 and _flows_into_first(loop)
 
 
-def test_loop_makes_a_single_cyclic_motion_loop_and_refuses_a_sequence(walk, library_db, tmp_path):
+def test_loop_makes_a_single_cyclic_motion_loop_and_refuses_a_sequence(walk, library_db, tmp_path, walk_motion):
     out = read_bvh(walk.save_bvh(tmp_path / "l.bvh", ExportOptions(loop=True, in_place=True))[0], scale=1)
-    assert _flows_into_first(out) and out.n_frames < _source(walk).n_frames
+    assert _flows_into_first(out) and out.n_frames < walk_motion.n_frames
     assert np.linalg.norm(out.root_positions[-1, [0, 2]] - out.root_positions[0, [0, 2]]) < 0.05
     two = text2anim.animate("太郎は歩いて、走る。", db=library_db)
     with pytest.raises(ExportError, match="single cyclic motion"):

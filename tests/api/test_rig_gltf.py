@@ -20,7 +20,6 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-import text2anim
 from cli_run import assert_clean_error, text2anim as run_cli
 from rig_builders import _a_pose, _mixamo_rows, _positions, _rest, _vroid, mixamo_glb, skinned_glb, vrm_file
 from text2anim.core import read_bvh
@@ -49,16 +48,6 @@ def _node(*packages: str) -> str:
         if not (NODE_MODULES / p).is_dir():
             pytest.skip(f"npm package {p} is not in {NODE_MODULES} (npm ci --prefix tests/browser)")
     return node
-
-
-@pytest.fixture(scope="module")
-def walk(library_db):
-    return text2anim.animate("太郎は歩く。", db=library_db)
-
-
-def _source(anim):
-    (motion,) = anim.motions.values()
-    return motion
 
 
 def _accessor(gl: dict, blob: bytes, i: int) -> np.ndarray:
@@ -99,7 +88,7 @@ def glb_world_positions(path: Path) -> tuple[list[str], np.ndarray]:
 
 
 @pytest.mark.parametrize("rig", list(RIGS))
-def test_the_users_glb_character_is_animated_like_the_source(walk, tmp_path, rig):
+def test_the_users_glb_character_is_animated_like_the_source(walk, tmp_path, rig, walk_motion):
     """World joint positions of the GLB written on the rig, by FK of its own nodes, match the source's up to the
     leg-length scale: hands and feet within 2 cm where the source's feet are planted; no more skating."""
     rig_file = RIGS[rig](tmp_path)
@@ -107,7 +96,7 @@ def test_the_users_glb_character_is_animated_like_the_source(walk, tmp_path, rig
     glb_path, = walk.save_glb(tmp_path / "out.glb", opts)
     bvh = read_bvh(walk.save_bvh(tmp_path / "out.bvh", opts)[0], scale=1)
     names, pos = glb_world_positions(glb_path)
-    src = _source(walk)
+    src = walk_motion
     m = map_skeletons(src.skeleton, bvh.skeleton, target_map=opts.target_map)
     assert m.scale != pytest.approx(1.0, abs=0.01)
     # the GLB plays the very motion the BVH on the same skeleton holds
@@ -190,7 +179,7 @@ def _vrma(path: Path) -> tuple[dict, dict[str, np.ndarray], dict[str, np.ndarray
     return gl, out["translation"], out["rotation"]
 
 
-def test_the_vrma_holds_the_humanoid_in_a_vrm_t_pose(walk, tmp_path):
+def test_the_vrma_holds_the_humanoid_in_a_vrm_t_pose(walk, tmp_path, walk_motion):
     path, = walk.save_vrma(tmp_path / "walk.vrma")
     gl, trans, rots = _vrma(path)
     ext = gl["extensions"]["VRMC_vrm_animation"]
@@ -204,7 +193,7 @@ def test_the_vrma_holds_the_humanoid_in_a_vrm_t_pose(walk, tmp_path):
     assert 0.8 < hips["translation"][1] < 1.1  # the rest hips stand above the floor, not at the origin
     t = lambda role: np.array(gl["nodes"][bones[role]["node"]]["translation"])  # noqa: E731
     assert t("leftLowerArm")[0] > 0.2 and abs(t("leftLowerArm")[1]) < 0.01  # T-pose: the left arm along +X
-    src = _source(walk)
+    src = walk_motion
     assert len(trans["hips"]) == src.n_frames
     np.testing.assert_allclose(np.linalg.norm(rots["leftUpperLeg"], axis=-1), 1.0, atol=1e-5)
     assert np.ptp(trans["hips"][:, 2]) > 1.0  # the walk travels
