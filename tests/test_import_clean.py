@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from limb_checks import limb_errors
 from shared_data import cmu, requires_cmu
 from text2anim.core import read_bvh
 from text2anim.core.contacts import detect_contacts, runs
@@ -64,12 +65,8 @@ def test_subjects_imported_under_one_character_are_retargeted_onto_its_skeleton(
         # hands and feet where the source's are, up to the leg-length scale, on planted frames
         m = map_skeletons(source.skeleton, character)
         assert m.scale != pytest.approx(1.0, abs=0.015)
-        fc = detect_contacts(source)
-        planted = fc.left | fc.right
-        for role in ("leftHand", "rightHand", "leftFoot", "rightFoot", "leftToes", "rightToes"):
-            err = np.linalg.norm(clip.positions[planted, m.target[role]]
-                                 - m.scale * source.positions[planted, m.source[role]], axis=-1)
-            assert err.max() < 0.02, (name, role, err.max())
+        for role, err in limb_errors(source, clip.positions, m).items():
+            assert err < 0.02, (name, role, err)
         assert any(p.endswith(f"{name}.bvh") and msg.startswith("retargeted") for p, msg in notes)
 
 
