@@ -88,15 +88,6 @@ class Skeleton:
             known[j].setflags(write=False)
         return known[j]
 
-    def common_ancestor(self, a: int, b: int) -> int:
-        """The deepest joint that is ``a`` or an ancestor of it and ``b`` or an ancestor of it."""
-        while a != b:
-            if a > b:  # topological order: a parent has a smaller index than its children
-                a = int(self.parents[a])
-            else:
-                b = int(self.parents[b])
-        return a
-
     def depth_levels(self) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
         """``(joints, their parents)`` per tree depth 1, 2, ... (the root, depth 0, is left out); cached."""
         levels = self.__dict__.get("_depth_levels")
