@@ -206,3 +206,18 @@ def library_db(tmp_path_factory) -> str:
     url = f"sqlite:///{tmp_path_factory.mktemp('library-db') / 'motions.sqlite'}"
     MotionDB.open(url).close()
     return url
+
+
+@pytest.fixture(scope="session")
+def walk(library_db):
+    """太郎は歩く。 animated with the built-in library (the animation the rig and glTF exports are checked on)."""
+    import text2anim
+
+    return text2anim.animate("太郎は歩く。", db=library_db)
+
+
+@pytest.fixture(scope="session")
+def walk_motion(walk):
+    """The one actor's motion of :func:`walk`, as the engines made it."""
+    (motion,) = walk.motions.values()
+    return motion
