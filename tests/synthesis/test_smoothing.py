@@ -1,0 +1,65 @@
+"""The join post-pass's candidates (synthesis.smoothing): their figures are the quality metrics' own bits,
+the bounds the search prunes by hold, and re-planting several widths at once is re-planting each alone."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from shared_data import library_motion
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.metrics import quality
+from text2anim.synthesis.smoothing import Stretch, jerk_p99, jerks, plant_all, root_pop
+
+WIDTHS = (0.0, 1.0, 2.0, 4.0, 8.0)
+
+
+@pytest.fixture(scope="module")
+def kick():
+    return library_motion("kick")  # 54 frames: steps in, kicks on one foot, steps back
+
+
+def _stretch(motion, lo=10, hi=44):
+    """A real region of ``motion``: smoothed over ``[lo, hi)``, its feet kept where its contacts are."""
+    contacts = detect_contacts(motion)
+    planted = {side: contacts.of(side)[:motion.n_frames] for side in ("left", "right")}
+    return Stretch(motion, motion, lo, hi, planted)
+
+
+@pytest.mark.parametrize("name", ["run", "walk", "kick"])
+def test_figures_are_the_quality_metrics_bits(name):
+    m = library_motion(name)
+    for a, b in [(0, m.n_frames), (10, 40), (5, 9), (5, 8), (3, 6)]:  # whole, a window, and too short for one
+        part = m[a:b]
+        q = quality(part, None)
+        assert jerk_p99(jerks(part.positions, part.fps)) == q.jerk_p99
+        assert root_pop(part.root_positions, part.fps) == q.root_pop
+
+
+def test_jerk_floor_and_pop_bound_the_planted_figures(kick):
+    st = _stretch(kick)
+    assert len(st.feet) == 2, "both feet touch the floor in the region: they are kept"
+    widths = [st.smoothed(s, 6, 6) for s in WIDTHS]
+    before = [(w.pop, w.jk_floor) for w in widths]
+    plant_all(widths)
+    for (pop, floor), w in zip(before, widths):
+        jk, planted_pop = w.plant()
+        assert planted_pop == pop  # re-planting the feet moves no hips: the pop is exact before
+        assert 0.0 < floor <= jk  # and the jerk of the joints the leg IK leaves alone bounds the p99
+        q = quality(w.motion()[st.a:st.b], None)  # the whole candidate, measured as the metrics do
+        assert (q.jerk_p99, q.root_pop) == (jk, pop)
+
+
+def test_widths_replanted_together_are_each_replanted_alone(kick):
+    st = _stretch(kick)
+    together = [st.smoothed(s, 6, 6) for s in WIDTHS]
+    plant_all(together)
+    for s, w in zip(WIDTHS, together):
+        alone = st.smoothed(s, 6, 6)
+        assert alone.plant() == w.plant()
+        assert alone.motion().rotations.tobytes() == w.motion().rotations.tobytes()
+    moved = together[2].motion().rotations != together[2].stretch.base.rotations
+    assert moved[st.lo:st.hi].any() and not moved[:st.lo].any() and not moved[st.hi:].any()
+    # the feet are back where the reference has them on their contact frames, however wide the smoothing
+    for _side, ankle, c, target, _ in st.feet:
+        on = np.flatnonzero(c == 1.0)
+        for w in together:
+            assert len(on) and np.abs(w.sub.positions[on, ankle] - target[on]).max() < 1e-9
