@@ -51,6 +51,7 @@ All vectorised over frames and joints; deterministic.
 """
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 
 import numpy as np
@@ -96,8 +97,30 @@ class Region:
 
 def _limits(sources, fps: float) -> tuple[float, float]:
     """The largest jerk p99 (m/s³) and root pop (m/s²) of the source clips, at ``fps`` (:func:`core.metrics.quality`)."""
-    qs = [quality(m, fps) for m in sources if m is not None and m.n_frames >= 6]
-    return max([q.jerk_p99 for q in qs] or [0.0]), max([q.root_pop for q in qs] or [0.0])
+    qs = [_source_figures(m, fps) for m in sources if m is not None and m.n_frames >= 6]
+    return max([q[0] for q in qs] or [0.0]), max([q[1] for q in qs] or [0.0])
+
+
+_KNOWN: dict[bytes, tuple[float, float]] = {}  # the figures of source clips seen, by content (FIFO, bounded)
+KNOWN_MAX = 512
+
+
+def _source_figures(m: Motion, fps: float) -> tuple[float, float]:
+    """``(jerk p99, root pop)`` of a source clip at ``fps`` (:func:`core.metrics.quality`), remembered by the
+    clip's content: the same library clips are the sources of join after join, animation after animation."""
+    h = hashlib.blake2b(np.float64(fps).tobytes(), digest_size=20)
+    skel = m.skeleton
+    for a in (skel.parents, skel.offsets, m.root_positions, m.rotations, m.translations):
+        if a is not None:
+            h.update(np.ascontiguousarray(a).tobytes())
+            h.update(str(a.shape).encode())
+    key = h.digest()
+    if key not in _KNOWN:
+        q = quality(m, fps)
+        if len(_KNOWN) >= KNOWN_MAX:
+            del _KNOWN[next(iter(_KNOWN))]
+        _KNOWN[key] = (q.jerk_p99, q.root_pop)
+    return _KNOWN[key]
 
 
 def lift_off_floor(motion: Motion, lo: int, hi: int, floor: float = FLOOR) -> Motion:
