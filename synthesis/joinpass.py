@@ -97,7 +97,7 @@ class Region:
 
 def _limits(sources, fps: float) -> tuple[float, float]:
     """The largest jerk p99 (m/s³) and root pop (m/s²) of the source clips, at ``fps`` (:func:`core.metrics.quality`)."""
-    qs = [_source_figures(m, fps) for m in sources if m is not None and m.n_frames >= 6]
+    qs = [source_figures(m, fps) for m in sources if m is not None and m.n_frames >= 6]
     return max([q[0] for q in qs] or [0.0]), max([q[1] for q in qs] or [0.0])
 
 
@@ -105,7 +105,7 @@ _KNOWN: dict[bytes, tuple[float, float]] = {}  # the figures of source clips see
 KNOWN_MAX = 512
 
 
-def _source_figures(m: Motion, fps: float) -> tuple[float, float]:
+def source_figures(m: Motion, fps: float) -> tuple[float, float]:
     """``(jerk p99, root pop)`` of a source clip at ``fps`` (:func:`core.metrics.quality`), remembered by the
     clip's content: the same library clips are the sources of join after join, animation after animation."""
     h = hashlib.blake2b(np.float64(fps).tobytes(), digest_size=20)

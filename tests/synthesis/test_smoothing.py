@@ -65,15 +65,15 @@ def test_widths_replanted_together_are_each_replanted_alone(kick):
             assert len(on) and np.abs(w.sub.positions[on, ankle] - target[on]).max() < 1e-9
 
 
-def test_source_figures_are_remembered_by_content_not_by_object():
-    from text2anim.synthesis.joinpass import _source_figures
+def testsource_figures_are_remembered_by_content_not_by_object():
+    from text2anim.synthesis.joinpass import source_figures
 
     kick = library_motion("kick")
     q = quality(kick, 30.0)
-    assert _source_figures(kick, 30.0) == (q.jerk_p99, q.root_pop)
+    assert source_figures(kick, 30.0) == (q.jerk_p99, q.root_pop)
     faster = kick.replace(root_positions=kick.root_positions * 1.5)  # same frame count, other content
     q2 = quality(faster, 30.0)
-    assert _source_figures(faster, 30.0) == (q2.jerk_p99, q2.root_pop) != (q.jerk_p99, q.root_pop)
-    assert _source_figures(kick.read_only(), 30.0) == (q.jerk_p99, q.root_pop)  # a copy: the same figures
+    assert source_figures(faster, 30.0) == (q2.jerk_p99, q2.root_pop) != (q.jerk_p99, q.root_pop)
+    assert source_figures(kick.read_only(), 30.0) == (q.jerk_p99, q.root_pop)  # a copy: the same figures
     q60 = quality(kick, 60.0)
-    assert _source_figures(kick, 60.0) == (q60.jerk_p99, q60.root_pop)
+    assert source_figures(kick, 60.0) == (q60.jerk_p99, q60.root_pop)
