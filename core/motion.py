@@ -142,6 +142,9 @@ class Motion:
         same = self.__dict__.get("_pose_of")
         if same is not None:
             return same.pose
+        rows = self.__dict__.pop("_pose_rows", None)  # frames another motion's pose has (see share_pose)
+        if rows is not None:
+            return self._pose_with(*rows)
         # joint-major (J, T, ...) so that a depth's joints are gathered as whole blocks
         local_r = quat_to_matrix(self.rotations).transpose(1, 0, 2, 3).copy()
         local_t = self.local_translations().transpose(1, 0, 2).copy()
@@ -200,6 +203,48 @@ class Motion:
             world_p[j] = world_p[p] + np.einsum("ntij,ntj->nti", parent_r, local_t[j])
         rotations[:, sub] = world_r.transpose(1, 0, 2, 3)
         positions[:, sub] = world_p.transpose(1, 0, 2)
+
+    def share_pose(self, other: "Motion", rows: np.ndarray) -> "Motion":
+        """Let this motion's :attr:`pose` take ``other``'s where the frames are the same: ``rows`` ``(T,)`` says
+        which frame of ``other`` each frame may be (``-1``: none); where the two frames' root position and
+        local rotations (and translations) are bit for bit equal and ``other``'s pose is known, that frame's
+        pose is ``other``'s, and the kinematics, when asked, runs for the other frames only (FK is per frame:
+        the same bits). An edit that kept most of a long motion (a join's region) then costs the region's
+        kinematics. Returns this motion."""
+        known = other._known_pose()
+        rows = np.asarray(rows, dtype=np.int64)
+        if known is None or len(rows) != self.n_frames or any(
+                k in self.__dict__ for k in ("pose", "_pose_source", "_pose_of")) or not (
+                other.skeleton is self.skeleton or np.array_equal(other.skeleton.offsets, self.skeleton.offsets)):
+            return self
+        rows = np.where((rows >= 0) & (rows < other.n_frames), rows, -1)
+        have = np.flatnonzero(rows >= 0)
+        src = rows[have]
+        same = (self.root_positions[have].view(np.int64) == other.root_positions[src].view(np.int64)).all(axis=1)
+        same &= (self.rotations[have].view(np.int64) == other.rotations[src].view(np.int64)).all(axis=(1, 2))
+        if self.translations is not None or other.translations is not None:
+            same &= (self.local_translations()[have].view(np.int64)
+                     == other.local_translations()[src].view(np.int64)).all(axis=(1, 2))
+        rows[have[~same]] = -1
+        if (rows >= 0).any():
+            self.__dict__["_pose_rows"] = (known, rows)
+        return self
+
+    def _pose_with(self, known: Pose, rows: np.ndarray) -> Pose:
+        """:attr:`pose` with the frames ``rows >= 0`` taken from ``known`` (:meth:`share_pose`)."""
+        new = rows < 0
+        positions = np.empty((self.n_frames, self.skeleton.n_joints, 3))
+        rotations = np.empty((self.n_frames, self.skeleton.n_joints, 3, 3))
+        positions[~new] = known.positions[rows[~new]]
+        rotations[~new] = known.rotations[rows[~new]]
+        if new.any():
+            part = Motion(self.skeleton, self.fps, self.root_positions[new], self.rotations[new],
+                          None if self.translations is None else self.translations[new]).pose
+            positions[new] = part.positions
+            rotations[new] = part.rotations
+        positions.setflags(write=False)
+        rotations.setflags(write=False)
+        return Pose(positions, rotations)
 
     def copy_sharing_pose(self) -> "Motion":
         """The same frames in arrays of their own; its :attr:`pose` is this motion's, computed once for both
@@ -276,6 +321,9 @@ class Motion:
             out.__dict__["pose"] = Pose(known.positions[sl], known.rotations[sl])
         elif source is not None:  # a limb edit not yet solved: solve it on the slice only, when asked
             out.__dict__["_pose_source"] = (Pose(source[0].positions[sl], source[0].rotations[sl]), source[1])
+        elif "_pose_rows" in self.__dict__:  # frames shared with another motion's pose: the slice's are
+            known_rows, rows = self.__dict__["_pose_rows"]
+            out.__dict__["_pose_rows"] = (known_rows, rows[sl])
         return out
 
     def _known_pose(self) -> Pose | None:

@@ -360,7 +360,9 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
         if kept is not None:
             break
     _score, sigma, stretch, chosen, jk, pop, h2 = kept or _least(tried, lims)
-    done = lift_off_floor(clear_swings(chosen.motion(), lo, h2), lo, h2)
+    # outside [lo, h2) the frames are the input's (those the seams left alone): their kinematics is known
+    rows = np.concatenate([np.arange(lo), np.full(h2 - lo, -1), np.arange(hi, T)])
+    done = lift_off_floor(clear_swings(chosen.motion().share_pose(motion, rows), lo, h2), lo, h2)
     info = {"smoothing_frames": sigma, "stretch": stretch, "added_s": round((h2 - hi) / fps, 3),
             "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
             "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
