@@ -145,20 +145,22 @@ class Motion:
         rows = self.__dict__.pop("_pose_rows", None)  # frames another motion's pose has (see share_pose)
         if rows is not None:
             return self._pose_with(*rows)
-        # joint-major (J, T, ...) so that a depth's joints are gathered as whole blocks
-        local_r = quat_to_matrix(self.rotations).transpose(1, 0, 2, 3).copy()
-        local_t = self.local_translations().transpose(1, 0, 2).copy()
+        # joint-major (J, T, ...) with the joints in order of depth (_depth_order): a depth's joints are one
+        # block, read and written in place; only their parents are gathered
+        order, inverse, levels = _depth_order(self.skeleton)
+        local_r = quat_to_matrix(self.rotations[:, order]).transpose(1, 0, 2, 3).copy()
+        local_t = self.local_translations()[:, order].transpose(1, 0, 2).copy()
         world_r = np.empty_like(local_r)
         world_p = np.empty_like(local_t)
         world_r[0] = local_r[0]
         world_p[0] = local_t[0]
-        for joints, parents in self.skeleton.depth_levels():
+        for a, b, parents in levels:
             parent_r = world_r[parents]
-            world_r[joints] = parent_r @ local_r[joints]
-            world_p[joints] = world_p[parents] + np.einsum("ntij,ntj->nti", parent_r, local_t[joints])
-        # back to (T, J, ...) in C order: reductions over these arrays sum in the same order as before
-        world_r = np.ascontiguousarray(world_r.transpose(1, 0, 2, 3))
-        world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2))
+            np.matmul(parent_r, local_r[a:b], out=world_r[a:b])
+            np.add(world_p[parents], np.einsum("ntij,ntj->nti", parent_r, local_t[a:b]), out=world_p[a:b])
+        # back to (T, J, ...) in skeleton order, C-contiguous: reductions over these arrays sum in the same order
+        world_r = np.ascontiguousarray(world_r.transpose(1, 0, 2, 3)[:, inverse])
+        world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2)[:, inverse])
         world_r.setflags(write=False)
         world_p.setflags(write=False)
         return Pose(world_p, world_r)
@@ -377,6 +379,24 @@ class Motion:
     def then(self, *others: "Motion") -> "Motion":
         """Frames of ``self`` followed by those of ``others`` (same skeleton and fps, no alignment)."""
         return concatenate([self, *others])
+
+
+def _depth_order(skeleton: Skeleton) -> tuple[np.ndarray, np.ndarray, tuple[tuple[int, int, np.ndarray], ...]]:
+    """The joints in order of tree depth for :attr:`Motion.pose`: ``order`` ``(J,)`` (root first, each depth's
+    joints in skeleton order), its ``inverse`` (position of each joint), and per depth 1, 2, ... the block
+    ``[a, b)`` of its joints in that order with their parents' positions ``(b - a,)``; cached per skeleton."""
+    known = skeleton.__dict__.get("_depth_order")
+    if known is None:
+        order = np.concatenate([[0]] + [joints for joints, _ in skeleton.depth_levels()]).astype(np.int64)
+        inverse = np.empty_like(order)
+        inverse[order] = np.arange(len(order))
+        levels, a = [], 1
+        for joints, parents in skeleton.depth_levels():
+            levels.append((a, a + len(joints), inverse[parents]))
+            a += len(joints)
+        known = (order, inverse, tuple(levels))
+        object.__setattr__(skeleton, "_depth_order", known)
+    return known
 
 
 def resampled_frames(n_frames: int, fps: float, new_fps: float) -> int:
