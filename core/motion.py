@@ -181,8 +181,6 @@ class Motion:
         """Write the world transforms of ``top``'s subtree into ``rotations`` ``(T, J, 3, 3)`` and
         ``positions`` ``(T, J, 3)``, from ``known``'s transform of its parent (see :meth:`_pose_below`)."""
         sub = self.skeleton.subtree(top)  # (n,) joints, parents first
-        slot = np.full(self.skeleton.n_joints, -1)
-        slot[sub] = np.arange(len(sub))
         local_r = quat_to_matrix(self.rotations[:, sub]).transpose(1, 0, 2, 3).copy()
         # the subtree's rows of local_translations() (the root, whose row is its position, is not in it)
         own_t = self.translations[:, sub] if self.translations is not None else \
@@ -195,11 +193,7 @@ class Motion:
         top_p = np.ascontiguousarray(known.positions[:, outside])[None]
         world_r[:1] = top_r @ local_r[:1]
         world_p[:1] = top_p + np.einsum("ntij,ntj->nti", top_r, local_t[:1])
-        for joints, parents in self.skeleton.depth_levels():
-            inside = slot[joints] > 0
-            if not inside.any():
-                continue
-            j, p = slot[joints[inside]], slot[parents[inside]]
+        for j, p in _subtree_levels(self.skeleton, top):
             parent_r = world_r[p]
             world_r[j] = parent_r @ local_r[j]
             world_p[j] = world_p[p] + np.einsum("ntij,ntj->nti", parent_r, local_t[j])
@@ -397,6 +391,26 @@ def _depth_order(skeleton: Skeleton) -> tuple[np.ndarray, np.ndarray, tuple[tupl
         known = (order, inverse, tuple(levels))
         object.__setattr__(skeleton, "_depth_order", known)
     return known
+
+
+def _subtree_levels(skeleton: Skeleton, top: int) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+    """Per tree depth below ``top``, the positions in ``skeleton.subtree(top)`` of that depth's joints and of
+    their parents (for :meth:`Motion._subtree_pose`); cached per skeleton and joint."""
+    known = skeleton.__dict__.get("_subtree_levels")
+    if known is None:
+        known = {}
+        object.__setattr__(skeleton, "_subtree_levels", known)
+    if top not in known:
+        sub = skeleton.subtree(top)
+        slot = np.full(skeleton.n_joints, -1)
+        slot[sub] = np.arange(len(sub))
+        levels = []
+        for joints, parents in skeleton.depth_levels():
+            inside = slot[joints] > 0
+            if inside.any():
+                levels.append((slot[joints[inside]], slot[parents[inside]]))
+        known[top] = tuple(levels)
+    return known[top]
 
 
 def resampled_frames(n_frames: int, fps: float, new_fps: float) -> int:
