@@ -274,6 +274,7 @@ def plant_all(widths: list[Smoothed]) -> None:
         goal = lerp(now.positions[:, ankle], np.tile(target, (k, 1)), cs)
         turn = slerp(now.quaternions(ankle), np.tile(r_want, (k, 1)), cs)
         sub = set_world_rotation(solve_leg(sub, side, goal), ankle, turn)
+    _ = sub.pose  # the legs' kinematics once for all the widths (their slices share it)
     for i, w in enumerate(todo):
         w._sub = sub[i * n:(i + 1) * n]
         w.jk = jerk_p99(jerks(st.positions(w.sub), st.fps))
