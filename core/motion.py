@@ -193,10 +193,14 @@ class Motion:
         top_p = np.ascontiguousarray(known.positions[:, outside])[None]
         world_r[:1] = top_r @ local_r[:1]
         world_p[:1] = top_p + np.einsum("ntij,ntj->nti", top_r, local_t[:1])
-        for j, p in _subtree_levels(self.skeleton, top):
+        for j, p in _subtree_levels(self.skeleton, top):  # slices where a depth's joints are a block (a limb)
             parent_r = world_r[p]
-            world_r[j] = parent_r @ local_r[j]
-            world_p[j] = world_p[p] + np.einsum("ntij,ntj->nti", parent_r, local_t[j])
+            if isinstance(j, slice):
+                np.matmul(parent_r, local_r[j], out=world_r[j])
+                np.add(world_p[p], np.einsum("ntij,ntj->nti", parent_r, local_t[j]), out=world_p[j])
+            else:
+                world_r[j] = parent_r @ local_r[j]
+                world_p[j] = world_p[p] + np.einsum("ntij,ntj->nti", parent_r, local_t[j])
         rotations[:, sub] = world_r.transpose(1, 0, 2, 3)
         positions[:, sub] = world_p.transpose(1, 0, 2)
 
@@ -393,9 +397,17 @@ def _depth_order(skeleton: Skeleton) -> tuple[np.ndarray, np.ndarray, tuple[tupl
     return known
 
 
-def _subtree_levels(skeleton: Skeleton, top: int) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+def _block(idx: np.ndarray) -> np.ndarray | slice:
+    """``idx`` as a slice when it is a run of consecutive indices (a view instead of a gathered copy)."""
+    if len(idx) and np.array_equal(idx, np.arange(idx[0], idx[0] + len(idx))):
+        return slice(int(idx[0]), int(idx[0]) + len(idx))
+    return idx
+
+
+def _subtree_levels(skeleton: Skeleton, top: int) -> tuple[tuple[np.ndarray | slice, np.ndarray | slice], ...]:
     """Per tree depth below ``top``, the positions in ``skeleton.subtree(top)`` of that depth's joints and of
-    their parents (for :meth:`Motion._subtree_pose`); cached per skeleton and joint."""
+    their parents, as slices where they are consecutive (for :meth:`Motion._subtree_pose`); cached per
+    skeleton and joint."""
     known = skeleton.__dict__.get("_subtree_levels")
     if known is None:
         known = {}
@@ -408,7 +420,7 @@ def _subtree_levels(skeleton: Skeleton, top: int) -> tuple[tuple[np.ndarray, np.
         for joints, parents in skeleton.depth_levels():
             inside = slot[joints] > 0
             if inside.any():
-                levels.append((slot[joints[inside]], slot[parents[inside]]))
+                levels.append((_block(slot[joints[inside]]), _block(slot[parents[inside]])))
         known[top] = tuple(levels)
     return known[top]
 
