@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d
-from scipy.spatial.transform import Rotation
+from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.ik import set_world_rotation
 from text2anim.core.metrics import JERK_PERCENTILE, ROOT_POP_WINDOW
@@ -159,15 +159,18 @@ class Stretch:
                 if not c.any():
                     continue
                 want = ref[lo:hi].pose if want is None else want  # kinematics is per frame: the region's only
-                r_want = Rotation.from_matrix(want.rotations[:, ankle]).as_quat()
+                r_want = rk.as_quat(rk.from_matrix(want.rotations[:, ankle]))  # Rotation's bits
                 self.feet.append((side, ankle, c, want.positions[:, ankle], r_want))
         moved = np.zeros(skel.n_joints, dtype=bool)  # the knees, ankles and toes the leg IK moves
         for _side, ankle, *_ in self.feet:
             hip = int(skel.parents[skel.parents[ankle]])
             moved[skel.subtree(hip)[1:]] = True
         self.fixed = np.flatnonzero(~moved)
-        self.before = base[self.a:lo].positions
-        self.after = base[hi:self.b].positions
+        # the measured frames either side of the region, their kinematics in one call (FK is per frame)
+        around = np.r_[self.a:lo, hi:self.b]
+        pos = Motion(skel, self.fps, base.root_positions[around], base.rotations[around],
+                     None if base.translations is None else base.translations[around]).positions
+        self.before, self.after = pos[:lo - self.a], pos[lo - self.a:]
 
     def __getitem__(self, i: int) -> Smoothed:
         """The ``i``-th of ``widths`` (:meth:`smoothed`), made once."""
