@@ -260,17 +260,22 @@ def _pop_part(cand: Smoothed, lims: tuple[float, float, float, float], near: boo
     return cand.pop / lims[3 if near else 1]
 
 
+def _replaces(near: float, jk: float, pop: float, kept: _Tried | None) -> bool:
+    """The rule: a candidate within the whole clips' figures, of nearness ``near`` (to the figures of the parts
+    the join replaces) and figures ``jk``, ``pop``, is kept instead of ``kept`` (the first within is kept):
+    a wider smoothing when it is no worse on either figure and nearer. It must stay monotone (lower figures
+    never make a candidate less eligible): :func:`_may_keep` applies it to lower bounds."""
+    return kept is None or (near < kept[0] - 1e-9 and jk <= kept[4] + 1e-9 and pop <= kept[5] + 1e-9)
+
+
 def _may_keep(cand: Smoothed, lims: tuple[float, float, float, float], kept: _Tried | None) -> bool:
     """Whether ``cand`` may be within the limits and then be kept (:func:`finish_region`), from its bounds:
     a candidate that cannot is not re-planted (exact: the choice is the one re-planting every candidate
-    makes; one that can only be the fallback, the least score, waits for :func:`_least`)."""
-    if _pop_part(cand, lims) > 1.0:
+    makes; one that can only be the fallback, the least score, waits for :func:`_least`). The cheap bound
+    (the pop alone) is asked first."""
+    if _pop_part(cand, lims) > 1.0 or not _replaces(_pop_part(cand, lims, near=True), 0.0, cand.pop, kept):
         return False
-    if kept is not None and (_pop_part(cand, lims, near=True) >= kept[0] - 1e-9 or cand.pop > kept[5] + 1e-9):
-        return False
-    if _floor(cand, lims) > 1.0:
-        return False
-    return kept is None or (_floor(cand, lims, near=True) < kept[0] - 1e-9 and cand.jk_floor <= kept[4] + 1e-9)
+    return _floor(cand, lims) <= 1.0 and _replaces(_floor(cand, lims, near=True), cand.jk_floor, cand.pop, kept)
 
 
 def _least(tried: list[tuple[float, float, Smoothed, int]], lims: tuple[float, float, float, float]) -> _Tried:
@@ -353,8 +358,9 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
                 # smoothing is taken if it is no worse on either figure and nearer the figures of the parts the
                 # join replaces
                 near = max(jk / lims[2], pop / lims[3])
-                if kept is None or (near < kept[0] - 1e-9 and jk <= kept[4] + 1e-9 and pop <= kept[5] + 1e-9):
+                if _replaces(near, jk, pop, kept):
                     kept = (near, sigma, stretch, cand, jk, pop, h2)
+                assert kept is not None  # the first within is always kept
                 if kept[0] <= 1.0:
                     break
         if kept is not None:

@@ -3,14 +3,16 @@ low-passed at one width, its feet re-planted by leg IK and its figures measured.
 
 What every width of a stretch shares is computed once (:class:`Stretch`): the feet's contact weights and
 targets (from the reference motion's kinematics over the region only), and the kinematics of the 3 frames
-either side of the region, which no width changes. A width is then measured in two steps:
+either side of the region, which no width changes. A width (:class:`Smoothed`) is measured as far as the
+search asks, each step dearer than the last:
 
-1. :meth:`Stretch.smoothed` low-passes the region and runs its kinematics once. That gives the hips' pop
-   exactly (re-planting the feet moves no hips) and a lower bound of the joint jerk p99: the jerk of every
-   joint the leg IK cannot move (all but the knees, ankles and toes) is already final, and the p99 of all
-   joints is at least the order statistic of those that still holds if every leg value were lower.
-2. :meth:`Smoothed.plant` re-plants the feet (two leg IK solves) and measures the jerk: only for a width
-   those bounds leave a chance of being chosen (:func:`synthesis.joinpass.finish_region` decides).
+1. the hips' path low-passed: the root pop, exact (re-planting the feet moves no hips);
+2. the rotations low-passed and their kinematics run once: a lower bound of the joint jerk p99
+   (:func:`jerk_floor`): the jerk of every joint the leg IK cannot move (all but the knees, ankles and toes)
+   is already final, and the p99 of all joints is at least the order statistic of those that still holds if
+   every leg value were lower;
+3. the feet re-planted (two leg IK solves, :func:`plant_all`, several widths at once) and the jerk measured:
+   only for a width the bounds leave a chance of being chosen (:func:`synthesis.joinpass.finish_region`).
 
 The figures are bit for bit ``core.metrics.quality(motion[lo - 3:hi + 3], None)`` of the whole candidate
 (jerk p99 m/s³, root pop m/s²; ``tests/synthesis/test_smoothing.py``), and the candidate's motion bit for
@@ -20,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d
+
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.ik import set_world_rotation

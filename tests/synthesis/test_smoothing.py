@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+
 from shared_data import library_motion
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.metrics import quality
