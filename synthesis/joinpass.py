@@ -30,8 +30,8 @@ own two source clips (as recorded, at the track's rate):
    clip after its core, the second before it, :func:`synthesis.assemble.join_side`):
    a kick's accelerations in its core are no licence for the join beside it.
    The candidates are :mod:`synthesis.smoothing`'s: the feet of a width are re-planted (step 3) only when
-   its exact hips' pop and a floor of its jerk leave it a chance of being chosen (:func:`_may_keep`,
-   :func:`_least`), several widths of a stretch in one IK solve; the choice is the one trying all makes.
+   its exact hips' pop and a floor of its jerk leave it a chance of being chosen (:mod:`synthesis.pruning`),
+   several widths of a stretch in one IK solve; the choice is the one trying all makes.
 3. **Feet stay put.** Wherever a foot is in contact in the engine's output, or
    held still by its locks (toes and heels: the ankle's position *and* world
    orientation are kept, so the toe stays), the leg is solved by IK back onto
@@ -66,6 +66,7 @@ from text2anim.core.motion import Motion
 from .blend import sample
 from .footlock import solve_leg
 from .inertialize import inertialize_at, inertialize_before
+from .pruning import Tried, least, may_keep, replaces
 from .smoothing import Smoothed, Stretch, plant_all
 
 SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
@@ -243,59 +244,6 @@ def _hardest(m: Motion, lo: int, hi: int) -> int:
 
 
 AHEAD = 2  # widths re-planted beside the one asked for, when they may count too (one IK solve for all)
-#: a candidate tried: (score or nearness, width, stretch, candidate, jerk p99, root pop, region end)
-_Tried = tuple[float, float, float, Smoothed, float, float, int]
-
-
-def _floor(cand: Smoothed, lims: tuple[float, float, float, float], near: bool = False) -> float:
-    """A lower bound of ``cand``'s score (of its nearness with ``near``) from its exact pop and the floor of
-    its jerk p99 (:class:`synthesis.smoothing.Smoothed`): the score is ``max(jerk / lim, pop / lim)``. The pop
-    alone is a bound already (known before the rotations are low-passed): use :func:`_pop_part` first."""
-    k = 2 if near else 0
-    return max(cand.jk_floor / lims[k], cand.pop / lims[k + 1])
-
-
-def _pop_part(cand: Smoothed, lims: tuple[float, float, float, float], near: bool = False) -> float:
-    """The pop's part of ``cand``'s score (nearness with ``near``): a bound from the hips' path alone."""
-    return cand.pop / lims[3 if near else 1]
-
-
-def _replaces(near: float, jk: float, pop: float, kept: _Tried | None) -> bool:
-    """The rule: a candidate within the whole clips' figures, of nearness ``near`` (to the figures of the parts
-    the join replaces) and figures ``jk``, ``pop``, is kept instead of ``kept`` (the first within is kept):
-    a wider smoothing when it is no worse on either figure and nearer. It must stay monotone (lower figures
-    never make a candidate less eligible): :func:`_may_keep` applies it to lower bounds."""
-    return kept is None or (near < kept[0] - 1e-9 and jk <= kept[4] + 1e-9 and pop <= kept[5] + 1e-9)
-
-
-def _may_keep(cand: Smoothed, lims: tuple[float, float, float, float], kept: _Tried | None) -> bool:
-    """Whether ``cand`` may be within the limits and then be kept (:func:`finish_region`), from its bounds:
-    a candidate that cannot is not re-planted (exact: the choice is the one re-planting every candidate
-    makes; one that can only be the fallback, the least score, waits for :func:`_least`). The cheap bound
-    (the pop alone) is asked first."""
-    if _pop_part(cand, lims) > 1.0 or not _replaces(_pop_part(cand, lims, near=True), 0.0, cand.pop, kept):
-        return False
-    return _floor(cand, lims) <= 1.0 and _replaces(_floor(cand, lims, near=True), cand.jk_floor, cand.pop, kept)
-
-
-def _least(tried: list[tuple[float, float, Smoothed, int]], lims: tuple[float, float, float, float]) -> _Tried:
-    """The fallback when no candidate is within the limits: the first of least score of every ``(width,
-    stretch, candidate, region end)`` tried, in order; a candidate whose floor cannot beat the least so far
-    is not re-planted."""
-    best: _Tried | None = None
-    for k, (sigma, stretch, cand, h2) in enumerate(tried):
-        if best is not None and cand.jk is None:
-            if _pop_part(cand, lims) >= best[0] - 1e-9 or _floor(cand, lims) >= best[0] - 1e-9:
-                continue
-            bound = best[0] - 1e-9  # the rest of its stretch that may beat the least too: one IK solve for all
-            plant_all([c for _s, _t, c, _h in tried[k:]
-                       if c.stretch is cand.stretch and _pop_part(c, lims) < bound and _floor(c, lims) < bound])
-        jk, pop = cand.plant()
-        score = max(jk / lims[0], pop / lims[1])
-        if best is None or score < best[0] - 1e-9:
-            best = (score, sigma, stretch, cand, jk, pop, h2)
-    assert best is not None  # STRETCHES and SIGMAS are not empty
-    return best
 
 
 def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int, int]]:
@@ -330,7 +278,7 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     lims = (max(jk_lim * SLACK, 1e-9), max(pop_lim * SLACK, 1e-9), max(jk_near * SLACK, 1e-9),
             max(pop_near * SLACK, 1e-9))
     tried: list[tuple[float, float, Smoothed, int]] = []  # (width, stretch, candidate, region end), in order
-    kept: _Tried | None = None  # within the limits, nearest
+    kept: Tried | None = None  # within the limits, nearest
     whi = max(min(hi, region.keep[1]), region.w0 + 2)  # retimed: [lo, whi), never the next core
     seam = _hardest(seamed, lo, whi)
     for stretch in STRETCHES:
@@ -348,24 +296,24 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
         for i, sigma in enumerate(SIGMAS):
             cand = widths[i]
             tried.append((sigma, stretch, cand, h2))
-            if not _may_keep(cand, lims, kept):
+            if not may_keep(cand, lims, kept):
                 continue
             if cand.jk is None:  # re-planted with the next widths that may count too: one IK solve for all
                 ahead = range(i + 1, min(len(SIGMAS), i + 1 + AHEAD))
-                plant_all([cand] + [widths[j] for j in ahead if _may_keep(widths[j], lims, kept)])
+                plant_all([cand] + [widths[j] for j in ahead if may_keep(widths[j], lims, kept)])
             jk, pop = cand.plant()
             if max(jk / lims[0], pop / lims[1]) <= 1.0:  # within the whole clips' figures: no more time. A wider
                 # smoothing is taken if it is no worse on either figure and nearer the figures of the parts the
                 # join replaces
                 near = max(jk / lims[2], pop / lims[3])
-                if _replaces(near, jk, pop, kept):
+                if replaces(near, jk, pop, kept):
                     kept = (near, sigma, stretch, cand, jk, pop, h2)
                 assert kept is not None  # the first within is always kept
                 if kept[0] <= 1.0:
                     break
         if kept is not None:
             break
-    _score, sigma, stretch, chosen, jk, pop, h2 = kept or _least(tried, lims)
+    _score, sigma, stretch, chosen, jk, pop, h2 = kept or least(tried, lims)
     # outside [lo, h2) the frames are the input's (those the seams left alone): their kinematics is known
     rows = np.concatenate([np.arange(lo), np.full(h2 - lo, -1), np.arange(hi, T)])
     done = lift_off_floor(clear_swings(chosen.motion().share_pose(motion, rows), lo, h2), lo, h2)

@@ -222,6 +222,11 @@ class Smoothed:
         return self._sub
 
     @property
+    def measured(self) -> bool:
+        """Whether :attr:`jk_floor` is known (the rotations low-passed and their kinematics run)."""
+        return self._floor is not None
+
+    @property
     def jk_floor(self) -> float:
         """A lower bound of the jerk p99 (m/s³) before the feet are re-planted (:func:`jerk_floor`)."""
         if self._floor is None:

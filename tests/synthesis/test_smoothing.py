@@ -78,3 +78,28 @@ def testsource_figures_are_remembered_by_content_not_by_object():
     assert source_figures(kick.read_only(), 30.0) == (q.jerk_p99, q.root_pop)  # a copy: the same figures
     q60 = quality(kick, 60.0)
     assert source_figures(kick, 60.0) == (q60.jerk_p99, q60.root_pop)
+
+
+@pytest.mark.parametrize(("lims", "fewer"), [((100.0, 0.5, 50.0, 0.4), True),  # the pop decides: bounds prune
+                                             ((1.0, 100.0, 1.0, 50.0), False),  # the jerk decides
+                                             ((1e-9, 1e-9, 1e-9, 1e-9), False)])  # scores ~1e12: rounding
+def test_the_fallback_chooses_as_re_planting_every_width_does(kick, lims, fewer):
+    """No width within the limits: the least score, first in order, is chosen; found from bounds (with
+    fewer widths re-planted where the bounds allow), it is the plain scan's over every exact score."""
+    from text2anim.synthesis.pruning import least
+
+    def tried():
+        stretches = [_stretch(kick, 10, 44), _stretch(kick, 12, 40)]
+        return [(s, k, st.smoothed(s, 6, 6), st.hi) for k, st in enumerate(stretches) for s in WIDTHS]
+
+    plain = tried()
+    best = None
+    for s, k, c, h in plain:
+        jk, pop = c.plant()
+        score = max(jk / lims[0], pop / lims[1])
+        if best is None or score < best[0] - 1e-9:
+            best = (score, s, k, c, jk, pop, h)
+    lazy = tried()
+    got = least(lazy, lims)
+    assert got[1:3] == best[1:3] and got[4:] == best[4:] and got[0] == best[0]
+    assert (sum(c.jk is not None for _s, _k, c, _h in lazy) < len(lazy)) == fewer
