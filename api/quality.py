@@ -13,8 +13,8 @@ at one rate:
   root pop and jerk p99 ≤ 1.2 × the sources' larger, floor penetration ≤ 1 cm,
   frozen frames ≤ 5 %);
 - per actor, the root pop the method *introduced* (:func:`introduced_root_pop`): over the frames whose
-  hips acceleration is not that of a source clip as placed (turned and moved, played verbatim), the
-  worst jolt of the frames the method made itself.
+  hips acceleration is not that of a source clip as placed (turned and moved, played verbatim, or moved
+  by a constant offset), the worst jolt of the frames the method made itself.
 """
 from __future__ import annotations
 
@@ -99,14 +99,16 @@ def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS,
     return out
 
 
-#: m: a hips position within this of an element's as placed is that element's own (float noise is ~1e-12)
+#: m: how far a hips path may stray from a placed element's moved by one constant offset and still be its own
 PLAYED_TOL = 1e-3
 
 
 def played_frames(motion, paths, fps: float = COMPARE_FPS) -> np.ndarray:
     """``(T,)`` bool at ``fps``: frames whose root pop (the hips' horizontal acceleration after the 3-frame
-    average) is that of a source clip as placed, because every frame it is taken from (two either side)
-    has the hips where one and the same placed element has them (within :data:`PLAYED_TOL`).
+    average) is that of a source clip as placed: on every frame it is taken from (two either side) the
+    hips are where one and the same placed element has them, moved by one constant offset (within
+    :data:`PLAYED_TOL`). A constant offset changes no acceleration: a clip played verbatim, or moved
+    whole (an adaptation's hips held by its feet's offsets), keeps its own figure there.
 
     ``motion``: a result's motion at its own rate; ``paths``: its ``(K, T0, 2)``
     :attr:`~synthesis.result.Result.placed_paths`, resampled here to ``fps`` as the motion is (linear).
@@ -122,9 +124,9 @@ def played_frames(motion, paths, fps: float = COMPARE_FPS) -> np.ndarray:
     own = np.zeros(n, dtype=bool)
     for path in paths:
         at = np.stack([np.interp(t_new, t_old, path[:, k]) for k in range(2)], axis=1)  # NaN spreads: not played
-        near = np.linalg.norm(xz - at, axis=1) < PLAYED_TOL  # NaN compares False
-        whole = np.lib.stride_tricks.sliding_window_view(near, 2 * half + 1).all(axis=1)  # (n - 2 half,)
-        own[half:n - half] |= whole
+        off = np.lib.stride_tricks.sliding_window_view(xz - at, 2 * half + 1, axis=0)  # (n - 2 half, 2, 2 half + 1)
+        spread = np.linalg.norm(off.max(axis=-1) - off.min(axis=-1), axis=-1)  # NaN where not played
+        own[half:n - half] |= spread < PLAYED_TOL  # NaN compares False
     return own
 
 
