@@ -26,3 +26,12 @@ def placed_paths(placed: Sequence[Placed], n_frames: int) -> np.ndarray:
         if b > a:
             out[k, a:b] = p.motion.root_positions[a - p.offset:b - p.offset][:, [0, 2]]
     return out
+
+
+def fitted(paths: np.ndarray, n_frames: int) -> np.ndarray:
+    """``paths`` ``(K, T, 2)`` cut or extended (NaN: not played) to ``n_frames`` frames: a motion made longer
+    after it was laid (another actor's join given more time) plays no placed element on the frames added."""
+    if paths.shape[1] >= n_frames:
+        return paths[:, :n_frames]
+    pad = np.full((paths.shape[0], n_frames - paths.shape[1], 2), np.nan)
+    return np.concatenate([paths, pad], axis=1)
