@@ -25,9 +25,10 @@ own two source clips (as recorded, at the track's rate):
    horizontal acceleration (m/s², :func:`core.metrics.quality`) within the two
    sources' are kept; the time added is reported (``post.added_s``) and the
    elements after the join start that much later. At that stretch a wider
-   smoothing is taken instead when it is no worse on either figure and nearer
-   the figures of the frames the join replaces (``Region.near``: the first
-   clip after its core, the second before it, :func:`synthesis.assemble.join_side`):
+   smoothing is taken instead when it is still within the sources' figures and
+   nearer the figures of the frames the join replaces (``Region.near``: the first
+   clip after its core, the second before it, :func:`synthesis.assemble.join_side`;
+   "nearer": the larger of the two ratios, jerk and root pop, is smaller):
    a kick's accelerations in its core are no licence for the join beside it.
    The candidates are :mod:`synthesis.smoothing`'s: the feet of a width are re-planted (step 3) only when
    its exact hips' pop and a floor of its jerk leave it a chance of being chosen (:mod:`synthesis.pruning`),
@@ -303,8 +304,9 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
                 plant_all([cand] + [widths[j] for j in ahead if may_keep(widths[j], lims, kept)])
             jk, pop = cand.plant()
             if max(jk / lims[0], pop / lims[1]) <= 1.0:  # within the whole clips' figures: no more time. A wider
-                # smoothing is taken if it is no worse on either figure and nearer the figures of the parts the
-                # join replaces
+                # smoothing is taken if it is still within them and nearer the figures of the parts the join
+                # replaces (the larger ratio smaller: a root pop brought down to the replaced frames' may cost
+                # jerk within the sources')
                 near = max(jk / lims[2], pop / lims[3])
                 if replaces(near, jk, pop, kept):
                     kept = (near, sigma, stretch, cand, jk, pop, h2)

@@ -33,10 +33,10 @@ def pop_bound(cand: Smoothed, lims: tuple[float, float, float, float], near: boo
 
 def replaces(near: float, jk: float, pop: float, kept: Tried | None) -> bool:
     """The rule: a candidate within the whole clips' figures, of nearness ``near`` (to the figures of the parts
-    the join replaces) and figures ``jk``, ``pop``, is kept instead of ``kept`` (the first within is kept):
-    a wider smoothing when it is no worse on either figure and nearer. It must stay monotone (lower figures
-    never make a candidate less eligible): :func:`may_keep` applies it to lower bounds."""
-    return kept is None or (near < kept[0] - 1e-9 and jk <= kept[4] + 1e-9 and pop <= kept[5] + 1e-9)
+    the join replaces; ``jk``, ``pop`` its figures) is kept instead of ``kept`` (the first within is kept) when
+    it is nearer: the larger of its two ratios smaller. It must stay monotone (lower figures never make a
+    candidate less eligible): :func:`may_keep` applies it to lower bounds."""
+    return kept is None or near < kept[0] - 1e-9
 
 
 def may_keep(cand: Smoothed, lims: tuple[float, float, float, float], kept: Tried | None) -> bool:
