@@ -89,45 +89,20 @@ def _shortest_arc(src: np.ndarray, dst: np.ndarray) -> np.ndarray:
     return rk.from_rotvec(axis * angle[:, None])
 
 
-def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0, 0.0, 0.0)) -> Motion:
-    """Rotate ``chain``'s upper and middle joints so its end joint reaches ``targets``.
+def solve_rows(a: np.ndarray, b: np.ndarray, c: np.ndarray, Ra: np.ndarray, Rb: np.ndarray, Rp: np.ndarray,
+               targets: np.ndarray, poles: np.ndarray, hinge=(1.0, 0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`two_bone_ik` 's arithmetic on rows: each row a chain on one frame, rows independent (so the
+    chains of both legs, or of several frame ranges, are solved in one call with the same bits).
 
     Args:
-        motion: the motion to edit (not modified).
-        chain: ``(upper, middle, end)`` joint names or indices, each the parent
-            of the next (``("LeftUpLeg", "LeftLeg", "LeftFoot")``).
-        targets: ``(T, 3)`` (or ``(3,)``) world positions for the end joint, metres.
-        mask: ``(T,)`` bool, the frames to solve; others are returned unchanged.
-            ``None`` solves every frame.
-        pole: ``None``, ``(3,)`` or ``(T, 3)`` world points the middle joint
-            should bend towards (a point in front of the knee). ``None`` keeps
-            the current bend plane (the current middle joint is the pole).
-        hinge: the middle joint's flexion axis in the upper bone's frame
-            (positive rotation about it flexes). Knee of the canonical (CMU-like)
-            skeleton: ``(1, 0, 0)``; left elbow ``(0, -1, 0)``, right ``(0, 1, 0)``.
+        a, b, c: ``(N, 3)`` world positions of the upper, middle and end joints.
+        Ra, Rb, Rp: ``(N, 3, 3)`` world rotations of the upper and middle joints and of the upper's parent.
+        targets, poles: ``(N, 3)`` world positions for the end joint and for the middle joint to bend towards.
+        hinge: the middle joint's flexion axis in the upper bone's frame, ``(3,)``.
 
     Returns:
-        A new :class:`Motion`; only the local rotations of upper and middle change.
+        The new local rotations of the upper and middle joints, quaternions ``(N, 4)`` each.
     """
-    skel = motion.skeleton
-    T = motion.n_frames
-    a_j, b_j, c_j = (_joint(motion, j) for j in chain)
-    if skel.parents[b_j] != a_j or skel.parents[c_j] != b_j:
-        raise ValueError(f"{[skel.names[j] for j in (a_j, b_j, c_j)]} is not a parent-child chain")
-    mask = np.ones(T, dtype=bool) if mask is None else np.asarray(mask, dtype=bool).reshape(T)
-    if T == 0 or not mask.any():
-        return motion
-    targets = _rows(targets, T, "targets")[mask]
-    idx = np.flatnonzero(mask)
-
-    pose = motion.pose
-    P, R = pose.positions[idx], pose.rotations[idx]
-    a, b, c = P[:, a_j], P[:, b_j], P[:, c_j]
-    Ra, Rb = R[:, a_j], R[:, b_j]
-    parent = skel.parents[a_j]
-    Rp = R[:, parent] if parent >= 0 else np.broadcast_to(np.eye(3), Ra.shape)
-    poles = b.copy() if pole is None else _rows(pole, T, "pole")[mask]
-
     # 1. Bend about the hinge (fixed in the upper bone) to get the right reach.
     n, _ = _unit(np.einsum("tij,j->ti", Ra, np.asarray(hinge, dtype=np.float64)))
     w = b - a
@@ -174,10 +149,50 @@ def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0
     Ra_new = G @ Ra
     local_a = np.swapaxes(Rp, -1, -2) @ Ra_new
     local_b = np.swapaxes(Ra, -1, -2) @ Rb_bent  # G cancels: R_a'^T (G R_b') = R_a^T R_b'
+    return rk.as_quat(rk.from_matrix(local_a)), rk.as_quat(rk.from_matrix(local_b))
+
+
+def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0, 0.0, 0.0)) -> Motion:
+    """Rotate ``chain``'s upper and middle joints so its end joint reaches ``targets``.
+
+    Args:
+        motion: the motion to edit (not modified).
+        chain: ``(upper, middle, end)`` joint names or indices, each the parent
+            of the next (``("LeftUpLeg", "LeftLeg", "LeftFoot")``).
+        targets: ``(T, 3)`` (or ``(3,)``) world positions for the end joint, metres.
+        mask: ``(T,)`` bool, the frames to solve; others are returned unchanged.
+            ``None`` solves every frame.
+        pole: ``None``, ``(3,)`` or ``(T, 3)`` world points the middle joint
+            should bend towards (a point in front of the knee). ``None`` keeps
+            the current bend plane (the current middle joint is the pole).
+        hinge: the middle joint's flexion axis in the upper bone's frame
+            (positive rotation about it flexes). Knee of the canonical (CMU-like)
+            skeleton: ``(1, 0, 0)``; left elbow ``(0, -1, 0)``, right ``(0, 1, 0)``.
+
+    Returns:
+        A new :class:`Motion`; only the local rotations of upper and middle change.
+    """
+    skel = motion.skeleton
+    T = motion.n_frames
+    a_j, b_j, c_j = (_joint(motion, j) for j in chain)
+    if skel.parents[b_j] != a_j or skel.parents[c_j] != b_j:
+        raise ValueError(f"{[skel.names[j] for j in (a_j, b_j, c_j)]} is not a parent-child chain")
+    mask = np.ones(T, dtype=bool) if mask is None else np.asarray(mask, dtype=bool).reshape(T)
+    if T == 0 or not mask.any():
+        return motion
+    targets = _rows(targets, T, "targets")[mask]
+    idx = np.flatnonzero(mask)
+
+    pose = motion.pose
+    P, R = pose.positions[idx], pose.rotations[idx]
+    parent = skel.parents[a_j]
+    Rp = R[:, parent] if parent >= 0 else np.broadcast_to(np.eye(3), R[:, a_j].shape)
+    poles = P[:, b_j].copy() if pole is None else _rows(pole, T, "pole")[mask]
+    qa, qb = solve_rows(P[:, a_j], P[:, b_j], P[:, c_j], R[:, a_j], R[:, b_j], Rp, targets, poles, hinge)
 
     rots = motion.rotations.copy()
-    rots[idx, a_j] = rk.as_quat(rk.from_matrix(local_a))
-    rots[idx, b_j] = rk.as_quat(rk.from_matrix(local_b))
+    rots[idx, a_j] = qa
+    rots[idx, b_j] = qb
     return motion.replace(rotations=rots)
 
 
@@ -190,15 +205,17 @@ def set_world_rotation(motion: Motion, joint, rotations, mask=None) -> Motion:
         return motion
     q = np.asarray(rotations, dtype=np.float64).reshape(T, 4)[mask]
     p = motion.skeleton.parents[j]
-    world = rk.from_quat(q)
-    if p >= 0:
-        parent = rk.from_matrix(motion.pose.rotations[mask, p])
-        local = rk.compose(rk.inverse(parent), world)
-    else:
-        local = world
     rots = motion.rotations.copy()
-    rots[mask, j] = rk.as_quat(local)
+    rots[mask, j] = world_to_local(motion.pose.rotations[mask, p] if p >= 0 else None, q)
     return motion.replace(rotations=rots)
+
+
+def world_to_local(parent: np.ndarray | None, world: np.ndarray) -> np.ndarray:
+    """Local rotations ``(N, 4)`` that give a joint the world rotations ``world`` (quaternions ``(N, 4)``)
+    under its parent's world rotations ``parent`` (matrices ``(N, 3, 3)``; ``None`` for the root): rows
+    independent, :func:`set_world_rotation` 's arithmetic."""
+    q = rk.from_quat(world)
+    return rk.as_quat(q if parent is None else rk.compose(rk.inverse(rk.from_matrix(parent)), q))
 
 
 def _limb(motion: Motion, side: str, kind: str) -> tuple[tuple[int, int, int], tuple[float, float, float]]:

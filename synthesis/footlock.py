@@ -18,7 +18,7 @@ integrated. Past the blend only the next motion counts, so the foot does what
 that clip does, displaced by whatever offset the lock had built up.
 
 A foot that lands during the blend is carried to where the planted source
-puts it over its approach (:func:`lock_foot`). At ``end`` the foot leaves
+puts it over its approach (:func:`lock_feet`). At ``end`` the foot leaves
 the ground in the next motion and is **released while it is in the air**: the leg's joint angles are blended from the locked
 solution back to the motion's own by eq. (3) with the ratio of eq. (4) over
 the air phase ``[end, release_end)``, so it lands where the next motion puts
@@ -34,7 +34,7 @@ from .blend import ease, ratio, slerp
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import runs
-from text2anim.core.ik import leg_ik, set_world_rotation
+from text2anim.core.ik import leg_ik, solve_rows, world_to_local
 from text2anim.core.motion import Motion
 
 
@@ -115,66 +115,82 @@ def solve_leg(motion: Motion, side: str, targets: np.ndarray) -> Motion:
     return leg_ik(motion, side, h + v * scale[:, None], pole=pole)
 
 
-def release(motion: Motion, side: str, begin: int, end: int, offset: np.ndarray, turn: np.ndarray,
-            profile: str = "smooth") -> Motion:
-    """Release a locked foot over ``[begin, end)`` while it is in the air (eq. (3)).
+@dataclass(frozen=True)
+class LegGoal:
+    """A leg driven over frames ``[begin, end)``: its ankle onto ``targets`` ``(n, 3)`` (world, metres;
+    :func:`solve_leg` 's reach and knee direction) and turned to the world rotations ``ankle`` ``(n, 4)``."""
 
-    The lock's last offset (``offset`` metres and ``turn``, the ankle's rotation
-    relative to its own, a quaternion ``(1, 4)``) rides on the motion's own foot, solved by IK; the
-    leg's joint angles are then blended from that solution to the motion's own,
-    ``angle = (1 - ratio) * locked + ratio * own`` with the ratio of eq. (4).
-    """
-    b, e = max(0, begin), min(motion.n_frames, end)
-    if e <= b:
-        return motion
+    side: str
+    begin: int
+    end: int
+    targets: np.ndarray
+    ankle: np.ndarray
+
+
+def _chain(motion: Motion, side: str) -> tuple[int, int, int]:
+    """``(hip, knee, ankle)`` joint indices of the ``side`` leg."""
     ankle = _ankle(motion, side)
-    sub = motion[b:e]
-    pose = sub.pose
-    r_own = rk.from_matrix(pose.rotations[:, ankle])
-    solved = solve_leg(sub, side, pose.positions[:, ankle] + offset)
-    solved = set_world_rotation(solved, ankle, rk.as_quat(rk.compose(r_own, turn)))
-    w = ease(ratio(e - b), profile)  # eq. (4), eased
-    legs = list(body_map(motion.skeleton).joints(f"{side}_leg"))
-    rots = sub.rotations.copy()
-    rots[:, legs] = slerp(solved.rotations[:, legs], sub.rotations[:, legs], w[:, None])  # eq. (3)
-    out = motion.rotations.copy()
-    out[b:e] = rots
-    return motion.replace(rotations=out)
+    knee = int(motion.skeleton.parents[ankle])
+    return int(motion.skeleton.parents[knee]), knee, ankle
 
 
-def lock_foot(motion: Motion, side: str, locks: list[Lock], first: int, positions: list[np.ndarray],
-              rotations: list[np.ndarray], weights: list[np.ndarray], profile: str = "smooth") -> Motion:
-    """Apply all the locks of one foot in one join.
+def _solve(span: Motion, lo: int, goals: list[LegGoal]) -> np.ndarray:
+    """The local rotations ``(T, J, 4)`` of ``span`` (the motion's frames from ``lo`` on) with every goal
+    solved: :func:`solve_leg` then :func:`core.ik.set_world_rotation` per goal, all goals' frames as rows of
+    one solve (per row the same arithmetic: the same bits). The goals of one leg must not overlap."""
+    skel = span.skeleton
+    offs = skel.offsets
+    chains = [_chain(span, g.side) for g in goals]
+    frames = np.concatenate([np.arange(g.begin - lo, g.end - lo) for g in goals])
+    hip, knee, ankle = (np.concatenate([np.full(g.end - g.begin, c[k]) for g, c in zip(goals, chains)])
+                        for k in range(3))
+    reach = np.concatenate([np.full(g.end - g.begin, REACH * (np.linalg.norm(offs[c[1]]) + np.linalg.norm(offs[c[2]])))
+                            for g, c in zip(goals, chains)])
+    pose = span.pose
+    P, R = pose.positions, pose.rotations
+    h = P[frames, hip]
+    v = np.concatenate([g.targets for g in goals]) - h
+    dist = np.linalg.norm(v, axis=-1)
+    scale = np.minimum(1.0, reach / np.maximum(dist, 1e-9))
+    Rh = R[frames, hip]
+    pole = P[frames, knee] + 0.5 * np.einsum("tij,j->ti", Rh, rest_forward(skel))  # as solve_leg
+    qa, qb = solve_rows(h, P[frames, knee], P[frames, ankle], Rh, R[frames, knee], R[frames, skel.parents[hip]],
+                        h + v * scale[:, None], pole)
+    rots = span.rotations.copy()
+    rots[frames, hip] = qa
+    rots[frames, knee] = qb
+    solved = span.replace(rotations=rots)  # its kinematics: the legs' subtrees redone from span's
+    rots = rots.copy()
+    rots[frames, ankle] = world_to_local(solved.pose.rotations[frames, knee],
+                                         np.concatenate([g.ankle for g in goals]))
+    return rots
 
-    Args:
-        motion: the joined motion (not yet locked on this side).
-        locks: this foot's :class:`Lock` s, in time order, none beginning before ``first``.
-        first: the frame the sources start at (the blend's first frame).
-        positions, rotations: per source motion, its ankle's world positions ``(N, 3)`` and
-            rotation matrices ``(N, 3, 3)`` over frames ``[first, first + N)``.
-        weights: per source ``(N,)``: its blend weight where the foot is planted in it, else 0.
 
-    Each lock's target starts where the planted sources put the foot (their
-    weighted mean) and follows their motion (:func:`planted_targets`). Between
-    ``first`` and the first lock, and between two locks, the foot's offset
-    from its own path moves smoothly (the ``smooth`` profile) from the one
-    before to the one after, so a foot that lands during the blend is
-    carried to its lock without a jump; after the last lock it is
-    :func:`release` d.
-    """
-    if not locks:
-        return motion
-    locks = sorted(locks, key=lambda lk: lk.begin)
-    ankle = _ankle(motion, side)
+@dataclass(frozen=True)
+class FootLocks:
+    """One foot's locks in a join and its planted sources (:func:`lock_feet`): ``positions``,
+    ``rotations`` per source its ankle's world positions ``(N, 3)`` and rotation matrices ``(N, 3, 3)``
+    from the join's first frame; ``weights`` per source ``(N,)``: its blend weight where the foot is
+    planted in it, else 0."""
+
+    locks: list[Lock]
+    positions: list[np.ndarray]
+    rotations: list[np.ndarray]
+    weights: list[np.ndarray]
+
+
+def _lock_goal(pose, lo: int, side: str, ankle: int, feet: FootLocks, first: int, profile: str):
+    """The goal holding one foot over ``[first, stop)`` (see :func:`lock_feet`) from ``pose`` (of the
+    motion's frames from ``lo``), and the last lock's offset and turn ``(goal, d (3,), e (3,))``."""
+    locks = sorted(feet.locks, key=lambda lk: lk.begin)
+    positions, rotations = feet.positions, feet.rotations
     stop = locks[-1].end
-    sub = motion[first:stop]
-    pose = sub.pose
-    p = pose.positions[:, ankle]
-    r = rk.from_matrix(pose.rotations[:, ankle])  # (T, 4) quaternions (core.rotkernels: scipy's bits)
+    p = pose.positions[first - lo:stop - lo, ankle]
+    r = rk.from_matrix(pose.rotations[first - lo:stop - lo, ankle])  # (T, 4) (core.rotkernels: scipy's bits)
     T = len(p)
     d = np.zeros((T, 3))
     e = np.zeros((T, 3))
-    w = np.stack([x[:T] for x in weights])
+    w = np.stack([x[:T] for x in feet.weights])
     for lk in locks:
         i0, i1 = lk.begin - first, lk.end - first
         tot = w[:, i0].sum()
@@ -197,13 +213,55 @@ def lock_foot(motion: Motion, side: str, locks: list[Lock], first: int, position
             e[prev_end:i0] = prev_e + u * (e[i0] - prev_e)
         prev_end = lk.end - first
         prev_d, prev_e = d[prev_end - 1].copy(), e[prev_end - 1].copy()
-    solved = solve_leg(sub, side, p + d)
-    solved = set_world_rotation(solved, ankle, rk.as_quat(rk.compose(r, rk.from_rotvec(e))))
+    goal = LegGoal(side, first, stop, p + d, rk.as_quat(rk.compose(r, rk.from_rotvec(e))))
+    return goal, prev_d, prev_e
+
+
+def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: str = "smooth") -> Motion:
+    """Apply all the locks of both feet in one join, each foot then released (one IK solve for all).
+
+    Per foot (its :class:`FootLocks`; no lock begins before ``first``, the frame the sources start at,
+    the blend's first): each lock's target starts where the planted sources put the foot (their
+    weighted mean) and follows their motion (:func:`planted_targets`). Between ``first`` and the first
+    lock, and between two locks, the foot's offset from its own path moves smoothly (the ``profile``)
+    from the one before to the one after, so a foot that lands during the blend is carried to its lock
+    without a jump. After the last lock the foot is **released** over ``[end, release_end)`` while it is
+    in the air (eq. (3)): the lock's last offset and turn ride on the motion's own foot, solved by IK,
+    and the leg's joint angles are blended from that solution to the motion's own,
+    ``angle = (1 - ratio) * locked + ratio * own`` with the ratio of eq. (4), eased.
+    """
+    feet = {s: f for s, f in feet.items() if f.locks}
+    if not feet:
+        return motion
+    n = motion.n_frames
+    hi = max(max(lk.release_end for lk in f.locks) for f in feet.values())
+    hi = min(n, max(hi, max(max(lk.end for lk in f.locks) for f in feet.values())))
+    span = motion[first:hi]
+    pose = span.pose
+    goals, releases = [], []
+    for side, f in feet.items():
+        ankle = _ankle(motion, side)
+        goal, prev_d, prev_e = _lock_goal(pose, first, side, ankle, f, first, profile)
+        goals.append(goal)
+        last = max(f.locks, key=lambda lk: lk.begin)
+        b, e = max(0, last.end), min(n, last.release_end)
+        if e > b:  # the release: the lock's offset riding on the motion's own foot
+            r_own = rk.from_matrix(pose.rotations[b - first:e - first, ankle])
+            turn = rk.from_rotvec(prev_e)
+            goals.append(LegGoal(side, b, e, pose.positions[b - first:e - first, ankle] + prev_d,
+                                 rk.as_quat(rk.compose(r_own, turn))))
+            releases.append((side, b, e))
+    rots = _solve(span, first, goals)
+    if releases:  # eq. (3) over the legs' joints of every release at once
+        legs = [np.asarray(body_map(motion.skeleton).joints(f"{side}_leg")) for side, _, _ in releases]
+        fr = [np.repeat(np.arange(b - first, e - first), len(j)) for (_, b, e), j in zip(releases, legs)]
+        jt = [np.tile(j, e - b) for (_, b, e), j in zip(releases, legs)]
+        w = [np.repeat(ease(ratio(e - b), profile), len(j)) for (_, b, e), j in zip(releases, legs)]  # eq. (4), eased
+        fr_all, jt_all = np.concatenate(fr), np.concatenate(jt)
+        rots[fr_all, jt_all] = slerp(rots[fr_all, jt_all], span.rotations[fr_all, jt_all], np.concatenate(w))
     out = motion.rotations.copy()
-    out[first:stop] = solved.rotations
-    motion = motion.replace(rotations=out)
-    last = locks[-1]
-    return release(motion, side, last.end, last.release_end, prev_d, rk.from_rotvec(prev_e), profile)
+    out[first:hi] = rots
+    return motion.replace(rotations=out)
 
 
 CLEARANCE_SLOPE = 0.3  # m of height per m of horizontal distance from the nearer end of a swing
@@ -212,9 +270,39 @@ SWING_SPEED = 0.3  # m/s: only where the foot moves faster than this does its he
 LIFT_JERK = 500.0  # m/s^3: the largest jerk a lift may add (short runs get lower arcs)
 
 
-def lift_swing(motion: Motion, side: str, begin: int, end: int,
-               slope: float = CLEARANCE_SLOPE, top: float = CLEARANCE_MAX) -> Motion:
-    """Keep a foot off the floor while a blend (or a release) carries it through the air, ``[begin, end)``.
+def _lift_goal(pose, lo: int, fps: float, side: str, feet: tuple[int, int], b: int, e: int,
+               slope: float, top: float) -> LegGoal | None:
+    """The goal lifting one swing ``[b, e)`` (see :func:`lift_swings`) from ``pose`` (frames from ``lo``)."""
+    ankle, toe = feet
+    pos = pose.positions[b - lo:e - lo]
+    p = pos[:, ankle]
+    low = np.minimum(p[:, 1], pos[:, toe, 1])  # the foot's lowest point
+    step = np.linalg.norm(np.diff(p[:, [0, 2]], axis=0), axis=1)
+    s_from = np.concatenate([[0.0], np.cumsum(step)])
+    total = s_from[-1]
+    speed = np.linalg.norm(np.gradient(p[:, [0, 2]], axis=0), axis=1) * fps
+    moving = speed > SWING_SPEED
+    if total < 0.05 or not moving.any():
+        return None
+    clearance = np.minimum(slope * np.minimum(s_from, total - s_from), top)
+    floor = min(low[0], low[-1])
+    need = float(np.max((floor + clearance - low)[moving]))
+    m = len(p)
+    # one smooth arc (not a clipped max, which would kink the leg's motion), no taller than a jerk of
+    # LIFT_JERK allows over the run: the arc's third derivative at its ends is 384 * height / duration^3
+    height = min(need, top, LIFT_JERK * ((m - 1) / fps) ** 3 / 384.0)
+    if height < 1e-3:
+        return None
+    u = np.arange(m) / (m - 1)
+    target = p.copy()
+    target[:, 1] += height * 64.0 * (u * (1.0 - u)) ** 3
+    return LegGoal(side, b, e, target, rk.as_quat(rk.from_matrix(pose.rotations[b - lo:e - lo, ankle])))
+
+
+def lift_swings(motion: Motion, swings: list[tuple[str, int, int]],
+                slope: float = CLEARANCE_SLOPE, top: float = CLEARANCE_MAX) -> Motion:
+    """Keep feet off the floor while a blend (or a release) carries them through the air: each
+    ``(side, begin, end)`` of ``swings`` (the runs of one foot must not overlap), in one IK solve.
 
     A blend moves a foot between two places along the mix of its two source
     paths; where the two places differ, the weight's own change pushes the
@@ -226,40 +314,23 @@ def lift_swing(motion: Motion, side: str, begin: int, end: int,
     ankle is raised by IK (its world orientation kept) along one smooth arc
     in time, ``64 (u (1 - u))^3``, tall enough for the largest shortfall but
     adding no more jerk than :data:`LIFT_JERK`; zero, with zero slope and
-    curvature, at both ends.
+    curvature, at both ends. Runs shorter than 3 frames are left alone.
     """
     n = motion.n_frames
-    b, e = max(0, begin), min(n, end)
-    if e - b < 3:
+    runs_ = [(side, max(0, b), min(n, e)) for side, b, e in swings]
+    runs_ = [(side, b, e) for side, b, e in runs_ if e - b >= 3]
+    if not runs_:
         return motion
-    ankle, toe = body_map(motion.skeleton).feet[side]
-    sub = motion[b:e]
-    pose = sub.pose
-    p = pose.positions[:, ankle]
-    low = np.minimum(p[:, 1], pose.positions[:, toe, 1])  # the foot's lowest point
-    step = np.linalg.norm(np.diff(p[:, [0, 2]], axis=0), axis=1)
-    s_from = np.concatenate([[0.0], np.cumsum(step)])
-    total = s_from[-1]
-    speed = np.linalg.norm(np.gradient(p[:, [0, 2]], axis=0), axis=1) * motion.fps
-    moving = speed > SWING_SPEED
-    if total < 0.05 or not moving.any():
+    lo, hi = min(b for _, b, _ in runs_), max(e for _, _, e in runs_)
+    span = motion[lo:hi]
+    pose = span.pose
+    bm = body_map(motion.skeleton)
+    goals = [g for side, b, e in runs_
+             if (g := _lift_goal(pose, lo, motion.fps, side, bm.feet[side], b, e, slope, top)) is not None]
+    if not goals:
         return motion
-    clearance = np.minimum(slope * np.minimum(s_from, total - s_from), top)
-    floor = min(low[0], low[-1])
-    need = float(np.max((floor + clearance - low)[moving]))
-    m = len(p)
-    # one smooth arc (not a clipped max, which would kink the leg's motion), no taller than a jerk of
-    # LIFT_JERK allows over the run: the arc's third derivative at its ends is 384 * height / duration^3
-    height = min(need, top, LIFT_JERK * ((m - 1) / motion.fps) ** 3 / 384.0)
-    if height < 1e-3:
-        return motion
-    u = np.arange(m) / (m - 1)
-    target = p.copy()
-    target[:, 1] += height * 64.0 * (u * (1.0 - u)) ** 3
-    rot = rk.as_quat(rk.from_matrix(pose.rotations[:, ankle]))
-    solved = set_world_rotation(solve_leg(sub, side, target), ankle, rot)
     out = motion.rotations.copy()
-    out[b:e] = solved.rotations
+    out[lo:hi] = _solve(span, lo, goals)
     return motion.replace(rotations=out)
 
 

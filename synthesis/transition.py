@@ -58,7 +58,7 @@ from .align import Rigid, align_through_foot
 from .blend import blend, ramp, sample
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts, runs
-from .footlock import Lock, lift_swing, lock_foot, plan_locks
+from .footlock import FootLocks, Lock, lift_swings, lock_feet, plan_locks
 from text2anim.core.motion import Motion, concatenate
 from .switching import Switch, find_switch, swings
 from .timing import KNEE, hold, soft_clip
@@ -383,6 +383,7 @@ def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[M
     a_contacts = {s: np.zeros(nb, dtype=bool) for s in ("left", "right")}
     for s in ("left", "right"):
         a_contacts[s][:w1 - w0] = join.planted_a[s]
+    feet_locks = {}
     for side in ("left", "right"):
         mine = [lk for lk in locks if lk.side == side]
         if not mine:
@@ -392,8 +393,10 @@ def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[M
         ra = np.tile(np.eye(3), (nb, 1, 1))
         pa[:w1 - w0] = a_pose.positions[:, ankle]
         ra[:w1 - w0] = a_pose.rotations[:, ankle]
-        out = lock_foot(out, side, mine, w0, [pa, b_pose.positions[:, ankle]], [ra, b_pose.rotations[:, ankle]],
-                        [wa * a_contacts[side], wb * src_planted[side]], PROFILE)
+        feet_locks[side] = FootLocks(mine, [pa, b_pose.positions[:, ankle]], [ra, b_pose.rotations[:, ankle]],
+                                     [wa * a_contacts[side], wb * src_planted[side]])
+    out = lock_feet(out, feet_locks, w0, PROFILE)
+    swings = []
     for side in ("left", "right"):  # feet the blend or a release carries through the air keep clear of the floor
         air = np.zeros(n, dtype=bool)
         air[w0:w1] = True
@@ -403,6 +406,6 @@ def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[M
         for lk in locks:
             if lk.side == side:
                 air[lk.begin:lk.end] = False
-        for lo, hi in runs(air):
-            out = lift_swing(out, side, int(lo), int(hi))
+        swings += [(side, int(lo), int(hi)) for lo, hi in runs(air)]
+    out = lift_swings(out, swings)
     return out, locks
