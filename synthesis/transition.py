@@ -355,8 +355,9 @@ def blend_join(track: Motion, placed_b: Motion, join: Join) -> Blended:
     return Blended(out, a_w, b_line)
 
 
-def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[Motion, list[Lock]]:
-    """The second half of :func:`apply_join`: the planted feet of a :func:`blend_join` locked, swings lifted."""
+def lock_join(blended: Blended, b_contacts: FootContacts, join: Join, lift: bool = True) -> tuple[Motion, list[Lock]]:
+    """The second half of :func:`apply_join`: the planted feet of a :func:`blend_join` locked, swings lifted
+    (:func:`lift_join`; ``lift=False`` leaves that to the caller: a locked foot is the same either way)."""
     out, a_w, b_line = blended.out, blended.a_w, blended.b_line
     w0, w1 = join.window
     n = out.n_frames
@@ -396,8 +397,16 @@ def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[M
         feet_locks[side] = FootLocks(mine, [pa, b_pose.positions[:, ankle]], [ra, b_pose.rotations[:, ankle]],
                                      [wa * a_contacts[side], wb * src_planted[side]])
     out = lock_feet(out, feet_locks, w0, PROFILE)
+    return (lift_join(out, locks, join.window) if lift else out), locks
+
+
+def lift_join(out: Motion, locks: list[Lock], window: tuple[int, int]) -> Motion:
+    """The last step of :func:`lock_join`: feet the blend ``[w0, w1)`` or a release carries through the air
+    (not locked) kept clear of the floor (:func:`synthesis.footlock.lift_swings`)."""
+    w0, w1 = window
+    n = out.n_frames
     swings = []
-    for side in ("left", "right"):  # feet the blend or a release carries through the air keep clear of the floor
+    for side in ("left", "right"):
         air = np.zeros(n, dtype=bool)
         air[w0:w1] = True
         for lk in locks:
@@ -407,5 +416,4 @@ def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[M
             if lk.side == side:
                 air[lk.begin:lk.end] = False
         swings += [(side, int(lo), int(hi)) for lo, hi in runs(air)]
-    out = lift_swings(out, swings)
-    return out, locks
+    return lift_swings(out, swings)

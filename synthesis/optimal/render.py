@@ -131,13 +131,14 @@ def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts
     return track, placed_b, b_contacts, join
 
 
-def finish(prepared, lock: bool = True, blended: Blended | None = None):
+def finish(prepared, lock: bool = True, blended: Blended | None = None, lift: bool = True):
     """:func:`render` from :func:`prepare` 's output (and its :func:`blended` when the caller has it):
-    ``(track, locks, (w0, w1))``."""
+    ``(track, locks, (w0, w1))``; ``lift=False``: the swings not yet lifted
+    (:func:`synthesis.transition.lift_join` finishes it; the locked feet are final already)."""
     track, placed_b, b_contacts, join = prepared
     if blended is None:
         blended = blend_join(track, placed_b, join)
-    out, locks = lock_join(blended, b_contacts, join) if lock else (blended.out, [])
+    out, locks = lock_join(blended, b_contacts, join, lift) if lock else (blended.out, [])
     return out, locks, join.window
 
 

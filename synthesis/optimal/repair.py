@@ -14,6 +14,7 @@ from text2anim.core.motion import Motion
 from ..align import align_through_foot
 from ..blend import ease
 from ..measure import skating_exceeds, skating_frames
+from ..transition import lift_join
 from .records import Plan
 from .placement import settle
 from .render import blended, finish, prepare
@@ -85,7 +86,8 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     # variant is the rendering before it again, no better, and is not rendered twice (nor measured).
     # Locking the feet (the costly half of a rendering) turns joints, never the root: a rendering's pop is
     # known before it, and one that pops more than a best that does not skate cannot win (its key is
-    # larger whatever it skates) — it is not locked (``None`` in ``seen``).
+    # larger whatever it skates) — it is not locked (``None`` in ``seen``); where settle may still place
+    # it again, it is locked (settle asks where the locks leave the foot) but neither lifted nor measured.
     seen: dict = {}
 
     def hopeless(bl, prepared) -> bool:
@@ -103,8 +105,16 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
                 if (p.adapted is not None or not lock) and hopeless(bl, first):  # settle moves nothing: final
                     seen[key] = None
                     continue
-                out, locks, window = finish(first, lock, bl)
-                seen[key] = (out, locks, window, settle(out, locks, window, p))
+                # settled from the locked feet alone (a swing lift moves no locked foot); the swings are
+                # lifted only on a rendering that is kept, not on one that settle places again
+                out, locks, window = finish(first, lock, bl, lift=False)
+                moved = settle(out, locks, window, p)
+                if moved is None and hopeless(bl, first):  # final as it stands, and cannot win
+                    seen[key] = None
+                    continue
+                if moved is None and lock:
+                    out = lift_join(out, locks, window)
+                seen[key] = (out, locks, window, moved)
             if seen[key] is None:
                 continue
             out, locks, window, moved = seen[key]
