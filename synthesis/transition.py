@@ -333,13 +333,14 @@ class Blended:
     b_line: Motion
 
 
-def blend_join(track: Motion, placed_b: Motion, join: Join) -> Blended:
-    """The first half of :func:`apply_join`: the track up to the window, the blend, then all of placed ``B``."""
+def blend_join(track: Motion, placed_b: Motion, join: Join, sampler=sample) -> Blended:
+    """The first half of :func:`apply_join`: the track up to the window, the blend, then all of placed ``B``.
+    ``sampler``: :func:`synthesis.blend.sample` or one that remembers what it sampled."""
     w0, w1 = join.window
     if w0 > track.n_frames:  # B starts after everything so far: hold the last frame until then
         track = hold(track, w0)
-    a_w = sample(track, join.src_a)
-    b_w = sample(placed_b, join.src_b)
+    a_w = sampler(track, join.src_a)
+    b_w = sampler(placed_b, join.src_b)
     mix = blend(a_w, b_w, join.weights)
     for m in (a_w, b_w, mix):  # the window's kinematics (the locks ask for them): the tracks concatenated
         m.pose  # from these and known poses below then know theirs without redoing every frame's

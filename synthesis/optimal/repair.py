@@ -17,7 +17,7 @@ from ..measure import skating_exceeds, skating_frames
 from ..transition import lift_join
 from .records import Plan
 from .placement import settle
-from .render import blended, finish, prepare
+from .render import Parts, blended, finish, prepare
 
 
 def _eased(plan: Plan) -> Plan:
@@ -76,6 +76,7 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     """
     best = None
     tr_c = detect_contacts(tr)  # the track before the join: the same for every rendering
+    parts = Parts()  # and what the renderings share (render.Parts)
     variants = [("", True, False), ("no_step", False, False), ("eased", True, True), ("eased_no_step", False, True)]
     if plan.intervals["S0"].kind == "motion-motion":
         variants.append(("roots_mid", False, False))
@@ -97,11 +98,11 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     for cname, cand in candidates:
         for vname, step, eased in variants:
             p = _eased(cand) if eased else (_roots_mid(tr, cand) if vname == "roots_mid" else cand)
-            first = prepare(tr, p, step, tr_c)
+            first = prepare(tr, p, step, tr_c, parts)
             key: tuple = (cname, eased, vname == "roots_mid", _held(first))
             again = key in seen
             if not again:
-                bl = blended(first)
+                bl = blended(first, parts)
                 if (p.adapted is not None or not lock) and hopeless(bl, first):  # settle moves nothing: final
                     seen[key] = None
                     continue
@@ -120,11 +121,11 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
             out, locks, window, moved = seen[key]
             if moved is not None:  # placed where the locked foot stands: the next motion's own step needs no release
                 p = moved
-                second = prepare(tr, p, step, tr_c)
+                second = prepare(tr, p, step, tr_c, parts)
                 key = (key, _held(second))
                 again = key in seen
                 if not again:
-                    bl = blended(second)
+                    bl = blended(second, parts)
                     seen[key] = None if hopeless(bl, second) else (*finish(second, lock, bl), None)
                 if seen[key] is None:
                     continue
