@@ -149,7 +149,8 @@ def solve_rows(a: np.ndarray, b: np.ndarray, c: np.ndarray, Ra: np.ndarray, Rb: 
     Ra_new = G @ Ra
     local_a = np.swapaxes(Rp, -1, -2) @ Ra_new
     local_b = np.swapaxes(Ra, -1, -2) @ Rb_bent  # G cancels: R_a'^T (G R_b') = R_a^T R_b'
-    return rk.as_quat(rk.from_matrix(local_a)), rk.as_quat(rk.from_matrix(local_b))
+    q = rk.as_quat(rk.from_matrix(np.concatenate([local_a, local_b])))  # one conversion: rows are independent
+    return q[:len(local_a)], q[len(local_a):]
 
 
 def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0, 0.0, 0.0)) -> Motion:

@@ -179,14 +179,14 @@ class FootLocks:
     weights: list[np.ndarray]
 
 
-def _lock_goal(pose, lo: int, side: str, ankle: int, feet: FootLocks, first: int, profile: str):
-    """The goal holding one foot over ``[first, stop)`` (see :func:`lock_feet`) from ``pose`` (of the
-    motion's frames from ``lo``), and the last lock's offset and turn ``(goal, d (3,), e (3,))``."""
+def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray], feet: FootLocks, first: int,
+               profile: str):
+    """The goal holding one foot over ``[first, stop)`` (see :func:`lock_feet`): ``p`` ``(T, 3)`` and ``r``
+    ``(T, 4)`` its ankle's own world positions and rotations there, ``sources`` per source its ankle's world
+    rotations as quaternions ``(T, 4)``. Also the last lock's offset and turn: ``(goal, d (3,), e (3,))``."""
     locks = sorted(feet.locks, key=lambda lk: lk.begin)
-    positions, rotations = feet.positions, feet.rotations
+    positions = feet.positions
     stop = locks[-1].end
-    p = pose.positions[first - lo:stop - lo, ankle]
-    r = rk.from_matrix(pose.rotations[first - lo:stop - lo, ankle])  # (T, 4) (core.rotkernels: scipy's bits)
     T = len(p)
     d = np.zeros((T, 3))
     e = np.zeros((T, 3))
@@ -197,11 +197,11 @@ def _lock_goal(pose, lo: int, side: str, ankle: int, feet: FootLocks, first: int
         if tot > 1e-9:
             share = w[:, i0] / tot
             start = sum(share[k] * positions[k][i0] for k in range(len(positions)))
-            start_rot = rk.from_matrix(rotations[int(np.argmax(share))][i0])
+            start_rot = sources[int(np.argmax(share))][i0:i0 + 1]
         else:
             start, start_rot = p[i0], r[i0:i0 + 1]
         tp, tr = planted_targets(start, start_rot, [x[i0:i1] for x in positions],
-                                 [rk.from_matrix(x[i0:i1]) for x in rotations], [x[i0:i1] for x in w])
+                                 [q[i0:i1] for q in sources], [x[i0:i1] for x in w])
         d[i0:i1] = tp - p[i0:i1]
         e[i0:i1] = rk.as_rotvec(rk.compose(rk.inverse(r[i0:i1]), rk.from_quat(tr)))
     prev_end, prev_d, prev_e = 0, np.zeros(3), np.zeros(3)
@@ -215,6 +215,13 @@ def _lock_goal(pose, lo: int, side: str, ankle: int, feet: FootLocks, first: int
         prev_d, prev_e = d[prev_end - 1].copy(), e[prev_end - 1].copy()
     goal = LegGoal(side, first, stop, p + d, rk.as_quat(rk.compose(r, rk.from_rotvec(e))))
     return goal, prev_d, prev_e
+
+
+def _quaternions(blocks: list[np.ndarray]) -> list[np.ndarray]:
+    """:func:`core.rotkernels.from_matrix` of each block of matrices ``(n_i, 3, 3)``, in one call (rows are
+    independent: the same bits): a list of ``(n_i, 4)``."""
+    q = rk.from_matrix(np.concatenate(blocks))
+    return np.split(q, np.cumsum([len(b) for b in blocks])[:-1])
 
 
 def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: str = "smooth") -> Motion:
@@ -238,15 +245,26 @@ def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: s
     hi = min(n, max(hi, max(max(lk.end for lk in f.locks) for f in feet.values())))
     span = motion[first:hi]
     pose = span.pose
+    # every ankle rotation the locks ask for as quaternions, in one conversion: per foot its own over the
+    # locks and over the release, and each source's
+    blocks = []
+    for side, f in feet.items():
+        ankle, T = _ankle(motion, side), max(lk.end for lk in f.locks) - first
+        last = max(f.locks, key=lambda lk: lk.begin)
+        b, e = max(0, last.end), min(n, last.release_end)
+        blocks += [pose.rotations[:T, ankle], pose.rotations[b - first:max(b, e) - first, ankle]]
+        blocks += [x[:T] for x in f.rotations]
+    quats = _quaternions(blocks)
     goals, releases = [], []
     for side, f in feet.items():
-        ankle = _ankle(motion, side)
-        goal, prev_d, prev_e = _lock_goal(pose, first, side, ankle, f, first, profile)
+        ankle, T = _ankle(motion, side), max(lk.end for lk in f.locks) - first
+        r, r_own, *sources = quats[:2 + len(f.rotations)]
+        quats = quats[2 + len(f.rotations):]
+        goal, prev_d, prev_e = _lock_goal(side, pose.positions[:T, ankle], r, sources, f, first, profile)
         goals.append(goal)
         last = max(f.locks, key=lambda lk: lk.begin)
         b, e = max(0, last.end), min(n, last.release_end)
         if e > b:  # the release: the lock's offset riding on the motion's own foot
-            r_own = rk.from_matrix(pose.rotations[b - first:e - first, ankle])
             turn = rk.from_rotvec(prev_e)
             goals.append(LegGoal(side, b, e, pose.positions[b - first:e - first, ankle] + prev_d,
                                  rk.as_quat(rk.compose(r_own, turn))))
@@ -296,7 +314,7 @@ def _lift_goal(pose, lo: int, fps: float, side: str, feet: tuple[int, int], b: i
     u = np.arange(m) / (m - 1)
     target = p.copy()
     target[:, 1] += height * 64.0 * (u * (1.0 - u)) ** 3
-    return LegGoal(side, b, e, target, rk.as_quat(rk.from_matrix(pose.rotations[b - lo:e - lo, ankle])))
+    return LegGoal(side, b, e, target, np.empty((0, 4)))  # its ankle's own rotations: lift_swings
 
 
 def lift_swings(motion: Motion, swings: list[tuple[str, int, int]],
@@ -329,6 +347,8 @@ def lift_swings(motion: Motion, swings: list[tuple[str, int, int]],
              if (g := _lift_goal(pose, lo, motion.fps, side, bm.feet[side], b, e, slope, top)) is not None]
     if not goals:
         return motion
+    own = _quaternions([pose.rotations[g.begin - lo:g.end - lo, bm.feet[g.side][0]] for g in goals])
+    goals = [LegGoal(g.side, g.begin, g.end, g.targets, rk.as_quat(q)) for g, q in zip(goals, own)]
     out = motion.rotations.copy()
     out[lo:hi] = _solve(span, lo, goals)
     return motion.replace(rotations=out)
