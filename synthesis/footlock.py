@@ -35,7 +35,7 @@ from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import runs
 from text2anim.core.ik import leg_ik, solve_rows, world_to_local
-from text2anim.core.motion import Motion
+from text2anim.core.motion import Motion, quat_to_matrix
 
 
 @dataclass(frozen=True)
@@ -154,15 +154,17 @@ def _solve(span: Motion, lo: int, goals: list[LegGoal]) -> np.ndarray:
     scale = np.minimum(1.0, reach / np.maximum(dist, 1e-9))
     Rh = R[frames, hip]
     pole = P[frames, knee] + 0.5 * np.einsum("tij,j->ti", Rh, rest_forward(skel))  # as solve_leg
-    qa, qb = solve_rows(h, P[frames, knee], P[frames, ankle], Rh, R[frames, knee], R[frames, skel.parents[hip]],
-                        h + v * scale[:, None], pole)
+    above = skel.parents[hip]
+    Rp = R[frames, above] if (above >= 0).all() else np.where((above >= 0)[:, None, None], R[frames, above], np.eye(3))
+    qa, qb = solve_rows(h, P[frames, knee], P[frames, ankle], Rh, R[frames, knee], Rp, h + v * scale[:, None], pole)
     rots = span.rotations.copy()
     rots[frames, hip] = qa
     rots[frames, knee] = qb
-    solved = span.replace(rotations=rots)  # its kinematics: the legs' subtrees redone from span's
-    rots = rots.copy()
-    rots[frames, ankle] = world_to_local(solved.pose.rotations[frames, knee],
-                                         np.concatenate([g.ankle for g in goals]))
+    # the knees' new world rotations, as forward kinematics has them (Motion.pose: parent @ local, the
+    # local matrices from the stored quaternions), on these rows only
+    local = quat_to_matrix(np.concatenate([qa, qb]))
+    knee_world = (Rp @ local[:len(qa)]) @ local[len(qa):]
+    rots[frames, ankle] = world_to_local(knee_world, np.concatenate([g.ankle for g in goals]))
     return rots
 
 
