@@ -64,23 +64,39 @@ def planted_targets(start_pos: np.ndarray, start_rot: np.ndarray, positions: lis
         frame ``t`` adds the weighted mean of the sources' steps ``t - 1 -> t``
         (velocity and body-frame angular velocity), summed.
     """
+    steps_p, steps_r = _steps(positions, rotations)
+    targets, turned = _integrate(start_pos, weights, steps_p, steps_r)
+    start = np.reshape(start_rot, (-1, 4))  # a rotation already (not normalised again: scipy's bits)
+    return targets, rk.as_quat(rk.compose(start, rk.from_rotvec(turned)))
+
+
+def _steps(positions: list[np.ndarray], rotations: list[np.ndarray]) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Per source the ankle's steps ``t - 1 -> t`` (:func:`planted_targets`): ``(T - 1, 3)`` moves and
+    ``(T - 1, 3)`` turns in its own frame (rotation vectors), all sources' turns in one conversion (per pair
+    of frames the same arithmetic, so a lock's steps are the slice of the steps of a longer run)."""
+    if len(rotations[0]) < 2:
+        return [np.zeros((0, 3)) for _ in positions], [np.zeros((0, 3)) for _ in rotations]
+    turns = rk.as_rotvec(rk.compose(rk.inverse(np.concatenate([r[:-1] for r in rotations])),
+                                    np.concatenate([r[1:] for r in rotations])))
+    return [np.diff(p, axis=0) for p in positions], np.split(turns, len(rotations))
+
+
+def _integrate(start_pos: np.ndarray, weights: list[np.ndarray], steps_p: list[np.ndarray],
+               steps_r: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`planted_targets` 's sums: ``(T, 3)`` positions and the ``(T, 3)`` rotation vector turned since
+    frame 0, from the sources' :func:`_steps` over the lock weighted by their shares of ``weights``."""
     T = len(weights[0])
     w = np.stack(weights)  # (S, T)
     tot = w.sum(axis=0)
     share = np.divide(w, tot, out=np.zeros_like(w), where=tot > 1e-9)
     dp = np.zeros((T, 3))
     dr = np.zeros((T, 3))
-    for s, (p, r) in enumerate(zip(positions, rotations)):
+    for s, (step_p, step_r) in enumerate(zip(steps_p, steps_r)):
         if T < 2:
             break
-        step_p = np.diff(p, axis=0)
-        step_r = rk.as_rotvec(rk.compose(rk.inverse(r[:-1]), r[1:]))
         dp[1:] += share[s, 1:, None] * step_p
         dr[1:] += share[s, 1:, None] * step_r
-    targets = start_pos + np.cumsum(dp, axis=0)
-    start = np.reshape(start_rot, (-1, 4))  # a rotation already (not normalised again: scipy's bits)
-    rots = rk.as_quat(rk.compose(start, rk.from_rotvec(np.cumsum(dr, axis=0))))
-    return targets, rots
+    return start_pos + np.cumsum(dp, axis=0), np.cumsum(dr, axis=0)
 
 
 def _ankle(motion: Motion, side: str) -> int:
@@ -193,7 +209,9 @@ def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray
     d = np.zeros((T, 3))
     e = np.zeros((T, 3))
     w = np.stack([x[:T] for x in feet.weights])
-    for lk in locks:
+    steps_p, steps_r = _steps([x[:T] for x in positions], sources)  # once for all the locks
+    starts, turns, rows = [], [], []
+    for lk in locks:  # planted_targets of each lock, its rotations converted below for all at once
         i0, i1 = lk.begin - first, lk.end - first
         tot = w[:, i0].sum()
         if tot > 1e-9:
@@ -202,10 +220,15 @@ def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray
             start_rot = sources[int(np.argmax(share))][i0:i0 + 1]
         else:
             start, start_rot = p[i0], r[i0:i0 + 1]
-        tp, tr = planted_targets(start, start_rot, [x[i0:i1] for x in positions],
-                                 [q[i0:i1] for q in sources], [x[i0:i1] for x in w])
+        tp, turned = _integrate(start, [x[i0:i1] for x in w], [x[i0:i1 - 1] for x in steps_p],
+                                [x[i0:i1 - 1] for x in steps_r])
         d[i0:i1] = tp - p[i0:i1]
-        e[i0:i1] = rk.as_rotvec(rk.compose(rk.inverse(r[i0:i1]), rk.from_quat(tr)))
+        starts.append(np.repeat(start_rot, i1 - i0, axis=0))
+        turns.append(turned)
+        rows.append(np.arange(i0, i1))
+    tr = rk.as_quat(rk.compose(np.concatenate(starts), rk.from_rotvec(np.concatenate(turns))))
+    at = np.concatenate(rows)
+    e[at] = rk.as_rotvec(rk.compose(rk.inverse(r[at]), rk.from_quat(tr)))
     prev_end, prev_d, prev_e = 0, np.zeros(3), np.zeros(3)
     for lk in locks:  # the approaches: the offset eases from the previous state to the lock's
         i0 = lk.begin - first
