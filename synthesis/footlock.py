@@ -5,8 +5,8 @@ blending joint angles (and root positions) moves it otherwise. Each planted
 foot gets a :class:`Lock` over the frames ``[begin, end)`` where it is down
 in the motion that dominates the blend (and, past the blend, in the next
 motion). The ankle is driven to a target by the analytic two-bone IK of
-:mod:`core.ik` (hip and knee) and turned to a target orientation
-(:func:`core.ik.set_world_rotation`), so the toe stays too.
+:mod:`core.ik` (hip and knee) and turned to a target orientation, so the toe stays too: every lock
+and release of a join in one solve, every swing lift in another (:mod:`synthesis.legsolve`).
 
 The target starts where the foot is on the lock's first frame and then moves
 only as the foot moves *in the source motions that have it planted*
@@ -29,13 +29,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from .align import rest_forward
 from .blend import ease, ratio, slerp
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import runs
-from text2anim.core.ik import leg_ik, solve_rows, world_to_local
-from text2anim.core.motion import Motion, quat_to_matrix
+from text2anim.core.motion import Motion
+
+from .legsolve import REACH, LegGoal, leg_chain, quaternions, solve_goals, solve_leg
+
+__all__ = ["Lock", "FootLocks", "planted_targets", "lock_feet", "lift_swings", "plan_locks", "REACH", "solve_leg"]
 
 
 @dataclass(frozen=True)
@@ -99,91 +101,6 @@ def _integrate(start_pos: np.ndarray, weights: list[np.ndarray], steps_p: list[n
     return start_pos + np.cumsum(dp, axis=0), np.cumsum(dr, axis=0)
 
 
-def _ankle(motion: Motion, side: str) -> int:
-    return body_map(motion.skeleton).feet[side][0]
-
-
-#: IK targets are kept within this fraction of the leg's length from the hip: a leg pulled fully
-#: straight has no bend plane, and the knee would flip from frame to frame. Captured legs reach 0.99
-#: of their length, the built-in ones 0.999.
-REACH = 0.998
-
-
-def solve_leg(motion: Motion, side: str, targets: np.ndarray) -> Motion:
-    """:func:`core.ik.leg_ik` with targets pulled within :data:`REACH` of the leg's length and the
-    knee bending towards the thigh's forward direction."""
-    ankle = _ankle(motion, side)
-    parents = motion.skeleton.parents
-    knee = int(parents[ankle])
-    hip = int(parents[knee])
-    offs = motion.skeleton.offsets
-    reach = REACH * (np.linalg.norm(offs[knee]) + np.linalg.norm(offs[ankle]))
-    pos = motion.positions
-    h = pos[:, hip]
-    v = targets - h
-    dist = np.linalg.norm(v, axis=-1)
-    scale = np.minimum(1.0, reach / np.maximum(dist, 1e-9))
-    # the knee bends towards the thigh's own forward: with the leg's own knee as the pole, a nearly
-    # straight leg has no bend plane to keep and the knee could swing sideways (a hinge knee bends in
-    # the thigh's forward plane, so for a bent leg this is the plane it already has)
-    fwd = np.einsum("tij,j->ti", motion.pose.rotations[:, hip], rest_forward(motion.skeleton))
-    pole = pos[:, knee] + 0.5 * fwd
-    return leg_ik(motion, side, h + v * scale[:, None], pole=pole)
-
-
-@dataclass(frozen=True)
-class LegGoal:
-    """A leg driven over frames ``[begin, end)``: its ankle onto ``targets`` ``(n, 3)`` (world, metres;
-    :func:`solve_leg` 's reach and knee direction) and turned to the world rotations ``ankle`` ``(n, 4)``."""
-
-    side: str
-    begin: int
-    end: int
-    targets: np.ndarray
-    ankle: np.ndarray
-
-
-def _chain(motion: Motion, side: str) -> tuple[int, int, int]:
-    """``(hip, knee, ankle)`` joint indices of the ``side`` leg."""
-    ankle = _ankle(motion, side)
-    knee = int(motion.skeleton.parents[ankle])
-    return int(motion.skeleton.parents[knee]), knee, ankle
-
-
-def _solve(span: Motion, lo: int, goals: list[LegGoal]) -> np.ndarray:
-    """The local rotations ``(T, J, 4)`` of ``span`` (the motion's frames from ``lo`` on) with every goal
-    solved: :func:`solve_leg` then :func:`core.ik.set_world_rotation` per goal, all goals' frames as rows of
-    one solve (per row the same arithmetic: the same bits). The goals of one leg must not overlap."""
-    skel = span.skeleton
-    offs = skel.offsets
-    chains = [_chain(span, g.side) for g in goals]
-    frames = np.concatenate([np.arange(g.begin - lo, g.end - lo) for g in goals])
-    hip, knee, ankle = (np.concatenate([np.full(g.end - g.begin, c[k]) for g, c in zip(goals, chains)])
-                        for k in range(3))
-    reach = np.concatenate([np.full(g.end - g.begin, REACH * (np.linalg.norm(offs[c[1]]) + np.linalg.norm(offs[c[2]])))
-                            for g, c in zip(goals, chains)])
-    pose = span.pose
-    P, R = pose.positions, pose.rotations
-    h = P[frames, hip]
-    v = np.concatenate([g.targets for g in goals]) - h
-    dist = np.linalg.norm(v, axis=-1)
-    scale = np.minimum(1.0, reach / np.maximum(dist, 1e-9))
-    Rh = R[frames, hip]
-    pole = P[frames, knee] + 0.5 * np.einsum("tij,j->ti", Rh, rest_forward(skel))  # as solve_leg
-    above = skel.parents[hip]
-    Rp = R[frames, above] if (above >= 0).all() else np.where((above >= 0)[:, None, None], R[frames, above], np.eye(3))
-    qa, qb = solve_rows(h, P[frames, knee], P[frames, ankle], Rh, R[frames, knee], Rp, h + v * scale[:, None], pole)
-    rots = span.rotations.copy()
-    rots[frames, hip] = qa
-    rots[frames, knee] = qb
-    # the knees' new world rotations, as forward kinematics has them (Motion.pose: parent @ local, the
-    # local matrices from the stored quaternions), on these rows only
-    local = quat_to_matrix(np.concatenate([qa, qb]))
-    knee_world = (Rp @ local[:len(qa)]) @ local[len(qa):]
-    rots[frames, ankle] = world_to_local(knee_world, np.concatenate([g.ankle for g in goals]))
-    return rots
-
-
 @dataclass(frozen=True)
 class FootLocks:
     """One foot's locks in a join and its planted sources (:func:`lock_feet`): ``positions``,
@@ -242,13 +159,6 @@ def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray
     return goal, prev_d, prev_e
 
 
-def _quaternions(blocks: list[np.ndarray]) -> list[np.ndarray]:
-    """:func:`core.rotkernels.from_matrix` of each block of matrices ``(n_i, 3, 3)``, in one call (rows are
-    independent: the same bits): a list of ``(n_i, 4)``."""
-    q = rk.from_matrix(np.concatenate(blocks))
-    return np.split(q, np.cumsum([len(b) for b in blocks])[:-1])
-
-
 def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: str = "smooth") -> Motion:
     """Apply all the locks of both feet in one join, each foot then released (one IK solve for all).
 
@@ -274,15 +184,15 @@ def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: s
     # locks and over the release, and each source's
     blocks = []
     for side, f in feet.items():
-        ankle, T = _ankle(motion, side), max(lk.end for lk in f.locks) - first
+        ankle, T = leg_chain(motion, side)[2], max(lk.end for lk in f.locks) - first
         last = max(f.locks, key=lambda lk: lk.begin)
         b, e = max(0, last.end), min(n, last.release_end)
         blocks += [pose.rotations[:T, ankle], pose.rotations[b - first:max(b, e) - first, ankle]]
         blocks += [x[:T] for x in f.rotations]
-    quats = _quaternions(blocks)
+    quats = quaternions(blocks)
     goals, releases = [], []
     for side, f in feet.items():
-        ankle, T = _ankle(motion, side), max(lk.end for lk in f.locks) - first
+        ankle, T = leg_chain(motion, side)[2], max(lk.end for lk in f.locks) - first
         r, r_own, *sources = quats[:2 + len(f.rotations)]
         quats = quats[2 + len(f.rotations):]
         goal, prev_d, prev_e = _lock_goal(side, pose.positions[:T, ankle], r, sources, f, first, profile)
@@ -294,7 +204,7 @@ def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: s
             goals.append(LegGoal(side, b, e, pose.positions[b - first:e - first, ankle] + prev_d,
                                  rk.as_quat(rk.compose(r_own, turn))))
             releases.append((side, b, e))
-    rots = _solve(span, first, goals)
+    rots = solve_goals(span, first, goals)
     if releases:  # eq. (3) over the legs' joints of every release at once
         legs = [np.asarray(body_map(motion.skeleton).joints(f"{side}_leg")) for side, _, _ in releases]
         fr = [np.repeat(np.arange(b - first, e - first), len(j)) for (_, b, e), j in zip(releases, legs)]
@@ -372,10 +282,10 @@ def lift_swings(motion: Motion, swings: list[tuple[str, int, int]],
              if (g := _lift_goal(pose, lo, motion.fps, side, bm.feet[side], b, e, slope, top)) is not None]
     if not goals:
         return motion
-    own = _quaternions([pose.rotations[g.begin - lo:g.end - lo, bm.feet[g.side][0]] for g in goals])
+    own = quaternions([pose.rotations[g.begin - lo:g.end - lo, bm.feet[g.side][0]] for g in goals])
     goals = [LegGoal(g.side, g.begin, g.end, g.targets, rk.as_quat(q)) for g, q in zip(goals, own)]
     out = motion.rotations.copy()
-    out[lo:hi] = _solve(span, lo, goals)
+    out[lo:hi] = solve_goals(span, lo, goals)
     return motion.replace(rotations=out)
 
 
