@@ -8,12 +8,12 @@ from dataclasses import replace
 import numpy as np
 
 from text2anim.core.contacts import detect_contacts
-from text2anim.core.metrics import SOURCE_FACTOR, root_pop
+from text2anim.core.metrics import SOURCE_FACTOR, root_pop, toe_joints, toe_skating_pairs
 from text2anim.core.motion import Motion
 
 from ..align import align_through_foot
 from ..blend import ease
-from ..measure import skating_exceeds, skating_frames
+from ..measure import skating_exceeds
 from ..transition import lift_join
 from .records import Plan
 from .placement import settle
@@ -40,10 +40,22 @@ def _roots_mid(tr: Motion, plan: Plan) -> Plan:
     return replace(plan, rigid=rigid, placed=rigid.apply(plan.inc.motion), support=None, info=info)
 
 
-def _skating(motion: Motion, lo: int, hi: int) -> float:
-    """GMD skating ratio (either foot, :func:`synthesis.measure.skating_frames`) over frames ``[lo, hi)``."""
-    sk = skating_frames(motion)
-    return float(sk[max(lo, 0):hi].mean()) if hi > lo else 0.0
+def _skating(out: Motion, base: Motion, window: tuple[int, int], locks) -> float:
+    """GMD skating ratio (either foot, :func:`synthesis.measure.skating_frames`) of a rendering ``out``
+    over its blend window ``[w0, w1)``. ``base``: the rendering before its feet were locked, the same frames
+    outside ``[w0, the locks' last release)``: only those frames' kinematics are computed (a rendering that is
+    not kept never needs the rest)."""
+    lo, hi = window
+    n = out.n_frames
+    if n < 2 or hi <= max(lo, 0):
+        return 0.0
+    edited = max([hi] + [lk.release_end for lk in locks])
+    toes = toe_joints(out)
+    feet = base.positions[:, toes].copy()  # (T, 2, 3)
+    feet[lo:edited] = out[lo:edited].positions[:, toes]
+    sk = np.zeros(n, dtype=bool)  # per frame, as skating_frames
+    sk[:n - 1] = toe_skating_pairs(feet, out.fps)
+    return float(sk[max(lo, 0):hi].mean())
 
 
 def _window_pop(out: Motion, window: tuple[int, int]) -> float:
@@ -115,10 +127,10 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
                     continue
                 if moved is None and lock:
                     out = lift_join(out, locks, window)
-                seen[key] = (out, locks, window, moved)
+                seen[key] = (out, locks, window, moved, bl.out)
             if seen[key] is None:
                 continue
-            out, locks, window, moved = seen[key]
+            out, locks, window, moved, base = seen[key]
             if moved is not None:  # placed where the locked foot stands: the next motion's own step needs no release
                 p = moved
                 second = prepare(tr, p, step, tr_c, parts)
@@ -126,13 +138,13 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
                 again = key in seen
                 if not again:
                     bl = blended(second, parts)
-                    seen[key] = None if hopeless(bl, second) else (*finish(second, lock, bl), None)
+                    seen[key] = None if hopeless(bl, second) else (*finish(second, lock, bl), None, bl.out)
                 if seen[key] is None:
                     continue
-                out, locks, window, _ = seen[key]
+                out, locks, window, _, base = seen[key]
             if again:  # the same rendering as an earlier variant's: its key is that one's, which did not pass
                 continue
-            sk = _skating(out, window[0], window[1]) if lock else 0.0  # the blend (the clips' own skating after
+            sk = _skating(out, base, window, locks) if lock else 0.0  # the blend (the clips' own skating after
             # it, a jump's landing, is not the join's to fix)
             over = max(0.0, _window_pop(out, window) - SOURCE_FACTOR * own_pop)
             name = "+".join(x for x in (cname, vname) if x)
