@@ -103,8 +103,10 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     # it again, it is locked (settle asks where the locks leave the foot) but neither lifted nor measured.
     seen: dict = {}
 
-    def hopeless(bl, prepared) -> bool:
-        over = max(0.0, _window_pop(bl.out, prepared[3].window) - SOURCE_FACTOR * own_pop)
+    def popping(bl, prepared) -> float:  # how far the window's pop is over the sources' (the root's: final)
+        return max(0.0, _window_pop(bl.out, prepared[3].window) - SOURCE_FACTOR * own_pop)
+
+    def hopeless(over: float) -> bool:
         return best is not None and not best[0][0] and over > best[0][1]
 
     for cname, cand in candidates:
@@ -115,22 +117,23 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
             again = key in seen
             if not again:
                 bl = blended(first, parts)
-                if (p.adapted is not None or not lock) and hopeless(bl, first):  # settle moves nothing: final
+                over = popping(bl, first)
+                if (p.adapted is not None or not lock) and hopeless(over):  # settle moves nothing: final
                     seen[key] = None
                     continue
                 # settled from the locked feet alone (a swing lift moves no locked foot); the swings are
                 # lifted only on a rendering that is kept, not on one that settle places again
                 out, locks, window = finish(first, lock, bl, lift=False)
                 moved = settle(out, locks, window, p)
-                if moved is None and hopeless(bl, first):  # final as it stands, and cannot win
+                if moved is None and hopeless(over):  # final as it stands, and cannot win
                     seen[key] = None
                     continue
                 if moved is None and lock:
                     out = lift_join(out, locks, window)
-                seen[key] = (out, locks, window, moved, bl.out)
+                seen[key] = (out, locks, window, moved, bl.out, over)
             if seen[key] is None:
                 continue
-            out, locks, window, moved, base = seen[key]
+            out, locks, window, moved, base, over = seen[key]
             if moved is not None:  # placed where the locked foot stands: the next motion's own step needs no release
                 p = moved
                 second = prepare(tr, p, step, tr_c, parts)
@@ -138,15 +141,15 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
                 again = key in seen
                 if not again:
                     bl = blended(second, parts)
-                    seen[key] = None if hopeless(bl, second) else (*finish(second, lock, bl), None, bl.out)
+                    over = popping(bl, second)
+                    seen[key] = None if hopeless(over) else (*finish(second, lock, bl), None, bl.out, over)
                 if seen[key] is None:
                     continue
-                out, locks, window, _, base = seen[key]
+                out, locks, window, _, base, over = seen[key]
             if again:  # the same rendering as an earlier variant's: its key is that one's, which did not pass
                 continue
             sk = _skating(out, base, window, locks) if lock else 0.0  # the blend (the clips' own skating after
             # it, a jump's landing, is not the join's to fix)
-            over = max(0.0, _window_pop(out, window) - SOURCE_FACTOR * own_pop)
             name = "+".join(x for x in (cname, vname) if x)
             if name:
                 p = replace(p, info=dict(p.info, fallback=name))
