@@ -43,6 +43,11 @@ def _norm(v: np.ndarray, keepdims: bool = False) -> np.ndarray:
     return np.sqrt(squares)
 
 
+def _sum(v: np.ndarray, axis: int = -1) -> np.ndarray:
+    """``np.sum(v, axis)``: the reduction it calls (``np.add.reduce``), without its wrapper's dispatch."""
+    return np.add.reduce(v, axis=axis)
+
+
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """``np.cross`` of 3-vectors ``(..., 3)``, each component as it computes it (``a1 b2 - a2 b1``, ...)."""
     a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
@@ -76,11 +81,11 @@ def _shortest_arc(src: np.ndarray, dst: np.ndarray) -> np.ndarray:
     by the shortest arc."""
     axis = _cross(src, dst)
     s = _norm(axis)
-    c = np.sum(src * dst, axis=-1)
+    c = _sum(src * dst, axis=-1)
     angle = np.arctan2(s, c)
     # Antiparallel vectors: any axis perpendicular to src will do.
     anti = s < 1e-9
-    if np.any(anti):
+    if anti.any():
         alt = _cross(src[anti], np.array([1.0, 0.0, 0.0]))
         bad = _norm(alt) < 1e-6
         alt[bad] = _cross(src[anti][bad], np.array([0.0, 1.0, 0.0]))
@@ -110,17 +115,17 @@ def solve_rows(a: np.ndarray, b: np.ndarray, c: np.ndarray, Ra: np.ndarray, Rb: 
     l1 = _norm(w)
     l2 = _norm(v)
     d = _norm(targets - a)
-    n_dot_v = np.sum(n * v, axis=-1)
+    n_dot_v = _sum(n * v, axis=-1)
     v_par = n * n_dot_v[:, None]
     v_perp = v - v_par
     n_x_v = _cross(n, v)
-    p_ = np.sum(w * v_par, axis=-1)
-    q_ = np.sum(w * v_perp, axis=-1)
-    s_ = np.sum(w * n_x_v, axis=-1)
+    p_ = _sum(w * v_par, axis=-1)
+    q_ = _sum(w * v_perp, axis=-1)
+    s_ = _sum(w * n_x_v, axis=-1)
     k_ = (d ** 2 - l1 ** 2 - l2 ** 2) / 2.0
     r_ = np.hypot(q_, s_)
     psi = np.arctan2(s_, q_)  # the rotation that straightens the chain as far as the hinge allows
-    cos_arg = np.clip((k_ - p_) / np.maximum(r_, _EPS), -1.0, 1.0)
+    cos_arg = np.minimum(np.maximum((k_ - p_) / np.maximum(r_, _EPS), -1.0), 1.0)  # np.clip's values
     phi = psi + np.arccos(cos_arg)  # flexion side of the straight configuration
     phi = (phi + np.pi) % (2 * np.pi) - np.pi
     bend = rk.from_rotvec(n * phi[:, None])
@@ -130,7 +135,7 @@ def solve_rows(a: np.ndarray, b: np.ndarray, c: np.ndarray, Ra: np.ndarray, Rb: 
     # 2. Aim: upper->end onto upper->target.
     aim_dir, aim_len = _unit(targets - a)
     degenerate = aim_len < 1e-9
-    if np.any(degenerate):  # target on the upper joint: keep the current direction
+    if degenerate.any():  # target on the upper joint: keep the current direction
         aim_dir[degenerate] = _unit(c_bent - a)[0][degenerate]
     q1 = _shortest_arc(_unit(c_bent - a)[0], aim_dir)
 
@@ -138,10 +143,10 @@ def solve_rows(a: np.ndarray, b: np.ndarray, c: np.ndarray, Ra: np.ndarray, Rb: 
     b1 = a + rk.apply(q1, w)
     p1 = b1 - a
     p2 = poles - a
-    p1 = p1 - aim_dir * np.sum(p1 * aim_dir, axis=-1)[:, None]
-    p2 = p2 - aim_dir * np.sum(p2 * aim_dir, axis=-1)[:, None]
+    p1 = p1 - aim_dir * _sum(p1 * aim_dir, axis=-1)[:, None]
+    p2 = p2 - aim_dir * _sum(p2 * aim_dir, axis=-1)[:, None]
     ok = (_norm(p1) > 1e-6) & (_norm(p2) > 1e-6)
-    twist = np.arctan2(np.sum(aim_dir * _cross(p1, p2), axis=-1), np.sum(p1 * p2, axis=-1))
+    twist = np.arctan2(_sum(aim_dir * _cross(p1, p2), axis=-1), _sum(p1 * p2, axis=-1))
     twist = np.where(ok, twist, 0.0)
     q2 = rk.from_rotvec(aim_dir * twist[:, None])
     G = rk.as_matrix(rk.compose(q2, q1))
