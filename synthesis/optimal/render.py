@@ -188,7 +188,13 @@ def blended(prepared, parts: Parts | None = None) -> Blended:
     """The join of :func:`prepare` 's output written, its feet not yet locked: the root is already final.
     ``parts``: the :class:`Parts` that prepared it (its samples of the two sides are reused)."""
     track, placed_b, _, join = prepared
-    return blend_join(track, placed_b, join, sample if parts is None else parts.sample)
+    if parts is None:
+        return blend_join(track, placed_b, join)
+    # the blend asks nothing of the feet the join holds: renderings that differ only in those (the step)
+    # share it
+    key = ("blended", id(track), id(placed_b), join.window, join.offset, join.src_a.tobytes(), join.src_b.tobytes(),
+           np.asarray(join.weights).tobytes(), None if join.pre is None else join.pre.tobytes())
+    return parts.get(key, lambda: blend_join(track, placed_b, join, parts.sample))
 
 
 def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True, tr_contacts: FootContacts | None = None):
