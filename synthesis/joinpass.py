@@ -36,7 +36,7 @@ own two source clips (as recorded, at the track's rate):
 3. **Feet stay put.** Wherever a foot is in contact in the engine's output, or
    held still by its locks (toes and heels: the ankle's position *and* world
    orientation are kept, so the toe stays), the leg is solved by IK back onto
-   that foot (:func:`synthesis.footlock.solve_leg`); the correction fades out
+   that foot (:func:`synthesis.legsolve.solve_leg`); the correction fades out
    over the air phase around it.
 4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
    ankle or toe would go below it is lifted by IK by the deficit
@@ -57,16 +57,16 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d, uniform_filter1d
+
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.easing import smootherstep_area
-from text2anim.core.ik import set_world_rotation
 from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion
 
 from .blend import sample
-from .footlock import solve_leg
 from .inertialize import inertialize_at, inertialize_before
+from .legsolve import solve_leg
 from .pruning import Tried, least, may_keep, replaces
 from .smoothing import Smoothed, Stretch, plant_all
 
@@ -152,7 +152,7 @@ def _raise_ankle(motion: Motion, side: str, ankle: int, short: np.ndarray) -> Mo
         sub = out[a:b]
         pose = sub.pose
         target = pose.positions[:, ankle] + np.stack([np.zeros(b - a), d[a:b], np.zeros(b - a)], 1)
-        solved = set_world_rotation(solve_leg(sub, side, target), ankle, pose.quaternions(ankle))
+        solved = solve_leg(sub, side, target, ankle=pose.quaternions(ankle))  # its world rotation kept
         rots = out.rotations.copy()
         rots[a:b] = solved.rotations
         out = out.replace(rotations=rots)

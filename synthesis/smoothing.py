@@ -16,7 +16,7 @@ search asks, each step dearer than the last:
 
 The figures are bit for bit ``core.metrics.quality(motion[lo - 3:hi + 3], None)`` of the whole candidate
 (jerk p99 m/s³, root pop m/s²; ``tests/synthesis/test_smoothing.py``), and the candidate's motion bit for
-bit the low-passed motion with its feet re-planted, each leg solved in turn over the region.
+bit the low-passed motion with its feet re-planted over the region.
 """
 from __future__ import annotations
 
@@ -25,12 +25,11 @@ from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
-from text2anim.core.ik import set_world_rotation
 from text2anim.core.metrics import JERK_PERCENTILE, ROOT_POP_WINDOW
 from text2anim.core.motion import Motion, concatenate, unroll_quaternions
 
 from .blend import ease, lerp, slerp
-from .footlock import solve_leg
+from .legsolve import LegGoal, solve_legs
 
 AROUND = 3  # frames either side of a region its figures include (the jerk's differences reach that far)
 
@@ -266,9 +265,9 @@ class Smoothed:
 def plant_all(widths: list[Smoothed]) -> None:
     """Re-plant the feet of some widths of one :class:`Stretch` and measure their jerk p99, in one leg IK
     solve per side over all their frames (kinematics and IK are per frame: each width's arithmetic is what
-    it would be alone). Each kept foot's leg is solved (:func:`synthesis.footlock.solve_leg`) onto its target
-    blended in by the contact weight, the ankle's world rotation slerped alike; the other side's solve
-    starts from this one's result."""
+    it would be alone). Each kept foot's leg is solved (:func:`synthesis.legsolve.solve_legs`, both legs in
+    one solve: what ``set_world_rotation(solve_leg(...))`` gives, leg after leg) onto its target blended in
+    by the contact weight, the ankle's world rotation slerped alike."""
     todo = [w for w in widths if w.jk is None]
     if not todo:
         return
@@ -279,12 +278,18 @@ def plant_all(widths: list[Smoothed]) -> None:
         return
     n = st.hi - st.lo
     sub = todo[0].sub if k == 1 else concatenate([w.sub for w in todo])
-    for side, ankle, c, target, r_want in st.feet:
-        now = sub.pose
-        cs = np.tile(c, k)
-        goal = lerp(now.positions[:, ankle], np.tile(target, (k, 1)), cs)
-        turn = slerp(now.quaternions(ankle), np.tile(r_want, (k, 1)), cs)
-        sub = set_world_rotation(solve_leg(sub, side, goal), ankle, turn)
+    # both legs' goals from the kinematics before either is solved (one leg's IK moves none of the other's
+    # joints), as rows of one conversion, one slerp and one IK solve
+    now = sub.pose
+    ankles = [foot[1] for foot in st.feet]
+    cs = np.concatenate([np.tile(foot[2], k) for foot in st.feet])
+    goal = lerp(np.concatenate([now.positions[:, a] for a in ankles]),
+                np.concatenate([np.tile(foot[3], (k, 1)) for foot in st.feet]), cs)
+    turn = slerp(np.concatenate([now.quaternions(a) for a in ankles]),
+                 np.concatenate([np.tile(foot[4], (k, 1)) for foot in st.feet]), cs)
+    rows = k * n
+    sub = solve_legs(sub, [LegGoal(foot[0], 0, rows, goal[i * rows:(i + 1) * rows], turn[i * rows:(i + 1) * rows])
+                           for i, foot in enumerate(st.feet)])
     _ = sub.pose  # the legs' kinematics once for all the widths (their slices share it)
     for i, w in enumerate(todo):
         w._sub = sub[i * n:(i + 1) * n]
