@@ -5,6 +5,7 @@ local joint rotations ``(T, J, 4)`` as scipy quaternions ``(x, y, z, w)``.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
 
@@ -139,6 +140,9 @@ class Motion:
         source = self.__dict__.pop("_pose_source", None)  # not kept once used: it holds another pose
         if source is not None:
             return self._pose_below(*source)
+        parts = self.__dict__.pop("_pose_parts", None)  # a concatenation (see :func:`concatenate`)
+        if parts is not None:
+            return _joined_pose(parts)
         same = self.__dict__.get("_pose_of")
         if same is not None:
             return same.pose
@@ -361,14 +365,22 @@ def concatenate(motions: list[Motion]) -> Motion:
     out = Motion(first.skeleton, first.fps,
                  np.concatenate([m.root_positions for m in motions]),
                  np.concatenate([m.rotations for m in motions]), trans)
-    # FK is per frame: when every part's pose is known (and its bones are the first's), so is the whole's
-    poses = [m._known_pose() for m in motions]
-    if all(p is not None for p in poses) and all(
-            m.skeleton is first.skeleton or np.array_equal(m.skeleton.offsets, first.skeleton.offsets)
-            for m in motions[1:]):
-        positions = np.concatenate([p.positions for p in poses])  # type: ignore[union-attr]
-        rotations = np.concatenate([p.rotations for p in poses])  # type: ignore[union-attr]
-        positions.setflags(write=False)
-        rotations.setflags(write=False)
-        out.__dict__["pose"] = Pose(positions, rotations)
+    # FK is per frame: when the parts' bones are the first's, the whole's pose is the parts' poses end to
+    # end; known now when every part's is, else when asked (only the parts not yet solved are: a track
+    # held or eased to a new length redoes the kinematics of its new frames only)
+    if all(m.skeleton is first.skeleton or np.array_equal(m.skeleton.offsets, first.skeleton.offsets)
+           for m in motions[1:]):
+        if all(m._known_pose() is not None for m in motions):
+            out.__dict__["pose"] = _joined_pose(motions)
+        else:
+            out.__dict__["_pose_parts"] = tuple(motions)
     return out
+
+
+def _joined_pose(parts: Sequence[Motion]) -> Pose:
+    """The pose of ``parts`` end to end (same bones), each part's own computed once."""
+    positions = np.concatenate([m.pose.positions for m in parts])
+    rotations = np.concatenate([m.pose.rotations for m in parts])
+    positions.setflags(write=False)
+    rotations.setflags(write=False)
+    return Pose(positions, rotations)
