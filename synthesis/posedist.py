@@ -52,31 +52,58 @@ def root_headings(motion: Motion) -> np.ndarray:
     return known
 
 
+_JOINT_MAJOR: "weakref.WeakKeyDictionary[Motion, dict[tuple[int, ...], np.ndarray]]" = weakref.WeakKeyDictionary()
+
+
+def _every_frame(motion: Motion, joints: tuple[int, ...]) -> np.ndarray:
+    """:func:`features` of every frame, joint-major ``(K, T, 3)``, read-only; computed once per motion and
+    joint set (motions are not edited in place: a join's search asks for many frame ranges of the same
+    track and clips). Each frame's features depend on that frame alone."""
+    known = _JOINT_MAJOR.setdefault(motion, {})
+    out = known.get(joints)
+    if out is None:
+        pos = motion.positions
+        p = pos[:, list(joints)]
+        root = pos[:, 0]
+        h = root_headings(motion)
+        d = p - np.stack([root[:, 0], np.zeros(len(pos)), root[:, 2]], axis=1)[:, None, :]
+        c, s = np.cos(h), np.sin(h)
+        # turn by -h about +Y: the character then faces +Z
+        out = np.stack([(c[:, None] * d[..., 0] - s[:, None] * d[..., 2]).T, d[..., 1].T,
+                        (s[:, None] * d[..., 0] + c[:, None] * d[..., 2]).T], axis=-1)
+        out.setflags(write=False)
+        known[joints] = out
+    return out
+
+
 def features(motion: Motion, joints, frames=None) -> np.ndarray:
-    """Joint positions with the root's horizontal position and heading removed, ``(F, K, 3)`` metres.
+    """Joint positions with the root's horizontal position and heading removed, ``(F, K, 3)`` metres,
+    laid out joint-major in memory (a ``(K, F, 3)`` block, as :func:`distance_matrix` reads it).
 
     ``frames``: integer frame indices ``(F,)`` (clamped to the motion), or ``None`` for all.
     """
-    pos = motion.positions
     if frames is None:
         frames = np.arange(motion.n_frames)
     idx = np.clip(np.asarray(frames, dtype=int), 0, motion.n_frames - 1)
-    p = pos[idx][:, list(joints)]
-    root = pos[idx, 0]
-    h = root_headings(motion)[idx]
-    d = p - np.stack([root[:, 0], np.zeros(len(idx)), root[:, 2]], axis=1)[:, None, :]
-    c, s = np.cos(h)[:, None], np.sin(h)[:, None]
-    # turn by -h about +Y: the character then faces +Z
-    return np.stack([c * d[..., 0] - s * d[..., 2], d[..., 1], s * d[..., 0] + c * d[..., 2]], axis=-1)
+    return np.take(_every_frame(motion, tuple(int(j) for j in joints)), idx, axis=1).transpose(1, 0, 2)
 
 
 def distance_matrix(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
     """eq. (13) for every pair: ``D[i, j]`` = mean over joints of ``|fb[j] - fa[i]|`` (metres), ``(Na, Nb)``.
 
-    ``fa`` ``(Na, K, 3)`` and ``fb`` ``(Nb, K, 3)`` are :func:`features`.
+    ``fa`` ``(Na, K, 3)`` and ``fb`` ``(Nb, K, 3)`` are :func:`features`. Computed joint-major, one
+    ``(K, Na, Nb)`` block per coordinate: squares summed x, z, y, the joints' distances summed in joint order
+    (the order ``einsum`` and ``mean`` took over the ``(Na, Nb, K, 3)`` difference array, which is no longer
+    made: the same bits at a third of the time).
     """
-    diff = fa[:, None, :, :] - fb[None, :, :, :]
-    return np.sqrt(np.einsum("ijkc,ijkc->ijk", diff, diff)).mean(axis=-1)
+    a, b = fa.transpose(2, 1, 0), fb.transpose(2, 1, 0)  # (3, K, N)
+    d = np.subtract(a[0][:, :, None], b[0][:, None, :])  # (K, Na, Nb)
+    sq = np.multiply(d, d)
+    for c in (2, 1):
+        np.subtract(a[c][:, :, None], b[c][:, None, :], out=d)
+        sq += np.multiply(d, d, out=d)
+    np.sqrt(sq, out=sq)
+    return np.add.reduce(sq, axis=0) / len(sq)
 
 
 def distance(fa: np.ndarray, fb: np.ndarray) -> float:
