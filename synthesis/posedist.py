@@ -22,11 +22,12 @@ from __future__ import annotations
 import weakref
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
-from .align import rest_forward
+from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
+
+from .align import rest_forward
 
 
 def part_joints(motion: Motion, part: str) -> list[int]:
@@ -45,7 +46,7 @@ def root_headings(motion: Motion) -> np.ndarray:
     in place: a join's search asks for the same clip's features many times)."""
     known = _HEADINGS.get(motion)
     if known is None:
-        fwd = Rotation.from_quat(motion.rotations[:, 0]).apply(rest_forward(motion.skeleton))
+        fwd = rk.apply(rk.from_quat(motion.rotations[:, 0]), rest_forward(motion.skeleton))  # Rotation's bits
         known = np.arctan2(fwd[:, 0], fwd[:, 2])
         known.setflags(write=False)
         _HEADINGS[motion] = known
