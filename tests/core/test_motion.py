@@ -65,6 +65,17 @@ def test_concatenate_appends_frames():
         concatenate([m, m.resample(30)])
 
 
+def test_a_concatenation_whose_parts_are_partly_solved_has_the_whole_frames_kinematics():
+    m = read_bvh(cmu("16_35_run"), drop_first=True)
+    known = m[:40]
+    known.pose  # solved: its kinematics is reused, the other parts' is computed when asked
+    fresh = m[40:70].replace(fps=m.fps)  # no pose of its own yet
+    both = concatenate([known, fresh, m[70:75]])
+    whole = Motion(m.skeleton, m.fps, both.root_positions.copy(), both.rotations.copy())
+    assert np.array_equal(both.positions, whole.positions)
+    assert np.array_equal(both.pose.rotations, whole.pose.rotations)
+
+
 def test_unroll_keeps_neighbours_in_one_hemisphere():
     q = Rotation.from_euler("z", np.linspace(0, 720, 50)[:, None], degrees=True).as_quat()
     q[1::2] *= -1
