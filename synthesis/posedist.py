@@ -53,27 +53,25 @@ def root_headings(motion: Motion) -> np.ndarray:
     return known
 
 
-_JOINT_MAJOR: "weakref.WeakKeyDictionary[Motion, dict[tuple[int, ...], np.ndarray]]" = weakref.WeakKeyDictionary()
+_JOINT_MAJOR: "weakref.WeakKeyDictionary[Motion, np.ndarray]" = weakref.WeakKeyDictionary()
 
 
-def _every_frame(motion: Motion, joints: tuple[int, ...]) -> np.ndarray:
-    """:func:`features` of every frame, joint-major ``(K, T, 3)``, read-only; computed once per motion and
-    joint set (motions are not edited in place: a join's search asks for many frame ranges of the same
-    track and clips). Each frame's features depend on that frame alone."""
-    known = _JOINT_MAJOR.setdefault(motion, {})
-    out = known.get(joints)
+def _every_frame(motion: Motion) -> np.ndarray:
+    """:func:`features` of every joint and frame, joint-major ``(J, T, 3)``, read-only; computed once per
+    motion (motions are not edited in place: a join's search asks for many frame ranges of both body
+    parts of the same track and clips). Each value depends on its own frame and joint alone."""
+    out = _JOINT_MAJOR.get(motion)
     if out is None:
         pos = motion.positions
-        p = pos[:, list(joints)]
         root = pos[:, 0]
         h = root_headings(motion)
-        d = p - np.stack([root[:, 0], np.zeros(len(pos)), root[:, 2]], axis=1)[:, None, :]
+        d = pos - np.stack([root[:, 0], np.zeros(len(pos)), root[:, 2]], axis=1)[:, None, :]
         c, s = np.cos(h), np.sin(h)
         # turn by -h about +Y: the character then faces +Z
         out = np.stack([(c[:, None] * d[..., 0] - s[:, None] * d[..., 2]).T, d[..., 1].T,
                         (s[:, None] * d[..., 0] + c[:, None] * d[..., 2]).T], axis=-1)
         out.setflags(write=False)
-        known[joints] = out
+        _JOINT_MAJOR[motion] = out
     return out
 
 
@@ -86,7 +84,8 @@ def features(motion: Motion, joints, frames=None) -> np.ndarray:
     if frames is None:
         frames = np.arange(motion.n_frames)
     idx = np.clip(np.asarray(frames, dtype=int), 0, motion.n_frames - 1)
-    return np.take(_every_frame(motion, tuple(int(j) for j in joints)), idx, axis=1).transpose(1, 0, 2)
+    rows = np.take(_every_frame(motion), np.asarray(joints, dtype=int), axis=0)
+    return np.take(rows, idx, axis=1).transpose(1, 0, 2)
 
 
 def distance_matrix(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
