@@ -153,7 +153,7 @@ def match(point: np.ndarray, heading: float, to_point: np.ndarray, to_heading: f
     Only the ground-plane (x, z) coordinates of the points matter.
     """
     yaw = float(wrap_angle(to_heading - heading))
-    p = yaw_rotation(yaw).apply(np.asarray(point, dtype=np.float64))
+    p = rk.apply(_yaw_quat(yaw), np.asarray(point, dtype=np.float64))[0]  # yaw_rotation(yaw).apply's bits
     return Rigid(yaw, (float(to_point[0] - p[0]), float(to_point[2] - p[2])))
 
 

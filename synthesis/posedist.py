@@ -83,9 +83,8 @@ def features(motion: Motion, joints, frames=None) -> np.ndarray:
     """
     if frames is None:
         frames = np.arange(motion.n_frames)
-    idx = np.clip(np.asarray(frames, dtype=int), 0, motion.n_frames - 1)
     rows = np.take(_every_frame(motion), np.asarray(joints, dtype=int), axis=0)
-    return np.take(rows, idx, axis=1).transpose(1, 0, 2)
+    return np.take(rows, np.asarray(frames, dtype=int), axis=1, mode="clip").transpose(1, 0, 2)
 
 
 def distance_matrix(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
