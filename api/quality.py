@@ -11,15 +11,20 @@ at one rate:
   whole clip) and whether the window meets each criterion of
   :func:`core.metrics.against_sources` (skating ≤ the sources' larger + 0.01,
   root pop and jerk p99 ≤ 1.2 × the sources' larger, floor penetration ≤ 1 cm,
-  frozen frames ≤ 5 %).
+  frozen frames ≤ 5 %);
+- per actor, the root pop the method *introduced* (:func:`introduced_root_pop`): over the frames whose
+  hips acceleration is not that of a source clip as placed (turned and moved, played verbatim, or moved
+  by a constant offset), the worst jolt of the frames the method made itself.
 """
 from __future__ import annotations
 
 from collections.abc import Sequence
 from typing import Any
 
-from text2anim.core.metrics import (COMPARE_FPS, Quality, Series, against_sources, at_rate, quality, series,
-                                    summarise, window_frames)
+import numpy as np
+
+from text2anim.core.metrics import (COMPARE_FPS, ROOT_POP_WINDOW, Quality, Series, against_sources, at_rate, quality,
+                                    series, summarise, window_frames)
 
 JOIN_MARGIN = 0.5  # s added before and after a join's blend intervals
 
@@ -91,4 +96,58 @@ def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS,
             entry["sources"] = {k: {"clip": name, **rounded(q)} for k, (name, q) in src.items()}
             entry["meets"] = against_sources(here, [q for _, q in src.values()])
         out.append(entry)
+    return out
+
+
+#: m: how far a hips path may stray from a placed element's moved by one constant offset and still be its own
+PLAYED_TOL = 1e-3
+
+
+def played_frames(motion, paths, fps: float = COMPARE_FPS) -> np.ndarray:
+    """``(T,)`` bool at ``fps``: frames whose root pop (the hips' horizontal acceleration after the 3-frame
+    average) is that of a source clip as placed: on every frame it is taken from (two either side) the
+    hips are where one and the same placed element has them, moved by one constant offset (within
+    :data:`PLAYED_TOL`). A constant offset changes no acceleration: a clip played verbatim, or moved
+    whole (an adaptation's hips held by its feet's offsets), keeps its own figure there.
+
+    ``motion``: a result's motion at its own rate; ``paths``: its ``(K, T0, 2)``
+    :attr:`~synthesis.result.Result.placed_paths`, resampled here to ``fps`` as the motion is (linear).
+    """
+    m = at_rate(motion, fps)
+    n = m.n_frames
+    half = (ROOT_POP_WINDOW - 1) // 2 + 1  # frames either side the acceleration at a frame is taken from
+    if n < 2 * half + 1 or len(paths) == 0:
+        return np.zeros(n, dtype=bool)
+    t_old = np.arange(paths.shape[1]) / motion.fps
+    t_new = np.minimum(np.arange(n) / m.fps, t_old[-1])
+    xz = m.root_positions[:, [0, 2]]
+    own = np.zeros(n, dtype=bool)
+    for path in paths:
+        at = np.stack([np.interp(t_new, t_old, path[:, k]) for k in range(2)], axis=1)  # NaN spreads: not played
+        off = np.lib.stride_tricks.sliding_window_view(xz - at, 2 * half + 1, axis=0)  # (n - 2 half, 2, 2 half + 1)
+        spread = np.linalg.norm(off.max(axis=-1) - off.min(axis=-1), axis=-1)  # NaN where not played
+        own[half:n - half] |= spread < PLAYED_TOL  # NaN compares False
+    return own
+
+
+def introduced_root_pop(result, fps: float = COMPARE_FPS, series_of: dict | None = None) -> dict[Any, float | None]:
+    """``{actor: m/s²}``: the largest root pop a method introduced: over the frames whose hips acceleration
+    is not a source clip's own as placed (:func:`played_frames`), at ``fps``; 0 where it plays its clips
+    unchanged throughout; None for an actor whose placed paths are not known.
+
+    The whole output's root pop often lies inside a source clip's core, which every method plays as
+    recorded (a kick's own 9 m/s²); this reading is the worst jolt the method's own frames add: its
+    blends, its adaptation's lower body, its post-pass, its foot locks, its holds.
+    """
+    out: dict[Any, float | None] = {}
+    for actor, motion in result.motions.items():
+        paths = result.placed_paths.get(actor)
+        if paths is None:
+            out[actor] = None
+            continue
+        s = (series_of or {}).get(actor) or series(at_rate(motion, fps))
+        changed = ~played_frames(motion, paths, fps)
+        acc = s.root_acc[changed]
+        acc = acc[~np.isnan(acc)]
+        out[actor] = round(float(acc.max()), 2) if acc.size else 0.0
     return out

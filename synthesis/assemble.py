@@ -23,6 +23,7 @@ from .composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
 from .measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
 from .placed import Placed, mirrored_if_needed, on_skeleton
+from .played import placed_paths
 from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
 from text2anim.core.metrics import jerk, skating_ratio
 from text2anim.core.motion import Motion
@@ -259,7 +260,7 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False, fin
     runs the join post-pass (:func:`finish_joins`) before the compositions are laid. ``finished=False``
     leaves the motions before :func:`synthesis.finish.finish` (for a caller that finishes them itself).
     """
-    motions, reports, elements, warnings = {}, [], {}, []
+    motions, reports, elements, warnings, placed = {}, [], {}, [], {}
     for track in tracks:
         whole = [e for e in track.elements if e.method != "composition"]
         parts = sorted((e for e in track.elements if e.method == "composition"), key=lambda e: (e.start, e.id))
@@ -275,8 +276,10 @@ def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False, fin
         elements.update(els)
         warnings.extend(laid.warnings)
         motions[track.actor] = laid.motion
+        placed[track.actor] = laid.placed
     final = same_length(motions) if post else motions
     if finished:
         idles = {t.actor: t.idle for t in tracks}
         final = {actor: finish(m, feet=post, idle=idles[actor]) for actor, m in final.items()}
-    return Result(final, reports, fps, elements, tuple(warnings))
+    paths = {actor: placed_paths(placed[actor], m.n_frames) for actor, m in final.items()}
+    return Result(final, reports, fps, elements, tuple(warnings), paths)

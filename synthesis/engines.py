@@ -151,8 +151,13 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
     joins = [j for j in result.joins if result.actor_of(j.second) not in swap]
     joins += [replace(j, metrics={**j.metrics, "engine": "constraint", "fallback_from": "optimal"})
               for j in other.joins if other.actor_of(j.second) in swap]
+    from .played import fitted
+
+    src = {actor: (other if actor in swap else result).placed_paths.get(actor) for actor in motions}
+    paths = {actor: fitted(p, motions[actor].n_frames) for actor, p in src.items() if p is not None}
     warnings = list(result.warnings) + [
         f"{actor or 'default'}: optimal blending left feet skating at join "
         f"{', '.join(f'{a}→{b}' for a, b in bad[actor])}; rendered with the constraint engine instead"
         for actor in swap]
-    return replace(result, motions=motions, joins=joins, elements=elements, warnings=tuple(warnings))
+    return replace(result, motions=motions, joins=joins, elements=elements, warnings=tuple(warnings),
+                   placed_paths=paths)

@@ -25,9 +25,10 @@ own two source clips (as recorded, at the track's rate):
    horizontal acceleration (m/s², :func:`core.metrics.quality`) within the two
    sources' are kept; the time added is reported (``post.added_s``) and the
    elements after the join start that much later. At that stretch a wider
-   smoothing is taken instead when it is no worse on either figure and nearer
-   the figures of the frames the join replaces (``Region.near``: the first
-   clip after its core, the second before it, :func:`synthesis.assemble.join_side`):
+   smoothing is taken instead when it is still within the sources' figures and
+   nearer the figures of the frames the join replaces (``Region.near``: the first
+   clip after its core, the second before it, :func:`synthesis.assemble.join_side`;
+   "nearer": the larger of the two ratios, jerk and root pop, is smaller):
    a kick's accelerations in its core are no licence for the join beside it.
 3. **Feet stay put.** Wherever a foot is in contact in the engine's output, or
    held still by its locks (toes and heels: the ankle's position *and* world
@@ -337,9 +338,10 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
             if best is None or score < best[0] - 1e-9:
                 best = (score, sigma, stretch, cand, jk, pop, h2)
             if score <= 1.0:  # within the whole clips' figures: no more time. A wider smoothing is taken if it
-                # is no worse on either figure and nearer the figures of the parts the join replaces
+                # is still within them and nearer the figures of the parts the join replaces (the larger ratio
+                # smaller: a root pop brought down to the replaced frames' may cost jerk within the sources')
                 near = max(jk / max(jk_near * SLACK, 1e-9), pop / max(pop_near * SLACK, 1e-9))
-                if kept is None or (near < kept[0] - 1e-9 and jk <= kept[4] + 1e-9 and pop <= kept[5] + 1e-9):
+                if kept is None or near < kept[0] - 1e-9:
                     kept = (near, sigma, stretch, cand, jk, pop, h2)
                 if kept[0] <= 1.0:
                     break

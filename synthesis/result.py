@@ -106,6 +106,9 @@ class Result:
             repetitions, compositions), in track and time order.
         elements: per element id, its :class:`ElementReport`.
         warnings: what could not be honoured.
+        placed_paths: per actor, ``(K, T, 2)`` m: the hips' horizontal path of each whole-body element
+            as placed (the clip turned and moved, before any blend) on the motion's ``T`` frames, NaN
+            where it is not played (:func:`synthesis.played.placed_paths`); empty when not known.
     """
 
     motions: dict[str | None, Motion]
@@ -113,6 +116,7 @@ class Result:
     fps: float
     elements: dict[int, ElementReport] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
+    placed_paths: dict[str | None, Any] = field(default_factory=dict, compare=False)
 
     def actor_of(self, element_id: int) -> str | None:
         """The actor an element belongs to (``None``: the default actor, or an unknown element)."""

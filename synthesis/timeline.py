@@ -100,7 +100,10 @@ class Timeline:
         laid = Laid(self.motion, self.state.placed, list(self.state.joins), list(self.state.warnings),
                     dict(self.state.skipped))
         reps, els = measure(Track(None, tuple(self.elements)), laid, [], self.fps)
-        return Result({None: self.motion}, reps, self.fps, els, tuple(self.state.warnings))
+        from .played import placed_paths
+
+        return Result({None: self.motion}, reps, self.fps, els, tuple(self.state.warnings),
+                      {None: placed_paths(self.state.placed, self.motion.n_frames)})
 
     # ----------------------------------------------------------------------------------------- append
     def _element(self, clip: Clip, start: int, speed: float, duration: float | None, method: Method) -> Element:

@@ -13,6 +13,7 @@ from ..adaptation import adapt, pin_feet
 from ..blend import blend, sample
 from ..posedist import part_joints
 from ..transition import PLANTED_WEIGHT, Blended, Join, blend_join, lock_join
+from ..weights import hermite_weights
 from .records import Interval, Plan
 
 
@@ -30,9 +31,14 @@ def _b_side(plan: Plan) -> Motion:
     """The lower body's second source on the next motion's frames: the placed motion, or for an adaptation
     the adapted one (S2, eqs. (7)/(9)), returned to its own over S3 (eq. (8)).
 
-    The return fades the adaptation's deformation by the S3 weight (§4.4.2 cases (a)/(b)): the motion's own
-    movement plays through it and the support foot stays put. Case (c) is the literal pose–pose blend of
-    the adapted pose at ``t0`` and the motion's pose at ``t1``, planted feet pinned.
+    The return fades the adaptation's deformation over S3 (§4.4.2 cases (a)/(b)): the motion's own
+    movement plays through it and the support foot stays put. Both ends of that fade play the motion's own
+    movement (the deformation held through S2, none after), so what eq. (16) matches there is the
+    deformation's own speed, 0: the fade is the Hermite curve with zero slopes at both ends (S3's eq. (16)
+    weights, taken from the speeds of the whole poses, would start and stop moving the hips by the
+    deformation with a jump in their velocity: a root pop at S3's ends, inside the next motion's core).
+    Case (c) is the literal pose–pose blend of the adapted pose at ``t0`` and the motion's pose at ``t1``,
+    planted feet pinned.
     """
     if plan.adapted is None:
         return plan.placed
@@ -43,7 +49,7 @@ def _b_side(plan: Plan) -> Motion:
     a, b = iv.t0 - off, iv.t1 - off
     if iv.kind == "pose-motion":
         scale = np.ones(plan.placed.n_frames)
-        scale[a:b + 1] = 1.0 - iv.weights
+        scale[a:b + 1] = 1.0 - hermite_weights(b - a, 0.0, 0.0)  # eq. (16) with the deformation's speed, 0
         scale[b + 1:] = 0.0
         return adapt(plan.placed, plan.info["adapt_offsets"], scale)
     n = b - a + 1

@@ -13,7 +13,12 @@ from __future__ import annotations
 
 import pytest
 
+from dataclasses import replace
+
+import numpy as np
+
 from text2anim.core.metrics import MAX_PENETRATION_CM, SKATING_MARGIN, SOURCE_FACTOR, against_sources, quality
+from text2anim.quality import introduced_root_pop, played_frames
 from text2anim.motiondb import MotionDB
 from text2anim.synthesis.engines import synthesize_with
 from text2anim.synthesis.plan import Track
@@ -30,7 +35,8 @@ CUTS = {"walk16": ("16_15_walk", "cycle", None), "walk": ("02_01_walk", "cycle",
         "walk07": ("07_02_walk", "cycle", None), "run": ("02_03_run", "cycle", None),
         "run127": ("127_07_run", "cycle", None), "pickup": ("02_06_pickup", (0.2, 2.6), (0.5, 1.8)),
         "lunge": ("135_09_punch", (1.4, 3.6), (0.5, 1.2)), "frontkick": ("135_04_kick", (1.7, 4.0), (0.8, 1.9)),
-        "dance02": ("05_02_dance", (0.5, 4.0), (0.5, 3.0)), "shot": ("06_14_throw", (1.8, 4.0), (0.4, 1.5))}
+        "dance02": ("05_02_dance", (0.5, 4.0), (0.5, 3.0)), "shot": ("06_14_throw", (1.8, 4.0), (0.4, 1.5)),
+        "kick10_03": ("10_03_kick", (0.0, 2.8), (0.7, 1.5)), "jump118": ("118_10_jump", (0.4, 3.0), (0.6, 1.8))}
 
 
 @pytest.fixture(scope="module")
@@ -103,3 +109,34 @@ def test_a_looped_capture_keeps_its_hips_and_feet(clips, name):
     q, own = quality(looped), quality(cycle)
     assert q.root_pop <= SOURCE_FACTOR * own.root_pop
     assert q.floor_penetration_cm <= MAX_PENETRATION_CM
+
+
+def test_an_adaptation_returns_into_the_next_core_no_harder_than_that_clip_moves(clips):
+    """kick → jump (10_03 → 118_10): the adaptation's return (S3, eq. (8)) lies inside the jump's core. The
+    hips' acceleration the join adds (over the frames it changed) stays within the jump's own figure x 1.2;
+    the return used to raise it to 11.5 m/s2 where the jump lands (its own: 8.5), within the kick's 11.9
+    and so within the whole-output criterion, but a jolt the jump does not have."""
+    res = synthesize_with("optimal", [track_of(clips, "kick10_03", "jump118")], FPS)
+    (join,) = res.joins
+    assert join.blend == "motion_adaptation_step"
+    assert introduced_root_pop(res)[None] <= SOURCE_FACTOR * quality(clips["jump118"][1].motion).root_pop
+
+
+def test_the_introduced_root_pop_reads_the_frames_a_method_changed(clips):
+    """A crossfade of pick-up → front kick plays the kick's core as captured: those frames are the source's
+    (its 9.3 m/s2 is the whole output's root pop, not the join's), and what the blend introduced is far
+    less. A jolt put into frames it played (the hips moved 5 cm from one frame on) is read as introduced."""
+    res = synthesize_with("crossfade", [track_of(clips, "pickup", "frontkick")], FPS)
+    m = res.motions[None]
+    played = played_frames(m, res.placed_paths[None])
+    (join,) = res.joins
+    c0, c1 = res.elements[join.second].core
+    assert played[int(np.ceil(c0 * FPS)) + 2:int(c1 * FPS) - 2].all()
+    whole, introduced = quality(m).root_pop, introduced_root_pop(res)[None]
+    assert introduced < 0.5 * whole
+    f = int(round(0.5 * (c0 + c1) * FPS))
+    root = m.root_positions.copy()
+    root[f:, 0] += 0.05
+    jolted = replace(res, motions={None: m.replace(root_positions=root)})
+    assert introduced_root_pop(jolted)[None] > whole  # 5 cm in a frame: ~15 m/s2 after the 3-frame average
+    assert played_frames(jolted.motions[None], res.placed_paths[None])[f + 3:int(c1 * FPS) - 2].all()  # moved whole after it
