@@ -53,26 +53,31 @@ def root_headings(motion: Motion) -> np.ndarray:
     return known
 
 
-_JOINT_MAJOR: "weakref.WeakKeyDictionary[Motion, np.ndarray]" = weakref.WeakKeyDictionary()
+_WINDOWS: "weakref.WeakKeyDictionary[Motion, tuple[int, np.ndarray]]" = weakref.WeakKeyDictionary()
 
 
-def _every_frame(motion: Motion) -> np.ndarray:
-    """:func:`features` of every joint and frame, joint-major ``(J, T, 3)``, read-only; computed once per
-    motion (motions are not edited in place: a join's search asks for many frame ranges of both body
-    parts of the same track and clips). Each value depends on its own frame and joint alone."""
-    out = _JOINT_MAJOR.get(motion)
-    if out is None:
-        pos = motion.positions
-        root = pos[:, 0]
-        h = root_headings(motion)
-        d = pos - np.stack([root[:, 0], np.zeros(len(pos)), root[:, 2]], axis=1)[:, None, :]
-        c, s = np.cos(h), np.sin(h)
-        # turn by -h about +Y: the character then faces +Z
-        out = np.stack([(c[:, None] * d[..., 0] - s[:, None] * d[..., 2]).T, d[..., 1].T,
-                        (s[:, None] * d[..., 0] + c[:, None] * d[..., 2]).T], axis=-1)
-        out.setflags(write=False)
-        _JOINT_MAJOR[motion] = out
-    return out
+def _window(motion: Motion, lo: int, hi: int) -> tuple[int, np.ndarray]:
+    """:func:`features` of every joint for a block of frames holding ``[lo, hi)``: its first frame and the
+    block, joint-major ``(J, n, 3)``, read-only. Kept per motion and widened when a request falls outside
+    (motions are not edited in place: a join's search asks for many frame ranges near the join of both
+    body parts of the same track and clips). Each value depends on its own frame and joint alone."""
+    known = _WINDOWS.get(motion)
+    if known is not None:
+        a, block = known
+        if a <= lo and hi <= a + block.shape[1]:
+            return known
+        lo, hi = min(lo, a), max(hi, a + block.shape[1])
+    pos = motion.positions[lo:hi]
+    root = pos[:, 0]
+    h = root_headings(motion)[lo:hi]
+    d = pos - np.stack([root[:, 0], np.zeros(len(pos)), root[:, 2]], axis=1)[:, None, :]
+    c, s = np.cos(h), np.sin(h)
+    # turn by -h about +Y: the character then faces +Z
+    block = np.stack([(c[:, None] * d[..., 0] - s[:, None] * d[..., 2]).T, d[..., 1].T,
+                      (s[:, None] * d[..., 0] + c[:, None] * d[..., 2]).T], axis=-1)
+    block.setflags(write=False)
+    known = _WINDOWS[motion] = (lo, block)
+    return known
 
 
 def features(motion: Motion, joints, frames=None) -> np.ndarray:
@@ -81,10 +86,14 @@ def features(motion: Motion, joints, frames=None) -> np.ndarray:
 
     ``frames``: integer frame indices ``(F,)`` (clamped to the motion), or ``None`` for all.
     """
-    if frames is None:
-        frames = np.arange(motion.n_frames)
-    rows = np.take(_every_frame(motion), np.asarray(joints, dtype=int), axis=0)
-    return np.take(rows, np.asarray(frames, dtype=int), axis=1, mode="clip").transpose(1, 0, 2)
+    idx = np.arange(motion.n_frames) if frames is None else \
+        np.minimum(np.maximum(np.asarray(frames, dtype=int), 0), motion.n_frames - 1)
+    if len(idx) == 0 or motion.n_frames == 0:
+        return np.zeros((len(idx), len(joints), 3))
+    lo, hi = int(idx.min()), int(idx.max()) + 1
+    a, block = _window(motion, lo, hi)
+    rows = np.take(block, np.asarray(joints, dtype=int), axis=0)
+    return np.take(rows, idx - a, axis=1).transpose(1, 0, 2)
 
 
 def distance_matrix(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
