@@ -5,6 +5,7 @@ local joint rotations ``(T, J, 4)`` as scipy quaternions ``(x, y, z, w)``.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
 
@@ -139,6 +140,12 @@ class Motion:
         source = self.__dict__.pop("_pose_source", None)  # not kept once used: it holds another pose
         if source is not None:
             return self._pose_below(*source)
+        parts = self.__dict__.pop("_pose_parts", None)  # a concatenation (see :func:`concatenate`)
+        if parts is not None:
+            return _joined_pose(parts)
+        moved = self.__dict__.pop("_pose_moved", None)  # the root moved (see :meth:`replace`)
+        if moved is not None:
+            return self._pose_root_moved(moved)
         same = self.__dict__.get("_pose_of")
         if same is not None:
             return same.pose
@@ -228,11 +235,30 @@ class Motion:
         """A new motion with some fields changed. When only the local rotations change, and only those
         of some joints (an IK solve of a limb), the new motion's :attr:`pose`, when asked, redoes the
         kinematics of the subtrees holding them, from this motion's pose (bit for bit the
-        full computation: :meth:`_pose_below`)."""
+        full computation: :meth:`_pose_below`); when only the root positions change, it keeps this
+        pose's world rotations (:meth:`_pose_root_moved`)."""
         out = replace(self, **changes)
         if changes.keys() == {"rotations"} and out.rotations.shape == self.rotations.shape:
             self._carry_pose(out)
+        elif changes.keys() == {"root_positions"} and out.root_positions.shape == self.root_positions.shape:
+            known = self._known_pose()  # the hips moved: the world rotations stay, positions are redone
+            if known is not None:
+                out.__dict__["_pose_moved"] = known
         return out
+
+    def _pose_root_moved(self, known: Pose) -> Pose:
+        """:attr:`pose` from ``known``, the pose of a motion that differs from this one only in its root
+        positions: the world rotations are ``known``'s, the positions are summed down the tree again from
+        the same rotated bone offsets (:attr:`pose`'s arithmetic and layout, so the same bits)."""
+        world_r = np.ascontiguousarray(known.rotations.transpose(1, 0, 2, 3))  # joint-major, as pose() has it
+        local_t = self.local_translations().transpose(1, 0, 2).copy()
+        world_p = np.empty_like(local_t)
+        world_p[0] = local_t[0]
+        for joints, parents in self.skeleton.depth_levels():
+            world_p[joints] = world_p[parents] + np.einsum("ntij,ntj->nti", world_r[parents], local_t[joints])
+        world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2))
+        world_p.setflags(write=False)
+        return Pose(world_p, known.rotations)
 
     def _carry_pose(self, out: "Motion") -> None:
         """Tell ``out`` (this motion with other local rotations) how to get its pose from this one's."""
@@ -361,14 +387,22 @@ def concatenate(motions: list[Motion]) -> Motion:
     out = Motion(first.skeleton, first.fps,
                  np.concatenate([m.root_positions for m in motions]),
                  np.concatenate([m.rotations for m in motions]), trans)
-    # FK is per frame: when every part's pose is known (and its bones are the first's), so is the whole's
-    poses = [m._known_pose() for m in motions]
-    if all(p is not None for p in poses) and all(
-            m.skeleton is first.skeleton or np.array_equal(m.skeleton.offsets, first.skeleton.offsets)
-            for m in motions[1:]):
-        positions = np.concatenate([p.positions for p in poses])  # type: ignore[union-attr]
-        rotations = np.concatenate([p.rotations for p in poses])  # type: ignore[union-attr]
-        positions.setflags(write=False)
-        rotations.setflags(write=False)
-        out.__dict__["pose"] = Pose(positions, rotations)
+    # FK is per frame: when the parts' bones are the first's, the whole's pose is the parts' poses end to
+    # end; known now when every part's is, else when asked (only the parts not yet solved are: a track
+    # held or eased to a new length redoes the kinematics of its new frames only)
+    if all(m.skeleton is first.skeleton or np.array_equal(m.skeleton.offsets, first.skeleton.offsets)
+           for m in motions[1:]):
+        if all(m._known_pose() is not None for m in motions):
+            out.__dict__["pose"] = _joined_pose(motions)
+        else:
+            out.__dict__["_pose_parts"] = tuple(motions)
     return out
+
+
+def _joined_pose(parts: Sequence[Motion]) -> Pose:
+    """The pose of ``parts`` end to end (same bones), each part's own computed once."""
+    positions = np.concatenate([m.pose.positions for m in parts])
+    rotations = np.concatenate([m.pose.rotations for m in parts])
+    positions.setflags(write=False)
+    rotations.setflags(write=False)
+    return Pose(positions, rotations)
