@@ -43,6 +43,11 @@ def _norm(v: np.ndarray, keepdims: bool = False) -> np.ndarray:
     return np.sqrt(squares)
 
 
+def _sum(v: np.ndarray, axis: int = -1) -> np.ndarray:
+    """``np.sum(v, axis)``: the reduction it calls (``np.add.reduce``), without its wrapper's dispatch."""
+    return np.add.reduce(v, axis=axis)
+
+
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """``np.cross`` of 3-vectors ``(..., 3)``, each component as it computes it (``a1 b2 - a2 b1``, ...)."""
     a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
@@ -76,17 +81,81 @@ def _shortest_arc(src: np.ndarray, dst: np.ndarray) -> np.ndarray:
     by the shortest arc."""
     axis = _cross(src, dst)
     s = _norm(axis)
-    c = np.sum(src * dst, axis=-1)
+    c = _sum(src * dst, axis=-1)
     angle = np.arctan2(s, c)
     # Antiparallel vectors: any axis perpendicular to src will do.
     anti = s < 1e-9
-    if np.any(anti):
+    if anti.any():
         alt = _cross(src[anti], np.array([1.0, 0.0, 0.0]))
         bad = _norm(alt) < 1e-6
         alt[bad] = _cross(src[anti][bad], np.array([0.0, 1.0, 0.0]))
         axis[anti] = alt
     axis, _ = _unit(axis)
     return rk.from_rotvec(axis * angle[:, None])
+
+
+def solve_rows(a: np.ndarray, b: np.ndarray, c: np.ndarray, Ra: np.ndarray, Rb: np.ndarray, Rp: np.ndarray,
+               targets: np.ndarray, poles: np.ndarray, hinge=(1.0, 0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`two_bone_ik` 's arithmetic on rows: each row a chain on one frame, rows independent (so the
+    chains of both legs, or of several frame ranges, are solved in one call with the same bits).
+
+    Args:
+        a, b, c: ``(N, 3)`` world positions of the upper, middle and end joints.
+        Ra, Rb, Rp: ``(N, 3, 3)`` world rotations of the upper and middle joints and of the upper's parent.
+        targets, poles: ``(N, 3)`` world positions for the end joint and for the middle joint to bend towards.
+        hinge: the middle joint's flexion axis in the upper bone's frame, ``(3,)``.
+
+    Returns:
+        The new local rotations of the upper and middle joints, quaternions ``(N, 4)`` each.
+    """
+    # 1. Bend about the hinge (fixed in the upper bone) to get the right reach.
+    n, _ = _unit(np.einsum("tij,j->ti", Ra, np.asarray(hinge, dtype=np.float64)))
+    w = b - a
+    v = c - b
+    l1 = _norm(w)
+    l2 = _norm(v)
+    d = _norm(targets - a)
+    n_dot_v = _sum(n * v, axis=-1)
+    v_par = n * n_dot_v[:, None]
+    v_perp = v - v_par
+    n_x_v = _cross(n, v)
+    p_ = _sum(w * v_par, axis=-1)
+    q_ = _sum(w * v_perp, axis=-1)
+    s_ = _sum(w * n_x_v, axis=-1)
+    k_ = (d ** 2 - l1 ** 2 - l2 ** 2) / 2.0
+    r_ = np.hypot(q_, s_)
+    psi = np.arctan2(s_, q_)  # the rotation that straightens the chain as far as the hinge allows
+    cos_arg = np.minimum(np.maximum((k_ - p_) / np.maximum(r_, _EPS), -1.0), 1.0)  # np.clip's values
+    phi = psi + np.arccos(cos_arg)  # flexion side of the straight configuration
+    phi = (phi + np.pi) % (2 * np.pi) - np.pi
+    bend = rk.from_rotvec(n * phi[:, None])
+    Rb_bent = rk.as_matrix(bend) @ Rb
+    c_bent = b + rk.apply(bend, v)
+
+    # 2. Aim: upper->end onto upper->target.
+    aim_dir, aim_len = _unit(targets - a)
+    degenerate = aim_len < 1e-9
+    if degenerate.any():  # target on the upper joint: keep the current direction
+        aim_dir[degenerate] = _unit(c_bent - a)[0][degenerate]
+    q1 = _shortest_arc(_unit(c_bent - a)[0], aim_dir)
+
+    # 3. Twist about the aim line so the middle joint faces the pole.
+    b1 = a + rk.apply(q1, w)
+    p1 = b1 - a
+    p2 = poles - a
+    p1 = p1 - aim_dir * _sum(p1 * aim_dir, axis=-1)[:, None]
+    p2 = p2 - aim_dir * _sum(p2 * aim_dir, axis=-1)[:, None]
+    ok = (_norm(p1) > 1e-6) & (_norm(p2) > 1e-6)
+    twist = np.arctan2(_sum(aim_dir * _cross(p1, p2), axis=-1), _sum(p1 * p2, axis=-1))
+    twist = np.where(ok, twist, 0.0)
+    q2 = rk.from_rotvec(aim_dir * twist[:, None])
+    G = rk.as_matrix(rk.compose(q2, q1))
+
+    Ra_new = G @ Ra
+    local_a = np.swapaxes(Rp, -1, -2) @ Ra_new
+    local_b = np.swapaxes(Ra, -1, -2) @ Rb_bent  # G cancels: R_a'^T (G R_b') = R_a^T R_b'
+    q = rk.as_quat(rk.from_matrix(np.concatenate([local_a, local_b])))  # one conversion: rows are independent
+    return q[:len(local_a)], q[len(local_a):]
 
 
 def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0, 0.0, 0.0)) -> Motion:
@@ -122,62 +191,14 @@ def two_bone_ik(motion: Motion, chain, targets, mask=None, pole=None, hinge=(1.0
 
     pose = motion.pose
     P, R = pose.positions[idx], pose.rotations[idx]
-    a, b, c = P[:, a_j], P[:, b_j], P[:, c_j]
-    Ra, Rb = R[:, a_j], R[:, b_j]
     parent = skel.parents[a_j]
-    Rp = R[:, parent] if parent >= 0 else np.broadcast_to(np.eye(3), Ra.shape)
-    poles = b.copy() if pole is None else _rows(pole, T, "pole")[mask]
-
-    # 1. Bend about the hinge (fixed in the upper bone) to get the right reach.
-    n, _ = _unit(np.einsum("tij,j->ti", Ra, np.asarray(hinge, dtype=np.float64)))
-    w = b - a
-    v = c - b
-    l1 = _norm(w)
-    l2 = _norm(v)
-    d = _norm(targets - a)
-    n_dot_v = np.sum(n * v, axis=-1)
-    v_par = n * n_dot_v[:, None]
-    v_perp = v - v_par
-    n_x_v = _cross(n, v)
-    p_ = np.sum(w * v_par, axis=-1)
-    q_ = np.sum(w * v_perp, axis=-1)
-    s_ = np.sum(w * n_x_v, axis=-1)
-    k_ = (d ** 2 - l1 ** 2 - l2 ** 2) / 2.0
-    r_ = np.hypot(q_, s_)
-    psi = np.arctan2(s_, q_)  # the rotation that straightens the chain as far as the hinge allows
-    cos_arg = np.clip((k_ - p_) / np.maximum(r_, _EPS), -1.0, 1.0)
-    phi = psi + np.arccos(cos_arg)  # flexion side of the straight configuration
-    phi = (phi + np.pi) % (2 * np.pi) - np.pi
-    bend = rk.from_rotvec(n * phi[:, None])
-    Rb_bent = rk.as_matrix(bend) @ Rb
-    c_bent = b + rk.apply(bend, v)
-
-    # 2. Aim: upper->end onto upper->target.
-    aim_dir, aim_len = _unit(targets - a)
-    degenerate = aim_len < 1e-9
-    if np.any(degenerate):  # target on the upper joint: keep the current direction
-        aim_dir[degenerate] = _unit(c_bent - a)[0][degenerate]
-    q1 = _shortest_arc(_unit(c_bent - a)[0], aim_dir)
-
-    # 3. Twist about the aim line so the middle joint faces the pole.
-    b1 = a + rk.apply(q1, w)
-    p1 = b1 - a
-    p2 = poles - a
-    p1 = p1 - aim_dir * np.sum(p1 * aim_dir, axis=-1)[:, None]
-    p2 = p2 - aim_dir * np.sum(p2 * aim_dir, axis=-1)[:, None]
-    ok = (_norm(p1) > 1e-6) & (_norm(p2) > 1e-6)
-    twist = np.arctan2(np.sum(aim_dir * _cross(p1, p2), axis=-1), np.sum(p1 * p2, axis=-1))
-    twist = np.where(ok, twist, 0.0)
-    q2 = rk.from_rotvec(aim_dir * twist[:, None])
-    G = rk.as_matrix(rk.compose(q2, q1))
-
-    Ra_new = G @ Ra
-    local_a = np.swapaxes(Rp, -1, -2) @ Ra_new
-    local_b = np.swapaxes(Ra, -1, -2) @ Rb_bent  # G cancels: R_a'^T (G R_b') = R_a^T R_b'
+    Rp = R[:, parent] if parent >= 0 else np.broadcast_to(np.eye(3), R[:, a_j].shape)
+    poles = P[:, b_j].copy() if pole is None else _rows(pole, T, "pole")[mask]
+    qa, qb = solve_rows(P[:, a_j], P[:, b_j], P[:, c_j], R[:, a_j], R[:, b_j], Rp, targets, poles, hinge)
 
     rots = motion.rotations.copy()
-    rots[idx, a_j] = rk.as_quat(rk.from_matrix(local_a))
-    rots[idx, b_j] = rk.as_quat(rk.from_matrix(local_b))
+    rots[idx, a_j] = qa
+    rots[idx, b_j] = qb
     return motion.replace(rotations=rots)
 
 
@@ -190,15 +211,17 @@ def set_world_rotation(motion: Motion, joint, rotations, mask=None) -> Motion:
         return motion
     q = np.asarray(rotations, dtype=np.float64).reshape(T, 4)[mask]
     p = motion.skeleton.parents[j]
-    world = rk.from_quat(q)
-    if p >= 0:
-        parent = rk.from_matrix(motion.pose.rotations[mask, p])
-        local = rk.compose(rk.inverse(parent), world)
-    else:
-        local = world
     rots = motion.rotations.copy()
-    rots[mask, j] = rk.as_quat(local)
+    rots[mask, j] = world_to_local(motion.pose.rotations[mask, p] if p >= 0 else None, q)
     return motion.replace(rotations=rots)
+
+
+def world_to_local(parent: np.ndarray | None, world: np.ndarray) -> np.ndarray:
+    """Local rotations ``(N, 4)`` that give a joint the world rotations ``world`` (quaternions ``(N, 4)``)
+    under its parent's world rotations ``parent`` (matrices ``(N, 3, 3)``; ``None`` for the root): rows
+    independent, :func:`set_world_rotation` 's arithmetic."""
+    q = rk.from_quat(world)
+    return rk.as_quat(q if parent is None else rk.compose(rk.inverse(rk.from_matrix(parent)), q))
 
 
 def _limb(motion: Motion, side: str, kind: str) -> tuple[tuple[int, int, int], tuple[float, float, float]]:

@@ -84,8 +84,12 @@ def skating_pairs(motion: Motion, floor: float = 0.0) -> np.ndarray:
     """
     if motion.n_frames < 2:
         return np.zeros(0, dtype=bool)
-    toes = motion.positions[:, toe_joints(motion)]  # (T, 2, 3)
-    speed = np.linalg.norm(np.diff(toes[..., [0, 2]], axis=0), axis=-1) * motion.fps  # (T-1, 2)
+    return toe_skating_pairs(motion.positions[:, toe_joints(motion)], motion.fps, floor)
+
+
+def toe_skating_pairs(toes: np.ndarray, fps: float, floor: float = 0.0) -> np.ndarray:
+    """:func:`skating_pairs` from the toes' world positions ``(T, 2, 3)`` (``T >= 2``) at ``fps``."""
+    speed = np.linalg.norm(np.diff(toes[..., [0, 2]], axis=0), axis=-1) * fps  # (T-1, 2)
     avg = uniform_filter1d(speed, size=SKATE_WINDOW, axis=0, mode="constant", origin=0)
     low = toes[..., 1] - floor < SKATE_HEIGHT  # (T, 2)
     skating = low[:-1] & low[1:] & (speed > SKATE_SPEED) & (avg > SKATE_SPEED)

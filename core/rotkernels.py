@@ -102,8 +102,9 @@ def from_matrix(m) -> np.ndarray:
     m = _stack(m, 3, 3)
     if len(m) == 0:
         return np.zeros((0, 4))
-    c = m.reshape(-1, 9).T  # the nine elements, row by row, each (N,)
-    det = c[0] * (c[4] * c[8] - c[5] * c[7]) - c[1] * (c[3] * c[8] - c[5] * c[6]) + c[2] * (c[3] * c[7] - c[4] * c[6])
+    c = m.reshape(-1, 9)  # the nine elements, row by row
+    e = c.T  # each (N,)
+    det = e[0] * (e[4] * e[8] - e[5] * e[7]) - e[1] * (e[3] * e[8] - e[5] * e[6]) + e[2] * (e[3] * e[7] - e[4] * e[6])
     if (det <= 0).any():  # only its sign is asked: the cofactor expansion, not LAPACK's
         raise ValueError(f"Non-positive determinant (left-handed or null coordinate frame) in rotation matrix "
                          f"{int(np.flatnonzero(det <= 0)[0])}")
@@ -113,21 +114,25 @@ def from_matrix(m) -> np.ndarray:
         u, _, vt = np.linalg.svd(m[~orthogonal], full_matrices=False)
         m = m.copy()
         m[~orthogonal] = u @ vt
-    d00, d11, d22 = m[:, 0, 0], m[:, 1, 1], m[:, 2, 2]
-    trace = d00 + d11 + d22
-    choice = np.argmax(np.stack([d00, d11, d22, trace], axis=1), axis=1)
-    cases = np.empty((4, len(m), 4))
-    for i in range(3):  # the largest diagonal element is i's: the quaternion from column i
-        j, k = (i + 1) % 3, (i + 2) % 3
-        cases[i, :, i] = 1 - trace + 2 * m[:, i, i]
-        cases[i, :, j] = m[:, j, i] + m[:, i, j]
-        cases[i, :, k] = m[:, k, i] + m[:, i, k]
-        cases[i, :, 3] = m[:, k, j] - m[:, j, k]
-    cases[3, :, 0] = m[:, 2, 1] - m[:, 1, 2]
-    cases[3, :, 1] = m[:, 0, 2] - m[:, 2, 0]
-    cases[3, :, 2] = m[:, 1, 0] - m[:, 0, 1]
-    cases[3, :, 3] = 1 + trace
-    return _normalized(cases[choice, np.arange(len(m))])
+        c = m.reshape(-1, 9)
+    diag = c[:, 0::4]  # m00, m11, m22
+    trace = diag[:, 0] + diag[:, 1] + diag[:, 2]
+    choice = np.argmax(np.concatenate([diag, trace[:, None]], axis=1), axis=1)
+    # Markley's four quaternions share their terms (addition commutes exactly): the largest diagonal
+    # element i's is 1 - trace + 2 m_ii at i, m_ji + m_ij at j, m_ki + m_ik at k, m_kj - m_jk at w
+    # (j, k = i + 1, i + 2 mod 3); the trace's is the three differences and 1 + trace
+    terms = np.empty((len(m), 10))
+    terms[:, 0:3] = (1 - trace)[:, None] + 2 * diag
+    terms[:, 3:6] = c.take(_SUM_A, axis=1) + c.take(_SUM_B, axis=1)  # m01 + m10, m12 + m21, m02 + m20
+    terms[:, 6:9] = c.take(_DIFF_A, axis=1) - c.take(_DIFF_B, axis=1)  # m21 - m12, m02 - m20, m10 - m01
+    terms[:, 9] = 1 + trace
+    return _normalized(terms[np.arange(len(m))[:, None], _MARKLEY[choice]])
+
+
+_SUM_A, _SUM_B = np.array([1, 5, 2]), np.array([3, 7, 6])
+_DIFF_A, _DIFF_B = np.array([7, 2, 3]), np.array([5, 6, 1])
+#: per case (largest m00, m11, m22, trace), the ``terms`` of :func:`from_matrix` giving x, y, z, w
+_MARKLEY = np.array([[0, 3, 5, 6], [3, 1, 4, 7], [5, 4, 2, 8], [6, 7, 8, 9]])
 
 
 def compose(p: np.ndarray, q: np.ndarray) -> np.ndarray:

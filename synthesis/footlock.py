@@ -5,8 +5,8 @@ blending joint angles (and root positions) moves it otherwise. Each planted
 foot gets a :class:`Lock` over the frames ``[begin, end)`` where it is down
 in the motion that dominates the blend (and, past the blend, in the next
 motion). The ankle is driven to a target by the analytic two-bone IK of
-:mod:`core.ik` (hip and knee) and turned to a target orientation
-(:func:`core.ik.set_world_rotation`), so the toe stays too.
+:mod:`core.ik` (hip and knee) and turned to a target orientation, so the toe stays too: every lock
+and release of a join in one solve, every swing lift in another (:mod:`synthesis.legsolve`).
 
 The target starts where the foot is on the lock's first frame and then moves
 only as the foot moves *in the source motions that have it planted*
@@ -18,7 +18,7 @@ integrated. Past the blend only the next motion counts, so the foot does what
 that clip does, displaced by whatever offset the lock had built up.
 
 A foot that lands during the blend is carried to where the planted source
-puts it over its approach (:func:`lock_foot`). At ``end`` the foot leaves
+puts it over its approach (:func:`lock_feet`). At ``end`` the foot leaves
 the ground in the next motion and is **released while it is in the air**: the leg's joint angles are blended from the locked
 solution back to the motion's own by eq. (3) with the ratio of eq. (4) over
 the air phase ``[end, release_end)``, so it lands where the next motion puts
@@ -29,13 +29,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from .align import rest_forward
 from .blend import ease, ratio, slerp
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import runs
-from text2anim.core.ik import leg_ik, set_world_rotation
 from text2anim.core.motion import Motion
+
+from .legsolve import REACH, LegGoal, leg_chain, quaternions, solve_goals, solve_leg
+
+__all__ = ["Lock", "FootLocks", "planted_targets", "lock_feet", "lift_swings", "plan_locks", "REACH", "solve_leg"]
 
 
 @dataclass(frozen=True)
@@ -64,130 +66,86 @@ def planted_targets(start_pos: np.ndarray, start_rot: np.ndarray, positions: lis
         frame ``t`` adds the weighted mean of the sources' steps ``t - 1 -> t``
         (velocity and body-frame angular velocity), summed.
     """
+    steps_p, steps_r = _steps(positions, rotations)
+    targets, turned = _integrate(start_pos, weights, steps_p, steps_r)
+    start = np.reshape(start_rot, (-1, 4))  # a rotation already (not normalised again: scipy's bits)
+    return targets, rk.as_quat(rk.compose(start, rk.from_rotvec(turned)))
+
+
+def _steps(positions: list[np.ndarray], rotations: list[np.ndarray]) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Per source the ankle's steps ``t - 1 -> t`` (:func:`planted_targets`): ``(T - 1, 3)`` moves and
+    ``(T - 1, 3)`` turns in its own frame (rotation vectors), all sources' turns in one conversion (per pair
+    of frames the same arithmetic, so a lock's steps are the slice of the steps of a longer run)."""
+    if len(rotations[0]) < 2:
+        return [np.zeros((0, 3)) for _ in positions], [np.zeros((0, 3)) for _ in rotations]
+    turns = rk.as_rotvec(rk.compose(rk.inverse(np.concatenate([r[:-1] for r in rotations])),
+                                    np.concatenate([r[1:] for r in rotations])))
+    return [np.diff(p, axis=0) for p in positions], np.split(turns, len(rotations))
+
+
+def _integrate(start_pos: np.ndarray, weights: list[np.ndarray], steps_p: list[np.ndarray],
+               steps_r: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`planted_targets` 's sums: ``(T, 3)`` positions and the ``(T, 3)`` rotation vector turned since
+    frame 0, from the sources' :func:`_steps` over the lock weighted by their shares of ``weights``."""
     T = len(weights[0])
     w = np.stack(weights)  # (S, T)
     tot = w.sum(axis=0)
     share = np.divide(w, tot, out=np.zeros_like(w), where=tot > 1e-9)
     dp = np.zeros((T, 3))
     dr = np.zeros((T, 3))
-    for s, (p, r) in enumerate(zip(positions, rotations)):
+    for s, (step_p, step_r) in enumerate(zip(steps_p, steps_r)):
         if T < 2:
             break
-        step_p = np.diff(p, axis=0)
-        step_r = rk.as_rotvec(rk.compose(rk.inverse(r[:-1]), r[1:]))
         dp[1:] += share[s, 1:, None] * step_p
         dr[1:] += share[s, 1:, None] * step_r
-    targets = start_pos + np.cumsum(dp, axis=0)
-    start = np.reshape(start_rot, (-1, 4))  # a rotation already (not normalised again: scipy's bits)
-    rots = rk.as_quat(rk.compose(start, rk.from_rotvec(np.cumsum(dr, axis=0))))
-    return targets, rots
+    return start_pos + np.cumsum(dp, axis=0), np.cumsum(dr, axis=0)
 
 
-def _ankle(motion: Motion, side: str) -> int:
-    return body_map(motion.skeleton).feet[side][0]
+@dataclass(frozen=True)
+class FootLocks:
+    """One foot's locks in a join and its planted sources (:func:`lock_feet`): ``positions``,
+    ``rotations`` per source its ankle's world positions ``(N, 3)`` and rotation matrices ``(N, 3, 3)``
+    from the join's first frame; ``weights`` per source ``(N,)``: its blend weight where the foot is
+    planted in it, else 0."""
+
+    locks: list[Lock]
+    positions: list[np.ndarray]
+    rotations: list[np.ndarray]
+    weights: list[np.ndarray]
 
 
-#: IK targets are kept within this fraction of the leg's length from the hip: a leg pulled fully
-#: straight has no bend plane, and the knee would flip from frame to frame. Captured legs reach 0.99
-#: of their length, the built-in ones 0.999.
-REACH = 0.998
-
-
-def solve_leg(motion: Motion, side: str, targets: np.ndarray) -> Motion:
-    """:func:`core.ik.leg_ik` with targets pulled within :data:`REACH` of the leg's length and the
-    knee bending towards the thigh's forward direction."""
-    ankle = _ankle(motion, side)
-    parents = motion.skeleton.parents
-    knee = int(parents[ankle])
-    hip = int(parents[knee])
-    offs = motion.skeleton.offsets
-    reach = REACH * (np.linalg.norm(offs[knee]) + np.linalg.norm(offs[ankle]))
-    pos = motion.positions
-    h = pos[:, hip]
-    v = targets - h
-    dist = np.linalg.norm(v, axis=-1)
-    scale = np.minimum(1.0, reach / np.maximum(dist, 1e-9))
-    # the knee bends towards the thigh's own forward: with the leg's own knee as the pole, a nearly
-    # straight leg has no bend plane to keep and the knee could swing sideways (a hinge knee bends in
-    # the thigh's forward plane, so for a bent leg this is the plane it already has)
-    fwd = np.einsum("tij,j->ti", motion.pose.rotations[:, hip], rest_forward(motion.skeleton))
-    pole = pos[:, knee] + 0.5 * fwd
-    return leg_ik(motion, side, h + v * scale[:, None], pole=pole)
-
-
-def release(motion: Motion, side: str, begin: int, end: int, offset: np.ndarray, turn: np.ndarray,
-            profile: str = "smooth") -> Motion:
-    """Release a locked foot over ``[begin, end)`` while it is in the air (eq. (3)).
-
-    The lock's last offset (``offset`` metres and ``turn``, the ankle's rotation
-    relative to its own, a quaternion ``(1, 4)``) rides on the motion's own foot, solved by IK; the
-    leg's joint angles are then blended from that solution to the motion's own,
-    ``angle = (1 - ratio) * locked + ratio * own`` with the ratio of eq. (4).
-    """
-    b, e = max(0, begin), min(motion.n_frames, end)
-    if e <= b:
-        return motion
-    ankle = _ankle(motion, side)
-    sub = motion[b:e]
-    pose = sub.pose
-    r_own = rk.from_matrix(pose.rotations[:, ankle])
-    solved = solve_leg(sub, side, pose.positions[:, ankle] + offset)
-    solved = set_world_rotation(solved, ankle, rk.as_quat(rk.compose(r_own, turn)))
-    w = ease(ratio(e - b), profile)  # eq. (4), eased
-    legs = list(body_map(motion.skeleton).joints(f"{side}_leg"))
-    rots = sub.rotations.copy()
-    rots[:, legs] = slerp(solved.rotations[:, legs], sub.rotations[:, legs], w[:, None])  # eq. (3)
-    out = motion.rotations.copy()
-    out[b:e] = rots
-    return motion.replace(rotations=out)
-
-
-def lock_foot(motion: Motion, side: str, locks: list[Lock], first: int, positions: list[np.ndarray],
-              rotations: list[np.ndarray], weights: list[np.ndarray], profile: str = "smooth") -> Motion:
-    """Apply all the locks of one foot in one join.
-
-    Args:
-        motion: the joined motion (not yet locked on this side).
-        locks: this foot's :class:`Lock` s, in time order, none beginning before ``first``.
-        first: the frame the sources start at (the blend's first frame).
-        positions, rotations: per source motion, its ankle's world positions ``(N, 3)`` and
-            rotation matrices ``(N, 3, 3)`` over frames ``[first, first + N)``.
-        weights: per source ``(N,)``: its blend weight where the foot is planted in it, else 0.
-
-    Each lock's target starts where the planted sources put the foot (their
-    weighted mean) and follows their motion (:func:`planted_targets`). Between
-    ``first`` and the first lock, and between two locks, the foot's offset
-    from its own path moves smoothly (the ``smooth`` profile) from the one
-    before to the one after, so a foot that lands during the blend is
-    carried to its lock without a jump; after the last lock it is
-    :func:`release` d.
-    """
-    if not locks:
-        return motion
-    locks = sorted(locks, key=lambda lk: lk.begin)
-    ankle = _ankle(motion, side)
+def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray], feet: FootLocks, first: int,
+               profile: str):
+    """The goal holding one foot over ``[first, stop)`` (see :func:`lock_feet`): ``p`` ``(T, 3)`` and ``r``
+    ``(T, 4)`` its ankle's own world positions and rotations there, ``sources`` per source its ankle's world
+    rotations as quaternions ``(T, 4)``. Also the last lock's offset and turn: ``(goal, d (3,), e (3,))``."""
+    locks = sorted(feet.locks, key=lambda lk: lk.begin)
+    positions = feet.positions
     stop = locks[-1].end
-    sub = motion[first:stop]
-    pose = sub.pose
-    p = pose.positions[:, ankle]
-    r = rk.from_matrix(pose.rotations[:, ankle])  # (T, 4) quaternions (core.rotkernels: scipy's bits)
     T = len(p)
     d = np.zeros((T, 3))
     e = np.zeros((T, 3))
-    w = np.stack([x[:T] for x in weights])
-    for lk in locks:
+    w = np.stack([x[:T] for x in feet.weights])
+    steps_p, steps_r = _steps([x[:T] for x in positions], sources)  # once for all the locks
+    starts, turns, rows = [], [], []
+    for lk in locks:  # planted_targets of each lock, its rotations converted below for all at once
         i0, i1 = lk.begin - first, lk.end - first
         tot = w[:, i0].sum()
         if tot > 1e-9:
             share = w[:, i0] / tot
             start = sum(share[k] * positions[k][i0] for k in range(len(positions)))
-            start_rot = rk.from_matrix(rotations[int(np.argmax(share))][i0])
+            start_rot = sources[int(np.argmax(share))][i0:i0 + 1]
         else:
             start, start_rot = p[i0], r[i0:i0 + 1]
-        tp, tr = planted_targets(start, start_rot, [x[i0:i1] for x in positions],
-                                 [rk.from_matrix(x[i0:i1]) for x in rotations], [x[i0:i1] for x in w])
+        tp, turned = _integrate(start, [x[i0:i1] for x in w], [x[i0:i1 - 1] for x in steps_p],
+                                [x[i0:i1 - 1] for x in steps_r])
         d[i0:i1] = tp - p[i0:i1]
-        e[i0:i1] = rk.as_rotvec(rk.compose(rk.inverse(r[i0:i1]), rk.from_quat(tr)))
+        starts.append(np.repeat(start_rot, i1 - i0, axis=0))
+        turns.append(turned)
+        rows.append(np.arange(i0, i1))
+    tr = rk.as_quat(rk.compose(np.concatenate(starts), rk.from_rotvec(np.concatenate(turns))))
+    at = np.concatenate(rows)
+    e[at] = rk.as_rotvec(rk.compose(rk.inverse(r[at]), rk.from_quat(tr)))
     prev_end, prev_d, prev_e = 0, np.zeros(3), np.zeros(3)
     for lk in locks:  # the approaches: the offset eases from the previous state to the lock's
         i0 = lk.begin - first
@@ -197,13 +155,66 @@ def lock_foot(motion: Motion, side: str, locks: list[Lock], first: int, position
             e[prev_end:i0] = prev_e + u * (e[i0] - prev_e)
         prev_end = lk.end - first
         prev_d, prev_e = d[prev_end - 1].copy(), e[prev_end - 1].copy()
-    solved = solve_leg(sub, side, p + d)
-    solved = set_world_rotation(solved, ankle, rk.as_quat(rk.compose(r, rk.from_rotvec(e))))
+    goal = LegGoal(side, first, stop, p + d, rk.as_quat(rk.compose(r, rk.from_rotvec(e))))
+    return goal, prev_d, prev_e
+
+
+def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: str = "smooth") -> Motion:
+    """Apply all the locks of both feet in one join, each foot then released (one IK solve for all).
+
+    Per foot (its :class:`FootLocks`; no lock begins before ``first``, the frame the sources start at,
+    the blend's first): each lock's target starts where the planted sources put the foot (their
+    weighted mean) and follows their motion (:func:`planted_targets`). Between ``first`` and the first
+    lock, and between two locks, the foot's offset from its own path moves smoothly (the ``profile``)
+    from the one before to the one after, so a foot that lands during the blend is carried to its lock
+    without a jump. After the last lock the foot is **released** over ``[end, release_end)`` while it is
+    in the air (eq. (3)): the lock's last offset and turn ride on the motion's own foot, solved by IK,
+    and the leg's joint angles are blended from that solution to the motion's own,
+    ``angle = (1 - ratio) * locked + ratio * own`` with the ratio of eq. (4), eased.
+    """
+    feet = {s: f for s, f in feet.items() if f.locks}
+    if not feet:
+        return motion
+    n = motion.n_frames
+    hi = max(max(lk.release_end for lk in f.locks) for f in feet.values())
+    hi = min(n, max(hi, max(max(lk.end for lk in f.locks) for f in feet.values())))
+    span = motion[first:hi]
+    pose = span.pose
+    # every ankle rotation the locks ask for as quaternions, in one conversion: per foot its own over the
+    # locks and over the release, and each source's
+    blocks = []
+    for side, f in feet.items():
+        ankle, T = leg_chain(motion, side)[2], max(lk.end for lk in f.locks) - first
+        last = max(f.locks, key=lambda lk: lk.begin)
+        b, e = max(0, last.end), min(n, last.release_end)
+        blocks += [pose.rotations[:T, ankle], pose.rotations[b - first:max(b, e) - first, ankle]]
+        blocks += [x[:T] for x in f.rotations]
+    quats = quaternions(blocks)
+    goals, releases = [], []
+    for side, f in feet.items():
+        ankle, T = leg_chain(motion, side)[2], max(lk.end for lk in f.locks) - first
+        r, r_own, *sources = quats[:2 + len(f.rotations)]
+        quats = quats[2 + len(f.rotations):]
+        goal, prev_d, prev_e = _lock_goal(side, pose.positions[:T, ankle], r, sources, f, first, profile)
+        goals.append(goal)
+        last = max(f.locks, key=lambda lk: lk.begin)
+        b, e = max(0, last.end), min(n, last.release_end)
+        if e > b:  # the release: the lock's offset riding on the motion's own foot
+            turn = rk.from_rotvec(prev_e)
+            goals.append(LegGoal(side, b, e, pose.positions[b - first:e - first, ankle] + prev_d,
+                                 rk.as_quat(rk.compose(r_own, turn))))
+            releases.append((side, b, e))
+    rots = solve_goals(span, first, goals)
+    if releases:  # eq. (3) over the legs' joints of every release at once
+        legs = [np.asarray(body_map(motion.skeleton).joints(f"{side}_leg")) for side, _, _ in releases]
+        fr = [np.repeat(np.arange(b - first, e - first), len(j)) for (_, b, e), j in zip(releases, legs)]
+        jt = [np.tile(j, e - b) for (_, b, e), j in zip(releases, legs)]
+        w = [np.repeat(ease(ratio(e - b), profile), len(j)) for (_, b, e), j in zip(releases, legs)]  # eq. (4), eased
+        fr_all, jt_all = np.concatenate(fr), np.concatenate(jt)
+        rots[fr_all, jt_all] = slerp(rots[fr_all, jt_all], span.rotations[fr_all, jt_all], np.concatenate(w))
     out = motion.rotations.copy()
-    out[first:stop] = solved.rotations
-    motion = motion.replace(rotations=out)
-    last = locks[-1]
-    return release(motion, side, last.end, last.release_end, prev_d, rk.from_rotvec(prev_e), profile)
+    out[first:hi] = rots
+    return motion.replace(rotations=out)
 
 
 CLEARANCE_SLOPE = 0.3  # m of height per m of horizontal distance from the nearer end of a swing
@@ -212,9 +223,39 @@ SWING_SPEED = 0.3  # m/s: only where the foot moves faster than this does its he
 LIFT_JERK = 500.0  # m/s^3: the largest jerk a lift may add (short runs get lower arcs)
 
 
-def lift_swing(motion: Motion, side: str, begin: int, end: int,
-               slope: float = CLEARANCE_SLOPE, top: float = CLEARANCE_MAX) -> Motion:
-    """Keep a foot off the floor while a blend (or a release) carries it through the air, ``[begin, end)``.
+def _lift_goal(pose, lo: int, fps: float, side: str, feet: tuple[int, int], b: int, e: int,
+               slope: float, top: float) -> LegGoal | None:
+    """The goal lifting one swing ``[b, e)`` (see :func:`lift_swings`) from ``pose`` (frames from ``lo``)."""
+    ankle, toe = feet
+    pos = pose.positions[b - lo:e - lo]
+    p = pos[:, ankle]
+    low = np.minimum(p[:, 1], pos[:, toe, 1])  # the foot's lowest point
+    step = np.linalg.norm(np.diff(p[:, [0, 2]], axis=0), axis=1)
+    s_from = np.concatenate([[0.0], np.cumsum(step)])
+    total = s_from[-1]
+    speed = np.linalg.norm(np.gradient(p[:, [0, 2]], axis=0), axis=1) * fps
+    moving = speed > SWING_SPEED
+    if total < 0.05 or not moving.any():
+        return None
+    clearance = np.minimum(slope * np.minimum(s_from, total - s_from), top)
+    floor = min(low[0], low[-1])
+    need = float(np.max((floor + clearance - low)[moving]))
+    m = len(p)
+    # one smooth arc (not a clipped max, which would kink the leg's motion), no taller than a jerk of
+    # LIFT_JERK allows over the run: the arc's third derivative at its ends is 384 * height / duration^3
+    height = min(need, top, LIFT_JERK * ((m - 1) / fps) ** 3 / 384.0)
+    if height < 1e-3:
+        return None
+    u = np.arange(m) / (m - 1)
+    target = p.copy()
+    target[:, 1] += height * 64.0 * (u * (1.0 - u)) ** 3
+    return LegGoal(side, b, e, target, np.empty((0, 4)))  # its ankle's own rotations: lift_swings
+
+
+def lift_swings(motion: Motion, swings: list[tuple[str, int, int]],
+                slope: float = CLEARANCE_SLOPE, top: float = CLEARANCE_MAX) -> Motion:
+    """Keep feet off the floor while a blend (or a release) carries them through the air: each
+    ``(side, begin, end)`` of ``swings`` (the runs of one foot must not overlap), in one IK solve.
 
     A blend moves a foot between two places along the mix of its two source
     paths; where the two places differ, the weight's own change pushes the
@@ -226,40 +267,25 @@ def lift_swing(motion: Motion, side: str, begin: int, end: int,
     ankle is raised by IK (its world orientation kept) along one smooth arc
     in time, ``64 (u (1 - u))^3``, tall enough for the largest shortfall but
     adding no more jerk than :data:`LIFT_JERK`; zero, with zero slope and
-    curvature, at both ends.
+    curvature, at both ends. Runs shorter than 3 frames are left alone.
     """
     n = motion.n_frames
-    b, e = max(0, begin), min(n, end)
-    if e - b < 3:
+    runs_ = [(side, max(0, b), min(n, e)) for side, b, e in swings]
+    runs_ = [(side, b, e) for side, b, e in runs_ if e - b >= 3]
+    if not runs_:
         return motion
-    ankle, toe = body_map(motion.skeleton).feet[side]
-    sub = motion[b:e]
-    pose = sub.pose
-    p = pose.positions[:, ankle]
-    low = np.minimum(p[:, 1], pose.positions[:, toe, 1])  # the foot's lowest point
-    step = np.linalg.norm(np.diff(p[:, [0, 2]], axis=0), axis=1)
-    s_from = np.concatenate([[0.0], np.cumsum(step)])
-    total = s_from[-1]
-    speed = np.linalg.norm(np.gradient(p[:, [0, 2]], axis=0), axis=1) * motion.fps
-    moving = speed > SWING_SPEED
-    if total < 0.05 or not moving.any():
+    lo, hi = min(b for _, b, _ in runs_), max(e for _, _, e in runs_)
+    span = motion[lo:hi]
+    pose = span.pose
+    bm = body_map(motion.skeleton)
+    goals = [g for side, b, e in runs_
+             if (g := _lift_goal(pose, lo, motion.fps, side, bm.feet[side], b, e, slope, top)) is not None]
+    if not goals:
         return motion
-    clearance = np.minimum(slope * np.minimum(s_from, total - s_from), top)
-    floor = min(low[0], low[-1])
-    need = float(np.max((floor + clearance - low)[moving]))
-    m = len(p)
-    # one smooth arc (not a clipped max, which would kink the leg's motion), no taller than a jerk of
-    # LIFT_JERK allows over the run: the arc's third derivative at its ends is 384 * height / duration^3
-    height = min(need, top, LIFT_JERK * ((m - 1) / motion.fps) ** 3 / 384.0)
-    if height < 1e-3:
-        return motion
-    u = np.arange(m) / (m - 1)
-    target = p.copy()
-    target[:, 1] += height * 64.0 * (u * (1.0 - u)) ** 3
-    rot = rk.as_quat(rk.from_matrix(pose.rotations[:, ankle]))
-    solved = set_world_rotation(solve_leg(sub, side, target), ankle, rot)
+    own = quaternions([pose.rotations[g.begin - lo:g.end - lo, bm.feet[g.side][0]] for g in goals])
+    goals = [LegGoal(g.side, g.begin, g.end, g.targets, rk.as_quat(q)) for g, q in zip(goals, own)]
     out = motion.rotations.copy()
-    out[b:e] = solved.rotations
+    out[lo:hi] = solve_goals(span, lo, goals)
     return motion.replace(rotations=out)
 
 

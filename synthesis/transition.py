@@ -58,7 +58,7 @@ from .align import Rigid, align_through_foot
 from .blend import blend, ramp, sample
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts, runs
-from .footlock import Lock, lift_swing, lock_foot, plan_locks
+from .footlock import FootLocks, Lock, lift_swings, lock_feet, plan_locks
 from text2anim.core.motion import Motion, concatenate
 from .switching import Switch, find_switch, swings
 from .timing import KNEE, hold, soft_clip
@@ -333,13 +333,14 @@ class Blended:
     b_line: Motion
 
 
-def blend_join(track: Motion, placed_b: Motion, join: Join) -> Blended:
-    """The first half of :func:`apply_join`: the track up to the window, the blend, then all of placed ``B``."""
+def blend_join(track: Motion, placed_b: Motion, join: Join, sampler=sample) -> Blended:
+    """The first half of :func:`apply_join`: the track up to the window, the blend, then all of placed ``B``.
+    ``sampler``: :func:`synthesis.blend.sample` or one that remembers what it sampled."""
     w0, w1 = join.window
     if w0 > track.n_frames:  # B starts after everything so far: hold the last frame until then
         track = hold(track, w0)
-    a_w = sample(track, join.src_a)
-    b_w = sample(placed_b, join.src_b)
+    a_w = sampler(track, join.src_a)
+    b_w = sampler(placed_b, join.src_b)
     mix = blend(a_w, b_w, join.weights)
     for m in (a_w, b_w, mix):  # the window's kinematics (the locks ask for them): the tracks concatenated
         m.pose  # from these and known poses below then know theirs without redoing every frame's
@@ -355,8 +356,9 @@ def blend_join(track: Motion, placed_b: Motion, join: Join) -> Blended:
     return Blended(out, a_w, b_line)
 
 
-def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[Motion, list[Lock]]:
-    """The second half of :func:`apply_join`: the planted feet of a :func:`blend_join` locked, swings lifted."""
+def lock_join(blended: Blended, b_contacts: FootContacts, join: Join, lift: bool = True) -> tuple[Motion, list[Lock]]:
+    """The second half of :func:`apply_join`: the planted feet of a :func:`blend_join` locked, swings lifted
+    (:func:`lift_join`; ``lift=False`` leaves that to the caller: a locked foot is the same either way)."""
     out, a_w, b_line = blended.out, blended.a_w, blended.b_line
     w0, w1 = join.window
     n = out.n_frames
@@ -383,6 +385,7 @@ def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[M
     a_contacts = {s: np.zeros(nb, dtype=bool) for s in ("left", "right")}
     for s in ("left", "right"):
         a_contacts[s][:w1 - w0] = join.planted_a[s]
+    feet_locks = {}
     for side in ("left", "right"):
         mine = [lk for lk in locks if lk.side == side]
         if not mine:
@@ -392,9 +395,19 @@ def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[M
         ra = np.tile(np.eye(3), (nb, 1, 1))
         pa[:w1 - w0] = a_pose.positions[:, ankle]
         ra[:w1 - w0] = a_pose.rotations[:, ankle]
-        out = lock_foot(out, side, mine, w0, [pa, b_pose.positions[:, ankle]], [ra, b_pose.rotations[:, ankle]],
-                        [wa * a_contacts[side], wb * src_planted[side]], PROFILE)
-    for side in ("left", "right"):  # feet the blend or a release carries through the air keep clear of the floor
+        feet_locks[side] = FootLocks(mine, [pa, b_pose.positions[:, ankle]], [ra, b_pose.rotations[:, ankle]],
+                                     [wa * a_contacts[side], wb * src_planted[side]])
+    out = lock_feet(out, feet_locks, w0, PROFILE)
+    return (lift_join(out, locks, join.window) if lift else out), locks
+
+
+def lift_join(out: Motion, locks: list[Lock], window: tuple[int, int]) -> Motion:
+    """The last step of :func:`lock_join`: feet the blend ``[w0, w1)`` or a release carries through the air
+    (not locked) kept clear of the floor (:func:`synthesis.footlock.lift_swings`)."""
+    w0, w1 = window
+    n = out.n_frames
+    swings = []
+    for side in ("left", "right"):
         air = np.zeros(n, dtype=bool)
         air[w0:w1] = True
         for lk in locks:
@@ -403,6 +416,5 @@ def lock_join(blended: Blended, b_contacts: FootContacts, join: Join) -> tuple[M
         for lk in locks:
             if lk.side == side:
                 air[lk.begin:lk.end] = False
-        for lo, hi in runs(air):
-            out = lift_swing(out, side, int(lo), int(hi))
-    return out, locks
+        swings += [(side, int(lo), int(hi)) for lo, hi in runs(air)]
+    return lift_swings(out, swings)

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 
-from text2anim.core.metrics import quality
+from text2anim.core.metrics import root_pop, skating_ratio
 
 from ..blend_search import Weights
 from ..laid import Laid, LaidJoin
@@ -59,8 +59,9 @@ def join_next(state: TrackState, inc: Incoming, fps: float, weights: Weights, lo
         state.joins.append(LaidJoin(rep, first=prev))
         return plan
     inc = plan.inc
-    src = [quality(prev.motion, None), quality(inc.motion, None)]  # the sources' figures at the track's rate
-    own, own_pop = max(q.skating_ratio for q in src), max(q.root_pop for q in src)
+    # the sources' figures at the track's rate (quality(m, None)'s skating ratio and root pop, without the rest)
+    own = max(skating_ratio(prev.motion), skating_ratio(inc.motion))
+    own_pop = max(root_pop(prev.motion), root_pop(inc.motion))
     plan, out, locks, window = carry_out(tr, plan, lock, own, own_pop)
     region_end = max([window[1]] + [lk.release_end for lk in locks])
     state.motion = out

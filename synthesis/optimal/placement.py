@@ -92,10 +92,11 @@ def settle(out: Motion, locks, window: tuple[int, int], plan: Plan) -> Plan | No
     if not 0 <= own < plan.placed.n_frames:
         return None
     ankle, toe = body_map(out.skeleton).feet[lk.side]
-    d = out.positions[f, ankle] - plan.placed.positions[own, ankle]
+    at = out[f:f + 1].positions[0]  # the kinematics of that frame alone
+    d = at[ankle] - plan.placed.positions[own, ankle]
     # the height from the foot's lowest point: a locked flat foot against the next clip's raised heel
     # (a dancer on the ball of the foot) is the same floor, not a sinking clip
-    d[1] = out.positions[f, [ankle, toe], 1].min() - plan.placed.positions[own, [ankle, toe], 1].min()
+    d[1] = at[[ankle, toe], 1].min() - plan.placed.positions[own, [ankle, toe], 1].min()
     if np.linalg.norm(d) < SETTLE:
         return None
     rigid = plan.rigid.then(Rigid(0.0, (float(d[0]), float(d[2]))))

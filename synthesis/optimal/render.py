@@ -98,59 +98,109 @@ def _planted(a_comp: Motion, b_comp: Motion, ca: dict, cb: dict, w: np.ndarray, 
     return out
 
 
-def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts | None = None):
+class Parts:
+    """What the renderings of one join share (:func:`synthesis.optimal.repair.carry_out` renders a join up
+    to ~16 times: variants of the lower-body weights, the steps, the placement): every sampled, blended or
+    composed motion of :func:`prepare` and :func:`blended`, made once per distinct input and reused (the
+    same objects, so their kinematics are computed once too). Keys name their inputs by value, or by the
+    ``id`` of a motion this cache holds; one cache per track ``tr``."""
+
+    def __init__(self) -> None:
+        self._made: dict = {}
+
+    def get(self, key: tuple, make):
+        """The value made for ``key`` (``make()`` the first time)."""
+        hit = self._made.get(key)
+        if hit is None:
+            hit = self._made[key] = make()
+        return hit
+
+    def sample(self, motion: Motion, frames: np.ndarray) -> Motion:
+        """:func:`synthesis.blend.sample` of a motion this cache holds (or the track)."""
+        f = np.asarray(frames, dtype=np.float64)
+        return self.get(("sample", id(motion), f.tobytes()), lambda: (sample(motion, f), motion))[0]  # (kept: its id)
+
+
+def _bside_of(plan: Plan, parts: Parts) -> Motion:
+    """:func:`_b_side`, once per placed motion, adaptation and S3 (the ids of the motions it keeps)."""
+    s3 = plan.intervals.get("S3")
+    key = ("bside", id(plan.placed), id(plan.adapted),
+           None if s3 is None else (s3.t0, s3.t1, s3.kind, np.asarray(s3.weights).tobytes()))
+    return parts.get(key, lambda: (_b_side(plan), plan.placed, plan.adapted))[0]
+
+
+def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts | None = None,
+            parts: Parts | None = None):
     """What :func:`render` hands :func:`synthesis.transition.apply_join`: ``(track, placed_b, b_contacts,
     join)`` — the window's two sides composed and the feet it holds (the cheap part of a rendering:
-    :func:`render`'s output is a function of these alone)."""
+    :func:`render`'s output is a function of these alone). ``parts``: what earlier renderings on ``tr``
+    made (:class:`Parts`)."""
+    parts = Parts() if parts is None else parts
     inc = plan.inc
     off = inc.offset
     ivs = plan.intervals
     w0 = min(iv.t0 for iv in ivs.values())
     w1 = max(iv.t1 for iv in ivs.values()) + 1
     frames = np.arange(w0, w1)
-    bside = _b_side(plan)
+    bside = _bside_of(plan, parts)
     faL, fbL, wL = _schedule(ivs["S0"], frames)
     if "S3" in ivs:  # after S0 the lower body is the second source alone (adapted, then back, inside bside)
         fbL = np.where(frames > ivs["S0"].t1, frames, fbL)
     faU, fbU, wU = _schedule(ivs["S1"], frames)
-    a_low, b_low = sample(tr, faL), sample(bside, fbL - off)
-    up = blend(sample(tr, faU), sample(bside, fbU - off), wU)
+    a_low, b_low = parts.sample(tr, faL), parts.sample(bside, fbL - off)
+    ua, ub = parts.sample(tr, faU), parts.sample(bside, fbU - off)
+    up = parts.get(("blend", id(ua), id(ub), wU.tobytes()), lambda: blend(ua, ub, wU))
     upper = part_joints(tr, "upper")
 
     def with_upper(m: Motion) -> Motion:
-        r = m.rotations.copy()
-        r[:, upper] = up.rotations[:, upper]
-        return m.replace(rotations=r)
+        def make() -> Motion:
+            r = m.rotations.copy()
+            r[:, upper] = up.rotations[:, upper]
+            return m.replace(rotations=r)
+        return parts.get(("upper", id(m), id(up)), make)
 
     a_comp, b_comp = with_upper(a_low), with_upper(b_low)
     tr_c = tr_contacts if tr_contacts is not None else detect_contacts(tr)
-    b_c = detect_contacts(bside)
+    b_c = parts.get(("contacts", id(bside)), lambda: detect_contacts(bside))
     ca = _contacts_at(tr_c, faL)
     cb = _contacts_at(b_c, fbL - off)
     planted = _planted(a_comp, b_comp, ca, cb, wL, step=step and ivs["S0"].kind != "motion-motion")
-    tail = bside[w1 - off:]
-    placed_b = concatenate([b_comp, tail]) if tail.n_frames else b_comp  # (both poses known: so is its)
+    tail_from = w1 - off
+
+    def make_placed_b() -> Motion:
+        tail = bside[tail_from:]
+        return concatenate([b_comp, tail]) if tail.n_frames else b_comp  # (both poses known: so is its)
+    placed_b = parts.get(("placed_b", id(b_comp), id(bside), tail_from), make_placed_b)
     b_contacts = FootContacts(tr.fps, *(np.concatenate([cb[s], b_c.of(s)[w1 - off:]]) for s in ("left", "right")))
     join = Join(plan.choice.method, plan.rigid, w0, (w0, w1), frames.astype(np.float64),
                 np.arange(w1 - w0, dtype=np.float64), wL, planted, ca)
-    track = concatenate([p for p in (tr[:w0], a_comp) if p.n_frames])
+    track = parts.get(("track", id(a_comp), w0),
+                      lambda: concatenate([p for p in (tr[:w0], a_comp) if p.n_frames]))
     return track, placed_b, b_contacts, join
 
 
-def finish(prepared, lock: bool = True, blended: Blended | None = None):
+def finish(prepared, lock: bool = True, blended: Blended | None = None, lift: bool = True):
     """:func:`render` from :func:`prepare` 's output (and its :func:`blended` when the caller has it):
-    ``(track, locks, (w0, w1))``."""
+    ``(track, locks, (w0, w1))``; ``lift=False``: the swings not yet lifted
+    (:func:`synthesis.transition.lift_join` finishes it; the locked feet are final already)."""
     track, placed_b, b_contacts, join = prepared
     if blended is None:
         blended = blend_join(track, placed_b, join)
-    out, locks = lock_join(blended, b_contacts, join) if lock else (blended.out, [])
+    out, locks = lock_join(blended, b_contacts, join, lift) if lock else (blended.out, [])
     return out, locks, join.window
 
 
-def blended(prepared) -> Blended:
-    """The join of :func:`prepare` 's output written, its feet not yet locked: the root is already final."""
+def blended(prepared, parts: Parts | None = None) -> Blended:
+    """The join of :func:`prepare` 's output written, its feet not yet locked: the root is already final.
+    ``parts``: the :class:`Parts` that prepared it (its samples of the two sides are reused)."""
     track, placed_b, _, join = prepared
-    return blend_join(track, placed_b, join)
+    if parts is None:
+        return blend_join(track, placed_b, join)
+    # the blend asks nothing of the feet the join holds: renderings that differ only in those (the step)
+    # share it
+    key = ("blended", id(track), id(placed_b), join.window, join.offset, join.src_a.tobytes(), join.src_b.tobytes(),
+           np.asarray(join.weights).tobytes(), None if join.pre is None else join.pre.tobytes())
+    return parts.get(key, lambda: blend_join(track, placed_b, join, parts.sample))
 
 
 def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True, tr_contacts: FootContacts | None = None):

@@ -8,15 +8,16 @@ from dataclasses import replace
 import numpy as np
 
 from text2anim.core.contacts import detect_contacts
-from text2anim.core.metrics import SOURCE_FACTOR, root_pop
+from text2anim.core.metrics import SOURCE_FACTOR, root_pop, toe_joints, toe_skating_pairs
 from text2anim.core.motion import Motion
 
 from ..align import align_through_foot
 from ..blend import ease
-from ..measure import skating_exceeds, skating_frames
+from ..measure import skating_exceeds
+from ..transition import lift_join
 from .records import Plan
 from .placement import settle
-from .render import blended, finish, prepare
+from .render import Parts, blended, finish, prepare
 
 
 def _eased(plan: Plan) -> Plan:
@@ -39,10 +40,22 @@ def _roots_mid(tr: Motion, plan: Plan) -> Plan:
     return replace(plan, rigid=rigid, placed=rigid.apply(plan.inc.motion), support=None, info=info)
 
 
-def _skating(motion: Motion, lo: int, hi: int) -> float:
-    """GMD skating ratio (either foot, :func:`synthesis.measure.skating_frames`) over frames ``[lo, hi)``."""
-    sk = skating_frames(motion)
-    return float(sk[max(lo, 0):hi].mean()) if hi > lo else 0.0
+def _skating(out: Motion, base: Motion, window: tuple[int, int], locks) -> float:
+    """GMD skating ratio (either foot, :func:`synthesis.measure.skating_frames`) of a rendering ``out``
+    over its blend window ``[w0, w1)``. ``base``: the rendering before its feet were locked, the same frames
+    outside ``[w0, the locks' last release)``: only those frames' kinematics are computed (a rendering that is
+    not kept never needs the rest)."""
+    lo, hi = window
+    n = out.n_frames
+    if n < 2 or hi <= max(lo, 0):
+        return 0.0
+    edited = max([hi] + [lk.release_end for lk in locks])
+    toes = toe_joints(out)
+    feet = base.positions[:, toes].copy()  # (T, 2, 3)
+    feet[lo:edited] = out[lo:edited].positions[:, toes]
+    sk = np.zeros(n, dtype=bool)  # per frame, as skating_frames
+    sk[:n - 1] = toe_skating_pairs(feet, out.fps)
+    return float(sk[max(lo, 0):hi].mean())
 
 
 def _window_pop(out: Motion, window: tuple[int, int]) -> float:
@@ -75,6 +88,7 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     """
     best = None
     tr_c = detect_contacts(tr)  # the track before the join: the same for every rendering
+    parts = Parts()  # and what the renderings share (render.Parts)
     variants = [("", True, False), ("no_step", False, False), ("eased", True, True), ("eased_no_step", False, True)]
     if plan.intervals["S0"].kind == "motion-motion":
         variants.append(("roots_mid", False, False))
@@ -85,45 +99,57 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     # variant is the rendering before it again, no better, and is not rendered twice (nor measured).
     # Locking the feet (the costly half of a rendering) turns joints, never the root: a rendering's pop is
     # known before it, and one that pops more than a best that does not skate cannot win (its key is
-    # larger whatever it skates) — it is not locked (``None`` in ``seen``).
+    # larger whatever it skates) — it is not locked (``None`` in ``seen``); where settle may still place
+    # it again, it is locked (settle asks where the locks leave the foot) but neither lifted nor measured.
     seen: dict = {}
 
-    def hopeless(bl, prepared) -> bool:
-        over = max(0.0, _window_pop(bl.out, prepared[3].window) - SOURCE_FACTOR * own_pop)
+    def popping(bl, prepared) -> float:  # how far the window's pop is over the sources' (the root's: final)
+        return max(0.0, _window_pop(bl.out, prepared[3].window) - SOURCE_FACTOR * own_pop)
+
+    def hopeless(over: float) -> bool:
         return best is not None and not best[0][0] and over > best[0][1]
 
     for cname, cand in candidates:
         for vname, step, eased in variants:
             p = _eased(cand) if eased else (_roots_mid(tr, cand) if vname == "roots_mid" else cand)
-            first = prepare(tr, p, step, tr_c)
+            first = prepare(tr, p, step, tr_c, parts)
             key: tuple = (cname, eased, vname == "roots_mid", _held(first))
             again = key in seen
             if not again:
-                bl = blended(first)
-                if (p.adapted is not None or not lock) and hopeless(bl, first):  # settle moves nothing: final
+                bl = blended(first, parts)
+                over = popping(bl, first)
+                if (p.adapted is not None or not lock) and hopeless(over):  # settle moves nothing: final
                     seen[key] = None
                     continue
-                out, locks, window = finish(first, lock, bl)
-                seen[key] = (out, locks, window, settle(out, locks, window, p))
+                # settled from the locked feet alone (a swing lift moves no locked foot); the swings are
+                # lifted only on a rendering that is kept, not on one that settle places again
+                out, locks, window = finish(first, lock, bl, lift=False)
+                moved = settle(out, locks, window, p)
+                if moved is None and hopeless(over):  # final as it stands, and cannot win
+                    seen[key] = None
+                    continue
+                if moved is None and lock:
+                    out = lift_join(out, locks, window)
+                seen[key] = (out, locks, window, moved, bl.out, over)
             if seen[key] is None:
                 continue
-            out, locks, window, moved = seen[key]
+            out, locks, window, moved, base, over = seen[key]
             if moved is not None:  # placed where the locked foot stands: the next motion's own step needs no release
                 p = moved
-                second = prepare(tr, p, step, tr_c)
+                second = prepare(tr, p, step, tr_c, parts)
                 key = (key, _held(second))
                 again = key in seen
                 if not again:
-                    bl = blended(second)
-                    seen[key] = None if hopeless(bl, second) else (*finish(second, lock, bl), None)
+                    bl = blended(second, parts)
+                    over = popping(bl, second)
+                    seen[key] = None if hopeless(over) else (*finish(second, lock, bl), None, bl.out, over)
                 if seen[key] is None:
                     continue
-                out, locks, window, _ = seen[key]
+                out, locks, window, _, base, over = seen[key]
             if again:  # the same rendering as an earlier variant's: its key is that one's, which did not pass
                 continue
-            sk = _skating(out, window[0], window[1]) if lock else 0.0  # the blend (the clips' own skating after
+            sk = _skating(out, base, window, locks) if lock else 0.0  # the blend (the clips' own skating after
             # it, a jump's landing, is not the join's to fix)
-            over = max(0.0, _window_pop(out, window) - SOURCE_FACTOR * own_pop)
             name = "+".join(x for x in (cname, vname) if x)
             if name:
                 p = replace(p, info=dict(p.info, fallback=name))
