@@ -209,13 +209,14 @@ def search_rows(sizes: list[int], n_queries: int) -> None:
 
     from text2anim.motiondb import MotionDB
 
-    p50s = []
+    p50s, single = [], []
     with tempfile.TemporaryDirectory(prefix="t2a-speed-") as tmp:
         for n in sizes:
             path = Path(tmp) / f"db{n}.sqlite"
             verbs, objects, characters, _ = build(path, n)
             rng = np.random.default_rng(1)
             cpu, wall, hits = [], [], []
+            asked = []
             with MotionDB.open(path, seed=False) as db:
                 statements = [0]
                 db.search(verbs[0], limit=10)
@@ -229,14 +230,26 @@ def search_rows(sizes: list[int], n_queries: int) -> None:
                     cpu.append(c)
                     wall.append(w)
                     hits.append(len(found))
+                    asked.append((verb, obj, pref))
+                n_statements = statements[0]
+                # then the same queries with limit 1: one hit at every size (like for like)
+                one = [timed(lambda: db.search(v, object=o, prefer_character=p, limit=1))[0] for v, o, p in asked]
             c50, c95 = np.percentile(cpu, [50, 95])
             w50, w95 = np.percentile(wall, [50, 95])
             p50s.append(c50)
             # a verb has ~3n/1000 clips: below ~3000 clips a search returns fewer than 10, and less to decode
-            row(f"DB search, {n} clips, limit 10 ({statements[0] / n_queries:.1f} SELECTs, {np.mean(hits):.1f} hits)",
+            row(f"DB search, {n} clips, limit 10 ({n_statements / n_queries:.1f} SELECTs, {np.mean(hits):.1f} hits)",
                 f"p50 {ms(c50)} p95 {ms(c95)}", f"p50 {ms(w50)} p95 {ms(w95)}", "p95 <= 1 ms")
+            o50, o95 = np.percentile(one, [50, 95])
+            single.append(o50)
+            row("  same queries, limit 1 (1 hit: the per-query cost)", f"p50 {ms(o50)} p95 {ms(o95)}", "-", "")
+            if np.mean(hits) > 1.5:  # what each further hit costs: the difference over the hits it adds
+                row("  per further hit (limit 10 - limit 1, per hit)",
+                    f"{(c50 - o50) / (np.mean(hits) - 1) * 1e6:.0f} us", "-", "")
     if len(p50s) > 1:
         row(f"DB search growth {sizes[0]} -> {sizes[-1]} clips (p50)", f"{p50s[-1] / p50s[0]:.2f}x", "-", "<= 1.5x")
+        # the row above compares a few hits (a verb has ~3 clips per 1000) with 10: this one, 1 hit with 1
+        row("  growth at limit 1 (1 hit at each size, p50)", f"{single[-1] / single[0]:.2f}x", "-", "")
 
 
 # ----------------------------------------------------------------- peers

@@ -40,12 +40,18 @@ def runs(mask: np.ndarray) -> np.ndarray:
 
 
 def _drop_short(mask: np.ndarray, value: bool, min_len: int, keep_edges: bool) -> np.ndarray:
+    """``mask`` with its runs of ``value`` shorter than ``min_len`` frames flipped (those touching either
+    end kept when ``keep_edges``); runs are found once, on ``mask`` as given."""
+    r = runs(mask if value else ~mask)
+    drop = r[:, 1] - r[:, 0] < min_len
+    if keep_edges:
+        drop &= (r[:, 0] != 0) & (r[:, 1] != len(mask))
     out = mask.copy()
-    target = out if value else ~out
-    for a, b in runs(target):
-        at_edge = a == 0 or b == len(mask)
-        if b - a < min_len and not (keep_edges and at_edge):
-            out[a:b] = not value
+    if drop.any():  # runs are disjoint: +1 where a dropped run starts, -1 where it stops, summed
+        edges = np.zeros(len(mask) + 1, dtype=np.int64)
+        edges[r[drop, 0]] += 1
+        edges[r[drop, 1]] -= 1
+        out[np.cumsum(edges[:-1]) > 0] = not value
     return out
 
 
@@ -75,19 +81,23 @@ class FootTrack:
 
 
 def foot_tracks(motion: Motion) -> dict[str, FootTrack]:
-    """Height above floor and horizontal speed of each foot's lowest joint."""
+    """Height above floor and horizontal speed of each foot's lowest joint (both feet in one pass: every
+    quantity is per frame and joint, or per foot column)."""
     bm = body_map(motion.skeleton)
-    pos = motion.positions
-    out = {}
-    for side, (ankle, toe) in bm.feet.items():
-        pair = pos[:, [ankle, toe]]
-        lowest = np.argmin(pair[:, :, 1], axis=1)
-        rows = np.arange(len(pos))
-        y = pair[rows, lowest, 1]
-        floor = np.clip(np.percentile(y, FLOOR_PERCENTILE), 0.0, MAX_FLOOR) if len(y) else 0.0
-        speed = horizontal_speed(pair, motion.fps)[rows, lowest] if len(y) else y
-        out[side] = FootTrack(y - floor, speed, np.array([ankle, toe])[lowest])
-    return out
+    sides = list(bm.feet)
+    joints = np.array([j for side in sides for j in bm.feet[side]])  # (2 * feet,) ankle, toe per foot
+    pos = motion.positions[:, joints].reshape(motion.n_frames, len(sides), 2, 3)  # (T, feet, 2, 3)
+    rows = np.arange(motion.n_frames)[:, None]
+    cols = np.arange(len(sides))[None, :]
+    lowest = np.argmin(pos[..., 1], axis=2)  # (T, feet)
+    y = pos[rows, cols, lowest, 1]
+    if len(y):
+        floor = np.clip(np.percentile(y, FLOOR_PERCENTILE, axis=0), 0.0, MAX_FLOOR)
+        speed = horizontal_speed(pos, motion.fps)[rows, cols, lowest]
+    else:
+        floor, speed = np.zeros(len(sides)), y
+    which = joints.reshape(len(sides), 2)
+    return {side: FootTrack(y[:, k] - floor[k], speed[:, k], which[k][lowest[:, k]]) for k, side in enumerate(sides)}
 
 
 @dataclass(frozen=True)

@@ -5,6 +5,7 @@ local joint rotations ``(T, J, 4)`` as scipy quaternions ``(x, y, z, w)``.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
 
@@ -139,15 +140,21 @@ class Motion:
         source = self.__dict__.pop("_pose_source", None)  # not kept once used: it holds another pose
         if source is not None:
             return self._pose_below(*source)
+        parts = self.__dict__.pop("_pose_parts", None)  # a concatenation (see :func:`concatenate`)
+        if parts is not None:
+            return _joined_pose(parts)
+        moved = self.__dict__.pop("_pose_moved", None)  # the root moved (see :meth:`replace`)
+        if moved is not None:
+            return self._pose_root_moved(moved)
         same = self.__dict__.get("_pose_of")
         if same is not None:
             return same.pose
         rows = self.__dict__.pop("_pose_rows", None)  # frames another motion's pose has (see share_pose)
         if rows is not None:
             return self._pose_with(*rows)
-        # joint-major (J, T, ...) with the joints in order of depth (_depth_order): a depth's joints are one
+        # joint-major (J, T, ...) with the joints in order of depth (Skeleton.depth_order): a depth's joints are one
         # block, read and written in place; only their parents are gathered
-        order, inverse, levels = _depth_order(self.skeleton)
+        order, inverse, levels = self.skeleton.depth_order()
         local_r = quat_to_matrix(self.rotations[:, order]).transpose(1, 0, 2, 3).copy()
         local_t = self.local_translations()[:, order].transpose(1, 0, 2).copy()
         world_r = np.empty_like(local_r)
@@ -193,7 +200,7 @@ class Motion:
         top_p = np.ascontiguousarray(known.positions[:, outside])[None]
         world_r[:1] = top_r @ local_r[:1]
         world_p[:1] = top_p + np.einsum("ntij,ntj->nti", top_r, local_t[:1])
-        for j, p in _subtree_levels(self.skeleton, top):  # slices where a depth's joints are a block (a limb)
+        for j, p in self.skeleton.subtree_levels(top):  # slices where a depth's joints are a block (a limb)
             parent_r = world_r[p]
             if isinstance(j, slice):
                 np.matmul(parent_r, local_r[j], out=world_r[j])
@@ -214,7 +221,7 @@ class Motion:
         known = other._known_pose()
         rows = np.asarray(rows, dtype=np.int64)
         if known is None or len(rows) != self.n_frames or any(
-                k in self.__dict__ for k in ("pose", "_pose_source", "_pose_of")) or not (
+                k in self.__dict__ for k in ("pose", "_pose_source", "_pose_parts", "_pose_moved", "_pose_of")) or not (
                 other.skeleton is self.skeleton or np.array_equal(other.skeleton.offsets, self.skeleton.offsets)):
             return self
         rows = np.where((rows >= 0) & (rows < other.n_frames), rows, -1)
@@ -273,11 +280,30 @@ class Motion:
         """A new motion with some fields changed. When only the local rotations change, and only those
         of some joints (an IK solve of a limb), the new motion's :attr:`pose`, when asked, redoes the
         kinematics of the subtrees holding them, from this motion's pose (bit for bit the
-        full computation: :meth:`_pose_below`)."""
+        full computation: :meth:`_pose_below`); when only the root positions change, it keeps this
+        pose's world rotations (:meth:`_pose_root_moved`)."""
         out = replace(self, **changes)
         if changes.keys() == {"rotations"} and out.rotations.shape == self.rotations.shape:
             self._carry_pose(out)
+        elif changes.keys() == {"root_positions"} and out.root_positions.shape == self.root_positions.shape:
+            known = self._known_pose()  # the hips moved: the world rotations stay, positions are redone
+            if known is not None:
+                out.__dict__["_pose_moved"] = known
         return out
+
+    def _pose_root_moved(self, known: Pose) -> Pose:
+        """:attr:`pose` from ``known``, the pose of a motion that differs from this one only in its root
+        positions: the world rotations are ``known``'s, the positions are summed down the tree again from
+        the same rotated bone offsets (:attr:`pose`'s arithmetic and layout, so the same bits)."""
+        world_r = np.ascontiguousarray(known.rotations.transpose(1, 0, 2, 3))  # joint-major, as pose() has it
+        local_t = self.local_translations().transpose(1, 0, 2).copy()
+        world_p = np.empty_like(local_t)
+        world_p[0] = local_t[0]
+        for joints, parents in self.skeleton.depth_levels():
+            world_p[joints] = world_p[parents] + np.einsum("ntij,ntj->nti", world_r[parents], local_t[joints])
+        world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2))
+        world_p.setflags(write=False)
+        return Pose(world_p, known.rotations)
 
     def _carry_pose(self, out: "Motion") -> None:
         """Tell ``out`` (this motion with other local rotations) how to get its pose from this one's."""
@@ -379,52 +405,6 @@ class Motion:
         return concatenate([self, *others])
 
 
-def _depth_order(skeleton: Skeleton) -> tuple[np.ndarray, np.ndarray, tuple[tuple[int, int, np.ndarray], ...]]:
-    """The joints in order of tree depth for :attr:`Motion.pose`: ``order`` ``(J,)`` (root first, each depth's
-    joints in skeleton order), its ``inverse`` (position of each joint), and per depth 1, 2, ... the block
-    ``[a, b)`` of its joints in that order with their parents' positions ``(b - a,)``; cached per skeleton."""
-    known = skeleton.__dict__.get("_depth_order")
-    if known is None:
-        order = np.concatenate([[0]] + [joints for joints, _ in skeleton.depth_levels()]).astype(np.int64)
-        inverse = np.empty_like(order)
-        inverse[order] = np.arange(len(order))
-        levels, a = [], 1
-        for joints, parents in skeleton.depth_levels():
-            levels.append((a, a + len(joints), inverse[parents]))
-            a += len(joints)
-        known = (order, inverse, tuple(levels))
-        object.__setattr__(skeleton, "_depth_order", known)
-    return known
-
-
-def _block(idx: np.ndarray) -> np.ndarray | slice:
-    """``idx`` as a slice when it is a run of consecutive indices (a view instead of a gathered copy)."""
-    if len(idx) and np.array_equal(idx, np.arange(idx[0], idx[0] + len(idx))):
-        return slice(int(idx[0]), int(idx[0]) + len(idx))
-    return idx
-
-
-def _subtree_levels(skeleton: Skeleton, top: int) -> tuple[tuple[np.ndarray | slice, np.ndarray | slice], ...]:
-    """Per tree depth below ``top``, the positions in ``skeleton.subtree(top)`` of that depth's joints and of
-    their parents, as slices where they are consecutive (for :meth:`Motion._subtree_pose`); cached per
-    skeleton and joint."""
-    known = skeleton.__dict__.get("_subtree_levels")
-    if known is None:
-        known = {}
-        object.__setattr__(skeleton, "_subtree_levels", known)
-    if top not in known:
-        sub = skeleton.subtree(top)
-        slot = np.full(skeleton.n_joints, -1)
-        slot[sub] = np.arange(len(sub))
-        levels = []
-        for joints, parents in skeleton.depth_levels():
-            inside = slot[joints] > 0
-            if inside.any():
-                levels.append((_block(slot[joints[inside]]), _block(slot[parents[inside]])))
-        known[top] = tuple(levels)
-    return known[top]
-
-
 def resampled_frames(n_frames: int, fps: float, new_fps: float) -> int:
     """How many frames :meth:`Motion.resample` makes of ``n_frames`` at ``fps`` at ``new_fps``.
 
@@ -455,14 +435,22 @@ def concatenate(motions: list[Motion]) -> Motion:
     out = Motion(first.skeleton, first.fps,
                  np.concatenate([m.root_positions for m in motions]),
                  np.concatenate([m.rotations for m in motions]), trans)
-    # FK is per frame: when every part's pose is known (and its bones are the first's), so is the whole's
-    poses = [m._known_pose() for m in motions]
-    if all(p is not None for p in poses) and all(
-            m.skeleton is first.skeleton or np.array_equal(m.skeleton.offsets, first.skeleton.offsets)
-            for m in motions[1:]):
-        positions = np.concatenate([p.positions for p in poses])  # type: ignore[union-attr]
-        rotations = np.concatenate([p.rotations for p in poses])  # type: ignore[union-attr]
-        positions.setflags(write=False)
-        rotations.setflags(write=False)
-        out.__dict__["pose"] = Pose(positions, rotations)
+    # FK is per frame: when the parts' bones are the first's, the whole's pose is the parts' poses end to
+    # end; known now when every part's is, else when asked (only the parts not yet solved are: a track
+    # held or eased to a new length redoes the kinematics of its new frames only)
+    if all(m.skeleton is first.skeleton or np.array_equal(m.skeleton.offsets, first.skeleton.offsets)
+           for m in motions[1:]):
+        if all(m._known_pose() is not None for m in motions):
+            out.__dict__["pose"] = _joined_pose(motions)
+        else:
+            out.__dict__["_pose_parts"] = tuple(motions)
     return out
+
+
+def _joined_pose(parts: Sequence[Motion]) -> Pose:
+    """The pose of ``parts`` end to end (same bones), each part's own computed once."""
+    positions = np.concatenate([m.pose.positions for m in parts])
+    rotations = np.concatenate([m.pose.rotations for m in parts])
+    positions.setflags(write=False)
+    rotations.setflags(write=False)
+    return Pose(positions, rotations)

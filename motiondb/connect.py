@@ -23,6 +23,10 @@ SQLITE_BUSY_TIMEOUT = 60.0
 #: SQLite page cache per connection, KiB (the default is 2 MiB): a search at 100k clips touches the
 #: rows of ~300 matching clips spread over the file; with them cached it takes a third less CPU.
 SQLITE_CACHE_KIB = 32768
+#: Bytes of an SQLite file read through a memory map instead of read() calls (reads only; SQLite writes as
+#: before): a search touching pages no query has touched yet (a 100k-clip file is ~230 MB) costs a page
+#: fault instead of a system call and a copy, a third less CPU on a cold search; a warm one is unchanged.
+SQLITE_MMAP_BYTES = 1 << 30
 #: Seconds a PostgreSQL connection attempt may take.
 PG_CONNECT_TIMEOUT = 10
 
@@ -92,6 +96,7 @@ def _sqlite_transactions(engine: Engine) -> None:
         cur = dbapi_conn.cursor()
         cur.execute("PRAGMA foreign_keys = ON")
         cur.execute(f"PRAGMA cache_size = -{SQLITE_CACHE_KIB}")
+        cur.execute(f"PRAGMA mmap_size = {SQLITE_MMAP_BYTES}")
         cur.close()
 
     @event.listens_for(engine, "begin")

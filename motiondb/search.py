@@ -46,11 +46,13 @@ from __future__ import annotations
 import json
 from collections.abc import Sequence
 from dataclasses import dataclass
-from datetime import timezone
+from datetime import datetime, timezone
 from functools import lru_cache
+from operator import itemgetter
 from typing import Any
 
-from sqlalchemy import BindParameter, Connection, Integer, and_, bindparam, case, func, or_, select
+from sqlalchemy import (BindParameter, Connection, Integer, String, and_, bindparam, case, func, or_, select,
+                        type_coerce)
 
 from .readings import normalize, reading
 from .ranks import candidates
@@ -175,9 +177,14 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
     # the three lists in one JSON value: one decoding per hit (json() keeps SQLite's arrays nested)
     lists = (func.json_build_array(verbs, objs, contacts) if postgres
              else func.json_array(func.json(verbs), func.json(objs), func.json(contacts)))
+    # SQLite keeps times as ISO text and flags as 0/1: read as they are (no per-row type processing),
+    # turned into ClipInfo's datetime and bool once per hit by _info
+    created = _CL.c.created if postgres else type_coerce(_CL.c.created, String)
+    cyclic = _CL.c.cyclic if postgres else type_coerce(_CL.c.cyclic, Integer)
     return (select(_CL.c.name, _CH.c.name.label("character"), _CL.c.fps, _CL.c.frames, _CL.c.duration,
-                   _CL.c.core_begin, _CL.c.core_end, _CL.c.body_part, _CL.c.cyclic, _CL.c.source, _CL.c.created,
-                   _CL.c.start_posture, _CL.c.end_posture, _SK.c.n_joints, lists.label("lists"))
+                   _CL.c.core_begin, _CL.c.core_end, _CL.c.body_part, cyclic.label("cyclic"), _CL.c.source,
+                   created.label("created"), _CL.c.start_posture, _CL.c.end_posture, _SK.c.n_joints,
+                   lists.label("lists"))
             .select_from(hits)
             .join(_CL, _CL.c.id == hits.c.id)
             .join(_CH, _CH.c.id == _CL.c.character_id)
@@ -192,21 +199,28 @@ def _lists(value) -> list[list]:
     return [x or [] for x in lists]
 
 
+_BY_POSITION = itemgetter(0)
+_CONTACT_ORDER = itemgetter(1, 2, 0)  # start, stop, side
+
+
 def _info(r) -> ClipInfo:
+    """A result row of :func:`_search_statement` as a :class:`ClipInfo`."""
     (name, character, fps, frames, duration, core_begin, core_end, body_part, cyclic, source, created,
      start_posture, end_posture, n_joints, lists) = r  # unpacked: a Row's attributes cost ~1 us each
     verbs, objects, contacts = _lists(lists)
-    left: list[tuple[int, int]] = []
-    right: list[tuple[int, int]] = []
-    for side, a, b in sorted(contacts, key=lambda c: (c[1], c[2], c[0])):
-        (left if side == "left" else right).append((int(a), int(b)))
+    verbs.sort(key=_BY_POSITION)
+    objects.sort(key=_BY_POSITION)
+    contacts.sort(key=_CONTACT_ORDER)
+    if isinstance(created, str):  # SQLite: SQLAlchemy's storage format, "YYYY-MM-DD HH:MM:SS.ffffff"
+        created = datetime.fromisoformat(created)
     return ClipInfo(
-        name=name, character=character, verbs=tuple(v for _, v in sorted(verbs)),
-        objects=tuple(o for _, o in sorted(objects)), fps=fps, frames=frames, duration=duration,
+        name=name, character=character, verbs=tuple([v for _, v in verbs]),
+        objects=tuple([o for _, o in objects]), fps=fps, frames=frames, duration=duration,
         core=(core_begin, core_end), body_part=body_part, cyclic=bool(cyclic), source=source,
         created=created if created.tzinfo else created.replace(tzinfo=timezone.utc), joints=int(n_joints),
-        left_contacts=tuple(left), right_contacts=tuple(right), start_posture=start_posture,
-        end_posture=end_posture,
+        left_contacts=tuple([(int(a), int(b)) for side, a, b in contacts if side == "left"]),
+        right_contacts=tuple([(int(a), int(b)) for side, a, b in contacts if side != "left"]),
+        start_posture=start_posture, end_posture=end_posture,
     )
 
 

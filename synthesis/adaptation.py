@@ -27,8 +27,8 @@ which would otherwise let a planted foot drift by a few millimetres per frame.
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
+from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.ik import leg_ik, set_world_rotation
 from text2anim.core.motion import Motion
@@ -54,7 +54,7 @@ def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
     for side in ("left", "right"):
         ankle = feet[side][0]
         out = leg_ik(out, side, pose.positions[:, ankle] + np.outer(k, d[side]), mask=mask)
-        out = set_world_rotation(out, ankle, Rotation.from_matrix(pose.rotations[:, ankle]).as_quat(), mask=mask)
+        out = set_world_rotation(out, ankle, rk.as_quat(rk.from_matrix(pose.rotations[:, ankle])), mask=mask)
     return out
 
 
@@ -70,5 +70,5 @@ def pin_feet(motion: Motion, reference: Motion, masks: dict[str, np.ndarray]) ->
             continue
         ankle = feet[side][0]
         out = leg_ik(out, side, ref.positions[:, ankle], mask=mask)
-        out = set_world_rotation(out, ankle, Rotation.from_matrix(ref.rotations[:, ankle]).as_quat(), mask=mask)
+        out = set_world_rotation(out, ankle, rk.as_quat(rk.from_matrix(ref.rotations[:, ankle])), mask=mask)
     return out

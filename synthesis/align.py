@@ -19,6 +19,7 @@ import numpy as np
 from scipy.ndimage import uniform_filter1d
 from scipy.spatial.transform import Rotation
 
+from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
@@ -57,16 +58,30 @@ def _rest_forward(skeleton: Skeleton) -> np.ndarray:
     return fwd / n if n > 1e-9 else np.array([0.0, 0.0, 1.0])
 
 
+_HEADINGS: "weakref.WeakKeyDictionary[Motion, dict[float, np.ndarray]]" = weakref.WeakKeyDictionary()
+
+
 def headings(motion: Motion, smooth: float = 0.0) -> np.ndarray:
-    """Facing angle per frame, ``(T,)`` radians, unwrapped (continuous across ±pi).
+    """Facing angle per frame, ``(T,)`` radians, unwrapped (continuous across ±pi), read-only.
 
     The rest pose's forward direction carried by the root's world rotation,
     projected on the ground. ``smooth`` (seconds) averages it over a window,
     which removes the pelvis' own swing in gait (±5-10 degrees per step).
+    Computed once per motion and ``smooth`` (motions are not edited in place: a join asks for the
+    track's and the next clip's headings several times).
     """
+    known = _HEADINGS.setdefault(motion, {})
+    h = known.get(smooth)
+    if h is None:
+        h = known[smooth] = _headings(motion, smooth)
+        h.setflags(write=False)
+    return h
+
+
+def _headings(motion: Motion, smooth: float) -> np.ndarray:
     if motion.n_frames == 0:
         return np.zeros(0)
-    fwd = Rotation.from_quat(motion.rotations[:, 0]).apply(rest_forward(motion.skeleton))
+    fwd = rk.apply(rk.from_quat(motion.rotations[:, 0]), rest_forward(motion.skeleton))  # Rotation's bits
     h = np.unwrap(np.arctan2(fwd[:, 0], fwd[:, 2]))
     n = int(round(smooth * motion.fps))
     if n > 1:
@@ -78,6 +93,11 @@ def yaw_rotation(yaw) -> Rotation:
     """Rotation(s) by ``yaw`` radians about +Y."""
     yaw = np.asarray(yaw, dtype=np.float64)
     return Rotation.from_rotvec(np.multiply.outer(yaw, _UP))
+
+
+def _yaw_quat(yaw: float) -> np.ndarray:
+    """:func:`yaw_rotation` of one angle as a quaternion stack ``(1, 4)`` (:mod:`core.rotkernels`)."""
+    return rk.from_rotvec(float(yaw) * _UP)
 
 
 def to_heading_frame(vectors: np.ndarray, heading: np.ndarray) -> np.ndarray:
@@ -106,16 +126,15 @@ class Rigid:
     def apply_points(self, points: np.ndarray) -> np.ndarray:
         """Move world points ``(..., 3)``."""
         p = np.array(points, dtype=np.float64)  # a copy: scipy wants a writable buffer
-        return self.rotation().apply(p.reshape(-1, 3)).reshape(p.shape) + self.translation
+        return rk.apply(_yaw_quat(self.yaw), p.reshape(-1, 3)).reshape(p.shape) + self.translation
 
     def apply(self, motion: Motion) -> Motion:
         """The motion moved rigidly: root positions and the root's world rotation change."""
         if self.yaw == 0.0 and self.offset == (0.0, 0.0):
             return motion
-        rot = self.rotation()
         rots = motion.rotations.copy()
-        if len(rots):
-            rots[:, 0] = (rot * Rotation.from_quat(rots[:, 0])).as_quat()
+        if len(rots):  # yaw * root rotation, as Rotation composes them
+            rots[:, 0] = rk.as_quat(rk.compose(_yaw_quat(self.yaw), rk.from_quat(rots[:, 0])))
         return motion.replace(root_positions=self.apply_points(motion.root_positions), rotations=rots)
 
     def then(self, other: "Rigid") -> "Rigid":
@@ -134,7 +153,7 @@ def match(point: np.ndarray, heading: float, to_point: np.ndarray, to_heading: f
     Only the ground-plane (x, z) coordinates of the points matter.
     """
     yaw = float(wrap_angle(to_heading - heading))
-    p = yaw_rotation(yaw).apply(np.asarray(point, dtype=np.float64))
+    p = rk.apply(_yaw_quat(yaw), np.asarray(point, dtype=np.float64))[0]  # yaw_rotation(yaw).apply's bits
     return Rigid(yaw, (float(to_point[0] - p[0]), float(to_point[2] - p[2])))
 
 

@@ -22,11 +22,12 @@ from __future__ import annotations
 import weakref
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
-from .align import rest_forward
+from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
+
+from .align import rest_forward
 
 
 def part_joints(motion: Motion, part: str) -> list[int]:
@@ -45,38 +46,72 @@ def root_headings(motion: Motion) -> np.ndarray:
     in place: a join's search asks for the same clip's features many times)."""
     known = _HEADINGS.get(motion)
     if known is None:
-        fwd = Rotation.from_quat(motion.rotations[:, 0]).apply(rest_forward(motion.skeleton))
+        fwd = rk.apply(rk.from_quat(motion.rotations[:, 0]), rest_forward(motion.skeleton))  # Rotation's bits
         known = np.arctan2(fwd[:, 0], fwd[:, 2])
         known.setflags(write=False)
         _HEADINGS[motion] = known
     return known
 
 
+_WINDOWS: "weakref.WeakKeyDictionary[Motion, tuple[int, np.ndarray]]" = weakref.WeakKeyDictionary()
+
+
+def _window(motion: Motion, lo: int, hi: int) -> tuple[int, np.ndarray]:
+    """:func:`features` of every joint for a block of frames holding ``[lo, hi)``: its first frame and the
+    block, joint-major ``(J, n, 3)``, read-only. Kept per motion and widened when a request falls outside
+    (motions are not edited in place: a join's search asks for many frame ranges near the join of both
+    body parts of the same track and clips). Each value depends on its own frame and joint alone."""
+    known = _WINDOWS.get(motion)
+    if known is not None:
+        a, block = known
+        if a <= lo and hi <= a + block.shape[1]:
+            return known
+        lo, hi = min(lo, a), max(hi, a + block.shape[1])
+    pos = motion.positions[lo:hi]
+    root = pos[:, 0]
+    h = root_headings(motion)[lo:hi]
+    d = pos - np.stack([root[:, 0], np.zeros(len(pos)), root[:, 2]], axis=1)[:, None, :]
+    c, s = np.cos(h), np.sin(h)
+    # turn by -h about +Y: the character then faces +Z
+    block = np.stack([(c[:, None] * d[..., 0] - s[:, None] * d[..., 2]).T, d[..., 1].T,
+                      (s[:, None] * d[..., 0] + c[:, None] * d[..., 2]).T], axis=-1)
+    block.setflags(write=False)
+    known = _WINDOWS[motion] = (lo, block)
+    return known
+
+
 def features(motion: Motion, joints, frames=None) -> np.ndarray:
-    """Joint positions with the root's horizontal position and heading removed, ``(F, K, 3)`` metres.
+    """Joint positions with the root's horizontal position and heading removed, ``(F, K, 3)`` metres,
+    laid out joint-major in memory (a ``(K, F, 3)`` block, as :func:`distance_matrix` reads it).
 
     ``frames``: integer frame indices ``(F,)`` (clamped to the motion), or ``None`` for all.
     """
-    pos = motion.positions
-    if frames is None:
-        frames = np.arange(motion.n_frames)
-    idx = np.clip(np.asarray(frames, dtype=int), 0, motion.n_frames - 1)
-    p = pos[idx][:, list(joints)]
-    root = pos[idx, 0]
-    h = root_headings(motion)[idx]
-    d = p - np.stack([root[:, 0], np.zeros(len(idx)), root[:, 2]], axis=1)[:, None, :]
-    c, s = np.cos(h)[:, None], np.sin(h)[:, None]
-    # turn by -h about +Y: the character then faces +Z
-    return np.stack([c * d[..., 0] - s * d[..., 2], d[..., 1], s * d[..., 0] + c * d[..., 2]], axis=-1)
+    idx = np.arange(motion.n_frames) if frames is None else \
+        np.minimum(np.maximum(np.asarray(frames, dtype=int), 0), motion.n_frames - 1)
+    if len(idx) == 0 or motion.n_frames == 0:
+        return np.zeros((len(idx), len(joints), 3))
+    lo, hi = int(idx.min()), int(idx.max()) + 1
+    a, block = _window(motion, lo, hi)
+    rows = np.take(block, np.asarray(joints, dtype=int), axis=0)
+    return np.take(rows, idx - a, axis=1).transpose(1, 0, 2)
 
 
 def distance_matrix(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
     """eq. (13) for every pair: ``D[i, j]`` = mean over joints of ``|fb[j] - fa[i]|`` (metres), ``(Na, Nb)``.
 
-    ``fa`` ``(Na, K, 3)`` and ``fb`` ``(Nb, K, 3)`` are :func:`features`.
+    ``fa`` ``(Na, K, 3)`` and ``fb`` ``(Nb, K, 3)`` are :func:`features`. Computed joint-major, one
+    ``(K, Na, Nb)`` block per coordinate: squares summed x, z, y, the joints' distances summed in joint order
+    (the order ``einsum`` and ``mean`` took over the ``(Na, Nb, K, 3)`` difference array, which is no longer
+    made: the same bits at a third of the time).
     """
-    diff = fa[:, None, :, :] - fb[None, :, :, :]
-    return np.sqrt(np.einsum("ijkc,ijkc->ijk", diff, diff)).mean(axis=-1)
+    a, b = fa.transpose(2, 1, 0), fb.transpose(2, 1, 0)  # (3, K, N)
+    d = np.subtract(a[0][:, :, None], b[0][:, None, :])  # (K, Na, Nb)
+    sq = np.multiply(d, d)
+    for c in (2, 1):
+        np.subtract(a[c][:, :, None], b[c][:, None, :], out=d)
+        sq += np.multiply(d, d, out=d)
+    np.sqrt(sq, out=sq)
+    return np.add.reduce(sq, axis=0) / len(sq)
 
 
 def distance(fa: np.ndarray, fb: np.ndarray) -> float:

@@ -43,8 +43,8 @@ def hold(motion: Motion, n_frames: int) -> Motion:
     n = motion.n_frames
     if n_frames <= n:
         return motion[:n_frames]
-    idx = np.concatenate([np.arange(n), np.full(n_frames - n, n - 1)])
-    return take_frames(motion, idx)
+    # the motion, then its last frame repeated: only the repeats' kinematics is new (Motion.then)
+    return motion.then(take_frames(motion[n - 1:], np.zeros(n_frames - n, dtype=int)))
 
 
 #: Seconds over which a clip coming to its last frame (or leaving its first) eases to a stop

@@ -50,6 +50,10 @@ def test_hysteresis_removes_flicker():
     mask = np.array([1, 1, 1, 1, 0, 1, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 1, 1], dtype=bool)
     clean = hysteresis(mask, 3)
     assert runs(clean).tolist() == [[0, 8], [17, 21]]
+    # a short gap at either end is kept (the clip may start or stop mid-step); a short run there is not
+    edges = np.array([0, 0, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1, 1, 1, 1, 0], dtype=bool)
+    assert runs(hysteresis(edges, 3)).tolist() == [[2, 15]]
+    assert not hysteresis(np.array([1, 1, 0, 0, 0, 0, 0, 0, 1], dtype=bool), 3).any()
 
 
 def _standing(m: Motion, n: int, velocity=(0.0, 0.0, 0.0)) -> Motion:

@@ -65,6 +65,27 @@ def test_concatenate_appends_frames():
         concatenate([m, m.resample(30)])
 
 
+def test_a_concatenation_whose_parts_are_partly_solved_has_the_whole_frames_kinematics():
+    m = read_bvh(cmu("16_35_run"), drop_first=True)
+    known = m[:40]
+    known.pose  # solved: its kinematics is reused, the other parts' is computed when asked
+    fresh = m[40:70].replace(fps=m.fps)  # no pose of its own yet
+    both = concatenate([known, fresh, m[70:75]])
+    whole = Motion(m.skeleton, m.fps, both.root_positions.copy(), both.rotations.copy())
+    assert np.array_equal(both.positions, whole.positions)
+    assert np.array_equal(both.pose.rotations, whole.pose.rotations)
+
+
+def test_a_motion_whose_hips_moved_has_the_kinematics_of_its_own_frames():
+    m = read_bvh(cmu("16_35_run"), drop_first=True)[:60]
+    m.pose  # solved: the moved copy keeps its world rotations and sums the positions again
+    moved = m.replace(root_positions=m.root_positions + np.array([0.3, 0.01, -1.2]))
+    fresh = Motion(m.skeleton, m.fps, moved.root_positions.copy(), m.rotations.copy())
+    assert np.array_equal(moved.positions, fresh.positions)
+    assert np.array_equal(moved.pose.rotations, fresh.pose.rotations)
+    assert not np.array_equal(moved.positions, m.positions)
+
+
 def test_unroll_keeps_neighbours_in_one_hemisphere():
     q = Rotation.from_euler("z", np.linspace(0, 720, 50)[:, None], degrees=True).as_quat()
     q[1::2] *= -1

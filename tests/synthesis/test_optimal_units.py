@@ -163,6 +163,23 @@ def test_the_pose_distance_ignores_where_the_clip_stands():
     assert np.allclose(features(walk, j, [5, 17]), features(moved, j, [5, 17]), atol=1e-9)
 
 
+def test_the_distance_grid_is_eq_13_for_every_pair_of_a_real_walk_and_run():
+    from text2anim.synthesis.posedist import distance_matrix
+
+    walk, run = _cmu("16_15_walk"), _cmu("16_35_run")
+    j = part_joints(walk, "lower")
+    fa, fb = features(walk, j, np.arange(3, 40)), features(run, j, np.arange(10, 31))
+    D = distance_matrix(fa, fb)
+    assert D.shape == (37, 21)
+    # eq. (13) written out: the mean over joints of each pair's distance (the grid sums in the same order)
+    want = np.sqrt((fa[:, None] - fb[None]) ** 2 @ np.ones(3)).mean(axis=-1)
+    np.testing.assert_allclose(D, want, rtol=1e-14, atol=1e-15)
+    assert D[4, 7] == pytest.approx(distance(fa[4], fb[7]), rel=1e-14)
+    # the features of some frames are those frames' rows of all the frames' (clamped at the ends)
+    every = features(run, j)
+    assert np.array_equal(features(run, j, [-5, 0, 17, 10 ** 6]), every[[0, 0, 17, run.n_frames - 1]])
+
+
 def test_the_user_weight_blends_the_two_presets():
     assert preset(0.0) == TIME_FIRST and preset(1.0) == SMOOTH_FIRST
     mid = preset(0.5)
