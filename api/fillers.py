@@ -24,7 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from text2anim.core.methods import Method
-from text2anim.core.motion import resampled_frames
+from text2anim.core.timebase import resampled_frames
 from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
 from text2anim.motiondb.types import Posture
 from text2anim.scheduler import Element, TimeTable

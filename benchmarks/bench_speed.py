@@ -13,6 +13,9 @@ Rows (goal in brackets, from the issue):
 - ``text2anim TEXT -o x.bvh``, whole process, seeded database [<= 0.5 s];
 - ``text2anim plan TEXT``, whole process [<= 0.3 s];
 - first run on an empty database: a new process opening a new file (create + seed) [<= 1 s];
+  whole processes run with their bytecode cached (as installed); the CPU of the first two is split into
+  interpreter start-up, the imports of numpy, SQLAlchemy, scipy, fugashi, then the rest (our modules and
+  the standard library's rest), each timed as a process that only imports, and the run itself;
 - join planning, one transition, built-in clips: ``synthesis.optimal.plan_join`` p95 CPU [<= 1 ms];
 - join planning at 120 fps: the largest ``plan_join`` CPU time and the peak of traced memory [<= 20 ms];
 - synthesis real-time factor: seconds of animation per CPU second, optimal and constraint [>= 500x];
@@ -177,10 +180,61 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
     db.close()
 
 
+def bytecode_env(tmp: Path) -> dict:
+    """The environment for whole-process rows: compiled bytecode cached (in ``tmp``), as an installed
+    package has it; ``PYTHONDONTWRITEBYTECODE`` (set on some machines) would recompile our ~200
+    modules in every process (~0.1 s CPU) and time the compiler, not text2anim."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    return {**env, "PYTHONPYCACHEPREFIX": str(tmp / "pycache")}
+
+
+#: the packages a whole process's CPU time is split by, in the order they are added (see :func:`cpu_split`)
+GROUPS = ("numpy", "sqlalchemy", "scipy", "fugashi")
+
+
+def loaded_modules(argv: list[str], env: dict, cwd: str) -> list[tuple[str, str]]:
+    """The modules ``argv`` (``python -X importtime ...``) imports, in the order their imports finished, each
+    with its group: the first of :data:`GROUPS` on its chain of importers (numpy's modules that scipy
+    imports count for scipy), else ``""``."""
+    proc = subprocess.run(argv, env=env, cwd=cwd, capture_output=True, text=True, check=True)
+    rows = []
+    for line in proc.stderr.splitlines():
+        if line.startswith("import time:") and "self [us]" not in line:
+            name = line.split("|")[2]
+            rows.append(((len(name) - len(name.lstrip())) // 2, name.strip()))
+    out, chain = [], []  # chain: the importers of the row being read; read backwards, importers come first
+    for depth, name in reversed(rows):
+        del chain[depth:]
+        chain.append(name)
+        out.append((name, next((g for m in chain for g in GROUPS if m == g or m.startswith(g + ".")), "")))
+    return out[::-1]
+
+
+def cpu_split(modules: list[tuple[str, str]], whole: float, env: dict, cwd: str, runs: int) -> list[tuple[str, float]]:
+    """Where a whole process's CPU goes: child processes that only import, package after package
+    (:data:`GROUPS`, then everything else the process imported: our modules and the standard library's
+    rest), each median CPU minus the one before; ``run`` is what is left of ``whole``."""
+    steps, wanted = [("python", "import gc\ngc.disable()")], []  # as the command, collector paused (cli.main)
+    for group in GROUPS + ("text2anim + rest",):
+        mods = [m for m, g in modules if g == group or group == "text2anim + rest"]
+        if not mods:
+            continue
+        wanted += [m for m in mods if m not in wanted and not m.startswith("__")]
+        steps.append((group, "import gc, importlib\ngc.disable()\nfor m in %r:\n    try:\n        importlib.import_module(m)\n"
+                             "    except ImportError:\n        pass" % (wanted,)))
+    out, before = [], 0.0
+    for name, code in steps:
+        cpu = statistics.median(child([sys.executable, "-c", code], env, cwd)[0] for _ in range(runs))
+        out.append((name, cpu - before))
+        before = cpu
+    return out + [("run", whole - before)]
+
+
 def process_rows(tmp: Path, repeat: int) -> None:
-    env = {**os.environ, "TEXT2ANIM_DB": f"sqlite:///{tmp}/motions.sqlite"}
+    env = {**bytecode_env(tmp), "TEXT2ANIM_DB": f"sqlite:///{tmp}/motions.sqlite"}
     exe = [sys.executable, "-m", "text2anim.cli.main"]
-    child(exe + ["plan", TEXT3], env, str(tmp))  # warm the file cache
+    child(exe + ["plan", TEXT3], env, str(tmp))  # warm the file cache, compile the bytecode
+    child(exe + [TEXT3, "-o", str(tmp / "x.bvh")], env, str(tmp))
     runs = max(3, repeat)
     res: dict[str, list[tuple[float, float]]] = {"animate": [], "plan": [], "bare": [], "seed": []}
     for k in range(runs):  # interleaved
@@ -200,6 +254,10 @@ def process_rows(tmp: Path, repeat: int) -> None:
                             ("bare", "(bare `python -c pass`, for scale)", "")):
         c, w = med(key)
         row(name, f"{c:.2f} s", f"{w:.2f} s", goal)
+    timed_exe = [sys.executable, "-X", "importtime", "-m", "text2anim.cli.main"]
+    for key, argv in (("animate", [TEXT3, "-o", str(tmp / "x.bvh")]), ("plan", ["plan", TEXT3])):
+        split = cpu_split(loaded_modules(timed_exe + argv, env, str(tmp)), med(key)[0], env, str(tmp), runs)
+        row(f"  split of `{key}` (CPU s)", ", ".join(f"{n} {c:.2f}" for n, c in split), "-", "")
 
 
 # ----------------------------------------------------------------- DB search

@@ -14,9 +14,10 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Literal, get_args
+from typing import TYPE_CHECKING, Literal, get_args
 
-from .skeleton import Skeleton
+if TYPE_CHECKING:  # only named: `text2anim plan` reads the body parts without loading numpy
+    from .skeleton import Skeleton
 
 #: The groups a partial action may be declared for, plus the whole halves.
 #: A body-part group: what a partial action is declared for (``ClipRecord.body_part``) and what a

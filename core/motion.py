@@ -13,6 +13,7 @@ import numpy as np
 
 from . import quat
 from .skeleton import Skeleton
+from .timebase import resampled_frames
 
 # scipy.spatial.transform is imported where it is used: loading it costs ~0.1 s of CPU, and
 # commands that never touch a rotation (text2anim plan) import this module for its types.
@@ -403,20 +404,6 @@ class Motion:
     def then(self, *others: "Motion") -> "Motion":
         """Frames of ``self`` followed by those of ``others`` (same skeleton and fps, no alignment)."""
         return concatenate([self, *others])
-
-
-def resampled_frames(n_frames: int, fps: float, new_fps: float) -> int:
-    """How many frames :meth:`Motion.resample` makes of ``n_frames`` at ``fps`` at ``new_fps``.
-
-    The new frames sample ``0, 1/new_fps, ...`` up to the last original frame, at
-    ``(n_frames - 1) / fps`` seconds; so a clip's played length is known from its
-    metadata, without its frames.
-    """
-    new_fps = float(new_fps)
-    if new_fps == fps or n_frames < 2:
-        return n_frames
-    last = (n_frames - 1) / fps
-    return int(np.floor(last * new_fps + 1e-9)) + 1
 
 
 def concatenate(motions: list[Motion]) -> Motion:

@@ -3,16 +3,16 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from datetime import timezone
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from sqlalchemy import BindParameter, Connection, bindparam, select
 
-from text2anim.core.skeleton import Skeleton
-
-from .blobs import skeleton_from_json
 from .errors import DBError
 from . import schema as tb
 from .types import ClipInfo
+
+if TYPE_CHECKING:  # only named: metadata reads (`text2anim plan`) load no numpy
+    from text2anim.core.skeleton import Skeleton
 
 #: Clip ids per ``IN (...)`` query.
 CHUNK = 500
@@ -39,6 +39,8 @@ class SkeletonCache:
             definition = s.scalar(select(tb.skeletons.c.definition).where(tb.skeletons.c.id == skeleton_id))
             if definition is None:
                 raise DBError(f"skeleton {skeleton_id} is missing from the database")
+            from .blobs import skeleton_from_json  # numpy: only when frames are read
+
             skel = skeleton_from_json(definition)
             self._by_id[skeleton_id] = skel
         return skel

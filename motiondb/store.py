@@ -38,11 +38,8 @@ from sqlalchemy import exc as sa_exc
 from sqlalchemy.engine import Engine, make_url
 
 from text2anim.core.bodyparts import GROUPS
-from text2anim.core.motion import Motion
-from text2anim.core.skeleton import Skeleton
 
 from . import search as _search
-from .blobs import decode_frames
 from .connect import PG_LOCK_KEY, describe_error, first_line, make_engine
 from .errors import DBError, UnknownCharacterError, UnknownClipError, UnknownVerbError
 from .location import resolve_url
@@ -56,6 +53,9 @@ from .types import POSTURES, ClipInfo, ClipRecord, VerbInfo
 
 if TYPE_CHECKING:  # BVH import brings scipy (retargeting): loaded by import_bvh only
     from .bvh_import import ImportOptions, Notify, Progress
+    # frames and skeletons are numpy arrays: decoded by load(); searching and planning load no numpy
+    from text2anim.core.motion import Motion
+    from text2anim.core.skeleton import Skeleton
 
 # Writing (records, contacts, writes, seeding) is imported by the methods that write: a command that
 # only reads (text2anim plan) does not load it.
@@ -401,6 +401,8 @@ class MotionDB:
                 return known[1].copy_sharing_pose()
             enc, data = s.execute(select(frames.encoding, frames.data).where(frames.clip_id == row.id)).one()
             skel = self._skeletons.get(s, row.skeleton_id)
+        from .blobs import decode_frames
+
         motion = decode_frames(data, skel, row.fps, encoding=enc, frames=row.frames, clip=row.name)
         self._loaded[row.name] = (key, motion)
         while len(self._loaded) > LOADED_CLIPS:

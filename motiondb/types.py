@@ -3,10 +3,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from datetime import datetime
-from typing import Any, Literal, get_args
+from typing import TYPE_CHECKING, Any, Literal, get_args
 
 from text2anim.core.bodyparts import BodyPart
-from text2anim.core.motion import Motion
+
+if TYPE_CHECKING:  # only named: reading clip metadata (`text2anim plan`) loads no numpy
+    from text2anim.core.motion import Motion
 
 #: The postures a clip starts and ends in (``ClipRecord.start_posture``/``end_posture``):
 #:

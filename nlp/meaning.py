@@ -13,8 +13,10 @@ from __future__ import annotations
 
 from functools import lru_cache
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:  # numpy is imported on first use: a plan whose verbs are all known loads none
+    import numpy as np
 
 DATA = Path(__file__).with_name("verb_meaning.npz")
 
@@ -32,6 +34,8 @@ MAX_RANK = 10
 
 @lru_cache(maxsize=1)
 def _table() -> tuple[dict[str, int], np.ndarray]:
+    import numpy as np
+
     with np.load(DATA, allow_pickle=False) as z:
         words, rows, q = z["words"], z["rows"], z["vectors"]
         vecs = q.astype(np.float32)
@@ -104,6 +108,8 @@ def nearest(verb: str, candidates: list[str] | tuple[str, ...], n: int = 3,
     if v is None:
         return []
     if within is not None:
+        import numpy as np
+
         ranked = np.sort(_table()[1] @ v)[::-1]
         floor = max(floor or -1.0, float(ranked[min(within, len(ranked)) - 1]) - 1e-6)
     scored = []

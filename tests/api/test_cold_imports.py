@@ -1,5 +1,5 @@
-"""What a cold process loads: the time table needs no synthesis, scipy or keyframe generator; seeding a new
-database generates no keyframed clip (it reads the shipped arrays)."""
+"""What a cold process loads: the time table needs no synthesis, scipy, numpy or keyframe generator (it reads
+clip metadata only); seeding a new database generates no keyframed clip (it reads the shipped arrays)."""
 from __future__ import annotations
 
 import json
@@ -7,7 +7,8 @@ import subprocess
 import sys
 
 TEXT = "太郎は走って、ボールを蹴る。そして喜ぶ。"
-HEAVY = ("text2anim.synthesis", "scipy", "matplotlib", "text2anim.motiondb.library")
+HEAVY = ("text2anim.synthesis", "scipy", "matplotlib", "text2anim.motiondb.library",
+         "numpy")  # ~0.1 s of a 0.3 s budget: frames and skeletons are decoded only when a clip is loaded
 GENERATOR = ("text2anim.motiondb.library.keyframe_curves", "text2anim.motiondb.library.plant",
              "text2anim.motiondb.library.reach", "scipy")  # nor forward kinematics: the contacts are shipped
 
@@ -19,9 +20,18 @@ def _loaded(code: str, *args: str) -> list[str]:
     return json.loads(out.stdout.splitlines()[-1])
 
 
-def test_a_time_table_loads_no_synthesis_scipy_or_library(library_db):
+def test_a_time_table_loads_no_synthesis_scipy_numpy_or_library(library_db):
     code = "import sys, text2anim\nplanned = text2anim.plan(sys.argv[1], db=sys.argv[2])\nassert planned.table.elements"
     loaded = _loaded(code, TEXT, library_db)
+    assert [m for m in loaded if m.startswith(HEAVY)] == []
+
+
+def test_the_plan_command_loads_no_synthesis_scipy_numpy_or_library(library_db):
+    code = ("import runpy, sys\nsys.argv = ['text2anim', 'plan', sys.argv[1], '--db', sys.argv[2]]\n"
+            "try:\n    runpy.run_module('text2anim.cli.main', run_name='__main__')\n"
+            "except SystemExit as exc:\n    assert not exc.code, exc.code")
+    loaded = _loaded(code, TEXT, library_db)
+    assert "text2anim.scheduler.table" in loaded  # it did make the time table
     assert [m for m in loaded if m.startswith(HEAVY)] == []
 
 

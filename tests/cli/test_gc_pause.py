@@ -1,0 +1,51 @@
+"""The command line pauses Python's cyclic garbage collector only for one bounded command (animate, plan) and
+gives it back as it found it: a program that calls ``main()`` keeps collecting, and so do unbounded commands."""
+from __future__ import annotations
+
+import gc
+
+import pytest
+
+from text2anim.cli import cmd_db, cmd_plan
+from text2anim.cli.main import main
+
+TEXT = "太郎は走って、ボールを蹴る。そして喜ぶ。"
+
+
+def _collecting_during(monkeypatch, module) -> list[bool]:
+    """Whether the collector was enabled while ``module``'s command ran (its ``run`` wrapped)."""
+    seen: list[bool] = []
+    run = module.run
+
+    def spy(args):
+        seen.append(gc.isenabled())
+        return run(args)
+    monkeypatch.setattr(module, "run", spy)
+    return seen
+
+
+def test_plan_runs_paused_and_the_caller_keeps_collecting(monkeypatch, capsys, library_db):
+    seen = _collecting_during(monkeypatch, cmd_plan)
+    assert gc.isenabled()
+    assert main(["plan", TEXT, "--db", library_db]) == 0
+    assert "蹴る" in capsys.readouterr().out
+    assert seen == [False] and gc.isenabled()
+
+
+def test_a_failing_command_gives_the_collector_back(capsys, library_db):
+    assert main(["plan", "太郎は踊り狂う。", "--db", library_db]) == 2  # a verb the library lacks: one message
+    assert "error" in capsys.readouterr().err
+    assert gc.isenabled()
+
+
+def test_an_unbounded_command_collects(monkeypatch, capsys, library_db):
+    seen = _collecting_during(monkeypatch, cmd_db)
+    assert main(["db", "list", "--db", library_db]) == 0
+    capsys.readouterr()
+    assert seen == [True] and gc.isenabled()
+
+
+@pytest.fixture(autouse=True)
+def _collector_restored():
+    yield
+    gc.enable()  # whatever a failing test left behind, the rest of the suite collects
