@@ -150,20 +150,25 @@ class Motion:
         same = self.__dict__.get("_pose_of")
         if same is not None:
             return same.pose
-        # joint-major (J, T, ...) so that a depth's joints are gathered as whole blocks
-        local_r = quat_to_matrix(self.rotations).transpose(1, 0, 2, 3).copy()
-        local_t = self.local_translations().transpose(1, 0, 2).copy()
+        rows = self.__dict__.pop("_pose_rows", None)  # frames another motion's pose has (see share_pose)
+        if rows is not None:
+            return self._pose_with(*rows)
+        # joint-major (J, T, ...) with the joints in order of depth (Skeleton.depth_order): a depth's joints are one
+        # block, read and written in place; only their parents are gathered
+        order, inverse, levels = self.skeleton.depth_order()
+        local_r = quat_to_matrix(self.rotations[:, order]).transpose(1, 0, 2, 3).copy()
+        local_t = self.local_translations()[:, order].transpose(1, 0, 2).copy()
         world_r = np.empty_like(local_r)
         world_p = np.empty_like(local_t)
         world_r[0] = local_r[0]
         world_p[0] = local_t[0]
-        for joints, parents in self.skeleton.depth_levels():
+        for a, b, parents in levels:
             parent_r = world_r[parents]
-            world_r[joints] = parent_r @ local_r[joints]
-            world_p[joints] = world_p[parents] + np.einsum("ntij,ntj->nti", parent_r, local_t[joints])
-        # back to (T, J, ...) in C order: reductions over these arrays sum in the same order as before
-        world_r = np.ascontiguousarray(world_r.transpose(1, 0, 2, 3))
-        world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2))
+            np.matmul(parent_r, local_r[a:b], out=world_r[a:b])
+            np.add(world_p[parents], np.einsum("ntij,ntj->nti", parent_r, local_t[a:b]), out=world_p[a:b])
+        # back to (T, J, ...) in skeleton order, C-contiguous: reductions over these arrays sum in the same order
+        world_r = np.ascontiguousarray(world_r.transpose(1, 0, 2, 3)[:, inverse])
+        world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2)[:, inverse])
         world_r.setflags(write=False)
         world_p.setflags(write=False)
         return Pose(world_p, world_r)
@@ -184,8 +189,6 @@ class Motion:
         """Write the world transforms of ``top``'s subtree into ``rotations`` ``(T, J, 3, 3)`` and
         ``positions`` ``(T, J, 3)``, from ``known``'s transform of its parent (see :meth:`_pose_below`)."""
         sub = self.skeleton.subtree(top)  # (n,) joints, parents first
-        slot = np.full(self.skeleton.n_joints, -1)
-        slot[sub] = np.arange(len(sub))
         local_r = quat_to_matrix(self.rotations[:, sub]).transpose(1, 0, 2, 3).copy()
         # the subtree's rows of local_translations() (the root, whose row is its position, is not in it)
         own_t = self.translations[:, sub] if self.translations is not None else \
@@ -198,16 +201,58 @@ class Motion:
         top_p = np.ascontiguousarray(known.positions[:, outside])[None]
         world_r[:1] = top_r @ local_r[:1]
         world_p[:1] = top_p + np.einsum("ntij,ntj->nti", top_r, local_t[:1])
-        for joints, parents in self.skeleton.depth_levels():
-            inside = slot[joints] > 0
-            if not inside.any():
-                continue
-            j, p = slot[joints[inside]], slot[parents[inside]]
+        for j, p in self.skeleton.subtree_levels(top):  # slices where a depth's joints are a block (a limb)
             parent_r = world_r[p]
-            world_r[j] = parent_r @ local_r[j]
-            world_p[j] = world_p[p] + np.einsum("ntij,ntj->nti", parent_r, local_t[j])
+            if isinstance(j, slice):
+                np.matmul(parent_r, local_r[j], out=world_r[j])
+                np.add(world_p[p], np.einsum("ntij,ntj->nti", parent_r, local_t[j]), out=world_p[j])
+            else:
+                world_r[j] = parent_r @ local_r[j]
+                world_p[j] = world_p[p] + np.einsum("ntij,ntj->nti", parent_r, local_t[j])
         rotations[:, sub] = world_r.transpose(1, 0, 2, 3)
         positions[:, sub] = world_p.transpose(1, 0, 2)
+
+    def share_pose(self, other: "Motion", rows: np.ndarray) -> "Motion":
+        """Let this motion's :attr:`pose` take ``other``'s where the frames are the same: ``rows`` ``(T,)`` says
+        which frame of ``other`` each frame may be (``-1``: none); where the two frames' root position and
+        local rotations (and translations) are bit for bit equal and ``other``'s pose is known, that frame's
+        pose is ``other``'s, and the kinematics, when asked, runs for the other frames only (FK is per frame:
+        the same bits). An edit that kept most of a long motion (a join's region) then costs the region's
+        kinematics. Returns this motion."""
+        known = other._known_pose()
+        rows = np.asarray(rows, dtype=np.int64)
+        if known is None or len(rows) != self.n_frames or any(
+                k in self.__dict__ for k in ("pose", "_pose_source", "_pose_parts", "_pose_moved", "_pose_of")) or not (
+                other.skeleton is self.skeleton or np.array_equal(other.skeleton.offsets, self.skeleton.offsets)):
+            return self
+        rows = np.where((rows >= 0) & (rows < other.n_frames), rows, -1)
+        have = np.flatnonzero(rows >= 0)
+        src = rows[have]
+        same = (self.root_positions[have].view(np.int64) == other.root_positions[src].view(np.int64)).all(axis=1)
+        same &= (self.rotations[have].view(np.int64) == other.rotations[src].view(np.int64)).all(axis=(1, 2))
+        if self.translations is not None or other.translations is not None:
+            same &= (self.local_translations()[have].view(np.int64)
+                     == other.local_translations()[src].view(np.int64)).all(axis=(1, 2))
+        rows[have[~same]] = -1
+        if (rows >= 0).any():
+            self.__dict__["_pose_rows"] = (known, rows)
+        return self
+
+    def _pose_with(self, known: Pose, rows: np.ndarray) -> Pose:
+        """:attr:`pose` with the frames ``rows >= 0`` taken from ``known`` (:meth:`share_pose`)."""
+        new = rows < 0
+        positions = np.empty((self.n_frames, self.skeleton.n_joints, 3))
+        rotations = np.empty((self.n_frames, self.skeleton.n_joints, 3, 3))
+        positions[~new] = known.positions[rows[~new]]
+        rotations[~new] = known.rotations[rows[~new]]
+        if new.any():
+            part = Motion(self.skeleton, self.fps, self.root_positions[new], self.rotations[new],
+                          None if self.translations is None else self.translations[new]).pose
+            positions[new] = part.positions
+            rotations[new] = part.rotations
+        positions.setflags(write=False)
+        rotations.setflags(write=False)
+        return Pose(positions, rotations)
 
     def copy_sharing_pose(self) -> "Motion":
         """The same frames in arrays of their own; its :attr:`pose` is this motion's, computed once for both
@@ -303,6 +348,9 @@ class Motion:
             out.__dict__["pose"] = Pose(known.positions[sl], known.rotations[sl])
         elif source is not None:  # a limb edit not yet solved: solve it on the slice only, when asked
             out.__dict__["_pose_source"] = (Pose(source[0].positions[sl], source[0].rotations[sl]), source[1])
+        elif "_pose_rows" in self.__dict__:  # frames shared with another motion's pose: the slice's are
+            known_rows, rows = self.__dict__["_pose_rows"]
+            out.__dict__["_pose_rows"] = (known_rows, rows[sl])
         return out
 
     def _known_pose(self) -> Pose | None:

@@ -100,6 +100,41 @@ class Skeleton:
             object.__setattr__(self, "_depth_levels", levels)
         return levels
 
+    def depth_order(self) -> tuple[np.ndarray, np.ndarray, tuple[tuple[int, int, np.ndarray], ...]]:
+        """The joints in order of tree depth (for forward kinematics, :attr:`core.motion.Motion.pose`):
+        ``order`` ``(J,)`` (root first, each depth's joints in skeleton order), its ``inverse`` (position of
+        each joint), and per depth 1, 2, ... the block ``[a, b)`` of its joints in that order with their
+        parents' positions ``(b - a,)``; cached."""
+        known = self.__dict__.get("_depth_order")
+        if known is None:
+            order = np.concatenate([[0]] + [joints for joints, _ in self.depth_levels()]).astype(np.int64)
+            inverse = np.empty_like(order)
+            inverse[order] = np.arange(len(order))
+            levels, a = [], 1
+            for joints, parents in self.depth_levels():
+                levels.append((a, a + len(joints), inverse[parents]))
+                a += len(joints)
+            known = (order, inverse, tuple(levels))
+            object.__setattr__(self, "_depth_order", known)
+        return known
+
+    def subtree_levels(self, top: int) -> tuple[tuple[np.ndarray | slice, np.ndarray | slice], ...]:
+        """Per tree depth below ``top``, the positions in :meth:`subtree` ``(top)`` of that depth's joints and
+        of their parents, as slices where they are consecutive (a limb's forward kinematics,
+        :meth:`core.motion.Motion._subtree_pose`); cached per joint."""
+        known = self.__dict__.setdefault("_subtree_levels", {})
+        if top not in known:
+            sub = self.subtree(top)
+            slot = np.full(self.n_joints, -1)
+            slot[sub] = np.arange(len(sub))
+            levels = []
+            for joints, parents in self.depth_levels():
+                inside = slot[joints] > 0
+                if inside.any():
+                    levels.append((_block(slot[joints[inside]]), _block(slot[parents[inside]])))
+            known[top] = tuple(levels)
+        return known[top]
+
     def rotation_order(self, j: int) -> str:
         """Intrinsic Euler order of joint ``j`` as scipy spells it (e.g. ``"ZYX"``), as listed."""
         return "".join(c[0] for c in self.channels[j] if c in ROTATION_CHANNELS)
@@ -128,3 +163,10 @@ class Skeleton:
         ends = [pos[j] + o for j, o in self.end_sites]
         allp = np.vstack([pos, *ends]) if ends else pos
         return float(np.ptp(allp[:, 1])) if len(allp) else 0.0
+
+
+def _block(idx: np.ndarray) -> np.ndarray | slice:
+    """``idx`` as a slice when it is a run of consecutive indices (a view instead of a gathered copy)."""
+    if len(idx) and np.array_equal(idx, np.arange(idx[0], idx[0] + len(idx))):
+        return slice(int(idx[0]), int(idx[0]) + len(idx))
+    return idx

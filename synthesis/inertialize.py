@@ -25,8 +25,7 @@ of ``B``'s (:func:`inertialize_at`). Units: seconds, metres, radians.
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial.transform import Rotation
-
+from text2anim.core import rotkernels as rk
 from text2anim.core.motion import Motion, unroll_quaternions
 
 
@@ -65,14 +64,16 @@ def offsets_at(motion: Motion, s: int) -> tuple[np.ndarray, np.ndarray, np.ndarr
     fps = motion.fps
     p = motion.root_positions
     q = unroll_quaternions(motion.rotations[s - 2:s + 2])
-    r = Rotation.from_quat(q.reshape(-1, 4))
+    r = rk.from_quat(q.reshape(-1, 4))  # Rotation's arithmetic without its objects (the same bits)
     J = motion.skeleton.n_joints
     rots = [r[k * J:(k + 1) * J] for k in range(4)]  # frames s-2, s-1, s, s+1
-    w_in = (rots[0].inv() * rots[1])  # local step s-2 -> s-1 (body frame)
-    w_out = (rots[2].inv() * rots[3])
-    pred = rots[1] * w_in  # s continued
-    rx0 = (pred * rots[2].inv()).as_rotvec()  # offset in front of B's rotation
-    rv0 = (rots[2] * Rotation.from_rotvec(w_in.as_rotvec() - w_out.as_rotvec()) * rots[2].inv()).as_rotvec() * fps
+    w_in = rk.compose(rk.inverse(rots[0]), rots[1])  # local step s-2 -> s-1 (body frame)
+    w_out = rk.compose(rk.inverse(rots[2]), rots[3])
+    pred = rk.compose(rots[1], w_in)  # s continued
+    back = rk.inverse(rots[2])
+    rx0 = rk.as_rotvec(rk.compose(pred, back))  # offset in front of B's rotation
+    turn = rk.from_rotvec(rk.as_rotvec(w_in) - rk.as_rotvec(w_out))
+    rv0 = rk.as_rotvec(rk.compose(rk.compose(rots[2], turn), back)) * fps
     px0 = 2.0 * p[s - 1] - p[s - 2] - p[s]
     pv0 = ((p[s - 1] - p[s - 2]) - (p[s + 1] - p[s])) * fps
     return px0, pv0, rx0, rv0
@@ -96,8 +97,8 @@ def inertialize_at(motion: Motion, s: int, duration: float, joints=None) -> Moti
     mask[sel] = True
     dr[:, ~mask] = 0.0
     rots = motion.rotations.copy()
-    cur = Rotation.from_quat(rots[s:s + n].reshape(-1, 4))
-    rots[s:s + n] = (Rotation.from_rotvec(dr.reshape(-1, 3)) * cur).as_quat().reshape(n, J, 4)
+    cur = rk.from_quat(rots[s:s + n].reshape(-1, 4))
+    rots[s:s + n] = rk.as_quat(rk.compose(rk.from_rotvec(dr.reshape(-1, 3)), cur)).reshape(n, J, 4)
     root = motion.root_positions.copy()
     root[s:s + n] += dp
     return motion.replace(root_positions=root, rotations=rots)

@@ -30,10 +30,13 @@ own two source clips (as recorded, at the track's rate):
    clip after its core, the second before it, :func:`synthesis.assemble.join_side`;
    "nearer": the larger of the two ratios, jerk and root pop, is smaller):
    a kick's accelerations in its core are no licence for the join beside it.
+   The candidates are :mod:`synthesis.smoothing`'s: the feet of a width are re-planted (step 3) only when
+   its exact hips' pop and a floor of its jerk leave it a chance of being chosen (:mod:`synthesis.pruning`),
+   several widths of a stretch in one IK solve; the choice is the one trying all makes.
 3. **Feet stay put.** Wherever a foot is in contact in the engine's output, or
    held still by its locks (toes and heels: the ankle's position *and* world
    orientation are kept, so the toe stays), the leg is solved by IK back onto
-   that foot (:func:`synthesis.footlock.solve_leg`); the correction fades out
+   that foot (:func:`synthesis.legsolve.solve_leg`); the correction fades out
    over the air phase around it.
 4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
    ankle or toe would go below it is lifted by IK by the deficit
@@ -49,22 +52,23 @@ All vectorised over frames and joints; deterministic.
 """
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d, uniform_filter1d
-from scipy.spatial.transform import Rotation
 
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.easing import smootherstep_area
-from text2anim.core.ik import set_world_rotation
 from text2anim.core.metrics import quality
-from text2anim.core.motion import Motion, unroll_quaternions
+from text2anim.core.motion import Motion
 
-from .blend import ease, lerp, sample, slerp
-from .footlock import solve_leg
+from .blend import sample
 from .inertialize import inertialize_at, inertialize_before
+from .legsolve import solve_leg
+from .pruning import Tried, least, may_keep, replaces
+from .smoothing import Smoothed, Stretch, plant_all
 
 SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
 PAD = 0.25  # s: the filtered pose fades in and out over this on each side of a region
@@ -95,71 +99,30 @@ class Region:
 
 def _limits(sources, fps: float) -> tuple[float, float]:
     """The largest jerk p99 (m/s³) and root pop (m/s²) of the source clips, at ``fps`` (:func:`core.metrics.quality`)."""
-    qs = [quality(m, fps) for m in sources if m is not None and m.n_frames >= 6]
-    return max([q.jerk_p99 for q in qs] or [0.0]), max([q.root_pop for q in qs] or [0.0])
+    qs = [source_figures(m, fps) for m in sources if m is not None and m.n_frames >= 6]
+    return max([q[0] for q in qs] or [0.0]), max([q[1] for q in qs] or [0.0])
 
 
-def _fade(n: int, pad: int) -> np.ndarray:
-    """``(n,)``: 0 → 1 over the first ``pad`` frames, 1, 1 → 0 over the last ``pad`` (quintic, C2)."""
-    e = np.ones(n)
-    if pad > 0:
-        up = ease(np.linspace(0.0, 1.0, pad + 1)[:-1], "smooth")
-        e[:pad] = up
-        e[n - pad:] = up[::-1]
-    return e
+_KNOWN: dict[bytes, tuple[float, float]] = {}  # the figures of source clips seen, by content (FIFO, bounded)
+KNOWN_MAX = 512
 
 
-def low_pass(motion: Motion, lo: int, hi: int, sigma: float, pad: int, root_pad: int | None = None) -> Motion:
-    """``motion`` with local rotations and root position Gaussian-filtered (``sigma`` frames) over
-    ``[lo, hi)``, faded in and out over ``pad`` frames at each end (the root over ``root_pad``, default ``pad``)."""
-    root_pad = pad if root_pad is None else root_pad
-    if sigma <= 0 or hi - lo < 2 * max(pad, root_pad) + 1:
-        return motion
-    # the filter reads the motion up to 4 sigma beyond the region (only the region is written): near its
-    # edges it then averages the frames that really follow, not the edge frame held still ("nearest"),
-    # which bent a moving hips' path towards a standstill right where the fade hands back to the clip
-    ext = int(np.ceil(4.0 * sigma))
-    a, b = max(0, lo - ext), min(motion.n_frames, hi + ext)
-    q = unroll_quaternions(motion.rotations[a:b])
-    qs = gaussian_filter1d(q, sigma, axis=0, mode="nearest")[lo - a:hi - a]
-    qs /= np.linalg.norm(qs, axis=-1, keepdims=True)
-    rots = motion.rotations.copy()
-    rots[lo:hi] = slerp(q[lo - a:hi - a], qs, _fade(hi - lo, pad)[:, None])
-    root = motion.root_positions.copy()
-    smooth_root = gaussian_filter1d(root[a:b], sigma, axis=0, mode="nearest")[lo - a:hi - a]
-    root[lo:hi] = lerp(root[lo:hi], smooth_root, _fade(hi - lo, root_pad))
-    return motion.replace(root_positions=root, rotations=rots)
-
-
-def _soft(mask: np.ndarray, fps: float) -> np.ndarray:
-    """A contact mask as a weight: 1 on contact frames, falling smoothly to 0 over about 0.1 s around them."""
-    w = np.clip(2.0 * gaussian_filter1d(mask.astype(np.float64), 0.05 * fps, mode="nearest"), 0.0, 1.0)
-    w[mask] = 1.0
-    return w
-
-
-def keep_feet(motion: Motion, ref: Motion, lo: int, hi: int, planted: dict) -> Motion:
-    """``motion`` with its legs solved over ``[lo, hi)`` so that every foot ``planted`` in ``ref`` (per side,
-    ``(T,)`` bool) has ``ref``'s ankle position and world orientation; the correction fades out around."""
-    if hi - lo < 2:
-        return motion
-    feet = body_map(motion.skeleton).feet
-    out = motion
-    for side, (ankle, _toe) in feet.items():
-        c = _soft(maximum_filter1d(planted[side], 3), motion.fps)[lo:hi]  # held a frame either side too
-        if not c.any():
-            continue
-        sub = out[lo:hi]
-        now = sub.pose
-        want = ref.pose
-        target = lerp(now.positions[:, ankle], want.positions[lo:hi, ankle], c)
-        r_now = now.quaternions(ankle)
-        r_want = Rotation.from_matrix(want.rotations[lo:hi, ankle]).as_quat()
-        solved = set_world_rotation(solve_leg(sub, side, target), ankle, slerp(r_now, r_want, c))
-        rots = out.rotations.copy()
-        rots[lo:hi] = solved.rotations
-        out = out.replace(rotations=rots)
-    return out
+def source_figures(m: Motion, fps: float) -> tuple[float, float]:
+    """``(jerk p99, root pop)`` of a source clip at ``fps`` (:func:`core.metrics.quality`), remembered by the
+    clip's content: the same library clips are the sources of join after join, animation after animation."""
+    h = hashlib.blake2b(np.float64(fps).tobytes(), digest_size=20)
+    skel = m.skeleton
+    for a in (skel.parents, skel.offsets, m.root_positions, m.rotations, m.translations):
+        if a is not None:
+            h.update(np.ascontiguousarray(a).tobytes())
+            h.update(str(a.shape).encode())
+    key = h.digest()
+    if key not in _KNOWN:
+        q = quality(m, fps)
+        if len(_KNOWN) >= KNOWN_MAX:
+            del _KNOWN[next(iter(_KNOWN))]
+        _KNOWN[key] = (q.jerk_p99, q.root_pop)
+    return _KNOWN[key]
 
 
 def lift_off_floor(motion: Motion, lo: int, hi: int, floor: float = FLOOR) -> Motion:
@@ -189,7 +152,7 @@ def _raise_ankle(motion: Motion, side: str, ankle: int, short: np.ndarray) -> Mo
         sub = out[a:b]
         pose = sub.pose
         target = pose.positions[:, ankle] + np.stack([np.zeros(b - a), d[a:b], np.zeros(b - a)], 1)
-        solved = set_world_rotation(solve_leg(sub, side, target), ankle, pose.quaternions(ankle))
+        solved = solve_leg(sub, side, target, ankle=pose.quaternions(ankle))  # its world rotation kept
         rots = out.rotations.copy()
         rots[a:b] = solved.rotations
         out = out.replace(rotations=rots)
@@ -281,10 +244,7 @@ def _hardest(m: Motion, lo: int, hi: int) -> int:
     return int(np.clip(np.argmax(acc) + (1 if lo > 0 else 0), 1, hi - lo - 1))
 
 
-def _figures(m: Motion, lo: int, hi: int) -> tuple[float, float]:
-    """Jerk p99 and root pop of ``m`` over ``[lo, hi)`` and 3 frames around (its own rate)."""
-    q = quality(m[max(0, lo - 3):min(m.n_frames, hi + 3)], None)
-    return q.jerk_p99, q.root_pop
+AHEAD = 2  # widths re-planted beside the one asked for, when they may count too (one IK solve for all)
 
 
 def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int, int]]:
@@ -316,8 +276,10 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     jk_near, pop_near = _limits(region.near, fps) if region.near else (jk_lim, pop_lim)
     jk_near, pop_near = min(jk_near, jk_lim), max(min(pop_near, pop_lim), POP_FLOOR)
     scale = fps / 30.0
-    best: tuple[float, float, float, Motion, float, float, int] | None = None
-    kept: tuple[float, float, float, Motion, float, float, int] | None = None  # within the limits, nearest
+    lims = (max(jk_lim * SLACK, 1e-9), max(pop_lim * SLACK, 1e-9), max(jk_near * SLACK, 1e-9),
+            max(pop_near * SLACK, 1e-9))
+    tried: list[tuple[float, float, Smoothed, int]] = []  # (width, stretch, candidate, region end), in order
+    kept: Tried | None = None  # within the limits, nearest
     whi = max(min(hi, region.keep[1]), region.w0 + 2)  # retimed: [lo, whi), never the next core
     seam = _hardest(seamed, lo, whi)
     for stretch in STRETCHES:
@@ -328,32 +290,39 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
         mask = {k: v[np.clip(idx, 0, T - 1)] for k, v in planted.items()}
         h2 = hi + max(n_new, whi - lo) - (whi - lo)
         pad = max(1, min(pad0, (h2 - lo) // 3))
-        for sigma in SIGMAS:
-            # the hips' filtered path fades in and out over at least 2.5 sigma: a path low-passed where it
-            # accelerates lags the original, and a shorter fade would return it with a pop of its own
-            fade = max(pad, min(int(np.ceil(2.5 * sigma * scale)), (h2 - lo) // 3))
-            cand = keep_feet(low_pass(base, lo, h2, sigma * scale, pad, fade), ref, lo, h2, mask)
-            jk, pop = _figures(cand, lo, h2)
-            score = max(jk / max(jk_lim * SLACK, 1e-9), pop / max(pop_lim * SLACK, 1e-9))
-            if best is None or score < best[0] - 1e-9:
-                best = (score, sigma, stretch, cand, jk, pop, h2)
-            if score <= 1.0:  # within the whole clips' figures: no more time. A wider smoothing is taken if it
-                # is still within them and nearer the figures of the parts the join replaces (the larger ratio
-                # smaller: a root pop brought down to the replaced frames' may cost jerk within the sources')
-                near = max(jk / max(jk_near * SLACK, 1e-9), pop / max(pop_near * SLACK, 1e-9))
-                if kept is None or near < kept[0] - 1e-9:
+        # the hips' filtered path fades in and out over at least 2.5 sigma: a path low-passed where it
+        # accelerates lags the original, and a shorter fade would return it with a pop of its own
+        widths = Stretch(base, ref, lo, h2, mask, [
+            (sigma * scale, pad, max(pad, min(int(np.ceil(2.5 * sigma * scale)), (h2 - lo) // 3))) for sigma in SIGMAS])
+        for i, sigma in enumerate(SIGMAS):
+            cand = widths[i]
+            tried.append((sigma, stretch, cand, h2))
+            if not may_keep(cand, lims, kept):
+                continue
+            if cand.jk is None:  # re-planted with the next widths that may count too: one IK solve for all
+                ahead = range(i + 1, min(len(SIGMAS), i + 1 + AHEAD))
+                plant_all([cand] + [widths[j] for j in ahead if may_keep(widths[j], lims, kept)])
+            jk, pop = cand.plant()
+            if max(jk / lims[0], pop / lims[1]) <= 1.0:  # within the whole clips' figures: no more time. A wider
+                # smoothing is taken if it is still within them and nearer the figures of the parts the join
+                # replaces (the larger ratio smaller: a root pop brought down to the replaced frames' may cost
+                # jerk within the sources')
+                near = max(jk / lims[2], pop / lims[3])
+                if replaces(near, jk, pop, kept):
                     kept = (near, sigma, stretch, cand, jk, pop, h2)
+                assert kept is not None  # the first within is always kept
                 if kept[0] <= 1.0:
                     break
         if kept is not None:
             break
-    assert best is not None  # STRETCHES and SIGMAS are not empty
-    score, sigma, stretch, cand, jk, pop, h2 = kept or best
-    cand = lift_off_floor(clear_swings(cand, lo, h2), lo, h2)
+    _score, sigma, stretch, chosen, jk, pop, h2 = kept or least(tried, lims)
+    # outside [lo, h2) the frames are the input's (those the seams left alone): their kinematics is known
+    rows = np.concatenate([np.arange(lo), np.full(h2 - lo, -1), np.arange(hi, T)])
+    done = lift_off_floor(clear_swings(chosen.motion().share_pose(motion, rows), lo, h2), lo, h2)
     info = {"smoothing_frames": sigma, "stretch": stretch, "added_s": round((h2 - hi) / fps, 3),
             "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
             "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
-    return cand, info, (lo, whi, whi - lo + (h2 - hi), seam)
+    return done, info, (lo, whi, whi - lo + (h2 - hi), seam)
 
 
 def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, int]]]:

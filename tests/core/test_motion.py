@@ -141,3 +141,28 @@ def test_world_quaternions_of_some_joints_are_those_of_all_joints():
     every = pose.quaternions()
     assert np.array_equal(pose.quaternions(3), every[:, 3])
     assert np.array_equal(pose.quaternions([5, 1]), every[:, [5, 1]])
+
+
+def test_a_motion_sharing_anothers_pose_runs_kinematics_for_its_changed_frames_only_bit_for_bit():
+    """``Motion.share_pose``: a join's region edited (and the frames after it shifted by the frames it
+    gained) takes the kinematics of its unchanged frames from the original's pose; its own is the full
+    computation's, slices too, and a frame claimed the same but edited is recomputed."""
+    from conftest import make_motion
+
+    m = make_motion(50, 30.0, 3, translations=True)
+    m.pose
+    rots, root = m.rotations.copy(), m.root_positions.copy()
+    region = np.concatenate([rots[:20], np.roll(rots[20:30], 1, axis=1), rots[25:]])  # 5 frames more
+    moved = np.concatenate([root[:20], root[20:30] + 0.1, root[25:]])
+    moved[40] += 1e-12  # a frame after the region edited too
+    trans = np.concatenate([m.translations[:20], m.translations[20:30], m.translations[25:]])
+    edited = Motion(m.skeleton, m.fps, moved, region, trans)
+    rows = np.concatenate([np.arange(20), np.full(10, -1), np.arange(25, 50)])
+    full = Motion(m.skeleton, m.fps, moved, region, trans).pose
+    shared = Motion(m.skeleton, m.fps, moved, region, trans).share_pose(m, rows)
+    part = shared[15:45]
+    assert np.array_equal(part.pose.positions, full.positions[15:45])
+    assert np.array_equal(shared.pose.positions, full.positions)
+    assert np.array_equal(shared.pose.rotations, full.rotations)
+    assert not np.array_equal(full.positions[40], m.pose.positions[35])  # the edit after the region counted
+    assert edited.share_pose(Motion(m.skeleton, m.fps, root, rots, m.translations), rows) is edited  # pose unknown

@@ -1,0 +1,105 @@
+"""The join post-pass's candidates (synthesis.smoothing): their figures are the quality metrics' own bits,
+the bounds the search prunes by hold, and re-planting several widths at once is re-planting each alone."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from shared_data import library_motion
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.metrics import quality
+from text2anim.synthesis.smoothing import Stretch, jerk_p99, jerks, plant_all, root_pop
+
+WIDTHS = (0.0, 1.0, 2.0, 4.0, 8.0)
+
+
+@pytest.fixture(scope="module")
+def kick():
+    return library_motion("kick")  # 54 frames: steps in, kicks on one foot, steps back
+
+
+def _stretch(motion, lo=10, hi=44):
+    """A real region of ``motion``: smoothed over ``[lo, hi)``, its feet kept where its contacts are."""
+    contacts = detect_contacts(motion)
+    planted = {side: contacts.of(side)[:motion.n_frames] for side in ("left", "right")}
+    return Stretch(motion, motion, lo, hi, planted)
+
+
+@pytest.mark.parametrize("name", ["run", "walk", "kick"])
+def test_figures_are_the_quality_metrics_bits(name):
+    m = library_motion(name)
+    for a, b in [(0, m.n_frames), (10, 40), (5, 9), (5, 8), (3, 6)]:  # whole, a window, and too short for one
+        part = m[a:b]
+        q = quality(part, None)
+        assert jerk_p99(jerks(part.positions, part.fps)) == q.jerk_p99
+        assert root_pop(part.root_positions, part.fps) == q.root_pop
+
+
+def test_jerk_floor_and_pop_bound_the_planted_figures(kick):
+    st = _stretch(kick)
+    assert len(st.feet) == 2, "both feet touch the floor in the region: they are kept"
+    widths = [st.smoothed(s, 6, 6) for s in WIDTHS]
+    before = [(w.pop, w.jk_floor) for w in widths]
+    plant_all(widths)
+    for (pop, floor), w in zip(before, widths):
+        jk, planted_pop = w.plant()
+        assert planted_pop == pop  # re-planting the feet moves no hips: the pop is exact before
+        assert 0.0 < floor <= jk  # and the jerk of the joints the leg IK leaves alone bounds the p99
+        q = quality(w.motion()[st.a:st.b], None)  # the whole candidate, measured as the metrics do
+        assert (q.jerk_p99, q.root_pop) == (jk, pop)
+
+
+def test_widths_replanted_together_are_each_replanted_alone(kick):
+    st = _stretch(kick)
+    together = [st.smoothed(s, 6, 6) for s in WIDTHS]
+    plant_all(together)
+    for s, w in zip(WIDTHS, together):
+        alone = st.smoothed(s, 6, 6)
+        assert alone.plant() == w.plant()
+        assert alone.motion().rotations.tobytes() == w.motion().rotations.tobytes()
+    moved = together[2].motion().rotations != together[2].stretch.base.rotations
+    assert moved[st.lo:st.hi].any() and not moved[:st.lo].any() and not moved[st.hi:].any()
+    # the feet are back where the reference has them on their contact frames, however wide the smoothing
+    for _side, ankle, c, target, _ in st.feet:
+        on = np.flatnonzero(c == 1.0)
+        for w in together:
+            assert len(on) and np.abs(w.sub.positions[on, ankle] - target[on]).max() < 1e-9
+
+
+def testsource_figures_are_remembered_by_content_not_by_object():
+    from text2anim.synthesis.joinpass import source_figures
+
+    kick = library_motion("kick")
+    q = quality(kick, 30.0)
+    assert source_figures(kick, 30.0) == (q.jerk_p99, q.root_pop)
+    faster = kick.replace(root_positions=kick.root_positions * 1.5)  # same frame count, other content
+    q2 = quality(faster, 30.0)
+    assert source_figures(faster, 30.0) == (q2.jerk_p99, q2.root_pop) != (q.jerk_p99, q.root_pop)
+    assert source_figures(kick.read_only(), 30.0) == (q.jerk_p99, q.root_pop)  # a copy: the same figures
+    q60 = quality(kick, 60.0)
+    assert source_figures(kick, 60.0) == (q60.jerk_p99, q60.root_pop)
+
+
+@pytest.mark.parametrize(("lims", "fewer"), [((100.0, 0.5, 50.0, 0.4), True),  # the pop decides: bounds prune
+                                             ((1.0, 100.0, 1.0, 50.0), False),  # the jerk decides
+                                             ((1e-9, 1e-9, 1e-9, 1e-9), False)])  # scores ~1e12: rounding
+def test_the_fallback_chooses_as_re_planting_every_width_does(kick, lims, fewer):
+    """No width within the limits: the least score, first in order, is chosen; found from bounds (with
+    fewer widths re-planted where the bounds allow), it is the plain scan's over every exact score."""
+    from text2anim.synthesis.pruning import least
+
+    def tried():
+        stretches = [_stretch(kick, 10, 44), _stretch(kick, 12, 40)]
+        return [(s, k, st.smoothed(s, 6, 6), st.hi) for k, st in enumerate(stretches) for s in WIDTHS]
+
+    plain = tried()
+    best = None
+    for s, k, c, h in plain:
+        jk, pop = c.plant()
+        score = max(jk / lims[0], pop / lims[1])
+        if best is None or score < best[0] - 1e-9:
+            best = (score, s, k, c, jk, pop, h)
+    lazy = tried()
+    got = least(lazy, lims)
+    assert got[1:3] == best[1:3] and got[4:] == best[4:] and got[0] == best[0]
+    assert (sum(c.jk is not None for _s, _k, c, _h in lazy) < len(lazy)) == fewer
