@@ -136,25 +136,48 @@ def _padded(values: np.ndarray, before: int, n: int) -> np.ndarray:
     return out
 
 
-def root_acceleration(motion: Motion) -> np.ndarray:
-    """Hips' horizontal acceleration magnitude (m/s²) after a 3-frame moving average of their XZ position.
+def hips_acceleration(root_positions: np.ndarray, fps: float) -> np.ndarray:
+    """Hips' horizontal acceleration magnitude (m/s²) of root positions ``(T, 3)`` at ``fps``, after a
+    3-frame moving average of their XZ position.
 
     Second differences of the averaged positions times fps²; only frames whose average needs no
     padding are used, ``(T-4,)`` for frames 2 .. T-3.
     """
     w = ROOT_POP_WINDOW
-    if motion.n_frames < w + 2:
+    if len(root_positions) < w + 2:
         return np.zeros(0)
-    xz = motion.root_positions[:, [0, 2]]  # the root joint's world positions (no kinematics needed)
+    xz = root_positions[:, [0, 2]]  # the root joint's world positions (no kinematics needed)
     avg = np.lib.stride_tricks.sliding_window_view(xz, w, axis=0).mean(axis=-1)  # (T-w+1, 2)
-    return np.linalg.norm(np.diff(avg, n=2, axis=0), axis=-1) * motion.fps ** 2
+    return np.linalg.norm(np.diff(avg, n=2, axis=0), axis=-1) * fps ** 2
+
+
+def root_acceleration(motion: Motion) -> np.ndarray:
+    """:func:`hips_acceleration` of a motion at its own rate, ``(T-4,)`` m/s²."""
+    return hips_acceleration(motion.root_positions, motion.fps)
+
+
+def peak_hips_acceleration(root_positions: np.ndarray, fps: float) -> float:
+    """The largest :func:`hips_acceleration` of root positions ``(T, 3)`` at ``fps`` (0 if too short), m/s²."""
+    acc = hips_acceleration(root_positions, fps)
+    return float(acc.max()) if acc.size else 0.0
 
 
 def root_pop(motion: Motion) -> float:
     """:class:`Quality` ``root_pop`` of a whole motion at its own rate (``quality(motion, None).root_pop``)
     from its root positions alone, m/s²."""
-    acc = root_acceleration(motion)
-    return float(acc.max()) if acc.size else 0.0
+    return peak_hips_acceleration(motion.root_positions, motion.fps)
+
+
+def joint_jerk(positions: np.ndarray, fps: float) -> np.ndarray:
+    """Jerk magnitude of every joint, ``(T-3, J)`` m/s³, of world positions ``(T, J, 3)`` at ``fps``."""
+    if len(positions) < 4:
+        return np.zeros((0, positions.shape[1]))
+    return np.linalg.norm(np.diff(positions, n=3, axis=0), axis=-1) * fps ** 3
+
+
+def jerk_p99(jerk: np.ndarray) -> float:
+    """:class:`Quality` ``jerk_p99`` of per-frame joint jerks (any shape, NaN left out; 0 if none), m/s³."""
+    return _nanreduce(lambda v: np.percentile(v, JERK_PERCENTILE), jerk.ravel())
 
 
 def frozen_pairs(motion: Motion) -> np.ndarray:
@@ -169,7 +192,7 @@ def series(motion: Motion, floor: float = 0.0) -> Series:
     n, fps = motion.n_frames, motion.fps
     pos = motion.positions
     frozen = frozen_pairs(motion).astype(float)
-    jerk_tj = np.linalg.norm(np.diff(pos, n=3, axis=0), axis=-1) * fps ** 3 if n >= 4 else np.zeros((0, pos.shape[1]))
+    jerk_tj = joint_jerk(pos, fps)
     return Series(fps, _padded(skating_pairs(motion, floor).astype(float), 0, n), _padded(frozen, 0, n),
                   _padded(root_acceleration(motion), (ROOT_POP_WINDOW - 1) // 2 + 1, n),
                   _padded(jerk_tj, 1, n), pos[..., 1].min(axis=1) - floor if n else np.zeros(0))
@@ -204,7 +227,7 @@ def summarise(s: Series, start: int = 0, stop: int | None = None) -> Quality:
     sk, fr = s.skating[start:last_pair], s.frozen[start:last_pair]
     low = s.lowest[start:stop]
     return Quality(s.fps, max(0, stop - start), _nanreduce(np.mean, sk), _nanreduce(np.max, s.root_acc[start:stop]),
-                   _nanreduce(lambda v: np.percentile(v, JERK_PERCENTILE), s.jerk[start:stop].ravel()),
+                   jerk_p99(s.jerk[start:stop]),
                    max(0.0, -float(low.min()) * 100) if low.size else 0.0, _nanreduce(np.mean, fr))
 
 
@@ -319,7 +342,7 @@ def jerk(motion: Motion, start: int = 0, stop: int | None = None) -> Jerk:
     seg = pos[lo:hi]
     if len(seg) < 4:
         return Jerk(0.0, 0.0)
-    j = np.linalg.norm(np.diff(seg, n=3, axis=0), axis=-1) * motion.fps ** 3
+    j = joint_jerk(seg, motion.fps)
     return Jerk(float(j.max()), float(np.sqrt(np.mean(j ** 2))))
 
 

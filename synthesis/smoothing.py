@@ -25,7 +25,7 @@ from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
-from text2anim.core.metrics import JERK_PERCENTILE, ROOT_POP_WINDOW
+from text2anim.core.metrics import JERK_PERCENTILE, jerk_p99, joint_jerk, peak_hips_acceleration
 from text2anim.core.motion import Motion, concatenate, unroll_quaternions
 
 from .blend import ease, lerp, slerp
@@ -95,31 +95,6 @@ def _soft(mask: np.ndarray, fps: float) -> np.ndarray:
     w = np.clip(2.0 * gaussian_filter1d(mask.astype(np.float64), 0.05 * fps, mode="nearest"), 0.0, 1.0)
     w[mask] = 1.0
     return w
-
-
-def jerks(positions: np.ndarray, fps: float) -> np.ndarray:
-    """Jerk magnitude of every joint, ``(n - 3, J)`` m/s³, of positions ``(n, J, 3)`` (``core.metrics.series``)."""
-    if len(positions) < 4:
-        return np.zeros((0, positions.shape[1]))
-    return np.linalg.norm(np.diff(positions, n=3, axis=0), axis=-1) * fps ** 3
-
-
-def jerk_p99(jerk: np.ndarray) -> float:
-    """:class:`core.metrics.Quality` ``jerk_p99`` of per-frame jerks ``(n, J)`` (NaN left out; 0 if none)."""
-    v = jerk.ravel()
-    v = v[~np.isnan(v)]
-    return float(np.percentile(v, JERK_PERCENTILE)) if v.size else 0.0
-
-
-def root_pop(root: np.ndarray, fps: float) -> float:
-    """:class:`core.metrics.Quality` ``root_pop`` of root positions ``(n, 3)`` (``core.metrics.root_acceleration``)."""
-    w = ROOT_POP_WINDOW
-    if len(root) < w + 2:
-        return 0.0
-    avg = np.lib.stride_tricks.sliding_window_view(root[:, [0, 2]], w, axis=0).mean(axis=-1)
-    acc = np.linalg.norm(np.diff(avg, n=2, axis=0), axis=-1) * fps ** 2
-    acc = acc[~np.isnan(acc)]
-    return float(acc.max()) if acc.size else 0.0
 
 
 def jerk_floor(jerk: np.ndarray, fixed: np.ndarray) -> float:
@@ -203,7 +178,7 @@ class Smoothed:
             root = root.copy()
             root[st.lo - st.a:st.hi - st.a] = low_pass_root(base, st.lo, st.hi, sigma, root_pad)
         self.root = root  # (b - a, 3) over the measured frames
-        self.pop = root_pop(root, st.fps)
+        self.pop = peak_hips_acceleration(root, st.fps)
         self.jk: float | None = None
         self._floor: float | None = None
         self._sub: Motion | None = None
@@ -237,7 +212,7 @@ class Smoothed:
         """Low-pass the rotations, run their kinematics, and take :attr:`jk_floor` (and ``jk`` when no foot
         is kept: then the jerk is final)."""
         st = self.stretch
-        jerk = jerks(st.positions(self.sub), st.fps)
+        jerk = joint_jerk(st.positions(self.sub), st.fps)
         if st.feet:
             self._floor = jerk_floor(jerk, st.fixed)
         else:
@@ -293,4 +268,4 @@ def plant_all(widths: list[Smoothed]) -> None:
     _ = sub.pose  # the legs' kinematics once for all the widths (their slices share it)
     for i, w in enumerate(todo):
         w._sub = sub[i * n:(i + 1) * n]
-        w.jk = jerk_p99(jerks(st.positions(w.sub), st.fps))
+        w.jk = jerk_p99(joint_jerk(st.positions(w.sub), st.fps))

@@ -7,8 +7,8 @@ import pytest
 
 from shared_data import library_motion
 from text2anim.core.contacts import detect_contacts
-from text2anim.core.metrics import quality
-from text2anim.synthesis.smoothing import Stretch, jerk_p99, jerks, plant_all, root_pop
+from text2anim.core.metrics import jerk_p99, joint_jerk, peak_hips_acceleration, quality
+from text2anim.synthesis.smoothing import Stretch, plant_all
 
 WIDTHS = (0.0, 1.0, 2.0, 4.0, 8.0)
 
@@ -31,8 +31,8 @@ def test_figures_are_the_quality_metrics_bits(name):
     for a, b in [(0, m.n_frames), (10, 40), (5, 9), (5, 8), (3, 6)]:  # whole, a window, and too short for one
         part = m[a:b]
         q = quality(part, None)
-        assert jerk_p99(jerks(part.positions, part.fps)) == q.jerk_p99
-        assert root_pop(part.root_positions, part.fps) == q.root_pop
+        assert jerk_p99(joint_jerk(part.positions, part.fps)) == q.jerk_p99
+        assert peak_hips_acceleration(part.root_positions, part.fps) == q.root_pop
 
 
 def test_jerk_floor_and_pop_bound_the_planted_figures(kick):
