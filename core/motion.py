@@ -155,23 +155,36 @@ class Motion:
             return self._pose_with(*rows)
         # joint-major (J, T, ...) with the joints in order of depth (Skeleton.depth_order): a depth's joints are one
         # block, read and written in place; only their parents are gathered
+        order, inverse, _ = self.skeleton.depth_order()
+        world_r, world_p = self._down(quat_to_matrix(self.rotations[:, order]).transpose(1, 0, 2, 3).copy())
+        # back to (T, J, ...) in skeleton order, C-contiguous: reductions over these arrays sum in the same order
+        world_r = np.ascontiguousarray(world_r.transpose(1, 0, 2, 3)[:, inverse])
+        world_r.setflags(write=False)
+        return Pose(world_p, world_r)
+
+    def _down(self, local_r: np.ndarray | None, world_r: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Forward kinematics down the tree depth by depth, joint-major in depth order
+        (:meth:`Skeleton.depth_order`: a depth's joints are one block, read and written in place; only their
+        parents are gathered): from the local rotation matrices ``local_r`` ``(J, T, 3, 3)``, the world
+        rotations ``(J, T, 3, 3)`` (in that layout) and the world positions ``(T, J, 3)`` m (skeleton order,
+        read-only); given the world rotations ``world_r`` instead, the positions only."""
         order, inverse, levels = self.skeleton.depth_order()
-        local_r = quat_to_matrix(self.rotations[:, order]).transpose(1, 0, 2, 3).copy()
         local_t = self.local_translations()[:, order].transpose(1, 0, 2).copy()
-        world_r = np.empty_like(local_r)
+        solve_r = world_r is None
+        if world_r is None:
+            assert local_r is not None
+            world_r = np.empty_like(local_r)
+            world_r[0] = local_r[0]
         world_p = np.empty_like(local_t)
-        world_r[0] = local_r[0]
         world_p[0] = local_t[0]
         for a, b, parents in levels:
             parent_r = world_r[parents]
-            np.matmul(parent_r, local_r[a:b], out=world_r[a:b])
+            if solve_r:
+                np.matmul(parent_r, local_r[a:b], out=world_r[a:b])  # type: ignore[index]
             np.add(world_p[parents], np.einsum("ntij,ntj->nti", parent_r, local_t[a:b]), out=world_p[a:b])
-        # back to (T, J, ...) in skeleton order, C-contiguous: reductions over these arrays sum in the same order
-        world_r = np.ascontiguousarray(world_r.transpose(1, 0, 2, 3)[:, inverse])
         world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2)[:, inverse])
-        world_r.setflags(write=False)
         world_p.setflags(write=False)
-        return Pose(world_p, world_r)
+        return world_r, world_p
 
     def _pose_below(self, known: Pose, tops: tuple[int, ...]) -> Pose:
         """:attr:`pose` from ``known``, the pose of a motion that differs from this one only in the local
@@ -296,14 +309,8 @@ class Motion:
         """:attr:`pose` from ``known``, the pose of a motion that differs from this one only in its root
         positions: the world rotations are ``known``'s, the positions are summed down the tree again from
         the same rotated bone offsets (:attr:`pose`'s arithmetic and layout, so the same bits)."""
-        world_r = np.ascontiguousarray(known.rotations.transpose(1, 0, 2, 3))  # joint-major, as pose() has it
-        local_t = self.local_translations().transpose(1, 0, 2).copy()
-        world_p = np.empty_like(local_t)
-        world_p[0] = local_t[0]
-        for joints, parents in self.skeleton.depth_levels():
-            world_p[joints] = world_p[parents] + np.einsum("ntij,ntj->nti", world_r[parents], local_t[joints])
-        world_p = np.ascontiguousarray(world_p.transpose(1, 0, 2))
-        world_p.setflags(write=False)
+        order = self.skeleton.depth_order()[0]
+        _, world_p = self._down(None, np.ascontiguousarray(known.rotations[:, order].transpose(1, 0, 2, 3)))
         return Pose(world_p, known.rotations)
 
     def _carry_pose(self, out: "Motion") -> None:
