@@ -134,6 +134,7 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
     from .finish import finish
     from .assemble import same_length
     from .engine import synthesize
+    from .played import fitted
 
     bad = _skating_actors(result)
     other = synthesize(tracks, fps, lock_feet=True, sway=sway, finished=False) if bad else None
@@ -151,8 +152,6 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
     joins = [j for j in result.joins if result.actor_of(j.second) not in swap]
     joins += [replace(j, metrics={**j.metrics, "engine": "constraint", "fallback_from": "optimal"})
               for j in other.joins if other.actor_of(j.second) in swap]
-    from .played import fitted
-
     src = {actor: (other if actor in swap else result).placed_paths.get(actor) for actor in motions}
     paths = {actor: fitted(p, motions[actor].n_frames) for actor, p in src.items() if p is not None}
     warnings = list(result.warnings) + [
