@@ -182,23 +182,24 @@ def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: s
     pose = span.pose
     # every ankle rotation the locks ask for as quaternions, in one conversion: per foot its own over the
     # locks and over the release, and each source's
+    where = {}  # per foot: its ankle, the locks' frames from first, and the release [b, e)
+    for side, f in feet.items():
+        last = max(f.locks, key=lambda lk: lk.begin)
+        where[side] = (leg_chain(motion, side)[2], max(lk.end for lk in f.locks) - first,
+                       max(0, last.end), min(n, last.release_end))
     blocks = []
     for side, f in feet.items():
-        ankle, T = leg_chain(motion, side)[2], max(lk.end for lk in f.locks) - first
-        last = max(f.locks, key=lambda lk: lk.begin)
-        b, e = max(0, last.end), min(n, last.release_end)
+        ankle, T, b, e = where[side]
         blocks += [pose.rotations[:T, ankle], pose.rotations[b - first:max(b, e) - first, ankle]]
         blocks += [x[:T] for x in f.rotations]
     quats = quaternions(blocks)
     goals, releases = [], []
     for side, f in feet.items():
-        ankle, T = leg_chain(motion, side)[2], max(lk.end for lk in f.locks) - first
+        ankle, T, b, e = where[side]
         r, r_own, *sources = quats[:2 + len(f.rotations)]
         quats = quats[2 + len(f.rotations):]
         goal, prev_d, prev_e = _lock_goal(side, pose.positions[:T, ankle], r, sources, f, first, profile)
         goals.append(goal)
-        last = max(f.locks, key=lambda lk: lk.begin)
-        b, e = max(0, last.end), min(n, last.release_end)
         if e > b:  # the release: the lock's offset riding on the motion's own foot
             turn = rk.from_rotvec(prev_e)
             goals.append(LegGoal(side, b, e, pose.positions[b - first:e - first, ankle] + prev_d,
