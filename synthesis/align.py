@@ -58,6 +58,22 @@ def _rest_forward(skeleton: Skeleton) -> np.ndarray:
     return fwd / n if n > 1e-9 else np.array([0.0, 0.0, 1.0])
 
 
+_ROOT_HEADINGS: "weakref.WeakKeyDictionary[Motion, np.ndarray]" = weakref.WeakKeyDictionary()
+
+
+def root_headings(motion: Motion) -> np.ndarray:
+    """The root's own facing angle per frame (radians about +Y, 0 faces +Z), ``(T,)`` read-only, not
+    smoothed: Kovar aligns each pose by its root's yaw. Computed once per motion (motions are not edited
+    in place: a join's search asks for the same clip's features many times)."""
+    known = _ROOT_HEADINGS.get(motion)
+    if known is None:
+        fwd = rk.apply(rk.from_quat(motion.rotations[:, 0]), rest_forward(motion.skeleton))  # Rotation's bits
+        known = np.arctan2(fwd[:, 0], fwd[:, 2])
+        known.setflags(write=False)
+        _ROOT_HEADINGS[motion] = known
+    return known
+
+
 _HEADINGS: "weakref.WeakKeyDictionary[Motion, dict[float, np.ndarray]]" = weakref.WeakKeyDictionary()
 
 
@@ -81,8 +97,7 @@ def headings(motion: Motion, smooth: float = 0.0) -> np.ndarray:
 def _headings(motion: Motion, smooth: float) -> np.ndarray:
     if motion.n_frames == 0:
         return np.zeros(0)
-    fwd = rk.apply(rk.from_quat(motion.rotations[:, 0]), rest_forward(motion.skeleton))  # Rotation's bits
-    h = np.unwrap(np.arctan2(fwd[:, 0], fwd[:, 2]))
+    h = np.unwrap(root_headings(motion))
     n = int(round(smooth * motion.fps))
     if n > 1:
         h = uniform_filter1d(h, size=n, mode="nearest")

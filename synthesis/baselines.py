@@ -26,7 +26,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .align import match
+from .align import match, root_headings
 from .assemble import assemble
 from .laid import Laid, LaidJoin
 from .actors import spread_actors
@@ -37,7 +37,7 @@ from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 from .track import Incoming, TrackState, extend, lay_elements
 from .plan import Track
-from .posedist import distance_matrix, features, root_headings
+from .posedist import distance_matrix, features
 from .transition import Join, apply_join
 from .weights import linear_weights
 

@@ -23,11 +23,10 @@ import weakref
 
 import numpy as np
 
-from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
 
-from .align import rest_forward
+from .align import root_headings
 
 
 def part_joints(motion: Motion, part: str) -> list[int]:
@@ -35,22 +34,6 @@ def part_joints(motion: Motion, part: str) -> list[int]:
     if part == "whole":
         return list(range(motion.skeleton.n_joints))
     return list(body_map(motion.skeleton).joints(part))
-
-
-_HEADINGS: "weakref.WeakKeyDictionary[Motion, np.ndarray]" = weakref.WeakKeyDictionary()
-
-
-def root_headings(motion: Motion) -> np.ndarray:
-    """The root's own facing angle per frame (radians about +Y, 0 faces +Z), ``(T,)`` read-only, not
-    smoothed: Kovar aligns each pose by its root's yaw. Computed once per motion (motions are not edited
-    in place: a join's search asks for the same clip's features many times)."""
-    known = _HEADINGS.get(motion)
-    if known is None:
-        fwd = rk.apply(rk.from_quat(motion.rotations[:, 0]), rest_forward(motion.skeleton))  # Rotation's bits
-        known = np.arctan2(fwd[:, 0], fwd[:, 2])
-        known.setflags(write=False)
-        _HEADINGS[motion] = known
-    return known
 
 
 _WINDOWS: "weakref.WeakKeyDictionary[Motion, tuple[int, np.ndarray]]" = weakref.WeakKeyDictionary()
