@@ -25,6 +25,7 @@ of ``B``'s (:func:`inertialize_at`). Units: seconds, metres, radians.
 from __future__ import annotations
 
 import numpy as np
+
 from text2anim.core import rotkernels as rk
 from text2anim.core.motion import Motion, unroll_quaternions
 
