@@ -13,8 +13,12 @@ At the end pytest prints how many database tests ran on each backend
 """
 from __future__ import annotations
 
-import os
-import uuid
+from text2anim import reproducible
+
+reproducible.pin()  # before numpy: the goldens and shipped arrays compare bytes across machines
+
+import os  # noqa: E402
+import uuid  # noqa: E402
 
 import pytest
 

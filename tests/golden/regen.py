@@ -37,6 +37,10 @@ def digests(db) -> dict[str, str]:
 if __name__ == "__main__":
     import tempfile
 
+    from text2anim import reproducible
+
+    reproducible.pin()  # as the test pins it (tests/conftest.py)
+
     from text2anim.motiondb import MotionDB
 
     with tempfile.TemporaryDirectory() as tmp, MotionDB.open(f"sqlite:///{tmp}/golden.sqlite") as db:
