@@ -6,8 +6,9 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from shared_data import CMU_FILES, cmu, requires_cmu
-from text2anim.core import BVHError, format_bvh, parse_bvh, read_bvh, write_bvh
+from text2anim.core import BVHError, parse_bvh, read_bvh
 from text2anim.core.bvh import CMU_UNIT, parse_channels
+from text2anim.output.bvh_write import format_bvh, write_bvh
 
 
 @requires_cmu

@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 
 import text2anim
-from text2anim.core.bvh import format_bvh
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.metrics import foot_skate, skating_ratio
 from text2anim.core.motion import Motion
 from text2anim.motiondb import MotionDB
 from text2anim.motiondb.library import builtin_clips, canonical_skeleton
 from text2anim.motiondb.library import build, capture
+from text2anim.output.bvh_write import format_bvh
 from shared_data import CMU_DIR, requires_cmu
 
 #: The actions issue 12 asks to be served by capture, by one verb each (the idle: 待つ).
