@@ -3,7 +3,7 @@
 ``builtin_clips(fps)`` gives every clip as a :class:`motiondb.types.ClipRecord`
 on :func:`canonical_skeleton` (see :mod:`.skeleton`): the clips cut from CMU
 motion capture (:mod:`.capture`: the cut list ``capture.toml`` and the arrays
-``capture.npz`` that :mod:`.build` makes from it), and the keyframed clips for
+``capture.npz`` that ``tools/library/build_capture.py`` makes from it), and the keyframed clips for
 actions no capture covers (bow, clap, cheer, ...). A keyframed clip that a
 captured one ``replaces`` is not in the library. ``source`` says which is
 which: ``builtin:capture:CMU <trial> <seconds>`` or ``builtin:keyframed:<file>``.
@@ -14,7 +14,7 @@ interval and the verbs (format in :mod:`.keyframes`); ``clips/_poses.json``
 the shared named poses (``stand``, ...). Generation is deterministic
 (the same bytes on every run) and cached per frame rate; a database is seeded
 from its result at 30 fps shipped as ``keyframed.npz`` (:mod:`.keyframed`,
-rebuilt by ``python -m text2anim.motiondb.library.build_keyframed``), so the
+rebuilt by ``python tools/library/build_keyframed.py``), so the
 first run generates nothing. Generating (:func:`build_all`) goes:
 
 1. the keyed curves are sampled with scipy splines (:mod:`.keyframes`);
