@@ -12,7 +12,7 @@ from __future__ import annotations
 
 _LAZY = {
     "BVHError": "bvh", "parse_bvh": "bvh", "read_bvh": "bvh",
-    "Motion": "motion", "Pose": "motion", "concatenate": "motion",
+    "Motion": "motion", "Pose": "fk", "concatenate": "motion",
     "Skeleton": "skeleton",
 }
 

@@ -143,8 +143,9 @@ def _z_up_to_y_up(m: Motion) -> Motion:
     r = Rotation.from_quat(m.rotations.reshape(-1, 4))
     cc = Rotation.concatenate([c] * len(r)) if len(r) else c
     rots = (cc * r * cc.inv()).as_quat().reshape(T, J, 4) if len(r) else m.rotations
-    trans = None if m.translations is None else c.apply(m.translations.reshape(-1, 3)).reshape(T, J, 3)
-    root = c.apply(m.root_positions) if T else m.root_positions
+    # (scipy takes no read-only arrays: a motion's are)
+    trans = None if m.translations is None else c.apply(np.array(m.translations).reshape(-1, 3)).reshape(T, J, 3)
+    root = c.apply(np.array(m.root_positions)) if T else m.root_positions
     return Motion(new_skel, m.fps, root, rots, trans)
 
 

@@ -383,9 +383,9 @@ class MotionDB:
     def load(self, clip: ClipInfo | str) -> Motion:
         """The frames of a clip (by :class:`ClipInfo` or name) as a :class:`synthesis.Motion`.
 
-        The last :data:`LOADED_CLIPS` clips loaded are kept decoded, with their forward kinematics
-        once asked: a clip loaded again while its row is the same (id, creation time, size; one
-        query checks it) is a copy of its frames whose pose is computed once for all copies.
+        The last :data:`LOADED_CLIPS` clips loaded are kept decoded: a clip loaded again while its row is
+        the same (id, creation time, size; one query checks it) is the same motion (immutable), its pose
+        and derived data computed once for every use.
         """
         name = clip.name if isinstance(clip, ClipInfo) else clip
         clips, frames = tb.clips.c, tb.clip_frames.c
@@ -398,7 +398,7 @@ class MotionDB:
             known = self._loaded.get(row.name)
             if known is not None and known[0] == key:
                 self._loaded.move_to_end(row.name)
-                return known[1].copy_sharing_pose()
+                return known[1]
             enc, data = s.execute(select(frames.encoding, frames.data).where(frames.clip_id == row.id)).one()
             skel = self._skeletons.get(s, row.skeleton_id)
         from .blobs import decode_frames
@@ -407,7 +407,7 @@ class MotionDB:
         self._loaded[row.name] = (key, motion)
         while len(self._loaded) > LOADED_CLIPS:
             self._loaded.popitem(last=False)
-        return motion.copy_sharing_pose()
+        return motion
 
     def record(self, name: str) -> ClipRecord:
         """A stored clip as a :class:`ClipRecord` (frames and metadata), e.g. to export or mirror it."""

@@ -159,7 +159,7 @@ def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantRe
     motion = apply_reach(motion, clip.raw.get("reach", {}), times, clip.name)
     if margin:
         motion = motion.frames(margin, margin + n)
-    return lift_swings(shifted(motion, SHOE_SOLE)).read_only(), report
+    return lift_swings(shifted(motion, SHOE_SOLE)), report
 
 
 @lru_cache(maxsize=8)

@@ -148,7 +148,7 @@ def captured_clip(name: str, fps: float = FPS) -> Motion:
         if f"{name}.rot" not in data.files:
             raise ClipDataError(f"capture.npz has no clip {name!r}: rebuild it "
                                 "(python tools/library/build_capture.py)")
-        return _motion(data[f"{name}.root"], data[f"{name}.rot"], float(fps)).read_only()
+        return _motion(data[f"{name}.root"], data[f"{name}.rot"], float(fps))
 
 
 @lru_cache(maxsize=8)
@@ -162,7 +162,7 @@ def capture_records(fps: float = FPS) -> tuple[ClipRecord, ...]:
         if f"{c.name}.rot" not in arrays:
             raise ClipDataError(f"capture.npz has no clip {c.name!r}: rebuild it "
                                 "(python tools/library/build_capture.py)")
-        motion = _motion(arrays[f"{c.name}.root"], arrays[f"{c.name}.rot"], float(fps)).read_only()
+        motion = _motion(arrays[f"{c.name}.root"], arrays[f"{c.name}.rot"], float(fps))
         if c.core is None:
             core = (0.0, motion.duration)
         else:

@@ -83,7 +83,7 @@ def _motion(frames: np.ndarray) -> Motion:
     if frames.ndim != 2 or frames.shape[1] != 3 + 4 * J:
         raise ClipDataError(f"keyframed.npz: frames of shape {frames.shape} do not fit the {J}-joint skeleton")
     rots = frames[:, 3:].reshape(len(frames), J, 4)
-    return Motion(skel, FPS, np.array(frames[:, :3]), rots / np.linalg.norm(rots, axis=-1, keepdims=True)).read_only()
+    return Motion(skel, FPS, np.array(frames[:, :3]), rots / np.linalg.norm(rots, axis=-1, keepdims=True))
 
 
 #: Foot contacts per clip name: ``[(side, start, stop), ...]`` (frames, ``[start, stop)``).
