@@ -10,6 +10,8 @@ does not pay for scipy.
 """
 from __future__ import annotations
 
+from .lazy import lazy_attribute
+
 _LAZY = {
     "BVHError": "bvh", "parse_bvh": "bvh", "read_bvh": "bvh",
     "Motion": "motion", "Pose": "fk", "concatenate": "motion",
@@ -20,10 +22,4 @@ __all__ = sorted(_LAZY)
 
 
 def __getattr__(name: str):
-    if name in _LAZY:
-        import importlib
-
-        value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return lazy_attribute(__name__, _LAZY, name)
