@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Protocol
 
 import numpy as np
 
@@ -92,12 +92,15 @@ class _Parts:
         return fk.joined([p.cache.pose(p) for p in self.parts])
 
 
+Recipe = _Below | _RootMoved | _Rows | _Parts
+
+
 class PoseCache(Memo):
     """One motion's pose (:meth:`pose`) and derived quantities (:meth:`~core.memo.Memo.get`); see the module docstring."""
 
     __slots__ = ("_pose", "_recipe")
 
-    def __init__(self, pose: Pose | None = None, recipe: Any = None) -> None:
+    def __init__(self, pose: Pose | None = None, recipe: Recipe | None = None) -> None:
         super().__init__()
         self._pose = pose
         self._recipe = recipe
