@@ -110,17 +110,17 @@ def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> li
     from .plant import FramePlant
 
     n = int(round((t_last - t_first) / h)) + 1
-    always = [FramePlant(p.side, 0, n - 1, int(round(-t_first / h))) for p in clip.plants if np.isinf(p.t0)]
-    plants = [p for p in clip.plants if not np.isinf(p.t0)]
+    always = [FramePlant(p.side, 0, n - 1, int(round(-t_first / h))) for p in clip.plants if np.isinf(p.start)]
+    plants = [p for p in clip.plants if not np.isinf(p.start)]
     if clip.cyclic:
         reps: list[PlantSpec] = []
         for k in range(-2, clip.cycles + 3):
             reps.extend(p.shifted(k * clip.period) for p in plants)
-        plants = [p for p in reps if p.t1 >= t_first - 1e-9 and p.t0 <= t_last + 1e-9]
+        plants = [p for p in reps if p.stop >= t_first - 1e-9 and p.start <= t_last + 1e-9]
     out = []
     for p in plants:
-        start = int(np.ceil((p.t0 - t_first) / h - 1e-6))
-        stop = int(np.floor((p.t1 - t_first) / h + 1e-6))
+        start = int(np.ceil((p.start - t_first) / h - 1e-6))
+        stop = int(np.floor((p.stop - t_first) / h + 1e-6))
         anchor = int(round((p.anchor - t_first) / h))
         heel = None if p.heel_off is None else int(round((p.heel_off - t_first) / h))
         flat = None if p.flat is None else int(round((p.flat - t_first) / h))

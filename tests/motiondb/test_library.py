@@ -247,7 +247,7 @@ def _steps_between_plants(name: str) -> bool:
     """Whether a clip's data lifts a foot between two of its plants (a step, a hop, a stomp)."""
     built = BUILT[name]
     for side in ("left", "right"):
-        t = [(p.t0, p.t1) for p in built.data.plants if p.side == side and np.isfinite(p.t0)]
+        t = [(p.start, p.stop) for p in built.data.plants if p.side == side and np.isfinite(p.start)]
         if len(t) > 1 or (built.data.cyclic and t):
             return True
     return False
