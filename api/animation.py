@@ -191,13 +191,13 @@ class Animation:
 
     # ---------------------------------------------------------------- for the viewer
     def tracks(self):
-        from text2anim.core.viewer.types import Track
+        from text2anim.output.viewer.types import Track
 
         return [Track(name, m) for name, m in self.motions.items()]
 
     def spans(self):
         """Time-table elements and blend intervals as viewer spans."""
-        from text2anim.core.viewer.types import Span
+        from text2anim.output.viewer.types import Span
 
         out = []
         for e in self.table.elements:
@@ -232,7 +232,7 @@ class Animation:
         per actor: the user's character animated) and to the VRM Animation ``vrma`` (one per actor:
         the rig's proportions when it is a VRM avatar; loop and in place).
         """
-        from text2anim.core.bvh import format_bvh
+        from text2anim.output.bvh_write import format_bvh
 
         files: dict[Path, Content] = {}
 
@@ -251,11 +251,11 @@ class Animation:
             for name, path in self.bvh_paths(bvh).items():
                 add(path, format_bvh(motions[name]).encode())
         if html is not None:
-            from text2anim.core.viewer import render_html
+            from text2anim.output.viewer import render_html
 
             add(html, render_html(self.tracks(), self.spans(), title=self.text).encode())
         if glb is not None:
-            from text2anim.core.gltf import glb_bytes
+            from text2anim.output.gltf import glb_bytes
 
             if moved is None:
                 add(glb, glb_bytes(self.tracks()))
@@ -269,7 +269,7 @@ class Animation:
                     for name, path in self.bvh_paths(glb, ".glb").items():
                         add(path, out[name])
         if vrma is not None:
-            from text2anim.core.vrma import vrma_bytes
+            from text2anim.output.vrma import vrma_bytes
 
             from .export import ExportOptions, vrma_motion
 
@@ -333,7 +333,7 @@ class Animation:
 
     def _plot_writer(self, suffix: str):
         """A function drawing the speed plot into the path it is given (format from ``suffix``)."""
-        from text2anim.core.plots import plot_speeds
+        from text2anim.output.plots import plot_speeds
 
         spans = [s for s in self.spans() if s.kind == "blend"]
 
@@ -350,7 +350,7 @@ class Animation:
 
 def check_plot_path(path: str | os.PathLike) -> Path:
     """A path for the speed plot: writable (:func:`core.atomic.check_output_path`), its suffix a picture format."""
-    from text2anim.core.plots import FORMATS, PlotError
+    from text2anim.output.plots import FORMATS, PlotError
 
     path = check_output_path(path)
     if path.suffix.lower().lstrip(".") not in FORMATS:

@@ -10,7 +10,7 @@ Order: retarget onto the rig (:func:`core.retarget.retarget`), loop
 A rig is a BVH file or a skinned glTF character (``.glb``, ``.vrm``: :mod:`core.gltf_rig`;
 a VRM's humanoid bone map names its joints). The same options give the GLB
 (:func:`glb_files`: the user's own character file animated, when the rig is glTF)
-and the VRM Animation (:func:`vrma_motion`, :mod:`core.vrma`); glTF is in metres,
+and the VRM Animation (:func:`vrma_motion`, :mod:`output.vrma`); glTF is in metres,
 so ``units`` applies to BVH only.
 """
 from __future__ import annotations
@@ -157,8 +157,8 @@ def _conventions(motion: Motion, opts: ExportOptions, joint_map: dict[str, str] 
 def glb_files(exported: dict[str, Motion], opts: ExportOptions) -> dict[str, bytes] | bytes:
     """The GLB output of every actor's motion as ``opts`` asks for it, in metres (``exported``: by
     :func:`export_motion` with ``units=False``): with a glTF rig, the user's file animated, one per actor
-    (``{actor: bytes}``); else one file with every actor on a skinned box skeleton (:func:`core.gltf.glb_bytes`)."""
-    from text2anim.core.gltf import glb_bytes
+    (``{actor: bytes}``); else one file with every actor on a skinned box skeleton (:func:`output.gltf.glb_bytes`)."""
+    from text2anim.output.gltf import glb_bytes
     from text2anim.core.gltf_rig import rig_glb_bytes
 
     rig = opts.gltf_rig
@@ -173,11 +173,11 @@ def glb_files(exported: dict[str, Motion], opts: ExportOptions) -> dict[str, byt
 
 
 def vrma_motion(motion: Motion, opts: ExportOptions) -> Motion:
-    """``motion`` on a VRMA skeleton (:func:`core.vrma.vrma_skeleton`): the user's VRM avatar's proportions
+    """``motion`` on a VRMA skeleton (:func:`output.vrma.vrma_skeleton`): the user's VRM avatar's proportions
     when the rig is one, else the motion's own; looped and in place as ``opts`` asks (VRMA travel stays on
     the hips, so ``--root-motion`` does not apply)."""
     from text2anim.core.retarget import retarget
-    from text2anim.core.vrma import vrma_skeleton
+    from text2anim.output.vrma import vrma_skeleton
 
     rig = opts.gltf_rig
     if rig is not None and rig.vrm is not None:

@@ -321,8 +321,8 @@ def join_losses(rows: list[dict]) -> None:
 
 
 def plot_fig5(rows: list[dict], out: Path) -> list[Path]:
-    from text2anim.core.plots import plot_speeds
-    from text2anim.core.viewer.types import Span
+    from text2anim.output.plots import plot_speeds
+    from text2anim.output.viewer.types import Span
 
     written = []
     for r in rows:

@@ -105,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
     for name, m in anim.motions.items():
         print(f"{name}: {m.n_frames} frames at {m.fps:g} fps ({m.duration:.2f} s)", file=summary)
     if to_stdout:
-        from text2anim.core.bvh import format_bvh
+        from text2anim.output.bvh_write import format_bvh
 
         sys.stdout.write(format_bvh(next(iter(anim.exported_motions(export).values()))))
         sys.stdout.flush()

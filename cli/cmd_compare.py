@@ -119,7 +119,7 @@ def _quality_row(result, tracks) -> dict:
 def _plot(anims: dict, path, title: str) -> Path:
     """Every method's speed curves on one figure; the time table's elements marked, the blend intervals of
     the first method (``optimal`` by default) shaded."""
-    from text2anim.core.plots import plot_speeds
+    from text2anim.output.plots import plot_speeds
 
     first = next(iter(anims.values()))
     labelled = {}

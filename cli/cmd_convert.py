@@ -24,11 +24,11 @@ def add_arguments(p):
 
 
 def run(args) -> int:
-    from text2anim.core import read_bvh, write_bvh
+    from text2anim.core import read_bvh
     from text2anim.core.atomic import check_output_path
-    from text2anim.core.bvh import format_bvh
     from text2anim.core.floor import place_on_floor
     from text2anim.export import export_motion
+    from text2anim.output.bvh_write import format_bvh, write_bvh
 
     if args.output != "-":
         check_output_path(args.output)

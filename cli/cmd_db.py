@@ -225,7 +225,7 @@ def _show_action(db, args) -> int:
 
 
 def _export(db, args) -> int:
-    from text2anim.core import write_bvh
+    from text2anim.output.bvh_write import write_bvh
 
     m = db.load(args.clip)
     write_bvh(m, args.output)
@@ -254,9 +254,9 @@ def _verbs(db, args) -> int:
 
 def _contact_sheet():
     try:
-        from text2anim.core.sheet import contact_sheet
+        from text2anim.output.sheet import contact_sheet
     except ModuleNotFoundError as exc:
-        if exc.name in ("text2anim.core.sheet", "matplotlib"):
+        if exc.name in ("text2anim.output.sheet", "matplotlib"):
             raise PreviewUnavailable(f"db preview is not available: {exc.name} is not installed") from None
         raise
     return contact_sheet
@@ -271,7 +271,7 @@ def _romanised(word: str) -> str:
 
 def _alt_title(title: str, words: list[str], rest: str) -> str | None:
     """Without a font for ``title``'s glyphs (no CJK font): ``words`` romanised (odoru/dansusuru), then ``rest``."""
-    from text2anim.core import fonts
+    from text2anim.output import fonts
 
     return None if fonts.drawable(title) else f"{': '.join(words)} {rest}"
 

@@ -1,17 +1,20 @@
-"""The motion core: skeletons, motions, BVH and glTF I/O, contacts, metrics, IK, pictures.
+"""The motion core: skeletons, motions and their derived data, BVH and glTF reading, contacts, metrics, IK.
 
 Units and conventions: metres, seconds, Y up, right-handed; quaternions
 ``(x, y, z, w)`` as scipy uses them. This package knows nothing of
-Japanese and imports no stage: every stage may use it.
+Japanese and imports no stage: every stage may use it. The writers and pictures (BVH, GLB, VRMA,
+the HTML viewer, plots, contact sheets) are :mod:`text2anim.output`.
 
 The names below are imported on first use, so ``import text2anim.core.bodyparts``
 does not pay for scipy.
 """
 from __future__ import annotations
 
+from .lazy import lazy_attribute
+
 _LAZY = {
-    "BVHError": "bvh", "format_bvh": "bvh", "parse_bvh": "bvh", "read_bvh": "bvh", "write_bvh": "bvh",
-    "Motion": "motion", "Pose": "motion", "concatenate": "motion",
+    "BVHError": "bvh", "parse_bvh": "bvh", "read_bvh": "bvh",
+    "Motion": "motion", "Pose": "fk", "concatenate": "motion",
     "Skeleton": "skeleton",
 }
 
@@ -19,10 +22,4 @@ __all__ = sorted(_LAZY)
 
 
 def __getattr__(name: str):
-    if name in _LAZY:
-        import importlib
-
-        value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return lazy_attribute(__name__, _LAZY, name)

@@ -1,4 +1,4 @@
-"""BVH reader and writer.
+"""BVH reader (the writer, its inverse, is :mod:`text2anim.output.bvh_write`).
 
 What is read:
 - any keyword case, tabs, CRLF, blank lines, a UTF-8 BOM;
@@ -19,7 +19,7 @@ unbounded or the numbers meaningless: more than :data:`MAX_JOINTS` joints or
 :data:`MAX_JOINT_FRAMES` frames x joints, a
 ``Frame Time`` outside :data:`FRAME_TIME_RANGE` seconds, an offset or position
 beyond :data:`MAX_LENGTH` file units, a rotation beyond :data:`MAX_DEGREES`.
-The writer needs no recursion: any hierarchy the reader accepts is written back.
+Any hierarchy the reader accepts is written back by the writer.
 
 Root position: the root's world position is its OFFSET plus its position
 channels (Blender's reading); the writer inverts that.
@@ -38,14 +38,12 @@ import numpy as np
 from . import quat
 from .bvh_text import (FRAME_TIME_RANGE, MAX_DEGREES, MAX_JOINT_FRAMES, MAX_JOINTS, MAX_LENGTH, BVHError,
                        parse_channels)
-from .bvh_write import format_bvh, write_bvh
 from .motion import Motion
 from .skeleton import POSITION_CHANNELS, ROTATION_CHANNELS, Skeleton
 
-#: The reader's and the writer's names, importable from here as before the split into
-#: :mod:`~text2anim.core.bvh_text` (the grammar) and :mod:`~text2anim.core.bvh_write` (the writer).
+#: The reader's names, importable from here as before the split into :mod:`~text2anim.core.bvh_text` (the grammar).
 __all__ = ["CMU_UNIT", "FRAME_TIME_RANGE", "MAX_DEGREES", "MAX_JOINTS", "MAX_JOINT_FRAMES", "MAX_LENGTH", "BVHError",
-           "format_bvh", "guess_scale", "parse_bvh", "parse_channels", "read_bvh", "write_bvh"]
+           "guess_scale", "parse_bvh", "parse_channels", "read_bvh"]
 
 #: CMU's ASF length unit in metres (1/0.45 inch), used by cgspeed's BVH release.
 CMU_UNIT = 0.0254 / 0.45
@@ -145,8 +143,9 @@ def _z_up_to_y_up(m: Motion) -> Motion:
     r = Rotation.from_quat(m.rotations.reshape(-1, 4))
     cc = Rotation.concatenate([c] * len(r)) if len(r) else c
     rots = (cc * r * cc.inv()).as_quat().reshape(T, J, 4) if len(r) else m.rotations
-    trans = None if m.translations is None else c.apply(m.translations.reshape(-1, 3)).reshape(T, J, 3)
-    root = c.apply(m.root_positions) if T else m.root_positions
+    # (scipy takes no read-only arrays: a motion's are)
+    trans = None if m.translations is None else c.apply(np.array(m.translations).reshape(-1, 3)).reshape(T, J, 3)
+    root = c.apply(np.array(m.root_positions)) if T else m.root_positions
     return Motion(new_skel, m.fps, root, rots, trans)
 
 

@@ -17,7 +17,6 @@ The speed here is a central difference over frames, in m/s.
 """
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -135,20 +134,17 @@ class FootContacts:
         return [(int(a), int(b), names[st[a]]) for a, b in zip(starts, stops)]
 
 
-_CONTACTS: "weakref.WeakKeyDictionary[Motion, FootContacts]" = weakref.WeakKeyDictionary()
-
-
 def detect_contacts(motion: Motion) -> FootContacts:
     """Contact labels of both feet (see the module docstring for the rule); read-only arrays, found once
-    per motion (motions are not edited in place: a join asks for the same clips' contacts many times)."""
-    known = _CONTACTS.get(motion)
-    if known is not None:
-        return known
+    per motion and kept in its cache (a join asks for the same clips' contacts many times)."""
+    return motion.cache.get("contacts", lambda: _detect(motion))
+
+
+def _detect(motion: Motion) -> FootContacts:
     min_len = max(1, int(round(MIN_PHASE * motion.fps)))
     labels = {}
     for side, tr in foot_tracks(motion).items():
         raw = (tr.height < HEIGHT_THRESHOLD) & (tr.speed < SPEED_THRESHOLD)
         labels[side] = hysteresis(raw, min_len)
         labels[side].setflags(write=False)
-    known = _CONTACTS[motion] = FootContacts(motion.fps, labels["left"], labels["right"])
-    return known
+    return FootContacts(motion.fps, labels["left"], labels["right"])

@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .gltf import BufferBuilder, pack_glb
+from .glb import BufferBuilder, pack_glb
 from .motion import Motion, unroll_quaternions
 from .rigs import ROLES, RigError
 from .skeleton import POSITION_CHANNELS, Skeleton

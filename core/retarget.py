@@ -63,8 +63,9 @@ import numpy as np
 from scipy.ndimage import maximum_filter1d, uniform_filter1d
 from scipy.spatial.transform import Rotation
 
+from .fk import matrix_to_quat
 from .ik import set_world_rotation, two_bone_ik
-from .motion import Motion, matrix_to_quat
+from .motion import Motion
 from .rigs import ROLE_PARENT, ROLES, RigError, rig_roles
 from .skeleton import Skeleton
 

@@ -65,18 +65,24 @@ def _stack(a, *shape: int) -> np.ndarray:
     return np.ascontiguousarray(np.asarray(a, dtype=np.float64).reshape((-1,) + shape))
 
 
+def _w(a: np.ndarray) -> np.ndarray:
+    """``a`` as scipy's kernels take it: their typed memoryviews refuse read-only buffers (a motion's
+    frames), which are copied."""
+    return a if a.flags.writeable else a.copy()
+
+
 def from_quat(q) -> np.ndarray:
     """``Rotation.from_quat(q)``: quaternions ``(..., 4)`` normalised, as a stack ``(N, 4)``."""
     if _cy is None:
         return _R().from_quat(_stack(q, 4)).as_quat()
-    return np.asarray(_cy.from_quat(_stack(q, 4), normalize=True, copy=True, scalar_first=False))
+    return np.asarray(_cy.from_quat(_w(_stack(q, 4)), normalize=True, copy=True, scalar_first=False))
 
 
 def from_rotvec(v) -> np.ndarray:
     """``Rotation.from_rotvec(v)`` for rotation vectors ``(..., 3)``."""
     if _cy is None:
         return _R().from_rotvec(_stack(v, 3)).as_quat()
-    return np.asarray(_cy.from_rotvec(_stack(v, 3), degrees=False))
+    return np.asarray(_cy.from_rotvec(_w(_stack(v, 3)), degrees=False))
 
 
 def _normalized(q: np.ndarray) -> np.ndarray:
@@ -157,14 +163,14 @@ def inverse(q: np.ndarray) -> np.ndarray:
     """``r.inv()``."""
     if _cy is None:
         return _R().from_quat(q).inv().as_quat()
-    return np.asarray(_cy.inv(q))
+    return np.asarray(_cy.inv(_w(q)))
 
 
 def as_quat(q: np.ndarray) -> np.ndarray:
     """``r.as_quat()``: the quaternions ``(N, 4)`` as an array of their own."""
     if _cy is None:
         return np.array(q, dtype=np.float64)
-    return np.asarray(_cy.as_quat(q, canonical=False, scalar_first=False))
+    return np.asarray(_cy.as_quat(_w(q), canonical=False, scalar_first=False))
 
 
 def as_rotvec(q: np.ndarray) -> np.ndarray:
@@ -188,11 +194,11 @@ def as_matrix(q: np.ndarray) -> np.ndarray:
     """``r.as_matrix()``, ``(N, 3, 3)``."""
     if _cy is None:
         return _R().from_quat(q).as_matrix()
-    return np.asarray(_cy.as_matrix(q))
+    return np.asarray(_cy.as_matrix(_w(q)))
 
 
 def apply(q: np.ndarray, v) -> np.ndarray:
     """``r.apply(v)`` for vectors ``(N, 3)`` (or one ``(3,)``), ``(N, 3)``."""
     if _cy is None:
         return _R().from_quat(q).apply(v)
-    return np.asarray(_cy.apply(q, _stack(v, 3), inverse=False))
+    return np.asarray(_cy.apply(_w(q), _w(_stack(v, 3)), inverse=False))

@@ -9,6 +9,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .memo import Memo
+
 POSITION_CHANNELS = ("Xposition", "Yposition", "Zposition")
 ROTATION_CHANNELS = ("Xrotation", "Yrotation", "Zrotation")
 
@@ -38,6 +40,8 @@ class Skeleton:
     offsets: np.ndarray
     end_sites: tuple[tuple[int, np.ndarray], ...] = ()
     channels: tuple[tuple[str, ...], ...] = field(default=())
+    #: what is derived from the hierarchy (depth order, subtrees, ...), computed once: the arrays are read-only
+    derived: Memo = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         names = tuple(self.names)
@@ -56,6 +60,7 @@ class Skeleton:
             raise ValueError("joint 0 must be the root")
         if np.any(self.parents[1:] >= np.arange(1, n)) or np.any(self.parents[1:] < 0):
             raise ValueError("joints must be listed parents first, with a single root")
+        object.__setattr__(self, "derived", Memo())
 
     @staticmethod
     def default_channels(n: int) -> tuple[tuple[str, ...], ...]:
@@ -78,35 +83,30 @@ class Skeleton:
 
     def subtree(self, j: int) -> np.ndarray:
         """Joint ``j`` and its descendants, ``(n,)`` in topological order (``j`` first); cached, read-only."""
-        known = self.__dict__.setdefault("_subtrees", {})
-        if j not in known:
+        def make() -> np.ndarray:
             inside = np.zeros(self.n_joints, dtype=bool)
             inside[j] = True
             for k in range(j + 1, self.n_joints):
                 inside[k] = inside[self.parents[k]]
-            known[j] = np.flatnonzero(inside)
-            known[j].setflags(write=False)
-        return known[j]
+            return _frozen(np.flatnonzero(inside), np.int64)
+        return self.derived.get(("subtree", j), make)
 
     def depth_levels(self) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
         """``(joints, their parents)`` per tree depth 1, 2, ... (the root, depth 0, is left out); cached."""
-        levels = self.__dict__.get("_depth_levels")
-        if levels is None:
+        def make() -> tuple[tuple[np.ndarray, np.ndarray], ...]:
             depth = np.zeros(self.n_joints, dtype=np.int64)
             for j in range(1, self.n_joints):
                 depth[j] = depth[self.parents[j]] + 1
-            levels = tuple((np.flatnonzero(depth == d), self.parents[depth == d])
-                           for d in range(1, int(depth.max(initial=0)) + 1))
-            object.__setattr__(self, "_depth_levels", levels)
-        return levels
+            return tuple((np.flatnonzero(depth == d), self.parents[depth == d])
+                         for d in range(1, int(depth.max(initial=0)) + 1))
+        return self.derived.get("depth_levels", make)
 
     def depth_order(self) -> tuple[np.ndarray, np.ndarray, tuple[tuple[int, int, np.ndarray], ...]]:
-        """The joints in order of tree depth (for forward kinematics, :attr:`core.motion.Motion.pose`):
+        """The joints in order of tree depth (for forward kinematics, :func:`core.fk.forward`):
         ``order`` ``(J,)`` (root first, each depth's joints in skeleton order), its ``inverse`` (position of
         each joint), and per depth 1, 2, ... the block ``[a, b)`` of its joints in that order with their
         parents' positions ``(b - a,)``; cached."""
-        known = self.__dict__.get("_depth_order")
-        if known is None:
+        def make() -> tuple[np.ndarray, np.ndarray, tuple[tuple[int, int, np.ndarray], ...]]:
             order = np.concatenate([[0]] + [joints for joints, _ in self.depth_levels()]).astype(np.int64)
             inverse = np.empty_like(order)
             inverse[order] = np.arange(len(order))
@@ -114,16 +114,14 @@ class Skeleton:
             for joints, parents in self.depth_levels():
                 levels.append((a, a + len(joints), inverse[parents]))
                 a += len(joints)
-            known = (order, inverse, tuple(levels))
-            object.__setattr__(self, "_depth_order", known)
-        return known
+            return order, inverse, tuple(levels)
+        return self.derived.get("depth_order", make)
 
     def subtree_levels(self, top: int) -> tuple[tuple[np.ndarray | slice, np.ndarray | slice], ...]:
         """Per tree depth below ``top``, the positions in :meth:`subtree` ``(top)`` of that depth's joints and
         of their parents, as slices where they are consecutive (a limb's forward kinematics,
-        :meth:`core.motion.Motion._subtree_pose`); cached per joint."""
-        known = self.__dict__.setdefault("_subtree_levels", {})
-        if top not in known:
+        :func:`core.fk.below`); cached per joint."""
+        def make() -> tuple[tuple[np.ndarray | slice, np.ndarray | slice], ...]:
             sub = self.subtree(top)
             slot = np.full(self.n_joints, -1)
             slot[sub] = np.arange(len(sub))
@@ -132,8 +130,8 @@ class Skeleton:
                 inside = slot[joints] > 0
                 if inside.any():
                     levels.append((_block(slot[joints[inside]]), _block(slot[parents[inside]])))
-            known[top] = tuple(levels)
-        return known[top]
+            return tuple(levels)
+        return self.derived.get(("subtree_levels", top), make)
 
     def rotation_order(self, j: int) -> str:
         """Intrinsic Euler order of joint ``j`` as scipy spells it (e.g. ``"ZYX"``), as listed."""

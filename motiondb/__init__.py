@@ -23,6 +23,8 @@ migrations), ``seed`` (the built-in library), ``reads``/``writes``/``search``
 """
 from __future__ import annotations
 
+from text2anim.core.lazy import lazy_attribute
+
 from .types import ClipRecord
 
 _LAZY = {
@@ -38,10 +40,4 @@ __all__ = ["ClipRecord", *_LAZY]
 
 
 def __getattr__(name: str):
-    if name in _LAZY:
-        import importlib
-
-        value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return lazy_attribute(__name__, _LAZY, name)

@@ -122,3 +122,26 @@ def describe_error(exc: BaseException, display: str, backend: str) -> str:
                                                      or "timeout" in low):
         return f"lost the connection to the database {display}: {line}"
     return f"database {display}: {line}"
+
+
+def open_engine(url_text: str, is_default: bool = False) -> tuple[Engine, str]:
+    """:func:`make_engine` of ``url_text`` once a connection is made (``is_default``: the default SQLite file,
+    whose folder is created); :class:`DBError` saying why when none can be."""
+    if is_default:
+        database = make_url(url_text).database
+        assert database, url_text  # the default location is an SQLite file
+        folder = Path(database).parent
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise DBError(f"cannot create the folder {folder} for the motion database: {exc.strerror}") from None
+    engine, display = make_engine(url_text)
+    try:
+        with engine.connect():
+            pass
+    except (sa_exc.DBAPIError, sa_exc.InterfaceError) as exc:
+        engine.dispose()
+        if engine.dialect.name == "sqlite":
+            raise DBError(describe_error(exc, display, "sqlite")) from None
+        raise DBError(f"cannot connect to the database {display}: {first_line(exc)}") from None
+    return engine, display

@@ -168,37 +168,27 @@ clip_frames = Table(
     Column("data", LargeBinary, nullable=False),
 )
 
-verbs = Table(
-    "verbs", metadata,
-    Column("id", Integer, primary_key=True),
-    Column("lemma", String(100), nullable=False, unique=True),
-    Column("reading", String(200), nullable=False, index=True),
-)
+def _words(table: str, word: str) -> Table:
+    """A table of words (verbs, objects): the word, unique, and its katakana reading, indexed."""
+    return Table(table, metadata, Column("id", Integer, primary_key=True),
+                 Column(word, String(100), nullable=False, unique=True),
+                 Column("reading", String(200), nullable=False, index=True))
 
-clip_verbs = Table(
-    "clip_verbs", metadata,
-    Column("clip_id", Integer, ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True),
-    Column("verb_id", Integer, ForeignKey("verbs.id"), primary_key=True),
-    Column("position", Integer, nullable=False),
-    Column("is_primary", Boolean, nullable=False),
-    UniqueConstraint("clip_id", "position", name="uq_clip_verbs_position"),
-    Index("ix_clip_verbs_verb", "verb_id", "clip_id"),
-)
 
-objects = Table(
-    "objects", metadata,
-    Column("id", Integer, primary_key=True),
-    Column("name", String(100), nullable=False, unique=True),
-    Column("reading", String(200), nullable=False, index=True),
-)
+def _clip_words(table: str, words: str, word_id: str, *more) -> Table:
+    """The words of each clip, in order (``position``), indexed by word; ``more`` columns and constraints."""
+    return Table(table, metadata,
+                 Column("clip_id", Integer, ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True),
+                 Column(word_id, Integer, ForeignKey(f"{words}.id"), primary_key=True),
+                 Column("position", Integer, nullable=False),
+                 *more, Index(f"ix_{table}_{word_id.removesuffix('_id')}", word_id, "clip_id"))
 
-clip_objects = Table(
-    "clip_objects", metadata,
-    Column("clip_id", Integer, ForeignKey("clips.id", ondelete="CASCADE"), primary_key=True),
-    Column("object_id", Integer, ForeignKey("objects.id"), primary_key=True),
-    Column("position", Integer, nullable=False),
-    Index("ix_clip_objects_object", "object_id", "clip_id"),
-)
+
+verbs = _words("verbs", "lemma")
+clip_verbs = _clip_words("clip_verbs", "verbs", "verb_id", Column("is_primary", Boolean, nullable=False),
+                         UniqueConstraint("clip_id", "position", name="uq_clip_verbs_position"))
+objects = _words("objects", "name")
+clip_objects = _clip_words("clip_objects", "objects", "object_id")
 
 #: A foot-contact interval: frames ``[start_frame, stop_frame)`` of one foot.
 contacts = Table(

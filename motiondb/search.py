@@ -54,7 +54,8 @@ from typing import Any
 from sqlalchemy import (BindParameter, Connection, Integer, String, and_, bindparam, case, func, or_, select,
                         type_coerce)
 
-from .readings import normalize, reading
+from .errors import UnknownVerbError
+from .readings import nearest, normalize, reading
 from .ranks import candidates
 from . import schema as tb
 from .types import ClipInfo
@@ -262,3 +263,27 @@ def prefer(hits: Sequence[ClipInfo], *, body_part: str | None = None, character:
         part = 0 if body_part is None or c.body_part == body_part else 1 if mirror and c.body_part == mirror else 2
         return (c.character != preferred, part, c.start_posture != start_posture)
     return sorted(hits, key=tiers)
+
+
+def unknown_verb_error(s: Connection, verb: str) -> UnknownVerbError:
+    """The error for a verb no clip has, naming the nearest known verbs by reading."""
+    verbs = tb.verbs.c
+    rows = s.execute(select(verbs.lemma, verbs.reading)
+                     .order_by(binary_order(s, verbs.reading), binary_order(s, verbs.lemma))).all()
+    cands = {lemma: r for lemma, r in rows}
+    near = nearest(verb, cands, n=5)
+    return UnknownVerbError(verb, [(lemma, cands[lemma]) for lemma in near], n_verbs=len(cands))
+
+
+def near_clip_names(s: Connection, name: str) -> list[str]:
+    """Up to five clip names close to ``name`` (for an unknown clip's message)."""
+    import difflib
+
+    names = list(s.scalars(select(tb.clips.c.name).order_by(binary_order(s, tb.clips.c.name))))
+    return difflib.get_close_matches(normalize(name), names, n=5, cutoff=0.5)
+
+
+def character_names(s: Connection) -> list[str]:
+    """Every character's name, sorted."""
+    names = tb.characters.c.name
+    return list(s.scalars(select(names).order_by(binary_order(s, names))))

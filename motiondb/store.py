@@ -20,7 +20,7 @@ its first and last frames by :func:`classify_posture` when it is stored;
 ``search(..., prefer_start_posture=...)`` ranks clips starting in a posture
 first (so a clip can follow one that ends seated, crouched or lying).
 
-Why one module of about 430 lines: it is the :class:`MotionDB` facade, one short method per public
+Why one module of about 380 lines: it is the :class:`MotionDB` facade, one short method per public
 operation, each delegating the work to :mod:`.reads`, :mod:`.writes`, :mod:`.search`, :mod:`.seed` and
 :mod:`.bvh_import`; splitting the class would split its public API across files for no gain.
 """
@@ -29,23 +29,22 @@ from __future__ import annotations
 import os
 from collections import OrderedDict
 from collections.abc import Callable, Iterable, Sequence
-from contextlib import contextmanager
-from pathlib import Path
+from contextlib import AbstractContextManager, contextmanager
 from typing import TYPE_CHECKING
 
 from sqlalchemy import Connection, case, func, select, text
 from sqlalchemy import exc as sa_exc
-from sqlalchemy.engine import Engine, make_url
+from sqlalchemy.engine import Engine
 
 from text2anim.core.bodyparts import GROUPS
 
 from . import search as _search
-from .connect import PG_LOCK_KEY, describe_error, first_line, make_engine
-from .errors import DBError, UnknownCharacterError, UnknownClipError, UnknownVerbError
+from .connect import PG_LOCK_KEY, describe_error, first_line, open_engine
+from .errors import DBError, UnknownCharacterError, UnknownClipError
 from .location import resolve_url
 from .migrate import create_schema, migrate, require_schema, schema_state
 from .reads import SkeletonCache, clip_infos
-from .readings import nearest, normalize
+from .readings import normalize
 from . import schema as tb
 from .schema import SCHEMA_VERSION
 from .seed import seed_source, seeding_needed
@@ -74,7 +73,7 @@ LOADED_CLIPS = 32
 
 
 # ----------------------------------------------------------------- the database
-class MotionDB:
+class MotionDB(AbstractContextManager):
     """A motion database behind an SQLAlchemy engine. Open it with :meth:`open`.
 
     Attributes:
@@ -119,24 +118,7 @@ class MotionDB:
             DBError: a bad URL, an unreachable server, a file that is not a
                 database, a schema written by a newer text2anim.
         """
-        url_text, is_default = resolve_url(url)
-        if is_default:
-            database = make_url(url_text).database
-            assert database, url_text  # the default location is an SQLite file
-            folder = Path(database).parent
-            try:
-                folder.mkdir(parents=True, exist_ok=True)
-            except OSError as exc:
-                raise DBError(f"cannot create the folder {folder} for the motion database: {exc.strerror}") from None
-        engine, display = make_engine(url_text)
-        try:
-            with engine.connect():
-                pass
-        except (sa_exc.DBAPIError, sa_exc.InterfaceError) as exc:
-            engine.dispose()
-            if engine.dialect.name == "sqlite":
-                raise DBError(describe_error(exc, display, "sqlite")) from None
-            raise DBError(f"cannot connect to the database {display}: {first_line(exc)}") from None
+        engine, display = open_engine(*resolve_url(url))
         db = cls(engine, display)
         try:
             db._prepare(seed)
@@ -148,9 +130,6 @@ class MotionDB:
     def close(self) -> None:
         """Release the connections."""
         self.engine.dispose()
-
-    def __enter__(self) -> "MotionDB":
-        return self
 
     def __exit__(self, *exc) -> None:
         self.close()
@@ -277,7 +256,7 @@ class MotionDB:
         with self._session(write=True) as s:
             for n in names:
                 if s.scalar(select(tb.clips.c.id).where(tb.clips.c.name == normalize(n))) is None:
-                    raise UnknownClipError(n, self._near_names(s, n))
+                    raise UnknownClipError(n, _search.near_clip_names(s, n))
             delete_clips(s, [normalize(n) for n in names])
 
     # ----------------------------------------------------------------- search
@@ -331,18 +310,10 @@ class MotionDB:
                 return found
             # nothing: say why when it is an unknown verb or character (these look-ups only run here)
             if not _search.match_verbs(s, verb).all:
-                raise self._unknown_verb(s, verb)
+                raise _search.unknown_verb_error(s, verb)
             if character is not None and _search.character_id(s, normalize(character)) is None:
-                raise UnknownCharacterError(character, self._character_names(s))
+                raise UnknownCharacterError(character, _search.character_names(s))
         return []
-
-    def _unknown_verb(self, s: Connection, verb: str) -> UnknownVerbError:
-        verbs = tb.verbs.c
-        rows = s.execute(select(verbs.lemma, verbs.reading)
-                         .order_by(_search.binary_order(s, verbs.reading), _search.binary_order(s, verbs.lemma))).all()
-        cands = {lemma: r for lemma, r in rows}
-        near = nearest(verb, cands, n=5)
-        return UnknownVerbError(verb, [(lemma, cands[lemma]) for lemma in near], n_verbs=len(cands))
 
     # ------------------------------------------------------------- listings
     def clips(self, character: str | None = None) -> list[ClipInfo]:
@@ -352,7 +323,7 @@ class MotionDB:
             if character is not None:
                 cid = _search.character_id(s, normalize(character))
                 if cid is None:
-                    raise UnknownCharacterError(character, self._character_names(s))
+                    raise UnknownCharacterError(character, _search.character_names(s))
                 stmt = stmt.where(tb.clips.c.character_id == cid)
             return clip_infos(s, list(s.scalars(stmt)))
 
@@ -377,15 +348,15 @@ class MotionDB:
     def characters(self) -> list[str]:
         """Character names, sorted."""
         with self._session() as s:
-            return self._character_names(s)
+            return _search.character_names(s)
 
     # ------------------------------------------------------------------ load
     def load(self, clip: ClipInfo | str) -> Motion:
         """The frames of a clip (by :class:`ClipInfo` or name) as a :class:`synthesis.Motion`.
 
-        The last :data:`LOADED_CLIPS` clips loaded are kept decoded, with their forward kinematics
-        once asked: a clip loaded again while its row is the same (id, creation time, size; one
-        query checks it) is a copy of its frames whose pose is computed once for all copies.
+        The last :data:`LOADED_CLIPS` clips loaded are kept decoded: a clip loaded again while its row is
+        the same (id, creation time, size; one query checks it) is the same motion (immutable), its pose
+        and derived data computed once for every use.
         """
         name = clip.name if isinstance(clip, ClipInfo) else clip
         clips, frames = tb.clips.c, tb.clip_frames.c
@@ -393,12 +364,12 @@ class MotionDB:
             row = (s.execute(select(clips.id, clips.name, clips.fps, clips.frames, clips.skeleton_id, clips.created)
                              .where(clips.name == normalize(name))).first() if isinstance(name, str) else None)
             if row is None:
-                raise UnknownClipError(str(name), self._near_names(s, str(name)))
+                raise UnknownClipError(str(name), _search.near_clip_names(s, str(name)))
             key = tuple(row)  # id, creation time, frames, fps, skeleton: a replaced clip differs
             known = self._loaded.get(row.name)
             if known is not None and known[0] == key:
                 self._loaded.move_to_end(row.name)
-                return known[1].copy_sharing_pose()
+                return known[1]
             enc, data = s.execute(select(frames.encoding, frames.data).where(frames.clip_id == row.id)).one()
             skel = self._skeletons.get(s, row.skeleton_id)
         from .blobs import decode_frames
@@ -407,7 +378,7 @@ class MotionDB:
         self._loaded[row.name] = (key, motion)
         while len(self._loaded) > LOADED_CLIPS:
             self._loaded.popitem(last=False)
-        return motion.copy_sharing_pose()
+        return motion
 
     def record(self, name: str) -> ClipRecord:
         """A stored clip as a :class:`ClipRecord` (frames and metadata), e.g. to export or mirror it."""
@@ -422,15 +393,5 @@ class MotionDB:
         cid = (s.scalar(select(tb.clips.c.id).where(tb.clips.c.name == normalize(name)))
                if isinstance(name, str) else None)
         if cid is None:
-            raise UnknownClipError(str(name), self._near_names(s, str(name)))
+            raise UnknownClipError(str(name), _search.near_clip_names(s, str(name)))
         return cid
-
-    def _near_names(self, s: Connection, name: str) -> list[str]:
-        import difflib
-
-        names = list(s.scalars(select(tb.clips.c.name).order_by(_search.binary_order(s, tb.clips.c.name))))
-        return difflib.get_close_matches(normalize(name), names, n=5, cutoff=0.5)
-
-    def _character_names(self, s: Connection) -> list[str]:
-        names = tb.characters.c.name
-        return list(s.scalars(select(names).order_by(_search.binary_order(s, names))))

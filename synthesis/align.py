@@ -12,7 +12,6 @@ heading ``h`` faces ``(sin h, 0, cos h)``.
 """
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,20 +31,14 @@ def wrap_angle(a):
     return np.pi - np.mod(np.pi - np.asarray(a, dtype=np.float64), 2 * np.pi)
 
 
-_REST_FORWARD: "weakref.WeakKeyDictionary[Skeleton, np.ndarray]" = weakref.WeakKeyDictionary()
-
-
 def rest_forward(skeleton: Skeleton) -> np.ndarray:
     """The direction the rest pose faces, in the root's frame (unit, horizontal), ``(3,)``.
 
     From the legs: ``left - right`` is the character's left, and forward is
     ``left x up`` (right-handed, Y up). A CMU-like skeleton gives ``+Z``.
-    Computed once per skeleton (a skeleton's arrays are read-only); a copy of it is returned.
+    Computed once per skeleton (kept in :attr:`Skeleton.derived`); a copy of it is returned.
     """
-    known = _REST_FORWARD.get(skeleton)
-    if known is None:
-        known = _REST_FORWARD[skeleton] = _rest_forward(skeleton)
-    return known.copy()
+    return skeleton.derived.get("rest_forward", lambda: _rest_forward(skeleton)).copy()
 
 
 def _rest_forward(skeleton: Skeleton) -> np.ndarray:
@@ -58,23 +51,18 @@ def _rest_forward(skeleton: Skeleton) -> np.ndarray:
     return fwd / n if n > 1e-9 else np.array([0.0, 0.0, 1.0])
 
 
-_ROOT_HEADINGS: "weakref.WeakKeyDictionary[Motion, np.ndarray]" = weakref.WeakKeyDictionary()
-
-
 def root_headings(motion: Motion) -> np.ndarray:
     """The root's own facing angle per frame (radians about +Y, 0 faces +Z), ``(T,)`` read-only, not
-    smoothed: Kovar aligns each pose by its root's yaw. Computed once per motion (motions are not edited
-    in place: a join's search asks for the same clip's features many times)."""
-    known = _ROOT_HEADINGS.get(motion)
-    if known is None:
-        fwd = rk.apply(rk.from_quat(motion.rotations[:, 0]), rest_forward(motion.skeleton))  # Rotation's bits
-        known = np.arctan2(fwd[:, 0], fwd[:, 2])
-        known.setflags(write=False)
-        _ROOT_HEADINGS[motion] = known
-    return known
+    smoothed: Kovar aligns each pose by its root's yaw. Computed once per motion, kept in its cache (a
+    join's search asks for the same clip's features many times)."""
+    return motion.cache.get("root_headings", lambda: _root_headings(motion))
 
 
-_HEADINGS: "weakref.WeakKeyDictionary[Motion, dict[float, np.ndarray]]" = weakref.WeakKeyDictionary()
+def _root_headings(motion: Motion) -> np.ndarray:
+    fwd = rk.apply(rk.from_quat(motion.rotations[:, 0]), rest_forward(motion.skeleton))  # Rotation's bits
+    h = np.arctan2(fwd[:, 0], fwd[:, 2])
+    h.setflags(write=False)
+    return h
 
 
 def headings(motion: Motion, smooth: float = 0.0) -> np.ndarray:
@@ -83,24 +71,21 @@ def headings(motion: Motion, smooth: float = 0.0) -> np.ndarray:
     The rest pose's forward direction carried by the root's world rotation,
     projected on the ground. ``smooth`` (seconds) averages it over a window,
     which removes the pelvis' own swing in gait (±5-10 degrees per step).
-    Computed once per motion and ``smooth`` (motions are not edited in place: a join asks for the
-    track's and the next clip's headings several times).
+    Computed once per motion and ``smooth``, kept in the motion's cache (a join asks for the track's and
+    the next clip's headings several times).
     """
-    known = _HEADINGS.setdefault(motion, {})
-    h = known.get(smooth)
-    if h is None:
-        h = known[smooth] = _headings(motion, smooth)
-        h.setflags(write=False)
-    return h
+    return motion.cache.get(("headings", smooth), lambda: _headings(motion, smooth))
 
 
 def _headings(motion: Motion, smooth: float) -> np.ndarray:
     if motion.n_frames == 0:
-        return np.zeros(0)
-    h = np.unwrap(root_headings(motion))
-    n = int(round(smooth * motion.fps))
-    if n > 1:
-        h = uniform_filter1d(h, size=n, mode="nearest")
+        h = np.zeros(0)
+    else:
+        h = np.unwrap(root_headings(motion))
+        n = int(round(smooth * motion.fps))
+        if n > 1:
+            h = uniform_filter1d(h, size=n, mode="nearest")
+    h.setflags(write=False)
     return h
 
 

@@ -288,7 +288,7 @@ def compose(base: Motion, start: int, end: int, donor: Motion, core: tuple[int, 
                               * Rotation.from_quat(s.reshape(-1, 4))).as_quat().reshape(n, len(receivers), 4)
         sway_deg = float(np.degrees(Rotation.from_quat(s.reshape(-1, 4)).magnitude().max())) if s.size else 0.0
     if frame == "hips":
-        target = hips_relative(seg.replace(rotations=rots), warped, joints)
+        target = hips_relative(seg.replace(rotations=rots.copy()), warped, joints)  # (rots is edited below)
     elif frame == "local":
         target = warped.rotations[:, joints]
     else:

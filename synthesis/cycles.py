@@ -72,7 +72,7 @@ def _move_onto(motion: Motion, p_next: np.ndarray, h_next: float, straight_below
     yaw = h_next - h0
     if abs(yaw) < straight_below:
         yaw = 0.0
-    p0 = yaw_rotation(yaw).apply(motion.root_positions[0])
+    p0 = yaw_rotation(yaw).apply(np.array(motion.root_positions[0]))  # scipy refuses read-only arrays
     return Rigid(float(yaw), (float(p_next[0] - p0[0]), float(p_next[2] - p0[2])))
 
 

@@ -52,7 +52,6 @@ All vectorised over frames and joints; deterministic.
 """
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass
 
 import numpy as np
@@ -103,26 +102,14 @@ def _limits(sources, fps: float) -> tuple[float, float]:
     return max([q[0] for q in qs] or [0.0]), max([q[1] for q in qs] or [0.0])
 
 
-_KNOWN: dict[bytes, tuple[float, float]] = {}  # the figures of source clips seen, by content (FIFO, bounded)
-KNOWN_MAX = 512
-
-
 def source_figures(m: Motion, fps: float) -> tuple[float, float]:
-    """``(jerk p99, root pop)`` of a source clip at ``fps`` (:func:`core.metrics.quality`), remembered by the
-    clip's content: the same library clips are the sources of join after join, animation after animation."""
-    h = hashlib.blake2b(np.float64(fps).tobytes(), digest_size=20)
-    skel = m.skeleton
-    for a in (skel.parents, skel.offsets, m.root_positions, m.rotations, m.translations):
-        if a is not None:
-            h.update(np.ascontiguousarray(a).tobytes())
-            h.update(str(a.shape).encode())
-    key = h.digest()
-    if key not in _KNOWN:
+    """``(jerk p99, root pop)`` of a source clip at ``fps`` (:func:`core.metrics.quality`), kept in the clip's
+    cache: the same library clips (the database hands out the same motions) are the sources of join after
+    join, animation after animation."""
+    def make() -> tuple[float, float]:
         q = quality(m, fps)
-        if len(_KNOWN) >= KNOWN_MAX:
-            del _KNOWN[next(iter(_KNOWN))]
-        _KNOWN[key] = (q.jerk_p99, q.root_pop)
-    return _KNOWN[key]
+        return q.jerk_p99, q.root_pop
+    return m.cache.get(("source_figures", float(fps)), make)
 
 
 def lift_off_floor(motion: Motion, lo: int, hi: int, floor: float = FLOOR) -> Motion:

@@ -12,8 +12,9 @@ import numpy as np
 
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
+from text2anim.core.fk import quat_to_matrix
 from text2anim.core.ik import leg_ik, solve_rows, world_to_local
-from text2anim.core.motion import Motion, quat_to_matrix
+from text2anim.core.motion import Motion
 
 from .align import rest_forward
 

@@ -19,8 +19,6 @@ arms (:mod:`core.bodyparts`).
 """
 from __future__ import annotations
 
-import weakref
-
 import numpy as np
 
 from text2anim.core.bodyparts import body_map
@@ -36,15 +34,12 @@ def part_joints(motion: Motion, part: str) -> list[int]:
     return list(body_map(motion.skeleton).joints(part))
 
 
-_WINDOWS: "weakref.WeakKeyDictionary[Motion, tuple[int, np.ndarray]]" = weakref.WeakKeyDictionary()
-
-
 def _window(motion: Motion, lo: int, hi: int) -> tuple[int, np.ndarray]:
     """:func:`features` of every joint for a block of frames holding ``[lo, hi)``: its first frame and the
-    block, joint-major ``(J, n, 3)``, read-only. Kept per motion and widened when a request falls outside
-    (motions are not edited in place: a join's search asks for many frame ranges near the join of both
-    body parts of the same track and clips). Each value depends on its own frame and joint alone."""
-    known = _WINDOWS.get(motion)
+    block, joint-major ``(J, n, 3)``, read-only. Kept in the motion's cache and widened when a request falls
+    outside (a join's search asks for many frame ranges near the join of both body parts of the same track
+    and clips). Each value depends on its own frame and joint alone."""
+    known = motion.cache.known("posedist.window")
     if known is not None:
         a, block = known
         if a <= lo and hi <= a + block.shape[1]:
@@ -59,8 +54,7 @@ def _window(motion: Motion, lo: int, hi: int) -> tuple[int, np.ndarray]:
     block = np.stack([(c[:, None] * d[..., 0] - s[:, None] * d[..., 2]).T, d[..., 1].T,
                       (s[:, None] * d[..., 0] + c[:, None] * d[..., 2]).T], axis=-1)
     block.setflags(write=False)
-    known = _WINDOWS[motion] = (lo, block)
-    return known
+    return motion.cache.put("posedist.window", (lo, block))
 
 
 def features(motion: Motion, joints, frames=None) -> np.ndarray:

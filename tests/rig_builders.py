@@ -8,9 +8,10 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from text2anim.core import Motion, Skeleton, write_bvh
+from text2anim.core import Motion, Skeleton
 from text2anim.core.floor import FOOT_CLEARANCE
 from text2anim.motiondb.library.skeleton import canonical_skeleton
+from text2anim.output.bvh_write import write_bvh
 
 
 def _rest() -> dict[str, np.ndarray]:
@@ -158,7 +159,7 @@ def skinned_glb(rows, world: dict[str, np.ndarray], *, bone_axes: bool, armature
     ``bone_axes``: each joint's rest rotation turns its +Y along its bone (as Blender exports), else identity.
     The mesh is a small cube per joint, bound to it. ``extensions(node of role)`` may add root extensions.
     Returns the bytes and ``{role: node}``."""
-    from text2anim.core.gltf import BufferBuilder, pack_glb
+    from text2anim.core.glb import BufferBuilder, pack_glb
 
     names = names or {}
     joint_names = [names.get(r[0], r[0]) for r in rows]

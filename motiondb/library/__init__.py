@@ -3,7 +3,7 @@
 ``builtin_clips(fps)`` gives every clip as a :class:`motiondb.types.ClipRecord`
 on :func:`canonical_skeleton` (see :mod:`.skeleton`): the clips cut from CMU
 motion capture (:mod:`.capture`: the cut list ``capture.toml`` and the arrays
-``capture.npz`` that :mod:`.build` makes from it), and the keyframed clips for
+``capture.npz`` that ``tools/library/build_capture.py`` makes from it), and the keyframed clips for
 actions no capture covers (bow, clap, cheer, ...). A keyframed clip that a
 captured one ``replaces`` is not in the library. ``source`` says which is
 which: ``builtin:capture:CMU <trial> <seconds>`` or ``builtin:keyframed:<file>``.
@@ -14,7 +14,7 @@ interval and the verbs (format in :mod:`.keyframes`); ``clips/_poses.json``
 the shared named poses (``stand``, ...). Generation is deterministic
 (the same bytes on every run) and cached per frame rate; a database is seeded
 from its result at 30 fps shipped as ``keyframed.npz`` (:mod:`.keyframed`,
-rebuilt by ``python -m text2anim.motiondb.library.build_keyframed``), so the
+rebuilt by ``python tools/library/build_keyframed.py``), so the
 first run generates nothing. Generating (:func:`build_all`) goes:
 
 1. the keyed curves are sampled with scipy splines (:mod:`.keyframes`);
@@ -110,17 +110,17 @@ def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> li
     from .plant import FramePlant
 
     n = int(round((t_last - t_first) / h)) + 1
-    always = [FramePlant(p.side, 0, n - 1, int(round(-t_first / h))) for p in clip.plants if np.isinf(p.t0)]
-    plants = [p for p in clip.plants if not np.isinf(p.t0)]
+    always = [FramePlant(p.side, 0, n - 1, int(round(-t_first / h))) for p in clip.plants if np.isinf(p.start)]
+    plants = [p for p in clip.plants if not np.isinf(p.start)]
     if clip.cyclic:
         reps: list[PlantSpec] = []
         for k in range(-2, clip.cycles + 3):
             reps.extend(p.shifted(k * clip.period) for p in plants)
-        plants = [p for p in reps if p.t1 >= t_first - 1e-9 and p.t0 <= t_last + 1e-9]
+        plants = [p for p in reps if p.stop >= t_first - 1e-9 and p.start <= t_last + 1e-9]
     out = []
     for p in plants:
-        start = int(np.ceil((p.t0 - t_first) / h - 1e-6))
-        stop = int(np.floor((p.t1 - t_first) / h + 1e-6))
+        start = int(np.ceil((p.start - t_first) / h - 1e-6))
+        stop = int(np.floor((p.stop - t_first) / h + 1e-6))
         anchor = int(round((p.anchor - t_first) / h))
         heel = None if p.heel_off is None else int(round((p.heel_off - t_first) / h))
         flat = None if p.flat is None else int(round((p.flat - t_first) / h))
@@ -159,7 +159,7 @@ def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantRe
     motion = apply_reach(motion, clip.raw.get("reach", {}), times, clip.name)
     if margin:
         motion = motion.frames(margin, margin + n)
-    return lift_swings(shifted(motion, SHOE_SOLE)).read_only(), report
+    return lift_swings(shifted(motion, SHOE_SOLE)), report
 
 
 @lru_cache(maxsize=8)

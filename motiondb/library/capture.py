@@ -3,7 +3,7 @@
 ``capture.toml`` (next to this file) is the cut list: for every clip the CMU
 file, the seconds cut from it, the core interval, the verbs and postures (its
 format is described at its top). ``capture.npz`` holds what
-:mod:`.build` made of it: per clip the root positions ``<name>.root``
+``tools/library/build_capture.py`` made of it: per clip the root positions ``<name>.root``
 ``(T, 3)`` float32 metres and the local joint rotations ``<name>.rot``
 ``(T, J, 4)`` float32 quaternions ``(x, y, z, w)`` on
 :func:`.skeleton.canonical_skeleton`, at :data:`FPS`, feet on ``y = 0``,
@@ -59,7 +59,7 @@ class Cut:
     face: str = "start"
     starts_from: str | None = None
     ease: float = 0.0
-    lowpass: float = 0.0  # Hz; 0: none (see .smooth)
+    lowpass: float = 0.0  # Hz; 0: none (see tools/library/smooth.py)
     about: str = ""
     cycle: tuple[float, float] | None = None  # a stretch of the cut played ``cycles`` more times
     cycles: int = 0
@@ -147,8 +147,8 @@ def captured_clip(name: str, fps: float = FPS) -> Motion:
     with np.load(ARRAYS) as data:
         if f"{name}.rot" not in data.files:
             raise ClipDataError(f"capture.npz has no clip {name!r}: rebuild it "
-                                "(python -m text2anim.motiondb.library.build)")
-        return _motion(data[f"{name}.root"], data[f"{name}.rot"], float(fps)).read_only()
+                                "(python tools/library/build_capture.py)")
+        return _motion(data[f"{name}.root"], data[f"{name}.rot"], float(fps))
 
 
 @lru_cache(maxsize=8)
@@ -161,8 +161,8 @@ def capture_records(fps: float = FPS) -> tuple[ClipRecord, ...]:
     for c in cuts:
         if f"{c.name}.rot" not in arrays:
             raise ClipDataError(f"capture.npz has no clip {c.name!r}: rebuild it "
-                                "(python -m text2anim.motiondb.library.build)")
-        motion = _motion(arrays[f"{c.name}.root"], arrays[f"{c.name}.rot"], float(fps)).read_only()
+                                "(python tools/library/build_capture.py)")
+        motion = _motion(arrays[f"{c.name}.root"], arrays[f"{c.name}.rot"], float(fps))
         if c.core is None:
             core = (0.0, motion.duration)
         else:

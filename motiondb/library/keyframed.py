@@ -2,7 +2,7 @@
 hash that says whether they are up to date.
 
 Generating the keyframed clips from ``clips/*.json`` (splines, foot planting by IK, reach, ...)
-takes seconds; a new database is seeded from what :mod:`.build_keyframed` made of them once, as
+takes seconds; a new database is seeded from what ``tools/library/build_keyframed.py`` made of them once, as
 the captured clips are from ``capture.npz``. The file (a ``.npz`` written with fixed names, order
 and timestamps, so the same sources give the same bytes) holds:
 
@@ -23,7 +23,7 @@ generator (scipy.interpolate, IK).
 
 :func:`sources_hash` hashes the clips' JSON and the generator's modules; the shipped file
 records the hash it was built from, and a test compares the two, so a changed JSON file or
-generator that was not rebuilt (``python -m text2anim.motiondb.library.build_keyframed``) fails.
+generator that was not rebuilt (``python tools/library/build_keyframed.py``) fails.
 """
 from __future__ import annotations
 
@@ -46,7 +46,7 @@ ARRAYS = HERE / "keyframed.npz"
 FPS = 30.0
 #: The generator's modules (with ``clips/*.json``, what the shipped frames are made from).
 GENERATOR = ("__init__.py", "keyframes.py", "keyframe_curves.py", "plant.py", "plant_foot.py",
-             "plant_gaps.py", "reach.py", "skeleton.py", "build_keyframed.py")
+             "plant_gaps.py", "reach.py", "skeleton.py")
 
 
 def sources_hash(root: Path = HERE) -> str:
@@ -83,7 +83,7 @@ def _motion(frames: np.ndarray) -> Motion:
     if frames.ndim != 2 or frames.shape[1] != 3 + 4 * J:
         raise ClipDataError(f"keyframed.npz: frames of shape {frames.shape} do not fit the {J}-joint skeleton")
     rots = frames[:, 3:].reshape(len(frames), J, 4)
-    return Motion(skel, FPS, np.array(frames[:, :3]), rots / np.linalg.norm(rots, axis=-1, keepdims=True)).read_only()
+    return Motion(skel, FPS, np.array(frames[:, :3]), rots / np.linalg.norm(rots, axis=-1, keepdims=True))
 
 
 #: Foot contacts per clip name: ``[(side, start, stop), ...]`` (frames, ``[start, stop)``).
@@ -111,7 +111,7 @@ def shipped(path: Path = ARRAYS) -> tuple[str, tuple[ClipRecord, ...], Contacts]
                     for name, rows in meta["contacts"].items()}
     except (OSError, KeyError, ValueError) as exc:
         raise ClipDataError(f"{path.name} cannot be read ({exc}): rebuild it "
-                            "(python -m text2anim.motiondb.library.build_keyframed)") from None
+                            "(python tools/library/build_keyframed.py)") from None
     return str(meta["sources"]), records, contacts
 
 

@@ -73,6 +73,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Generic, TypeVar
 
 import numpy as np
 
@@ -92,31 +93,42 @@ class ClipDataError(ValueError):
     """Keyframe data that cannot be turned into a clip (names the clip and the problem)."""
 
 
+Unit = TypeVar("Unit", int, float)
+
+
 @dataclass(frozen=True)
-class PlantSpec:
-    """A foot plant in seconds: the ball of ``side``'s foot is on the ground from ``t0`` to ``t1``.
+class Plant(Generic[Unit]):
+    """A foot plant: the ball of ``side``'s foot is on the ground from ``start`` to ``stop``, in seconds as
+    the keyframe data gives it (:data:`PlantSpec`) or in frames, inclusive, as the generator plants it
+    (:data:`FramePlant`, :mod:`~text2anim.motiondb.library.plant`).
 
     ``anchor``: the time whose forward-kinematics foot fixes where (and facing
     where) the foot is planted. ``strike``: the foot lands on its heel with the
     toes that many degrees up and is flat at ``flat``. ``heel_off``: from then
-    on the heel rises (toe pivot) to ``toe_off`` degrees at ``t1``. ``keep``: hold the foot as the keys
+    on the heel rises (toe pivot) to ``toe_off`` degrees at ``stop``. ``keep``: hold the foot as the keys
     have it at ``anchor`` instead of flat on the ground (a foot resting on its toes).
     """
 
     side: str
-    t0: float
-    t1: float
-    anchor: float
-    heel_off: float | None = None
+    start: Unit
+    stop: Unit
+    anchor: Unit
+    heel_off: Unit | None = None
     toe_off: float = 0.0
-    flat: float | None = None
+    flat: Unit | None = None
     strike: float = 0.0
     keep: bool = False
 
-    def shifted(self, dt: float) -> "PlantSpec":
-        return PlantSpec(self.side, self.t0 + dt, self.t1 + dt, self.anchor + dt,
-                         None if self.heel_off is None else self.heel_off + dt, self.toe_off,
-                         None if self.flat is None else self.flat + dt, self.strike, self.keep)
+    def shifted(self, dt: Unit) -> "Plant[Unit]":
+        """The same plant ``dt`` later."""
+        return Plant(self.side, self.start + dt, self.stop + dt, self.anchor + dt,
+                     None if self.heel_off is None else self.heel_off + dt, self.toe_off,
+                     None if self.flat is None else self.flat + dt, self.strike, self.keep)
+
+
+#: A plant in seconds (the keyframe data's) and in frames (the generator's).
+PlantSpec = Plant[float]
+FramePlant = Plant[int]
 
 
 @dataclass

@@ -63,7 +63,8 @@ from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.ik import leg_ik
 from text2anim.core.motion import Motion
 
-from .plant_foot import FramePlant, Foot
+from .keyframes import FramePlant
+from .plant_foot import Foot
 from text2anim.core.easing import smoothstep
 
 from .plant_gaps import distance_to, nearest_index

@@ -2,7 +2,6 @@
 state and keyed data, and the ball targets and foot rotations that make the plants exact (:class:`Foot`)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d
@@ -13,6 +12,7 @@ from text2anim.core.motion import Motion
 
 from text2anim.core.easing import smoothstep
 
+from .keyframes import FramePlant
 from .plant_gaps import Gaps, clearance, distance_to, swing_heights
 
 #: Gaussian smoothing (frames) of swing paths away from the locks.
@@ -31,21 +31,6 @@ SWING_CLEARANCE = 0.06
 #: left (a skip's 37 cm hop into three frames), while the lock's own last frame (its difference spans
 #: one moving frame: 0.375 m/s) stays a contact, as a walk's double support needs.
 MIN_STEP_SPEED = 0.75
-
-
-@dataclass(frozen=True)
-class FramePlant:
-    """A plant in frames (``start``/``stop`` inclusive); see :mod:`~text2anim.motiondb.library.plant`."""
-
-    side: str
-    start: int
-    stop: int
-    anchor: int
-    heel_off: int | None = None
-    toe_off: float = 0.0
-    flat: int | None = None
-    strike: float = 0.0
-    keep: bool = False
 
 
 def _yaw(rot: Rotation) -> np.ndarray:

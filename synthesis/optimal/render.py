@@ -102,8 +102,9 @@ class Parts:
     """What the renderings of one join share (:func:`synthesis.optimal.repair.carry_out` renders a join up
     to ~16 times: variants of the lower-body weights, the steps, the placement): every sampled, blended or
     composed motion of :func:`prepare` and :func:`blended`, made once per distinct input and reused (the
-    same objects, so their kinematics are computed once too). Keys name their inputs by value, or by the
-    ``id`` of a motion this cache holds; one cache per track ``tr``."""
+    same objects, so their kinematics are computed once too). Keys name their inputs by value, and the
+    motions among them by the motion itself (immutable, compared by identity: the key holds it, so it
+    lives as long as this cache); one cache per track ``tr``."""
 
     def __init__(self) -> None:
         self._made: dict = {}
@@ -118,15 +119,15 @@ class Parts:
     def sample(self, motion: Motion, frames: np.ndarray) -> Motion:
         """:func:`synthesis.blend.sample` of a motion this cache holds (or the track)."""
         f = np.asarray(frames, dtype=np.float64)
-        return self.get(("sample", id(motion), f.tobytes()), lambda: (sample(motion, f), motion))[0]  # (kept: its id)
+        return self.get(("sample", motion, f.tobytes()), lambda: sample(motion, f))
 
 
 def _bside_of(plan: Plan, parts: Parts) -> Motion:
-    """:func:`_b_side`, once per placed motion, adaptation and S3 (the ids of the motions it keeps)."""
+    """:func:`_b_side`, once per placed motion, adaptation and S3."""
     s3 = plan.intervals.get("S3")
-    key = ("bside", id(plan.placed), id(plan.adapted),
+    key = ("bside", plan.placed, plan.adapted,
            None if s3 is None else (s3.t0, s3.t1, s3.kind, np.asarray(s3.weights).tobytes()))
-    return parts.get(key, lambda: (_b_side(plan), plan.placed, plan.adapted))[0]
+    return parts.get(key, lambda: _b_side(plan))
 
 
 def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts | None = None,
@@ -149,7 +150,7 @@ def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts
     faU, fbU, wU = _schedule(ivs["S1"], frames)
     a_low, b_low = parts.sample(tr, faL), parts.sample(bside, fbL - off)
     ua, ub = parts.sample(tr, faU), parts.sample(bside, fbU - off)
-    up = parts.get(("blend", id(ua), id(ub), wU.tobytes()), lambda: blend(ua, ub, wU))
+    up = parts.get(("blend", ua, ub, wU.tobytes()), lambda: blend(ua, ub, wU))
     upper = part_joints(tr, "upper")
 
     def with_upper(m: Motion) -> Motion:
@@ -157,11 +158,11 @@ def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts
             r = m.rotations.copy()
             r[:, upper] = up.rotations[:, upper]
             return m.replace(rotations=r)
-        return parts.get(("upper", id(m), id(up)), make)
+        return parts.get(("upper", m, up), make)
 
     a_comp, b_comp = with_upper(a_low), with_upper(b_low)
     tr_c = tr_contacts if tr_contacts is not None else detect_contacts(tr)
-    b_c = parts.get(("contacts", id(bside)), lambda: detect_contacts(bside))
+    b_c = detect_contacts(bside)  # kept in bside's cache
     ca = _contacts_at(tr_c, faL)
     cb = _contacts_at(b_c, fbL - off)
     planted = _planted(a_comp, b_comp, ca, cb, wL, step=step and ivs["S0"].kind != "motion-motion")
@@ -170,11 +171,11 @@ def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts
     def make_placed_b() -> Motion:
         tail = bside[tail_from:]
         return concatenate([b_comp, tail]) if tail.n_frames else b_comp  # (both poses known: so is its)
-    placed_b = parts.get(("placed_b", id(b_comp), id(bside), tail_from), make_placed_b)
+    placed_b = parts.get(("placed_b", b_comp, bside, tail_from), make_placed_b)
     b_contacts = FootContacts(tr.fps, *(np.concatenate([cb[s], b_c.of(s)[w1 - off:]]) for s in ("left", "right")))
     join = Join(plan.choice.method, plan.rigid, w0, (w0, w1), frames.astype(np.float64),
                 np.arange(w1 - w0, dtype=np.float64), wL, planted, ca)
-    track = parts.get(("track", id(a_comp), w0),
+    track = parts.get(("track", a_comp, w0),
                       lambda: concatenate([p for p in (tr[:w0], a_comp) if p.n_frames]))
     return track, placed_b, b_contacts, join
 
@@ -198,7 +199,7 @@ def blended(prepared, parts: Parts | None = None) -> Blended:
         return blend_join(track, placed_b, join)
     # the blend asks nothing of the feet the join holds: renderings that differ only in those (the step)
     # share it
-    key = ("blended", id(track), id(placed_b), join.window, join.offset, join.src_a.tobytes(), join.src_b.tobytes(),
+    key = ("blended", track, placed_b, join.window, join.offset, join.src_a.tobytes(), join.src_b.tobytes(),
            np.asarray(join.weights).tobytes(), None if join.pre is None else join.pre.tobytes())
     return parts.get(key, lambda: blend_join(track, placed_b, join, parts.sample))
 

@@ -156,7 +156,7 @@ def test_a_mistyped_option_names_the_closest(args, suggestion):
 
 def test_a_broken_pipe_ends_quietly(tmp_path):
     bvh = tmp_path / "big.bvh"
-    from text2anim.core import format_bvh
+    from text2anim.output.bvh_write import format_bvh
 
     bvh.write_text(format_bvh(_long_motion()))
     env = {**os.environ, "PYTHONPATH": str(REPO)}
@@ -176,7 +176,7 @@ def _long_motion():
 
 def test_convert_writes_to_standard_output_and_refuses_a_fifo(tmp_path):
     from conftest import make_motion
-    from text2anim.core import format_bvh
+    from text2anim.output.bvh_write import format_bvh
 
     src = tmp_path / "in.bvh"
     src.write_text(format_bvh(make_motion(frames=10)))

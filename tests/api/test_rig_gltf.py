@@ -24,7 +24,7 @@ from cli_run import assert_clean_error, text2anim as run_cli
 from limb_checks import limb_errors
 from rig_builders import _a_pose, _mixamo_rows, _positions, _rest, _vroid, mixamo_glb, skinned_glb, vrm_file
 from text2anim.core import read_bvh
-from text2anim.core.gltf import BufferBuilder, pack_glb
+from text2anim.core.glb import BufferBuilder, pack_glb
 from text2anim.core.gltf_rig import read_glb, read_gltf_rig
 from text2anim.core.metrics import skating_ratio
 from text2anim.core.retarget import map_skeletons

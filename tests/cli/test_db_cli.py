@@ -103,8 +103,8 @@ def test_preview_draws_a_contact_sheet(cli_db, capsys, record, tmp_path):
 
 def test_preview_draws_an_animation_file_without_a_database(capsys, tmp_path, monkeypatch):
     monkeypatch.setenv("TEXT2ANIM_DB", str(tmp_path / "never.sqlite"))
-    from text2anim.core.bvh import write_bvh
     from text2anim.motiondb.library import builtin_clips
+    from text2anim.output.bvh_write import write_bvh
 
     walk = next(c for c in builtin_clips() if c.name == "walk")
     path = tmp_path / "walk out.bvh"
@@ -145,7 +145,7 @@ def test_the_environment_variable_selects_the_database(tmp_path, record):
 
 def test_import_classifies_postures_and_takes_overrides(cli_db, capsys, tmp_path):
     from text2anim.motiondb.library import build_all
-    from text2anim.core import write_bvh
+    from text2anim.output.bvh_write import write_bvh
 
     sit = next(b.record.motion for b in build_all(30.0) if b.record.name == "sit_down")
     path = tmp_path / "my_sit.bvh"

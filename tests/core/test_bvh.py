@@ -6,8 +6,9 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from shared_data import CMU_FILES, cmu, requires_cmu
-from text2anim.core import BVHError, format_bvh, parse_bvh, read_bvh, write_bvh
+from text2anim.core import BVHError, parse_bvh, read_bvh
 from text2anim.core.bvh import CMU_UNIT, parse_channels
+from text2anim.output.bvh_write import format_bvh, write_bvh
 
 
 @requires_cmu
@@ -153,7 +154,7 @@ def test_z_up_files_become_y_up(tmp_path):
     T, J = m.rotations.shape[:2]
     r = Rotation.from_quat(m.rotations.reshape(-1, 4))
     rr = Rotation.concatenate([rz] * len(r))
-    zm = Motion(zskel, m.fps, rz.apply(m.root_positions), (rr * r * rr.inv()).as_quat().reshape(T, J, 4))
+    zm = Motion(zskel, m.fps, rz.apply(np.array(m.root_positions)), (rr * r * rr.inv()).as_quat().reshape(T, J, 4))
     path = tmp_path / "zup.bvh"
     write_bvh(zm, path)
     back = read_bvh(path, up="z", scale=1)

@@ -9,8 +9,9 @@ from pathlib import Path
 import numpy as np
 
 from text2anim.core.bodyparts import body_map
-from text2anim.core.bvh import CMU_UNIT, format_bvh, guess_scale, parse_bvh, read_bvh
+from text2anim.core.bvh import CMU_UNIT, guess_scale, parse_bvh, read_bvh
 from text2anim.core.contacts import detect_contacts
+from text2anim.output.bvh_write import format_bvh
 
 WALK = Path(__file__).resolve().parents[1] / "data" / "walk_tiny.bvh"
 

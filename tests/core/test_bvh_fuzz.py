@@ -83,7 +83,7 @@ def _chain_file(n: int, *, nested: bool = True, frame_time: str = "0.0333333", r
 
 
 def test_a_thousand_deep_hierarchy_reads_and_writes_back():
-    from text2anim.core import format_bvh
+    from text2anim.output.bvh_write import format_bvh
 
     m = parse_bvh(_chain_file(1000), scale=1)
     assert m.skeleton.n_joints == 1000 and m.skeleton.parents[-1] == 998

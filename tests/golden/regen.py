@@ -20,7 +20,7 @@ ENGINES = ("optimal", "constraint")
 def digests(db) -> dict[str, str]:
     """``"engine|sentence" → sha256`` of every actor's BVH text and of the JSON report."""
     import text2anim
-    from text2anim.core.bvh import format_bvh
+    from text2anim.output.bvh_write import format_bvh
 
     out = {}
     for engine in ENGINES:

@@ -92,7 +92,7 @@ def test_another_performer_joins_the_same_character(empty_db):
 def test_postures_of_real_captures_are_classified_on_import(empty_db, tmp_path):
     """Sitting down on a step stool, getting up, squatting, walking: what the classifier makes of real data."""
     from text2anim.motiondb import classify_posture
-    from text2anim.core import write_bvh
+    from text2anim.output.bvh_write import write_bvh
 
     sit = read_bvh(cmu("14_31_sit"), drop_first=True)  # sits at ~2 s, stands up at ~7.5 s
     write_bvh(sit.between(0.0, 5.0), tmp_path / "sit_down.bvh")

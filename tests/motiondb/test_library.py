@@ -16,12 +16,13 @@ from scipy.spatial.transform import Rotation
 from text2anim.motiondb.library import build_all, builtin_clips, canonical_skeleton, capture, keyframe_curves, keyframes
 from text2anim.motiondb.types import ClipRecord
 from shared_data import CMU_FILES, requires_cmu
-from text2anim.core import read_bvh, write_bvh
+from text2anim.core import read_bvh
 from text2anim.core.bodyparts import GROUPS, body_map
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.metrics import BUILTIN_LIMITS, foot_skate, jerk, quality, skating_ratio
 from text2anim.core.mirror import mirror
 from text2anim.motiondb.library.skeleton import SHOE_SOLE
+from text2anim.output.bvh_write import write_bvh
 
 BUILT = {b.record.name: b for b in build_all(30.0)}
 CLIPS = {name: b.record for name, b in BUILT.items()}
@@ -246,7 +247,7 @@ def _steps_between_plants(name: str) -> bool:
     """Whether a clip's data lifts a foot between two of its plants (a step, a hop, a stomp)."""
     built = BUILT[name]
     for side in ("left", "right"):
-        t = [(p.t0, p.t1) for p in built.data.plants if p.side == side and np.isfinite(p.t0)]
+        t = [(p.start, p.stop) for p in built.data.plants if p.side == side and np.isfinite(p.start)]
         if len(t) > 1 or (built.data.cyclic and t):
             return True
     return False
@@ -452,7 +453,7 @@ def test_mirroring_serves_the_left_side():
 # ---------------------------------------------------------- contact sheets
 def test_contact_sheet_png(tmp_path):
     pytest.importorskip("matplotlib")
-    from text2anim.core.sheet import contact_sheet
+    from text2anim.output.sheet import contact_sheet
 
     path = tmp_path / "walk.png"
     contact_sheet(CLIPS["walk"].motion, path, title="walk 歩く", n=6, core=CLIPS["walk"].core)
@@ -462,7 +463,7 @@ def test_contact_sheet_png(tmp_path):
 
 
 def test_contact_sheet_without_matplotlib_says_how_to_install(tmp_path, monkeypatch):
-    from text2anim.core import sheet
+    from text2anim.output import sheet
 
     monkeypatch.setitem(sys.modules, "matplotlib", None)
     with pytest.raises(sheet.PlotUnavailableError, match=r"pip install text2anim\[plot\]"):

@@ -13,7 +13,7 @@ CJK font that matplotlib knows (Noto Sans CJK JP from Debian's
 ``fonts-noto-cjk``, IPAexGothic, Hiragino, Yu Gothic, ...) is used as a
 fallback after DejaVu Sans when there is one; none is ever installed at run
 time. Without one, every label is checked glyph by glyph and a label that
-cannot be drawn is replaced by its :attr:`~core.viewer.types.Span.alt`
+cannot be drawn is replaced by its :attr:`~output.viewer.types.Span.alt`
 (e.g. the clip name), or else loses the characters that cannot be drawn
 (``"2 蹴る (transition)"`` → ``"2 (transition)"``); an actor's name becomes
 ``actor N``. No "missing glyph" warnings are emitted.
@@ -30,8 +30,8 @@ from pathlib import Path
 import numpy as np
 
 from . import fonts
-from .atomic import OutputError, atomic_write_bytes
-from .motion import Motion
+from text2anim.core.atomic import OutputError, atomic_write_bytes
+from text2anim.core.motion import Motion
 from .viewer.types import Span, as_spans
 
 __all__ = ["PlotDependencyError", "PlotError", "plot_gantt", "plot_speeds"]
@@ -163,7 +163,7 @@ def plot_speeds(motions_by_label, path: str | os.PathLike, spans: Iterable[Span]
     blend (both panels for whole-body blends); element starts are marked.
     ``size`` is in pixels at ``dpi``.
     """
-    from .metrics import speed_curves
+    from text2anim.core.metrics import speed_curves
 
     path, fmt = _check_output(path)
     labelled = _as_labelled(motions_by_label)

@@ -5,8 +5,8 @@ import os
 
 import numpy as np
 
-from .motion import Motion
-from .skeleton import ROTATION_CHANNELS
+from text2anim.core.motion import Motion
+from text2anim.core.skeleton import ROTATION_CHANNELS
 
 
 def _full_order(order: str) -> str:
@@ -82,6 +82,6 @@ def format_bvh(m: Motion) -> str:
 
 def write_bvh(m: Motion, path: str | os.PathLike) -> None:
     """Write ``m`` as BVH, atomically: the file appears whole or not at all."""
-    from .atomic import atomic_write_text
+    from text2anim.core.atomic import atomic_write_text
 
     atomic_write_text(path, format_bvh(m))

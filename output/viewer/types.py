@@ -14,7 +14,7 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from ..motion import Motion
+from text2anim.core.motion import Motion
 
 SPAN_KINDS = ("element", "blend")
 

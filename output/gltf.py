@@ -23,56 +23,17 @@ Khronos glTF validator without errors or warnings (see ``tests/test_gltf.py``).
 """
 from __future__ import annotations
 
-import json
 import os
-import struct
 from typing import Any
 
 import numpy as np
 
-from .atomic import atomic_write_bytes
-from .motion import Motion, unroll_quaternions
+from text2anim.core.atomic import atomic_write_bytes
+from text2anim.core.glb import (ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UBYTE, UINT, USHORT, BufferBuilder,
+                                 pack_glb)
+from text2anim.core.motion import Motion, unroll_quaternions
 
-__all__ = ["BufferBuilder", "glb_bytes", "pack_glb", "write_glb"]
-
-_FLOAT, _UBYTE, _USHORT, _UINT = 5126, 5121, 5123, 5125
-_ARRAY_BUFFER, _ELEMENT_ARRAY_BUFFER = 34962, 34963
-_NP = {_FLOAT: "<f4", _UBYTE: "u1", _USHORT: "<u2", _UINT: "<u4"}
-_COMPONENTS = {"SCALAR": 1, "VEC3": 3, "VEC4": 4, "MAT4": 16}
-
-
-class BufferBuilder:
-    """Accessors and buffer views over one growing binary buffer (the GLB's BIN chunk)."""
-
-    def __init__(self, data: bytes = b"", views: list[dict] | None = None, accessors: list[dict] | None = None):
-        self.bin = bytearray(data)
-        self.views: list[dict] = list(views or [])
-        self.accessors: list[dict] = list(accessors or [])
-
-    def accessor(self, data: np.ndarray, ctype: int, atype: str, *, target: int | None = None,
-                 minmax: bool = False, normalized: bool = False) -> int:
-        arr = np.ascontiguousarray(np.asarray(data).astype(_NP[ctype]))
-        count = len(arr)
-        if arr.size != count * _COMPONENTS[atype]:
-            raise ValueError(f"accessor data of shape {arr.shape} is not {count} × {atype}")
-        pad = (-len(self.bin)) % 4
-        self.bin.extend(b"\0" * pad)
-        view = {"buffer": 0, "byteOffset": len(self.bin), "byteLength": arr.nbytes}
-        if target is not None:
-            view["target"] = target
-        self.bin.extend(arr.tobytes())
-        self.views.append(view)
-        acc = {"bufferView": len(self.views) - 1, "componentType": ctype, "count": count, "type": atype}
-        if normalized:
-            acc["normalized"] = True
-        if minmax:
-            flat = arr.reshape(count, -1)
-            cast = float if ctype == _FLOAT else int
-            acc["min"] = [cast(v) for v in flat.min(axis=0)]
-            acc["max"] = [cast(v) for v in flat.max(axis=0)]
-        self.accessors.append(acc)
-        return len(self.accessors) - 1
-
+__all__ = ["glb_bytes", "write_glb"]
 
 def _bone_boxes(points: np.ndarray, parents: list[int], radii: np.ndarray):
     """Boxes along bones: positions, normals, joint index per vertex and triangle indices."""
@@ -128,7 +89,7 @@ def _radii(motion: Motion, parents: list[int], points: np.ndarray) -> np.ndarray
     lengths = np.array([np.linalg.norm(points[i] - points[p]) if p >= 0 else 0.0 for i, p in enumerate(parents)])
     radii = np.clip(lengths * 0.18, 0.01 * h / 1.7, 0.04 * h / 1.7)
     try:
-        from .bodyparts import body_map
+        from text2anim.core.bodyparts import body_map
 
         bm = body_map(skel)
     except Exception:  # an unusual skeleton: plain boxes
@@ -182,12 +143,12 @@ def _actor(b: BufferBuilder, gl: dict, name: str, motion: Motion, color: str, mu
         "baseColorFactor": [*srgb_to_linear, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
     prim = {
         "attributes": {
-            "POSITION": b.accessor(pos, _FLOAT, "VEC3", target=_ARRAY_BUFFER, minmax=True),
-            "NORMAL": b.accessor(nrm, _FLOAT, "VEC3", target=_ARRAY_BUFFER),
-            "JOINTS_0": b.accessor(joints4, _UBYTE if J < 256 else _USHORT, "VEC4", target=_ARRAY_BUFFER),
-            "WEIGHTS_0": b.accessor(weights, _FLOAT, "VEC4", target=_ARRAY_BUFFER),
+            "POSITION": b.accessor(pos, FLOAT, "VEC3", target=ARRAY_BUFFER, minmax=True),
+            "NORMAL": b.accessor(nrm, FLOAT, "VEC3", target=ARRAY_BUFFER),
+            "JOINTS_0": b.accessor(joints4, UBYTE if J < 256 else USHORT, "VEC4", target=ARRAY_BUFFER),
+            "WEIGHTS_0": b.accessor(weights, FLOAT, "VEC4", target=ARRAY_BUFFER),
         },
-        "indices": b.accessor(idx, _USHORT if n_vert < 65535 else _UINT, "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
+        "indices": b.accessor(idx, USHORT if n_vert < 65535 else UINT, "SCALAR", target=ELEMENT_ARRAY_BUFFER),
         "material": len(gl["materials"]) - 1,
         "mode": 4,
     }
@@ -196,7 +157,7 @@ def _actor(b: BufferBuilder, gl: dict, name: str, motion: Motion, color: str, mu
     ibm[:, :3, 3] = -bind_world
     ibm_colmajor = ibm.transpose(0, 2, 1).reshape(J, 16)  # glTF matrices are column-major
     gl["skins"].append({"name": name or "actor", "joints": list(range(first, first + J)), "skeleton": first,
-                        "inverseBindMatrices": b.accessor(ibm_colmajor, _FLOAT, "MAT4")})
+                        "inverseBindMatrices": b.accessor(ibm_colmajor, FLOAT, "MAT4")})
     nodes.append({"name": f"{name or 'actor'} mesh" if multi or name else "mesh",
                   "mesh": len(gl["meshes"]) - 1, "skin": len(gl["skins"]) - 1})
     gl["scenes"][0]["nodes"].append(len(nodes) - 1)
@@ -208,10 +169,10 @@ def _actor(b: BufferBuilder, gl: dict, name: str, motion: Motion, color: str, mu
 def _animate(b: BufferBuilder, anim: dict, first: int, motion: Motion) -> None:
     """Channels of ``motion`` on the joint nodes ``first ...`` (see the module docstring)."""
     J = motion.skeleton.n_joints
-    times = b.accessor(motion.times, _FLOAT, "SCALAR", minmax=True)
+    times = b.accessor(motion.times, FLOAT, "SCALAR", minmax=True)
 
     def channel(node: int, path: str, values: np.ndarray, atype: str):
-        anim["samplers"].append({"input": times, "output": b.accessor(values, _FLOAT, atype), "interpolation": "LINEAR"})
+        anim["samplers"].append({"input": times, "output": b.accessor(values, FLOAT, atype), "interpolation": "LINEAR"})
         anim["channels"].append({"sampler": len(anim["samplers"]) - 1, "target": {"node": node, "path": path}})
 
     quats = motion.rotations / np.linalg.norm(motion.rotations, axis=-1, keepdims=True)
@@ -225,7 +186,7 @@ def _animate(b: BufferBuilder, anim: dict, first: int, motion: Motion) -> None:
 
 
 def glb_bytes(tracks, animate: bool = True) -> bytes:
-    """The ``.glb`` file of ``tracks`` (a list of :class:`~core.viewer.types.Track`,
+    """The ``.glb`` file of ``tracks`` (a list of :class:`~output.viewer.types.Track`,
     a ``{name: Motion}`` dict or one :class:`~core.motion.Motion`); ``animate=False``: the skinned
     characters in their bind pose, no animation."""
     from .viewer.types import as_tracks
@@ -250,23 +211,6 @@ def glb_bytes(tracks, animate: bool = True) -> bytes:
         del gl["animations"]
     gl["buffers"] = [{}]
     return pack_glb(gl, b)
-
-
-def pack_glb(gl: dict, b: BufferBuilder) -> bytes:
-    """The ``.glb`` bytes of the glTF JSON ``gl`` whose buffer 0 is ``b``'s binary (its views and accessors
-    appended to ``gl``'s own): the JSON chunk padded with spaces, the BIN chunk with zeros."""
-    b.bin.extend(b"\0" * ((-len(b.bin)) % 4))
-    gl["buffers"][0]["byteLength"] = len(b.bin)
-    gl["bufferViews"] = b.views
-    gl["accessors"] = b.accessors
-    js = json.dumps(gl, ensure_ascii=False, separators=(",", ":"), allow_nan=False).encode("utf-8")
-    js += b" " * ((-len(js)) % 4)
-    total = 12 + 8 + len(js) + 8 + len(b.bin)
-    return b"".join([
-        struct.pack("<4sII", b"glTF", 2, total),
-        struct.pack("<I4s", len(js), b"JSON"), js,
-        struct.pack("<I4s", len(b.bin), b"BIN\0"), bytes(b.bin),
-    ])
 
 
 def write_glb(tracks, path: str | os.PathLike) -> None:

@@ -22,8 +22,8 @@ from scipy.spatial.transform import Rotation
 from shared_data import library_motion
 from text2anim.core import Motion, Skeleton
 from text2anim.core.atomic import OutputError
-from text2anim.core.gltf import glb_bytes, write_glb
-from text2anim.core.viewer import Track
+from text2anim.output.gltf import glb_bytes, write_glb
+from text2anim.output.viewer import Track
 
 NODE_MODULES = Path(os.environ.get("T2A_NODE_MODULES", Path(__file__).parents[1] / "browser" / "node_modules"))
 CHECK_SCRIPT = Path(__file__).parents[1] / "browser" / "gltf_check.mjs"

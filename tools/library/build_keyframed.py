@@ -1,12 +1,12 @@
-"""Rebuild ``keyframed.npz`` (the shipped keyframed clips, :mod:`.keyframed`) from ``clips/*.json``.
+"""Rebuild ``keyframed.npz`` (the shipped keyframed clips, :mod:`motiondb.library.keyframed`) from ``clips/*.json``.
 
 Run after changing a clip's JSON or the generator (keyframes, planting, reach)::
 
-    python -m text2anim.motiondb.library.build_keyframed [--out FILE] [--check]
+    python tools/library/build_keyframed.py [--out FILE] [--check]
 
 This is the one place the seeded keyframed frames are generated: every clip of
-:func:`motiondb.library.build_all` at :data:`.keyframed.FPS` that no captured clip replaces,
-with its metadata and the :func:`.keyframed.sources_hash` of what it was made from, and the
+:func:`motiondb.library.build_all` at :data:`motiondb.library.keyframed.FPS` that no captured clip replaces,
+with its metadata and the :func:`motiondb.library.keyframed.sources_hash` of what it was made from, and the
 foot contacts of every seeded clip (the captured ones from ``capture.npz``: rerun this after
 rebuilding that). The same sources give the same bytes. ``--check`` builds in memory and exits 1 when the file differs.
 """
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .keyframed import ARRAYS, FPS, meta_array, records_of, sources_hash, to_planes
+from text2anim.motiondb.library.keyframed import ARRAYS, FPS, meta_array, records_of, sources_hash, to_planes
 
 
 def contacts(records) -> dict[str, list[list]]:
@@ -35,7 +35,7 @@ def contacts(records) -> dict[str, list[list]]:
 
 def arrays() -> dict[str, np.ndarray]:
     """The file's arrays, in order: ``_meta`` then each clip's frame planes."""
-    from . import build_all, capture
+    from text2anim.motiondb.library import build_all, capture
 
     gone = capture.replaced()
     clips, out = [], {}
@@ -60,7 +60,7 @@ def arrays() -> dict[str, np.ndarray]:
 
 def build(out: Path = ARRAYS, log=print) -> int:
     """Generate every seeded keyframed clip and write ``out``; returns its size in bytes."""
-    from .build import write_arrays
+    from build_capture import write_arrays  # this folder's: run as a script, the folder is on sys.path
 
     data = arrays()
     size = write_arrays(out, data)
@@ -69,7 +69,7 @@ def build(out: Path = ARRAYS, log=print) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    p = argparse.ArgumentParser(prog="python -m text2anim.motiondb.library.build_keyframed",
+    p = argparse.ArgumentParser(prog="python tools/library/build_keyframed.py",
                                 description=__doc__.split("\n")[0])
     p.add_argument("--out", type=Path, default=ARRAYS, help="where to write (the package's keyframed.npz)")
     p.add_argument("--check", action="store_true", help="exit 1 when the file is not what a build gives")

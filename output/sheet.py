@@ -26,10 +26,10 @@ import warnings
 import numpy as np
 
 from . import fonts
-from .atomic import atomic_write_bytes
-from .bodyparts import body_map, side_of
-from .contacts import detect_contacts, foot_tracks
-from .motion import Motion
+from text2anim.core.atomic import atomic_write_bytes
+from text2anim.core.bodyparts import body_map, side_of
+from text2anim.core.contacts import detect_contacts, foot_tracks
+from text2anim.core.motion import Motion
 
 
 class PlotUnavailableError(RuntimeError):

@@ -2,7 +2,7 @@
 
 Run from a checkout (``../shared/mocap/cmu`` next to it, or ``--cmu DIR``)::
 
-    python -m text2anim.motiondb.library.build [--cmu DIR] [--out FILE]
+    python tools/library/build_capture.py [--cmu DIR] [--out FILE]
 
 For every take named in the cut list (each file read once), then every clip cut from it:
 
@@ -13,9 +13,9 @@ For every take named in the cut list (each file read once), then every clip cut 
    without its IK re-placing of ankles and wrists, which flips a nearly straight leg's twist)
    and put that on the floor again;
 3. low-pass the take where the cut list asks (``lowpass = Hz``: takes with capture glitches,
-   :mod:`.smooth`), cut the clip's seconds (with ``blend`` seconds before them for a blended loop);
+   :mod:`smooth`), cut the clip's seconds (with ``blend`` seconds before them for a blended loop);
 4. resample to 30 fps (slerp), hold planted feet still, keep swinging feet clear of the floor
-   and feet and hands above it (:func:`.feet.lock_feet`, :func:`core.clearance.lift_swings`,
+   and feet and hands above it (:func:`feet.lock_feet`, :func:`core.clearance.lift_swings`,
    :func:`core.clearance.clear_floor`);
 5. turn it about +Y and move it so it starts at the origin facing +Z (``face = "travel"``:
    its travel points +Z);
@@ -51,10 +51,11 @@ from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
 from text2anim.core.retarget import retarget
 
-from .capture import ARRAYS, FPS, Cut, cut_list
-from .feet import lock_feet
-from .smooth import lowpass
-from .skeleton import canonical_skeleton
+from text2anim.motiondb.library.capture import ARRAYS, FPS, Cut, cut_list
+from text2anim.motiondb.library.skeleton import canonical_skeleton
+
+from feet import lock_feet  # this folder's modules: run as a script, the folder is on sys.path
+from smooth import lowpass
 
 #: Rate of the CMU files (their Frame Time).
 SOURCE_FPS = 120.0
@@ -139,7 +140,7 @@ def remove_drift(m: Motion, pre: int, drift: np.ndarray) -> Motion:
 
     The correction grows with the distance the hips have moved horizontally so far (the cumulative
     path length, normalised to 1 over the cycle): where the dancer stands it does not change, where she
-    steps it shortens the steps, so a planted foot that :func:`.feet.lock_feet` holds still afterwards
+    steps it shortens the steps, so a planted foot that :func:`feet.lock_feet` holds still afterwards
     needs its leg to bend by little. ``m``: ``(pre + N)`` frames; the first ``pre`` (the lead-in) are kept.
     """
     root = m.root_positions.copy()
@@ -282,7 +283,7 @@ def build(cmu: Path, out: Path = ARRAYS, log=print) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    p = argparse.ArgumentParser(prog="python -m text2anim.motiondb.library.build", description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(prog="python tools/library/build_capture.py", description=__doc__.split("\n")[0])
     p.add_argument("--cmu", type=Path, default=DEFAULT_CMU, help="folder of the CMU BVH files (../shared/mocap/cmu)")
     p.add_argument("--out", type=Path, default=ARRAYS, help="where to write the arrays (the package's capture.npz)")
     args = p.parse_args(argv)

@@ -20,15 +20,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from .floor import FOOT_CLEARANCE
-from .gltf import BufferBuilder, pack_glb
-from .motion import Motion, unroll_quaternions
-from .rigs import ROLE_PARENT, ROLES
-from .skeleton import Skeleton
+from text2anim.core.floor import FOOT_CLEARANCE
+from text2anim.core.glb import FLOAT, BufferBuilder, pack_glb
+from text2anim.core.motion import Motion, unroll_quaternions
+from text2anim.core.rigs import ROLE_PARENT, ROLES
+from text2anim.core.skeleton import Skeleton
 
 __all__ = ["vrma_skeleton", "vrma_bytes"]
 
-_FLOAT = 5126
 _FEET = ("leftFoot", "rightFoot", "leftToes", "rightToes")
 
 
@@ -75,10 +74,10 @@ def vrma_bytes(motion: Motion) -> bytes:
             node["children"] = kids
         nodes.append(node)
     anim: dict = {"name": "text2anim", "channels": [], "samplers": []}
-    times = b.accessor(motion.times, _FLOAT, "SCALAR", minmax=True)
+    times = b.accessor(motion.times, FLOAT, "SCALAR", minmax=True)
 
     def channel(node: int, path: str, values: np.ndarray, atype: str) -> None:
-        anim["samplers"].append({"input": times, "output": b.accessor(values, _FLOAT, atype), "interpolation": "LINEAR"})
+        anim["samplers"].append({"input": times, "output": b.accessor(values, FLOAT, atype), "interpolation": "LINEAR"})
         anim["channels"].append({"sampler": len(anim["samplers"]) - 1, "target": {"node": node, "path": path}})
 
     channel(0, "translation", motion.root_positions, "VEC3")

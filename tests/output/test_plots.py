@@ -11,10 +11,10 @@ import pytest
 from shared_data import cmu
 from text2anim.core import read_bvh
 from text2anim.core.atomic import OutputError
-from text2anim.core.viewer import Span
+from text2anim.output.viewer import Span
 
 mpimg = pytest.importorskip("matplotlib.image")
-from text2anim.core import plots  # noqa: E402
+from text2anim.output import plots  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -12,7 +12,7 @@ player are ~39 KB, unminified; three.js' minified module build alone is
 writes, to draw the same lines. Canvas 2D also needs no WebGL, so it renders identically in
 headless Chromium without a GPU, on remote desktops and in old laptops' browsers.
 Users who want meshes, lights and a real scene get the GLB
-(:mod:`core.gltf`), which Blender and three.js load.
+(:mod:`output.gltf`), which Blender and three.js load.
 
 **Data.** Python does the forward kinematics: per actor, the world positions
 of every joint and BVH end site, rounded to millimetres, root-relative
@@ -39,8 +39,8 @@ from importlib import resources
 
 import numpy as np
 
-from ..atomic import atomic_write_text
-from ..motion import Motion
+from text2anim.core.atomic import atomic_write_text
+from text2anim.core.motion import Motion
 from .types import Span, Track, as_spans, as_tracks
 
 __all__ = ["PALETTE", "Span", "Track", "render_html", "viewer_data"]
@@ -82,7 +82,7 @@ def _bone_info(motion: Motion, n_points: int, parents: list[int]) -> dict:
     info = {"radius": [round(float(r), 4) for r in radius], "head": -1, "headRadius": round(0.09 * height / 1.7, 4),
             "feet": [], "height": round(float(height), 3)}
     try:
-        from ..bodyparts import body_map
+        from text2anim.core.bodyparts import body_map
 
         bm = body_map(skel)
     except Exception:  # an unusual skeleton: draw it all the same, without the extras
@@ -113,7 +113,7 @@ def _bone_info(motion: Motion, n_points: int, parents: list[int]) -> dict:
 def _facing(motion: Motion) -> float:
     """Heading (radians about +Y, 0 = facing +Z) of the character on its first frame; 0 if unknown."""
     try:
-        from ..bodyparts import body_map
+        from text2anim.core.bodyparts import body_map
 
         bm = body_map(motion.skeleton)
         left = [bm.feet["left"][0], bm.hands["left"]]
@@ -131,7 +131,7 @@ def _facing(motion: Motion) -> float:
 def _contacts(motion: Motion, n_out: int, fps_out: float) -> str:
     """Per output frame: ``"0"`` none, ``"1"`` left, ``"2"`` right, ``"3"`` both feet in contact; ``""`` if unknown."""
     try:
-        from ..contacts import detect_contacts
+        from text2anim.core.contacts import detect_contacts
 
         state = detect_contacts(motion).state()
     except Exception:

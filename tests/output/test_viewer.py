@@ -26,7 +26,7 @@ import pytest
 from shared_data import library_motion
 from text2anim.core import Motion, Skeleton, concatenate
 from text2anim.core.atomic import OutputError
-from text2anim.core.viewer import PALETTE, Span, Track, render_html, viewer_data
+from text2anim.output.viewer import PALETTE, Span, Track, render_html, viewer_data
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",

@@ -7,8 +7,8 @@ from text2anim.motiondb.readings import reading, romaji
 
 pytest.importorskip("matplotlib")
 
-from text2anim.core import fonts  # noqa: E402
-from text2anim.core.sheet import contact_sheet  # noqa: E402
+from text2anim.output import fonts  # noqa: E402
+from text2anim.output.sheet import contact_sheet  # noqa: E402
 from text2anim.motiondb import MotionDB  # noqa: E402
 from text2anim.cli.main import main  # noqa: E402
 

@@ -1,0 +1,196 @@
+"""What is computed from one motion's frames, kept with that motion: its pose and any derived quantity.
+
+A :class:`~core.motion.Motion` owns one :class:`PoseCache` (``motion.cache``). Motions are immutable (their
+arrays are read-only), so a value computed once from a motion's frames holds for as long as the motion
+lives, and goes with it: the cache is an attribute of the motion, not a table keyed by motions.
+
+- ``cache.pose(motion)``: forward kinematics (:mod:`core.fk`), computed once. A motion made from another
+  whose pose is known (a slice, a limb edited, the root moved, parts joined, frames shared with it) is
+  given a *recipe* instead: the other's pose and what differs, so that its own pose, when asked, costs
+  that difference only (bit for bit the full computation). The recipe is dropped once used.
+- ``cache.get(key, make)``: any other quantity derived from the motion's frames (foot contacts, headings,
+  pose features), by a key that names it and its parameters by value (``("headings", 0.3)``).
+
+The keyed part is a :class:`~core.memo.Memo`, as a :class:`~core.skeleton.Skeleton`'s for what it derives.
+A copy or an unpickled cache starts empty.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from . import fk
+from .fk import Pose
+from .memo import Memo
+from .skeleton import Skeleton
+
+
+class Frames(Protocol):
+    """What the cache reads of a motion (:class:`core.motion.Motion` is one)."""
+
+    @property
+    def skeleton(self) -> Skeleton: ...
+
+    @property
+    def root_positions(self) -> np.ndarray: ...
+
+    @property
+    def rotations(self) -> np.ndarray: ...
+
+    @property
+    def translations(self) -> np.ndarray | None: ...
+
+    @property
+    def cache(self) -> "PoseCache": ...
+
+    def local_translations(self) -> np.ndarray: ...
+
+
+# ------------------------------------------------------------------ recipes
+@dataclass(frozen=True)
+class _Below:
+    """Only the local rotations of ``tops`` and their descendants differ from ``known``'s frames."""
+
+    known: Pose
+    tops: tuple[int, ...]
+
+    def pose(self, m: Frames) -> Pose:
+        return fk.below(m.skeleton, m.rotations, m.translations, self.known, self.tops)
+
+
+@dataclass(frozen=True)
+class _RootMoved:
+    """Only the root's positions differ from ``known``'s frames."""
+
+    known: Pose
+
+    def pose(self, m: Frames) -> Pose:
+        return fk.root_moved(m.skeleton, m.local_translations(), self.known)
+
+
+@dataclass(frozen=True)
+class _Rows:
+    """Frames ``rows >= 0`` are ``known``'s frames ``rows``."""
+
+    known: Pose
+    rows: np.ndarray
+
+    def pose(self, m: Frames) -> Pose:
+        return fk.with_rows(m.skeleton, m.rotations, m.local_translations(), self.known, self.rows)
+
+
+@dataclass(frozen=True)
+class _Parts:
+    """The motion is ``parts`` end to end, on the same bones."""
+
+    parts: tuple[Frames, ...]
+
+    def pose(self, m: Frames) -> Pose:
+        return fk.joined([p.cache.pose(p) for p in self.parts])
+
+
+Recipe = _Below | _RootMoved | _Rows | _Parts
+
+
+class PoseCache(Memo):
+    """One motion's pose (:meth:`pose`) and derived quantities (:meth:`~core.memo.Memo.get`); see the module docstring."""
+
+    __slots__ = ("_pose", "_recipe")
+
+    def __init__(self, pose: Pose | None = None, recipe: Recipe | None = None) -> None:
+        super().__init__()
+        self._pose = pose
+        self._recipe = recipe
+
+    def pose(self, m: Frames) -> Pose:
+        """The pose of ``m`` (the motion owning this cache), computed once."""
+        if self._pose is None:
+            recipe, self._recipe = self._recipe, None  # not kept once used: it holds another pose
+            self._pose = fk.forward(m.skeleton, m.rotations, m.local_translations()) if recipe is None \
+                else recipe.pose(m)
+        return self._pose
+
+    def known_pose(self) -> Pose | None:
+        """The pose if it is computed, else ``None``."""
+        return self._pose
+
+    # --------------------------------------------------- caches of motions made from this one
+    def of_frames(self, sl: slice) -> "PoseCache":
+        """A cache for the frames ``sl`` of this motion: the slice of the pose when it is known (a limb edit
+        not yet solved is solved on the slice only; frames shared with another pose, the slice's are)."""
+        if self._pose is not None:
+            return PoseCache(self._pose.frames(sl))
+        if isinstance(self._recipe, _Below):
+            return PoseCache(recipe=_Below(self._recipe.known.frames(sl), self._recipe.tops))
+        if isinstance(self._recipe, _Rows):
+            return PoseCache(recipe=_Rows(self._recipe.known, self._recipe.rows[sl]))
+        return PoseCache()
+
+    def of_root_moved(self) -> "PoseCache":
+        """A cache for this motion with other root positions: the world rotations stay."""
+        return PoseCache(recipe=None if self._pose is None else _RootMoved(self._pose))
+
+    def of_rotations(self, m: Frames, rotations: np.ndarray) -> "PoseCache":
+        """A cache for ``m`` (this cache's motion) with the local ``rotations`` ``(T, J, 4)`` instead: the
+        subtrees holding the joints whose rotations differ are redone from this pose (or from the pose this
+        one's recipe starts from: edits on edits), when asked."""
+        known, below = self._pose, self._recipe if isinstance(self._recipe, _Below) else None
+        if known is None and below is None:
+            return PoseCache()
+        changed = np.flatnonzero((rotations.view(np.int64) != m.rotations.view(np.int64)).any(axis=(0, 2)))
+        if len(changed) == 0:
+            return PoseCache(known, None if known is not None else below)
+        tops = {int(j) for j in changed}
+        if known is None:
+            assert below is not None
+            tops |= set(below.tops)
+            known = below.known
+        minimal = _highest(m.skeleton.parents, tops)
+        return PoseCache(recipe=None if 0 in minimal else _Below(known, tuple(minimal)))
+
+    @staticmethod
+    def of_parts(parts: Sequence[Frames]) -> "PoseCache":
+        """A cache for ``parts`` end to end: their poses joined, now if every part's is known, else when asked
+        (only the parts not yet solved are)."""
+        if all(p.cache.known_pose() is not None for p in parts):
+            return PoseCache(fk.joined([p.cache.pose(p) for p in parts]))
+        return PoseCache(recipe=_Parts(tuple(parts)))
+
+    def share(self, m: Frames, other: Frames, rows: np.ndarray) -> None:
+        """Let ``m``'s pose (this cache's) take ``other``'s where the frames are the same: ``rows`` ``(T,)``
+        says which frame of ``other`` each frame may be (``-1``: none); where the two frames' root position
+        and local rotations (and translations) are bit for bit equal and ``other``'s pose is known, the
+        frame's pose is ``other``'s."""
+        known = other.cache.known_pose()
+        rows = np.asarray(rows, dtype=np.int64)
+        if known is None or len(rows) != len(m.rotations) or self._pose is not None or \
+                self._recipe is not None and not isinstance(self._recipe, _Rows):
+            return
+        if not (other.skeleton is m.skeleton or np.array_equal(other.skeleton.offsets, m.skeleton.offsets)):
+            return
+        rows = np.where((rows >= 0) & (rows < len(other.rotations)), rows, -1)
+        have = np.flatnonzero(rows >= 0)
+        src = rows[have]
+        same = (m.root_positions[have].view(np.int64) == other.root_positions[src].view(np.int64)).all(axis=1)
+        same &= (m.rotations[have].view(np.int64) == other.rotations[src].view(np.int64)).all(axis=(1, 2))
+        if m.translations is not None or other.translations is not None:
+            same &= (m.local_translations()[have].view(np.int64)
+                     == other.local_translations()[src].view(np.int64)).all(axis=(1, 2))
+        rows[have[~same]] = -1
+        if (rows >= 0).any():
+            self._recipe = _Rows(known, rows)
+
+
+def _highest(parents: np.ndarray, joints: set[int]) -> list[int]:
+    """The ``joints`` no other of them is an ancestor of, ascending."""
+    out = []
+    for j in sorted(joints):
+        a = int(parents[j])
+        while a >= 0 and a not in joints:
+            a = int(parents[a])
+        if a < 0:
+            out.append(j)
+    return out
