@@ -1,11 +1,11 @@
 """What every whole-body joiner shares after laying its clips: compositions, measurement, the Result.
 
-Every joiner (paper 003's :mod:`synthesis.engine`, the optimal engine
+Every joiner (paper 003's :mod:`synthesis.constraint.engine`, the optimal engine
 :mod:`synthesis.optimal`, the baselines :mod:`synthesis.baselines`) lays the
 whole-body elements of a track its own way; then :func:`assemble`:
 
 1. the partial elements are composed onto the track
-   (:func:`synthesis.composition.compose`, sway transfer and all);
+   (:func:`synthesis.join.composition.compose`, sway transfer and all);
 2. every join is measured with the same figures (``timetable.md`` §3:
    skating ratio and foot skate in the blend and its region, largest and RMS
    jerk against the source clips', core fidelity per element);
@@ -19,18 +19,18 @@ from dataclasses import replace
 
 import numpy as np
 
-from .composition import compose
+from .join.composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
-from .measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
-from .placed import Placed, mirrored_if_needed, on_skeleton
+from .join.measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
+from .join.placed import Placed, mirrored_if_needed, on_skeleton
 from .played import placed_paths
 from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
 from text2anim.core.metrics import jerk, skating_ratio
 from text2anim.core.motion import Motion
 from .finish import finish
-from .laid import Laid, LaidJoin, LaidPart
-from .plan import Element, Track
-from .timing import ease_hold, prepare
+from .join.laid import Laid, LaidJoin, LaidPart
+from .tracks import Element, Track
+from .join.timing import ease_hold, prepare
 
 
 def shifted(parts: list[Element], delays: list) -> list[Element]:
@@ -169,11 +169,11 @@ def join_side(clip, side: str, whole: bool = False) -> Motion:
 
 
 def finish_joins(laid: Laid) -> None:
-    """Run the join post-pass (:mod:`synthesis.joinpass`) on ``laid.motion`` in place; each join's
+    """Run the join post-pass (:mod:`synthesis.join.joinpass`) on ``laid.motion`` in place; each join's
     report gets what the pass did (``post``). Where the pass gave a join more time (a region retimed
     over more frames), the next element and every later one move later by as much: their placement,
     the later joins' frames, and ``laid.delays`` (the partial elements laid on them follow)."""
-    from .joinpass import Region, finish_track, warp_frames
+    from .join.joinpass import Region, finish_track, warp_frames
 
     fps = laid.motion.fps  # the post-pass retimes frames, never the rate
     idx, regions = [], []
@@ -236,8 +236,8 @@ def _moved_span(span, moved):
 def same_length(motions: dict) -> dict:
     """Every actor's motion made as long as the longest: a join the post-pass gave more time lengthens its
     actor's track, and the others play their last 2 s (at least 4x the difference) that much slower
-    (:func:`synthesis.joinpass.retime`) rather than holding a frozen pose; a track too short for that is held."""
-    from .joinpass import retime
+    (:func:`synthesis.join.joinpass.retime`) rather than holding a frozen pose; a track too short for that is held."""
+    from .join.joinpass import retime
 
     n = max((m.n_frames for m in motions.values()), default=0)
     out = {}

@@ -6,7 +6,7 @@ no foot locking (their sliding feet are what the comparison shows):
 
 - ``pose`` — the pose-based method ([10] Wang & Bodenheimer, [3] Kovar et al.):
   the pair of frames whose poses are closest (Kovar's distance over all
-  joints, :mod:`synthesis.posedist`) — a frame of the first motion after its
+  joints, :mod:`synthesis.optimal.posedist`) — a frame of the first motion after its
   core, one of the next motion before its core — is found by one vectorised
   distance matrix; the next motion is moved in time so the two frames
   coincide, and in space so its hips stand where the first motion's do,
@@ -26,20 +26,20 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .align import match, root_headings
+from .join.align import match, root_headings
 from .assemble import assemble
-from .laid import Laid, LaidJoin
+from .join.laid import Laid, LaidJoin
 from .actors import spread_actors
-from .placed import Placed
+from .join.placed import Placed
 from .result import BlendInterval, JoinReport, Result
-from .method_select import cyclic_core_begin, cyclic_core_end, steps
+from .optimal.method_select import cyclic_core_begin, cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
-from .track import Incoming, TrackState, extend, lay_elements
-from .plan import Track
-from .posedist import distance_matrix, features
-from .transition import Join, apply_join
-from .weights import linear_weights
+from .join.laying import Incoming, TrackState, extend, lay_elements
+from .tracks import Track
+from .optimal.posedist import distance_matrix, features
+from .join.apply import Join, apply_join
+from .optimal.weights import linear_weights
 
 BLEND = 0.5  # s, both baselines
 BASELINES = ("pose", "crossfade")

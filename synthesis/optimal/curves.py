@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..blend_ranges import Range
-from ..blend_search import Found
-from ..weights import hermite_weights, plan_partial, slope
+from .blend_ranges import Range
+from .blend_search import Found
+from .weights import hermite_weights, plan_partial, slope
 from .records import Interval
 from .search import Features, ends
 

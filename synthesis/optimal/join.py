@@ -7,19 +7,19 @@ from dataclasses import replace
 
 from text2anim.core.metrics import root_pop, skating_ratio
 
-from ..blend_search import Weights
-from ..laid import Laid, LaidJoin
-from ..placed import Placed
-from ..plan import Element, Track
+from .blend_search import Weights
+from ..join.laid import Laid, LaidJoin
+from ..join.placed import Placed
+from ..tracks import Element, Track
 from ..result import BlendInterval, JoinReport
-from ..track import Incoming, TrackState, extend, lay_elements
-from .plan import MIN_BLEND, plan_join, public_info
+from ..join.laying import Incoming, TrackState, extend, lay_elements
+from .planner import MIN_BLEND, plan_join, public_info
 from .records import Plan, Skip
 from .repair import carry_out
 
 
 def report_of(prev: Placed, inc: Incoming, plan: Plan, fps: float, locks) -> JoinReport:
-    """The join's :class:`~synthesis.plan.JoinReport` (timetable.md §2)."""
+    """The join's :class:`~synthesis.tracks.JoinReport` (timetable.md §2)."""
     e = inc.element
     method = "connection" if inc.rep > 0 else e.method
     order = {"S0": 0, "S1": 1, "S3": 2}

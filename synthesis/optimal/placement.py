@@ -10,11 +10,11 @@ from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts
 from text2anim.core.motion import Motion
 
-from ..align import Rigid, headings, to_heading_frame
-from ..blend_search import Found
-from ..method_select import Choice, support_by_gap
-from ..switching import foot_points
-from ..track import Incoming
+from ..join.align import Rigid, headings, to_heading_frame
+from .blend_search import Found
+from .method_select import Choice, support_by_gap
+from ..constraint.switching import foot_points
+from ..join.laying import Incoming
 from .records import Plan
 
 

@@ -8,11 +8,11 @@ import numpy as np
 
 from text2anim.core.motion import Motion
 
-from ..align import Rigid
-from ..blend_ranges import Range
-from ..blend_search import Found
-from ..method_select import Choice
-from ..track import Incoming
+from ..join.align import Rigid
+from .blend_ranges import Range
+from .blend_search import Found
+from .method_select import Choice
+from ..join.laying import Incoming
 
 
 @dataclass(frozen=True)

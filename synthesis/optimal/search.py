@@ -1,7 +1,7 @@
 """§4.3, eqs. (10)–(15): the blend interval ``t0``, ``t1`` that minimises eq. (10) over a range.
 
-The features (Kovar's point clouds, :mod:`synthesis.posedist`) of the join's sources are looked up per
-body part once (:class:`Features`); :mod:`synthesis.blend_search` evaluates every candidate pair.
+The features (Kovar's point clouds, :mod:`synthesis.optimal.posedist`) of the join's sources are looked up per
+body part once (:class:`Features`); :mod:`synthesis.optimal.blend_search` evaluates every candidate pair.
 """
 from __future__ import annotations
 
@@ -9,10 +9,10 @@ import numpy as np
 
 from text2anim.core.motion import Motion
 
-from ..blend_ranges import Range
-from ..blend_search import Found, Weights, best, evaluate, evaluate_motions
-from ..posedist import distance, features, part_joints
-from ..track import Incoming
+from .blend_ranges import Range
+from .blend_search import Found, Weights, best, evaluate, evaluate_motions
+from .posedist import distance, features, part_joints
+from ..join.laying import Incoming
 
 
 def _sources(tr: Motion, inc: Incoming, adapted: Motion | None):
@@ -34,7 +34,7 @@ class Features:
 
 
 def grid(r: Range, feats: Features, fps: float, weights: Weights, min_len: int):
-    """eq. (10) over every candidate pair of the range (:mod:`synthesis.blend_search`)."""
+    """eq. (10) over every candidate pair of the range (:mod:`synthesis.optimal.blend_search`)."""
     if r.kind == "motion-motion":
         f0 = np.arange(r.t0[0], r.t0[1] + 2)
         f1 = np.arange(r.t1[0], r.t1[1] + 2)

@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 
 from text2anim.core import read_bvh
-from text2anim.synthesis.blend_ranges import Bounds, after, ranges
-from text2anim.synthesis.blend_search import SMOOTH_FIRST, TIME_FIRST, evaluate, evaluate_motions, preset, search
-from text2anim.synthesis.method_select import Choice, Step, cyclic_core_begin, cyclic_core_end, select
-from text2anim.synthesis.posedist import distance, features, part_joints
-from text2anim.synthesis.weights import (MAX_SLOPE, hermite_weights, linear_weights, monotone_slopes, plan_partial, shape_of,
+from text2anim.synthesis.optimal.blend_ranges import Bounds, after, ranges
+from text2anim.synthesis.optimal.blend_search import SMOOTH_FIRST, TIME_FIRST, evaluate, evaluate_motions, preset, search
+from text2anim.synthesis.optimal.method_select import Choice, Step, cyclic_core_begin, cyclic_core_end, select
+from text2anim.synthesis.optimal.posedist import distance, features, part_joints
+from text2anim.synthesis.optimal.weights import (MAX_SLOPE, hermite_weights, linear_weights, monotone_slopes, plan_partial, shape_of,
                                slope)
 
 from shared_data import cmu
@@ -155,7 +155,7 @@ def test_motion_motion_search_is_the_global_minimum_too():
 
 
 def test_the_pose_distance_ignores_where_the_clip_stands():
-    from text2anim.synthesis.align import Rigid
+    from text2anim.synthesis.join.align import Rigid
 
     walk = _cmu("16_15_walk")
     moved = Rigid(1.1, (3.0, -2.0)).apply(walk)
@@ -164,7 +164,7 @@ def test_the_pose_distance_ignores_where_the_clip_stands():
 
 
 def test_the_distance_grid_is_eq_13_for_every_pair_of_a_real_walk_and_run():
-    from text2anim.synthesis.posedist import distance_matrix
+    from text2anim.synthesis.optimal.posedist import distance_matrix
 
     walk, run = _cmu("16_15_walk"), _cmu("16_35_run")
     j = part_joints(walk, "lower")

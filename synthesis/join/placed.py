@@ -17,9 +17,9 @@ from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
 from .align import Rigid
-from .plan import Element
+from ..tracks import Element
 from .timing import Prepared
-from .transition import Side
+from ..constraint.connection import Side
 
 
 @dataclass

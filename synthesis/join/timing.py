@@ -10,7 +10,7 @@ frames at the output frame rate:
   length: each cycle is moved rigidly by the cycle's own root travel and turn,
   so a loop of a walk walks on instead of jumping back. Any mismatch between
   the end of the cycle and its start is spread over the cycle, so the seam
-  has no pop (:mod:`synthesis.cycles`).
+  has no pop (:mod:`synthesis.join.cycles`).
 - any other clip is played whole and then its last pose is **held**, or it is
   **trimmed** to the length — from its tail, never inside its core; a core
   longer than the length is kept whole (the element then overruns; a warning
@@ -28,7 +28,7 @@ import numpy as np
 from .blend import sample
 from .cycles import loop, make_cyclic
 from text2anim.core.motion import Motion
-from .plan import Element
+from ..tracks import Element
 
 
 def at_speed(motion: Motion, speed: float, fps: float) -> Motion:

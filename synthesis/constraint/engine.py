@@ -1,16 +1,16 @@
 """The synthesis engine of paper 003 (§4): actor tracks of clips → one motion per actor, and a report.
 
-For each :class:`~synthesis.plan.Track`:
+For each :class:`~synthesis.tracks.Track`:
 
-1. every element's clip is prepared (:mod:`synthesis.timing`: speed, loop,
+1. every element's clip is prepared (:mod:`synthesis.join.timing`: speed, loop,
    hold/trim; a non-cyclic clip repeated ``n`` times becomes ``n``
    repetitions joined by connections);
 2. the whole-body elements are laid down in time order: the first placed at
    the track's origin and heading, each next one joined to the track so far
-   by a Connection or Transition (:mod:`synthesis.transition`): placed through
-   the support foot, blended by slerp, feet locked (:mod:`synthesis.footlock`);
+   by a Connection or Transition (:mod:`synthesis.constraint.connection`): placed through
+   the support foot, blended by slerp, feet locked (:mod:`synthesis.join.footlock`);
 3. the partial elements are composed onto the result
-   (:mod:`synthesis.composition`): part switched, sway transferred;
+   (:mod:`synthesis.join.composition`): part switched, sway transferred;
 4. every join is measured (``timetable.md`` §3): foot skate and skating ratio
    in the blend, largest and RMS jerk in the blend against the source clips,
    and the core fidelity of each element.
@@ -25,24 +25,25 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .actors import default_origins, spread_actors
-from .assemble import assemble
-from .laid import Laid, LaidJoin
-from .measure import hips_frame
-from .placed import Placed
-from .plan import Element, Track
-from .result import BlendInterval, JoinReport, Result
-from .track import Incoming, TrackState, lay_elements
-from .transition import Join, Side, apply_join, connection, transition
+from ..actors import default_origins, spread_actors
+from ..assemble import assemble
+from ..join.laid import Laid, LaidJoin
+from ..join.measure import hips_frame
+from ..join.placed import Placed
+from ..tracks import Element, Track
+from ..result import BlendInterval, JoinReport, Result
+from ..join.laying import Incoming, TrackState, lay_elements
+from ..join.apply import Join, apply_join
+from .connection import Side, connection, transition
 
-#: Names users import from here (they live in :mod:`synthesis.actors`, :mod:`synthesis.measure`,
+#: Names users import from here (they live in :mod:`synthesis.actors`, :mod:`synthesis.join.measure`,
 #: :mod:`synthesis.result`).
 __all__ = ["Result", "default_origins", "hips_frame", "spread_actors", "synthesize"]
 
 
 def _join(state: TrackState, inc: Incoming, fps: float, lock: bool) -> None:
     """Join ``inc`` to the track so far by a Transition (it starts before the previous element ends)
-    or a Connection (:mod:`synthesis.transition`), feet locked if ``lock``; updates ``state``."""
+    or a Connection (:mod:`synthesis.constraint.connection`), feet locked if ``lock``; updates ``state``."""
     e = inc.element
     prev = state.placed[-1]
     tr = state.laid()
@@ -76,7 +77,7 @@ def _join(state: TrackState, inc: Incoming, fps: float, lock: bool) -> None:
 
 
 def lay_track(track: Track, whole: Sequence[Element], fps: float, lock: bool) -> Laid:
-    """The whole-body elements of a track laid by paper 003's joins (:func:`synthesis.track.lay_elements`)."""
+    """The whole-body elements of a track laid by paper 003's joins (:func:`synthesis.join.laying.lay_elements`)."""
     return lay_elements(track, whole, fps, lambda state, inc: _join(state, inc, fps, lock))
 
 
@@ -85,7 +86,7 @@ def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = 
     """Turn actor tracks into one motion per actor (paper 003 §4) and report every join.
 
     Args:
-        tracks: one :class:`~synthesis.plan.Track` per actor.
+        tracks: one :class:`~synthesis.tracks.Track` per actor.
         fps: the output frame rate.
         lock_feet: lock planted feet during blends (turn off only to measure what it does).
         sway: transfer the sway of composed clips (§4.4.3).

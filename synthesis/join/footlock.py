@@ -6,7 +6,7 @@ foot gets a :class:`Lock` over the frames ``[begin, end)`` where it is down
 in the motion that dominates the blend (and, past the blend, in the next
 motion). The ankle is driven to a target by the analytic two-bone IK of
 :mod:`core.ik` (hip and knee) and turned to a target orientation, so the toe stays too: every lock
-and release of a join in one solve, every swing lift in another (:mod:`synthesis.legsolve`).
+and release of a join in one solve, every swing lift in another (:mod:`synthesis.join.legsolve`).
 
 The target starts where the foot is on the lock's first frame and then moves
 only as the foot moves *in the source motions that have it planted*

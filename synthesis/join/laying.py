@@ -2,7 +2,7 @@
 
 Every joiner of whole-body motions (optimal blending, the pose and crossfade baselines) lays a track the
 same way (:func:`lay_elements`): each element (a repeated non-cyclic one as its repetitions,
-:func:`synthesis.placed.expand_repeats`) is prepared (:func:`incoming`: speed, loop with a margin
+:func:`synthesis.join.placed.expand_repeats`) is prepared (:func:`incoming`: speed, loop with a margin
 cycle, hold or trim); the first is placed at the track's origin and heading (:func:`place_first`), each
 next one is joined to the track so far by the joiner's own ``join(state, incoming)``. Frames on the
 track; seconds only in the report.
@@ -19,7 +19,7 @@ from text2anim.core.skeleton import Skeleton
 from .align import place_at
 from .laid import Laid, LaidJoin
 from .placed import Placed, expand_repeats, on_skeleton
-from .plan import Element, Track
+from ..tracks import Element, Track
 from .timing import KNEE, ease_hold, ease_lead, hold, prepare
 
 

@@ -13,8 +13,8 @@ from text2anim.core.motion import Motion
 
 from .composition import Composed
 from .placed import Placed
-from .plan import Element
-from .result import JoinReport
+from ..tracks import Element
+from ..result import JoinReport
 
 #: A span of track frames ``(begin, end)``, end excluded.
 Frames = tuple[int, int]

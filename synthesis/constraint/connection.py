@@ -2,16 +2,16 @@
 
 Both joins take the track built so far (the first motion ``A`` is on it) and
 the next element's prepared clip ``B``, and decide a :class:`Join`: where
-``B`` is placed (a :class:`~synthesis.align.Rigid` through the support foot
+``B`` is placed (a :class:`~synthesis.join.align.Rigid` through the support foot
 and a frame offset on the track), the blend window, which frame of each
 motion every window frame shows (a time warp for transitions) and the blend
-weights. :func:`apply_join` then writes it and locks the feet
-(:mod:`synthesis.footlock`).
+weights. :func:`synthesis.join.apply.apply_join` (the join layer every engine shares) then writes it and
+locks the feet.
 
 **Connection** (§4.3.1–4.3.2): switching frames ``a`` near the end of ``A``
 (after its core) and ``b`` near the start of ``B`` (before its core) with the
 same foot contact, at least one foot down in both
-(:func:`synthesis.switching.find_switch`); ``B`` is aligned through that
+(:func:`synthesis.constraint.switching.find_switch`); ``B`` is aligned through that
 foot. With a delay (``B`` starts later than :data:`HOLD_GAP` s after ``A``
 ends) ``A``'s pose at ``a`` stands until the blend, which is centred on ``b``
 where ``B`` is scheduled. Without one, ``B`` is moved in time so that ``b``
@@ -20,13 +20,13 @@ which enters at another phase but still ends when scheduled) and the blend is
 centred there.
 Either way both motions play their own frames through the blend — a clip
 only ever holds its first or last frame, easing into and out of it
-(:func:`synthesis.timing.soft_clip`), never a frame in mid-motion — and the
+(:func:`synthesis.join.timing.soft_clip`), never a frame in mid-motion — and the
 blend never enters a core unless the cores leave no room for
 :data:`MIN_BLEND` s (a warning then says so). A looped ``B`` may start at
 any phase, so only where the switch falls costs time.
 
 **Transition** of two cyclic motions (walk → run): the key frames of both,
-foot lift and foot land (:func:`synthesis.switching.swings`); a swing of the
+foot lift and foot land (:func:`synthesis.constraint.switching.swings`); a swing of the
 same foot is taken in each, both near the scheduled overlap; both swings
 are time-warped onto one of their mean length and blended lift to land.
 ``B`` is aligned through the stance foot at the lift (its root when that
@@ -36,39 +36,34 @@ that are not both cyclic (run → kick) is a connection at the footstep:
 switching frames as for a connection, chosen nearest to the scheduled
 overlap, and a blend as long as the overlap (at least :data:`MIN_BLEND` s).
 
-Feet (:mod:`synthesis.footlock`): a foot counts as planted in the blend where
-a motion holding at least :data:`PLANTED_WEIGHT` of the weight has it down,
-and past the blend where ``B`` has it down; planted runs that touch the blend
-are locked and released in the air; feet the blend carries through the air
-are kept off the floor.
+Feet: locked and lifted as for every engine (:mod:`synthesis.join.apply`).
 
 Choices where the paper is silent (constants below): connection blend
 :data:`CONNECTION_BLEND` s, at least :data:`MIN_BLEND` s for any blend;
 switching frames searched in the last/first :data:`SEARCH` s; weights of the
-``smooth`` profile (:mod:`synthesis.blend`); clips ease into a held frame
-over :data:`synthesis.timing.KNEE` s.
+``smooth`` profile (:data:`synthesis.join.apply.PROFILE`); clips ease into a held frame
+over :data:`synthesis.join.timing.KNEE` s.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from .align import Rigid, align_through_foot
-from .blend import blend, ramp, sample
-from text2anim.core.bodyparts import body_map
-from text2anim.core.contacts import FootContacts, runs
-from .footlock import FootLocks, Lock, lift_swings, lock_feet, plan_locks
-from text2anim.core.motion import Motion, concatenate
-from .switching import Switch, find_switch, swings
-from .timing import KNEE, hold, soft_clip
+from text2anim.core.contacts import FootContacts
+from text2anim.core.motion import Motion
+
+from ..join.align import align_through_foot
+from ..join.apply import PROFILE, Join, contacts_at, planted_in_blend
+from ..join.blend import ramp
+from ..join.timing import KNEE, soft_clip
+from .switching import find_switch, swings
 
 CONNECTION_BLEND = 0.5  # s
 HOLD_GAP = 0.1  # s: a connection whose second motion starts later than this after the first ends holds a pose
 HOLD_LIFTED_COST = 0.2  # s-equivalent: a held pose should have both feet down when A has such a frame
 MIN_BLEND = 0.3  # s
 SEARCH = 1.0  # s searched for switching frames at the end of A / start of B
-PROFILE = "smooth"
 
 
 @dataclass(frozen=True)
@@ -102,63 +97,6 @@ class Side:
     def end(self) -> int:
         """Scheduled end on the track."""
         return self.offset + self.last
-
-
-@dataclass(frozen=True)
-class Join:
-    """What a connection or transition decided (all frames are track frames unless said).
-
-    Attributes:
-        kind: ``connection``, ``transition`` (cyclic, time-warped) or ``footstep`` (a transition
-            joined as a connection at the footstep).
-        rigid: the move that places ``B``.
-        offset: the track frame of ``B``'s frame 0.
-        window: ``[w0, w1)`` the blend.
-        src_a: ``(n,)`` fractional track frames ``A`` shows in the window.
-        src_b: ``(n,)`` fractional frames of (placed) ``B`` in the window.
-        weights: ``(n,)`` weight of ``B``, or ``(n, J)`` per joint (e.g. lower and upper body
-            blended over different spans); the feet follow joint 0's (the hips').
-        planted: per side, ``(n,)`` whether the foot is down in the motion that dominates the window.
-        planted_a: per side, ``(n,)`` whether it is down in ``A`` as shown in the window.
-        switch: the switching frames (connection / footstep), track frame of ``a``, ``B``'s frame ``b``.
-        intervals: ``(part, kind, begin, end)`` frames for the report.
-        pre: fractional track frames ``A`` shows just before the window, where it eases into
-            its held last frame (``None``: the track is kept as it is up to the window).
-        warnings: what could not be honoured.
-    """
-
-    kind: str
-    rigid: Rigid
-    offset: int
-    window: tuple[int, int]
-    src_a: np.ndarray
-    src_b: np.ndarray
-    weights: np.ndarray
-    planted: dict
-    planted_a: dict
-    switch: Switch | None = None
-    intervals: tuple = ()
-    warnings: tuple[str, ...] = ()
-    info: dict = field(default_factory=dict)
-    pre: np.ndarray | None = None
-
-    @property
-    def retimed_from(self) -> int:
-        """First track frame the join rewrites: ``A`` eases to its end over ``pre`` before the window."""
-        return self.window[0] - (0 if self.pre is None else len(self.pre))
-
-
-def _contacts_at(contacts: FootContacts, frames: np.ndarray) -> dict[str, np.ndarray]:
-    idx = np.clip(np.round(frames).astype(int), 0, len(contacts.left) - 1)
-    return {"left": contacts.left[idx], "right": contacts.right[idx]}
-
-
-#: In a blend a foot counts as planted when a motion holding at least this weight has it on the ground.
-PLANTED_WEIGHT = 0.25
-
-
-def _dominant(ca: dict, cb: dict, w: np.ndarray) -> dict:
-    return {s: (ca[s] & (1.0 - w >= PLANTED_WEIGHT)) | (cb[s] & (w >= PLANTED_WEIGHT)) for s in ("left", "right")}
 
 
 def _blend_kind(src: np.ndarray) -> str:
@@ -257,15 +195,15 @@ def connection(track: Motion, a: Side, b: Side, fps: float, overlap: bool = Fals
     frames = np.arange(w0, w1)
     src_b = soft_clip(frames - offset, 0, nB - 1, k)
     w = ramp(w1 - w0, PROFILE)
-    ca = _contacts_at(a.contacts, src_a - a.offset)
-    cb = _contacts_at(b.contacts, src_b)
+    ca = contacts_at(a.contacts, src_a - a.offset)
+    cb = contacts_at(b.contacts, src_b)
     kind = f"{_blend_kind(src_a)}-{_blend_kind(src_b)}"
     info = {"switch_first_s": ta / fps, "switch_second_s": (offset + sw.b) / fps, "support": sw.support,
             "same_state": sw.exact, "other_foot_gap_cm": 100 * sw.other_gap,
             "phase_s" if b.cyclic else "shift_s": (offset - b.offset) / fps,
             "held_s": max(0, w0 - (a.offset + nA)) / fps if hold_mode else 0.0}
     return Join("footstep" if overlap else "connection", rigid, offset, (w0, w1), src_a, src_b, w,
-                _dominant(ca, cb, w), ca, sw, (("whole", kind, w0, w1),), tuple(warnings), info, pre)
+                planted_in_blend(ca, cb, w), ca, (("whole", kind, w0, w1),), tuple(warnings), info, pre)
 
 
 def transition(track: Motion, a: Side, b: Side, fps: float, floor: int = 0) -> Join:
@@ -300,121 +238,10 @@ def transition(track: Motion, a: Side, b: Side, fps: float, floor: int = 0) -> J
     w0, w1 = t_lift, t_lift + D
     offset = w1 - y.land  # B continues from its landing frame
     w = ramp(D, PROFILE)
-    ca = _contacts_at(a.contacts, src_a - a.offset)
-    cb = _contacts_at(b.contacts, src_b)
+    ca = contacts_at(a.contacts, src_a - a.offset)
+    cb = contacts_at(b.contacts, src_b)
     info = {"key_frames_first_s": ((a.offset + x.lift) / fps, (a.offset + x.land) / fps),
             "key_frames_second_s": (y.lift / fps, y.land / fps), "swing_foot": x.side,
             "phase_s": (offset - b.offset) / fps, "warp_first": D / x.frames, "warp_second": D / y.frames}
-    return Join("transition", rigid, offset, (w0, w1), src_a, src_b, w, _dominant(ca, cb, w), ca, None,
+    return Join("transition", rigid, offset, (w0, w1), src_a, src_b, w, planted_in_blend(ca, cb, w), ca,
                 (("whole", "motion-motion", w0, w1),), (), info)
-
-
-def apply_join(track: Motion, placed_b: Motion, b_contacts: FootContacts, join: Join,
-               lock: bool = True) -> tuple[Motion, list[Lock]]:
-    """Write a join: the track up to the window, the blend, then all of placed ``B``; feet locked.
-
-    Returns the new track (it ends with ``B``'s last frame) and the locks applied. In two steps:
-    :func:`blend_join` and :func:`lock_join`.
-    """
-    blended = blend_join(track, placed_b, join)
-    if not lock:
-        return blended.out, []
-    return lock_join(blended, b_contacts, join)
-
-
-@dataclass(frozen=True)
-class Blended:
-    """A join written but its feet not yet locked (:func:`blend_join`): ``out`` the new track; ``a_w``,
-    ``b_line`` the first source over the window and the second from the window on (for the locks' targets).
-    Locking changes only joint rotations: ``out``'s root positions are the final track's."""
-
-    out: Motion
-    a_w: Motion
-    b_line: Motion
-
-
-def blend_join(track: Motion, placed_b: Motion, join: Join, sampler=sample) -> Blended:
-    """The first half of :func:`apply_join`: the track up to the window, the blend, then all of placed ``B``.
-    ``sampler``: :func:`synthesis.blend.sample` or one that remembers what it sampled."""
-    w0, w1 = join.window
-    if w0 > track.n_frames:  # B starts after everything so far: hold the last frame until then
-        track = hold(track, w0)
-    a_w = sampler(track, join.src_a)
-    b_w = sampler(placed_b, join.src_b)
-    mix = blend(a_w, b_w, join.weights)
-    for m in (a_w, b_w, mix):  # the window's kinematics (the locks ask for them): the tracks concatenated
-        m.pose  # from these and known poses below then know theirs without redoing every frame's
-    parts = [mix]
-    head = track[:w0]
-    if join.pre is not None and len(join.pre):
-        head = concatenate([p for p in (track[:join.retimed_from], sample(track, join.pre)) if p.n_frames])
-    if w1 - join.offset < 0:  # the window ends before B's first frame: B's first pose bridges the rest
-        parts.append(sample(placed_b, np.zeros(join.offset - w1)))
-    parts.append(placed_b[max(0, w1 - join.offset):])
-    b_line = concatenate([b_w] + parts[1:])  # B alone over [w0, end)
-    out = concatenate([p for p in [head] + parts if p.n_frames])
-    return Blended(out, a_w, b_line)
-
-
-def lock_join(blended: Blended, b_contacts: FootContacts, join: Join, lift: bool = True) -> tuple[Motion, list[Lock]]:
-    """The second half of :func:`apply_join`: the planted feet of a :func:`blend_join` locked, swings lifted
-    (:func:`lift_join`; ``lift=False`` leaves that to the caller: a locked foot is the same either way)."""
-    out, a_w, b_line = blended.out, blended.a_w, blended.b_line
-    w0, w1 = join.window
-    n = out.n_frames
-    nb = n - w0
-    after = np.arange(w1, n) - join.offset
-    ok = (after >= 0) & (after < len(b_contacts.left))
-    planted, src_planted = {}, {}
-    for s in ("left", "right"):
-        m = np.zeros(n, dtype=bool)
-        m[w0:w1] = join.planted[s]
-        m[w1:][ok] = b_contacts.of(s)[after[ok]]
-        planted[s] = m
-        pb = np.zeros(nb, dtype=bool)
-        pb[:w1 - w0] = _contacts_at(b_contacts, join.src_b)[s]
-        pb[w1 - w0:] = m[w1:]
-        src_planted[s] = pb
-    locks = plan_locks(planted, (w0, w1), n)
-    feet = body_map(out.skeleton).feet
-    a_pose, b_pose = a_w.pose, b_line.pose
-    wa = np.zeros(nb)
-    wl = join.weights if join.weights.ndim == 1 else join.weights[:, 0]
-    wa[:w1 - w0] = 1.0 - wl
-    wb = 1.0 - wa
-    a_contacts = {s: np.zeros(nb, dtype=bool) for s in ("left", "right")}
-    for s in ("left", "right"):
-        a_contacts[s][:w1 - w0] = join.planted_a[s]
-    feet_locks = {}
-    for side in ("left", "right"):
-        mine = [lk for lk in locks if lk.side == side]
-        if not mine:
-            continue
-        ankle = feet[side][0]
-        pa = np.zeros((nb, 3))
-        ra = np.tile(np.eye(3), (nb, 1, 1))
-        pa[:w1 - w0] = a_pose.positions[:, ankle]
-        ra[:w1 - w0] = a_pose.rotations[:, ankle]
-        feet_locks[side] = FootLocks(mine, [pa, b_pose.positions[:, ankle]], [ra, b_pose.rotations[:, ankle]],
-                                     [wa * a_contacts[side], wb * src_planted[side]])
-    out = lock_feet(out, feet_locks, w0, PROFILE)
-    return (lift_join(out, locks, join.window) if lift else out), locks
-
-
-def lift_join(out: Motion, locks: list[Lock], window: tuple[int, int]) -> Motion:
-    """The last step of :func:`lock_join`: feet the blend ``[w0, w1)`` or a release carries through the air
-    (not locked) kept clear of the floor (:func:`synthesis.footlock.lift_swings`)."""
-    w0, w1 = window
-    n = out.n_frames
-    swings = []
-    for side in ("left", "right"):
-        air = np.zeros(n, dtype=bool)
-        air[w0:w1] = True
-        for lk in locks:
-            if lk.side == side:
-                air[lk.end:lk.release_end] = True
-        for lk in locks:
-            if lk.side == side:
-                air[lk.begin:lk.end] = False
-        swings += [(side, int(lo), int(hi)) for lo, hi in runs(air)]
-    return lift_swings(out, swings)

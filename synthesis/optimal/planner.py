@@ -7,14 +7,14 @@ import numpy as np
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 
-from ..adaptation import adapt
-from ..align import align_through_foot
-from ..blend_ranges import after, ranges
-from ..blend_search import Weights, best
-from ..method_select import phase_for, steps
-from ..placed import Placed
-from ..switching import foot_points
-from ..track import Incoming
+from .adaptation import adapt
+from ..join.align import align_through_foot
+from .blend_ranges import after, ranges
+from .blend_search import Weights, best
+from .method_select import phase_for, steps
+from ..join.placed import Placed
+from ..constraint.switching import foot_points
+from ..join.laying import Incoming
 from .curves import interval_weights
 from .method import geometry
 from .placement import alignment
@@ -37,7 +37,7 @@ def plan_join(tr: Motion, prev: Placed, inc: Incoming, fps: float, weights: Weig
         tr: the track so far, holding ``prev`` (extended, held, at least to the next element's last frame).
         prev: the previous element as laid.
         inc: the next element.
-        weights: eq. (10)'s weights (:func:`synthesis.blend_search.preset`).
+        weights: eq. (10)'s weights (:func:`synthesis.optimal.blend_search.preset`).
         floor: no blend starts before this track frame (the previous join's end; eq. (17)'s current time).
         allow_shift: delay the next element for room (see the module docstring).
     """

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .align import headings, to_heading_frame
+from ..join.align import headings, to_heading_frame
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts
 from text2anim.core.motion import Motion
