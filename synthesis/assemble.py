@@ -56,7 +56,7 @@ def compose_parts(laid: Laid, parts: list[Element], whole: list[Element], fps: f
     tr = laid.motion
     comps = []
     for e in parts:
-        prep = prepare(e, fps, repeats_as_one=False)
+        prep = prepare(e, fps)
         laid.warnings.extend(prep.warnings)
         prep, _, note = on_skeleton(prep, tr.skeleton, e)
         if note:
@@ -118,7 +118,7 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
     by_id = {p.element.id: p for p in laid.placed}
     reports = []
     for lj in laid.joins:
-        rep, first, second = lj.report, lj.first, lj.second
+        rep = lj.report
         if lj.window is None or lj.region is None:
             reports.append(rep)
             continue
@@ -132,7 +132,7 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
             m["max_slide_cm_s"] = max(m["max_slide_cm_s"], m2["max_slide_cm_s"])
         reg = window_metrics(tr, region[0], region[1], contacts, ftracks, skating)
         m["region"] = {k: reg[k] for k in ("frames", "skating_ratio", "max_slide_cm_s", "foot_skate")}
-        srcs = [first, second] if first is not None else [by_id.get(rep.first), None]
+        srcs = [laid.placed[i] for i in (lj.first, lj.second) if i is not None] or [by_id.get(rep.first)]
         src_m = [p.motion for p in srcs if p is not None]
         if rep.method == "composition":
             src_m = [c.donor for c in comps if c.element.id == rep.second] + src_m
@@ -178,9 +178,9 @@ def finish_joins(laid: Laid) -> None:
     fps = laid.motion.fps  # the post-pass retimes frames, never the rate
     idx, regions = [], []
     for k, lj in enumerate(laid.joins):
-        rep, first, second = lj.report, lj.first, lj.second
-        if lj.window is None or lj.region is None or first is None or second is None:
+        if lj.window is None or lj.region is None or lj.first is None or lj.second is None:
             continue
+        rep, first, second = lj.report, laid.placed[lj.first], laid.placed[lj.second]
         (w0, w1), r1 = lj.window, lj.region[1]
         keep = (first.offset + first.core[1], second.offset + second.core[0])  # cores are kept (§4.2.5)
         idx.append(k)
@@ -193,8 +193,8 @@ def finish_joins(laid: Laid) -> None:
     laid.motion, infos, warps = finish_track(laid.motion, regions)
     for k, info, (lo, hi, n_new, seam) in zip(idx, infos, warps):
         lj = laid.joins[k]
-        first, second = lj.first, lj.second
-        assert first is not None and second is not None  # only carried-out joins of two placed elements
+        assert lj.first is not None and lj.second is not None  # only carried-out joins of two placed elements
+        first = laid.placed[lj.first]
         delta = n_new - (hi - lo)
         laid.joins[k] = replace(lj, report=replace(lj.report, metrics={**lj.report.metrics, "post": info}))
         if delta <= 0:
@@ -209,11 +209,10 @@ def finish_joins(laid: Laid) -> None:
             return lo + int(np.searchsorted(src, f - lo))
 
         if first.cyclic:  # a loop's steps slowed for braking belong to the join, not to its core
-            first.core = (first.core[0], max(first.core[0], min(first.core[1], lo - first.offset)))
-        later = laid.placed[laid.placed.index(second):]
-        for p in later:
-            p.offset += delta
-        laid.delays.extend((p.element.id, delta / fps) for p in later if p.repetition == 0)
+            laid.placed[lj.first] = replace(first, core=(first.core[0],
+                                                         max(first.core[0], min(first.core[1], lo - first.offset))))
+        laid.placed[lj.second:] = [p.moved(delta) for p in laid.placed[lj.second:]]
+        laid.delays.extend((p.element.id, delta / fps) for p in laid.placed[lj.second:] if p.repetition == 0)
         for j in range(k, len(laid.joins)):
             lj = laid.joins[j]
             r = lj.report

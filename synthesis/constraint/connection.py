@@ -46,16 +46,14 @@ over :data:`synthesis.join.timing.KNEE` s.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
-from text2anim.core.contacts import FootContacts
 from text2anim.core.motion import Motion
 
 from ..join.align import align_through_foot
 from ..join.apply import PROFILE, Join, contacts_at, planted_in_blend
 from ..join.blend import ramp
+from ..join.placed import Placed
 from ..join.timing import KNEE, soft_clip
 from .switching import find_switch, swings
 
@@ -66,44 +64,11 @@ MIN_BLEND = 0.3  # s
 SEARCH = 1.0  # s searched for switching frames at the end of A / start of B
 
 
-@dataclass(frozen=True)
-class Side:
-    """One motion of a join: its frames (``motion``, for ``B`` not yet placed), where its frame 0
-    is on the track (``offset``), its core ``[c0, c1)`` in its own frames, its contacts, cyclic or not.
-
-    A looped clip may carry a margin of extra cycles: its scheduled frames are
-    ``[lead, stop)`` of ``motion`` (``stop=None``: to the end).
-    """
-
-    motion: Motion
-    offset: int
-    core: tuple[int, int]
-    contacts: FootContacts
-    cyclic: bool = False
-    lead: int = 0
-    stop: int | None = None
-
-    @property
-    def last(self) -> int:
-        """One past the last scheduled frame, in the motion's own frames."""
-        return self.motion.n_frames if self.stop is None else self.stop
-
-    @property
-    def start(self) -> int:
-        """Scheduled start on the track."""
-        return self.offset + self.lead
-
-    @property
-    def end(self) -> int:
-        """Scheduled end on the track."""
-        return self.offset + self.last
-
-
 def _blend_kind(src: np.ndarray) -> str:
     return "pose" if len(src) < 2 or np.ptp(src) < 1e-9 else "motion"
 
 
-def connection(track: Motion, a: Side, b: Side, fps: float, overlap: bool = False,
+def connection(track: Motion, a: Placed, b: Placed, fps: float, overlap: bool = False,
                blend_seconds: float = CONNECTION_BLEND, floor: int = 0) -> Join:
     """A Connection (or, with ``overlap``, a transition at the footstep) of ``a`` and ``b``.
 
@@ -125,9 +90,9 @@ def connection(track: Motion, a: Side, b: Side, fps: float, overlap: bool = Fals
       (no pose is frozen mid-motion; a clip only holds its first or last frame).
     """
     warnings = []
-    nA, nB = a.last, b.motion.n_frames
+    nA, nB = a.stop, b.motion.n_frames
     search = max(2, int(round(SEARCH * fps)))
-    gap = b.start - a.end
+    gap = b.first - a.end
     hold_mode = not overlap and gap > HOLD_GAP * fps
     # after A's core and before B's (a looped clip is all core: its last / first second then), leaving
     # room for half a blend on the core's side; failing a common planted foot there, closer to the cores,
@@ -151,7 +116,7 @@ def connection(track: Motion, a: Side, b: Side, fps: float, overlap: bool = Fals
             return (nA - 1 - ai) / fps + (bj - b.lead) / fps + HOLD_LIFTED_COST * lifted
         ta, tb = a.offset + ai, b.offset + bj
         if b.cyclic:  # a loop may start at any phase: only where the switch falls matters
-            return np.abs(ta - b.start) / fps + 0 * bj
+            return np.abs(ta - b.first) / fps + 0 * bj
         return np.abs(tb - ta - max(gap, 0)) / fps  # how far B moves from its schedule
 
     sw = None
@@ -169,7 +134,7 @@ def connection(track: Motion, a: Side, b: Side, fps: float, overlap: bool = Fals
         L = blend_seconds
     else:
         offset, centre = ta - sw.b, ta
-        L = float(np.clip((a.end - b.start) / fps, MIN_BLEND, blend_seconds)) if overlap else blend_seconds
+        L = float(np.clip((a.end - b.first) / fps, MIN_BLEND, blend_seconds)) if overlap else blend_seconds
     span = max(int(round(L * fps)), 2)
     w0 = int(round(centre - span / 2))
     w1 = w0 + span
@@ -206,7 +171,7 @@ def connection(track: Motion, a: Side, b: Side, fps: float, overlap: bool = Fals
                 planted_in_blend(ca, cb, w), ca, (("whole", kind, w0, w1),), tuple(warnings), info, pre)
 
 
-def transition(track: Motion, a: Side, b: Side, fps: float, floor: int = 0) -> Join:
+def transition(track: Motion, a: Placed, b: Placed, fps: float, floor: int = 0) -> Join:
     """A Transition: cyclic ``a`` → cyclic ``b`` blended over one time-warped swing; a footstep
     connection when either is not cyclic or no swing of the same foot exists in both."""
     if not (a.cyclic and b.cyclic):
@@ -216,7 +181,7 @@ def transition(track: Motion, a: Side, b: Side, fps: float, floor: int = 0) -> J
     pairs = [(x, y) for x in sa for y in sb if x.side == y.side]
     if not pairs:
         return connection(track, a, b, fps, overlap=True, floor=floor)
-    s2 = b.start  # the scheduled overlap starts here; both lifts should be near it
+    s2 = b.first  # the scheduled overlap starts here; both lifts should be near it
 
     def cost(p):
         x, y = p

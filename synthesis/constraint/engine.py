@@ -22,58 +22,51 @@ start inside each other.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
 from ..actors import default_origins, spread_actors
 from ..assemble import assemble
-from ..join.laid import Laid, LaidJoin
+from ..join.apply import Join, apply_join
+from ..join.commit import commit, lock_report
+from ..join.laid import Laid
+from ..join.laying import TrackState, lay_elements
 from ..join.measure import hips_frame
 from ..join.placed import Placed
-from ..tracks import Element, Track
 from ..result import BlendInterval, JoinReport, Result
-from ..join.laying import Incoming, TrackState, lay_elements
-from ..join.apply import Join, apply_join
-from .connection import Side, connection, transition
+from ..tracks import Element, Track
+from .connection import connection, transition
 
 #: Names users import from here (they live in :mod:`synthesis.actors`, :mod:`synthesis.join.measure`,
 #: :mod:`synthesis.result`).
 __all__ = ["Result", "default_origins", "hips_frame", "spread_actors", "synthesize"]
 
 
-def _join(state: TrackState, inc: Incoming, fps: float, lock: bool) -> None:
+def _join(state: TrackState, inc: Placed, fps: float, lock: bool) -> None:
     """Join ``inc`` to the track so far by a Transition (it starts before the previous element ends)
     or a Connection (:mod:`synthesis.constraint.connection`), feet locked if ``lock``; updates ``state``."""
     e = inc.element
     prev = state.placed[-1]
     tr = state.laid()
-    b_side = Side(inc.motion, inc.offset, inc.core, inc.contacts, inc.cyclic, inc.lead, inc.stop)
-    if e.method == "transition" and inc.first < prev.offset + prev.stop:
-        join: Join = transition(tr, prev.side(), b_side, fps, floor=state.floor)
+    if e.method == "transition" and inc.first < prev.end:
+        join: Join = transition(tr, prev, inc, fps, floor=state.floor)
     else:
-        join = connection(tr, prev.side(), b_side, fps, floor=state.floor)
-    state.floor = join.window[1]  # the next join starts after this one's blend
+        join = connection(tr, prev, inc, fps, floor=state.floor)
     m = join.rigid.apply(inc.motion)
-    state.motion, locks = apply_join(tr, m, inc.contacts, join, lock=lock)
-    core, stop = inc.core, inc.stop
+    out, locks = apply_join(tr, m, inc.contacts, join, lock=lock)
     region_end = max([join.window[1]] + [lk.release_end for lk in locks])
-    if inc.cyclic:  # a looped clip is all core: the join (blend, feet released) is taken out of it
-        core = (max(core[0], region_end - join.offset), core[1])
-    if prev.cyclic:
-        prev.core = (prev.core[0], min(prev.core[1], join.retimed_from - prev.offset))
+    stop = inc.stop
     if inc.cyclic:  # a loop may have entered at another phase: it still ends when scheduled
         stop = int(np.clip(int(round(e.end * fps)) - join.offset, 1, m.n_frames))
-    p = Placed(e, m, join.offset, core, inc.contacts, inc.cyclic, join.rigid, inc.rep, inc.lead, stop)
-    state.placed.append(p)
-    method = "connection" if inc.rep > 0 else e.method
-    blend = "repeat" if inc.rep > 0 else join.kind
     intervals = tuple(BlendInterval(part, kind, a / fps, b / fps) for part, kind, a, b in join.intervals)
     info = dict(join.info)
     if locks:
-        info["foot_locks"] = [{"side": lk.side, "begin": lk.begin / fps, "end": lk.end / fps,
-                               "release_end": lk.release_end / fps} for lk in locks]
-    rep = JoinReport(prev.element.id, e.id, method, blend, intervals, None, info, tuple(join.warnings))
-    state.joins.append(LaidJoin(rep, join.window, (join.window[0], region_end), prev, p))
+        info["foot_locks"] = lock_report(locks, fps)
+    blend = "repeat" if inc.repetition > 0 else join.kind
+    rep = JoinReport(prev.element.id, e.id, inc.joined_by, blend, intervals, None, info, tuple(join.warnings))
+    placed = replace(inc, motion=m, offset=join.offset, stop=stop, rigid=join.rigid)
+    commit(state, placed, out, rep, join.window, (join.window[0], region_end), join.retimed_from, join.window[1])
 
 
 def lay_track(track: Track, whole: Sequence[Element], fps: float, lock: bool) -> Laid:

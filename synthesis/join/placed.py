@@ -1,13 +1,16 @@
-"""An element (or one repetition of it) as laid on its track, and the steps every engine takes to get there.
+"""A clip placed on a track (:class:`Placed`), and the steps every engine takes to put it there.
 
-:func:`expand_repeats` turns a repeated non-cyclic element into its repetitions,
+One record serves every stage of an element (or one repetition of it) on its track: prepared and
+scheduled but not yet moved in space (``rigid`` ``None``: the track's next element, the side ``B`` of a
+join), then placed (the clip moved by its ``rigid``, the side ``A`` of the next join). It is frozen: a join
+that changes where an element's core ends or when it plays replaces it on the track
+(:mod:`synthesis.join.commit`).
 :func:`on_skeleton` plays a prepared clip on the actor's skeleton,
 :func:`mirrored_if_needed` mirrors a partial clip for the other side.
 Frames are the track's (0 = the start of the animation).
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -19,16 +22,23 @@ from text2anim.core.skeleton import Skeleton
 from .align import Rigid
 from ..tracks import Element
 from .timing import Prepared
-from ..constraint.connection import Side
 
 
-@dataclass
+@dataclass(frozen=True)
 class Placed:
-    """An element (or one repetition of it) as laid on its track.
+    """An element (or one repetition of it) on its track.
 
-    ``motion`` is its prepared clip moved by ``rigid``; its frame 0 is at
-    track frame ``offset``; ``core`` is ``[c0, c1)`` in its own frames; it plays from its own
-    frame ``lead`` to ``stop`` (one past); ``repetition`` counts from 0.
+    Attributes:
+        element: the time table's element (a repetition: its share of the element's time).
+        motion: its prepared clip, ``(T, J)`` frames; moved by ``rigid`` once placed.
+        offset: the track frame of the clip's frame 0.
+        core: ``[c0, c1)`` in its own frames (a looped clip is all core but the steps its joins use).
+        contacts: the clip's foot contacts, own frames.
+        cyclic: the clip loops.
+        lead: the own frame it starts playing (a looped clip carries a margin cycle before it).
+        stop: one past the own frame it stops playing.
+        repetition: which repetition of a repeated element, from 0.
+        rigid: the ground-plane move that placed ``motion``; ``None`` while not yet placed.
     """
 
     element: Element
@@ -37,29 +47,33 @@ class Placed:
     core: tuple[int, int]
     contacts: FootContacts
     cyclic: bool
-    rigid: Rigid
-    repetition: int
     lead: int
     stop: int
+    repetition: int = 0
+    rigid: Rigid | None = None
 
-    def side(self) -> Side:
-        return Side(self.motion, self.offset, self.core, self.contacts, self.cyclic, self.lead, self.stop)
+    @property
+    def first(self) -> int:
+        """Track frame the element starts."""
+        return self.offset + self.lead
 
+    @property
+    def end(self) -> int:
+        """One past its last track frame."""
+        return self.offset + self.stop
 
-def expand_repeats(elements: Sequence[Element]) -> list[tuple[Element, int]]:
-    """Whole-body elements in time order, a repeated non-cyclic one as its repetitions."""
-    out = []
-    for e in sorted(elements, key=lambda e: (e.start, e.id)):
-        n = max(1, int(e.repeat))
-        if e.clip.cyclic or n == 1:
-            out.append((e, 0))
-            continue
-        step = (e.end - e.start) / n
-        for k in range(n):
-            sub = replace(e, start=e.start + k * step, end=e.start + (k + 1) * step, repeat=1,
-                          method=e.method if k == 0 else "connection", prev=e.prev if k == 0 else e.id)
-            out.append((sub, k))
-    return out
+    @property
+    def joined_by(self) -> str:
+        """The method of the join into it: the element's own, a connection for a later repetition."""
+        return "connection" if self.repetition > 0 else self.element.method
+
+    def moved(self, frames: int) -> "Placed":
+        """The element delayed by ``frames`` (all of it, start, core and end)."""
+        return replace(self, offset=self.offset + frames)
+
+    def at_phase(self, offset: int) -> "Placed":
+        """A looped element entered at another phase: same start and end on the track, other offset."""
+        return replace(self, offset=offset, lead=self.first - offset, stop=self.end - offset)
 
 
 def mirrored_if_needed(clip_part: str | None, want: str | None, motion: Motion) -> Motion:

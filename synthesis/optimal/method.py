@@ -11,7 +11,6 @@ from text2anim.core.contacts import FootContacts
 from .blend_ranges import Bounds
 from .method_select import Choice, cyclic_core_begin, cyclic_core_end, select, steps
 from ..join.placed import Placed
-from ..join.laying import Incoming
 
 
 def _supported(choice: Choice, contacts: FootContacts, latest: int) -> Choice:
@@ -29,7 +28,7 @@ def _supported(choice: Choice, contacts: FootContacts, latest: int) -> Choice:
     return replace(choice, p0=replace(p0, begin=int(f[0])))
 
 
-def geometry(tr_contacts: FootContacts, prev: Placed, inc: Incoming, floor: int, min_len: int):
+def geometry(tr_contacts: FootContacts, prev: Placed, inc: Placed, floor: int, min_len: int):
     a_steps = [s for s in steps(tr_contacts) if s.begin >= prev.offset]
     c0 = (prev.offset + prev.core[0], prev.offset + prev.core[1])
     a_end = prev.offset + prev.stop

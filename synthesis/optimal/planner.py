@@ -14,7 +14,6 @@ from .blend_search import Weights, best
 from .method_select import phase_for, steps
 from ..join.placed import Placed
 from ..constraint.switching import foot_points
-from ..join.laying import Incoming
 from .curves import interval_weights
 from .method import geometry
 from .placement import alignment
@@ -29,7 +28,7 @@ SAME_FEET_CM = 1.0
 RUNNERS_UP = 5  # next-best lower-body intervals tried when the best one's join would skate  # cm: an adaptation moving no foot further needs no return step (S3)
 
 
-def plan_join(tr: Motion, prev: Placed, inc: Incoming, fps: float, weights: Weights, floor: int = 0,
+def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weights, floor: int = 0,
               min_blend: float = MIN_BLEND, allow_shift: bool = True) -> Plan | Skip:
     """Method, ranges, search, placement and weights of one join (no frames written).
 

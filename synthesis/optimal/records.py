@@ -12,7 +12,7 @@ from ..join.align import Rigid
 from .blend_ranges import Range
 from .blend_search import Found
 from .method_select import Choice
-from ..join.laying import Incoming
+from ..join.placed import Placed
 
 
 @dataclass(frozen=True)
@@ -38,7 +38,7 @@ class Interval:
 class Plan:
     """What :func:`plan_join` decided for one join."""
 
-    inc: Incoming
+    inc: Placed
     choice: Choice
     intervals: dict
     rigid: Rigid

@@ -12,10 +12,10 @@ from text2anim.core.motion import Motion
 from .blend_ranges import Range
 from .blend_search import Found, Weights, best, evaluate, evaluate_motions
 from .posedist import distance, features, part_joints
-from ..join.laying import Incoming
+from ..join.placed import Placed
 
 
-def _sources(tr: Motion, inc: Incoming, adapted: Motion | None):
+def _sources(tr: Motion, inc: Placed, adapted: Motion | None):
     """Source name → (motion, track frame of its frame 0)."""
     return {"A": (tr, 0), "B": (inc.motion, inc.offset),
             "Bad": (adapted if adapted is not None else inc.motion, inc.offset)}
@@ -24,7 +24,7 @@ def _sources(tr: Motion, inc: Incoming, adapted: Motion | None):
 class Features:
     """Kovar features of the join's sources, joints per part looked up once."""
 
-    def __init__(self, tr: Motion, inc: Incoming, adapted: Motion | None = None):
+    def __init__(self, tr: Motion, inc: Placed, adapted: Motion | None = None):
         self.src = _sources(tr, inc, adapted)
         self.joints = {p: part_joints(tr, p) for p in ("lower", "upper")}
 

@@ -118,7 +118,7 @@ class Timeline:
         if now_f >= ease_from:
             done = self.motion
             self.state.motion = done
-            last.stop = min(last.stop, done.n_frames - last.offset)
+            self.state.placed[-1] = replace(last, stop=min(last.stop, done.n_frames - last.offset))
 
     def append(self, clip: Clip, now: float | None = None, *, speed: float = 1.0,
                duration: float | None = None) -> Element:
