@@ -38,7 +38,8 @@ from .join.commit import commit
 from .join.laid import Laid
 from .join.laying import TrackState, extend, lay_elements
 from .join.placed import Placed
-from .optimal.method_select import cyclic_core_begin, cyclic_core_end, steps
+from .join.gait import steps
+from .optimal.method_select import cyclic_core_begin, cyclic_core_end
 from .optimal.posedist import distance_matrix, features
 from .optimal.weights import linear_weights
 from .result import BlendInterval, JoinReport, Result

@@ -26,7 +26,7 @@ blend never enters a core unless the cores leave no room for
 any phase, so only where the switch falls costs time.
 
 **Transition** of two cyclic motions (walk → run): the key frames of both,
-foot lift and foot land (:func:`synthesis.constraint.switching.swings`); a swing of the
+foot lift and foot land (:func:`synthesis.join.gait.steps`); a swing of the
 same foot is taken in each, both near the scheduled overlap; both swings
 are time-warped onto one of their mean length and blended lift to land.
 ``B`` is aligned through the stance foot at the lift (its root when that
@@ -53,9 +53,10 @@ from text2anim.core.motion import Motion
 from ..join.align import align_through_foot
 from ..join.apply import PROFILE, Join, contacts_at, planted_in_blend
 from ..join.blend import ramp
+from ..join.gait import steps
 from ..join.placed import Placed
 from ..join.timing import KNEE, soft_clip
-from .switching import find_switch, swings
+from .switching import find_switch
 
 CONNECTION_BLEND = 0.5  # s
 HOLD_GAP = 0.1  # s: a connection whose second motion starts later than this after the first ends holds a pose
@@ -176,8 +177,8 @@ def transition(track: Motion, a: Placed, b: Placed, fps: float, floor: int = 0) 
     connection when either is not cyclic or no swing of the same foot exists in both."""
     if not (a.cyclic and b.cyclic):
         return connection(track, a, b, fps, overlap=True, floor=floor)
-    sa = [s for s in swings(a.contacts) if floor <= a.offset + s.lift < track.n_frames]
-    sb = swings(b.contacts)
+    sa = [s for s in steps(a.contacts) if floor <= a.offset + s.begin < track.n_frames]
+    sb = steps(b.contacts)
     pairs = [(x, y) for x in sa for y in sb if x.side == y.side]
     if not pairs:
         return connection(track, a, b, fps, overlap=True, floor=floor)
@@ -185,28 +186,28 @@ def transition(track: Motion, a: Placed, b: Placed, fps: float, floor: int = 0) 
 
     def cost(p):
         x, y = p
-        t_a = abs(a.offset + x.lift - s2) / fps
-        t_b = abs(b.offset + y.lift - s2) / fps
+        t_a = abs(a.offset + x.begin - s2) / fps
+        t_b = abs(b.offset + y.begin - s2) / fps
         warp = abs(np.log(x.frames / y.frames))
         return t_a + t_b + 0.5 * warp
 
     x, y = min(pairs, key=cost)
     D = max(2, int(round(0.5 * (x.frames + y.frames))))
     stance = "left" if x.side == "right" else "right"
-    t_lift = a.offset + x.lift
-    sup_a = a.contacts.of(stance)[x.lift]
-    sup_b = b.contacts.of(stance)[y.lift]
-    rigid = align_through_foot(track, t_lift, b.motion, y.lift, stance if (sup_a and sup_b) else None)
+    t_lift = a.offset + x.begin
+    sup_a = a.contacts.of(stance)[x.begin]
+    sup_b = b.contacts.of(stance)[y.begin]
+    rigid = align_through_foot(track, t_lift, b.motion, y.begin, stance if (sup_a and sup_b) else None)
     u = np.arange(D) / D  # the time warp: both swings run from lift (u = 0) towards landing (u = 1)
     src_a = t_lift + u * x.frames
-    src_b = y.lift + u * y.frames
+    src_b = y.begin + u * y.frames
     w0, w1 = t_lift, t_lift + D
-    offset = w1 - y.land  # B continues from its landing frame
+    offset = w1 - y.end  # B continues from its landing frame
     w = ramp(D, PROFILE)
     ca = contacts_at(a.contacts, src_a - a.offset)
     cb = contacts_at(b.contacts, src_b)
-    info = {"key_frames_first_s": ((a.offset + x.lift) / fps, (a.offset + x.land) / fps),
-            "key_frames_second_s": (y.lift / fps, y.land / fps), "swing_foot": x.side,
+    info = {"key_frames_first_s": ((a.offset + x.begin) / fps, (a.offset + x.end) / fps),
+            "key_frames_second_s": (y.begin / fps, y.end / fps), "swing_foot": x.side,
             "phase_s": (offset - b.offset) / fps, "warp_first": D / x.frames, "warp_second": D / y.frames}
     return Join("transition", rigid, offset, (w0, w1), src_a, src_b, w, planted_in_blend(ca, cb, w), ca,
                 (("whole", "motion-motion", w0, w1),), (), info)

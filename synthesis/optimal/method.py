@@ -9,7 +9,8 @@ import numpy as np
 from text2anim.core.contacts import FootContacts
 
 from .blend_ranges import Bounds
-from .method_select import Choice, cyclic_core_begin, cyclic_core_end, select, steps
+from ..join.gait import steps
+from .method_select import Choice, cyclic_core_begin, cyclic_core_end, select
 from ..join.placed import Placed
 
 

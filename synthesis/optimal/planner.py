@@ -11,9 +11,9 @@ from .adaptation import adapt
 from ..join.align import align_through_foot
 from .blend_ranges import after, ranges
 from .blend_search import Weights, best
-from .method_select import phase_for, steps
+from .method_select import phase_for
 from ..join.placed import Placed
-from ..constraint.switching import foot_points
+from ..join.gait import foot_points, steps
 from .curves import interval_weights
 from .method import geometry
 from .placement import alignment

@@ -36,7 +36,8 @@ import numpy as np
 from ..assemble import finish_whole
 from .blend_search import preset
 from ..result import Result
-from .method_select import cyclic_core_end, steps
+from ..join.gait import steps
+from .method_select import cyclic_core_end
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.methods import Method
 from text2anim.core.motion import Motion

@@ -20,7 +20,7 @@ from text2anim.synthesis.constraint.engine import synthesize
 from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
 from text2anim.synthesis.optimal import synthesize_optimal
 from text2anim.synthesis.tracks import Clip, Element, Track
-from text2anim.synthesis.constraint.switching import foot_points
+from text2anim.synthesis.join.gait import foot_points
 from text2anim.synthesis.join.cycles import find_cycle
 
 from shared_data import cmu, requires_cmu

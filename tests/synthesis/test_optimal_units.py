@@ -13,7 +13,8 @@ import pytest
 from text2anim.core import read_bvh
 from text2anim.synthesis.optimal.blend_ranges import Bounds, after, ranges
 from text2anim.synthesis.optimal.blend_search import SMOOTH_FIRST, TIME_FIRST, evaluate, evaluate_motions, preset, search
-from text2anim.synthesis.optimal.method_select import Choice, Step, cyclic_core_begin, cyclic_core_end, select
+from text2anim.synthesis.join.gait import Step
+from text2anim.synthesis.optimal.method_select import Choice, cyclic_core_begin, cyclic_core_end, select
 from text2anim.synthesis.optimal.posedist import distance, features, part_joints
 from text2anim.synthesis.optimal.weights import (MAX_SLOPE, hermite_weights, linear_weights, monotone_slopes, plan_partial, shape_of,
                                slope)
