@@ -15,7 +15,7 @@ from .method_select import phase_for
 from ..join.placed import Placed
 from ..join.gait import foot_points, steps
 from .curves import interval_weights
-from .method import geometry
+from .geometry import geometry
 from .placement import alignment
 from .records import Plan, Skip
 from .search import Features, grid, runners_up, search

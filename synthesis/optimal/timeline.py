@@ -89,7 +89,7 @@ class Timeline:
 
     @property
     def joins(self) -> list:
-        """The :class:`~synthesis.tracks.JoinReport` of every join so far (without metrics)."""
+        """The :class:`~synthesis.result.JoinReport` of every join so far (without metrics)."""
         return [j.report for j in self.state.joins]
 
     def result(self) -> Result:
