@@ -97,9 +97,11 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
         key = p.element.id
         f = core_fidelity(tr, p)
         c0, c1 = p.offset + p.core[0], p.offset + p.core[1]
+        rigid = p.rigid
+        assert rigid is not None  # every element on a laid track is placed
         el = elements.get(key) or ElementReport(
             track.actor, start=(p.offset + p.lead) / fps, core=(c0 / fps, c1 / fps),
-            placement=Placement(p.rigid.yaw, p.rigid.offset[0], p.rigid.offset[1]))
+            placement=Placement(rigid.yaw, rigid.offset[0], rigid.offset[1]))
         assert el.core is not None
         el = replace(el, end=(p.offset + p.stop) / fps, core=(el.core[0], c1 / fps),
                      core_fidelity_cm=max(el.core_fidelity_cm or 0.0, f))
@@ -132,7 +134,8 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
             m["max_slide_cm_s"] = max(m["max_slide_cm_s"], m2["max_slide_cm_s"])
         reg = window_metrics(tr, region[0], region[1], contacts, ftracks, skating)
         m["region"] = {k: reg[k] for k in ("frames", "skating_ratio", "max_slide_cm_s", "foot_skate")}
-        srcs = [laid.placed[i] for i in (lj.first, lj.second) if i is not None] or [by_id.get(rep.first)]
+        srcs: list[Placed | None] = [laid.placed[i] for i in (lj.first, lj.second) if i is not None]
+        srcs = srcs or [by_id.get(rep.first)]
         src_m = [p.motion for p in srcs if p is not None]
         if rep.method == "composition":
             src_m = [c.donor for c in comps if c.element.id == rep.second] + src_m
