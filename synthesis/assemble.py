@@ -19,18 +19,19 @@ from dataclasses import replace
 
 import numpy as np
 
-from .join.composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
-from .join.measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
-from .join.placed import Placed, mirrored_if_needed, on_skeleton
-from .played import placed_paths
-from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
 from text2anim.core.metrics import jerk, skating_ratio
 from text2anim.core.motion import Motion
+
 from .finish import finish
+from .join.composition import compose
 from .join.laid import Laid, LaidJoin, LaidPart
-from .tracks import Element, Track
+from .join.measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
+from .join.placed import Placed, mirrored_if_needed, on_skeleton
 from .join.timing import ease_hold, prepare
+from .played import placed_paths
+from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
+from .tracks import Element, Track
 
 
 def shifted(parts: list[Element], delays: list) -> list[Element]:

@@ -35,10 +35,10 @@ from .assemble import assemble
 from .join.align import match, root_headings
 from .join.apply import Join, apply_join
 from .join.commit import commit
+from .join.gait import steps
 from .join.laid import Laid
 from .join.laying import TrackState, extend, lay_elements
 from .join.placed import Placed
-from .join.gait import steps
 from .optimal.method_select import cyclic_core_begin, cyclic_core_end
 from .optimal.posedist import distance_matrix, features
 from .optimal.weights import linear_weights

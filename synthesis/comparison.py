@@ -22,8 +22,9 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .registry import METHODS, check_method, synthesize_with
 from text2anim.core.metrics import foot_skate, skating_ratio
+
+from .registry import METHODS, check_method, synthesize_with
 
 FIELDS = ("foot_skate_cm_s", "slide_cm", "skating_ratio", "join_skating_ratio", "jerk_max", "jerk_rms",
           "source_jerk_max", "core_fidelity_cm", "duration_s")

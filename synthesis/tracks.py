@@ -10,9 +10,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from text2anim.core.motion import Motion
-
 from text2anim.core.methods import ELEMENT_METHODS, Method
+from text2anim.core.motion import Motion
 
 __all__ = ["Clip", "Element", "Track"]
 

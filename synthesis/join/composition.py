@@ -56,10 +56,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .align import headings, to_heading_frame
-from .blend import ease, ratio, sample, slerp
 from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
+
+from .align import headings, to_heading_frame
+from .blend import ease, ratio, sample, slerp
 
 ALPHA, BETA, GAMMA = 1.0, 0.2, 0.5
 SEARCH = 0.5  # s

@@ -14,12 +14,13 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d
 from scipy.spatial.transform import Rotation
 
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.metrics import quality
+from text2anim.core.motion import Motion, unroll_quaternions
+
 from .align import Rigid, headings, yaw_rotation
 from .blend import ease, slerp
 from .loopfeet import plant_cycle
-from text2anim.core.metrics import quality
-from text2anim.core.contacts import detect_contacts
-from text2anim.core.motion import Motion, unroll_quaternions
 
 
 def _extrapolated(motion: Motion) -> tuple[np.ndarray, np.ndarray, float]:

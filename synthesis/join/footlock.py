@@ -29,12 +29,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from .blend import ease, ratio, slerp
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import runs
 from text2anim.core.motion import Motion
 
+from .blend import ease, ratio, slerp
 from .legsolve import REACH, LegGoal, leg_chain, quaternions, solve_goals, solve_leg
 
 __all__ = ["Lock", "FootLocks", "planted_targets", "lock_feet", "lift_swings", "plan_locks", "REACH", "solve_leg"]

@@ -11,10 +11,10 @@ from dataclasses import dataclass, field
 
 from text2anim.core.motion import Motion
 
+from ..result import JoinReport
+from ..tracks import Element
 from .composition import Composed
 from .placed import Placed
-from ..tracks import Element
-from ..result import JoinReport
 
 #: A span of track frames ``(begin, end)``, end excluded.
 Frames = tuple[int, int]

@@ -17,10 +17,10 @@ from text2anim.core.contacts import FootContacts, detect_contacts
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
+from ..tracks import Element, Track
 from .align import place_at
 from .laid import Laid, LaidJoin
 from .placed import Placed, on_skeleton
-from ..tracks import Element, Track
 from .timing import KNEE, ease_hold, ease_lead, hold, prepare, repetitions
 
 

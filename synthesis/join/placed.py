@@ -19,8 +19,8 @@ from text2anim.core.contacts import FootContacts
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
-from .align import Rigid
 from ..tracks import Element
+from .align import Rigid
 from .timing import Prepared
 
 

@@ -26,10 +26,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from text2anim.core.motion import Motion
+
+from ..tracks import Element
 from .blend import sample
 from .cycles import loop, make_cyclic
-from text2anim.core.motion import Motion
-from ..tracks import Element
 
 
 def at_speed(motion: Motion, speed: float, fps: float) -> Motion:

@@ -70,9 +70,9 @@ from collections.abc import Sequence
 
 from ..actors import spread_actors
 from ..assemble import assemble
-from .blend_search import preset
-from ..tracks import Track
 from ..result import Result
+from ..tracks import Track
+from .blend_search import preset
 from .join import join_next, lay_track, report_of
 from .placement import SETTLE, settle
 from .planner import CORE_TOLERANCE, MAX_SHIFT, MIN_BLEND, MIN_ROOM, RUNNERS_UP, SAME_FEET_CM, plan_join

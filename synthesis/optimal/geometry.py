@@ -8,10 +8,10 @@ import numpy as np
 
 from text2anim.core.contacts import FootContacts
 
-from .blend_ranges import Bounds
 from ..join.gait import steps
-from .method_select import Choice, cyclic_core_begin, cyclic_core_end, select
 from ..join.placed import Placed
+from .blend_ranges import Bounds
+from .method_select import Choice, cyclic_core_begin, cyclic_core_end, select
 
 
 def _supported(choice: Choice, contacts: FootContacts, latest: int) -> Choice:

@@ -7,13 +7,13 @@ from dataclasses import replace
 
 from text2anim.core.metrics import root_pop, skating_ratio
 
-from .blend_search import Weights
 from ..join.commit import commit, lock_report, skip
 from ..join.laid import Laid
 from ..join.laying import TrackState, extend, lay_elements
 from ..join.placed import Placed
 from ..result import BlendInterval, JoinReport
 from ..tracks import Element, Track
+from .blend_search import Weights
 from .planner import MIN_BLEND, plan_join, public_info
 from .records import Plan, Skip
 from .repair import carry_out

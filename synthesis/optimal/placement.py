@@ -11,10 +11,10 @@ from text2anim.core.contacts import FootContacts
 from text2anim.core.motion import Motion
 
 from ..join.align import Rigid, headings, to_heading_frame
-from .blend_search import Found
-from .method_select import Choice, support_by_gap
 from ..join.gait import foot_points
 from ..join.placed import Placed
+from .blend_search import Found
+from .method_select import Choice, support_by_gap
 from .records import Plan
 
 

@@ -7,15 +7,15 @@ import numpy as np
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 
-from .adaptation import adapt
 from ..join.align import align_through_foot
+from ..join.gait import foot_points, steps
+from ..join.placed import Placed
+from .adaptation import adapt
 from .blend_ranges import after, ranges
 from .blend_search import Weights, best
-from .method_select import phase_for
-from ..join.placed import Placed
-from ..join.gait import foot_points, steps
 from .curves import interval_weights
 from .geometry import geometry
+from .method_select import phase_for
 from .placement import alignment
 from .records import Plan, Skip
 from .search import Features, grid, runners_up, search

@@ -9,10 +9,10 @@ import numpy as np
 from text2anim.core.motion import Motion
 
 from ..join.align import Rigid
+from ..join.placed import Placed
 from .blend_ranges import Range
 from .blend_search import Found
 from .method_select import Choice
-from ..join.placed import Placed
 
 
 @dataclass(frozen=True)

@@ -12,11 +12,11 @@ from text2anim.core.metrics import SOURCE_FACTOR, root_pop, toe_joints, toe_skat
 from text2anim.core.motion import Motion
 
 from ..join.align import align_through_foot
+from ..join.apply import lift_join
 from ..join.blend import ease
 from ..join.measure import skating_exceeds
-from ..join.apply import lift_join
-from .records import Plan
 from .placement import settle
+from .records import Plan
 from .render import Parts, blended, finish, prepare
 
 

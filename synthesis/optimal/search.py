@@ -9,10 +9,10 @@ import numpy as np
 
 from text2anim.core.motion import Motion
 
+from ..join.placed import Placed
 from .blend_ranges import Range
 from .blend_search import Found, Weights, best, evaluate, evaluate_motions
 from .posedist import distance, features, part_joints
-from ..join.placed import Placed
 
 
 def _sources(tr: Motion, inc: Placed, adapted: Motion | None):

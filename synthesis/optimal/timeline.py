@@ -33,18 +33,19 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..assemble import finish_whole
-from .blend_search import preset
-from ..result import Result
-from ..join.gait import steps
-from .method_select import cyclic_core_end
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.methods import Method
 from text2anim.core.motion import Motion
-from ..optimal import MIN_BLEND, Skip, join_next, plan_join
+
+from ..assemble import finish_whole
+from ..join.gait import steps
 from ..join.laying import TrackState, extend, incoming, place_first
-from ..tracks import Clip, Element
 from ..join.timing import KNEE
+from ..optimal import MIN_BLEND, Skip, join_next, plan_join
+from ..result import Result
+from ..tracks import Clip, Element
+from .blend_search import preset
+from .method_select import cyclic_core_end
 
 #: s between the last core's end (or now) and the new core's start, where a new motion is first placed.
 GAP = 0.5
