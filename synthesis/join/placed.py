@@ -24,7 +24,7 @@ from .align import Rigid
 from .timing import Prepared
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Placed:
     """An element (or one repetition of it) on its track.
 
