@@ -35,11 +35,11 @@ PLANTED_WEIGHT = 0.25
 
 @dataclass(frozen=True)
 class Join:
-    """What a connection or transition decided (all frames are track frames unless said).
+    """What an engine decided about one join (all frames are track frames unless said).
 
     Attributes:
-        kind: ``connection``, ``transition`` (cyclic, time-warped) or ``footstep`` (a transition
-            joined as a connection at the footstep).
+        kind: paper 003's ``connection``, ``transition`` (cyclic, time-warped) or ``footstep`` (a transition
+            joined as a connection at the footstep); optimal blending's §4.1 method; ``pose`` / ``crossfade``.
         rigid: the move that places ``B``.
         offset: the track frame of ``B``'s frame 0.
         window: ``[w0, w1)`` the blend.
@@ -53,6 +53,7 @@ class Join:
         pre: fractional track frames ``A`` shows just before the window, where it eases into
             its held last frame (``None``: the track is kept as it is up to the window).
         warnings: what could not be honoured.
+        info: the engine's notes for the report (switching frames, shift, phase...).
     """
 
     kind: str
