@@ -22,7 +22,7 @@ FALLBACKS = ("strict", "nearest")
 
 if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never imports it
     from text2anim.core.motion import Motion
-    from text2anim.synthesis import plan as splan
+    from text2anim.synthesis import tracks as splan
     from text2anim.scheduler import TimeTable
     from text2anim.synthesis.result import Result
 
@@ -51,7 +51,7 @@ class _Clips:
                 plain = self.get(info)
                 self.cache[key] = replace(plain, name=info.name + MIRRORED, motion=mirror(plain.motion))
             else:
-                from text2anim.synthesis.plan import Clip
+                from text2anim.synthesis.tracks import Clip
 
                 motion = self.db.load(info)
                 if motion.fps != self.fps:
@@ -77,7 +77,7 @@ class _Clips:
 def _repetitions(e, picks: tuple[Pick, ...], clips: _Clips, first_id: int) -> list[splan.Element]:
     """A repeated element as one element per repetition, each its own variant (ids: ``e.id``, then
     ``first_id``, ``first_id + 1``, ...), of equal length, each joined to the one before."""
-    from text2anim.synthesis.plan import Element
+    from text2anim.synthesis.tracks import Element
 
     step = (e.end - e.start) / len(picks)
     out: list[splan.Element] = []
@@ -97,7 +97,7 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
     and a repeated one in ``planned.repeats`` plays as one element per repetition (ids
     above the table's; a later element joined to it is joined to its last repetition).
     """
-    from text2anim.synthesis.plan import Element, Track
+    from text2anim.synthesis.tracks import Element, Track
 
     clips = _Clips(db, fps)
     table = planned.table
@@ -374,7 +374,7 @@ def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: f
         lock_feet, sway: the synthesis options of paper 003 (foot locking, sway transfer).
         blend: how consecutive motions are joined: ``optimal`` (paper 000, the default),
             ``constraint`` (paper 003), ``pose`` or ``crossfade`` (the common baselines);
-            see :mod:`synthesis.engines`.
+            see :mod:`synthesis.registry`.
         smoothness: ``W`` of paper 000 §4.3 for ``optimal``: 0 joins as fast as it can, 1 as
             smoothly as it can.
         max_seconds: the output budget (seconds of animation summed over the actors; see
@@ -386,7 +386,7 @@ def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: f
             more than the limits allow (``ValueError``), checked before any work starts; and
             the stages' own errors (``ValueError`` too) for a text they cannot serve.
     """
-    from text2anim.synthesis.engines import check_method, synthesize_with
+    from text2anim.synthesis.registry import check_method, synthesize_with
 
     fps, max_seconds, smoothness = check_options(text, db, fps, max_seconds, smoothness, fallback,
                                                  skip_unknown=skip_unknown, lock_feet=lock_feet, sway=sway)

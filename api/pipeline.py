@@ -2,7 +2,7 @@
 
 Each stage keeps to its own records; this module turns one stage's records
 into the next one's (``ClipInfo`` → ``ClipTiming`` for the scheduler, and
-later ``ClipInfo`` + frames → ``synthesis.plan.Clip``).
+later ``ClipInfo`` + frames → ``synthesis.tracks.Clip``).
 """
 from __future__ import annotations
 

@@ -5,7 +5,7 @@ punches, throws, turns, a pick-up, a dance, a laugh, a wave) are imported into
 a temporary SQLite motion database (:class:`motiondb.MotionDB`, as a user's
 ``text2anim db import`` would), read back and resampled to 30 fps (as the
 pipeline does), and :data:`PAIRS` (25 joins + a composition) are each
-synthesised with every method of :mod:`synthesis.engines`. The time table of a
+synthesised with every method of :mod:`synthesis.registry`. The time table of a
 pair follows the scheduler's rules (``scheduler.lengths``): a *transition*
 starts the second clip at the first clip's last step after its core and ends
 the first when that step ends; a *connection* starts it when the first ends.
@@ -44,9 +44,9 @@ sys.path.insert(0, str(REPO / "tests"))  # cmu_pairs: the CMU pairs the join tes
 
 from text2anim.motiondb import ClipRecord, MotionDB  # noqa: E402
 from text2anim.synthesis.optimal import join as optimal  # noqa: E402  (join_next looks plan_join up there)
-from text2anim.synthesis.engines import METHODS, synthesize_with  # noqa: E402
+from text2anim.synthesis.registry import METHODS, synthesize_with  # noqa: E402
 from text2anim.core.metrics import foot_skate  # noqa: E402
-from text2anim.synthesis.plan import Clip, Element, Track  # noqa: E402
+from text2anim.synthesis.tracks import Clip, Element, Track  # noqa: E402
 
 from cmu_pairs import cut_take, pair_track, read_back  # noqa: E402
 

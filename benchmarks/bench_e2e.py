@@ -47,7 +47,7 @@ def main() -> int:
     os.environ["TEXT2ANIM_DB"] = url
 
     from text2anim.motiondb import MotionDB
-    from text2anim.synthesis.engines import DEFAULT, synthesize_with
+    from text2anim.synthesis.registry import DEFAULT, synthesize_with
     from text2anim.animation import animate, build_tracks
     from text2anim.pipeline import plan_text
 

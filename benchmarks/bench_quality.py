@@ -165,7 +165,7 @@ class Clock:
 def run_pairs(clips: dict, pairs: list, methods, smoothness: float) -> list[dict]:
     from text2anim.core.metrics import against_sources, quality
     from text2anim.quality import introduced_root_pop, join_quality
-    from text2anim.synthesis.engines import synthesize_with
+    from text2anim.synthesis.registry import synthesize_with
 
     rows, src_q = [], {}
     for first, second in pairs:
@@ -360,7 +360,7 @@ def main(argv=None) -> int:
     if not CMU.is_dir():
         print(f"no CMU clips at {CMU}", file=sys.stderr)
         return 2
-    from text2anim.synthesis.engines import METHODS as KNOWN
+    from text2anim.synthesis.registry import METHODS as KNOWN
 
     if bad := [m for m in methods if m not in KNOWN]:
         print(f"unknown method(s) {','.join(bad)}; choose from {','.join(KNOWN)}", file=sys.stderr)

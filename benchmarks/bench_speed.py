@@ -99,7 +99,7 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
     from text2anim.motiondb import MotionDB
     from text2anim.pipeline import plan_text
     from text2anim.synthesis.optimal import join as optimal  # join_next looks plan_join up there
-    from text2anim.synthesis.engines import synthesize_with
+    from text2anim.synthesis.registry import synthesize_with
     from text2anim.output.bvh_write import format_bvh
 
     url = f"sqlite:///{tmp}/motions.sqlite"

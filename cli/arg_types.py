@@ -82,8 +82,8 @@ def frame_count(text: str) -> int:
 
 
 def method_list(text: str) -> list[str]:
-    """Comma-separated joining methods of :data:`text2anim.synthesis.engines.METHODS`, in order, each once."""
-    from text2anim.synthesis.engines import METHODS
+    """Comma-separated joining methods of :data:`text2anim.synthesis.registry.METHODS`, in order, each once."""
+    from text2anim.synthesis.registry import METHODS
 
     names = [m.strip() for m in text.split(",") if m.strip()]
     bad = [m for m in names if m not in METHODS]

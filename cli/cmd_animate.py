@@ -40,7 +40,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def add_blend_arguments(p: argparse.ArgumentParser) -> None:
     """``--blend`` and ``--smoothness`` (shared with ``compare``)."""
-    from text2anim.synthesis.engines import METHODS
+    from text2anim.synthesis.registry import METHODS
 
     p.add_argument("--blend", choices=METHODS, default="optimal",
                    help="how consecutive motions are joined: optimal (paper 000, default), constraint "

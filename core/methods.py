@@ -11,5 +11,5 @@ from typing import Literal, get_args
 
 Method = Literal["initial", "connection", "transition", "composition"]
 #: Every :data:`Method`, in this order. (``METHODS`` is another vocabulary: the joining methods,
-#: :data:`text2anim.synthesis.engines.METHODS`.)
+#: :data:`text2anim.synthesis.registry.METHODS`.)
 ELEMENT_METHODS: tuple[Method, ...] = get_args(Method)

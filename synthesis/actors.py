@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 
-from .plan import Track
+from .tracks import Track
 
 ACTOR_SPACING = 1.5  # m between actors placed by default
 

@@ -1,11 +1,11 @@
 """What every whole-body joiner shares after laying its clips: compositions, measurement, the Result.
 
-Every joiner (paper 003's :mod:`synthesis.engine`, the optimal engine
+Every joiner (paper 003's :mod:`synthesis.constraint.engine`, the optimal engine
 :mod:`synthesis.optimal`, the baselines :mod:`synthesis.baselines`) lays the
 whole-body elements of a track its own way; then :func:`assemble`:
 
 1. the partial elements are composed onto the track
-   (:func:`synthesis.composition.compose`, sway transfer and all);
+   (:func:`synthesis.join.composition.compose`, sway transfer and all);
 2. every join is measured with the same figures (``timetable.md`` §3:
    skating ratio and foot skate in the blend and its region, largest and RMS
    jerk against the source clips', core fidelity per element);
@@ -19,18 +19,19 @@ from dataclasses import replace
 
 import numpy as np
 
-from .composition import compose
 from text2anim.core.contacts import detect_contacts, foot_tracks
-from .measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
-from .placed import Placed, mirrored_if_needed, on_skeleton
-from .played import placed_paths
-from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
 from text2anim.core.metrics import jerk, skating_ratio
 from text2anim.core.motion import Motion
+
 from .finish import finish
-from .laid import Laid, LaidJoin, LaidPart
-from .plan import Element, Track
-from .timing import ease_hold, prepare
+from .join.composition import compose
+from .join.laid import Laid, LaidJoin, LaidPart
+from .join.measure import core_fidelity, max_slide, part_fidelity, skating_frames, window_metrics
+from .join.placed import Placed, mirrored_if_needed, on_skeleton
+from .join.timing import ease_hold, prepare
+from .played import placed_paths
+from .result import BlendInterval, ElementReport, JoinReport, Placement, Result
+from .tracks import Element, Track
 
 
 def shifted(parts: list[Element], delays: list) -> list[Element]:
@@ -56,7 +57,7 @@ def compose_parts(laid: Laid, parts: list[Element], whole: list[Element], fps: f
     tr = laid.motion
     comps = []
     for e in parts:
-        prep = prepare(e, fps, repeats_as_one=False)
+        prep = prepare(e, fps)
         laid.warnings.extend(prep.warnings)
         prep, _, note = on_skeleton(prep, tr.skeleton, e)
         if note:
@@ -97,9 +98,11 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
         key = p.element.id
         f = core_fidelity(tr, p)
         c0, c1 = p.offset + p.core[0], p.offset + p.core[1]
+        rigid = p.rigid
+        assert rigid is not None  # every element on a laid track is placed
         el = elements.get(key) or ElementReport(
             track.actor, start=(p.offset + p.lead) / fps, core=(c0 / fps, c1 / fps),
-            placement=Placement(p.rigid.yaw, p.rigid.offset[0], p.rigid.offset[1]))
+            placement=Placement(rigid.yaw, rigid.offset[0], rigid.offset[1]))
         assert el.core is not None
         el = replace(el, end=(p.offset + p.stop) / fps, core=(el.core[0], c1 / fps),
                      core_fidelity_cm=max(el.core_fidelity_cm or 0.0, f))
@@ -118,7 +121,7 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
     by_id = {p.element.id: p for p in laid.placed}
     reports = []
     for lj in laid.joins:
-        rep, first, second = lj.report, lj.first, lj.second
+        rep = lj.report
         if lj.window is None or lj.region is None:
             reports.append(rep)
             continue
@@ -132,7 +135,8 @@ def measure(track: Track, laid: Laid, comps: list[LaidPart], fps: float
             m["max_slide_cm_s"] = max(m["max_slide_cm_s"], m2["max_slide_cm_s"])
         reg = window_metrics(tr, region[0], region[1], contacts, ftracks, skating)
         m["region"] = {k: reg[k] for k in ("frames", "skating_ratio", "max_slide_cm_s", "foot_skate")}
-        srcs = [first, second] if first is not None else [by_id.get(rep.first), None]
+        srcs: list[Placed | None] = [laid.placed[i] for i in (lj.first, lj.second) if i is not None]
+        srcs = srcs or [by_id.get(rep.first)]
         src_m = [p.motion for p in srcs if p is not None]
         if rep.method == "composition":
             src_m = [c.donor for c in comps if c.element.id == rep.second] + src_m
@@ -169,18 +173,18 @@ def join_side(clip, side: str, whole: bool = False) -> Motion:
 
 
 def finish_joins(laid: Laid) -> None:
-    """Run the join post-pass (:mod:`synthesis.joinpass`) on ``laid.motion`` in place; each join's
+    """Run the join post-pass (:mod:`synthesis.join.joinpass`) on ``laid.motion`` in place; each join's
     report gets what the pass did (``post``). Where the pass gave a join more time (a region retimed
     over more frames), the next element and every later one move later by as much: their placement,
     the later joins' frames, and ``laid.delays`` (the partial elements laid on them follow)."""
-    from .joinpass import Region, finish_track, warp_frames
+    from .join.joinpass import Region, finish_track, warp_frames
 
     fps = laid.motion.fps  # the post-pass retimes frames, never the rate
     idx, regions = [], []
     for k, lj in enumerate(laid.joins):
-        rep, first, second = lj.report, lj.first, lj.second
-        if lj.window is None or lj.region is None or first is None or second is None:
+        if lj.window is None or lj.region is None or lj.first is None or lj.second is None:
             continue
+        rep, first, second = lj.report, laid.placed[lj.first], laid.placed[lj.second]
         (w0, w1), r1 = lj.window, lj.region[1]
         keep = (first.offset + first.core[1], second.offset + second.core[0])  # cores are kept (§4.2.5)
         idx.append(k)
@@ -193,8 +197,8 @@ def finish_joins(laid: Laid) -> None:
     laid.motion, infos, warps = finish_track(laid.motion, regions)
     for k, info, (lo, hi, n_new, seam) in zip(idx, infos, warps):
         lj = laid.joins[k]
-        first, second = lj.first, lj.second
-        assert first is not None and second is not None  # only carried-out joins of two placed elements
+        assert lj.first is not None and lj.second is not None  # only carried-out joins of two placed elements
+        first = laid.placed[lj.first]
         delta = n_new - (hi - lo)
         laid.joins[k] = replace(lj, report=replace(lj.report, metrics={**lj.report.metrics, "post": info}))
         if delta <= 0:
@@ -209,11 +213,10 @@ def finish_joins(laid: Laid) -> None:
             return lo + int(np.searchsorted(src, f - lo))
 
         if first.cyclic:  # a loop's steps slowed for braking belong to the join, not to its core
-            first.core = (first.core[0], max(first.core[0], min(first.core[1], lo - first.offset)))
-        later = laid.placed[laid.placed.index(second):]
-        for p in later:
-            p.offset += delta
-        laid.delays.extend((p.element.id, delta / fps) for p in later if p.repetition == 0)
+            laid.placed[lj.first] = replace(first, core=(first.core[0],
+                                                         max(first.core[0], min(first.core[1], lo - first.offset))))
+        laid.placed[lj.second:] = [p.moved(delta) for p in laid.placed[lj.second:]]
+        laid.delays.extend((p.element.id, delta / fps) for p in laid.placed[lj.second:] if p.repetition == 0)
         for j in range(k, len(laid.joins)):
             lj = laid.joins[j]
             r = lj.report
@@ -236,8 +239,8 @@ def _moved_span(span, moved):
 def same_length(motions: dict) -> dict:
     """Every actor's motion made as long as the longest: a join the post-pass gave more time lengthens its
     actor's track, and the others play their last 2 s (at least 4x the difference) that much slower
-    (:func:`synthesis.joinpass.retime`) rather than holding a frozen pose; a track too short for that is held."""
-    from .joinpass import retime
+    (:func:`synthesis.join.joinpass.retime`) rather than holding a frozen pose; a track too short for that is held."""
+    from .join.joinpass import retime
 
     n = max((m.n_frames for m in motions.values()), default=0)
     out = {}

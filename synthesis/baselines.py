@@ -6,7 +6,7 @@ no foot locking (their sliding feet are what the comparison shows):
 
 - ``pose`` — the pose-based method ([10] Wang & Bodenheimer, [3] Kovar et al.):
   the pair of frames whose poses are closest (Kovar's distance over all
-  joints, :mod:`synthesis.posedist`) — a frame of the first motion after its
+  joints, :mod:`synthesis.optimal.posedist`) — a frame of the first motion after its
   core, one of the next motion before its core — is found by one vectorised
   distance matrix; the next motion is moved in time so the two frames
   coincide, and in space so its hips stand where the first motion's do,
@@ -23,29 +23,33 @@ Compositions are laid and every join measured as for the other engines
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
-from .align import match, root_headings
-from .assemble import assemble
-from .laid import Laid, LaidJoin
-from .actors import spread_actors
-from .placed import Placed
-from .result import BlendInterval, JoinReport, Result
-from .method_select import cyclic_core_begin, cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
-from .track import Incoming, TrackState, extend, lay_elements
-from .plan import Track
-from .posedist import distance_matrix, features
-from .transition import Join, apply_join
-from .weights import linear_weights
+
+from .actors import spread_actors
+from .assemble import assemble
+from .join.align import match, root_headings
+from .join.apply import Join, apply_join
+from .join.commit import commit
+from .join.gait import steps
+from .join.laid import Laid
+from .join.laying import TrackState, extend, lay_elements
+from .join.placed import Placed
+from .optimal.method_select import cyclic_core_begin, cyclic_core_end
+from .optimal.posedist import distance_matrix, features
+from .optimal.weights import linear_weights
+from .result import BlendInterval, JoinReport, Result
+from .tracks import Track
 
 BLEND = 0.5  # s, both baselines
 BASELINES = ("pose", "crossfade")
 
 
-def _cores(tr: Motion, prev: Placed, inc: Incoming) -> tuple[int, int]:
+def _cores(tr: Motion, prev: Placed, inc: Placed) -> tuple[int, int]:
     """First frame after the first core and first frame of the next core, on the track (looped clips as
     :mod:`synthesis.optimal` counts them)."""
     c0_end = prev.offset + prev.core[1]
@@ -70,7 +74,7 @@ def closest_pair(tr: Motion, a_range: tuple[int, int], b: Motion, b_range: tuple
     return int(ia[i]), int(jb[j]), float(D[i, j])
 
 
-def _join(state: TrackState, inc: Incoming, fps: float, method: str, blend_s: float) -> None:
+def _join(state: TrackState, inc: Placed, fps: float, method: str, blend_s: float) -> None:
     prev = state.placed[-1]
     n = max(2, int(round(blend_s * fps)))
     half = n // 2
@@ -104,22 +108,11 @@ def _join(state: TrackState, inc: Incoming, fps: float, method: str, blend_s: fl
     join = Join(method, rigid, offset, (w0, w1), frames.astype(np.float64), (frames - offset).astype(np.float64),
                 w, {}, {})
     out, _ = apply_join(tr, placed, inc.contacts, join, lock=False)
-    state.motion = out
-    state.floor = w1
-    moved = offset - inc.offset
-    e = inc.element
-    p = Placed(e, placed, offset, inc.core, inc.contacts, inc.cyclic, rigid, inc.rep, inc.lead,
-               int(np.clip(inc.end - offset, 1, inc.motion.n_frames)) if inc.cyclic else inc.stop)
-    if prev.cyclic:
-        prev.core = (prev.core[0], min(prev.core[1], w0 - prev.offset))
-    if inc.cyclic:
-        p.core = (max(p.core[0], w1 - offset), p.core[1])
-    if moved:
-        state.delays.append((e.id, moved / fps))
-    state.placed.append(p)
-    rep = JoinReport(prev.element.id, e.id, "connection" if inc.rep > 0 else e.method, method,
+    stop = int(np.clip(inc.end - offset, 1, inc.motion.n_frames)) if inc.cyclic else inc.stop
+    rep = JoinReport(prev.element.id, inc.element.id, inc.joined_by, method,
                      (BlendInterval("whole", "motion-motion", w0 / fps, (w1 - 1) / fps),), None, info, ())
-    state.joins.append(LaidJoin(rep, (w0, w1), (w0, w1), prev, p))
+    p = replace(inc, motion=placed, offset=offset, stop=stop, rigid=rigid)
+    commit(state, p, out, rep, (w0, w1), (w0, w1), w0, w1, (offset - inc.offset) / fps)
 
 
 def lay_track(track: Track, whole, fps: float, method: str, blend_s: float = BLEND) -> Laid:

@@ -1,6 +1,6 @@
 """The same tracks joined by several methods, and the figures of ``timetable.md`` §3 side by side.
 
-:func:`compare` runs :func:`synthesis.engines.synthesize_with` once per
+:func:`compare` runs :func:`synthesis.registry.synthesize_with` once per
 method; :func:`figures` reduces a :class:`~synthesis.result.Result` to one row:
 
 - ``foot_skate_cm_s``: mean horizontal speed of the feet while in contact,
@@ -22,8 +22,9 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .engines import METHODS, check_method, synthesize_with
 from text2anim.core.metrics import foot_skate, skating_ratio
+
+from .registry import METHODS, check_method, synthesize_with
 
 FIELDS = ("foot_skate_cm_s", "slide_cm", "skating_ratio", "join_skating_ratio", "jerk_max", "jerk_rms",
           "source_jerk_max", "core_fidelity_cm", "duration_s")

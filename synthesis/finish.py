@@ -17,8 +17,8 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from text2anim.core.motion import Motion
 from text2anim.core.clearance import lift_swings
+from text2anim.core.motion import Motion
 
 from .alive import keep_alive
 

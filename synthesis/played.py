@@ -1,7 +1,7 @@
 """Where a joined motion plays its source clips as they are: the hips' path of every element as placed.
 
 A join changes some frames and plays the rest of its two clips verbatim, only turned and moved
-(:class:`~synthesis.placed.Placed`: the prepared clip moved by its ``rigid``). The figures of the
+(:class:`~synthesis.join.placed.Placed`: the prepared clip moved by its ``rigid``). The figures of the
 frames a method plays verbatim are its sources', not its own: a kick's 9 m/s² inside the kick's core
 is the same in every method's output. :func:`placed_paths` keeps, per whole-body element, the hips'
 horizontal path as placed on the output's frames, so a reading can tell the accelerations a method
@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .placed import Placed
+from .join.placed import Placed
 
 
 def placed_paths(placed: Sequence[Placed], n_frames: int) -> np.ndarray:

@@ -1,6 +1,6 @@
 """What every engine returns: one motion per actor, a report per join and per element (:class:`Result`).
 
-The output half of the engines' contract (the input half is :mod:`synthesis.plan`): a
+The output half of the engines' contract (the input half is :mod:`synthesis.tracks`): a
 :class:`JoinReport` per join (timetable.md §2), an :class:`ElementReport` per element of the
 time table, and the warnings. Times are seconds on the animation's clock.
 """

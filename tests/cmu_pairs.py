@@ -14,8 +14,8 @@ from text2anim.core import read_bvh
 from text2anim.core.motion import Motion
 from text2anim.motiondb import ClipInfo, ImportOptions, MotionDB
 from text2anim.scheduler.lengths import transition_window
-from text2anim.synthesis.cycles import gait_cycle
-from text2anim.synthesis.plan import Clip, Element, Track
+from text2anim.synthesis.join.cycles import gait_cycle
+from text2anim.synthesis.tracks import Clip, Element, Track
 from text2anim.output.bvh_write import write_bvh
 
 #: A cut: ``"cycle"`` (one gait cycle, found by :func:`gait_cycle`, to be looped) or ``(from, to)`` seconds.

@@ -2,28 +2,30 @@
 
 For each pair of consecutive whole-body elements on a track (§4, "各前後の要素動作の組に対して本手法を繰り返し適用"):
 
-1. **method** (§4.1, §4.2.5, :mod:`.method` on :mod:`synthesis.method_select`): transition,
+1. **method** (§4.1, §4.2.5, :mod:`.geometry` on :mod:`.method_select`): transition,
    connection, adaptation with or without a step, from the foot–ground
    constraints of the two clips around their cores on the track;
-2. **ranges** (§4.2, eqs. (1)–(9), :mod:`synthesis.blend_ranges`): lower and
+2. **ranges** (§4.2, eqs. (1)–(9), :mod:`.blend_ranges`): lower and
    upper body blend separately, each in its range;
-3. **search** (§4.3, eqs. (10)–(15), :mod:`.search` on :mod:`synthesis.blend_search`): ``t0``,
+3. **search** (§4.3, eqs. (10)–(15), :mod:`.search` on :mod:`.blend_search`): ``t0``,
    ``t1`` of every interval minimise eq. (10) over all pairs at once, the
    weights from the user's ``smoothness`` ``W``;
 4. **placement**: the next motion is turned and slid so its support foot
    stands on the previous motion's and both face the same way
-   (:mod:`.placement`, :func:`synthesis.align.align_through_foot`, as paper [6] / seed 003 do);
+   (:mod:`.placement`, :func:`synthesis.join.align.align_through_foot`, as paper [6] / seed 003 do);
    for an adaptation the next lower body is fitted to the previous feet
-   (:mod:`synthesis.adaptation`, §4.2.3) and S0 is searched again on it;
-5. **weights** (§4.4, :mod:`.curves` on :mod:`synthesis.weights`): Hermite curves with eq. (16)
+   (:mod:`.adaptation`, §4.2.3) and S0 is searched again on it;
+5. **weights** (§4.4, :mod:`.curves` on :mod:`.weights`): Hermite curves with eq. (16)
    slopes; motion–pose / pose–motion blends by the three cases of §4.4.2;
 6. **rendering** (:mod:`.render`): per frame, the lower body blends its two sources with the
    lower weight, the upper body its two with the upper weight (slerp,
-   :mod:`synthesis.blend`); planted feet are locked and released by the
-   seed engine's :func:`synthesis.transition.apply_join` (IK, §4.3.2 of 003).
+   :mod:`synthesis.join.blend`); planted feet are locked and released by the
+   join layer's :func:`synthesis.join.apply.apply_join` (IK, §4.3.2 of 003).
 
-Steps 1–5 are :func:`~.plan.plan_join` (records in :mod:`.records`); a join is carried out by
-:func:`~.join.join_next`, which renders until the join does not skate (:mod:`.repair`).
+Steps 1–5 are :func:`~.planner.plan_join` (records in :mod:`.records`); a join is carried out by
+:func:`~.join.join_next`, which renders until the join does not skate (:mod:`.repair`), and committed to the
+track as every engine's is (:func:`synthesis.join.commit.commit`). The pose distance of eq. (13)
+(:mod:`.posedist`) also serves the ``pose`` baseline; :mod:`.timeline` appends motions online (§5).
 
 Every blend lasts at least :data:`MIN_BLEND` s (a shorter pose change reads as
 a pop).
@@ -33,12 +35,12 @@ cannot keep its core; it is **not executed** — a warning says so and the
 report has a join with ``blend: "not_executed"``; the next element joins the
 one before. Cores overlapping by less than :data:`CORE_TOLERANCE` s (a frame of
 contact-label noise between the scheduler's step times and ours) touch. A looped clip is all core except the step a join uses
-(:func:`~synthesis.method_select.cyclic_core_end`); a looped next clip may
+(:func:`~synthesis.optimal.method_select.cyclic_core_end`); a looped next clip may
 enter at another phase of its cycle to make a transition possible
 (``phase_s``).
 
 **Feet** (the paper's foot constraints made exact): planted feet are locked by
-the seed engine's IK (:func:`synthesis.transition.apply_join`). Three choices
+the join layer's IK (:func:`synthesis.join.apply.apply_join`). Three choices
 of this engine keep that from fighting the blend:
 
 - a foot that a held pose plants somewhere else than the other side does
@@ -68,12 +70,12 @@ from collections.abc import Sequence
 
 from ..actors import spread_actors
 from ..assemble import assemble
-from ..blend_search import preset
-from ..plan import Track
 from ..result import Result
+from ..tracks import Track
+from .blend_search import preset
 from .join import join_next, lay_track, report_of
 from .placement import SETTLE, settle
-from .plan import CORE_TOLERANCE, MAX_SHIFT, MIN_BLEND, MIN_ROOM, RUNNERS_UP, SAME_FEET_CM, plan_join
+from .planner import CORE_TOLERANCE, MAX_SHIFT, MIN_BLEND, MIN_ROOM, RUNNERS_UP, SAME_FEET_CM, plan_join
 from .records import Interval, Plan, Skip
 from .render import STEP_GAP, STEP_WEIGHTS, render
 
@@ -85,10 +87,10 @@ __all__ = ["CORE_TOLERANCE", "MAX_SHIFT", "MIN_BLEND", "MIN_ROOM", "RUNNERS_UP",
 def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: float = 0.5, *,
                        lock_feet: bool = True, sway: bool = True, spread: bool = True,
                        min_blend: float = MIN_BLEND, finished: bool = True) -> Result:
-    """Tracks → one motion per actor by optimal blending (paper 000), compositions as the seed engine does.
+    """Tracks → one motion per actor by optimal blending (paper 000), compositions as every engine lays them.
 
     Args:
-        tracks: one :class:`~synthesis.plan.Track` per actor.
+        tracks: one :class:`~synthesis.tracks.Track` per actor.
         fps: output frame rate.
         smoothness: ``W`` of §4.3, 0 (time first: short blends) to 1 (smoothness first).
         lock_feet: lock planted feet during blends.
@@ -97,7 +99,7 @@ def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: f
         min_blend: the shortest blend interval, seconds.
         finished: ``False`` leaves the motions before :func:`synthesis.finish.finish` (the caller finishes them).
 
-    Returns the same :class:`~synthesis.result.Result` as :func:`synthesis.engine.synthesize`; each join's
+    Returns the same :class:`~synthesis.result.Result` as :func:`synthesis.constraint.engine.synthesize`; each join's
     report has ``blend`` (the §4.1 method), ``intervals`` (lower/upper, kinds), ``cost`` (eq. (10) terms).
     """
     weights = preset(smoothness)

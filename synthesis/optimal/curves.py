@@ -3,11 +3,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..blend_ranges import Range
-from ..blend_search import Found
-from ..weights import hermite_weights, plan_partial, slope
+from .blend_ranges import Range
+from .blend_search import Found
 from .records import Interval
 from .search import Features, ends
+from .weights import hermite_weights, plan_partial, slope
 
 
 def interval_weights(name: str, r: Range, found: Found, feats: Features, fps: float, min_len: int) -> Interval:

@@ -10,11 +10,11 @@ from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts
 from text2anim.core.motion import Motion
 
-from ..align import Rigid, headings, to_heading_frame
-from ..blend_search import Found
-from ..method_select import Choice, support_by_gap
-from ..switching import foot_points
-from ..track import Incoming
+from ..join.align import Rigid, headings, to_heading_frame
+from ..join.gait import foot_points
+from ..join.placed import Placed
+from .blend_search import Found
+from .method_select import Choice, support_by_gap
 from .records import Plan
 
 
@@ -29,7 +29,7 @@ def _planted_near(contacts: FootContacts, side: str, lo: int, hi: int, target: i
     return int(f[np.argmin(np.abs(f - target))]) if len(f) else None
 
 
-def alignment(choice: Choice, s0: Found, tr: Motion, tr_contacts: FootContacts, inc: Incoming):
+def alignment(choice: Choice, s0: Found, tr: Motion, tr_contacts: FootContacts, inc: Placed):
     """``(support, ta, tb)``: the foot (or ``None``: roots) and the track frames of A and B put together."""
     sup = choice.support
     if choice.method == "motion_transition":

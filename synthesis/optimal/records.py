@@ -8,11 +8,11 @@ import numpy as np
 
 from text2anim.core.motion import Motion
 
-from ..align import Rigid
-from ..blend_ranges import Range
-from ..blend_search import Found
-from ..method_select import Choice
-from ..track import Incoming
+from ..join.align import Rigid
+from ..join.placed import Placed
+from .blend_ranges import Range
+from .blend_search import Found
+from .method_select import Choice
 
 
 @dataclass(frozen=True)
@@ -38,7 +38,7 @@ class Interval:
 class Plan:
     """What :func:`plan_join` decided for one join."""
 
-    inc: Incoming
+    inc: Placed
     choice: Choice
     intervals: dict
     rigid: Rigid

@@ -1,6 +1,6 @@
 """Step 6, rendering: a planned join written onto the track, lower and upper body blended by their own
 weights (slerp), planted feet held (a foot two held poses plant apart steps across), locks by
-:func:`synthesis.transition.apply_join` (a rendering in two steps: :func:`prepare`, then :func:`finish`)."""
+:func:`synthesis.join.apply.apply_join` (a rendering in two steps: :func:`prepare`, then :func:`finish`)."""
 from __future__ import annotations
 
 import numpy as np
@@ -9,11 +9,11 @@ from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts, detect_contacts
 from text2anim.core.motion import Motion, concatenate
 
-from ..adaptation import adapt, pin_feet
-from ..blend import blend, sample
-from ..posedist import part_joints
-from ..transition import PLANTED_WEIGHT, Blended, Join, blend_join, lock_join
-from ..weights import hermite_weights
+from .adaptation import adapt, pin_feet
+from ..join.blend import blend, sample
+from .posedist import part_joints
+from ..join.apply import PLANTED_WEIGHT, Blended, Join, blend_join, contacts_at, lock_join
+from .weights import hermite_weights
 from .records import Interval, Plan
 
 
@@ -62,11 +62,6 @@ def _b_side(plan: Plan) -> Motion:
     return concatenate([p for p in (plan.adapted[:a], seg, plan.placed[b + 1:]) if p.n_frames])
 
 
-def _contacts_at(c: FootContacts, idx: np.ndarray) -> dict:
-    i = np.clip(np.round(idx).astype(int), 0, len(c.left) - 1)
-    return {"left": c.left[i], "right": c.right[i]}
-
-
 #: m: a foot the two sides of a lower-body blend plant further apart than this has to step across
 STEP_GAP = 0.06
 #: the weights between which such a foot is in the air (it lifts from the first side's place once the
@@ -77,7 +72,7 @@ STEP_WEIGHTS = (0.25, 0.75)
 def _planted(a_comp: Motion, b_comp: Motion, ca: dict, cb: dict, w: np.ndarray, step: bool = True) -> dict:
     """Per foot, whether it is held on the ground on each frame of the window (for the foot locks).
 
-    A foot is down where the side that holds at least :data:`~synthesis.transition.PLANTED_WEIGHT` of the
+    A foot is down where the side that holds at least :data:`~synthesis.join.apply.PLANTED_WEIGHT` of the
     blend has it down (the seed engine's rule) — except where the two sides plant it more than
     :data:`STEP_GAP` apart: one foot cannot stand in two places, so it stays on the first side's place
     until the second side has :data:`STEP_WEIGHTS` [0] of the blend, crosses in the air, and lands on
@@ -117,7 +112,7 @@ class Parts:
         return hit
 
     def sample(self, motion: Motion, frames: np.ndarray) -> Motion:
-        """:func:`synthesis.blend.sample` of a motion this cache holds (or the track)."""
+        """:func:`synthesis.join.blend.sample` of a motion this cache holds (or the track)."""
         f = np.asarray(frames, dtype=np.float64)
         return self.get(("sample", motion, f.tobytes()), lambda: sample(motion, f))
 
@@ -132,7 +127,7 @@ def _bside_of(plan: Plan, parts: Parts) -> Motion:
 
 def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts | None = None,
             parts: Parts | None = None):
-    """What :func:`render` hands :func:`synthesis.transition.apply_join`: ``(track, placed_b, b_contacts,
+    """What :func:`render` hands :func:`synthesis.join.apply.apply_join`: ``(track, placed_b, b_contacts,
     join)`` — the window's two sides composed and the feet it holds (the cheap part of a rendering:
     :func:`render`'s output is a function of these alone). ``parts``: what earlier renderings on ``tr``
     made (:class:`Parts`)."""
@@ -163,8 +158,8 @@ def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts
     a_comp, b_comp = with_upper(a_low), with_upper(b_low)
     tr_c = tr_contacts if tr_contacts is not None else detect_contacts(tr)
     b_c = detect_contacts(bside)  # kept in bside's cache
-    ca = _contacts_at(tr_c, faL)
-    cb = _contacts_at(b_c, fbL - off)
+    ca = contacts_at(tr_c, faL)
+    cb = contacts_at(b_c, fbL - off)
     planted = _planted(a_comp, b_comp, ca, cb, wL, step=step and ivs["S0"].kind != "motion-motion")
     tail_from = w1 - off
 
@@ -183,7 +178,7 @@ def prepare(tr: Motion, plan: Plan, step: bool = True, tr_contacts: FootContacts
 def finish(prepared, lock: bool = True, blended: Blended | None = None, lift: bool = True):
     """:func:`render` from :func:`prepare` 's output (and its :func:`blended` when the caller has it):
     ``(track, locks, (w0, w1))``; ``lift=False``: the swings not yet lifted
-    (:func:`synthesis.transition.lift_join` finishes it; the locked feet are final already)."""
+    (:func:`synthesis.join.apply.lift_join` finishes it; the locked feet are final already)."""
     track, placed_b, b_contacts, join = prepared
     if blended is None:
         blended = blend_join(track, placed_b, join)
@@ -209,7 +204,7 @@ def render(tr: Motion, plan: Plan, lock: bool = True, step: bool = True, tr_cont
     track's foot contacts when the caller has them (:func:`carry_out` renders one track several times).
 
     The lower body of every frame of the window blends its two sources with the lower weight, the upper
-    body its two with the upper weight; :func:`synthesis.transition.apply_join` then writes the window and
+    body its two with the upper weight; :func:`synthesis.join.apply.apply_join` then writes the window and
     the next motion after it and locks the planted feet (its blend is given the upper body already blended
     on both sides, so only the lower weight is left to it). In two steps, :func:`prepare` and :func:`finish`.
     """

@@ -11,12 +11,12 @@ from text2anim.core.contacts import detect_contacts
 from text2anim.core.metrics import SOURCE_FACTOR, root_pop, toe_joints, toe_skating_pairs
 from text2anim.core.motion import Motion
 
-from ..align import align_through_foot
-from ..blend import ease
-from ..measure import skating_exceeds
-from ..transition import lift_join
-from .records import Plan
+from ..join.align import align_through_foot
+from ..join.apply import lift_join
+from ..join.blend import ease
+from ..join.measure import skating_exceeds
 from .placement import settle
+from .records import Plan
 from .render import Parts, blended, finish, prepare
 
 
@@ -41,7 +41,7 @@ def _roots_mid(tr: Motion, plan: Plan) -> Plan:
 
 
 def _skating(out: Motion, base: Motion, window: tuple[int, int], locks) -> float:
-    """GMD skating ratio (either foot, :func:`synthesis.measure.skating_frames`) of a rendering ``out``
+    """GMD skating ratio (either foot, :func:`synthesis.join.measure.skating_frames`) of a rendering ``out``
     over its blend window ``[w0, w1)``. ``base``: the rendering before its feet were locked, the same frames
     outside ``[w0, the locks' last release)``: only those frames' kinematics are computed (a rendering that is
     not kept never needs the rest)."""

@@ -1,7 +1,7 @@
 """§4.3, eqs. (10)–(15): the blend interval ``t0``, ``t1`` that minimises eq. (10) over a range.
 
-The features (Kovar's point clouds, :mod:`synthesis.posedist`) of the join's sources are looked up per
-body part once (:class:`Features`); :mod:`synthesis.blend_search` evaluates every candidate pair.
+The features (Kovar's point clouds, :mod:`synthesis.optimal.posedist`) of the join's sources are looked up per
+body part once (:class:`Features`); :mod:`synthesis.optimal.blend_search` evaluates every candidate pair.
 """
 from __future__ import annotations
 
@@ -9,13 +9,13 @@ import numpy as np
 
 from text2anim.core.motion import Motion
 
-from ..blend_ranges import Range
-from ..blend_search import Found, Weights, best, evaluate, evaluate_motions
-from ..posedist import distance, features, part_joints
-from ..track import Incoming
+from ..join.placed import Placed
+from .blend_ranges import Range
+from .blend_search import Found, Weights, best, evaluate, evaluate_motions
+from .posedist import distance, features, part_joints
 
 
-def _sources(tr: Motion, inc: Incoming, adapted: Motion | None):
+def _sources(tr: Motion, inc: Placed, adapted: Motion | None):
     """Source name → (motion, track frame of its frame 0)."""
     return {"A": (tr, 0), "B": (inc.motion, inc.offset),
             "Bad": (adapted if adapted is not None else inc.motion, inc.offset)}
@@ -24,7 +24,7 @@ def _sources(tr: Motion, inc: Incoming, adapted: Motion | None):
 class Features:
     """Kovar features of the join's sources, joints per part looked up once."""
 
-    def __init__(self, tr: Motion, inc: Incoming, adapted: Motion | None = None):
+    def __init__(self, tr: Motion, inc: Placed, adapted: Motion | None = None):
         self.src = _sources(tr, inc, adapted)
         self.joints = {p: part_joints(tr, p) for p in ("lower", "upper")}
 
@@ -34,7 +34,7 @@ class Features:
 
 
 def grid(r: Range, feats: Features, fps: float, weights: Weights, min_len: int):
-    """eq. (10) over every candidate pair of the range (:mod:`synthesis.blend_search`)."""
+    """eq. (10) over every candidate pair of the range (:mod:`synthesis.optimal.blend_search`)."""
     if r.kind == "motion-motion":
         f0 = np.arange(r.t0[0], r.t0[1] + 2)
         f1 = np.arange(r.t1[0], r.t1[1] + 2)

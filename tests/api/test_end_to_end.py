@@ -45,7 +45,7 @@ def test_example_animation_is_one_clean_motion(example):
     assert name == "太郎" and motion.fps == 30
     last = example.table.elements[-1]
     # the time table's length, and the time the joins took to slow down where the clips' own
-    # accelerations ask for it (synthesis.joinpass: braking steps, reported per join as added_s)
+    # accelerations ask for it (synthesis.join.joinpass: braking steps, reported per join as added_s)
     added = sum(j.metrics.get("post", {}).get("added_s", 0.0) for j in example.result.joins)
     assert motion.duration == pytest.approx(last.end + added, abs=0.2)
     assert skating_ratio(motion) <= clips_skating(e.clip for e in example.table.elements) + 0.01

@@ -286,7 +286,7 @@ def test_two_actors_are_arranged_separately(db):
 @pytest.mark.parametrize("text", ["しゃがんで、立ち上がる。", "転んで、起き上がる。", "座って、歩く。"])
 def test_the_animation_changes_posture_where_the_clips_do(db, text):
     """Synthesised through the real engine: at each element's start the character is in its clip's posture."""
-    from text2anim.synthesis.engine import synthesize
+    from text2anim.synthesis.constraint.engine import synthesize
     from text2anim.animation import build_tracks
 
     fps = 30.0

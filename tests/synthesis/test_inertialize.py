@@ -5,8 +5,8 @@ import numpy as np
 
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
-from text2anim.synthesis.inertialize import inertialize_at, inertialize_before, quintic, spring
-from text2anim.synthesis.joinpass import warp_frames
+from text2anim.synthesis.join.inertialize import inertialize_at, inertialize_before, quintic, spring
+from text2anim.synthesis.join.joinpass import warp_frames
 
 
 def test_quintic_starts_with_the_offset_and_its_velocity_and_ends_at_rest():

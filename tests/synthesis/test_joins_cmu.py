@@ -20,9 +20,9 @@ import numpy as np
 from text2anim.core.metrics import MAX_PENETRATION_CM, SKATING_MARGIN, SOURCE_FACTOR, against_sources, quality
 from text2anim.quality import introduced_root_pop, played_frames
 from text2anim.motiondb import MotionDB
-from text2anim.synthesis.engines import synthesize_with
-from text2anim.synthesis.plan import Track
-from text2anim.synthesis.cycles import loop, make_cyclic
+from text2anim.synthesis.registry import synthesize_with
+from text2anim.synthesis.tracks import Track
+from text2anim.synthesis.join.cycles import loop, make_cyclic
 
 from cmu_pairs import cut_take, import_cut, pair_track, read_back
 from shared_data import cmu, requires_cmu

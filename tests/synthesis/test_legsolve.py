@@ -1,4 +1,4 @@
-"""synthesis.legsolve: many leg goals solved as rows of one IK solve give, bit for bit, what one
+"""synthesis.join.legsolve: many leg goals solved as rows of one IK solve give, bit for bit, what one
 solve per goal gives (solve_leg, then set_world_rotation), on a walk the built-in library animates."""
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import numpy as np
 
 from text2anim.core import rotkernels as rk
 from text2anim.core.ik import set_world_rotation
-from text2anim.synthesis.legsolve import LegGoal, leg_chain, solve_leg, solve_legs
+from text2anim.synthesis.join.legsolve import LegGoal, leg_chain, solve_leg, solve_legs
 
 
 def _goal(motion, side: str, b: int, e: int, lift: float, turn: float) -> LegGoal:

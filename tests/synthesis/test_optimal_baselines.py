@@ -8,10 +8,10 @@ import pytest
 
 from text2anim.core import read_bvh
 from text2anim.synthesis.baselines import BLEND, closest_pair
-from text2anim.synthesis.engines import METHODS, UnknownMethodError, synthesize_with
-from text2anim.synthesis.plan import Clip, Element, Track
-from text2anim.synthesis.posedist import distance, features
-from text2anim.synthesis.cycles import find_cycle
+from text2anim.synthesis.registry import METHODS, UnknownMethodError, synthesize_with
+from text2anim.synthesis.tracks import Clip, Element, Track
+from text2anim.synthesis.optimal.posedist import distance, features
+from text2anim.synthesis.join.cycles import find_cycle
 
 from shared_data import cmu, requires_cmu
 

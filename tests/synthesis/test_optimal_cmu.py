@@ -16,12 +16,12 @@ import pytest
 from text2anim.core import read_bvh
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts
-from text2anim.synthesis.engine import synthesize
+from text2anim.synthesis.constraint.engine import synthesize
 from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
 from text2anim.synthesis.optimal import synthesize_optimal
-from text2anim.synthesis.plan import Clip, Element, Track
-from text2anim.synthesis.switching import foot_points
-from text2anim.synthesis.cycles import find_cycle
+from text2anim.synthesis.tracks import Clip, Element, Track
+from text2anim.synthesis.join.gait import foot_points
+from text2anim.synthesis.join.cycles import find_cycle
 
 from shared_data import cmu, requires_cmu
 

@@ -11,11 +11,12 @@ import numpy as np
 import pytest
 
 from text2anim.core import read_bvh
-from text2anim.synthesis.blend_ranges import Bounds, after, ranges
-from text2anim.synthesis.blend_search import SMOOTH_FIRST, TIME_FIRST, evaluate, evaluate_motions, preset, search
-from text2anim.synthesis.method_select import Choice, Step, cyclic_core_begin, cyclic_core_end, select
-from text2anim.synthesis.posedist import distance, features, part_joints
-from text2anim.synthesis.weights import (MAX_SLOPE, hermite_weights, linear_weights, monotone_slopes, plan_partial, shape_of,
+from text2anim.synthesis.optimal.blend_ranges import Bounds, after, ranges
+from text2anim.synthesis.optimal.blend_search import SMOOTH_FIRST, TIME_FIRST, evaluate, evaluate_motions, preset, search
+from text2anim.synthesis.join.gait import Step
+from text2anim.synthesis.optimal.method_select import Choice, cyclic_core_begin, cyclic_core_end, select
+from text2anim.synthesis.optimal.posedist import distance, features, part_joints
+from text2anim.synthesis.optimal.weights import (MAX_SLOPE, hermite_weights, linear_weights, monotone_slopes, plan_partial, shape_of,
                                slope)
 
 from shared_data import cmu
@@ -110,16 +111,22 @@ def brute_force(fa_motion, fb_motion, joints, t0s, t1s, weights, p_len, min_len,
     return best
 
 
+def _searched(a, b, joints, t0, t1, w, p_len, min_len):
+    """The search of eq. (10) over start frames ``t0`` of ``a`` and end frames ``t1`` of ``b`` (both ``[lo, hi]``),
+    the features it read, and the brute force's ``(cost, pair)`` over the same ranges."""
+    fa = features(a, joints, np.arange(t0[0], t0[1] + 2))
+    fb = features(b, joints, np.arange(t1[0] - 1, t1[1] + 1))
+    f = search(fa, fb, t0, t1, FPS, w, p_len, min_len)
+    return f, (fa, fb), brute_force(a, b, joints, range(t0[0], t0[1] + 1), range(t1[0], t1[1] + 1), w, p_len, min_len)
+
+
 @pytest.mark.parametrize("part, p_len", [("lower", None), ("upper", 12), ("lower", 9)])
 def test_search_returns_the_global_minimum_of_eq_10(part, p_len):
     walk, run = _cmu("16_15_walk"), _cmu("16_35_run")  # start poses from the walk, end poses from the run
     joints = part_joints(walk, part)
     t0, t1 = (10, 26), (28, 49)
     w = preset(0.5)
-    fa = features(walk, joints, np.arange(t0[0], t0[1] + 2))
-    fb = features(run, joints, np.arange(t1[0] - 1, t1[1] + 1))
-    f = search(fa, fb, t0, t1, FPS, w, p_len, 3)
-    cost, pair = brute_force(walk, run, joints, range(t0[0], t0[1] + 1), range(t1[0], t1[1] + 1), w, p_len, 3)
+    f, (fa, fb), (cost, pair) = _searched(walk, run, joints, t0, t1, w, p_len, 3)
     assert (f.t0, f.t1) == pair
     assert f.cost == pytest.approx(cost, rel=1e-9)
     g = evaluate(fa, fb, t0, t1, FPS, w, p_len, 3)
@@ -132,10 +139,7 @@ def test_search_on_one_clock_respects_the_shortest_blend():
     joints = part_joints(walk, "upper")
     t0, t1 = (20, 40), (22, 60)
     w = preset(0.3)
-    fa = features(walk, joints, np.arange(t0[0], t0[1] + 2))
-    fb = features(walk, joints, np.arange(t1[0] - 1, t1[1] + 1))
-    f = search(fa, fb, t0, t1, FPS, w, None, 4)
-    cost, pair = brute_force(walk, walk, joints, range(t0[0], t0[1] + 1), range(t1[0], t1[1] + 1), w, None, 4)
+    f, _, (cost, pair) = _searched(walk, walk, joints, t0, t1, w, None, 4)
     assert (f.t0, f.t1) == pair and f.cost == pytest.approx(cost) and f.t1 - f.t0 >= 4
     assert f.terms()["time"] == pytest.approx(w.time * f.Qt)
 
@@ -155,7 +159,7 @@ def test_motion_motion_search_is_the_global_minimum_too():
 
 
 def test_the_pose_distance_ignores_where_the_clip_stands():
-    from text2anim.synthesis.align import Rigid
+    from text2anim.synthesis.join.align import Rigid
 
     walk = _cmu("16_15_walk")
     moved = Rigid(1.1, (3.0, -2.0)).apply(walk)
@@ -164,7 +168,7 @@ def test_the_pose_distance_ignores_where_the_clip_stands():
 
 
 def test_the_distance_grid_is_eq_13_for_every_pair_of_a_real_walk_and_run():
-    from text2anim.synthesis.posedist import distance_matrix
+    from text2anim.synthesis.optimal.posedist import distance_matrix
 
     walk, run = _cmu("16_15_walk"), _cmu("16_35_run")
     j = part_joints(walk, "lower")

@@ -1,4 +1,4 @@
-"""The join post-pass's candidates (synthesis.smoothing): their figures are the quality metrics' own bits,
+"""The join post-pass's candidates (synthesis.join.smoothing): their figures are the quality metrics' own bits,
 the bounds the search prunes by hold, and re-planting several widths at once is re-planting each alone."""
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from shared_data import library_motion
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.metrics import jerk_p99, joint_jerk, peak_hips_acceleration, quality
 from text2anim.core.motion import Motion
-from text2anim.synthesis.smoothing import Stretch, plant_all
+from text2anim.synthesis.join.smoothing import Stretch, plant_all
 
 WIDTHS = (0.0, 1.0, 2.0, 4.0, 8.0)
 
@@ -68,7 +68,7 @@ def test_widths_replanted_together_are_each_replanted_alone(kick):
 
 
 def testsource_figures_are_remembered_by_content_not_by_object():
-    from text2anim.synthesis.joinpass import source_figures
+    from text2anim.synthesis.join.joinpass import source_figures
 
     kick = library_motion("kick")
     q = quality(kick, 30.0)
@@ -88,7 +88,7 @@ def testsource_figures_are_remembered_by_content_not_by_object():
 def test_the_fallback_chooses_as_re_planting_every_width_does(kick, lims, fewer):
     """No width within the limits: the least score, first in order, is chosen; found from bounds (with
     fewer widths re-planted where the bounds allow), it is the plain scan's over every exact score."""
-    from text2anim.synthesis.pruning import least
+    from text2anim.synthesis.join.pruning import least
 
     def tried():
         stretches = [_stretch(kick, 10, 44), _stretch(kick, 12, 40)]

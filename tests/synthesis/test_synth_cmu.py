@@ -17,11 +17,11 @@ from scipy.spatial.transform import Rotation
 from text2anim.core import read_bvh
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, foot_tracks
-from text2anim.synthesis.engine import hips_frame, synthesize
+from text2anim.synthesis.constraint.engine import hips_frame, synthesize
 from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
-from text2anim.synthesis.plan import Clip, Element, Track
-from text2anim.synthesis.cycles import find_cycle
-from text2anim.synthesis.timing import prepare
+from text2anim.synthesis.tracks import Clip, Element, Track
+from text2anim.synthesis.join.cycles import find_cycle
+from text2anim.synthesis.join.timing import prepare
 
 from shared_data import cmu, requires_cmu
 
@@ -86,7 +86,7 @@ def test_walk_to_run_transition(fps):
     # it walks, then runs: the root's speed after the join is the run's
     speed = np.linalg.norm(np.diff(m.root_positions[:, [0, 2]], axis=0), axis=1) * fps
     assert speed[w1 + fps // 3:].mean() > 1.6 * speed[: w0 - fps // 3].mean()
-    # cores are kept to within a centimetre: the join post-pass (synthesis.joinpass) stops at the run's core
+    # cores are kept to within a centimetre: the join post-pass (synthesis.join.joinpass) stops at the run's core
     # start, but its legs are re-solved by IK up to there (measured 0.66-0.72 cm)
     assert res.elements[1].core_fidelity_cm < 1.0 and res.elements[2].core_fidelity_cm < 1.0
 

@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from text2anim.core.bodyparts import body_map
-from text2anim.synthesis.engine import synthesize
+from text2anim.synthesis.constraint.engine import synthesize
 from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
-from text2anim.synthesis.plan import Clip, Element, Track
+from text2anim.synthesis.tracks import Clip, Element, Track
 
 from text2anim.motiondb import library
 FPS = 30

@@ -5,18 +5,19 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation, Slerp
 
-from text2anim.synthesis.align import Rigid, align_through_foot, headings, match, wrap_angle
-from text2anim.synthesis.blend import blend, ramp, sample, slerp
-from text2anim.synthesis.composition import hermite_sway
+from text2anim.synthesis.join.align import Rigid, align_through_foot, headings, match, wrap_angle
+from text2anim.synthesis.join.blend import blend, ramp, sample, slerp
+from text2anim.synthesis.join.composition import hermite_sway
 from text2anim.core.contacts import FootContacts
-from text2anim.synthesis.engine import default_origins, spread_actors
-from text2anim.synthesis.footlock import plan_locks, planted_targets
+from text2anim.synthesis.constraint.engine import default_origins, spread_actors
+from text2anim.synthesis.join.footlock import plan_locks, planted_targets
 from text2anim.core.motion import Motion
-from text2anim.synthesis.plan import Track
+from text2anim.synthesis.tracks import Track
 from text2anim.core.skeleton import Skeleton
-from text2anim.synthesis.switching import find_switch, planted_for, swings
-from text2anim.synthesis.cycles import cycle_move, loop, make_cyclic
-from text2anim.synthesis.timing import at_speed, ease_hold, hold, soft_clip, trim
+from text2anim.synthesis.constraint.switching import find_switch, planted_for
+from text2anim.synthesis.join.gait import steps
+from text2anim.synthesis.join.cycles import cycle_move, loop, make_cyclic
+from text2anim.synthesis.join.timing import at_speed, ease_hold, hold, soft_clip, trim
 
 
 def _skeleton() -> Skeleton:
@@ -178,8 +179,8 @@ def test_switch_needs_a_common_planted_foot():
 def test_planted_for_and_swings():
     c = _contacts([1, 1, 0, 0, 0, 1, 1, 1, 0, 1], [1] * 10)
     assert list(planted_for(c, "left")) == [2, 1, 0, 0, 0, 3, 2, 1, 0, 1]
-    sw = swings(c, "left")
-    assert [(s.lift, s.land) for s in sw] == [(2, 5), (8, 9)]
+    sw = steps(c, side="left")
+    assert [(s.begin, s.end) for s in sw] == [(2, 5), (8, 9)]
 
 
 # ---------------------------------------------------------------------------------------- footlock

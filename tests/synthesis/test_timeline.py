@@ -14,9 +14,9 @@ import pytest
 from text2anim.motiondb.library import build_all
 from text2anim.core import read_bvh
 from text2anim.core.metrics import BUILTIN_LIMITS, SKATING_MARGIN, skating_ratio
-from text2anim.synthesis.plan import Clip
-from text2anim.synthesis.timeline import GAP, Timeline
-from text2anim.synthesis.cycles import find_cycle
+from text2anim.synthesis.tracks import Clip
+from text2anim.synthesis.optimal.timeline import GAP, Timeline
+from text2anim.synthesis.join.cycles import find_cycle
 
 from shared_data import cmu
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
-from text2anim.synthesis.weights import MAX_SLOPE, hermite, hermite_weights, monotone_slopes
+from text2anim.synthesis.optimal.weights import MAX_SLOPE, hermite, hermite_weights, monotone_slopes
 
 
 def test_the_hermite_weight_is_scipys_cubic_hermite_spline_bit_for_bit():

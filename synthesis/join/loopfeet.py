@@ -1,6 +1,6 @@
 """The legs of a looped cycle kept as captured (:func:`plant_cycle`).
 
-:func:`synthesis.cycles.make_cyclic` closes a gait cycle by spreading the
+:func:`synthesis.join.cycles.make_cyclic` closes a gait cycle by spreading the
 mismatch of its two ends (local rotations, hips' height) over the cycle. A
 captured cycle rarely closes exactly (a CMU run of one stride: the knee 29°
 apart at its two landings, the hips 3 cm lower), and the spread correction
@@ -79,7 +79,7 @@ def ankle_goals(original: Motion, planted: np.ndarray, ankle: int, toe: int, mov
 def plant_cycle(motion: Motion, original: Motion, move: Rigid) -> Motion:
     """``motion`` (a corrected cycle) with each foot back on ``original``'s (the captured cycle's) path by IK:
     the ankle's position (:func:`ankle_goals`) and world orientation, so toe and heel follow; ``move`` is the
-    cycle's ground move (:func:`synthesis.cycles.cycle_move`)."""
+    cycle's ground move (:func:`synthesis.join.cycles.cycle_move`)."""
     if motion.n_frames < 3:
         return motion
     contacts = detect_contacts(original)

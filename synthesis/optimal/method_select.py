@@ -33,7 +33,7 @@ from typing import Literal, get_args
 
 import numpy as np
 
-from text2anim.core.contacts import FootContacts
+from ..join.gait import Step
 
 #: The methods of §4.1 (a join report's ``blend``).
 Blend = Literal["motion_transition", "motion_connection", "motion_adaptation_step", "motion_adaptation"]
@@ -45,22 +45,6 @@ SAME_TIME = 0.5
 
 
 @dataclass(frozen=True)
-class Step:
-    """A foot-moving interval on the track: ``side`` lifts at frame ``begin``, lands at ``end`` (first frame down)."""
-
-    side: str
-    begin: int
-    end: int
-
-    @property
-    def frames(self) -> int:
-        return self.end - self.begin
-
-    def overlap(self, other: "Step") -> int:
-        return max(0, min(self.end, other.end) - max(self.begin, other.begin))
-
-
-@dataclass(frozen=True)
 class Choice:
     """The method chosen, the foot-moving intervals it uses, and the support foot (the foot that
     stays down through the step: the next motion is placed through it), ``None`` when free."""
@@ -69,17 +53,6 @@ class Choice:
     p0: Step | None = None
     p1: Step | None = None
     support: str | None = None
-
-
-def steps(contacts: FootContacts, offset: int = 0) -> list[Step]:
-    """Complete foot-moving intervals of a clip, moved to the track by ``offset`` frames, in time order."""
-    n = len(contacts.left)
-    out = []
-    for side in ("left", "right"):
-        for lo, hi in contacts.moving(side):
-            if lo > 0 and hi < n:
-                out.append(Step(side, int(lo) + offset, int(hi) + offset))
-    return sorted(out, key=lambda s: (s.begin, s.side))
 
 
 def _other(side: str) -> str:

@@ -1,4 +1,4 @@
-"""The join post-pass's candidates (:mod:`synthesis.joinpass`, steps 2-3): a join's region at one stretch,
+"""The join post-pass's candidates (:mod:`synthesis.join.joinpass`, steps 2-3): a join's region at one stretch,
 low-passed at one width, its feet re-planted by leg IK and its figures measured.
 
 What every width of a stretch shares is computed once (:class:`Stretch`): the feet's contact weights and
@@ -12,7 +12,7 @@ search asks, each step dearer than the last:
    is already final, and the p99 of all joints is at least the order statistic of those that still holds if
    every leg value were lower;
 3. the feet re-planted (two leg IK solves, :func:`plant_all`, several widths at once) and the jerk measured:
-   only for a width the bounds leave a chance of being chosen (:func:`synthesis.joinpass.finish_region`).
+   only for a width the bounds leave a chance of being chosen (:func:`synthesis.join.joinpass.finish_region`).
 
 The figures are bit for bit ``core.metrics.quality(motion[lo - 3:hi + 3], None)`` of the whole candidate
 (jerk p99 m/s³, root pop m/s²; ``tests/synthesis/test_smoothing.py``), and the candidate's motion bit for
@@ -240,7 +240,7 @@ class Smoothed:
 def plant_all(widths: list[Smoothed]) -> None:
     """Re-plant the feet of some widths of one :class:`Stretch` and measure their jerk p99, in one leg IK
     solve per side over all their frames (kinematics and IK are per frame: each width's arithmetic is what
-    it would be alone). Each kept foot's leg is solved (:func:`synthesis.legsolve.solve_legs`, both legs in
+    it would be alone). Each kept foot's leg is solved (:func:`synthesis.join.legsolve.solve_legs`, both legs in
     one solve: what ``set_world_rotation(solve_leg(...))`` gives, leg after leg) onto its target blended in
     by the contact weight, the ankle's world rotation slerped alike."""
     todo = [w for w in widths if w.jk is None]

@@ -1,4 +1,4 @@
-"""Leg IK for the foot locks and lifts (:mod:`synthesis.footlock`): :func:`solve_leg` (an ankle onto targets,
+"""Leg IK for the foot locks and lifts (:mod:`synthesis.join.footlock`): :func:`solve_leg` (an ankle onto targets,
 the knee bending forward, within reach) and :func:`solve_goals`, which solves many :class:`LegGoal` s — both
 legs, several frame ranges — as rows of one two-bone solve (:func:`core.ik.solve_rows`) and turns each ankle
 to its world rotation, with the arithmetic of :func:`solve_leg` then :func:`core.ik.set_world_rotation`

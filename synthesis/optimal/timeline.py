@@ -5,7 +5,7 @@ early as it can after what is already scheduled, and nothing already shown —
 no frame before the playing time ``now`` — ever changes. :meth:`Timeline.append`:
 
 1. the method and the steps to use come from the last motion on the timeline
-   and the new one (:mod:`synthesis.method_select`, via
+   and the new one (:mod:`synthesis.optimal.method_select`, via
    :func:`synthesis.optimal.plan_join`);
 2. the new motion is placed **tentatively** so that its core begins
    :data:`GAP` seconds after the later of the last motion's core end and
@@ -33,17 +33,19 @@ from dataclasses import replace
 
 import numpy as np
 
-from .assemble import finish_whole
-from .blend_search import preset
-from .result import Result
-from .method_select import cyclic_core_end, steps
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.methods import Method
 from text2anim.core.motion import Motion
-from .optimal import MIN_BLEND, Skip, join_next, plan_join
-from .track import TrackState, extend, incoming, place_first
-from .plan import Clip, Element
-from .timing import KNEE
+
+from ..assemble import finish_whole
+from ..join.gait import steps
+from ..join.laying import TrackState, extend, incoming, place_first
+from ..join.timing import KNEE
+from ..optimal import MIN_BLEND, Skip, join_next, plan_join
+from ..result import Result
+from ..tracks import Clip, Element
+from .blend_search import preset
+from .method_select import cyclic_core_end
 
 #: s between the last core's end (or now) and the new core's start, where a new motion is first placed.
 GAP = 0.5
@@ -88,19 +90,19 @@ class Timeline:
 
     @property
     def joins(self) -> list:
-        """The :class:`~synthesis.plan.JoinReport` of every join so far (without metrics)."""
+        """The :class:`~synthesis.result.JoinReport` of every join so far (without metrics)."""
         return [j.report for j in self.state.joins]
 
     def result(self) -> Result:
         """The timeline as a :class:`~synthesis.result.Result` (joins measured as the engines do)."""
-        from .assemble import measure
-        from .laid import Laid
-        from .plan import Track
+        from ..assemble import measure
+        from ..join.laid import Laid
+        from ..tracks import Track
 
         laid = Laid(self.motion, self.state.placed, list(self.state.joins), list(self.state.warnings),
                     dict(self.state.skipped))
         reps, els = measure(Track(None, tuple(self.elements)), laid, [], self.fps)
-        from .played import placed_paths
+        from ..played import placed_paths
 
         return Result({None: self.motion}, reps, self.fps, els, tuple(self.state.warnings),
                       {None: placed_paths(self.state.placed, self.motion.n_frames)})
@@ -118,7 +120,7 @@ class Timeline:
         if now_f >= ease_from:
             done = self.motion
             self.state.motion = done
-            last.stop = min(last.stop, done.n_frames - last.offset)
+            self.state.placed[-1] = replace(last, stop=min(last.stop, done.n_frames - last.offset))
 
     def append(self, clip: Clip, now: float | None = None, *, speed: float = 1.0,
                duration: float | None = None) -> Element:

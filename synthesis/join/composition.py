@@ -24,7 +24,7 @@ of the wave for the wave's time on the track.
 - **Interpolation** (eqs. (3)–(4)): the part's joint rotations from the base to
   the clip with ``ratio = time / blend_duration`` — by slerp, not by a linear
   blend of angles — at the start, and back at the end. The ratio is eased by
-  the ``smooth`` profile of :mod:`synthesis.blend` (``PROFILE = "linear"`` is
+  the ``smooth`` profile of :mod:`synthesis.join.blend` (``PROFILE = "linear"`` is
   eq. (4) as written): measured on the CMU walk + wave it lowers the largest
   jerk of the blends from 2.5k to 1.4k m/s³, the clips' own being 1.4k.
 - **Sway transfer** (§4.4.3): for every other joint of the partial clip the
@@ -56,10 +56,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .align import headings, to_heading_frame
-from .blend import ease, ratio, sample, slerp
 from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
+
+from .align import headings, to_heading_frame
+from .blend import ease, ratio, sample, slerp
 
 ALPHA, BETA, GAMMA = 1.0, 0.2, 0.5
 SEARCH = 0.5  # s

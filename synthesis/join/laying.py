@@ -1,11 +1,12 @@
-"""Laying one actor's track: the element coming in, the state of the track so far, the loop over elements.
+"""Laying one actor's track: the state of the track so far, the element coming in, the loop over elements.
 
-Every joiner of whole-body motions (optimal blending, the pose and crossfade baselines) lays a track the
-same way (:func:`lay_elements`): each element (a repeated non-cyclic one as its repetitions,
-:func:`synthesis.placed.expand_repeats`) is prepared (:func:`incoming`: speed, loop with a margin
+Every joiner of whole-body motions (paper 003's, optimal blending, the pose and crossfade baselines) lays a
+track the same way (:func:`lay_elements`): each element (a repeated non-cyclic one as its repetitions,
+:func:`synthesis.join.timing.repetitions`) is prepared (:func:`incoming`: speed, loop with a margin
 cycle, hold or trim); the first is placed at the track's origin and heading (:func:`place_first`), each
-next one is joined to the track so far by the joiner's own ``join(state, incoming)``. Frames on the
-track; seconds only in the report.
+next one is joined to the track so far by the joiner's own ``join(state, incoming)``, which decides and
+writes the join and commits it (:func:`synthesis.join.commit.commit`). Frames on the track; seconds only
+in the report.
 """
 from __future__ import annotations
 
@@ -16,46 +17,11 @@ from text2anim.core.contacts import FootContacts, detect_contacts
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
+from ..tracks import Element, Track
 from .align import place_at
 from .laid import Laid, LaidJoin
-from .placed import Placed, expand_repeats, on_skeleton
-from .plan import Element, Track
-from .timing import KNEE, ease_hold, ease_lead, hold, prepare
-
-
-@dataclass(frozen=True)
-class Incoming:
-    """The next element, prepared and not yet placed: its frames (own), core ``[c0, c1)`` (own
-    frames), contacts, whether it loops, and where it is on the track: frame 0 at ``offset``, played
-    from own frame ``lead`` to ``stop`` (one past)."""
-
-    element: Element
-    motion: Motion
-    core: tuple[int, int]
-    contacts: FootContacts
-    cyclic: bool
-    lead: int
-    stop: int
-    offset: int
-    rep: int = 0
-
-    @property
-    def first(self) -> int:
-        """Track frame the element starts."""
-        return self.offset + self.lead
-
-    @property
-    def end(self) -> int:
-        """One past its last track frame."""
-        return self.offset + self.stop
-
-    def moved(self, frames: int) -> "Incoming":
-        """The element delayed by ``frames`` (all of it, start, core and end)."""
-        return replace(self, offset=self.offset + frames)
-
-    def at_phase(self, offset: int) -> "Incoming":
-        """A looped element entered at another phase: same start and end on the track, other offset."""
-        return replace(self, offset=offset, lead=self.first - offset, stop=self.end - offset)
+from .placed import Placed, on_skeleton
+from .timing import KNEE, ease_hold, ease_lead, hold, prepare, repetitions
 
 
 @dataclass
@@ -79,8 +45,9 @@ class TrackState:
         return self.motion
 
 
-def incoming(e: Element, rep: int, fps: float, state: TrackState) -> Incoming:
-    """Prepare an element for the track (speed, loop with a margin cycle, hold/trim)."""
+def incoming(e: Element, rep: int, fps: float, state: TrackState) -> Placed:
+    """Prepare an element for the track (speed, loop with a margin cycle, hold/trim): where it is scheduled,
+    not yet placed in space (``rigid`` ``None``)."""
     prep = prepare(e, fps, margin=e.clip.cyclic)
     state.warnings.extend(prep.warnings)
     prep, state.skeleton, note = on_skeleton(prep, state.skeleton, e)
@@ -91,18 +58,16 @@ def incoming(e: Element, rep: int, fps: float, state: TrackState) -> Incoming:
     motion = prep.motion
     if not motion.root_positions.flags.writeable:  # cached library clips are read-only; scipy's Rotation.apply
         motion = motion.replace(root_positions=motion.root_positions.copy())  # (align.match) wants writable rows
-    return Incoming(e, motion, prep.core, detect_contacts(motion), e.clip.cyclic, lead,
-                    prep.motion.n_frames - lead, start - lead, rep)
+    return Placed(e, motion, start - lead, prep.core, detect_contacts(motion), e.clip.cyclic, lead,
+                  prep.motion.n_frames - lead, rep)
 
 
-def place_first(state: TrackState, inc: Incoming, origin, heading: float) -> None:
+def place_first(state: TrackState, inc: Placed, origin, heading: float) -> None:
     """The first element of a track, at its origin and heading, its first pose held until it starts."""
     rigid = place_at(inc.motion, origin, heading, frame=inc.lead)
     m = rigid.apply(inc.motion)
     state.motion = ease_lead(m[inc.lead:], inc.first)
-    state.placed.append(Placed(inc.element, m, inc.offset, inc.core, inc.contacts, inc.cyclic, rigid, inc.rep,
-                               inc.lead, inc.stop))
-
+    state.placed.append(replace(inc, motion=m, rigid=rigid))
 
 
 def extend(tr: Motion, n: int, floor: int) -> Motion:
@@ -116,11 +81,11 @@ def extend(tr: Motion, n: int, floor: int) -> Motion:
 
 
 def lay_elements(track: Track, whole: Sequence[Element], fps: float,
-                 join: Callable[[TrackState, Incoming], object]) -> Laid:
+                 join: Callable[[TrackState, Placed], object]) -> Laid:
     """The whole-body elements of one track laid in time order: the first placed, each next one joined by
     ``join(state, incoming)`` (which updates ``state``)."""
     state = TrackState()
-    for e, rep in expand_repeats(whole):
+    for e, rep in repetitions(whole):
         inc = incoming(e, rep, fps, state)
         if state.motion is None:
             place_first(state, inc, track.origin, track.heading)

@@ -11,10 +11,10 @@ from dataclasses import dataclass, field
 
 from text2anim.core.motion import Motion
 
+from ..result import JoinReport
+from ..tracks import Element
 from .composition import Composed
 from .placed import Placed
-from .plan import Element
-from .result import JoinReport
 
 #: A span of track frames ``(begin, end)``, end excluded.
 Frames = tuple[int, int]
@@ -26,16 +26,17 @@ class LaidJoin:
 
     ``window``: the blend's frames (its figures are the join's); ``region``: the blend and the feet
     released after it. Both ``None`` for a join not carried out (nothing to measure). ``first`` and
-    ``second``: the two elements as placed (``None`` for a composition, whose sources are its base
-    track and its :class:`LaidPart`). ``extra``: further windows measured with the blend (a
+    ``second``: the two elements, as indices into the track's placed elements (:attr:`Laid.placed`; a
+    later join or the post-pass may replace an element there), ``None`` for a composition, whose sources
+    are its base track and its :class:`LaidPart`. ``extra``: further windows measured with the blend (a
     composition's blend out).
     """
 
     report: JoinReport
     window: Frames | None = None
     region: Frames | None = None
-    first: Placed | None = None
-    second: Placed | None = None
+    first: int | None = None
+    second: int | None = None
     extra: tuple[Frames, ...] = ()
 
 

@@ -10,25 +10,27 @@ frames at the output frame rate:
   length: each cycle is moved rigidly by the cycle's own root travel and turn,
   so a loop of a walk walks on instead of jumping back. Any mismatch between
   the end of the cycle and its start is spread over the cycle, so the seam
-  has no pop (:mod:`synthesis.cycles`).
+  has no pop (:mod:`synthesis.join.cycles`).
 - any other clip is played whole and then its last pose is **held**, or it is
   **trimmed** to the length — from its tail, never inside its core; a core
   longer than the length is kept whole (the element then overruns; a warning
   says so).
-- **repeats** of a non-cyclic clip are joined by the engine as connections
-  (each repetition is a motion in its own right); here :func:`prepare` plays
-  one repetition of ``length / repeat``.
+- **repeats** of a non-cyclic whole-body clip are its repetitions, each an element of its own
+  share of the time, joined by the engine as connections (:func:`repetitions`, the one place repeats
+  are handled); a cyclic clip simply loops to the whole length, a partial one plays once.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from text2anim.core.motion import Motion
+
+from ..tracks import Element
 from .blend import sample
 from .cycles import loop, make_cyclic
-from text2anim.core.motion import Motion
-from .plan import Element
 
 
 def at_speed(motion: Motion, speed: float, fps: float) -> Motion:
@@ -140,13 +142,29 @@ def cycle_frames(motion: Motion, speed: float, fps: float) -> Motion:
     return sample(motion, src).replace(fps=fps)
 
 
-def prepare(element: Element, fps: float, repeats_as_one: bool = True, margin: bool = False) -> Prepared:
+def repetitions(elements: Sequence[Element]) -> list[tuple[Element, int]]:
+    """Whole-body elements in time order, each with its repetition number: a repeated non-cyclic one as
+    its ``repeat`` repetitions, each of ``(end - start) / repeat`` s, joined to the one before by a
+    connection; any other element once, as repetition 0."""
+    out = []
+    for e in sorted(elements, key=lambda e: (e.start, e.id)):
+        n = max(1, int(e.repeat))
+        if e.clip.cyclic or n == 1:
+            out.append((e, 0))
+            continue
+        step = (e.end - e.start) / n
+        for k in range(n):
+            sub = replace(e, start=e.start + k * step, end=e.start + (k + 1) * step, repeat=1,
+                          method=e.method if k == 0 else "connection", prev=e.prev if k == 0 else e.id)
+            out.append((sub, k))
+    return out
+
+
+def prepare(element: Element, fps: float, margin: bool = False) -> Prepared:
     """The element's clip made ready for the track: speed, loop or hold/trim to ``end - start``.
 
-    A non-cyclic clip with ``repeat > 1`` is prepared as one repetition of
-    ``(end - start) / repeat`` when ``repeats_as_one`` (the engine joins the
-    repetitions); a cyclic clip simply loops to the whole length. With
-    ``margin`` a cyclic clip gets one more cycle before its start and after its
+    Repeats are not this function's: a repeated whole-body element comes here as its
+    :func:`repetitions`. With ``margin`` a cyclic clip gets one more cycle before its start and after its
     end (``lead`` frames before): a transition may then enter it at any phase.
     """
     clip = element.clip
@@ -154,9 +172,6 @@ def prepare(element: Element, fps: float, repeats_as_one: bool = True, margin: b
     if not speed > 0:
         raise ValueError(f"element {element.id}: speed must be positive, got {speed}")
     length = element.end - element.start
-    repeat = max(1, int(element.repeat))
-    if not clip.cyclic and repeat > 1 and repeats_as_one:
-        length = length / repeat
     n_target = max(1, int(round(length * fps)))
     if clip.cyclic and clip.motion.n_frames >= 3:
         m = make_cyclic(cycle_frames(clip.motion, speed, fps))

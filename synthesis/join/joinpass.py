@@ -7,11 +7,11 @@ own two source clips (as recorded, at the track's rate):
 1. **Velocity carried over** at the join's seams (every end of its blend
    intervals): the outgoing velocity of every joint's local rotation and of the
    hips is carried into what follows and decayed by inertialization
-   (:func:`synthesis.inertialize.inertialize_at`, Bollo's quintic) over
+   (:func:`synthesis.join.inertialize.inertialize_at`, Bollo's quintic) over
    :data:`SEAM_DECAY` s; where a blend ends on the first frame of the next
    clip's core (or too near the region's end to decay after it), the blend
    takes the difference instead, decaying backwards
-   (:func:`~synthesis.inertialize.inertialize_before`), and the core is not touched.
+   (:func:`~synthesis.join.inertialize.inertialize_before`), and the core is not touched.
 2. **The clips' own accelerations.** The join's region (blend, foot locks and
    releases, :data:`PAD` s either side; from up to :data:`BRAKE` s before the
    blend when the first clip loops) is **retimed** (:func:`warp_frames`): played
@@ -30,13 +30,13 @@ own two source clips (as recorded, at the track's rate):
    clip after its core, the second before it, :func:`synthesis.assemble.join_side`;
    "nearer": the larger of the two ratios, jerk and root pop, is smaller):
    a kick's accelerations in its core are no licence for the join beside it.
-   The candidates are :mod:`synthesis.smoothing`'s: the feet of a width are re-planted (step 3) only when
-   its exact hips' pop and a floor of its jerk leave it a chance of being chosen (:mod:`synthesis.pruning`),
+   The candidates are :mod:`synthesis.join.smoothing`'s: the feet of a width are re-planted (step 3) only when
+   its exact hips' pop and a floor of its jerk leave it a chance of being chosen (:mod:`synthesis.join.pruning`),
    several widths of a stretch in one IK solve; the choice is the one trying all makes.
 3. **Feet stay put.** Wherever a foot is in contact in the engine's output, or
    held still by its locks (toes and heels: the ankle's position *and* world
    orientation are kept, so the toe stays), the leg is solved by IK back onto
-   that foot (:func:`synthesis.legsolve.solve_leg`); the correction fades out
+   that foot (:func:`synthesis.join.legsolve.solve_leg`); the correction fades out
    over the air phase around it.
 4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
    ankle or toe would go below it is lifted by IK by the deficit

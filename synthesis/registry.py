@@ -5,7 +5,7 @@
 method          what joins consecutive whole-body motions
 =============== =================================================================
 ``optimal``     paper 000, optimal blending (:mod:`synthesis.optimal`), default
-``constraint``  paper 003 / [6], constraint-based (:mod:`synthesis.engine`)
+``constraint``  paper 003 / [6], constraint-based (:mod:`synthesis.constraint.engine`)
 ``pose``        closest poses, fixed-length linear blend (:mod:`synthesis.baselines`)
 ``crossfade``   fixed-length linear crossfade at the start (:mod:`synthesis.baselines`)
 =============== =================================================================
@@ -19,7 +19,7 @@ above its two source clips' larger + 0.01 — that
 actor is rendered by ``constraint`` instead if that one does not skate, and
 the report's warnings say so, and each of that actor's joins carries ``engine: "constraint"`` and
 ``fallback_from: "optimal"`` in its metrics. The constraint engine runs the same join post-pass
-(:mod:`synthesis.joinpass`), so the fallback's joins are held to the same criteria.
+(:mod:`synthesis.join.joinpass`), so the fallback's joins are held to the same criteria.
 """
 from __future__ import annotations
 
@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # the command line reads METHODS without paying for scipy: engines are imported when run
-    from .plan import Track
+    from .tracks import Track
     from .result import Result
 
 
@@ -61,7 +61,7 @@ def _optimal(tracks: Sequence[Track], fps: float, o: Options) -> Result:
 
 
 def _constraint(tracks: Sequence[Track], fps: float, o: Options) -> Result:
-    from .engine import synthesize
+    from .constraint.engine import synthesize
 
     return synthesize(tracks, fps, lock_feet=o.lock_feet, sway=o.sway)
 
@@ -114,9 +114,9 @@ def synthesize_with(method: str, tracks: Sequence[Track], fps: float = 30.0, smo
 
 def _skating_actors(result: Result) -> dict[str | None, list[tuple[int, int]]]:
     """Actor → the joins (first, second) of theirs whose blends skate more than their sources allow: the GMD
-    ratio of the blend above the two source clips' larger + 0.01 (:func:`synthesis.measure.skating_exceeds`),
+    ratio of the blend above the two source clips' larger + 0.01 (:func:`synthesis.join.measure.skating_exceeds`),
     the rule the benchmark judges the whole output by."""
-    from .measure import skating_exceeds
+    from .join.measure import skating_exceeds
 
     out: dict[str | None, list[tuple[int, int]]] = {}
     for j in result.joins:
@@ -133,7 +133,7 @@ def _feet_first(result: Result, tracks: Sequence[Track], fps: float, sway: bool)
 
     from .finish import finish
     from .assemble import same_length
-    from .engine import synthesize
+    from .constraint.engine import synthesize
     from .played import fitted
 
     bad = _skating_actors(result)

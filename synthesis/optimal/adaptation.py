@@ -3,7 +3,7 @@
 "後の要素動作の下半身の姿勢を前の要素動作の両足の位置に合わせて変形させた動作":
 the next motion with its lower body deformed so that its feet stand where the
 previous motion left them. The next motion is first placed through its
-support foot (:func:`synthesis.align.align_through_foot`), so that foot needs
+support foot (:func:`synthesis.join.align.align_through_foot`), so that foot needs
 no change; the other foot is ``d`` metres (horizontally) from where the
 previous motion has it. :func:`adapt`:
 

@@ -6,7 +6,7 @@ foot gets a :class:`Lock` over the frames ``[begin, end)`` where it is down
 in the motion that dominates the blend (and, past the blend, in the next
 motion). The ankle is driven to a target by the analytic two-bone IK of
 :mod:`core.ik` (hip and knee) and turned to a target orientation, so the toe stays too: every lock
-and release of a join in one solve, every swing lift in another (:mod:`synthesis.legsolve`).
+and release of a join in one solve, every swing lift in another (:mod:`synthesis.join.legsolve`).
 
 The target starts where the foot is on the lock's first frame and then moves
 only as the foot moves *in the source motions that have it planted*
@@ -29,12 +29,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from .blend import ease, ratio, slerp
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import runs
 from text2anim.core.motion import Motion
 
+from .blend import ease, ratio, slerp
 from .legsolve import REACH, LegGoal, leg_chain, quaternions, solve_goals, solve_leg
 
 __all__ = ["Lock", "FootLocks", "planted_targets", "lock_feet", "lift_swings", "plan_locks", "REACH", "solve_leg"]

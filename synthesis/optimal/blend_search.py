@@ -1,11 +1,11 @@
 """The blend-interval search of paper 000 §4.3, eqs. (10)–(15), vectorised over all candidate pairs.
 
-For one blend interval with ranges ``t0 ∈ S``, ``t1 ∈ S`` (:mod:`synthesis.blend_ranges`)::
+For one blend interval with ranges ``t0 ∈ S``, ``t1 ∈ S`` (:mod:`synthesis.optimal.blend_ranges`)::
 
     min  w_t Q_t(t0, t1) + w_p Q_p(t0, t1) + w_v Q_v(t0, t1)                     (10)
     Q_t = |(t_p,end - t_p,begin) - (t1 - t0)|     blends using a foot-moving interval P   (11)
     Q_t = t1 - t0                                 pose–pose blends                        (12)
-    Q_p = D(t0, t1)                               eq. (13), :mod:`synthesis.posedist`      (13)
+    Q_p = D(t0, t1)                               eq. (13), :mod:`synthesis.optimal.posedist`      (13)
     V(t) = approach speed at an end point, from D one frame (ε) on               (14)
     Q_v = |V(t0) - D/(t1 - t0)| + |V(t1) - D/(t1 - t0)|                          (15)
 
@@ -134,7 +134,7 @@ def evaluate(f_from: np.ndarray, f_to: np.ndarray, t0: tuple[int, int], t1: tupl
     """eq. (10) on the whole grid of ``t0`` in ``[t0[0], t0[1]]`` and ``t1`` in ``[t1[0], t1[1]]``.
 
     Args:
-        f_from: :func:`~synthesis.posedist.features` of the first source at frames ``t0[0] .. t0[1] + 1``,
+        f_from: :func:`~synthesis.optimal.posedist.features` of the first source at frames ``t0[0] .. t0[1] + 1``,
             ``(N0 + 1, K, 3)`` (one frame past the range: ε of eq. (14)).
         f_to: features of the second source at frames ``t1[0] - 1 .. t1[1]``, ``(N1 + 1, K, 3)``.
         fps: frames per second (ε = 1 / fps).

@@ -10,9 +10,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from text2anim.core.motion import Motion
-
 from text2anim.core.methods import ELEMENT_METHODS, Method
+from text2anim.core.motion import Motion
 
 __all__ = ["Clip", "Element", "Track"]
 
@@ -38,36 +37,32 @@ class Clip:
 
 @dataclass(frozen=True, eq=False)
 class Element:
-    """One motion on an actor's track.
-
-    Attributes:
-        id: the time table's element id.
-        clip: the source clip.
-        start: when the element begins on the track (s).
-        end: when it ends (s); ``end - start`` is the played length after
-            speed, repeats, looping (cyclic clips) or holding/trimming.
-        method: one of :data:`~text2anim.core.methods.ELEMENT_METHODS`; how it joins ``prev``.
-        prev: id of the element it is joined to (the base motion for a
-            composition); ``None`` for ``initial``.
-        speed: time scale (2.0 plays twice as fast).
-        repeat: how many times the clip is performed.
-        hold: たまま — this element's end pose stays as the base while the
-            element composed onto it plays.
-        body_part: for a composition, the part taken from this clip (may be
-            the mirror of the clip's declared part: ``left_arm`` from a
-            ``right_arm`` clip).
-    """
+    """One motion on an actor's track: which clip, when, joined how to which element, played how."""
 
     id: int
+    """The time table's element id."""
     clip: Clip
+    """The source clip."""
     start: float
+    """When the element begins on the track (s)."""
     end: float
+    """When it ends (s); ``end - start`` is the played length after speed, repeats, looping (cyclic clips) or
+    holding/trimming."""
     method: Method
+    """One of :data:`~text2anim.core.methods.ELEMENT_METHODS`; how it joins ``prev``."""
     prev: int | None = None
+    """Id of the element it is joined to (the base motion for a composition); ``None`` for ``initial``."""
     speed: float = 1.0
+    """Time scale (2.0 plays twice as fast)."""
     repeat: int = 1
+    """How many times the clip is performed (:func:`synthesis.join.timing.repetitions`)."""
     hold: bool = False
+    """たまま — this element's end pose stays as the base while the element composed onto it plays (the
+    time table starts the composition at this element's end and lengthens this one to cover it; synthesis
+    holds its end pose as for any clip played past its length, and reads nothing more from the flag)."""
     body_part: str | None = None
+    """For a composition, the part taken from this clip (may be the mirror of the clip's declared part:
+    ``left_arm`` from a ``right_arm`` clip)."""
 
     def __post_init__(self):
         if self.method not in ELEMENT_METHODS:

@@ -4,7 +4,7 @@ from foot landings.
 A loop of a walk walks on instead of jumping back: each cycle is moved
 rigidly by the cycle's own root travel and turn (:func:`cycle_move`, :func:`loop`); any mismatch
 between the end of the cycle and its start is spread over the cycle (:func:`make_cyclic`,
-:func:`smooth_seam`), with the feet put back where they were planted (:mod:`synthesis.loopfeet`).
+:func:`smooth_seam`), with the feet put back where they were planted (:mod:`synthesis.join.loopfeet`).
 :func:`find_cycle` / :func:`gait_cycle` cut one cycle of captured locomotion between two landings.
 Frames at the clip's rate; metres, radians.
 """
@@ -14,12 +14,13 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d
 from scipy.spatial.transform import Rotation
 
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.metrics import quality
+from text2anim.core.motion import Motion, unroll_quaternions
+
 from .align import Rigid, headings, yaw_rotation
 from .blend import ease, slerp
 from .loopfeet import plant_cycle
-from text2anim.core.metrics import quality
-from text2anim.core.contacts import detect_contacts
-from text2anim.core.motion import Motion, unroll_quaternions
 
 
 def _extrapolated(motion: Motion) -> tuple[np.ndarray, np.ndarray, float]:
@@ -84,7 +85,7 @@ def make_cyclic(motion: Motion) -> Motion:
     position in the cycle's own frame) is spread linearly over the cycle:
     frame ``k`` takes ``k / n`` of the correction; then the seam is smoothed
     (:func:`smooth_seam`, and the hips' path, :func:`smooth_root_seam`), and the legs are put back by IK
-    on the captured cycle's (:func:`synthesis.loopfeet.plant_cycle`: the spread correction would bend every
+    on the captured cycle's (:func:`synthesis.join.loopfeet.plant_cycle`: the spread correction would bend every
     stance leg and slide its foot) where that makes the loop skate less. A clip that already loops is only smoothed
     (:func:`smooth_seam`): the mismatch is the seam's second difference, and
     when no joint's exceeds what that joint does inside the clip (a skip's
@@ -114,7 +115,7 @@ def make_cyclic(motion: Motion) -> Motion:
 
 
 def _planted_if_better(cycle: Motion, original: Motion, move: Rigid) -> Motion:
-    """``cycle`` with its legs put back on ``original``'s (:func:`synthesis.loopfeet.plant_cycle`) when that
+    """``cycle`` with its legs put back on ``original``'s (:func:`synthesis.join.loopfeet.plant_cycle`) when that
     makes two loops of it skate less (GMD ratio, then joint jerk p99): a cycle whose correction left its
     feet where they were is kept as it is. Deterministic."""
     planted = plant_cycle(cycle, original, move)

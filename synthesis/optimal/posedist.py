@@ -24,7 +24,7 @@ import numpy as np
 from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
 
-from .align import root_headings
+from ..join.align import root_headings
 
 
 def part_joints(motion: Motion, part: str) -> list[int]:

@@ -1,10 +1,10 @@
 """Ranges of the blend intervals, paper 000 §4.2, eqs. (1)–(9).
 
-Each method of :mod:`synthesis.method_select` blends the lower and the upper
+Each method of :mod:`synthesis.optimal.method_select` blends the lower and the upper
 body in separate intervals; this module gives, for each, the range its start
 ``t0`` and end ``t1`` may take (track frames, both ends included), the blend
 kind, what is blended with what, and which ``Q_t`` applies (eq. (11) with the
-foot-moving interval's length, or eq. (12)). :mod:`synthesis.blend_search`
+foot-moving interval's length, or eq. (12)). :mod:`synthesis.optimal.blend_search`
 then picks ``t0``, ``t1`` inside.
 
 Discretisation: times are whole output frames. The paper's strict
@@ -19,7 +19,7 @@ after it ends), ``B`` the next motion as placed, ``Bad`` the next motion with
 its lower body adapted to the first motion's feet (§4.2.3). The next motion
 is only blended in where it is being played (``t1 >= b_first``).
 
-Per method (``P0``/``P1`` the steps of :class:`~synthesis.method_select.Choice`):
+Per method (``P0``/``P1`` the steps of :class:`~synthesis.optimal.method_select.Choice`):
 
 - transition, eq. (1) lower ``motion-motion``, eq. (2) upper ``pose-pose``::
 

@@ -1,10 +1,10 @@
-"""Which candidates of the join post-pass's search (:func:`synthesis.joinpass.finish_region`) need their feet
+"""Which candidates of the join post-pass's search (:func:`synthesis.join.joinpass.finish_region`) need their feet
 re-planted, decided exactly: the search's choice is the one re-planting every candidate makes.
 
-A candidate (:class:`synthesis.smoothing.Smoothed`) has a score, ``max(jerk p99 / limit, root pop / limit)``
+A candidate (:class:`synthesis.join.smoothing.Smoothed`) has a score, ``max(jerk p99 / limit, root pop / limit)``
 against the whole source clips' figures, and a nearness, the same against the figures of the parts the join
 replaces. Its root pop is exact before its feet are re-planted and its jerk p99 has a floor
-(:func:`synthesis.smoothing.jerk_floor`), so both have lower bounds: :func:`may_keep` skips a candidate that
+(:func:`synthesis.join.smoothing.jerk_floor`), so both have lower bounds: :func:`may_keep` skips a candidate that
 cannot be within the limits and then kept (:func:`replaces`, the rule), and :func:`least`, the fallback when
 no candidate is within, finds the least score from the bounds.
 """
@@ -20,7 +20,7 @@ Tried = tuple[float, float, float, Smoothed, float, float, int]
 
 def score_floor(cand: Smoothed, lims: tuple[float, float, float, float], near: bool = False) -> float:
     """A lower bound of ``cand``'s score (of its nearness with ``near``) from its exact pop and the floor of
-    its jerk p99 (:class:`synthesis.smoothing.Smoothed`): the score is ``max(jerk / lim, pop / lim)``. The pop
+    its jerk p99 (:class:`synthesis.join.smoothing.Smoothed`): the score is ``max(jerk / lim, pop / lim)``. The pop
     alone is a bound already (known before the rotations are low-passed): use :func:`pop_bound` first."""
     k = 2 if near else 0
     return max(cand.jk_floor / lims[k], cand.pop / lims[k + 1])
@@ -40,7 +40,7 @@ def replaces(near: float, jk: float, pop: float, kept: Tried | None) -> bool:
 
 
 def may_keep(cand: Smoothed, lims: tuple[float, float, float, float], kept: Tried | None) -> bool:
-    """Whether ``cand`` may be within the limits and then be kept (:func:`synthesis.joinpass.finish_region`), from its bounds:
+    """Whether ``cand`` may be within the limits and then be kept (:func:`synthesis.join.joinpass.finish_region`), from its bounds:
     a candidate that cannot is not re-planted (exact: the choice is the one re-planting every candidate
     makes; one that can only be the fallback, the least score, waits for :func:`least`). The cheap bound
     (the pop alone) is asked first."""

@@ -1,5 +1,5 @@
 """§4.1 and §4.2.5: the join's method from the foot–ground constraints around the two cores on the track,
-and the bounds its blend ranges (§4.2) must keep (:mod:`synthesis.method_select`)."""
+and the bounds its blend ranges (§4.2) must keep (:mod:`synthesis.optimal.method_select`)."""
 from __future__ import annotations
 
 from dataclasses import replace
@@ -8,10 +8,10 @@ import numpy as np
 
 from text2anim.core.contacts import FootContacts
 
-from ..blend_ranges import Bounds
-from ..method_select import Choice, cyclic_core_begin, cyclic_core_end, select, steps
-from ..placed import Placed
-from ..track import Incoming
+from ..join.gait import steps
+from ..join.placed import Placed
+from .blend_ranges import Bounds
+from .method_select import Choice, cyclic_core_begin, cyclic_core_end, select
 
 
 def _supported(choice: Choice, contacts: FootContacts, latest: int) -> Choice:
@@ -29,7 +29,7 @@ def _supported(choice: Choice, contacts: FootContacts, latest: int) -> Choice:
     return replace(choice, p0=replace(p0, begin=int(f[0])))
 
 
-def geometry(tr_contacts: FootContacts, prev: Placed, inc: Incoming, floor: int, min_len: int):
+def geometry(tr_contacts: FootContacts, prev: Placed, inc: Placed, floor: int, min_len: int):
     a_steps = [s for s in steps(tr_contacts) if s.begin >= prev.offset]
     c0 = (prev.offset + prev.core[0], prev.offset + prev.core[1])
     a_end = prev.offset + prev.stop

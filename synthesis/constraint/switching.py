@@ -19,7 +19,7 @@ Pose similarity is deliberately *not* used, as the paper says: the switch is
 chosen so that the feet can be kept still.
 
 Transition of cyclic motions: the key frames are *foot lift* (a foot leaves
-the ground) and *foot land* (it touches down), :func:`swings`.
+the ground) and *foot land* (it touches down), the :func:`synthesis.join.gait.steps` of both motions.
 """
 from __future__ import annotations
 
@@ -27,12 +27,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .align import headings, to_heading_frame
-from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts
 from text2anim.core.motion import Motion
 
-SIDES = ("left", "right")
+from ..join.align import headings, to_heading_frame
+from ..join.gait import foot_points
 PARTIAL_STATE_COST = 0.3  # s-equivalent: prefer the full state when it costs less than 0.3 s of motion
 OTHER_FOOT_COST = 1.0  # per metre the other planted foot would have to move
 
@@ -55,13 +54,6 @@ class Switch:
     exact: bool
     cost: float
     other_gap: float = 0.0
-
-
-def foot_points(motion: Motion) -> dict[str, np.ndarray]:
-    """Centre of each foot (mean of ankle and toe) per frame, ``(T, 3)``."""
-    bm = body_map(motion.skeleton)
-    pos = motion.positions
-    return {s: pos[:, list(bm.feet[s])].mean(axis=1) for s in SIDES}
 
 
 def planted_for(contacts: FootContacts, side: str) -> np.ndarray:
@@ -120,30 +112,3 @@ def find_switch(first: Motion, cf: FootContacts, a_range: tuple[int, int],
     i, j = np.unravel_index(np.argmin(cost), cost.shape)
     return Switch(int(a[i]), int(b[j]), "left" if sup_left[i, j] else "right", bool(exact[i, j]),
                   float(cost[i, j]), float(gap[i, j]))
-
-
-@dataclass(frozen=True)
-class Swing:
-    """One foot-moving interval: the foot ``side`` lifts at frame ``lift`` and lands at ``land`` (first frame down again)."""
-
-    side: str
-    lift: int
-    land: int
-
-    @property
-    def frames(self) -> int:
-        return self.land - self.lift
-
-
-def swings(contacts: FootContacts, side: str | None = None) -> list[Swing]:
-    """The key frames of a gait (paper 003 §4.3.2): every lift → land of a foot, in time order.
-
-    Only complete swings count (lift after the first frame, landing before the end).
-    """
-    out = []
-    n = len(contacts.left)
-    for s in (SIDES if side is None else (side,)):
-        for lo, hi in contacts.moving(s):
-            if lo > 0 and hi < n:
-                out.append(Swing(s, int(lo), int(hi)))
-    return sorted(out, key=lambda w: (w.lift, w.side))

@@ -7,16 +7,15 @@ import numpy as np
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 
-from ..adaptation import adapt
-from ..align import align_through_foot
-from ..blend_ranges import after, ranges
-from ..blend_search import Weights, best
-from ..method_select import phase_for, steps
-from ..placed import Placed
-from ..switching import foot_points
-from ..track import Incoming
+from ..join.align import align_through_foot
+from ..join.gait import foot_points, steps
+from ..join.placed import Placed
+from .adaptation import adapt
+from .blend_ranges import after, ranges
+from .blend_search import Weights, best
 from .curves import interval_weights
-from .method import geometry
+from .geometry import geometry
+from .method_select import phase_for
 from .placement import alignment
 from .records import Plan, Skip
 from .search import Features, grid, runners_up, search
@@ -29,7 +28,7 @@ SAME_FEET_CM = 1.0
 RUNNERS_UP = 5  # next-best lower-body intervals tried when the best one's join would skate  # cm: an adaptation moving no foot further needs no return step (S3)
 
 
-def plan_join(tr: Motion, prev: Placed, inc: Incoming, fps: float, weights: Weights, floor: int = 0,
+def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weights, floor: int = 0,
               min_blend: float = MIN_BLEND, allow_shift: bool = True) -> Plan | Skip:
     """Method, ranges, search, placement and weights of one join (no frames written).
 
@@ -37,7 +36,7 @@ def plan_join(tr: Motion, prev: Placed, inc: Incoming, fps: float, weights: Weig
         tr: the track so far, holding ``prev`` (extended, held, at least to the next element's last frame).
         prev: the previous element as laid.
         inc: the next element.
-        weights: eq. (10)'s weights (:func:`synthesis.blend_search.preset`).
+        weights: eq. (10)'s weights (:func:`synthesis.optimal.blend_search.preset`).
         floor: no blend starts before this track frame (the previous join's end; eq. (17)'s current time).
         allow_shift: delay the next element for room (see the module docstring).
     """
