@@ -67,10 +67,10 @@ def classify(db) -> list[tuple[str, str, str, float | None]]:
     from text2anim.motiondb import UnknownVerbError
     from text2anim.nlp import meaning
     from text2anim.nlp.analyze import analyze
-    from text2anim.pipeline import ClipFinder
+    from text2anim.clip_search import DatabaseClips
 
     verbs = [v.lemma for v in db.verbs()]
-    finder = ClipFinder(db)  # the planner's own search: as written, lemma, then reading
+    finder = DatabaseClips(db)  # the planner's own search: as written, lemma, then reading
     out = []
     for verb in VERBS:
         spec = analyze(verb + "。").motions[0]

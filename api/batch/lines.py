@@ -172,7 +172,7 @@ def run_chunk(chunk: Iterable[Item], opts: Options, emit: Callable[[dict], None]
 
 
 def _animate(item: Item, opts: Options) -> dict:
-    from text2anim.animation import animate
+    from text2anim import animate
 
     assert opts.out is not None, "animating needs an output folder"
     anim = animate(item.text, db=database(opts.db), fps=opts.fps, max_seconds=opts.max_seconds)
