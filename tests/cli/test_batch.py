@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from text2anim.batch import Options, compare, load_corpus, manifest, run_corpus, shard_path
+from text2anim.cli.batch import Options, compare, load_corpus, manifest, run_corpus, shard_path
 from text2anim.cli import cmd_batch
 from text2anim.cli.main import main
 

@@ -27,7 +27,8 @@ import time
 from dataclasses import dataclass
 from typing import Callable, Iterable
 
-from ..limits import MAX_SECONDS
+from text2anim.limits import MAX_SECONDS
+
 from .corpus import Item, text_hash
 
 #: Output files per shard folder: ``DIR/0012/line_0012345.bvh`` keeps folders at 1000 entries.
