@@ -68,4 +68,5 @@ def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str
         if not analysis.motions:
             raise ScheduleError("no motion of this text is in the motion database: " + "、".join(skipped))
     done = schedule(analysis, DatabaseClips(db), fps, check=lambda table: limits.check_table(table, fps, max_seconds))
-    return Planned(done.analysis, done.table, done.clips, done.fillers, done.mirrored, done.repeats, skipped, subs)
+    return Planned(done.analysis, done.table, done.clips, done.fillers, done.mirrored, done.repeats,
+                   skipped=skipped, fallbacks=subs)

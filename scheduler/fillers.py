@@ -1,4 +1,4 @@
-"""What the animation adds to the time table in the waits: stops, idles and held poses.
+"""The rows the time table gets in its waits: stops, idles and held poses.
 
 A wait longer than :data:`IDLE_GAP` seconds is filled rather than frozen:
 
