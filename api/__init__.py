@@ -35,10 +35,9 @@ def plan(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: floa
     """
     from text2anim.motiondb import MotionDB
 
-    from .animation import check_options
     from .pipeline import plan_text
 
-    fps, max_seconds, _ = check_options(text, db, fps, max_seconds, skip_unknown=skip_unknown, fallback=fallback)
+    fps, max_seconds, _ = limits.check_options(text, db, fps, max_seconds, skip_unknown=skip_unknown, fallback=fallback)
     if isinstance(db, MotionDB):
         return plan_text(text, db, fps=fps, skip_unknown=skip_unknown, fallback=fallback, max_seconds=max_seconds)
     with MotionDB.open(db) as opened:
@@ -49,11 +48,52 @@ def plan(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: floa
 def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: float = 30.0,
             skip_unknown: bool = False, lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
             smoothness: float = 0.5, fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS) -> Animation:
-    """Text to animation; see :func:`text2anim.animation.animate` for the arguments and errors."""
-    from .animation import animate as _animate
+    """Analyse ``text``, schedule it, and synthesise one motion per actor.
 
-    return _animate(text, db=db, fps=fps, skip_unknown=skip_unknown, lock_feet=lock_feet, sway=sway,
-                    blend=blend, smoothness=smoothness, fallback=fallback, max_seconds=max_seconds)
+    Args:
+        db: a :class:`motiondb.MotionDB`, a database URL or SQLite path, or
+            ``None`` for the default database (the built-in library on first use).
+        fps: output frame rate, 1 to 240 frames per second.
+        skip_unknown: drop motions whose verb the database lacks instead of failing.
+        fallback: ``nearest`` animates such a motion with the database verb nearest in
+            meaning (said in ``planned.fallbacks`` and the report); ``strict`` (default) refuses.
+        lock_feet, sway: the synthesis options of paper 003 (foot locking, sway transfer).
+        blend: how consecutive motions are joined: ``optimal`` (paper 000, the default),
+            ``constraint`` (paper 003), ``pose`` or ``crossfade`` (the common baselines);
+            see :mod:`synthesis.registry`.
+        smoothness: ``W`` of paper 000 §4.3 for ``optimal``: 0 joins as fast as it can, 1 as
+            smoothly as it can.
+        max_seconds: the output budget (seconds of animation summed over the actors; see
+            :mod:`text2anim.limits`).
+
+    Raises:
+        limits.InputTypeError: an argument of the wrong type (a ``TypeError``).
+        limits.InputError, limits.LimitError: a value out of range or a text that asks for
+            more than the limits allow (``ValueError``), checked before any work starts; and
+            the stages' own errors (``ValueError`` too) for a text they cannot serve.
+    """
+    from text2anim.motiondb import MotionDB
+    from text2anim.synthesis.registry import check_method, synthesize_with
+
+    from .animation import Animation
+    from .pipeline import plan_text
+    from .tracks import build_tracks
+
+    fps, max_seconds, smoothness = limits.check_options(text, db, fps, max_seconds, smoothness, fallback,
+                                                        skip_unknown=skip_unknown, lock_feet=lock_feet, sway=sway)
+    if not isinstance(blend, str):
+        raise limits.InputTypeError(f"blend must be a str, not {type(blend).__name__}")
+    check_method(blend)
+    opened = db if isinstance(db, MotionDB) else MotionDB.open(db)
+    try:
+        planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback,
+                            max_seconds=max_seconds)
+        tracks = build_tracks(planned, opened, fps)
+    finally:
+        if opened is not db:
+            opened.close()
+    result = synthesize_with(blend, tracks, fps, smoothness=smoothness, lock_feet=lock_feet, sway=sway)
+    return Animation(planned, result, fps, blend, smoothness, tuple(tracks))
 
 
 __all__ = ["InputError", "InputTypeError", "LimitError", "__version__", "animate", "limits", "plan"]

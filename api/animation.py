@@ -1,136 +1,28 @@
-"""Text → animation: the whole pipeline, and what a user saves from it."""
+"""What :func:`text2anim.animate` returns: the time table, one motion per actor, the report, and what a user saves."""
 from __future__ import annotations
 
 import json
 import os
 import tempfile
-from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
 from text2anim.core.atomic import Content, check_distinct, check_output_path, write_all
-
-from . import limits
-from .pipeline import Planned, plan_text
-from .variants import Pick
-
-#: What ``fallback`` may be: ``strict`` refuses a verb the database lacks, ``nearest`` plays the
-#: database verb nearest in meaning (:mod:`text2anim.fallback`).
-FALLBACKS = ("strict", "nearest")
 
 if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never imports it
     from text2anim.core.motion import Motion
-    from text2anim.synthesis import tracks as splan
     from text2anim.scheduler import TimeTable
     from text2anim.synthesis.result import Result
 
+    from .pipeline import Planned
+
 DEFAULT_ACTOR = "default"
-#: The verb of the clips a held pose plays (a cyclic one: the built-in ``wait``, captured).
-IDLE_VERB = "待つ"
-
-
-#: Suffix of a mirrored clip's name on a track (a co-actor's or a repetition's variant).
-MIRRORED = "~mirrored"
-
-
-class _Clips:
-    """Clips loaded from ``db`` once each, resampled to ``fps`` (and mirrored where asked)."""
-
-    def __init__(self, db: MotionDB, fps: float):
-        self.db, self.fps = db, fps
-        self.cache: dict[tuple[str, bool], splan.Clip] = {}
-
-    def get(self, info: ClipInfo, mirrored: bool = False) -> splan.Clip:
-        key = (info.name, mirrored)
-        if key not in self.cache:
-            if mirrored:
-                from text2anim.core.mirror import mirror
-
-                plain = self.get(info)
-                self.cache[key] = replace(plain, name=info.name + MIRRORED, motion=mirror(plain.motion))
-            else:
-                from text2anim.synthesis.tracks import Clip
-
-                motion = self.db.load(info)
-                if motion.fps != self.fps:
-                    motion = motion.resample(self.fps)
-                self.cache[key] = Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
-        return self.cache[key]
-
-    def idle(self, character: str, posture: str | None) -> Callable[[], Motion | None]:
-        """The captured idle a track of ``character`` holds its poses with (the best cyclic clip of
-        :data:`IDLE_VERB` for that character in ``posture``; none for a posture without one, such as
-        lying), looked up when first asked."""
-        def fetch() -> Motion | None:
-            try:
-                hits = self.db.search(IDLE_VERB, character=character, prefer_start_posture=posture, limit=1)
-            except UnknownVerbError:
-                return None
-            fits = hits and hits[0].cyclic and hits[0].start_posture == posture
-            return self.get(hits[0]).motion if fits else None
-
-        return fetch
-
-
-def _repetitions(e, picks: tuple[Pick, ...], clips: _Clips, first_id: int) -> list[splan.Element]:
-    """A repeated element as one element per repetition, each its own variant (ids: ``e.id``, then
-    ``first_id``, ``first_id + 1``, ...), of equal length, each joined to the one before."""
-    from text2anim.synthesis.tracks import Element
-
-    step = (e.end - e.start) / len(picks)
-    out: list[splan.Element] = []
-    for k, p in enumerate(picks):
-        eid = e.id if k == 0 else first_id + k - 1
-        out.append(Element(eid, clips.get(p.clip, p.mirrored), e.start + k * step, e.start + (k + 1) * step,
-                                 e.method if k == 0 else "connection", e.prev if k == 0 else out[-1].id,
-                                 e.speed, 1, False, e.body_part))
-    return out
-
-
-def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track]:
-    """The synthesis tracks of a time table: its elements with their clips loaded from ``db`` at ``fps``.
-
-    Every element of the table plays, the fillers of the waits included
-    (:mod:`text2anim.fillers`); an element in ``planned.mirrored`` plays its clip mirrored,
-    and a repeated one in ``planned.repeats`` plays as one element per repetition (ids
-    above the table's; a later element joined to it is joined to its last repetition).
-    """
-    from text2anim.synthesis.tracks import Element, Track
-
-    clips = _Clips(db, fps)
-    table = planned.table
-    next_id = max(e.id for e in table.elements) + 1
-    bases = {e.prev for e in table.elements if e.method == "composition"}
-    tracks = []
-    for actor in table.actors():
-        # In playing order (前に puts a later id first); a composition after its base.
-        mine = sorted((e for e in table.elements if e.actor == actor),
-                      key=lambda e: (e.start, e.method == "composition", e.id))
-        last_of: dict[int, int] = {}  # a repeated element's id -> its last repetition's
-        elements: list[splan.Element] = []
-        for e in mine:
-            prev = e.prev if e.method == "composition" or e.prev is None else last_of.get(e.prev, e.prev)
-            picks = planned.repeats.get(e.id) if e.id not in bases else None
-            if picks:
-                reps = _repetitions(replace(e, prev=prev), picks, clips, next_id)
-                next_id += len(reps) - 1
-                last_of[e.id] = reps[-1].id
-                elements.extend(reps)
-                continue
-            elements.append(Element(e.id, clips.get(planned.clips[e.id], e.id in planned.mirrored), e.start,
-                                          e.end, e.method, prev, e.speed, e.repeat, e.hold, e.body_part))
-        whole = [e for e in mine if e.method != "composition"]  # the body's posture is the whole-body clips'
-        last = planned.clips[whole[-1].id] if whole else None
-        idle = clips.idle(last.character, last.end_posture) if last is not None else None
-        tracks.append(Track(actor, tuple(elements), idle=idle))
-    return tracks
 
 
 @dataclass(frozen=True, eq=False)
 class Animation:
-    """The result of :func:`animate`: time table, one motion per actor, the synthesis report.
+    """The result of :func:`text2anim.animate`: time table, one motion per actor, the synthesis report.
 
     ``motions`` maps each actor's name (``"default"`` when the text names none)
     to its :class:`synthesis.Motion`, all on one clock starting at 0 s.
@@ -359,66 +251,4 @@ def check_plot_path(path: str | os.PathLike) -> Path:
     return path
 
 
-def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: float = 30.0,
-            skip_unknown: bool = False, lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
-            smoothness: float = 0.5, fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS) -> Animation:
-    """Analyse ``text``, schedule it, and synthesise one motion per actor.
-
-    Args:
-        db: a :class:`motiondb.MotionDB`, a database URL or SQLite path, or
-            ``None`` for the default database (the built-in library on first use).
-        fps: output frame rate, 1 to 240 frames per second.
-        skip_unknown: drop motions whose verb the database lacks instead of failing.
-        fallback: ``nearest`` animates such a motion with the database verb nearest in
-            meaning (said in ``planned.fallbacks`` and the report); ``strict`` (default) refuses.
-        lock_feet, sway: the synthesis options of paper 003 (foot locking, sway transfer).
-        blend: how consecutive motions are joined: ``optimal`` (paper 000, the default),
-            ``constraint`` (paper 003), ``pose`` or ``crossfade`` (the common baselines);
-            see :mod:`synthesis.registry`.
-        smoothness: ``W`` of paper 000 §4.3 for ``optimal``: 0 joins as fast as it can, 1 as
-            smoothly as it can.
-        max_seconds: the output budget (seconds of animation summed over the actors; see
-            :mod:`text2anim.limits`).
-
-    Raises:
-        limits.InputTypeError: an argument of the wrong type (a ``TypeError``).
-        limits.InputError, limits.LimitError: a value out of range or a text that asks for
-            more than the limits allow (``ValueError``), checked before any work starts; and
-            the stages' own errors (``ValueError`` too) for a text they cannot serve.
-    """
-    from text2anim.synthesis.registry import check_method, synthesize_with
-
-    fps, max_seconds, smoothness = check_options(text, db, fps, max_seconds, smoothness, fallback,
-                                                 skip_unknown=skip_unknown, lock_feet=lock_feet, sway=sway)
-    if not isinstance(blend, str):
-        raise limits.InputTypeError(f"blend must be a str, not {type(blend).__name__}")
-    check_method(blend)
-    opened = db if isinstance(db, MotionDB) else MotionDB.open(db)
-    try:
-        planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback,
-                            max_seconds=max_seconds)
-        tracks = build_tracks(planned, opened, fps)
-    finally:
-        if opened is not db:
-            opened.close()
-    result = synthesize_with(blend, tracks, fps, smoothness=smoothness, lock_feet=lock_feet, sway=sway)
-    return Animation(planned, result, fps, blend, smoothness, tuple(tracks))
-
-
-def check_options(text, db, fps, max_seconds, smoothness: float = 0.5, fallback: str = "strict",
-                  **flags) -> tuple[float, float, float]:
-    """Type and range checks of the API's arguments; returns ``(fps, max_seconds, smoothness)`` as floats."""
-    limits.check_text(text)
-    if fallback not in FALLBACKS:
-        raise limits.InputError(f"fallback must be one of {', '.join(FALLBACKS)}, not {fallback!r}")
-    if not (db is None or isinstance(db, (MotionDB, str, os.PathLike))):
-        raise limits.InputTypeError(f"db must be a MotionDB, a database URL or path, or None, not {type(db).__name__}")
-    for name, value in flags.items():
-        limits.flag(name, value)
-    smooth = limits.real("smoothness", smoothness)
-    if not 0.0 <= smooth <= 1.0:
-        raise limits.InputError(f"smoothness must be between 0 (time first) and 1 (smoothness first), not {smoothness!r}")
-    return limits.check_fps(fps), limits.check_budget(max_seconds), smooth
-
-
-__all__ = ["Animation", "animate", "build_tracks"]
+__all__ = ["Animation", "check_plot_path"]

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
 import unicodedata
 
 FPS_MIN = 1.0
@@ -58,6 +59,11 @@ class InputTypeError(TypeError):
 
 class LimitError(InputError):
     """A text or option that asks for more work than the limits allow."""
+
+
+#: What ``fallback`` may be: ``strict`` refuses a verb the database lacks, ``nearest`` plays the
+#: database verb nearest in meaning (:mod:`text2anim.fallback`).
+FALLBACKS = ("strict", "nearest")
 
 
 # ----------------------------------------------------------------------------- arguments
@@ -166,6 +172,24 @@ def check_table(table, fps: float, max_seconds: float = MAX_SECONDS) -> None:
         raise LimitError(f"the animation would have {frames} frames ({seconds:.1f} s at {fps:g} fps{who}), over "
                          f"the budget of {budget_frames} frames ({max_seconds:g} s at {BUDGET_FPS:g} fps; "
                          "lower --fps or raise --max-seconds)")
+
+
+def check_options(text, db, fps, max_seconds, smoothness: float = 0.5, fallback: str = "strict",
+                  **flags) -> tuple[float, float, float]:
+    """Type and range checks of the API's arguments; returns ``(fps, max_seconds, smoothness)`` as floats."""
+    from text2anim.motiondb import MotionDB
+
+    check_text(text)
+    if fallback not in FALLBACKS:
+        raise InputError(f"fallback must be one of {', '.join(FALLBACKS)}, not {fallback!r}")
+    if not (db is None or isinstance(db, (MotionDB, str, os.PathLike))):
+        raise InputTypeError(f"db must be a MotionDB, a database URL or path, or None, not {type(db).__name__}")
+    for name, value in flags.items():
+        flag(name, value)
+    smooth = real("smoothness", smoothness)
+    if not 0.0 <= smooth <= 1.0:
+        raise InputError(f"smoothness must be between 0 (time first) and 1 (smoothness first), not {smoothness!r}")
+    return check_fps(fps), check_budget(max_seconds), smooth
 
 
 def _number(x) -> str:

@@ -31,7 +31,7 @@ CORPUS = REPO / "tests" / "corpus" / "nlp_corpus.jsonl"
 
 
 def build_corpus(folder: Path, lines: int) -> Path:
-    from text2anim.batch import load_corpus
+    from text2anim.cli.batch import load_corpus
 
     texts = [it.text for it in load_corpus(str(CORPUS))]
     path = folder / f"corpus_{lines}.jsonl"  # JSON lines: one corpus text has a line break in it
@@ -56,7 +56,7 @@ def load() -> str:
 
 
 def run_row(corpus: Path, out: Path, opts_db: str, scheduler: str | None, client=None, chunk: int = 16):
-    from text2anim.batch import Options, run_corpus
+    from text2anim.cli.batch import Options, run_corpus
 
     workers0 = client.run(_cpu) if client else {}
     cpu0, t0, load0 = time.process_time(), time.perf_counter(), load()

@@ -48,8 +48,9 @@ def main() -> int:
 
     from text2anim.motiondb import MotionDB
     from text2anim.synthesis.registry import DEFAULT, synthesize_with
-    from text2anim.animation import animate, build_tracks
+    from text2anim import animate
     from text2anim.pipeline import plan_text
+    from text2anim.tracks import build_tracks
 
     t = time.perf_counter()
     db = MotionDB.open(url)

@@ -338,7 +338,7 @@ def plot_fig5(rows: list[dict], out: Path) -> list[Path]:
 
 
 def corpus_texts(n: int | None) -> list[str]:
-    from text2anim.batch.corpus import load_corpus
+    from text2anim.cli.batch.corpus import load_corpus
 
     items = [i for i in load_corpus(str(CORPUS)) if "error" not in (i.expect or {})]
     texts = list(dict.fromkeys(i.text for i in items))

@@ -95,9 +95,9 @@ def ms(s: float) -> str:
 # ----------------------------------------------------------------- pipeline rows
 def pipeline_rows(tmp: Path, repeat: int) -> None:
     from text2anim import animate
-    from text2anim.animation import build_tracks
     from text2anim.motiondb import MotionDB
     from text2anim.pipeline import plan_text
+    from text2anim.tracks import build_tracks
     from text2anim.synthesis.optimal import join as optimal  # join_next looks plan_join up there
     from text2anim.synthesis.registry import synthesize_with
     from text2anim.output.bvh_write import format_bvh

@@ -8,7 +8,7 @@ speech-only and commercial verbs left out: ある, 分かる, 曇る, 買う, ..
 Nothing here comes from the project's corpus.
 
 For each verb: (a) the built-in library has a clip for it, found as the planner
-finds it (``pipeline.ClipFinder``: the verb as written, its lemma, a kana verb's
+finds it (``clip_search.DatabaseClips``: the verb as written, its lemma, a kana verb's
 reading) and declaring that verb: its own verbs, or a near-synonym of
 ``motiondb/library/near.json``, where each carries the reason it is accepted (a
 clip found only through the sound of another word, 吹く -> 拭く, counts as (h),
@@ -67,10 +67,10 @@ def classify(db) -> list[tuple[str, str, str, float | None]]:
     from text2anim.motiondb import UnknownVerbError
     from text2anim.nlp import meaning
     from text2anim.nlp.analyze import analyze
-    from text2anim.pipeline import ClipFinder
+    from text2anim.clip_search import DatabaseClips
 
     verbs = [v.lemma for v in db.verbs()]
-    finder = ClipFinder(db)  # the planner's own search: as written, lemma, then reading
+    finder = DatabaseClips(db)  # the planner's own search: as written, lemma, then reading
     out = []
     for verb in VERBS:
         spec = analyze(verb + "。").motions[0]

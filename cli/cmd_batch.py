@@ -1,7 +1,7 @@
 """``text2anim batch``: run a corpus through the pipeline, on this machine or a Dask cluster.
 
 A corpus line is plain text or a JSON object ``{"text": …, "category": …,
-"expect": {…}}`` (see :mod:`text2anim.batch.corpus`). Every line is parsed; with
+"expect": {…}}`` (see :mod:`.batch.corpus`). Every line is parsed; with
 ``--out DIR`` it is also planned and animated: ``DIR/0000/line_0000012.bvh``
 (1000 lines per folder), one record per line in ``DIR/manifest.jsonl`` written
 as results arrive, ``DIR/summary.json`` at the end. A rerun skips the lines
@@ -17,10 +17,8 @@ import sys
 import time
 from typing import Any
 
-from text2anim.batch import DEFAULT_CHUNK, Options, run_corpus
-
-
 from .arg_types import fps_type
+from .batch import DEFAULT_CHUNK, Options, run_corpus
 from .bvh_options import add_budget_option
 
 NAME = "batch"

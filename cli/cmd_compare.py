@@ -56,8 +56,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from text2anim.motiondb import MotionDB
     from text2anim.synthesis.comparison import compare
-    from text2anim.animation import Animation, build_tracks
+    from text2anim.animation import Animation
     from text2anim.pipeline import plan_text
+    from text2anim.tracks import build_tracks
 
     text = read_text(args.text)
     out_dir = Path(args.out) if args.out else None

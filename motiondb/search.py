@@ -35,7 +35,7 @@ one that only lists 蹴る as a synonym. And 立ち上がる after a clip that e
 crouched (``prefer_start_posture="crouched"``) puts the clip that rises from a
 crouch before the one that rises from a chair, whatever their verbs and
 objects: a clip that cannot start where the character is would need another
-clip in between (see :mod:`text2anim.postures`). The posture key changed
+clip in between (see :mod:`scheduler.postures`). The posture key changed
 nothing for searches that do not ask for it. The ordering is done by the database
 (``ORDER BY`` on these keys, ``LIMIT`` when asked), never by reading frames, and a
 search is one SQL statement (:func:`find`): the names are matched, the hits ranked and

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from text2anim.clip_timing import timing
 from text2anim.core import read_bvh
 from text2anim.core.motion import Motion
 from text2anim.motiondb import ClipInfo, ImportOptions, MotionDB
+from text2anim.scheduler.clips import timing
 from text2anim.scheduler.lengths import transition_window
 from text2anim.synthesis.join.cycles import gait_cycle
 from text2anim.synthesis.tracks import Clip, Element, Track

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from text2anim.batch import Options, load_corpus, manifest, run_corpus
+from text2anim.cli.batch import Options, load_corpus, manifest, run_corpus
 from text2anim.cli.main import main
 
 CORPUS = Path(__file__).parents[1] / "corpus" / "nlp_corpus.jsonl"

@@ -9,9 +9,10 @@ results arrive, and skips the lines an earlier run finished; ``jobs`` or
 from __future__ import annotations
 
 from .corpus import CorpusError, Item, chunks, load_corpus, text_hash
+from .errors import BatchError
 from .lines import Options, compare, run_line, shard_path
 from .manifest import Manifest
-from .runner import DEFAULT_CHUNK, BatchError, Outcome, run_corpus
+from .runner import DEFAULT_CHUNK, Outcome, run_corpus
 from .summary import Summary
 
 __all__ = ["BatchError", "CorpusError", "DEFAULT_CHUNK", "Item", "Manifest", "Options", "Outcome", "Summary",

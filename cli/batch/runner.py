@@ -17,17 +17,12 @@ from text2anim.core.atomic import atomic_write_text
 
 from . import lines
 from .corpus import CorpusError, Item, chunks, load_corpus
+from .errors import BatchError
 from .lines import Options
 from .manifest import Manifest
 from .summary import Summary
 
 DEFAULT_CHUNK = 16  # lines per task: ~5 s of work, small enough to retry, large enough to amortise
-
-
-class BatchError(ValueError):
-    """Bad batch settings (jobs, chunk size, a scheduler that cannot be reached, no Dask)."""
-
-    user_facing = True
 
 
 @dataclass

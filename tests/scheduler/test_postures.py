@@ -1,11 +1,11 @@
 """Posture continuity: clips whose postures meet, and bridges where none can.
 
 On the real database seeded with the built-in library (``library_db``), through
-:func:`text2anim.postures.choose`, :func:`~text2anim.postures.bridges` and
-:func:`~text2anim.postures.arrange` with the pipeline's own stages (the
-analyser, the scheduler, the clip finder, the synthesis engine). ``arrange`` is
-applied here as the pipeline will apply it (:func:`plan_with_postures`), so
-these tests hold before and after the lead hooks it in.
+:func:`scheduler.postures.choose`, :func:`~scheduler.postures.bridges` and
+:func:`scheduler.arrangement.arrange` with the pipeline's own stages (the
+analyser, the scheduler, the API's clip search, the synthesis engine). ``arrange``
+is applied here as :func:`scheduler.schedule` applies it (:func:`plan_with_postures`,
+without the fillers of the waits).
 """
 from __future__ import annotations
 
@@ -15,13 +15,15 @@ import numpy as np
 import pytest
 
 from text2anim import nlp
-from text2anim.motiondb import ClipRecord, MotionDB
-from text2anim.motiondb.library import build_all
-from text2anim.motiondb import classify_posture
-from text2anim.scheduler import plan
+from text2anim.clip_search import DatabaseClips
 from text2anim.core.metrics import skating_ratio
-from text2anim.pipeline import Planned, ClipFinder
-from text2anim.postures import BRIDGE_VERBS, arrange, bridges, choose, matching, mismatches
+from text2anim.motiondb import ClipRecord, MotionDB, classify_posture
+from text2anim.motiondb.library import build_all
+from text2anim.pipeline import Planned
+from text2anim.scheduler import plan
+from text2anim.scheduler.arrangement import arrange
+from text2anim.scheduler.picker import Picker
+from text2anim.scheduler.postures import BRIDGE_VERBS, POSTURES, bridges, choose, matching, mismatches
 
 #: The sentences the lead saw in contact sheets, and the clips they must play (bridges included).
 SENTENCES = {
@@ -43,16 +45,17 @@ def names(clips):
 
 
 def plan_with_postures(text: str, db: MotionDB, fps: float = 30.0) -> tuple[Planned, object]:
-    """``text2anim.pipeline.plan_text`` with the posture hook (see the hook note of text2anim.postures)."""
+    """The steps of :func:`scheduler.schedule` up to the fillers: plan, arrange, plan again."""
     analysis = nlp.analyze(text)
-    finder = ClipFinder(db)
-    table = plan(analysis, finder, fps)
-    arranged = arrange(analysis, table, finder.chosen, finder.search, db)
+    source = DatabaseClips(db)
+    picker = Picker(source)
+    table = plan(analysis, picker, fps)
+    arranged = arrange(analysis, table, picker.chosen, source)
     if arranged.changed:
         analysis = arranged.analysis
-        finder = ClipFinder(db)
-        table = plan(analysis, arranged.finder(finder), fps)
-    return Planned(analysis, table, dict(finder.chosen)), arranged
+        picker = Picker(source)
+        table = plan(analysis, arranged.finder(picker), fps)
+    return Planned(analysis, table, dict(picker.chosen)), arranged
 
 
 def sequence(planned: Planned, actor=None):
@@ -145,23 +148,24 @@ def test_choose_is_the_optimum_of_an_exhaustive_search(db):
     ("kneeling", "standing", []),  # no kneeling clip in the library
 ])
 def test_bridges_from_the_library(db, before, after, expected):
-    chain = bridges(before, after, db)
+    chain = bridges(before, after, DatabaseClips(db))
     assert names(chain) == expected
     if chain:
         assert chain[0].start_posture == before and chain[-1].end_posture == after
         assert all(a.end_posture == b.start_posture for a, b in zip(chain, chain[1:]))
-    assert names(bridges(before, after, db, max_clips=1)) == (expected if len(expected) <= 1 else [])
+    assert names(bridges(before, after, DatabaseClips(db), max_clips=1)) == (expected if len(expected) <= 1 else [])
 
 
 def test_bridges_refuse_unknown_postures(db):
     with pytest.raises(ValueError, match="unknown posture 'sitting'"):
-        bridges("sitting", "standing", db)
+        bridges("sitting", "standing", DatabaseClips(db))
 
 
-def test_bridge_verbs_cover_every_posture():
-    from text2anim.motiondb.types import POSTURES
+def test_the_scheduler_knows_the_databases_postures_in_its_order():
+    """The scheduler reads no motiondb module: its posture words are :data:`BRIDGE_VERBS`' keys."""
+    from text2anim.motiondb.types import POSTURES as STORED
 
-    assert set(BRIDGE_VERBS) == set(POSTURES)
+    assert POSTURES == tuple(BRIDGE_VERBS) == STORED
 
 
 @pytest.fixture(scope="module")
@@ -179,7 +183,8 @@ def db_with_bob(tmp_path_factory):
 
 
 def test_bridges_prefer_the_characters_own_clips(db_with_bob):
-    with MotionDB.open(db_with_bob) as db:
+    with MotionDB.open(db_with_bob) as opened:
+        db = DatabaseClips(opened)
         assert names(bridges("seated", "standing", db, character="default")) == ["stand_up"]
         assert names(bridges("seated", "standing", db, character="bob")) == ["bob_stand_up"]
         # bob has no way to crouch: the chain borrows the default character's clip after his own
@@ -187,11 +192,13 @@ def test_bridges_prefer_the_characters_own_clips(db_with_bob):
 
 
 def test_matching_finds_a_clip_that_keeps_the_posture(db, db_with_bob):
+    db = DatabaseClips(db)
     assert matching(db, "待つ", "standing").name == "wait"
     assert matching(db, "待つ", "seated").name == "wait_seated"  # the captured seated idle (issue 12)
     assert matching(db, "待つ", "lying") is None  # none lying: the pose is held
     assert matching(db, "まだない動詞", "standing") is None
-    with MotionDB.open(db_with_bob) as bob:
+    with MotionDB.open(db_with_bob) as opened:
+        bob = DatabaseClips(opened)
         assert matching(bob, "待つ", "seated").name == "seated_wait"
         assert matching(bob, "待つ", "standing").name == "wait"
     with pytest.raises(ValueError):
@@ -221,9 +228,9 @@ def test_without_the_hook_the_joins_were_broken(db):
     """What the lead saw: the first clip of each motion, as the pipeline picks it today."""
     for text in ("しゃがんで、立ち上がる。", "座って、歩く。"):
         analysis = nlp.analyze(text)
-        finder = ClipFinder(db)
-        plan(analysis, finder, 30.0)
-        assert mismatches([finder.chosen[m.id] for m in analysis.motions]) == [1]
+        picker = Picker(DatabaseClips(db))
+        plan(analysis, picker, 30.0)
+        assert mismatches([picker.chosen[m.id] for m in analysis.motions]) == [1]
 
 
 def test_a_bridge_is_a_motion_of_its_own_between_its_neighbours(db):
@@ -270,9 +277,10 @@ def test_several_changes_of_posture_in_a_row(db):
 def test_texts_without_a_posture_change_are_left_alone(db):
     for text in ("歩いて、走る。", "しゃがんで、ボールを拾う。", "座ったまま手を振る。", "ジャンプする前にしゃがむ。"):
         analysis = nlp.analyze(text)
-        finder = ClipFinder(db)
-        table = plan(analysis, finder, 30.0)
-        arranged = arrange(analysis, table, finder.chosen, finder.search, db)
+        source = DatabaseClips(db)
+        picker = Picker(source)
+        table = plan(analysis, picker, 30.0)
+        arranged = arrange(analysis, table, picker.chosen, source)
         assert not arranged.changed and arranged.bridges == () and arranged.analysis is analysis, text
 
 
@@ -287,7 +295,7 @@ def test_two_actors_are_arranged_separately(db):
 def test_the_animation_changes_posture_where_the_clips_do(db, text):
     """Synthesised through the real engine: at each element's start the character is in its clip's posture."""
     from text2anim.synthesis.constraint.engine import synthesize
-    from text2anim.animation import build_tracks
+    from text2anim.tracks import build_tracks
 
     fps = 30.0
     planned, _ = plan_with_postures(text, db, fps)

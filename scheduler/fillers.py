@@ -1,4 +1,4 @@
-"""What the animation adds to the time table in the waits: stops, idles and held poses.
+"""The rows the time table gets in its waits: stops, idles and held poses.
 
 A wait longer than :data:`IDLE_GAP` seconds is filled rather than frozen:
 
@@ -12,9 +12,9 @@ A wait longer than :data:`IDLE_GAP` seconds is filled rather than frozen:
   to the end.
 
 The idle of a posture other than standing is a clip of :data:`IDLE_VERB` that starts
-and ends in it (:func:`text2anim.postures.matching`); none: the actor holds still.
+and ends in it (:func:`postures.matching`); none: the actor holds still.
 Actors idling side by side are not clones: the ``k``-th actor takes the ``k``-th
-variant of the standing idle (:func:`text2anim.variants.nth`: another clip of 待つ,
+variant of the standing idle (:func:`variants.nth`: another clip of 待つ,
 else the mirror image), listed in ``Filled.mirrored`` when mirrored.
 The added elements are rows of the time table like the text's own (ids above
 them), so ``text2anim plan`` shows what will play. Only clip metadata is read.
@@ -22,14 +22,13 @@ them), so ``text2anim plan`` shows what will play. Only clip metadata is read.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Generic
 
 from text2anim.core.methods import Method
-from text2anim.core.timebase import resampled_frames
-from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
-from text2anim.motiondb.types import Posture
-from text2anim.scheduler import Element, TimeTable
 
-from . import postures
+from .clips import C, ClipSource, played_duration
+from .postures import matching
+from .types import Element, TimeTable
 from .variants import nth
 
 #: Seconds of waiting above which a wait is filled.
@@ -39,58 +38,47 @@ STOP_VERB = "止まる"
 
 
 @dataclass(frozen=True)
-class Filled:
+class Filled(Generic[C]):
     """A time table with its waits filled: ``clips`` covers every element, ``fillers`` are the added ids."""
 
     table: TimeTable
-    clips: dict[int, ClipInfo]
+    clips: dict[int, C]
     fillers: tuple[int, ...]
     mirrored: frozenset[int] = frozenset()
 
 
-def played_duration(info: ClipInfo, fps: float) -> float:
-    """Seconds a clip lasts once resampled to ``fps`` (as synthesis plays it)."""
-    return resampled_frames(info.frames, info.fps, fps) / fps
-
-
-class _Finder:
+class _Finder(Generic[C]):
     """The stop and idle clips of the database, by posture and character."""
 
-    def __init__(self, db: MotionDB):
-        self.db = db
+    def __init__(self, source: ClipSource[C]):
+        self.source = source
         self.variant = 0  # the actor's index: which variant of the standing idle it plays
 
-    def by_verb(self, verb: str, character: str | None) -> ClipInfo | None:
-        try:
-            hits = self.db.search(verb, prefer_character=character)
-        except UnknownVerbError:
-            return None
+    def by_verb(self, verb: str, character: str | None) -> C | None:
+        hits = self.source.by_verb(verb, prefer_character=character)
         return hits[0] if hits else None
 
-    def idle(self, posture: Posture, character: str | None) -> tuple[ClipInfo | None, bool]:
+    def idle(self, posture: str, character: str | None) -> tuple[C | None, bool]:
         """The idle clip for ``posture`` (a seated one after 座る), or None: the actor holds still;
         and whether it plays mirrored (the current actor's variant of the standing idle)."""
         if posture == "standing":
-            try:
-                hits = self.db.search(IDLE_VERB, prefer_character=character)
-            except UnknownVerbError:
-                return None, False
+            hits = self.source.by_verb(IDLE_VERB, prefer_character=character)
             if not hits:
                 return None, False
             pick = nth(hits, self.variant)
             return pick.clip, pick.mirrored
-        return postures.matching(self.db, IDLE_VERB, posture, character=character), False
+        return matching(self.source, IDLE_VERB, posture, character=character), False
 
 
-class _Adder:
+class _Adder(Generic[C]):
     """Collects the added elements and their clips, numbering them from ``next_id``."""
 
     def __init__(self, next_id: int):
         self.next_id = next_id
-        self.clips: dict[int, ClipInfo] = {}
+        self.clips: dict[int, C] = {}
         self.mirrored: set[int] = set()
 
-    def add(self, actor: str | None, verb: str, info: ClipInfo, method: Method, prev: int | None,
+    def add(self, actor: str | None, verb: str, info: C, method: Method, prev: int | None,
             start: float, end: float, mirrored: bool = False) -> Element:
         e = Element(self.next_id, actor, verb, info.name, method, prev, start, end)
         self.clips[e.id] = info
@@ -100,7 +88,7 @@ class _Adder:
         return e
 
 
-def _fill_gap(find: _Finder, add: _Adder, prev: Element, prev_info: ClipInfo, start: float, end: float,
+def _fill_gap(find: _Finder[C], add: _Adder[C], prev: Element, prev_info: C, start: float, end: float,
               character: str | None, fps: float) -> list[Element]:
     """Elements that fill ``[start, end)`` s after ``prev``: a stop for a looping motion, then idling."""
     out: list[Element] = []
@@ -118,7 +106,7 @@ def _fill_gap(find: _Finder, add: _Adder, prev: Element, prev_info: ClipInfo, st
     return out
 
 
-def _actor_track(find: _Finder, add: _Adder, mine: list[Element], clips: dict[int, ClipInfo],
+def _actor_track(find: _Finder[C], add: _Adder[C], mine: list[Element], clips: dict[int, C],
                  fps: float) -> list[Element]:
     """One actor's elements in playing order with a late start's idle and the connections' waits filled."""
     track: list[Element] = []
@@ -142,9 +130,10 @@ def _actor_track(find: _Finder, add: _Adder, mine: list[Element], clips: dict[in
     return track
 
 
-def fill_waits(table: TimeTable, clips: dict[int, ClipInfo], db: MotionDB, fps: float) -> Filled:
+def fill_waits(table: TimeTable, clips: dict[int, C], source: ClipSource[C], fps: float) -> Filled[C]:
     """The time table with its waits filled (see the module docstring); ``clips``: element id -> clip."""
-    find, add = _Finder(db), _Adder(max(e.id for e in table.elements) + 1)
+    find: _Finder[C] = _Finder(source)
+    add: _Adder[C] = _Adder(max(e.id for e in table.elements) + 1)
     tracks = []
     for k, actor in enumerate(table.actors()):
         # In playing order (前に puts a later id first); a composition after its base.

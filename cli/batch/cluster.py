@@ -25,6 +25,7 @@ from distributed import Client, LocalCluster, Queue, WorkerPlugin, wait
 
 from . import lines
 from .corpus import Item
+from .errors import BatchError
 from .lines import Options
 
 CONNECT_TIMEOUT = 30  # s to reach a scheduler
@@ -66,8 +67,6 @@ class DaskExecutor:
         self._cluster: Any = None  # the LocalCluster this executor started, if any
 
     def __enter__(self):
-        from .runner import BatchError
-
         if self.scheduler:
             try:
                 self.client = Client(self.scheduler, timeout=CONNECT_TIMEOUT)
@@ -87,8 +86,6 @@ class DaskExecutor:
 
     def prepare(self, opts: Options) -> Options:
         """Check the workers see the output folder; ship an SQLite database to them."""
-        from .runner import BatchError
-
         from text2anim import __version__
 
         try:

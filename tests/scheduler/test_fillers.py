@@ -11,8 +11,9 @@ import pytest
 
 import text2anim
 from cli_run import text2anim as run_cli
-from text2anim.fillers import IDLE_GAP, IDLE_VERB, STOP_VERB, played_duration
 from text2anim.motiondb import MotionDB
+from text2anim.scheduler.clips import played_duration
+from text2anim.scheduler.fillers import IDLE_GAP, IDLE_VERB, STOP_VERB
 
 
 @pytest.fixture(scope="module")

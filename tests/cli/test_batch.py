@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from text2anim.batch import Options, compare, load_corpus, manifest, run_corpus, shard_path
+from text2anim.cli.batch import Options, compare, load_corpus, manifest, run_corpus, shard_path
 from text2anim.cli import cmd_batch
 from text2anim.cli.main import main
 
@@ -68,7 +68,7 @@ def test_failed_expectation_exits_1_with_check(capsys, tmp_path):
     ])
     code, out, _ = run_cli(capsys, "batch", corpus, "--check")
     assert code == 1
-    assert "passed 1, failed 1, errored 0" in out
+    assert "passed 1, refused 0, failed 1, errored 0" in out
     assert "$.motions[0].verb: expected '走る', got '歩く'" in out
     code, _, _ = run_cli(capsys, "batch", corpus)  # without --check: a report, exit 0
     assert code == 0
@@ -78,7 +78,7 @@ def test_plain_text_lines_and_errors(capsys, tmp_path):
     corpus = write(tmp_path, "c.txt", ["# comment", "太郎は歩く。", "", "これは本です。"])
     code, out, _ = run_cli(capsys, "batch", corpus, "--check")
     assert code == 1
-    assert "passed 1, failed 0, errored 1 (of 2)" in out
+    assert "passed 1, refused 0, failed 0, errored 1 (of 2)" in out
     assert "no motion" in out
 
 
@@ -86,7 +86,7 @@ def test_expected_error_passes(capsys, tmp_path):
     corpus = write(tmp_path, "c.jsonl", ['{"text": "Hello", "expect": {"error": "no motion"}}',
                                          '{"text": "歩く", "expect": {"error": "no motion"}}'])
     code, out, _ = run_cli(capsys, "batch", corpus, "--check")
-    assert code == 1 and "passed 1, failed 1" in out
+    assert code == 1 and "passed 1, refused 0, failed 1" in out
     assert "expected an error" in out
 
 
@@ -149,7 +149,32 @@ def test_lines_are_animated_into_sharded_folders_with_their_figures(capsys, tmp_
     assert summary["reasons"]["refused"] == {"no motion found in the text": 1, "unknown verb 泳ぐ": 1}
     assert summary["quality"]["join_skating_ratio"]["n"] == summary["quality"]["joins"] >= 1
     assert "unknown verb 泳ぐ" in stdout and "join foot-skating ratio" in stdout
-    assert "passed 3, failed 0, errored 1 (of 4)" in stdout
+    assert "passed 2, refused 1, failed 0, errored 1 (of 4)" in stdout
+
+
+def test_the_summary_counts_a_refused_line_as_refused_not_passed(capsys, tmp_path, library_db):
+    """Issue 26: a line refused for a verb the database lacks passes ``--check`` (its parse is right) but
+    did not go through: the last line and summary.json say "refused", not "passed"."""
+    corpus = write(tmp_path, "c.jsonl", [
+        "太郎は歩く。",
+        json.dumps({"text": "花子は座る。", "category": "x", "expect": {"motions": [{"verb": "座る"}]}},
+                   ensure_ascii=False),
+        json.dumps({"text": "太郎はセーターを編む。", "category": "x", "expect": {"motions": [{"verb": "編む"}]}},
+                   ensure_ascii=False),
+        '{"text": "Hello", "category": "x", "expect": {"error": "no motion"}}',
+    ])
+    out = tmp_path / "out"
+    code, stdout, _ = run_cli(capsys, "batch", corpus, "--check", "--out", out, "--db", library_db)
+    assert code == 0  # nothing failed or errored: --check still passes
+    statuses = {r["text"]: r["status"] for r in manifest.read(str(out))}
+    assert statuses["太郎はセーターを編む。"] == "refused" and statuses["Hello"] == "refused"
+    # the expected error met its expectation: passed; the missing verb: refused
+    assert stdout.splitlines()[-1] == "passed 3, refused 1, failed 0, errored 0 (of 4)"
+    assert "  x  passed   2  refused   1  failed   0  errored   0" in stdout
+    summary = json.loads((out / "summary.json").read_text())
+    assert (summary["total"], summary["passed"], summary["refused"], summary["failed"], summary["errored"]) \
+        == (4, 3, 1, 0, 0)
+    assert summary["categories"]["x"] == {"passed": 2, "refused": 1, "failed": 0, "errored": 0, "total": 3}
 
 
 def test_rerun_skips_done_lines_and_resumes_after_a_crash(tmp_path, library_db):

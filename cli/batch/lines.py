@@ -15,6 +15,8 @@ fault or the machine's: a bug, a lost database, a full disk, a worker that
 died). ``check`` keeps the meaning ``--check`` always had: ``failed`` when the
 line's expectation is not met, ``errored`` when it was refused or failed
 without an expected error; a verb the database lacks is not an error there.
+``expected_error`` says the line's expectation was an error (so a refusal was
+what it asked for; :func:`summary.outcome`).
 """
 from __future__ import annotations
 
@@ -27,7 +29,8 @@ import time
 from dataclasses import dataclass
 from typing import Callable, Iterable
 
-from ..limits import MAX_SECONDS
+from text2anim.limits import MAX_SECONDS
+
 from .corpus import Item, text_hash
 
 #: Output files per shard folder: ``DIR/0012/line_0012345.bvh`` keeps folders at 1000 entries.
@@ -147,9 +150,10 @@ def run_line(item: Item, opts: Options) -> dict:
     rec["time"] = round(time.perf_counter() - t0, 4)  # s, wall
     rec["cpu"] = round(time.thread_time() - c0, 4)     # s, CPU of the thread that ran the line
     mismatches = check(item.expect, parse, error)
-    rec["check"] = "failed" if mismatches else "errored" if error and not (
-        item.expect and "error" in item.expect) else "passed"
+    expected_error = bool(item.expect and "error" in item.expect)
+    rec["check"] = "failed" if mismatches else "errored" if error and not expected_error else "passed"
     rec["mismatches"] = mismatches
+    rec["expected_error"] = expected_error
     return rec
 
 
@@ -172,7 +176,7 @@ def run_chunk(chunk: Iterable[Item], opts: Options, emit: Callable[[dict], None]
 
 
 def _animate(item: Item, opts: Options) -> dict:
-    from text2anim.animation import animate
+    from text2anim import animate
 
     assert opts.out is not None, "animating needs an output folder"
     anim = animate(item.text, db=database(opts.db), fps=opts.fps, max_seconds=opts.max_seconds)

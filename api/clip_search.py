@@ -1,0 +1,101 @@
+"""The motion database as the scheduler queries it: the clips that can play a motion, best first.
+
+:class:`DatabaseClips` is the :class:`scheduler.clips.ClipSource` the pipeline hands
+the scheduler over a :class:`motiondb.MotionDB`. It decides which word a motion's verb
+is (the spelling the user wrote, the dictionary's lemma, a kana spelling's kanji),
+and nothing about the time table.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from text2anim.core.bodyparts import GROUPS
+from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
+from text2anim.nlp.types import Analysis, MotionSpec
+
+
+def _kana_only(word: str) -> bool:
+    """Whether ``word`` is written in hiragana/katakana only (``とぶ``, ``ジャンプする``)."""
+    return all("\u3041" <= ch <= "\u30ff" for ch in word)
+
+
+class DatabaseClips:
+    """The clips of ``db`` for a motion or a verb (a ``ClipSource[ClipInfo]``)."""
+
+    def __init__(self, db: MotionDB):
+        self.db = db
+
+    def search(self, spec: MotionSpec, prefer: str | None) -> list[ClipInfo]:
+        """The ranked clips of ``spec`` (``prefer``: that character's first); raises
+        :class:`UnknownVerbError` for a verb the database lacks."""
+        part = spec.body_part if spec.body_part in GROUPS else None
+        if spec.written and spec.written != spec.verb:
+            # The dictionary's lemma may be another word of the same sound (撮る -> 取る, 閉める ->
+            # 締める, 指す -> 差す): a clip declaring the verb as the user spelled it comes first.
+            try:
+                hits = self.db.search(spec.written, object=spec.object, body_part=part, prefer_character=prefer)
+            except UnknownVerbError:
+                hits = []
+            if hits and spec.written in hits[0].verbs:
+                return hits
+        try:
+            hits = self.db.search(spec.verb, object=spec.object, body_part=part, prefer_character=prefer)
+        except UnknownVerbError as unknown:
+            if not spec.reading or spec.reading == spec.verb or not _kana_only(spec.written or spec.verb):
+                raise
+            # A verb written in kana (とぶ) may be a spelling the database has in kanji; if not, the
+            # error about the verb as written (with its suggestions) is the one to show. A verb
+            # written in kanji that the database lacks is another word, not another spelling, of
+            # any verb sharing its sound (吹く is not 拭く, 吐く is not 掃く).
+            try:
+                hits = self.db.search(spec.reading, object=spec.object, body_part=part, prefer_character=prefer)
+            except UnknownVerbError:
+                hits = None
+            if hits is None:
+                raise unknown from None  # the error about the written verb, with its suggestions
+        if not hits and part:
+            hits = self.db.search(spec.verb, object=spec.object, prefer_character=prefer)
+        return self._same_word(spec, hits)
+
+    @staticmethod
+    def _same_word(spec: MotionSpec, hits: list[ClipInfo]) -> list[ClipInfo]:
+        """``hits`` without clips the database matched by the verb's sound only, for a verb
+        written in kanji (吹く matches 拭く's clip by フク: another word); raises
+        :class:`UnknownVerbError` when nothing else is left."""
+        written = spec.written or spec.verb
+        if _kana_only(written):
+            return hits
+        same = [h for h in hits if spec.verb in h.verbs or written in h.verbs]
+        if hits and not same:
+            raise UnknownVerbError(written)
+        return same
+
+    def candidates(self, spec: MotionSpec, prefer_character: str | None) -> Sequence[ClipInfo]:
+        """:meth:`search`, ``[]`` for a verb the database lacks."""
+        try:
+            return self.search(spec, prefer_character)
+        except UnknownVerbError:
+            return []
+
+    def by_verb(self, verb: str, *, prefer_character: str | None = None,
+                prefer_start_posture: str | None = None) -> Sequence[ClipInfo]:
+        """``db.search(verb, ...)``, ``[]`` for a verb the database lacks."""
+        try:
+            return self.db.search(verb, prefer_character=prefer_character, prefer_start_posture=prefer_start_posture)
+        except UnknownVerbError:
+            return []
+
+
+def unknown_motions(analysis: Analysis, db: MotionDB) -> dict[int, UnknownVerbError]:
+    """Motions whose verb no clip in ``db`` has, by motion id."""
+    clips = DatabaseClips(db)
+    out = {}
+    for spec in analysis.motions:
+        try:
+            clips.search(spec, None)
+        except UnknownVerbError as exc:
+            out[spec.id] = exc
+    return out
+
+
+__all__ = ["DatabaseClips", "unknown_motions"]

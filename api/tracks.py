@@ -1,0 +1,90 @@
+"""The synthesis tracks of a planned text: each row's clip loaded from the database.
+
+The scheduler says which clip each row plays, mirrored or not, and unrolls a
+repeated row into one row per repetition (:func:`scheduler.repeats.played_rows`);
+here the clips are read, resampled to the output rate and mirrored, and each
+track gets the captured idle its held poses play.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
+from text2anim.scheduler.repeats import played_rows
+
+if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never imports it
+    from text2anim.core.motion import Motion
+    from text2anim.synthesis import tracks as splan
+
+    from .pipeline import Planned
+
+#: The verb of the clips a held pose plays (a cyclic one: the built-in ``wait``, captured).
+IDLE_VERB = "待つ"
+#: Suffix of a mirrored clip's name on a track (a co-actor's or a repetition's variant).
+MIRRORED = "~mirrored"
+
+
+class ClipLoader:
+    """Clips loaded from ``db`` once each, resampled to ``fps`` (and mirrored where asked)."""
+
+    def __init__(self, db: MotionDB, fps: float):
+        self.db, self.fps = db, fps
+        self.cache: dict[tuple[str, bool], splan.Clip] = {}
+
+    def get(self, info: ClipInfo, mirrored: bool = False) -> splan.Clip:
+        key = (info.name, mirrored)
+        if key not in self.cache:
+            if mirrored:
+                from text2anim.core.mirror import mirror
+
+                plain = self.get(info)
+                self.cache[key] = replace(plain, name=info.name + MIRRORED, motion=mirror(plain.motion))
+            else:
+                from text2anim.synthesis.tracks import Clip
+
+                motion = self.db.load(info)
+                if motion.fps != self.fps:
+                    motion = motion.resample(self.fps)
+                self.cache[key] = Clip(info.name, motion, tuple(info.core), info.cyclic, info.body_part)
+        return self.cache[key]
+
+    def idle(self, character: str, posture: str | None) -> Callable[[], Motion | None]:
+        """The captured idle a track of ``character`` holds its poses with (the best cyclic clip of
+        :data:`IDLE_VERB` for that character in ``posture``; none for a posture without one, such as
+        lying), looked up when first asked."""
+        def fetch() -> Motion | None:
+            try:
+                hits = self.db.search(IDLE_VERB, character=character, prefer_start_posture=posture, limit=1)
+            except UnknownVerbError:
+                return None
+            fits = hits and hits[0].cyclic and hits[0].start_posture == posture
+            return self.get(hits[0]).motion if fits else None
+
+        return fetch
+
+
+def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track]:
+    """The synthesis tracks of a time table: its played rows with their clips loaded from ``db`` at ``fps``.
+
+    Every row of the table plays, the fillers of the waits included (:mod:`scheduler.fillers`),
+    a repeated one as one element per repetition (:mod:`scheduler.repeats`).
+    """
+    from text2anim.synthesis.tracks import Element, Track
+
+    clips = ClipLoader(db, fps)
+    tracks = []
+    for actor in played_rows(planned):
+        elements = []
+        for played in actor.rows:
+            r = played.row
+            elements.append(Element(r.id, clips.get(played.clip, played.mirrored), r.start, r.end, r.method, r.prev,
+                                    r.speed, r.repeat, r.hold, r.body_part))
+        last = actor.last
+        idle = clips.idle(last.character, last.end_posture) if last is not None else None
+        tracks.append(Track(actor.actor, tuple(elements), idle=idle))
+    return tracks
+
+
+__all__ = ["IDLE_VERB", "MIRRORED", "ClipLoader", "build_tracks"]
