@@ -349,10 +349,13 @@ class Animation:
 
 
 def check_plot_path(path: str | os.PathLike) -> Path:
-    """A path for the speed plot: writable (:func:`core.atomic.check_output_path`), its suffix a picture format."""
+    """A path for the speed plot: writable (:func:`core.atomic.check_output_path`), its suffix a picture format,
+    and matplotlib installed (:func:`core.extras.require`)."""
+    from text2anim.core import extras
     from text2anim.core.plots import FORMATS, PlotError
 
     path = check_output_path(path)
+    extras.require("matplotlib", "a speed plot (--plot)")
     if path.suffix.lower().lstrip(".") not in FORMATS:
         raise PlotError(f"{path}: cannot tell the image format from the suffix; use one of "
                         + ", ".join("." + f for f in FORMATS))

@@ -64,9 +64,9 @@ def run(args: argparse.Namespace) -> int:
     if out_dir is not None and out_dir.exists() and not out_dir.is_dir():
         raise CompareError(f"{out_dir} is not a folder")
     if args.plot:
-        from text2anim.core.atomic import check_output_path
+        from text2anim.animation import check_plot_path
 
-        check_output_path(args.plot)
+        check_plot_path(args.plot)
     with MotionDB.open(args.db) as db:
         planned = plan_text(text, db, fps=args.fps, skip_unknown=args.skip_unknown, max_seconds=args.max_seconds)
         tracks = build_tracks(planned, db, args.fps)

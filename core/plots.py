@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import fonts
+from . import extras, fonts
 from .atomic import OutputError, atomic_write_bytes
 from .motion import Motion
 from .viewer.types import Span, as_spans
@@ -44,10 +44,8 @@ FORMATS = ("png", "svg", "pdf")
 LINE_COLORS = ("#1f6fd1", "#e0662a", "#2a9d63", "#9a48d0", "#c79a12", "#d43b5e", "#1e9aa6", "#6b6b6b")
 
 
-class PlotDependencyError(ImportError):
-    """matplotlib is not installed."""
-
-    user_facing = True
+#: matplotlib is not installed (:class:`.extras.MissingExtraError`).
+PlotDependencyError = extras.MissingExtraError
 
 
 class PlotError(ValueError):
@@ -57,12 +55,10 @@ class PlotError(ValueError):
 
 
 def _matplotlib():
-    try:
-        import matplotlib
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
-    except ImportError:
-        raise PlotDependencyError("plots need matplotlib: pip install 'text2anim[plot]'") from None
+    matplotlib = extras.require("matplotlib", "a plot")
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
     return matplotlib, Figure, FigureCanvasAgg
 
 
