@@ -157,7 +157,7 @@ class Animation:
 
     @property
     def report(self) -> dict[str, Any]:
-        """The synthesis report of timetable.md §2, with the time table and per-element figures.
+        """The synthesis report of docs/timetable.md §2, with the time table and per-element figures.
 
         ``actors`` holds each actor's whole-motion figures; every join gets ``quality``: the figures of
         :mod:`text2anim.quality` on a window around it next to its two source clips', all at 30 fps.

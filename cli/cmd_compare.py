@@ -3,7 +3,7 @@
 The text is analysed, scheduled and its clips retrieved once; the same tracks
 are then synthesised with each method of ``--methods`` (``optimal``, paper
 000; ``constraint``, paper 003; ``pose`` and ``crossfade``, the common
-baselines) and the figures of timetable.md §3 are printed as one row per
+baselines) and the figures of docs/timetable.md §3 are printed as one row per
 method (or as JSON). ``--out DIR`` writes one BVH per method (and actor);
 ``--plot FILE`` overlays every method's upper- and lower-body speed curves as
 Fig. 5 of paper 000 does.

@@ -19,7 +19,7 @@ from .repair import carry_out
 
 
 def report_of(prev: Placed, inc: Incoming, plan: Plan, fps: float, locks) -> JoinReport:
-    """The join's :class:`~synthesis.plan.JoinReport` (timetable.md §2)."""
+    """The join's :class:`~synthesis.plan.JoinReport` (docs/timetable.md §2)."""
     e = inc.element
     method = "connection" if inc.rep > 0 else e.method
     order = {"S0": 0, "S1": 1, "S3": 2}
