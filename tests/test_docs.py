@@ -57,3 +57,19 @@ def test_the_readme_links_resolve():
     local = [link for link in links if "://" not in link]
     assert {f"docs/{name}" for name in SPECS} <= set(local)
     assert [link for link in local if not (REPO / link).exists()] == []
+
+
+def test_the_readme_says_where_the_tests_capture_comes_from():
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## Real capture for the tests", 1)[-1].split("\n## ", 1)[0]
+    asked = set()
+    for folder in ("tests", "benchmarks"):
+        for path in (REPO / folder).rglob("*.py"):
+            asked |= set(re.findall(r"[\"'](\d{2,3}_\d{2}_[a-z]+)(?:\.bvh)?[\"']", path.read_text(encoding="utf-8")))
+    assert len(asked) > 10
+    assert sorted(stem for stem in asked if stem not in section) == []
+    for folder in ("cmu/", "cmu_everyday/", "cmu_repro/"):
+        assert f"`{folder}" in section
+    acknowledgement = ("The data used in this project was obtained from mocap.cs.cmu.edu. The database was "
+                       "created with funding from NSF EIA-0196217.")
+    assert acknowledgement in " ".join(section.split())
