@@ -15,6 +15,7 @@ from text2anim.core.atomic import Content, check_distinct, check_output_path, wr
 from . import limits
 from .pipeline import Planned, plan_text
 from .variants import Pick
+from .wording import Terms
 
 #: What ``fallback`` may be: ``strict`` refuses a verb the database lacks, ``nearest`` plays the
 #: database verb nearest in meaning (:mod:`text2anim.fallback`).
@@ -156,6 +157,17 @@ class Animation:
         return {a or DEFAULT_ACTOR: m for a, m in self.result.motions.items()}
 
     @property
+    def terms(self) -> Terms:
+        """How the user names the synthesizer's elements and joins: the table's rows and verbs, seconds."""
+        return Terms.of(self.table, self.synthesis_tracks)
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What the synthesizer could not honour, in the user's terms (:meth:`Terms.reword`)."""
+        terms = self.terms
+        return tuple(terms.reword(w) for w in self.result.warnings)
+
+    @property
     def report(self) -> dict[str, Any]:
         """The synthesis report of docs/timetable.md §2, with the time table and per-element figures.
 
@@ -172,10 +184,13 @@ class Animation:
             whole[name] = {"frames": m.n_frames, "duration": round(m.duration, 3),
                            "skating_ratio": round(q.skating_ratio, 4), "quality": rounded(q),
                            "foot_skate_cm_s": {s: round(f.mean_speed_cm_s, 3) for s, f in foot_skate(m).items()}}
-        joins = self.result.report()["joins"]
+        joins, terms = self.result.report()["joins"], self.terms
         for j, q in zip(joins, join_quality(self.result, self.synthesis_tracks, series_of=per_actor)):
             if q is not None:
                 j["quality"] = q
+            if "warnings" in j:
+                j["warnings"] = [terms.reword(w if w.startswith("join ") else f"join {j['first']}→{j['second']}: {w}")
+                                 for w in j["warnings"]]
         return {
             "text": self.text,
             "fps": self.fps,
@@ -186,7 +201,7 @@ class Animation:
             "actors": whole,
             "skipped": list(self.planned.skipped),
             **({"fallbacks": [f.to_dict() for f in self.planned.fallbacks]} if self.planned.fallbacks else {}),
-            "warnings": list(self.result.warnings),
+            "warnings": list(self.warnings),
         }
 
     # ---------------------------------------------------------------- for the viewer
@@ -199,7 +214,7 @@ class Animation:
         """Time-table elements and blend intervals as viewer spans."""
         from text2anim.core.viewer.types import Span
 
-        out = []
+        out, terms = [], self.terms
         for e in self.table.elements:
             played = self.result.elements.get(e.id)
             start = played.start if played is not None and played.start is not None else e.start
@@ -210,7 +225,8 @@ class Animation:
             actor = self.result.actor_of(j.second) or DEFAULT_ACTOR
             for iv in j.intervals:
                 if iv.end > iv.begin:
-                    out.append(Span(actor, f"{j.first}→{j.second} {iv.kind}", iv.begin, iv.end, "blend", iv.part))
+                    out.append(Span(actor, f"{terms.label(j.first, j.second)} {iv.kind}", iv.begin, iv.end, "blend",
+                                    iv.part))
         return out
 
     # ------------------------------------------------------------------- saving

@@ -94,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
         _say(f"fallback: {sub}")
     for verb in anim.planned.skipped:
         _say(f"skipped {verb}: not in the motion database")
-    for w in anim.result.warnings:  # the report (figures at 30 fps) is built only if asked for
+    for w in anim.warnings:  # the report (figures at 30 fps) is built only if asked for
         _say(f"warning: {w}")
     if to_stdout:
         if len(anim.motions) > 1:

@@ -83,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         doc = {"text": text, "fps": args.fps, "smoothness": args.smoothness, "methods": rows,
                "joins": {m: [j["blend"] for j in res.report()["joins"]] for m, (res, _) in results.items()},
-               "warnings": {m: list(res.warnings) for m, (res, _) in results.items() if res.warnings},
+               "warnings": {m: list(anims[m].warnings) for m, (res, _) in results.items() if res.warnings},
                "written": [str(p) for p in written]}
         print(json.dumps(doc, ensure_ascii=False, indent=2))
         return 0
@@ -91,8 +91,8 @@ def run(args: argparse.Namespace) -> int:
     for m, fig in rows.items():
         joins = ",".join(j.blend for j in results[m][0].joins) or "-"
         print(f"{m:10} " + " ".join(f.format(fig[k]).rjust(len(h)) for k, h, f in _HEAD) + f"  {joins}")
-    for m, (res, _) in results.items():
-        for w in res.warnings:
+    for m, anim in anims.items():
+        for w in anim.warnings:
             print(f"text2anim: {m}: warning: {w}", file=sys.stderr)
     if written:
         print("wrote " + ", ".join(str(p) for p in written))
