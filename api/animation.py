@@ -220,7 +220,8 @@ class Animation:
             start = played.start if played is not None and played.start is not None else e.start
             end = played.end if played is not None and played.end is not None else e.end
             part = f" [{e.body_part}]" if e.body_part else ""
-            out.append(Span(e.actor or DEFAULT_ACTOR, f"{e.id} {e.verb} ({e.method}){part}", start, end, "element"))
+            out.append(Span(e.actor or DEFAULT_ACTOR, f"{e.id} {e.verb} ({e.method}){part}", start, end, "element",
+                            alt=f"{e.id} {e.clip} ({e.method}){part}"))
         for j in self.result.joins:
             actor = self.result.actor_of(j.second) or DEFAULT_ACTOR
             for iv in j.intervals:
@@ -351,14 +352,14 @@ class Animation:
         """A function drawing the speed plot into the path it is given (format from ``suffix``)."""
         from text2anim.core.plots import plot_speeds
 
-        spans = [s for s in self.spans() if s.kind == "blend"]
+        spans = self.spans()  # each motion labelled by its row and verb (else its clip), the blends shaded
 
         def draw(tmp: Path) -> None:
             # plot_speeds picks the format from the name and writes atomically: draw into a
             # private folder under that suffix, then move the picture onto the temporary.
             with tempfile.TemporaryDirectory(dir=tmp.parent, prefix=".t2a-plot.") as d:
                 out = Path(d) / f"plot{suffix}"
-                plot_speeds(self.motions, out, spans)
+                plot_speeds(self.motions, out, spans, title=self.text)
                 os.replace(out, tmp)
 
         return draw

@@ -181,7 +181,7 @@ def plot_speeds(motions_by_label, path: str | os.PathLike, spans: Iterable[Span]
             for i, (label, c) in enumerate(curves):
                 ys = c.upper if part == "upper" else c.lower
                 ax.plot(c.times, ys, color=LINE_COLORS[i % len(LINE_COLORS)], lw=1.6, zorder=3,
-                        label=_label(label, fallback=f"motion {i + 1}") if label else None)
+                        label=_label(label, fallback=f"actor {i + 1}") if label else None)
             ax.set_ylabel(f"{name} speed (m/s)")
             ax.set_ylim(bottom=0)
             ax.grid(True, color="#e6e6e6", lw=0.8, zorder=0)
