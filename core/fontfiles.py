@@ -41,3 +41,11 @@ def cjk_font_files(dirs: Iterable[str] | None = None) -> list[Path]:
                 if rank is not None:
                     found.setdefault(Path(root) / name, rank)
     return sorted(found, key=lambda p: (found[p], str(p)))
+
+
+def weights_of(path: Path) -> list[Path]:
+    """``path`` and the other weights of its family beside it (``NotoSansCJK-Regular.ttc`` ->
+    ``NotoSansCJK-Bold.ttc``, ...), ``path`` first."""
+    stem, dash, _ = path.stem.rpartition("-")
+    others = sorted(path.parent.glob(f"{stem}-*{path.suffix}")) if dash else []
+    return [path] + [p for p in others if p != path]

@@ -52,12 +52,13 @@ def available() -> tuple[str | None, frozenset[int]]:
 def _load_cjk_file(font_manager, by_name: dict[str, str]) -> str | None:
     """The family of the first CJK font file matplotlib can load (:func:`.fontfiles.cjk_font_files`), now
     known to ``font_manager`` (and put in ``by_name``); ``None`` when there is none."""
-    from .fontfiles import cjk_font_files
+    from . import fontfiles
 
-    for path in cjk_font_files():
+    for path in fontfiles.cjk_font_files():
         try:
-            font_manager.fontManager.addfont(str(path))
             name = font_manager.FontProperties(fname=str(path)).get_name()
+            for weight in fontfiles.weights_of(path):  # bold too: bold titles without a fallback warning
+                font_manager.fontManager.addfont(str(weight))
         except Exception:  # an unreadable font file: try the next
             continue
         by_name.setdefault(name, str(path))

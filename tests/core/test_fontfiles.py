@@ -50,18 +50,21 @@ def test_without_a_cjk_font_file_titles_are_romanised(tmp_path, monkeypatch, sta
     assert not _titles_differ(tmp_path)
 
 
-def test_a_cjk_font_installed_after_the_cache_is_found_by_its_file(tmp_path, monkeypatch, stale_cache):
+def test_a_cjk_font_installed_after_the_cache_is_found_by_its_file(tmp_path, monkeypatch, stale_cache, caplog):
     if not ON_THIS_MACHINE:  # nothing installed: the machine's folders give the romanised titles
         assert fonts.available()[0] is None and not _titles_differ(tmp_path)
         return
     folder = tmp_path / "fonts" / "opentype"
     folder.mkdir(parents=True)
-    (folder / ON_THIS_MACHINE[0].name).symlink_to(ON_THIS_MACHINE[0])
+    for path in fontfiles.weights_of(ON_THIS_MACHINE[0]):  # as installed: the family's weights side by side
+        (folder / path.name).symlink_to(path)
     monkeypatch.setattr(fontfiles, "FONT_DIRS", (str(tmp_path / "fonts"),))
     cjk, chars = fonts.available()
     assert cjk is not None and {ord(c) for c in "踊る太郎"} <= chars
     assert fonts.families() == [fonts.BASE_FAMILY, cjk]
-    assert _titles_differ(tmp_path)
+    with caplog.at_level("WARNING", logger="matplotlib"):
+        assert _titles_differ(tmp_path)
+    assert [r.getMessage() for r in caplog.records if r.name.startswith("matplotlib")] == []  # bold found too
 
 
 def test_the_most_wanted_file_comes_first(tmp_path):
