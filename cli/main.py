@@ -140,7 +140,7 @@ def is_user_error(exc: BaseException) -> bool:
     )
 
 
-def _missing_extra(exc: BaseException, command: str) -> BaseException | None:
+def _missing_extra(exc: Exception, command: str) -> Exception | None:
     """An optional dependency that a check missed, as the message every check gives (:mod:`core.extras`)."""
     if not isinstance(exc, ImportError):
         return None
