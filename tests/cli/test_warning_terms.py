@@ -40,3 +40,23 @@ def test_warnings_name_rows_verbs_and_seconds(tmp_path, library_db, blend):
     assert said  # the sentences do make the synthesizer warn
     assert any(re.search(r"\brow 1 跳ぶ \(2 of 3\)", w) for w in said), said
     assert all(re.search(r"\d+\.\d\d s\b", w) for w in said if " → " in w)
+
+
+def test_every_form_of_the_synthesizers_messages_is_reworded(library_db):
+    """The forms the synthesizer composes (optimal.plan's skip, timing's core, placed's bone lengths, the
+    engines' fallback) on a real animation's ids: 3回跳ぶ's repetitions are ids 1, 3, 4; 歩く is id 2."""
+    import text2anim
+
+    terms = text2anim.animate("太郎は3回跳んで、歩く。", db=library_db).terms
+    said = {
+        "element 3 (jump) is not executed: its core (1.10 s) would begin before the core of element 1 ends (1.20 s)":
+            "row 1 跳ぶ (2 of 3) is not executed: its core (1.10 s) would begin before the core of row 1 跳ぶ (1 of 3) "
+            "ends (1.20 s)",
+        "element 2: its core (1.00 s) does not fit in 0.80 s":
+            "row 2 歩く: its core (1.00 s) does not fit in 0.80 s",
+        "element 4 (jump_forward) was recorded on other bone lengths": "row 1 跳ぶ (3 of 3) was recorded on other bone lengths",
+        "太郎: optimal blending left feet skating at join 1→3, 4→2; rendered with the constraint engine instead":
+            "太郎: optimal blending left feet skating at join row 1 跳ぶ (1 of 3) → row 1 跳ぶ (2 of 3) at 1.00 s, "
+            "row 1 跳ぶ (3 of 3) → row 2 歩く at 3.00 s; rendered with the constraint engine instead",
+    }
+    assert {m: terms.reword(m) for m in said} == said
