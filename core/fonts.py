@@ -52,7 +52,7 @@ def available() -> tuple[str | None, frozenset[int]]:
 def _load_cjk_file(font_manager, by_name: dict[str, str]) -> str | None:
     """The family of the first CJK font file matplotlib can load (:func:`.fontfiles.cjk_font_files`), now
     known to ``font_manager`` (and put in ``by_name``); ``None`` when there is none."""
-    from . import fontfiles
+    from text2anim.core import fontfiles  # absolute: this module may move to another folder (issue 23)
 
     for path in fontfiles.cjk_font_files():
         try:

@@ -29,7 +29,9 @@ from pathlib import Path
 
 import numpy as np
 
-from . import extras, fonts
+from text2anim.core import extras  # absolute: this module may move to another folder (issue 23)
+
+from . import fonts
 from .atomic import OutputError, atomic_write_bytes
 from .motion import Motion
 from .viewer.types import Span, as_spans

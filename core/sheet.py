@@ -25,7 +25,9 @@ import warnings
 
 import numpy as np
 
-from . import extras, fonts
+from text2anim.core import extras  # absolute: this module may move to another folder (issue 23)
+
+from . import fonts
 from .atomic import atomic_write_bytes
 from .bodyparts import body_map, side_of
 from .contacts import detect_contacts, foot_tracks
