@@ -10,6 +10,8 @@ from typing import TYPE_CHECKING, Any
 
 from text2anim.core.atomic import Content, check_distinct, check_output_path, write_all
 
+from .wording import Terms
+
 if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never imports it
     from text2anim.core.motion import Motion
     from text2anim.scheduler import TimeTable
@@ -48,8 +50,19 @@ class Animation:
         return {a or DEFAULT_ACTOR: m for a, m in self.result.motions.items()}
 
     @property
+    def terms(self) -> Terms:
+        """How the user names the synthesizer's elements and joins: the table's rows and verbs, seconds."""
+        return Terms.of(self.table, self.synthesis_tracks)
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What the synthesizer could not honour, in the user's terms (:meth:`Terms.reword`)."""
+        terms = self.terms
+        return tuple(terms.reword(w) for w in self.result.warnings)
+
+    @property
     def report(self) -> dict[str, Any]:
-        """The synthesis report of timetable.md §2, with the time table and per-element figures.
+        """The synthesis report of docs/timetable.md §2, with the time table and per-element figures.
 
         ``actors`` holds each actor's whole-motion figures; every join gets ``quality``: the figures of
         :mod:`text2anim.quality` on a window around it next to its two source clips', all at 30 fps.
@@ -64,10 +77,13 @@ class Animation:
             whole[name] = {"frames": m.n_frames, "duration": round(m.duration, 3),
                            "skating_ratio": round(q.skating_ratio, 4), "quality": rounded(q),
                            "foot_skate_cm_s": {s: round(f.mean_speed_cm_s, 3) for s, f in foot_skate(m).items()}}
-        joins = self.result.report()["joins"]
+        joins, terms = self.result.report()["joins"], self.terms
         for j, q in zip(joins, join_quality(self.result, self.synthesis_tracks, series_of=per_actor)):
             if q is not None:
                 j["quality"] = q
+            if "warnings" in j:
+                j["warnings"] = [terms.reword(w if w.startswith("join ") else f"join {j['first']}→{j['second']}: {w}")
+                                 for w in j["warnings"]]
         return {
             "text": self.text,
             "fps": self.fps,
@@ -78,7 +94,7 @@ class Animation:
             "actors": whole,
             "skipped": list(self.planned.skipped),
             **({"fallbacks": [f.to_dict() for f in self.planned.fallbacks]} if self.planned.fallbacks else {}),
-            "warnings": list(self.result.warnings),
+            "warnings": list(self.warnings),
         }
 
     # ---------------------------------------------------------------- for the viewer
@@ -91,18 +107,20 @@ class Animation:
         """Time-table elements and blend intervals as viewer spans."""
         from text2anim.output.viewer.types import Span
 
-        out = []
+        out, terms = [], self.terms
         for e in self.table.elements:
             played = self.result.elements.get(e.id)
             start = played.start if played is not None and played.start is not None else e.start
             end = played.end if played is not None and played.end is not None else e.end
             part = f" [{e.body_part}]" if e.body_part else ""
-            out.append(Span(e.actor or DEFAULT_ACTOR, f"{e.id} {e.verb} ({e.method}){part}", start, end, "element"))
+            out.append(Span(e.actor or DEFAULT_ACTOR, f"{e.id} {e.verb} ({e.method}){part}", start, end, "element",
+                            alt=f"{e.id} {e.clip} ({e.method}){part}"))
         for j in self.result.joins:
             actor = self.result.actor_of(j.second) or DEFAULT_ACTOR
             for iv in j.intervals:
                 if iv.end > iv.begin:
-                    out.append(Span(actor, f"{j.first}→{j.second} {iv.kind}", iv.begin, iv.end, "blend", iv.part))
+                    out.append(Span(actor, f"{terms.label(j.first, j.second)} {iv.kind}", iv.begin, iv.end, "blend",
+                                    iv.part))
         return out
 
     # ------------------------------------------------------------------- saving
@@ -227,24 +245,27 @@ class Animation:
         """A function drawing the speed plot into the path it is given (format from ``suffix``)."""
         from text2anim.output.plots import plot_speeds
 
-        spans = [s for s in self.spans() if s.kind == "blend"]
+        spans = self.spans()  # each motion labelled by its row and verb (else its clip), the blends shaded
 
         def draw(tmp: Path) -> None:
             # plot_speeds picks the format from the name and writes atomically: draw into a
             # private folder under that suffix, then move the picture onto the temporary.
             with tempfile.TemporaryDirectory(dir=tmp.parent, prefix=".t2a-plot.") as d:
                 out = Path(d) / f"plot{suffix}"
-                plot_speeds(self.motions, out, spans)
+                plot_speeds(self.motions, out, spans, title=self.text)
                 os.replace(out, tmp)
 
         return draw
 
 
 def check_plot_path(path: str | os.PathLike) -> Path:
-    """A path for the speed plot: writable (:func:`core.atomic.check_output_path`), its suffix a picture format."""
+    """A path for the speed plot: writable (:func:`core.atomic.check_output_path`), its suffix a picture format,
+    and matplotlib installed (:func:`core.extras.require`)."""
+    from text2anim.core import extras
     from text2anim.output.plots import FORMATS, PlotError
 
     path = check_output_path(path)
+    extras.require("matplotlib", "a speed plot (--plot)")
     if path.suffix.lower().lstrip(".") not in FORMATS:
         raise PlotError(f"{path}: cannot tell the image format from the suffix; use one of "
                         + ", ".join("." + f for f in FORMATS))

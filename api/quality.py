@@ -151,3 +151,25 @@ def introduced_root_pop(result, fps: float = COMPARE_FPS, series_of: dict | None
         acc = acc[~np.isnan(acc)]
         out[actor] = round(float(acc.max()), 2) if acc.size else 0.0
     return out
+
+
+def missed_criteria(entry: dict) -> list[str]:
+    """The criteria a :func:`join_quality` entry misses, each with its figure and its limit:
+    ``"jerk p99 3971 m/s³ > 1.2 × the sources' larger 2950 = 3540"`` (none without ``meets``)."""
+    from text2anim.core import metrics
+
+    here, meets = entry["join"], entry.get("meets", {})
+    worst = {k: max((s[k] for s in entry.get("sources", {}).values()), default=0.0)
+             for k in ("skating_ratio", "root_pop", "jerk_p99")}
+    factor = metrics.SOURCE_FACTOR
+    said = {
+        "skating": f"skating ratio {here['skating_ratio']:.3f} > the sources' larger {worst['skating_ratio']:.3f} "
+                   f"+ {metrics.SKATING_MARGIN:g}",
+        "root_pop": f"root pop {here['root_pop']:.1f} m/s² > {factor:g} × the sources' larger "
+                    f"{worst['root_pop']:.1f} = {factor * worst['root_pop']:.1f}",
+        "jerk": f"jerk p99 {here['jerk_p99']:.0f} m/s³ > {factor:g} × the sources' larger {worst['jerk_p99']:.0f} "
+                f"= {factor * worst['jerk_p99']:.0f}",
+        "penetration": f"floor penetration {here['floor_penetration_cm']:.2f} cm > {metrics.MAX_PENETRATION_CM:g} cm",
+        "frozen": f"frozen frames {100 * here['frozen_fraction']:.1f} % > {100 * metrics.MAX_FROZEN:g} %",
+    }
+    return [said[k] for k, ok in meets.items() if not ok]

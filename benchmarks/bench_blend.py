@@ -10,7 +10,7 @@ pair follows the scheduler's rules (``scheduler.lengths``): a *transition*
 starts the second clip at the first clip's last step after its core and ends
 the first when that step ends; a *connection* starts it when the first ends.
 
-Figures per join (``timetable.md`` §3, from the engines' own reports and
+Figures per join (``docs/timetable.md`` §3, from the engines' own reports and
 :mod:`core.metrics`):
 
 - ``slide``: distance the feet slide while in contact over the whole motion

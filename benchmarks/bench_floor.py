@@ -9,7 +9,7 @@ calibrated floor), on the frames ``core.contacts.detect_contacts`` calls planted
 - toe: median height (cm) of the planted foot's toe joint (the ball of the foot);
 - lowest: median height of the planted foot's lowest joint (ankle or toe): the
   sole's thickness under the lowest joint centre;
-- skating (GMD ratio, timetable.md §3) with the floor at the file's ``y = 0``, with the
+- skating (GMD ratio, docs/timetable.md §3) with the floor at the file's ``y = 0``, with the
   floor put 2 cm under the planted toe joint (the old convention) and with the
   floor put ``FOOT_CLEARANCE`` under it (``core.floor.place_on_floor``).
 

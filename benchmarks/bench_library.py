@@ -7,7 +7,7 @@ Prints three tables:
 1. the library: clips and verbs by source (CMU capture or keyframed), the size of the
    shipped arrays, the time to seed a fresh SQLite database (CPU beside wall);
 2. per sentence (the golden set and the issue's cases): length, the share of frozen frames
-   (``timetable.md`` §3: every joint slower than 0.5 cm/s), the longest frozen run, the
+   (``docs/timetable.md`` §3: every joint slower than 0.5 cm/s), the longest frozen run, the
    foot-skating ratio, and for repeats the seconds per repetition;
 3. co-actors: whether two actors doing the same verb play identical joint angles;
 4. loops and repeats: each looping captured clip's cycle and the hips' net travel over it (a
@@ -31,7 +31,7 @@ REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
 from text2anim.core.contacts import runs  # noqa: E402
-from text2anim.core.metrics import FROZEN_SPEED, frozen_pairs  # noqa: E402  (m/s, timetable.md §3)
+from text2anim.core.metrics import FROZEN_SPEED, frozen_pairs  # noqa: E402  (m/s, docs/timetable.md §3)
 
 #: The golden sentences (tests/golden/sentences.txt, one a line), then a few more.
 SENTENCES = (REPO / "tests" / "golden" / "sentences.txt").read_text(encoding="utf-8").splitlines() + [

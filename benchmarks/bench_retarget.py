@@ -18,7 +18,7 @@ the built-in skeleton. Printed per file:
   places; ankles follow the foot's own shape; toe heights within 6 cm of the
   floor are kept unscaled, ``core.retarget.foot_height``);
 - skate: the skating ratio of the source and the output, both resampled to
-  30 fps (timetable.md §3): ``core`` is ``core.metrics.skating_ratio``; ``gmd``
+  30 fps (docs/timetable.md §3): ``core`` is ``core.metrics.skating_ratio``; ``gmd``
   is the either-foot toe definition of §3, computed here;
 - twist: the largest frame-to-frame turn of a thigh (rad; a flip of the knee's bend plane shows as
   more than 1);
@@ -47,7 +47,7 @@ DEFAULT = ("02_01_walk", "02_02_walk", "07_02_walk", "07_04_slowwalk", "08_02_wa
 
 
 def gmd_skating_ratio(m) -> float:
-    """timetable.md §3: toe below 5 cm on t and t+1, speed > 0.5 m/s and its 5-frame mean > 0.5; either foot."""
+    """docs/timetable.md §3: toe below 5 cm on t and t+1, speed > 0.5 m/s and its 5-frame mean > 0.5; either foot."""
     from text2anim.core.bodyparts import body_map
 
     bm = body_map(m.skeleton)

@@ -9,15 +9,18 @@ from .bvh_options import add_budget_option
 from .cmd_parse import read_text
 from .export_options import add_export_arguments, export_options
 
+#: The BVH written when the command asks for no output at all (``text2anim TEXT``).
+DEFAULT_BVH = "animation.bvh"
+
 NAME = "animate"
 HELP = "turn a text into animation (the default command: text2anim TEXT ...)"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("text", metavar="TEXT", help="the text, or - to read it from standard input")
-    p.add_argument("-o", "--output", default="animation.bvh",
-                   help="BVH file to write, or - for standard output (default animation.bvh; with several "
-                        "actors, one file each: animation_太郎.bvh, ...)")
+    p.add_argument("-o", "--output",
+                   help=f"BVH file to write, or - for standard output (default {DEFAULT_BVH} when no other output "
+                        "is asked for; with several actors, one file each: animation_太郎.bvh, ...)")
     p.add_argument("--html", metavar="FILE", help="also write a self-contained viewer page")
     p.add_argument("--glb", metavar="FILE", help="also write a glTF binary (skinned skeleton + animation; with "
                    "--rig CHARACTER.glb|.vrm, your character animated)")
@@ -60,12 +63,13 @@ class OutputArgumentError(ValueError):
 
 
 def check_outputs(args: argparse.Namespace) -> dict:
-    """The outputs asked for, checked before any work: each a writable path, no two on one file."""
+    """The outputs asked for, checked before any work: each a writable path, no two on one file. Only what
+    was asked for is written: the BVH file :data:`DEFAULT_BVH` only when nothing else is."""
     from text2anim.core.atomic import check_distinct, check_output_path
 
     outputs = {"bvh": args.output, "html": args.html, "glb": args.glb, "report": args.report, "plot": args.plot,
                "vrma": args.vrma}
-    outputs = {k: v for k, v in outputs.items() if v is not None}
+    outputs = {k: v for k, v in outputs.items() if v is not None} or {"bvh": DEFAULT_BVH}
     files = [check_output_path(v) for k, v in outputs.items() if not (k == "bvh" and v == "-")]
     check_distinct(files)
     if args.plot:
@@ -90,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
         _say(f"fallback: {sub}")
     for verb in anim.planned.skipped:
         _say(f"skipped {verb}: not in the motion database")
-    for w in anim.result.warnings:  # the report (figures at 30 fps) is built only if asked for
+    for w in anim.warnings:  # the report (figures at 30 fps) is built only if asked for
         _say(f"warning: {w}")
     if to_stdout:
         if len(anim.motions) > 1:

@@ -3,7 +3,7 @@
 The text is analysed, scheduled and its clips retrieved once; the same tracks
 are then synthesised with each method of ``--methods`` (``optimal``, paper
 000; ``constraint``, paper 003; ``pose`` and ``crossfade``, the common
-baselines) and the figures of timetable.md §3 are printed as one row per
+baselines) and the figures of docs/timetable.md §3 are printed as one row per
 method (or as JSON). ``--out DIR`` writes one BVH per method (and actor);
 ``--plot FILE`` overlays every method's upper- and lower-body speed curves as
 Fig. 5 of paper 000 does.
@@ -65,9 +65,9 @@ def run(args: argparse.Namespace) -> int:
     if out_dir is not None and out_dir.exists() and not out_dir.is_dir():
         raise CompareError(f"{out_dir} is not a folder")
     if args.plot:
-        from text2anim.core.atomic import check_output_path
+        from text2anim.animation import check_plot_path
 
-        check_output_path(args.plot)
+        check_plot_path(args.plot)
     with MotionDB.open(args.db) as db:
         planned = plan_text(text, db, fps=args.fps, skip_unknown=args.skip_unknown, max_seconds=args.max_seconds)
         tracks = build_tracks(planned, db, args.fps)
@@ -80,11 +80,15 @@ def run(args: argparse.Namespace) -> int:
             written.extend(anim.save_bvh(out_dir / f"{m}.bvh"))
     if args.plot:
         written.append(_plot(anims, args.plot, text))
-    rows = {m: {**fig, **_quality_row(res, tracks)} for m, (res, fig) in results.items()}
+    rows, missed = {}, {}
+    for m, (res, fig) in results.items():
+        row, missed[m] = _quality_row(res, tracks, anims[m].terms)
+        rows[m] = {**fig, **row}
     if args.json:
         doc = {"text": text, "fps": args.fps, "smoothness": args.smoothness, "methods": rows,
                "joins": {m: [j["blend"] for j in res.report()["joins"]] for m, (res, _) in results.items()},
-               "warnings": {m: list(res.warnings) for m, (res, _) in results.items() if res.warnings},
+               "joins_missed": {m: lines for m, lines in missed.items() if lines},
+               "warnings": {m: list(anims[m].warnings) for m, (res, _) in results.items() if res.warnings},
                "written": [str(p) for p in written]}
         print(json.dumps(doc, ensure_ascii=False, indent=2))
         return 0
@@ -92,29 +96,37 @@ def run(args: argparse.Namespace) -> int:
     for m, fig in rows.items():
         joins = ",".join(j.blend for j in results[m][0].joins) or "-"
         print(f"{m:10} " + " ".join(f.format(fig[k]).rjust(len(h)) for k, h, f in _HEAD) + f"  {joins}")
-    for m, (res, _) in results.items():
-        for w in res.warnings:
+    for m, lines in missed.items():
+        for line in lines:
+            print(f"{m}: {line}")
+    for m, anim in anims.items():
+        for w in anim.warnings:
             print(f"text2anim: {m}: warning: {w}", file=sys.stderr)
     if written:
         print("wrote " + ", ".join(str(p) for p in written))
     return 0
 
 
-def _quality_row(result, tracks) -> dict:
+def _quality_row(result, tracks, terms) -> tuple[dict, list[str]]:
     """The literature's figures of one method at 30 fps: the worst actor, the worst join window, and
-    ``joins_ok`` = "met/measured" joins meeting all five criteria against their sources."""
-    from text2anim.quality import actor_quality, actor_series, join_quality
+    ``joins_ok`` = "met/measured" joins meeting all five criteria against their sources; and for each join
+    that misses one, which join (``terms``: rows, verbs, seconds) and which criteria, figure and limit."""
+    from text2anim.quality import actor_quality, actor_series, join_quality, missed_criteria
 
     per_actor = actor_series(result.motions)  # resampled and measured once for both
     whole = list(actor_quality(result.motions, series_of=per_actor).values())
-    joins = [q for q in join_quality(result, tracks, series_of=per_actor) if q is not None]
+    measured = [(j, q) for j, q in zip(result.joins, join_quality(result, tracks, series_of=per_actor))
+                if q is not None]
+    joins = [q for _, q in measured]
+    missed = [f"join {terms.join(j.first, j.second)} misses " + "; ".join(missed_criteria(q))
+              for j, q in measured if missed_criteria(q)]
     row = {k: max((getattr(q, k) for q in whole), default=0.0)
            for k in ("skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction")}
     for k in ("skating_ratio", "root_pop", "jerk_p99"):
         row[f"join_{k}"] = max((q["join"][k] for q in joins), default=0.0)
     met = sum(all(q["meets"].values()) for q in joins if "meets" in q)
     row["joins_ok"] = f"{met}/{sum('meets' in q for q in joins)}"
-    return row
+    return row, missed
 
 
 def _plot(anims: dict, path, title: str) -> Path:

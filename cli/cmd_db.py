@@ -166,10 +166,6 @@ def _progress(done: int, total: int, path: str) -> None:
         print(f"text2anim db import: read {total} files, storing", file=sys.stderr, flush=True)
 
 
-class PreviewUnavailable(RuntimeError):
-    user_facing = True
-
-
 # ---------------------------------------------------------------------- run
 def run(args) -> int:
     if not getattr(args, "db_action", None):
@@ -253,12 +249,12 @@ def _verbs(db, args) -> int:
 
 
 def _contact_sheet():
-    try:
-        from text2anim.output.sheet import contact_sheet
-    except ModuleNotFoundError as exc:
-        if exc.name in ("text2anim.output.sheet", "matplotlib"):
-            raise PreviewUnavailable(f"db preview is not available: {exc.name} is not installed") from None
-        raise
+    """The contact-sheet drawer, once its extra (matplotlib) is known to be there: before any work."""
+    from text2anim.core import extras
+
+    extras.require("matplotlib", "db preview")
+    from text2anim.output.sheet import contact_sheet
+
     return contact_sheet
 
 

@@ -1,4 +1,4 @@
-"""``text2anim metrics FILE.bvh [--json]``: the quality metrics of timetable.md §3.
+"""``text2anim metrics FILE.bvh [--json]``: the quality metrics of docs/timetable.md §3.
 
 Foot skate, jerk and body speeds at the file's own rate; then the figures the
 literature compares (GMD foot-skating ratio, root pop, joint jerk p99, floor

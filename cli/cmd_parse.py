@@ -11,7 +11,7 @@ HELP = "analyse Japanese text: motions and temporal constraints (no database nee
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("text", metavar="TEXT", help="the text, or - to read it from standard input")
     parser.add_argument("--json", action="store_true",
-                        help="print the JSON object of language.md §5")
+                        help="print the JSON object of docs/language.md §5")
     parser.add_argument("--explain", action="store_true",
                         help="also print the bunsetsu and the head each one depends on")
 

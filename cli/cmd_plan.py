@@ -14,7 +14,7 @@ HELP = "build the motion time table of a text (which clip, how joined, when)"
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("text", metavar="TEXT", help="the text, or - to read it from standard input")
-    p.add_argument("--json", action="store_true", help="print the JSON of timetable.md §1")
+    p.add_argument("--json", action="store_true", help="print the JSON of docs/timetable.md §1")
     p.add_argument("--db", metavar="URL", help="motion database (SQLAlchemy URL or SQLite path; "
                    "default: $TEXT2ANIM_DB or the user's data directory)")
     p.add_argument("--fps", type=fps_type, default=30.0, help="frame rate recorded in the table, 1 to 240 (default 30)")

@@ -140,6 +140,15 @@ def is_user_error(exc: BaseException) -> bool:
     )
 
 
+def _missing_extra(exc: Exception, command: str) -> Exception | None:
+    """An optional dependency that a check missed, as the message every check gives (:mod:`core.extras`)."""
+    if not isinstance(exc, ImportError):
+        return None
+    from text2anim.core.extras import from_import_error
+
+    return from_import_error(exc, f"text2anim {command}")
+
+
 def _quiet_broken_pipe() -> int:
     """The reader went away (``text2anim info big.bvh | head -2``): stop without a word.
 
@@ -184,6 +193,8 @@ def _main(argv: list[str], commands: dict) -> int:
         print("text2anim: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Exception as exc:  # noqa: BLE001 - the one place errors become messages
+        if not is_user_error(exc):
+            exc = _missing_extra(exc, args.command) or exc
         if not is_user_error(exc):
             raise
         from text2anim.limits import printable

@@ -38,6 +38,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from .glb import BufferBuilder, pack_glb
+from .gltf_prune import drop_animations
 from .motion import Motion, unroll_quaternions
 from .rigs import ROLES, RigError
 from .skeleton import POSITION_CHANNELS, Skeleton
@@ -278,7 +279,8 @@ def rig_glb_bytes(rig: GltfRig, motion: Motion, name: str = "text2anim") -> byte
     gl = copy.deepcopy(rig.gl)
     for n in rig.nodes:
         _as_trs(gl["nodes"][n])
-    b = BufferBuilder(rig.bin, gl.get("bufferViews"), gl.get("accessors"))
+    gl, blob = drop_animations(gl, rig.bin)  # the file's own animations are replaced: their data goes too
+    b = BufferBuilder(blob, gl.get("bufferViews"), gl.get("accessors"))
     anim: dict = {"name": name, "channels": [], "samplers": []}
     times = b.accessor(motion.times, _FLOAT, "SCALAR", minmax=True)
 

@@ -1,4 +1,4 @@
-"""How an element of the time table joins the element before it (timetable.md §1).
+"""How an element of the time table joins the element before it (docs/timetable.md §1).
 
 The one vocabulary of the scheduler (which writes it into the time table) and the
 synthesis engines (which join the clips so): ``initial`` starts a track,

@@ -1,4 +1,4 @@
-"""Quality metrics of ``timetable.md`` §3, on world joint positions (metres, seconds).
+"""Quality metrics of ``docs/timetable.md`` §3, on world joint positions (metres, seconds).
 
 The figures the literature compares (:class:`Quality`, all taken after
 resampling to :data:`COMPARE_FPS` = 30 fps by :func:`quality`, because
@@ -46,7 +46,7 @@ from .motion import Motion
 SKATE_HEIGHT = 0.05  # m above the floor (y = 0): GMD's thresh_height
 SKATE_SPEED = 0.5  # m/s, horizontal: GMD's thresh_vel
 SKATE_WINDOW = 5  # frames: GMD's avg_window (a centred moving average, zero beyond the ends)
-COMPARE_FPS = 30.0  # the common rate of every figure that compares motions (timetable.md §3)
+COMPARE_FPS = 30.0  # the common rate of every figure that compares motions (docs/timetable.md §3)
 ROOT_POP_WINDOW = 3  # frames of the moving average of the hips' horizontal position
 FROZEN_SPEED = 0.005  # m/s: a frame pair on which every joint is slower than this is frozen
 JERK_PERCENTILE = 99.0

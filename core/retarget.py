@@ -80,7 +80,7 @@ AIM = {
         ("UpperLeg", "LowerLeg"), ("LowerLeg", "Foot"), ("Foot", "Toes"))},
 }
 #: Height (m) below which a toe keeps the source's height above the floor (see :func:`foot_height`):
-#: just above the 5 cm under which timetable.md section 3 calls a foot low; the swing above it scales.
+#: just above the 5 cm under which docs/timetable.md section 3 calls a foot low; the swing above it scales.
 GROUND_BAND = 0.06
 #: Seconds over which the hips' lowering (where a leg cannot reach) is spread.
 DROP_WINDOW = 0.2
@@ -311,7 +311,7 @@ def foot_height(y: np.ndarray, s: float) -> np.ndarray:
     """A toe's height on the target: as the source's up to :data:`GROUND_BAND`, scaled by ``s`` above it.
 
     Contact and the first centimetres of a step are a matter of the ground, not of the body's size:
-    scaled by 0.93, a toe skimming at 5.2 cm would scuff at 4.8 cm (and count as skating, timetable.md
+    scaled by 0.93, a toe skimming at 5.2 cm would scuff at 4.8 cm (and count as skating, docs/timetable.md
     section 3); the swing above the band scales with the legs. Continuous at the band.
     """
     return np.where(y <= GROUND_BAND, y, GROUND_BAND + s * (y - GROUND_BAND))

@@ -14,6 +14,7 @@ from sqlalchemy import create_engine, event
 from sqlalchemy import exc as sa_exc
 from sqlalchemy.engine import Engine, make_url
 
+from text2anim.core import extras
 from .errors import DBError
 
 #: Key of the PostgreSQL advisory lock that serialises writers ("t2aM").
@@ -73,8 +74,8 @@ def make_engine(url_text: str) -> tuple[Engine, str]:
         raise DBError(f"unknown kind of database {url.drivername!r} in {display} "
                       "(use sqlite:///FILE or postgresql+psycopg2://...)") from None
     except ImportError as exc:
-        hint = " (pip install 'text2anim[postgres]')" if backend == "postgresql" else ""
-        raise DBError(f"the driver for {url.drivername} is not installed: {exc.name or exc}{hint}") from None
+        missing = extras.from_import_error(exc, f"the {backend} database {display}")
+        raise missing or DBError(f"the driver for {url.drivername} is not installed: {exc.name or exc}") from None
     except (sa_exc.ArgumentError, TypeError, ValueError) as exc:
         raise DBError(f"bad database URL {display}: {first_line(exc)}") from None
     if backend == "sqlite":

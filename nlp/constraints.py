@@ -1,4 +1,4 @@
-"""Temporal constraints between motions (language.md §3).
+"""Temporal constraints between motions (docs/language.md §3).
 
 1. Each motion with a head gives a constraint from its clause ending
    (``endings.ENDINGS``): first = the motion, second = its head; for 前に the

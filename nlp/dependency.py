@@ -1,4 +1,4 @@
-"""Dependency heads by rule (language.md §4).
+"""Dependency heads by rule (docs/language.md §4).
 
 Japanese is head-final.  A motion's head is the next motion in its clause
 group whose clause level (``endings.Ending.level``) is at least its own:

@@ -1,6 +1,6 @@
 """Clause endings: how a predicate's clause ends and what that means.
 
-The table is language.md §3 (Table 2 of the seed paper, extended).  ``level``
+The table is docs/language.md §3 (Table 2 of the seed paper, extended).  ``level``
 ranks how much a clause can contain, after Minami's hierarchy of Japanese
 subordinate clauses: a ながら / たまま clause (level 1) cannot contain a て
 clause (level 2), so 走って、右手を振りながら歩く links 走って past 振りながら to

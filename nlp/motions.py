@@ -176,7 +176,7 @@ def _bare_objects(phrases: list[Phrase]) -> None:
 def _mark_manner(phrases: list[Phrase]) -> None:
     """音楽に合わせて踊る: a て-clause that only says how its head is done is no motion.
 
-    The rule (language.md §1, "Manner て-forms"; docs in nlp/README.md): a
+    The rule (docs/language.md §1, "Manner て-forms"; docs in nlp/README.md): a
     predicate P in て-form is a manner of the next predicate H when
     1. P modifies H directly: no comma after P, H is the next predicate of its clause;
     2. P's only complement is a に-marked noun (no を object, no body part), the

@@ -1,13 +1,13 @@
 """The values the nlp stage hands to the next stage (the scheduler).
 
 All are frozen dataclasses.  ``Analysis.to_dict()`` is the JSON object of
-``language.md`` §5, field for field.
+``docs/language.md`` §5, field for field.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-#: Methods a constraint can ask for (timetable.md §1 uses the same names).
+#: Methods a constraint can ask for (docs/timetable.md §1 uses the same names).
 CONSTRAINT_METHODS = ("connection", "transition", "composition")
 
 
@@ -54,7 +54,7 @@ class Bunsetsu:
 
 @dataclass(frozen=True, slots=True)
 class MotionSpec:
-    """One motion the text asks an actor to perform (language.md §1-§2)."""
+    """One motion the text asks an actor to perform (docs/language.md §1-§2)."""
 
     id: int
     actor: str | None
@@ -127,7 +127,7 @@ class Analysis:
     bunsetsu: tuple[Bunsetsu, ...] = field(default=(), compare=False)
 
     def to_dict(self, extra: bool = False) -> dict:
-        """language.md §5; ``extra`` adds ``hold``, ``reading`` and ``cue``."""
+        """docs/language.md §5; ``extra`` adds ``hold``, ``reading`` and ``cue``."""
         return {
             "text": self.text,
             "motions": [m.to_dict(extra) for m in self.motions],
@@ -136,7 +136,7 @@ class Analysis:
 
     def to_json(self, indent: int | None = 2, extra: bool = False) -> str:
         """The JSON text of ``to_dict``; with ``indent``, one motion or
-        constraint a line, as language.md §5 shows it."""
+        constraint a line, as docs/language.md §5 shows it."""
         import json  # lazy: keeps the import of the stage light for cold starts
 
         data = self.to_dict(extra)

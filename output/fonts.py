@@ -2,7 +2,8 @@
 
 matplotlib's default font (DejaVu Sans) has no CJK glyphs: Japanese drawn with it comes out as
 boxes. :func:`available` finds a CJK font that matplotlib knows (Noto Sans CJK JP from Debian's
-``fonts-noto-cjk``, IPAexGothic, Hiragino, Yu Gothic, ...; none is ever installed at run time) and
+``fonts-noto-cjk``, IPAexGothic, Hiragino, Yu Gothic, ...; none is ever installed at run time), or one
+installed after matplotlib cached its font list, by file name (:mod:`.fontfiles`), and
 the code points the base font and it can draw, read from the font files' character maps.
 :func:`label` then picks what to draw: the text when every character can be drawn, else an
 alternative (a clip name, a romanised reading), else the text without what cannot be drawn.
@@ -35,6 +36,8 @@ def available() -> tuple[str | None, frozenset[int]]:
         by_name.setdefault(f.name, f.fname)
     chars: set[int] = set()
     cjk = next((fam for fam in CJK_FAMILIES if fam in by_name), None)
+    if cjk is None:  # installed after matplotlib cached its font list? found by file name (:mod:`.fontfiles`)
+        cjk = _load_cjk_file(font_manager, by_name)
     for fam in (BASE_FAMILY, cjk):
         if fam is None:
             continue
@@ -44,6 +47,23 @@ def available() -> tuple[str | None, frozenset[int]]:
         except Exception:  # an unreadable font file: rely on the other
             continue
     return cjk, frozenset(chars)
+
+
+def _load_cjk_file(font_manager, by_name: dict[str, str]) -> str | None:
+    """The family of the first CJK font file matplotlib can load (:func:`.fontfiles.cjk_font_files`), now
+    known to ``font_manager`` (and put in ``by_name``); ``None`` when there is none."""
+    from . import fontfiles
+
+    for path in fontfiles.cjk_font_files():
+        try:
+            name = font_manager.FontProperties(fname=str(path)).get_name()
+            for weight in fontfiles.weights_of(path):  # bold too: bold titles without a fallback warning
+                font_manager.fontManager.addfont(str(weight))
+        except Exception:  # an unreadable font file: try the next
+            continue
+        by_name.setdefault(name, str(path))
+        return name
+    return None
 
 
 def families() -> list[str]:

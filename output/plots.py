@@ -29,6 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core import extras
+
 from . import fonts
 from text2anim.core.atomic import OutputError, atomic_write_bytes
 from text2anim.core.motion import Motion
@@ -44,10 +46,8 @@ FORMATS = ("png", "svg", "pdf")
 LINE_COLORS = ("#1f6fd1", "#e0662a", "#2a9d63", "#9a48d0", "#c79a12", "#d43b5e", "#1e9aa6", "#6b6b6b")
 
 
-class PlotDependencyError(ImportError):
-    """matplotlib is not installed."""
-
-    user_facing = True
+#: matplotlib is not installed (:class:`.extras.MissingExtraError`).
+PlotDependencyError = extras.MissingExtraError
 
 
 class PlotError(ValueError):
@@ -57,12 +57,10 @@ class PlotError(ValueError):
 
 
 def _matplotlib():
-    try:
-        import matplotlib
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
-    except ImportError:
-        raise PlotDependencyError("plots need matplotlib: pip install 'text2anim[plot]'") from None
+    matplotlib = extras.require("matplotlib", "a plot")
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
     return matplotlib, Figure, FigureCanvasAgg
 
 
@@ -185,7 +183,7 @@ def plot_speeds(motions_by_label, path: str | os.PathLike, spans: Iterable[Span]
             for i, (label, c) in enumerate(curves):
                 ys = c.upper if part == "upper" else c.lower
                 ax.plot(c.times, ys, color=LINE_COLORS[i % len(LINE_COLORS)], lw=1.6, zorder=3,
-                        label=_label(label, fallback=f"motion {i + 1}") if label else None)
+                        label=_label(label, fallback=f"actor {i + 1}") if label else None)
             ax.set_ylabel(f"{name} speed (m/s)")
             ax.set_ylim(bottom=0)
             ax.grid(True, color="#e6e6e6", lw=0.8, zorder=0)

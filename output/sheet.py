@@ -25,6 +25,8 @@ import warnings
 
 import numpy as np
 
+from ..core import extras
+
 from . import fonts
 from text2anim.core.atomic import atomic_write_bytes
 from text2anim.core.bodyparts import body_map, side_of
@@ -32,22 +34,16 @@ from text2anim.core.contacts import detect_contacts, foot_tracks
 from text2anim.core.motion import Motion
 
 
-class PlotUnavailableError(RuntimeError):
-    """matplotlib is not installed."""
-
-    user_facing = True
+#: matplotlib is not installed (:class:`.extras.MissingExtraError`).
+PlotUnavailableError = extras.MissingExtraError
 
 
 def _matplotlib():
-    try:
-        import matplotlib
+    matplotlib = extras.require("matplotlib", "a contact sheet")
+    matplotlib.use("Agg", force=False)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
 
-        matplotlib.use("Agg", force=False)
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
-    except ImportError:
-        raise PlotUnavailableError(
-            "drawing a contact sheet needs matplotlib: pip install text2anim[plot]") from None
     return Figure, FigureCanvasAgg
 
 

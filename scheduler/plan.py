@@ -1,6 +1,6 @@
 """From the analysis of a text and the retrieved clips to the motion time table.
 
-Start times follow paper 003 §3.3 as language.md §3 extends it:
+Start times follow paper 003 §3.3 as docs/language.md §3 extends it:
 
 - connection: the next motion starts when the previous one has finished, plus any delay;
 - transition: it starts at the previous motion's foot-moving interval after

@@ -4,7 +4,7 @@ A track holds a pose where nothing plays: before its first element starts, after
 its last one ends (a co-actor still acting, a join given more time), where an
 element is not executed, and where a clip ends at rest (lying after 転ぶ).
 Every joint then moves slower than :data:`core.metrics.FROZEN_SPEED` (0.5 cm/s):
-a frozen frame (timetable.md §3), which no living body shows.
+a frozen frame (docs/timetable.md §3), which no living body shows.
 
 :func:`keep_alive` finds those frames and settles them into the track's captured
 idle (for the built-in character the ``wait`` clip, CMU 10_01 before the kick:

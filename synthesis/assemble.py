@@ -6,7 +6,7 @@ whole-body elements of a track its own way; then :func:`assemble`:
 
 1. the partial elements are composed onto the track
    (:func:`synthesis.join.composition.compose`, sway transfer and all);
-2. every join is measured with the same figures (``timetable.md`` §3:
+2. every join is measured with the same figures (``docs/timetable.md`` §3:
    skating ratio and foot skate in the blend and its region, largest and RMS
    jerk against the source clips', core fidelity per element);
 3. a :class:`synthesis.result.Result` is returned, so every method can be

@@ -1,4 +1,4 @@
-"""The same tracks joined by several methods, and the figures of ``timetable.md`` §3 side by side.
+"""The same tracks joined by several methods, and the figures of ``docs/timetable.md`` §3 side by side.
 
 :func:`compare` runs :func:`synthesis.registry.synthesize_with` once per
 method; :func:`figures` reduces a :class:`~synthesis.result.Result` to one row:

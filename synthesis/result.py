@@ -1,7 +1,7 @@
 """What every engine returns: one motion per actor, a report per join and per element (:class:`Result`).
 
 The output half of the engines' contract (the input half is :mod:`synthesis.tracks`): a
-:class:`JoinReport` per join (timetable.md §2), an :class:`ElementReport` per element of the
+:class:`JoinReport` per join (docs/timetable.md §2), an :class:`ElementReport` per element of the
 time table, and the warnings. Times are seconds on the animation's clock.
 """
 from __future__ import annotations
@@ -25,7 +25,7 @@ class BlendInterval:
 
 @dataclass(frozen=True)
 class JoinReport:
-    """What the synthesizer decided for one join (timetable.md §2)."""
+    """What the synthesizer decided for one join (docs/timetable.md §2)."""
 
     first: int
     second: int
@@ -124,7 +124,7 @@ class Result:
         return e.actor if e is not None else None
 
     def report(self) -> dict[str, Any]:
-        """The ``joins`` part of the synthesis report (``timetable.md`` §2) as plain JSON-ready data."""
+        """The ``joins`` part of the synthesis report (``docs/timetable.md`` §2) as plain JSON-ready data."""
         return {"joins": [join_to_dict(j) for j in self.joins]}
 
 

@@ -9,14 +9,16 @@ SHARED = Path(__file__).resolve().parents[1].parent / "shared"
 CMU_DIR = SHARED / "mocap" / "cmu"
 CMU_FILES = sorted(CMU_DIR.glob("*.bvh")) if CMU_DIR.is_dir() else []
 
-requires_cmu = pytest.mark.skipif(not CMU_FILES, reason=f"shared CMU mocap not found at {CMU_DIR}")
+#: Where a skip sends a reader who wants these tests to run.
+HOW_TO_GET = "README.md: Real capture for the tests"
+requires_cmu = pytest.mark.skipif(not CMU_FILES, reason=f"shared CMU mocap not found at {CMU_DIR} ({HOW_TO_GET})")
 
 
 def cmu(name: str) -> Path:
     """Path of one CMU file by its stem (``02_01_walk``); skips the test when the data is absent."""
     path = CMU_DIR / f"{name}.bvh"
     if not path.exists():
-        pytest.skip(f"shared CMU file {path} not found")
+        pytest.skip(f"shared CMU file {path} not found ({HOW_TO_GET})")
     return path
 
 

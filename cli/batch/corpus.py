@@ -4,7 +4,7 @@ A corpus line is either plain text or a JSON object::
 
     {"text": "...", "category": "te", "expect": {...}}
 
-``expect`` is a subset of the parse JSON (language.md §5, plus ``hold``,
+``expect`` is a subset of the parse JSON (docs/language.md §5, plus ``hold``,
 ``reading`` and ``cue``); ``{"error": "words"}`` expects the line to be
 refused with a message containing the words. Blank lines and lines starting
 with ``#`` are skipped; an item keeps its line number in the file.

@@ -194,7 +194,7 @@ def _animate(item: Item, opts: Options) -> dict:
 
 
 def join_figures(join: dict) -> dict:
-    """One join's quality figures (timetable.md §3): those of its window at 30 fps from the report's
+    """One join's quality figures (docs/timetable.md §3): those of its window at 30 fps from the report's
     ``quality`` (GMD skating ratio, root pop m/s², jerk p99 m/s³, floor penetration cm, frozen fraction,
     whether each criterion against its source clips is met), the engine's largest foot slide (cm/s)
     and core fidelity (cm). None where the report has no figure."""

@@ -128,9 +128,9 @@ def _resolve(opts: Options) -> Options:
 
 
 def _cluster(jobs: int, scheduler: str | None):
-    try:
-        from .cluster import DaskExecutor
-    except ImportError as exc:
-        raise BatchError(f"--jobs above 1 and --scheduler run on Dask, which is not installed ({exc.name}): "
-                         "pip install 'text2anim[cluster]'") from None
+    from text2anim.core import extras
+
+    extras.require("distributed", "--jobs above 1 or --scheduler (Dask)")
+    from .cluster import DaskExecutor
+
     return DaskExecutor(jobs, scheduler)

@@ -11,7 +11,7 @@ For each :class:`~synthesis.tracks.Track`:
    the support foot, blended by slerp, feet locked (:mod:`synthesis.join.footlock`);
 3. the partial elements are composed onto the result
    (:mod:`synthesis.join.composition`): part switched, sway transferred;
-4. every join is measured (``timetable.md`` §3): foot skate and skating ratio
+4. every join is measured (``docs/timetable.md`` §3): foot skate and skating ratio
    in the blend, largest and RMS jerk in the blend against the source clips,
    and the core fidelity of each element.
 

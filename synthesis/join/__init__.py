@@ -8,5 +8,5 @@
   (foot locks by leg IK), :mod:`.gait` (foot-moving intervals);
 - compositions: :mod:`.composition` (paper 003 §4.4, a body part switched, sway transferred);
 - the join post-pass: :mod:`.joinpass`, :mod:`.smoothing`, :mod:`.pruning`, :mod:`.inertialize`;
-- measuring: :mod:`.measure` (``timetable.md`` §3).
+- measuring: :mod:`.measure` (``docs/timetable.md`` §3).
 """

@@ -1,7 +1,7 @@
 """The join post-pass every joining engine of ours runs on a laid track (optimal and constraint).
 
 An engine lays whole-body clips and blends them at joins; this pass then makes
-every join hold up the way ``timetable.md`` §3 measures it, against the join's
+every join hold up the way ``docs/timetable.md`` §3 measures it, against the join's
 own two source clips (as recorded, at the track's rate):
 
 1. **Velocity carried over** at the join's seams (every end of its blend
@@ -73,7 +73,7 @@ SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
 PAD = 0.25  # s: the filtered pose fades in and out over this on each side of a region
 SIGMAS = (0.0, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.5, 8.0)  # frames at 30 fps (scaled with the frame rate)
 SLACK = 1.0  # the region may reach the sources' own figure times this
-#: m/s²: the hips may always accelerate this much (half the low end of captured walking, timetable.md §3): clips
+#: m/s²: the hips may always accelerate this much (half the low end of captured walking, docs/timetable.md §3): clips
 #: smoother than capture (the built-in library's: 1 m/s²) would otherwise have every join slowed down
 POP_FLOOR = 2.0
 FLOOR = 0.0  # m

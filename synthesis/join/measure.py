@@ -1,4 +1,4 @@
-"""What every engine measures at a join (``timetable.md`` §3): foot skate, skating ratio, jerk, fidelity.
+"""What every engine measures at a join (``docs/timetable.md`` §3): foot skate, skating ratio, jerk, fidelity.
 
 Windows are ``[w0, w1)`` track frames; speeds cm/s, distances cm.
 """

@@ -1,6 +1,6 @@
 """Preparing a clip for its place on a track: speed, looping, repeats, holding and trimming.
 
-The time table (``timetable.md`` §1) gives every element a played length
+The time table (``docs/timetable.md`` §1) gives every element a played length
 ``end - start``; this module turns the element's clip into exactly that many
 frames at the output frame rate:
 

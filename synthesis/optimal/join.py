@@ -20,7 +20,7 @@ from .repair import carry_out
 
 
 def report_of(prev: Placed, inc: Placed, plan: Plan, fps: float, locks) -> JoinReport:
-    """The join's :class:`~synthesis.result.JoinReport` (timetable.md §2)."""
+    """The join's :class:`~synthesis.result.JoinReport` (docs/timetable.md §2)."""
     e = inc.element
     order = {"S0": 0, "S1": 1, "S3": 2}
     intervals = tuple(BlendInterval(iv.part, iv.kind, iv.t0 / fps, iv.t1 / fps)

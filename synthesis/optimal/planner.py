@@ -71,7 +71,7 @@ def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weight
         if not r.feasible(L):
             rs[k] = r.relax(L)
             warnings.append(f"join {prev.element.id}→{inc.element.id}: the cores leave no room for the "
-                            f"{r.part}-body blend {r.name}; it overlaps a core")
+                            f"{r.part}-body blend; it overlaps a core")
     byname = {r.name: r for r in rs}
     feats = Features(tr, inc)
     grid0 = grid(byname["S0"], feats, fps, weights, L)  # evaluated once: its minimum, and its runners-up below

@@ -103,7 +103,7 @@ def test_two_actors_get_two_files_apart(tmp_path, library_db):
     # without the postgres extra the message says the driver is missing; with it, that no server answers
     (("走る。", "--db", "postgresql://nobody@127.0.0.1:1/none"),
      "cannot connect" if importlib.util.find_spec("psycopg2") or importlib.util.find_spec("psycopg")
-     else "the driver for postgresql is not installed"),
+     else "which is not installed: pip install 'text2anim[postgres]'"),
 ])
 def test_bad_input_one_message_no_file(tmp_path, library_db, args, fragment):
     extra = () if "--db" in args else ("--db", library_db)

@@ -15,7 +15,7 @@ from text2anim.cli.main import main
 
 CORPUS = Path(__file__).parents[1] / "corpus" / "nlp_corpus.jsonl"
 
-#: Categories of language.md §3 (and §1-§2) the corpus must cover.
+#: Categories of docs/language.md §3 (and §1-§2) the corpus must cover.
 REQUIRED_CATEGORIES = {
     "te", "renyou", "period", "nagara", "tsutsu", "tekara", "ato", "owattara", "mama",
     "douji", "mae", "aida", "uchini", "soshite", "sorekara", "sonogo", "tsugini", "doujini",

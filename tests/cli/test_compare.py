@@ -84,3 +84,41 @@ def test_animate_takes_blend_and_smoothness(tmp_path, library_db):
     assert "fallback_from" not in join["metrics"] and not any("constraint engine" in w for w in doc["warnings"])
     assert join["blend"] == "motion_transition" and {"time", "pose", "velocity", "total"} == set(join["cost"])
     assert_clean_error(run("歩く。", "--blend", "magic", "--db", library_db, cwd=tmp_path), "magic")
+
+
+
+def _figure_and_limit(criterion: str) -> tuple[float, float]:
+    """``"root pop 14.7 m/s² > 1.2 × the sources' larger 8.9 = 10.6"`` -> (14.7, 10.6);
+    ``"... 0.289 > the sources' larger 0.000 + 0.01"`` -> (0.289, 0.01); ``"... 1.20 cm > 1 cm"`` -> (1.2, 1)."""
+    import re
+
+    figure, bound = criterion.split(" > ")
+    numbers = [float(x) for x in re.findall(r"\d+(?:\.\d+)?", bound)]
+    limit = numbers[-1] if "=" in bound else sum(numbers[-2:]) if "+" in bound else numbers[0]
+    return float(re.findall(r"\d+(?:\.\d+)?", figure)[-1]), limit
+
+
+def test_compare_says_which_join_misses_which_criterion(library_db):
+    """Not just "joins ok 1/2": each join that misses a criterion, by its motions' rows, verbs and seconds,
+    with the criterion's figure and limit."""
+    import re
+
+    proc = run("compare", "太郎は走って、ボールを蹴る。そして喜ぶ。", "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    table = {ln.split()[0]: ln for ln in lines[1:] if re.search(r"\s\d+/\d+\s", ln)}
+    verbs = {"1": "走る", "2": "蹴る", "3": "喜ぶ"}
+    said_in_all = 0
+    for method, row in table.items():
+        met, measured = map(int, re.search(r"\s(\d+)/(\d+)\s", row).groups())
+        said = [ln.split(": ", 1)[1] for ln in lines if ln.startswith(f"{method}: join ")]
+        assert len(said) == measured - met, (row, said)
+        said_in_all += len(said)
+        for line in said:
+            joined = re.findall(r"row (\d) (\S+)", line.split(" misses ")[0])
+            assert len(joined) == 2 and all(verbs[r] == verb for r, verb in joined), line
+            assert re.search(r" at \d+\.\d\d s misses ", line), line
+            for criterion in line.split(" misses ", 1)[1].split("; "):
+                figure, limit = _figure_and_limit(criterion)
+                assert figure > limit, criterion
+    assert said_in_all > 0  # the baselines miss criteria on this text

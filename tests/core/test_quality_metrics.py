@@ -1,4 +1,4 @@
-"""The literature's quality figures (timetable.md §3, issue 11) on motions whose answer is known by
+"""The literature's quality figures (docs/timetable.md §3, issue 11) on motions whose answer is known by
 construction, and on real captures.
 
 Constructed motions hold one real CMU pose (``16_01_jump`` frame 0, standing) and move it rigidly or
@@ -151,9 +151,9 @@ def test_criteria_against_sources_and_limits():
 
 @pytest.mark.parametrize("name", ["02_01_walk", "07_02_walk", "07_04_slowwalk", "16_15_walk"])
 def test_a_real_walk_skates_within_the_published_range(name):
-    # CMU capture at 30 fps: 0-0.075 (timetable.md §3). Files as captured (their toe joints planted 0.6-2.2 cm
+    # CMU capture at 30 fps: 0-0.075 (docs/timetable.md §3). Files as captured (their toe joints planted 0.6-2.2 cm
     # above y = 0).
     q = quality(read_bvh(cmu(name), drop_first=True))
     assert 0.0 <= q.skating_ratio <= 0.075
-    assert 2.0 < q.root_pop < 7.0  # walking at 30 fps: 4-6 m/s^2 (timetable.md §3), within a margin
+    assert 2.0 < q.root_pop < 7.0  # walking at 30 fps: 4-6 m/s^2 (docs/timetable.md §3), within a margin
     assert q.frozen_fraction == 0.0

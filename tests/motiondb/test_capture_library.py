@@ -31,7 +31,7 @@ CAPTURED = {r.name: r for r in capture.capture_records()}
 
 
 def frozen_share(m: Motion) -> float:
-    """timetable.md §3: the share of frame pairs on which every joint moves slower than 0.5 cm/s."""
+    """docs/timetable.md §3: the share of frame pairs on which every joint moves slower than 0.5 cm/s."""
     speed = np.linalg.norm(np.diff(m.positions, axis=0), axis=-1).max(axis=1) * m.fps
     return float((speed < 0.005).mean())
 

@@ -466,6 +466,6 @@ def test_contact_sheet_without_matplotlib_says_how_to_install(tmp_path, monkeypa
     from text2anim.output import sheet
 
     monkeypatch.setitem(sys.modules, "matplotlib", None)
-    with pytest.raises(sheet.PlotUnavailableError, match=r"pip install text2anim\[plot\]"):
+    with pytest.raises(sheet.PlotUnavailableError, match=r"pip install 'text2anim\[plot\]'"):
         sheet.contact_sheet(CLIPS["walk"].motion, tmp_path / "x.png")
     assert getattr(sheet.PlotUnavailableError, "user_facing", False)

@@ -1,4 +1,4 @@
-"""The traps of fugashi + unidic-lite (unidic-notes.md), each confirmed here,
+"""The traps of fugashi + unidic-lite (docs/unidic-notes.md), each confirmed here,
 and how the tokens layer deals with them."""
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The motion time table from real analyses: methods, links and start times (timetable.md §1).
+"""The motion time table from real analyses: methods, links and start times (docs/timetable.md §1).
 
 Clip timing is given as data here so every expected time can be worked out by
 hand; ``test_plan_cli.py`` runs the same stage on the real database.
