@@ -31,12 +31,15 @@ def pin() -> bool:
     """Pin numpy and OpenBLAS to their AVX2 kernels on an x86-64 machine that has AVX2.
 
     Returns whether the paths are pinned. Raises ``RuntimeError`` when numpy is already
-    imported (too late to pin); variables the caller set beforehand are kept.
+    imported unpinned (too late to pin); a second call after a first is a no-op, and
+    variables the caller set beforehand are kept.
     """
-    if "numpy" in sys.modules:
-        raise RuntimeError("reproducible.pin() must run before numpy is imported")
     if platform.machine().lower() not in ("x86_64", "amd64") or not has_avx2():
         return False
+    if "numpy" in sys.modules:
+        if "NPY_DISABLE_CPU_FEATURES" in os.environ and "OPENBLAS_CORETYPE" in os.environ:
+            return True
+        raise RuntimeError("reproducible.pin() must run before numpy is imported")
     os.environ.setdefault("NPY_DISABLE_CPU_FEATURES", ABOVE_AVX2)
     os.environ.setdefault("OPENBLAS_CORETYPE", "Haswell")
     return True

@@ -40,6 +40,10 @@ import sys
 import zipfile
 from pathlib import Path
 
+from text2anim import reproducible
+
+reproducible.pin()  # before numpy: tests compare the shipped arrays bytewise with a fresh build, pinned alike
+
 import numpy as np
 from scipy.spatial.transform import Rotation
 

@@ -17,6 +17,10 @@ import sys
 import tempfile
 from pathlib import Path
 
+from text2anim import reproducible
+
+reproducible.pin()  # before numpy: tests compare the shipped arrays bytewise with a fresh build, pinned alike
+
 import numpy as np
 
 from text2anim.motiondb.library.keyframed import ARRAYS, FPS, meta_array, records_of, sources_hash, to_planes
