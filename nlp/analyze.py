@@ -31,8 +31,10 @@ def analyze(text: str) -> Analysis:
     norm, offsets = normalize(text)
     if not norm.strip():
         raise NLPError("the text is empty (only control characters)")
-    phrases = chunk(split_sentences(tokenize(norm)))
+    notes: list[str] = []
+    phrases = chunk(split_sentences(tokenize(norm, notes)))
     preds, cues = annotate(phrases)
+    notes.extend(p.note for p in preds if p.note)
     motions = [p for p in preds if p.motion]
     if not motions:
         raise NLPError(f"no motion found in the text {_quote(text)} "
@@ -50,7 +52,8 @@ def analyze(text: str) -> Analysis:
     ]
     constraints = list(constraints)
     _add_co_actors(specs, constraints, {p.id: p.co_actors for p in motions if p.co_actors})
-    return Analysis(text, tuple(specs), tuple(constraints), _bunsetsu(text, offsets, phrases))
+    return Analysis(text, tuple(specs), tuple(constraints), _bunsetsu(text, offsets, phrases),
+                    tuple(notes))
 
 
 def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: dict[int, tuple[str, ...]]) -> None:

@@ -91,6 +91,8 @@ def _noun_role(ph: Phrase, opens: bool = False) -> str:
     """``opens``: ``ph`` is the first phrase of its sentence (a vocative 花子さん、 there
     names whom the request is addressed to: the actor, like a topic)."""
     particle = _case_particle(ph)
+    if opens and _label(ph):
+        return "actor"
     if opens and not any(t.pos1 == "助詞" for t in ph.tokens) and ph.has_comma() and _person(ph):
         return "actor"
     if particle in ("は", "が", "も") and _person(ph):
@@ -124,18 +126,51 @@ def _noun(ph: Phrase) -> str:
     return "".join(run)
 
 
+def _label(ph: Phrase) -> str | None:
+    """花子: / お父さん： / 店員A: opening a line: a script's speaker label names the actor
+    of that line, person noun or not (as written, honorific after a name dropped)."""
+    toks = ph.tokens
+    if len(toks) < 2 or toks[-1].surface != ":":
+        return None
+    words = toks[:-1]
+    if not all(t.pos1 in ("名詞", "代名詞", "接頭辞", "接尾辞") for t in words):
+        return None
+    return _as_written(words)
+
+
 def _person(ph: Phrase) -> str | None:
-    """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, 男の子)."""
+    """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, お父さん, 子供たち), as written."""
+    label = _label(ph)
+    if label:
+        return label
     nouns = [t for t in ph.tokens if t.pos1 in ("名詞", "代名詞")]
     if not nouns:
         return None
     name = "".join(t.surface for t in nouns)
     honorific = any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in ph.tokens)
     if honorific or name in PERSON_NOUNS or any(t.pos3 == "人名" for t in nouns):
-        return name
+        return _as_written(ph.tokens)
     if len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name):
-        return name
+        return _as_written(ph.tokens)
     return None
+
+
+def _as_written(toks: list) -> str:
+    """The name as the user wrote it: prefix, nouns and suffixes (お父さん, おじいちゃん,
+    子供たち); an honorific right after a given name is not part of it (花子さん -> 花子)."""
+    run = []
+    for t in toks:
+        if t.pos1 in ("名詞", "代名詞", "接頭辞") or (t.pos1 == "接尾辞" and run):
+            run.append(t)
+        elif run:
+            break
+    while len(run) > 1 and run[-1].pos1 == "接尾辞" and run[-1].surface in HONORIFICS and _given_name(run[-2]):
+        run.pop()
+    return "".join(t.surface for t in run)
+
+
+def _given_name(tok) -> bool:
+    return tok.pos3 == "人名" or (tok.pos1 == "名詞" and tok.surface not in PERSON_NOUNS and is_name(tok.surface))
 
 
 # ---------------------------------------------------------------- structure

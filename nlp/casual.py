@@ -1,0 +1,68 @@
+"""Casual writing: laughter marks and the commonest typos, read before chunking.
+
+- A trailing laughter mark (w, ww, 笑, 草 right after a predicate, at the end of
+  a line or before punctuation) ends the sentence like 。, so ダンスするw keeps
+  its verb.
+- わ typed for the topic particle は (太郎わ走る): わ after a noun and before more
+  of the sentence can only be は (the sentence-final わ ends a predicate).
+- お typed for を (ボールお蹴る): UniDic tags it the honorific prefix; after a
+  noun and right before a verb that is not a polite お + 連用形 form, it is を.
+
+Every token read differently is said in ``notes`` (stderr and ``--explain``).
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from .types import Token
+
+#: Words that mark laughter at the end of a casual sentence.
+LAUGHTER = frozenset(["笑", "草"])
+
+#: Polite request / light verbs after お + 連用形 (お待ちください): お stays the prefix.
+_POLITE_NEXT = frozenset(["下さる", "為る", "為さる", "頂く", "願う"])
+
+
+def is_laughter(surface: str) -> bool:
+    """w, www, W (after NFKC) or 笑 / 草."""
+    return surface in LAUGHTER or (surface.isascii() and surface.isalpha() and set(surface.lower()) == {"w"})
+
+
+def repair(tokens: list[Token], notes: list[str]) -> list[Token]:
+    """The tokens of one line with laughter marks made punctuation and わ/お typos made は/を."""
+    out = list(tokens)
+    for i, tok in enumerate(out):
+        prev = out[i - 1] if i else None
+        nxt = out[i + 1] if i + 1 < len(out) else None
+        if prev is None:
+            continue
+        if is_laughter(tok.surface) and _ends_predicate(prev) and (nxt is None or _mark_or_laugh(nxt)):
+            out[i] = replace(tok, pos1="補助記号", pos2="句点", pos3="*", lemma=tok.surface, orth=tok.surface)
+        elif (tok.surface == "わ" and tok.pos1 == "助詞" and _noun(prev) and nxt is not None
+              and nxt.pos1 not in ("補助記号", "助詞", "助動詞")):
+            out[i] = replace(tok, surface="は", pos2="係助詞", lemma="は", orth="は")
+            notes.append(f"read {prev.surface}わ as {prev.surface}は (topic particle)")
+        elif (tok.surface == "お" and tok.pos1 == "接頭辞" and _noun(prev) and nxt is not None
+              and nxt.pos1 == "動詞" and not _polite(out, i + 1)):
+            out[i] = replace(tok, surface="を", pos1="助詞", pos2="格助詞", pos3="*", lemma="を", orth="を")
+            notes.append(f"read {prev.surface}お{nxt.surface} as {prev.surface}を{nxt.surface} (object particle)")
+    return out
+
+
+def _ends_predicate(tok: Token) -> bool:
+    return tok.pos1 in ("動詞", "助動詞", "助詞") or is_laughter(tok.surface)
+
+
+def _mark_or_laugh(tok: Token) -> bool:
+    return tok.pos1 == "補助記号" or is_laughter(tok.surface)
+
+
+def _noun(tok: Token) -> bool:
+    return tok.pos1 in ("名詞", "代名詞") and not tok.is_number
+
+
+def _polite(tokens: list[Token], v: int) -> bool:
+    """お待ちください / お辞儀する: the お is the honorific prefix of a 連用形 or noun."""
+    verb = tokens[v]
+    after = tokens[v + 1] if v + 1 < len(tokens) else None
+    return verb.cform.startswith("連用形") and after is not None and after.lemma in _POLITE_NEXT
