@@ -4,7 +4,8 @@
   a line or before punctuation) ends the sentence like 。, so ダンスするw keeps
   its verb.
 - わ typed for the topic particle は (太郎わ走る): わ after a noun and before more
-  of the sentence can only be は (the sentence-final わ ends a predicate).
+  of the sentence can only be は (the sentence-final わ ends a predicate; UniDic
+  tags it a sentence-final particle, or the counter 把 after 太郎).
 - お typed for を (ボールお蹴る): UniDic tags it the honorific prefix; after a
   noun and right before a verb that is not a polite お + 連用形 form, it is を.
 
@@ -38,7 +39,7 @@ def repair(tokens: list[Token], notes: list[str]) -> list[Token]:
             continue
         if is_laughter(tok.surface) and _ends_predicate(prev) and (nxt is None or _mark_or_laugh(nxt)):
             out[i] = replace(tok, pos1="補助記号", pos2="句点", pos3="*", lemma=tok.surface, orth=tok.surface)
-        elif (tok.surface == "わ" and tok.pos1 == "助詞" and _noun(prev) and nxt is not None
+        elif (tok.surface == "わ" and tok.pos1 in ("助詞", "接尾辞") and _noun(prev) and nxt is not None
               and nxt.pos1 not in ("補助記号", "助詞", "助動詞")):
             out[i] = replace(tok, surface="は", pos2="係助詞", lemma="は", orth="は")
             notes.append(f"read {prev.surface}わ as {prev.surface}は (topic particle)")

@@ -12,11 +12,11 @@ from dataclasses import dataclass
 from .bunsetsu import FUNCTION_POS, Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, LIBRARY_VERBS, MANNER_TE, PERSON_NOUNS,
-    SIDE_PREFIX, SPEED_WORDS,
+    BODY_PARTS, CONNECTIVES, COUNTERS, HOMOPHONE_TYPOS, HONORIFICS, LIBRARY_VERBS, MANNER_TE, PERSON_NOUNS,
+    REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS,
 )
 from .pred import Pred
-from .predicates import find_predicate, settle_reason
+from .predicates import find_predicate, sahen_verb, settle_reason
 from .tokens import is_name
 
 _SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
@@ -52,9 +52,12 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     _mark_manner(phrases)
     preds = [ph.pred for ph in phrases if ph.pred]
     _merge_light_verbs(phrases)
+    _mark_non_agents(phrases)
     _mark_embedded(phrases)
     _assign_actors(phrases)
     cues = _attach_modifiers(phrases, values)
+    for pred in preds:
+        _recover_homophone(pred)
     for ph in phrases:
         if ph.pred:
             ph.role = "motion" if ph.pred.motion else f"not a motion: {ph.pred.reason}"
@@ -72,6 +75,9 @@ def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
         return "manner"
     if key in SPEED_WORDS:
         return "speed"
+    if key in REPEAT_WORDS:
+        values[ph.index] = REPEAT_WORDS[key]
+        return "repeat"
     toks = ph.tokens
     if not toks[0].is_number or toks[0].value is None:
         return ""
@@ -262,12 +268,26 @@ def _merge_light_verbs(phrases: list[Phrase]) -> None:
         nouns = [t for t in noun_ph.tokens if t.pos1 in ("名詞", "接頭辞") and not t.is_number]
         if not nouns:
             continue
-        pred.verb = "".join(t.surface if t.pos1 == "接頭辞" else t.lemma for t in nouns) + "する"
+        pred.verb, pred.written = sahen_verb(nouns)
         pred.reading = "".join(t.kana_form for t in nouns) + "スル"
         pred.start = nouns[0].start
         pred.reason = ""
         settle_reason(pred, ph.quoted)
         noun_ph.role = "action noun"
+
+
+def _mark_non_agents(phrases: list[Phrase]) -> None:
+    """雨が降る / 音楽が流れる / ボールが転がる: a が-subject that is neither a person nor
+    a body part (手が震える is still the actor's) makes its predicate no action of anyone."""
+    for i, ph in enumerate(phrases):
+        if ph.role or ph.pred or _case_particle(ph) != "が" or any(t.is_number for t in ph.tokens):
+            continue
+        noun = _noun(ph)
+        if not noun or noun in BODY_PARTS or _person(ph):
+            continue
+        target = _next_pred(phrases, i)
+        if target is not None and target.predicate.motion:
+            target.predicate.reason = "non-agent"
 
 
 def _mark_embedded(phrases: list[Phrase]) -> None:
@@ -359,11 +379,28 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         elif role == "repeat":
             if values[i] >= 1 and float(values[i]).is_integer():
                 pred.repeat = int(values[i])
+        elif role == "steps":
+            if pred.verb in STEPPING_VERBS and values[i] >= 1 and float(values[i]).is_integer():
+                pred.repeat = int(values[i])
         elif role == "duration":
             pred.duration = values[i]
         elif role in ("speed", "manner"):
             pred.speed = SPEED_WORDS.get(ph.key, pred.speed)
     return cues
+
+
+def _recover_homophone(pred) -> None:
+    """手を降る -> 手を振る: an IME homophone of a library verb, read as that verb where the
+    written one gives no plausible motion (``lexicon.HOMOPHONE_TYPOS``); said in ``note``."""
+    typo = HOMOPHONE_TYPOS.get(pred.written)
+    if typo is None or not pred.motion:
+        return
+    meant, when = typo
+    has_object = pred.object is not None or pred.body_part is not None
+    if (when == "object" and not has_object) or (when == "no object" and has_object):
+        return
+    pred.note = f"read {pred.written} as {meant} (a homophone the IME may have chosen: {pred.written} is no motion here)"
+    pred.verb = pred.written = meant
 
 
 def _next_pred(phrases: list[Phrase], i: int, motion_level: int = 0) -> Phrase | None:
