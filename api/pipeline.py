@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 from text2anim import nlp
 from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
+from text2anim.motiondb.readings import same_word
 from text2anim.nlp.types import Analysis, MotionSpec
 from text2anim.scheduler import ClipTiming, ScheduleError, TimeTable, plan, without
 from text2anim.core.bodyparts import GROUPS
@@ -93,7 +94,9 @@ class ClipFinder:
         written = spec.written or spec.verb
         if _kana_only(written):
             return hits
-        same = [h for h in hits if spec.verb in h.verbs or written in h.verbs]
+        # another spelling of the same word (後退りする for the library's 後ずさりする) is the verb itself
+        same = [h for h in hits if spec.verb in h.verbs or written in h.verbs
+                or any(same_word(written, v) for v in h.verbs)]
         if hits and not same:
             raise UnknownVerbError(written)
         return same

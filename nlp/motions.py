@@ -170,8 +170,9 @@ def _as_written(toks: list) -> str:
             run.append(t)
         elif run:
             break
-    while len(run) > 1 and run[-1].pos1 == "接尾辞" and run[-1].surface in HONORIFICS and _given_name(run[-2]):
-        run.pop()
+    while (len(run) > 1 and run[-1].pos1 == "接尾辞" and run[-1].surface in HONORIFICS
+           and _given_name(run[-2]) and "".join(t.surface for t in run) not in PERSON_NOUNS):
+        run.pop()  # 花子さん -> 花子, but 王様 stays 王様
     return "".join(t.surface for t in run)
 
 
