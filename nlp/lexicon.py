@@ -120,6 +120,13 @@ PERSON_NOUNS = frozenset(
     お兄さん お姉さん 兄ちゃん 姉ちゃん""".split()
 )
 
+#: Script headings that open a line like a speaker label (ト書き：花子が座る) but name no
+#: one: the line is a stage direction, its actor is found as in any other sentence.
+SCRIPT_HEADINGS = frozenset(
+    """ト書き 場面 シーン 注意 説明 演出 メモ 備考 場所 時間 背景 設定 ナレーション ナレーター 状況 舞台
+    動作 動き アクション 指示 例 補足 タイトル""".split()
+)
+
 #: Honorific suffixes stripped from actor names (花子さん -> 花子).
 HONORIFICS = frozenset("さん 君 くん ちゃん 様 さま 氏 殿".split())
 

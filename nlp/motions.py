@@ -13,7 +13,7 @@ from .bunsetsu import FUNCTION_POS, Phrase
 from .endings import ENDINGS
 from .lexicon import (
     BODY_PARTS, CONNECTIVES, COUNTERS, HOMOPHONE_TYPOS, HONORIFICS, LIBRARY_VERBS, MANNER_TE, PERSON_NOUNS,
-    REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS,
+    REPEAT_WORDS, SCRIPT_HEADINGS, SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS,
 )
 from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
@@ -141,7 +141,8 @@ def _label(ph: Phrase) -> str | None:
     words = toks[:-1]
     if not all(t.pos1 in ("名詞", "代名詞", "接頭辞", "接尾辞") for t in words):
         return None
-    return _as_written(words)
+    name = _as_written(words)
+    return None if name in SCRIPT_HEADINGS else name
 
 
 def _person(ph: Phrase) -> str | None:
