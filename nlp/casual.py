@@ -24,6 +24,15 @@ LAUGHTER = frozenset(["笑", "草"])
 _POLITE_NEXT = frozenset(["下さる", "為る", "為さる", "頂く", "願う"])
 
 
+#: Characters without which a line has nothing to repair (a fast test on the line's text).
+_TRIGGERS = frozenset("わお笑草wW")
+
+
+def may_apply(line: str) -> bool:
+    """Could :func:`repair` change anything in ``line``?"""
+    return not _TRIGGERS.isdisjoint(line)
+
+
 def is_laughter(surface: str) -> bool:
     """w, www, W (after NFKC) or 笑 / 草."""
     return surface in LAUGHTER or (surface.isascii() and surface.isalpha() and set(surface.lower()) == {"w"})

@@ -147,19 +147,19 @@ def _label(ph: Phrase) -> str | None:
 
 def _person(ph: Phrase) -> str | None:
     """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, お父さん, 子供たち), as written."""
-    label = _label(ph)
-    if label:
-        return label
-    nouns = [t for t in ph.tokens if t.pos1 in ("名詞", "代名詞")]
+    toks = ph.tokens
+    if toks[-1].surface == ":":
+        return _label(ph)
+    nouns = [t for t in toks if t.pos1 in ("名詞", "代名詞")]
     if not nouns:
         return None
     name = "".join(t.surface for t in nouns)
-    honorific = any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in ph.tokens)
-    if honorific or name in PERSON_NOUNS or any(t.pos3 == "人名" for t in nouns):
-        return _as_written(ph.tokens)
-    if len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name):
-        return _as_written(ph.tokens)
-    return None
+    affixed = any(t.pos1 in ("接頭辞", "接尾辞") for t in toks)
+    honorific = affixed and any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in toks)
+    if not (honorific or name in PERSON_NOUNS or any(t.pos3 == "人名" for t in nouns)
+            or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name))):
+        return None
+    return _as_written(toks) if affixed else name
 
 
 def _as_written(toks: list) -> str:

@@ -98,7 +98,10 @@ def tokenize(norm: str, notes: list[str] | None = None) -> list[Token]:
     said = [] if notes is None else notes
     for line in norm.split("\n"):
         if line.strip():
-            tokens.extend(unwrap_direction(casual.repair(_tag_line(line, pos), said)))
+            tagged = _tag_line(line, pos)
+            if casual.may_apply(line):
+                tagged = casual.repair(tagged, said)
+            tokens.extend(unwrap_direction(tagged) if "(" in line else tagged)
         end = pos + len(line)
         if end < len(norm):
             tokens.append(Token("\n", "補助記号", "句点", "*", "*", "*", "\n", "\n", "", end, end + 1))
