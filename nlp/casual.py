@@ -9,12 +9,17 @@
 - お typed for を (ボールお蹴る): UniDic tags it the honorific prefix; after a
   noun and right before a verb that is not a polite お + 連用形 form, it is を.
 
+- The IME's homophone of a library verb (手を降る for 手を振る) is read as that verb
+  where the written one gives no plausible motion (:func:`recover_homophone`).
+
 Every token read differently is said in ``notes`` (stderr and ``--explain``).
 """
 from __future__ import annotations
 
 from dataclasses import replace
 
+from .lexicon import HOMOPHONE_TYPOS
+from .pred import Pred
 from .types import Token
 
 #: Words that mark laughter at the end of a casual sentence.
@@ -76,3 +81,17 @@ def _polite(tokens: list[Token], v: int) -> bool:
     verb = tokens[v]
     after = tokens[v + 1] if v + 1 < len(tokens) else None
     return verb.cform.startswith("連用形") and after is not None and after.lemma in _POLITE_NEXT
+
+
+def recover_homophone(pred: Pred) -> None:
+    """手を降る -> 手を振る: an IME homophone of a library verb, read as that verb where the
+    written one gives no plausible motion (``lexicon.HOMOPHONE_TYPOS``); said in ``note``."""
+    typo = HOMOPHONE_TYPOS.get(pred.written)
+    if typo is None or not pred.motion:
+        return
+    meant, when = typo
+    has_object = pred.object is not None or pred.body_part is not None
+    if (when == "object" and not has_object) or (when == "no object" and has_object):
+        return
+    pred.note = f"read {pred.written} as {meant} (a homophone the IME may have chosen: {pred.written} is no motion here)"
+    pred.verb = pred.written = meant

@@ -9,14 +9,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .bunsetsu import FUNCTION_POS, Phrase
+from .actors import assign_actors, case_particle, noun_of, person_name, speaker_label
+from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, HOMOPHONE_TYPOS, HONORIFICS, LIBRARY_VERBS, MANNER_TE, PERSON_NOUNS,
-    REPEAT_WORDS, SCRIPT_HEADINGS, SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS,
+    BODY_PARTS, CONNECTIVES, COUNTERS, LIBRARY_VERBS, MANNER_TE, REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS,
+    STEPPING_VERBS,
 )
 from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
+from .casual import recover_homophone
 from .tokens import is_name
 
 _SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
@@ -54,10 +56,10 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     _merge_light_verbs(phrases)
     _mark_non_agents(phrases)
     _mark_embedded(phrases)
-    _assign_actors(phrases)
+    assign_actors(phrases)
     cues = _attach_modifiers(phrases, values)
     for pred in preds:
-        _recover_homophone(pred)
+        recover_homophone(pred)
     for ph in phrases:
         if ph.pred:
             ph.role = "motion" if ph.pred.motion else f"not a motion: {ph.pred.reason}"
@@ -96,89 +98,19 @@ def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
 def _noun_role(ph: Phrase, opens: bool = False) -> str:
     """``opens``: ``ph`` is the first phrase of its sentence (a vocative 花子さん、 there
     names whom the request is addressed to: the actor, like a topic)."""
-    particle = _case_particle(ph)
-    if opens and _label(ph):
+    particle = case_particle(ph)
+    if opens and speaker_label(ph):
         return "actor"
-    if opens and not any(t.pos1 == "助詞" for t in ph.tokens) and ph.has_comma() and _person(ph):
+    if opens and not any(t.pos1 == "助詞" for t in ph.tokens) and ph.has_comma() and person_name(ph):
         return "actor"
-    if particle in ("は", "が", "も") and _person(ph):
+    if particle in ("は", "が", "も") and person_name(ph):
         return "actor"
     if particle in ("を", "で"):
-        noun = _noun(ph)
+        noun = noun_of(ph)
         if noun in BODY_PARTS:
             return "body part"
         return "object" if particle == "を" else ""
     return ""
-
-
-def _case_particle(ph: Phrase) -> str:
-    """The particle(s) after the nouns: は, が, を, で ... ('' if several or none)."""
-    parts = [t.surface for t in ph.tokens if t.pos1 == "助詞"]
-    return parts[0] if len(parts) == 1 else ""
-
-
-def _noun(ph: Phrase) -> str:
-    """The noun of a noun phrase: its last run of nouns (with prefixes)."""
-    run: list[str] = []
-    for t in ph.tokens:
-        if t.pos1 in ("名詞", "代名詞", "接頭辞") and not t.is_number:
-            run.append(t.surface)
-        elif t.pos1 == "接尾辞" and run:
-            continue
-        elif t.pos1 in FUNCTION_POS:
-            break
-        else:
-            run = []
-    return "".join(run)
-
-
-def _label(ph: Phrase) -> str | None:
-    """花子: / お父さん： / 店員A: opening a line: a script's speaker label names the actor
-    of that line, person noun or not (as written, honorific after a name dropped)."""
-    toks = ph.tokens
-    if len(toks) < 2 or toks[-1].surface != ":":
-        return None
-    words = toks[:-1]
-    if not all(t.pos1 in ("名詞", "代名詞", "接頭辞", "接尾辞") for t in words):
-        return None
-    name = _as_written(words)
-    return None if name in SCRIPT_HEADINGS else name
-
-
-def _person(ph: Phrase) -> str | None:
-    """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, お父さん, 子供たち), as written."""
-    toks = ph.tokens
-    if toks[-1].surface == ":":
-        return _label(ph)
-    nouns = [t for t in toks if t.pos1 in ("名詞", "代名詞")]
-    if not nouns:
-        return None
-    name = "".join(t.surface for t in nouns)
-    affixed = any(t.pos1 in ("接頭辞", "接尾辞") for t in toks)
-    honorific = affixed and any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in toks)
-    if not (honorific or name in PERSON_NOUNS or any(t.pos3 == "人名" for t in nouns)
-            or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name))):
-        return None
-    return _as_written(toks) if affixed else name
-
-
-def _as_written(toks: list) -> str:
-    """The name as the user wrote it: prefix, nouns and suffixes (お父さん, おじいちゃん,
-    子供たち); an honorific right after a given name is not part of it (花子さん -> 花子)."""
-    run = []
-    for t in toks:
-        if t.pos1 in ("名詞", "代名詞", "接頭辞") or (t.pos1 == "接尾辞" and run):
-            run.append(t)
-        elif run:
-            break
-    while (len(run) > 1 and run[-1].pos1 == "接尾辞" and run[-1].surface in HONORIFICS
-           and _given_name(run[-2]) and "".join(t.surface for t in run) not in PERSON_NOUNS):
-        run.pop()  # 花子さん -> 花子, but 王様 stays 王様
-    return "".join(t.surface for t in run)
-
-
-def _given_name(tok) -> bool:
-    return tok.pos3 == "人名" or (tok.pos1 == "名詞" and tok.surface not in PERSON_NOUNS and is_name(tok.surface))
 
 
 # ---------------------------------------------------------------- structure
@@ -210,10 +142,10 @@ def _bare_objects(phrases: list[Phrase]) -> None:
         last = toks[-1]
         if last.pos1 != "名詞" or last.pos3 == "副詞可能" or last.pos2 == "数詞" or last.is_number:
             continue
-        if _person(ph):
+        if person_name(ph):
             ph.role = "actor"  # 太郎歩く: が dropped too
         elif not is_name(ph.key):
-            ph.role = "body part" if _noun(ph) in BODY_PARTS else "object"
+            ph.role = "body part" if noun_of(ph) in BODY_PARTS else "object"
 
 
 def _mark_manner(phrases: list[Phrase]) -> None:
@@ -232,7 +164,7 @@ def _mark_manner(phrases: list[Phrase]) -> None:
         ph, prev = phrases[i], phrases[i - 1]
         pred = ph.pred
         if (not pred or pred.reason or pred.ending != "te" or ph.has_comma()
-                or prev.group != ph.group or prev.pred or _case_particle(prev) != "に"):
+                or prev.group != ph.group or prev.pred or case_particle(prev) != "に"):
             continue
         if _next_pred(phrases, i) is None:
             continue
@@ -282,10 +214,10 @@ def _mark_non_agents(phrases: list[Phrase]) -> None:
     """雨が降る / 音楽が流れる / ボールが転がる: a が-subject that is neither a person nor
     a body part (手が震える is still the actor's) makes its predicate no action of anyone."""
     for i, ph in enumerate(phrases):
-        if ph.role or ph.pred or _case_particle(ph) != "が" or any(t.is_number for t in ph.tokens):
+        if ph.role or ph.pred or case_particle(ph) != "が" or any(t.is_number for t in ph.tokens):
             continue
-        noun = _noun(ph)
-        if not noun or noun in BODY_PARTS or _person(ph):
+        noun = noun_of(ph)
+        if not noun or noun in BODY_PARTS or person_name(ph):
             continue
         target = _next_pred(phrases, i)
         if target is not None and target.predicate.motion:
@@ -300,58 +232,6 @@ def _mark_embedded(phrases: list[Phrase]) -> None:
             continue
         if b.predicate.reason in ("relative", "nominal", "embedded"):
             a.predicate.reason = a.predicate.reason or "embedded"
-
-
-def _assign_actors(phrases: list[Phrase]) -> None:
-    """は/も set the topic, which carries over; が binds to its own clause.
-
-    A が-subject holds until a clause that ends it (てから, 間に, 前に, の,
-    relative, ...); then the topic is back, or, if the text has no topic yet,
-    the が-subject carries over as the contract's "nearest preceding" rule.
-    Coordinated actors (太郎と花子が) are one group: every one of them performs
-    the motions (the first is ``actor``, the others ``co_actors``).
-    """
-    topic: tuple[str, ...] = ()
-    subject: tuple[str, ...] = ()
-    group = None
-    for i, ph in enumerate(phrases):
-        if ph.group != group:
-            if subject:
-                topic, subject = subject, ()
-            group = ph.group
-        if ph.role == "actor":
-            person = _person(ph)
-            assert person is not None  # the role is given to persons only (_noun_role)
-            names = (*_partners(phrases, i), person)
-            if _case_particle(ph) == "が":
-                subject = names
-            else:
-                topic, subject = names, ()
-            continue
-        pred = ph.pred
-        if not pred:
-            continue
-        names = subject or topic
-        pred.actor = names[0] if names else None
-        pred.co_actors = names[1:]
-        ending = ENDINGS.get(pred.ending)
-        closes = ending.closes_subject if ending else True
-        if closes and subject:
-            topic = topic or subject
-            subject = ()
-
-
-def _partners(phrases: list[Phrase], i: int) -> list[str]:
-    """The persons joined to the actor phrase ``i`` by と just before it (太郎と次郎と花子が)."""
-    names: list[str] = []
-    j = i - 1
-    while j >= 0 and phrases[j].group == phrases[i].group and _case_particle(phrases[j]) == "と":
-        name = _person(phrases[j])
-        if not name:
-            break
-        names.insert(0, name)
-        j -= 1
-    return names
 
 
 # ---------------------------------------------------------------- modifiers
@@ -375,7 +255,7 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         elif not pred.motion:
             continue
         elif role == "object":
-            pred.object = _noun(ph) or None  # never an empty string
+            pred.object = noun_of(ph) or None  # never an empty string
         elif role == "body part":
             pred.body_part = _body_part(phrases, i)
         elif role == "repeat":
@@ -389,20 +269,6 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         elif role in ("speed", "manner"):
             pred.speed = SPEED_WORDS.get(ph.key, pred.speed)
     return cues
-
-
-def _recover_homophone(pred) -> None:
-    """手を降る -> 手を振る: an IME homophone of a library verb, read as that verb where the
-    written one gives no plausible motion (``lexicon.HOMOPHONE_TYPOS``); said in ``note``."""
-    typo = HOMOPHONE_TYPOS.get(pred.written)
-    if typo is None or not pred.motion:
-        return
-    meant, when = typo
-    has_object = pred.object is not None or pred.body_part is not None
-    if (when == "object" and not has_object) or (when == "no object" and has_object):
-        return
-    pred.note = f"read {pred.written} as {meant} (a homophone the IME may have chosen: {pred.written} is no motion here)"
-    pred.verb = pred.written = meant
 
 
 def _next_pred(phrases: list[Phrase], i: int, motion_level: int = 0) -> Phrase | None:
@@ -440,7 +306,7 @@ def _time_cue(phrases: list[Phrase], i: int, values: dict[int, float]) -> TimeCu
 
 def _body_part(phrases: list[Phrase], i: int) -> str:
     """右手 -> right_arm; 右の手 -> right_arm (side noun + の before the part)."""
-    noun = _noun(phrases[i])
+    noun = noun_of(phrases[i])
     part = BODY_PARTS[noun]
     if noun in _SIDED and i > 0:
         side = SIDE_PREFIX.get(phrases[i - 1].key.removesuffix("の"))
