@@ -81,6 +81,7 @@ def as_written(toks: list[Token]) -> str:
 
 
 def given_name(tok: Token) -> bool:
+    """Can ``tok`` be a given name (花子, ゆうた), after which an honorific is no part of the name?"""
     return tok.pos3 == "人名" or (tok.pos1 == "名詞" and tok.surface not in PERSON_NOUNS and is_name(tok.surface))
 
 
@@ -103,7 +104,7 @@ def assign_actors(phrases: list[Phrase]) -> None:
             group = ph.group
         if ph.role == "actor":
             person = person_name(ph)
-            assert person is not None  # the role is given to persons only (_noun_role)
+            assert person is not None  # the role is given to persons only (motions._noun_role)
             names = (*partners(phrases, i), person)
             if case_particle(ph) == "が":
                 subject = names

@@ -8,7 +8,6 @@
   tags it a sentence-final particle, or the counter 把 after 太郎).
 - お typed for を (ボールお蹴る): UniDic tags it the honorific prefix; after a
   noun and right before a verb that is not a polite お + 連用形 form, it is を.
-
 - The IME's homophone of a library verb (手を降る for 手を振る) is read as that verb
   where the written one gives no plausible motion (:func:`recover_homophone`).
 
@@ -27,7 +26,6 @@ LAUGHTER = frozenset(["笑", "草"])
 
 #: Polite request / light verbs after お + 連用形 (お待ちください): お stays the prefix.
 _POLITE_NEXT = frozenset(["下さる", "為る", "為さる", "頂く", "願う"])
-
 
 #: Characters without which a line has nothing to repair (a fast test on the line's text).
 _TRIGGERS = frozenset("わお笑草wW")
