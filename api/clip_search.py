@@ -11,6 +11,7 @@ from collections.abc import Sequence
 
 from text2anim.core.bodyparts import GROUPS
 from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
+from text2anim.motiondb.readings import same_word
 from text2anim.nlp.types import Analysis, MotionSpec
 
 
@@ -65,7 +66,9 @@ class DatabaseClips:
         written = spec.written or spec.verb
         if _kana_only(written):
             return hits
-        same = [h for h in hits if spec.verb in h.verbs or written in h.verbs]
+        # another spelling of the same word (後退りする for the library's 後ずさりする) is the verb itself
+        same = [h for h in hits if spec.verb in h.verbs or written in h.verbs
+                or any(same_word(written, v) for v in h.verbs)]
         if hits and not same:
             raise UnknownVerbError(written)
         return same

@@ -90,6 +90,8 @@ def run(args: argparse.Namespace) -> int:
     anim = text2anim.animate(text, db=args.db, fps=args.fps, skip_unknown=args.skip_unknown,
                              lock_feet=not args.no_foot_lock, sway=not args.no_sway, blend=args.blend,
                              smoothness=args.smoothness, fallback=args.fallback, max_seconds=args.max_seconds)
+    for note in anim.planned.analysis.notes:
+        _say(note)
     for sub in anim.planned.fallbacks:
         _say(f"fallback: {sub}")
     for verb in anim.planned.skipped:

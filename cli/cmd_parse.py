@@ -38,6 +38,8 @@ def run(args: argparse.Namespace) -> int:
     from text2anim.nlp import analyze  # lazy: keeps `text2anim --help` fast
 
     analysis = analyze(read_text(args.text))
+    for note in analysis.notes:
+        print(f"text2anim: {note}", file=sys.stderr)
     out = sys.stdout
     if args.json:
         out.write(analysis.to_json() + "\n")
@@ -81,4 +83,7 @@ def format_explain(analysis) -> str:
         head = f"-> {b.head} {texts[b.head]}" if b.head is not None else "-> (none)"
         why = f"  [{b.why}]" if b.why else ""
         lines.append(f"  {b.index:>3} {b.text.strip()}  {head}  {b.role}{why}")
+    if analysis.notes:
+        lines.append("read differently from how it is written:")
+        lines.extend(f"  {note}" for note in analysis.notes)
     return "\n".join(lines) + "\n"

@@ -31,6 +31,8 @@ def run(args: argparse.Namespace) -> int:
 
     planned = text2anim.plan(read_text(args.text), args.db, fps=args.fps, skip_unknown=args.skip_unknown,
                              fallback=args.fallback, max_seconds=args.max_seconds)
+    for note in planned.analysis.notes:
+        print(f"text2anim: {note}", file=sys.stderr)
     for sub in planned.fallbacks:
         print(f"text2anim: fallback: {sub}", file=sys.stderr)
     for verb in planned.skipped:

@@ -65,6 +65,34 @@ def reading(word: str) -> str:
     return "".join(parts)
 
 
+@lru_cache(maxsize=4096)
+def word_key(word: str) -> tuple[str, ...]:
+    """The UniDic lemmas of ``word``'s morphemes: one key for every spelling of one word
+    (後ずさりする, 後退りする and あとずさりする → ``("後退り", "為る")``), different keys for
+    homophones that are other words (吹く ``("吹く",)``, 拭く ``("拭く",)``)."""
+    w = normalize(word)
+    return tuple((tok.feature.lemma or tok.surface).split("-", 1)[0] for tok in _tagger()(w)) if w else ()
+
+
+def same_word(a: str, b: str) -> bool:
+    """Whether ``a`` and ``b`` spell one word: the same reading and UniDic lemmas
+    (:func:`word_key`), and the kanji of one among the kanji of the other — a
+    spelling writes more or less of the word in kana (後ずさり / 後退り, うなずく /
+    頷く), while a different kanji is another word UniDic files under one lemma
+    (撮る and 取る are both 取る, 閉める and 締める both 締める)."""
+    a, b = normalize(a), normalize(b)
+    if a == b:
+        return True
+    if reading(a) != reading(b) or word_key(a) != word_key(b):
+        return False
+    ka, kb = _kanji(a), _kanji(b)
+    return ka <= kb or kb <= ka
+
+
+def _kanji(word: str) -> set[str]:
+    return {ch for ch in word if "\u4e00" <= ch <= "\u9fff" or ch == "\u3005"}
+
+
 def nearest(word: str, candidates: dict[str, str], n: int = 5, cutoff: float = 0.5) -> list[str]:
     """The keys of ``candidates`` (word → reading) whose readings are closest to ``word``'s.
 

@@ -31,11 +31,13 @@ def analyze(text: str) -> Analysis:
     norm, offsets = normalize(text)
     if not norm.strip():
         raise NLPError("the text is empty (only control characters)")
-    phrases = chunk(split_sentences(tokenize(norm)))
+    notes: list[str] = []
+    phrases = chunk(split_sentences(tokenize(norm, notes)))
     preds, cues = annotate(phrases)
+    notes.extend(p.note for p in preds if p.note)
     motions = [p for p in preds if p.motion]
     if not motions:
-        raise NLPError(f"no motion found in the text {_quote(text)} "
+        raise NLPError(f"no motion found in the text {_quote(text)}{_why_not(preds, norm)} "
                        "(write an action verb, e.g. 歩く or ジャンプする)")
     for n, pred in enumerate(motions, 1):
         pred.id = n
@@ -50,7 +52,8 @@ def analyze(text: str) -> Analysis:
     ]
     constraints = list(constraints)
     _add_co_actors(specs, constraints, {p.id: p.co_actors for p in motions if p.co_actors})
-    return Analysis(text, tuple(specs), tuple(constraints), _bunsetsu(text, offsets, phrases))
+    return Analysis(text, tuple(specs), tuple(constraints), _bunsetsu(text, offsets, phrases),
+                    tuple(notes))
 
 
 def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: dict[int, tuple[str, ...]]) -> None:
@@ -84,6 +87,14 @@ def _bunsetsu(text: str, offsets: OffsetMap, phrases: list[Phrase]) -> tuple[Bun
         a, b = offsets.span(ph.start, ph.end)
         out.append(Bunsetsu(ph.index, text[a:b], (a, b), ph.sentence, ph.role, ph.head, ph.why))
     return tuple(out)
+
+
+def _why_not(preds: list, norm: str) -> str:
+    """': 泳げる is a potential form (...)' for each predicate that was not a motion, if any."""
+    from .endings import NOT_MOTION
+
+    said = [f"{norm[p.start:p.end]} is not one: {NOT_MOTION.get(p.reason, p.reason)}" for p in preds[:3]]
+    return (": " + "; ".join(said)) if said else ""
 
 
 def _quote(text: str, limit: int = 40) -> str:

@@ -59,4 +59,6 @@ NOT_MOTION = {
     "light": "bare する without an action noun",
     "state": "state or formal verb",
     "manner": "manner て-form (says how the next motion is done)",
+    "potential": "potential form (an ability, not an action: 泳げる)",
+    "non-agent": "its subject is not a person (雨が降る, 音楽が流れる)",
 }

@@ -115,7 +115,16 @@ PERSON_NOUNS = frozenset(
     """男 女 男性 女性 少年 少女 子供 子ども こども 男の子 女の子 人 先生 生徒 学生 選手
     父 母 兄 姉 弟 妹 父親 母親 友達 友人 赤ちゃん 老人 おじいさん おばあさん お父さん お母さん
     ロボット 主人公 犬 猫 王様 騎士 忍者 ダンサー 彼 彼女 私 僕 俺 あなた 彼ら 自分
-    わたし ぼく おれ あたし""".split()
+    わたし ぼく おれ あたし 家族 店員 客 観客 警官 兵士 侍 魔法使い
+    子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣 ゾンビ 宇宙人 おじさん おばさん
+    お兄さん お姉さん 兄ちゃん 姉ちゃん""".split()
+)
+
+#: Script headings that open a line like a speaker label (ト書き：花子が座る) but name no
+#: one: the line is a stage direction, its actor is found as in any other sentence.
+SCRIPT_HEADINGS = frozenset(
+    """ト書き 場面 シーン 注意 説明 演出 メモ 備考 場所 時間 背景 設定 ナレーション ナレーター 状況 舞台
+    動作 動き アクション 指示 例 補足 タイトル""".split()
 )
 
 #: Honorific suffixes stripped from actor names (花子さん -> 花子).
@@ -147,12 +156,42 @@ CONNECTIVES = {
     "すぐ": ("serial", True, "transition", None),
 }
 
+#: その間 / その間に (meanwhile): the motion starts with the previous one.
+CONNECTIVES.update({k: ("parallel", None, "composition", None) for k in ("その間", "その間に", "そのあいだ",
+                                                                         "そのあいだに", "その最中に")})
+
+#: Words that ask for a motion several times without a number: "several" is 3
+#: repeats, "a few times" (何度か) 2.
+REPEAT_WORDS = {
+    "何度も": 3, "何回も": 3, "繰り返し": 3, "繰り返して": 3, "くりかえし": 3, "何べんも": 3,
+    "何度か": 2, "何回か": 2,
+}
+
+#: Verbs made of steps: N歩 before one of them is its repeat count, in steps
+#: (3歩下がる: repeat 3).  Before any other verb N歩 is a distance, not a count.
+STEPPING_VERBS = frozenset(
+    """歩く 下がる 進む 後ずさりする 後退りする 後退る 前進する 後退する 踏み出す 出る 戻る 近づく
+    近寄る 歩み寄る 離れる 退く 歩き出す""".split()
+)
+
+#: Homophones the IME offers for a library verb: written verb -> (meant verb, when).  The
+#: written verb is read as the meant one only where it gives no plausible motion:
+#: "object" — with a を-noun (降る takes none: 手を降る is 手を振る; 雨が降る is left alone);
+#: "no object" — without one (振り替える needs one: 予定を振り替える);
+#: "motion" — whenever it is still an action of the actor (経つ is said of time only,
+#: and 時間が経つ is already no action: its subject is not a person).
+HOMOPHONE_TYPOS = {
+    "降る": ("振る", "object"),
+    "経つ": ("立つ", "motion"),
+    "振り替える": ("振り返る", "no object"),
+}
+
 #: Default delay of しばらくして, in seconds.
 DEFAULT_PAUSE = CONNECTIVES["しばらくして"][3]
 
 #: Counters: unit -> (kind, factor to seconds or 1).
 COUNTERS = {
-    "回": ("repeat", 1), "度": ("repeat", 1),
+    "回": ("repeat", 1), "度": ("repeat", 1), "歩": ("steps", 1),
     "秒間": ("duration", 1.0), "分間": ("duration", 60.0),
     "秒": ("seconds", 1.0), "分": ("seconds", 60.0),
 }

@@ -9,14 +9,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .bunsetsu import FUNCTION_POS, Phrase
+from .actors import assign_actors, case_particle, noun_of, person_name, speaker_label
+from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, LIBRARY_VERBS, MANNER_TE, PERSON_NOUNS,
-    SIDE_PREFIX, SPEED_WORDS,
+    BODY_PARTS, CONNECTIVES, COUNTERS, LIBRARY_VERBS, MANNER_TE, REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS,
+    STEPPING_VERBS,
 )
 from .pred import Pred
-from .predicates import find_predicate, settle_reason
+from .predicates import find_predicate, sahen_verb, settle_reason
+from .casual import recover_homophone
 from .tokens import is_name
 
 _SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
@@ -52,9 +54,12 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     _mark_manner(phrases)
     preds = [ph.pred for ph in phrases if ph.pred]
     _merge_light_verbs(phrases)
+    _mark_non_agents(phrases)
     _mark_embedded(phrases)
-    _assign_actors(phrases)
+    assign_actors(phrases)
     cues = _attach_modifiers(phrases, values)
+    for pred in preds:
+        recover_homophone(pred)
     for ph in phrases:
         if ph.pred:
             ph.role = "motion" if ph.pred.motion else f"not a motion: {ph.pred.reason}"
@@ -72,6 +77,9 @@ def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
         return "manner"
     if key in SPEED_WORDS:
         return "speed"
+    if key in REPEAT_WORDS:
+        values[ph.index] = REPEAT_WORDS[key]
+        return "repeat"
     toks = ph.tokens
     if not toks[0].is_number or toks[0].value is None:
         return ""
@@ -90,52 +98,19 @@ def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
 def _noun_role(ph: Phrase, opens: bool = False) -> str:
     """``opens``: ``ph`` is the first phrase of its sentence (a vocative 花子さん、 there
     names whom the request is addressed to: the actor, like a topic)."""
-    particle = _case_particle(ph)
-    if opens and not any(t.pos1 == "助詞" for t in ph.tokens) and ph.has_comma() and _person(ph):
+    particle = case_particle(ph)
+    if opens and speaker_label(ph):
         return "actor"
-    if particle in ("は", "が", "も") and _person(ph):
+    if opens and not any(t.pos1 == "助詞" for t in ph.tokens) and ph.has_comma() and person_name(ph):
+        return "actor"
+    if particle in ("は", "が", "も") and person_name(ph):
         return "actor"
     if particle in ("を", "で"):
-        noun = _noun(ph)
+        noun = noun_of(ph)
         if noun in BODY_PARTS:
             return "body part"
         return "object" if particle == "を" else ""
     return ""
-
-
-def _case_particle(ph: Phrase) -> str:
-    """The particle(s) after the nouns: は, が, を, で ... ('' if several or none)."""
-    parts = [t.surface for t in ph.tokens if t.pos1 == "助詞"]
-    return parts[0] if len(parts) == 1 else ""
-
-
-def _noun(ph: Phrase) -> str:
-    """The noun of a noun phrase: its last run of nouns (with prefixes)."""
-    run: list[str] = []
-    for t in ph.tokens:
-        if t.pos1 in ("名詞", "代名詞", "接頭辞") and not t.is_number:
-            run.append(t.surface)
-        elif t.pos1 == "接尾辞" and run:
-            continue
-        elif t.pos1 in FUNCTION_POS:
-            break
-        else:
-            run = []
-    return "".join(run)
-
-
-def _person(ph: Phrase) -> str | None:
-    """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, 男の子)."""
-    nouns = [t for t in ph.tokens if t.pos1 in ("名詞", "代名詞")]
-    if not nouns:
-        return None
-    name = "".join(t.surface for t in nouns)
-    honorific = any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in ph.tokens)
-    if honorific or name in PERSON_NOUNS or any(t.pos3 == "人名" for t in nouns):
-        return name
-    if len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name):
-        return name
-    return None
 
 
 # ---------------------------------------------------------------- structure
@@ -167,10 +142,10 @@ def _bare_objects(phrases: list[Phrase]) -> None:
         last = toks[-1]
         if last.pos1 != "名詞" or last.pos3 == "副詞可能" or last.pos2 == "数詞" or last.is_number:
             continue
-        if _person(ph):
+        if person_name(ph):
             ph.role = "actor"  # 太郎歩く: が dropped too
         elif not is_name(ph.key):
-            ph.role = "body part" if _noun(ph) in BODY_PARTS else "object"
+            ph.role = "body part" if noun_of(ph) in BODY_PARTS else "object"
 
 
 def _mark_manner(phrases: list[Phrase]) -> None:
@@ -189,7 +164,7 @@ def _mark_manner(phrases: list[Phrase]) -> None:
         ph, prev = phrases[i], phrases[i - 1]
         pred = ph.pred
         if (not pred or pred.reason or pred.ending != "te" or ph.has_comma()
-                or prev.group != ph.group or prev.pred or _case_particle(prev) != "に"):
+                or prev.group != ph.group or prev.pred or case_particle(prev) != "に"):
             continue
         if _next_pred(phrases, i) is None:
             continue
@@ -227,12 +202,26 @@ def _merge_light_verbs(phrases: list[Phrase]) -> None:
         nouns = [t for t in noun_ph.tokens if t.pos1 in ("名詞", "接頭辞") and not t.is_number]
         if not nouns:
             continue
-        pred.verb = "".join(t.surface if t.pos1 == "接頭辞" else t.lemma for t in nouns) + "する"
+        pred.verb, pred.written = sahen_verb(nouns)
         pred.reading = "".join(t.kana_form for t in nouns) + "スル"
         pred.start = nouns[0].start
         pred.reason = ""
         settle_reason(pred, ph.quoted)
         noun_ph.role = "action noun"
+
+
+def _mark_non_agents(phrases: list[Phrase]) -> None:
+    """雨が降る / 音楽が流れる / ボールが転がる: a が-subject that is neither a person nor
+    a body part (手が震える is still the actor's) makes its predicate no action of anyone."""
+    for i, ph in enumerate(phrases):
+        if ph.role or ph.pred or case_particle(ph) != "が" or any(t.is_number for t in ph.tokens):
+            continue
+        noun = noun_of(ph)
+        if not noun or noun in BODY_PARTS or person_name(ph):
+            continue
+        target = _next_pred(phrases, i)
+        if target is not None and target.predicate.motion:
+            target.predicate.reason = "non-agent"
 
 
 def _mark_embedded(phrases: list[Phrase]) -> None:
@@ -243,58 +232,6 @@ def _mark_embedded(phrases: list[Phrase]) -> None:
             continue
         if b.predicate.reason in ("relative", "nominal", "embedded"):
             a.predicate.reason = a.predicate.reason or "embedded"
-
-
-def _assign_actors(phrases: list[Phrase]) -> None:
-    """は/も set the topic, which carries over; が binds to its own clause.
-
-    A が-subject holds until a clause that ends it (てから, 間に, 前に, の,
-    relative, ...); then the topic is back, or, if the text has no topic yet,
-    the が-subject carries over as the contract's "nearest preceding" rule.
-    Coordinated actors (太郎と花子が) are one group: every one of them performs
-    the motions (the first is ``actor``, the others ``co_actors``).
-    """
-    topic: tuple[str, ...] = ()
-    subject: tuple[str, ...] = ()
-    group = None
-    for i, ph in enumerate(phrases):
-        if ph.group != group:
-            if subject:
-                topic, subject = subject, ()
-            group = ph.group
-        if ph.role == "actor":
-            person = _person(ph)
-            assert person is not None  # the role is given to persons only (_noun_role)
-            names = (*_partners(phrases, i), person)
-            if _case_particle(ph) == "が":
-                subject = names
-            else:
-                topic, subject = names, ()
-            continue
-        pred = ph.pred
-        if not pred:
-            continue
-        names = subject or topic
-        pred.actor = names[0] if names else None
-        pred.co_actors = names[1:]
-        ending = ENDINGS.get(pred.ending)
-        closes = ending.closes_subject if ending else True
-        if closes and subject:
-            topic = topic or subject
-            subject = ()
-
-
-def _partners(phrases: list[Phrase], i: int) -> list[str]:
-    """The persons joined to the actor phrase ``i`` by と just before it (太郎と次郎と花子が)."""
-    names: list[str] = []
-    j = i - 1
-    while j >= 0 and phrases[j].group == phrases[i].group and _case_particle(phrases[j]) == "と":
-        name = _person(phrases[j])
-        if not name:
-            break
-        names.insert(0, name)
-        j -= 1
-    return names
 
 
 # ---------------------------------------------------------------- modifiers
@@ -318,11 +255,14 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         elif not pred.motion:
             continue
         elif role == "object":
-            pred.object = _noun(ph) or None  # never an empty string
+            pred.object = noun_of(ph) or None  # never an empty string
         elif role == "body part":
             pred.body_part = _body_part(phrases, i)
         elif role == "repeat":
             if values[i] >= 1 and float(values[i]).is_integer():
+                pred.repeat = int(values[i])
+        elif role == "steps":
+            if pred.verb in STEPPING_VERBS and values[i] >= 1 and float(values[i]).is_integer():
                 pred.repeat = int(values[i])
         elif role == "duration":
             pred.duration = values[i]
@@ -366,7 +306,7 @@ def _time_cue(phrases: list[Phrase], i: int, values: dict[int, float]) -> TimeCu
 
 def _body_part(phrases: list[Phrase], i: int) -> str:
     """右手 -> right_arm; 右の手 -> right_arm (side noun + の before the part)."""
-    noun = _noun(phrases[i])
+    noun = noun_of(phrases[i])
     part = BODY_PARTS[noun]
     if noun in _SIDED and i > 0:
         side = SIDE_PREFIX.get(phrases[i - 1].key.removesuffix("の"))

@@ -27,6 +27,7 @@ class Pred:
     duration: float | None = None
     delay: float | None = None  # seconds before a motion that opens its track
     written: str = ""  # the verb in the user's spelling, dictionary form (登る where verb is 上る)
+    note: str = ""  # how the verb was read differently from how it is written (手を降る -> 振る)
     head: int | None = None  # phrase index of the head motion
     id: int = 0
 

@@ -53,9 +53,9 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
         if toks[v - 1].pos1 != "名詞":
             return None  # しばらくして, そうして: an adverb + する
         s = _noun_run_start(toks, v)
-        verb = _sahen_name(toks[s:v])
         reading = "".join(t.kana_form for t in toks[s:v]) + "スル"
-        pred = Pred(ph.index, verb, reading, "為る", toks[s].start, 0)
+        pred = Pred(ph.index, "", reading, "為る", toks[s].start, 0)
+        pred.verb, pred.written = sahen_verb(toks[s:v])
     elif v + 1 < len(toks) and toks[v + 1].lemma == "為る" and first.cform.startswith("連用形"):
         # 伸びする: the 連用形 is the action noun of a light verb
         pred = Pred(ph.index, first.surface + "する", first.kana_form + "スル", "為る",
@@ -67,6 +67,8 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
             pred.verb, pred.reason = "する", "light"
         elif first.lemma in NON_ACTION_LEMMAS:
             pred.reason = "state"
+        elif is_potential(first):
+            pred.reason = "potential"
     g = _group_end(toks, v)
     pred.end = toks[_verb_end(toks, v)].end
     pred.negated = any(t.lemma in _NEGATIONS and t.pos1 in ("助動詞", "形容詞")
@@ -74,6 +76,19 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
     pred.ending, pred.cue = _ending(toks, g, ph, next_ph)
     settle_reason(pred, ph.quoted)
     return pred
+
+
+#: Kana of the e-row: a verb ending in one of them + る is 一段 (上げる), not 五段.
+_E_ROW = frozenset("えけげせぜてでねへべぺめれ")
+
+
+def is_potential(tok: Token) -> bool:
+    """泳げる, 走れる, 飛べます: a potential verb (an ability, not an action).  UniDic
+    tags it 下一段 with the 五段 verb as lemma (泳げる -> 泳ぐ); a 下一段 verb whose
+    lemma is itself 下一段 (挙げる -> 上げる) is another spelling, not a potential."""
+    lemma = tok.lemma
+    return (tok.ctype.startswith("下一段") and lemma != tok.orth and len(lemma) >= 2
+            and not (lemma.endswith("る") and lemma[-2] in _E_ROW))
 
 
 def _invitation(toks: list[Token], g: int) -> bool:
@@ -96,7 +111,7 @@ def settle_reason(pred: Pred, quoted: bool) -> None:
         pred.reason = pred.ending
     elif pred.negated:
         pred.reason = "negated"
-    elif pred.reason not in ("light", "state"):
+    elif pred.reason not in ("light", "state", "potential", "non-agent"):
         pred.reason = ""
 
 
@@ -107,10 +122,14 @@ def _noun_run_start(toks: list[Token], v: int) -> int:
     return s
 
 
-def _sahen_name(nouns: list[Token]) -> str:
-    """お + 辞儀 -> お辞儀, ガッツ + ポーズ -> ガッツポーズ; + する."""
-    parts = [t.surface if t.pos1 == "接頭辞" else t.lemma for t in nouns]
-    return "".join(parts) + "する"
+def sahen_verb(nouns: list[Token]) -> tuple[str, str]:
+    """(verb, as written) of an action noun + する: お + 辞儀 -> お辞儀する, ガッツ + ポーズ
+    -> ガッツポーズする.  The lemma spelling is the verb when it is a library verb
+    (おじぎする -> お辞儀する); otherwise the verb is named as the user wrote it
+    (くしゃみする, not UniDic's 嚔する; 後ずさりする, not 後退りする)."""
+    written = "".join(t.surface for t in nouns) + "する"
+    by_lemma = "".join(t.surface if t.pos1 == "接頭辞" else t.lemma for t in nouns) + "する"
+    return (by_lemma if by_lemma in LIBRARY_VERBS else written), written
 
 
 def _verb_end(toks: list[Token], v: int) -> int:

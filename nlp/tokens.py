@@ -6,6 +6,7 @@ from __future__ import annotations
 import unicodedata
 from functools import lru_cache
 
+from . import casual
 from .numbers import merge_numbers
 from .types import Token
 
@@ -86,18 +87,54 @@ def _sanitize(norm: str) -> str:
     return "".join(out)
 
 
-def tokenize(norm: str) -> list[Token]:
-    """Tag ``norm`` line by line; newlines become sentence-end tokens."""
+def tokenize(norm: str, notes: list[str] | None = None) -> list[Token]:
+    """Tag ``norm`` line by line; newlines become sentence-end tokens.
+
+    Casual writing is repaired per line (``casual.repair``); what was read
+    differently is appended to ``notes``.
+    """
     tokens: list[Token] = []
     pos = 0
+    said = [] if notes is None else notes
     for line in norm.split("\n"):
         if line.strip():
-            tokens.extend(_tag_line(line, pos))
+            tagged = _tag_line(line, pos)
+            if casual.may_apply(line):
+                tagged = casual.repair(tagged, said)
+            tokens.extend(unwrap_direction(tagged) if "(" in line else tagged)
         end = pos + len(line)
         if end < len(norm):
             tokens.append(Token("\n", "補助記号", "句点", "*", "*", "*", "\n", "\n", "", end, end + 1))
         pos = end + 1
     return merge_numbers(_retag_list_items(tokens))
+
+
+def unwrap_direction(tokens: list[Token]) -> list[Token]:
+    """A stage direction wholly in brackets ((花子、窓を開ける), 花子:(座る)) is text to
+    analyse, not a quotation: the brackets that wrap the rest of the line (after a
+    speaker label) are dropped."""
+    body = script_label_end(tokens)
+    end = len(tokens)
+    while end > body and tokens[end - 1].pos2 == "句点":
+        end -= 1  # (座る)。
+    if end - body < 3 or tokens[body].surface != "(" or tokens[end - 1].surface != ")":
+        return tokens
+    depth = 0
+    for k in range(body, end):  # the opening bracket must close at the end, not before
+        depth += {"(": 1, ")": -1}.get(tokens[k].surface, 0)
+        if depth == 0 and k < end - 1:
+            return tokens
+    return tokens[:body] + tokens[body + 1:end - 1] + tokens[end:]
+
+
+def script_label_end(tokens: list[Token]) -> int:
+    """Index just after a speaker label (花子:, お父さん:, 店員A:) opening the line, or 0."""
+    for k, tok in enumerate(tokens[:8]):
+        if tok.surface == ":" and k > 0:
+            return k + 1
+        if tok.pos1 not in ("名詞", "代名詞", "接頭辞", "接尾辞") or tok.pos2 == "数詞":
+            return 0
+    return 0
 
 
 def _tag_line(line: str, offset: int) -> list[Token]:

@@ -125,6 +125,9 @@ class Analysis:
     motions: tuple[MotionSpec, ...]
     constraints: tuple[Constraint, ...]
     bunsetsu: tuple[Bunsetsu, ...] = field(default=(), compare=False)
+    #: what was read differently from how it is written (typos: 太郎わ -> 太郎は, 手を降る ->
+    #: 手を振る), one sentence each, for stderr and ``parse --explain``
+    notes: tuple[str, ...] = field(default=(), compare=False)
 
     def to_dict(self, extra: bool = False) -> dict:
         """docs/language.md §5; ``extra`` adds ``hold``, ``reading`` and ``cue``."""

@@ -84,6 +84,8 @@ def test_fallback_refuses_a_verb_nothing_is_near(library_db, text, verb):
     ("太郎は右手で指す。", "point"),        # lemma 差す, also the reading of 刺す (stab)
     ("太郎は歯を磨く。", "brush_teeth"),    # the object picks among the clips of 磨く
     ("はなこはたべる。", "eat"),            # kana: found by its reading
+    ("太郎は後退りする。", "walk_back"),     # UniDic's spelling of the library's 後ずさりする: one word
+    ("あとずさりする。", "walk_back"),
 ])
 def test_the_clip_is_the_word_written_not_a_homophone(library_db, text, clip):
     with MotionDB.open(library_db) as db:

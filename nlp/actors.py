@@ -1,0 +1,137 @@
+"""Actors: who performs each predicate, named as the user wrote it (language.md §2, §7.1-§7.2).
+
+A person noun or name marked は/が/も, a vocative (花子さん、), or a script's speaker
+label (花子：) names the actor; は sets a topic that carries over, が binds to its
+own clause, と joins co-actors.  The name keeps its prefix and suffixes (お父さん,
+子供たち); only an honorific right after a given name is dropped (花子さん -> 花子).
+"""
+from __future__ import annotations
+
+from .bunsetsu import FUNCTION_POS, Phrase
+from .endings import ENDINGS
+from .lexicon import HONORIFICS, PERSON_NOUNS, SCRIPT_HEADINGS
+from .tokens import is_name
+from .types import Token
+
+
+def case_particle(ph: Phrase) -> str:
+    """The particle(s) after the nouns: は, が, を, で ... ('' if several or none)."""
+    parts = [t.surface for t in ph.tokens if t.pos1 == "助詞"]
+    return parts[0] if len(parts) == 1 else ""
+
+
+def noun_of(ph: Phrase) -> str:
+    """The noun of a noun phrase: its last run of nouns (with prefixes)."""
+    run: list[str] = []
+    for t in ph.tokens:
+        if t.pos1 in ("名詞", "代名詞", "接頭辞") and not t.is_number:
+            run.append(t.surface)
+        elif t.pos1 == "接尾辞" and run:
+            continue
+        elif t.pos1 in FUNCTION_POS:
+            break
+        else:
+            run = []
+    return "".join(run)
+
+
+def speaker_label(ph: Phrase) -> str | None:
+    """花子: / お父さん： / 店員A: opening a line: a script's speaker label names the actor
+    of that line, person noun or not (as written, honorific after a name dropped)."""
+    toks = ph.tokens
+    if len(toks) < 2 or toks[-1].surface != ":":
+        return None
+    words = toks[:-1]
+    if not all(t.pos1 in ("名詞", "代名詞", "接頭辞", "接尾辞") for t in words):
+        return None
+    name = as_written(words)
+    return None if name in SCRIPT_HEADINGS else name
+
+
+def person_name(ph: Phrase) -> str | None:
+    """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, お父さん, 子供たち), as written."""
+    toks = ph.tokens
+    if toks[-1].surface == ":":
+        return speaker_label(ph)
+    nouns = [t for t in toks if t.pos1 in ("名詞", "代名詞")]
+    if not nouns:
+        return None
+    name = "".join(t.surface for t in nouns)
+    affixed = any(t.pos1 in ("接頭辞", "接尾辞") for t in toks)
+    honorific = affixed and any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in toks)
+    if not (honorific or name in PERSON_NOUNS or any(t.pos3 == "人名" for t in nouns)
+            or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name))):
+        return None
+    return as_written(toks) if affixed else name
+
+
+def as_written(toks: list[Token]) -> str:
+    """The name as the user wrote it: prefix, nouns and suffixes (お父さん, おじいちゃん,
+    子供たち); an honorific right after a given name is not part of it (花子さん -> 花子)."""
+    run: list[Token] = []
+    for t in toks:
+        if t.pos1 in ("名詞", "代名詞", "接頭辞") or (t.pos1 == "接尾辞" and run):
+            run.append(t)
+        elif run:
+            break
+    while (len(run) > 1 and run[-1].pos1 == "接尾辞" and run[-1].surface in HONORIFICS
+           and given_name(run[-2]) and "".join(t.surface for t in run) not in PERSON_NOUNS):
+        run.pop()  # 花子さん -> 花子, but 王様 stays 王様
+    return "".join(t.surface for t in run)
+
+
+def given_name(tok: Token) -> bool:
+    """Can ``tok`` be a given name (花子, ゆうた), after which an honorific is no part of the name?"""
+    return tok.pos3 == "人名" or (tok.pos1 == "名詞" and tok.surface not in PERSON_NOUNS and is_name(tok.surface))
+
+
+def assign_actors(phrases: list[Phrase]) -> None:
+    """は/も set the topic, which carries over; が binds to its own clause.
+
+    A が-subject holds until a clause that ends it (てから, 間に, 前に, の,
+    relative, ...); then the topic is back, or, if the text has no topic yet,
+    the が-subject carries over as the contract's "nearest preceding" rule.
+    Coordinated actors (太郎と花子が) are one group: every one of them performs
+    the motions (the first is ``actor``, the others ``co_actors``).
+    """
+    topic: tuple[str, ...] = ()
+    subject: tuple[str, ...] = ()
+    group = None
+    for i, ph in enumerate(phrases):
+        if ph.group != group:
+            if subject:
+                topic, subject = subject, ()
+            group = ph.group
+        if ph.role == "actor":
+            person = person_name(ph)
+            assert person is not None  # the role is given to persons only (motions._noun_role)
+            names = (*partners(phrases, i), person)
+            if case_particle(ph) == "が":
+                subject = names
+            else:
+                topic, subject = names, ()
+            continue
+        pred = ph.pred
+        if not pred:
+            continue
+        names = subject or topic
+        pred.actor = names[0] if names else None
+        pred.co_actors = names[1:]
+        ending = ENDINGS.get(pred.ending)
+        closes = ending.closes_subject if ending else True
+        if closes and subject:
+            topic = topic or subject
+            subject = ()
+
+
+def partners(phrases: list[Phrase], i: int) -> list[str]:
+    """The persons joined to the actor phrase ``i`` by と just before it (太郎と次郎と花子が)."""
+    names: list[str] = []
+    j = i - 1
+    while j >= 0 and phrases[j].group == phrases[i].group and case_particle(phrases[j]) == "と":
+        name = person_name(phrases[j])
+        if not name:
+            break
+        names.insert(0, name)
+        j -= 1
+    return names
