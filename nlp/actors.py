@@ -1,4 +1,4 @@
-"""Actors: who performs each predicate, named as the user wrote it (language.md §2, §7.1-§7.2).
+"""Actors: who performs each predicate, named as the user wrote it (docs/language.md §2, §7.1-§7.2).
 
 A person noun or name marked は/が/も, a vocative (花子さん、), or a script's speaker
 label (花子：) names the actor; は sets a topic that carries over, が binds to its

@@ -2,7 +2,7 @@
 
 tests/corpus/typed_corpus.jsonl holds scripts with speaker labels and stage directions, names as
 written, non-actions, casual typing, spelling variants, time and repetition words, noun + をする
-and everyday actions of several characters (language.md §7); ``text2anim batch --check`` compares
+and everyday actions of several characters (docs/language.md §7); ``text2anim batch --check`` compares
 every parse with its expectation."""
 from __future__ import annotations
 
