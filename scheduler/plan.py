@@ -20,6 +20,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 from text2anim.core.methods import Method
+from text2anim.nlp.lexicon import STEPPING_VERBS
 from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .errors import ScheduleError
@@ -124,7 +125,8 @@ class _Planner:
         prev_id = self.last.get(spec.actor)
         prefer = self.rows[prev_id].clip.character if prev_id is not None else None
         clip = self.find(spec, prefer)
-        length = played_length(clip, spec.speed, spec.repeat, spec.duration)
+        length = played_length(clip, spec.speed, spec.repeat, spec.duration,
+                              steps=spec.repeat > 1 and spec.verb in STEPPING_VERBS)
         first = self.rows.get(link.first) if link else None
         if link is None or first is None:
             self._sequence(spec, clip, length, "connection", start=None, delay=None)
