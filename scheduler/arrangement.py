@@ -33,10 +33,10 @@ class Arrangement(Generic[C]):
         clips: motion id -> chosen clip, for every whole-body motion of the
             sequences and every bridge.
         bridges: ids of the added motions that change posture, in order.
+        changed: anything differs from the first planning pass (another clip
+            somewhere, a bridge, a seated idle); when not, the first table stands.
         seated: ids of the added seated idles a standing clip is composed onto
             (:mod:`seated`), in order.
-        changed: anything differs from the first planning pass (another clip
-            somewhere, or a bridge); when not, the first table stands.
     """
 
     analysis: Analysis
