@@ -15,9 +15,11 @@ from typing import Generic
 from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .clips import C, ClipSource
+from .fillers import IDLE_VERB
 from .picker import Picker
 from .plan import ClipFinder
-from .postures import bridges, choose
+from .postures import bridges, choose, matching
+from .seated import SEATED, seated_motions
 from .types import ClipTiming, Element, TimeTable
 
 
@@ -30,15 +32,18 @@ class Arrangement(Generic[C]):
             linked into the constraints between their neighbours).
         clips: motion id -> chosen clip, for every whole-body motion of the
             sequences and every bridge.
-        bridges: ids of the added motions, in order.
+        bridges: ids of the added motions that change posture, in order.
         changed: anything differs from the first planning pass (another clip
-            somewhere, or a bridge); when not, the first table stands.
+            somewhere, a bridge, a seated idle); when not, the first table stands.
+        seated: ids of the added seated idles a standing clip is composed onto
+            (:mod:`seated`), in order.
     """
 
     analysis: Analysis
     clips: dict[int, C] = field(default_factory=dict)
     bridges: tuple[int, ...] = ()
     changed: bool = False
+    seated: tuple[int, ...] = ()
 
     def finder(self, picker: Picker[C]) -> ClipFinder:
         """A clip finder for :func:`plan.plan` returning :attr:`clips`, else asking ``picker``;
@@ -108,8 +113,22 @@ def _relink(constraints: list[Constraint], incoming: int | None, chain: list[int
     constraints[incoming:incoming + 1] = new
 
 
+def _seat(motions: list[MotionSpec], constraints: list[Constraint], b: int, nid: int) -> None:
+    """Play motion ``b`` seated, in place: a seated idle ``nid`` takes its place in the sequence
+    (the link that led to b leads to it; b's opening delay is its) and b is composed onto it."""
+    k = next(i for i, m in enumerate(motions) if m.id == b)
+    spec_b = motions[k]
+    motions[k] = replace(spec_b, delay=None)
+    motions.insert(k, MotionSpec(nid, spec_b.actor, IDLE_VERB, span=(spec_b.span[0], spec_b.span[0]),
+                                 delay=spec_b.delay))
+    incoming = next((i for i, c in enumerate(constraints) if c.second == b), None)
+    if incoming is not None:
+        constraints[incoming] = replace(constraints[incoming], second=nid)
+    constraints.append(Constraint(nid, b, "parallel", None, None, "composition", "posture"))
+
+
 def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], source: ClipSource[C]) -> Arrangement[C]:
-    """Choose clips with matching postures along each actor's sequence and add bridges where none match.
+    """Choose clips with matching postures along each actor's sequence, keep the seat, add bridges where none match.
 
     Args:
         analysis: the :class:`nlp.types.Analysis` that was planned.
@@ -118,7 +137,10 @@ def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
         source: the database, for each motion's ranked candidates and for :func:`postures.bridges`.
 
     Each actor's sequence is its table elements other than compositions, in
-    playing order. Where the chosen clips still do not meet, the bridges become
+    playing order. The motions :func:`seated.seated_motions` says are played
+    seated are composed onto a seated idle that takes their place (verb
+    :data:`fillers.IDLE_VERB`; none in the database: they are left standing).
+    Where the chosen clips still do not meet, the bridges become
     new motions between the two (verb: the clip's primary verb; an empty span
     where the second motion starts in the text), linked as :func:`_relink` says.
     So a second :func:`plan.plan` with :meth:`Arrangement.finder` times them like
@@ -129,18 +151,31 @@ def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
     changed = any(picked[k].name != chosen[k].name for k in picked)
     motions = list(analysis.motions)
     constraints = list(analysis.constraints)
+    composing = frozenset(i for c in constraints if c.method == "composition" for i in (c.first, c.second))
     next_id = max((m.id for m in motions), default=0) + 1
     added: list[int] = []
+    idles: list[int] = []
     for seq in _sequences(table).values():
         ids = [e.id for e in seq if e.id in picked]
+        seated = set(seated_motions(ids, picked, composing).composed)
+        for b in [i for i in ids if i in seated]:
+            idle = matching(source, IDLE_VERB, SEATED, character=picked[b].character)
+            if idle is None:
+                seated.discard(b)
+                continue
+            picked[next_id] = idle
+            _seat(motions, constraints, b, next_id)
+            idles.append(next_id)
+            next_id += 1
         for a, b in zip(ids, ids[1:]):
             ca, cb = picked[a], picked[b]
-            if ca.end_posture == cb.start_posture:
+            end = SEATED if a in seated else ca.end_posture
+            if end == (SEATED if b in seated else cb.start_posture):
                 continue
             incoming = next((k for k, c in enumerate(constraints) if c.second == b), None)
             if incoming is not None and constraints[incoming].method == "composition":
                 continue  # b is laid onto a (a base chosen by the clips): no room for a bridge
-            plan = bridges(ca.end_posture, cb.start_posture, source, character=ca.character)
+            plan = bridges(end, cb.start_posture, source, character=ca.character)
             if not plan:
                 continue
             spec_b = specs[b]
@@ -152,9 +187,10 @@ def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
                                MotionSpec(nid, spec_b.actor, clip.verb, span=(spec_b.span[0], spec_b.span[0])))
             _relink(constraints, incoming, [a] + new_ids + [b])
             added += new_ids
-            changed = True
-    new_analysis = replace(analysis, motions=tuple(motions), constraints=tuple(constraints)) if added else analysis
-    return Arrangement(new_analysis, picked, tuple(added), changed)
+    changed = changed or bool(added or idles)
+    new_analysis = replace(analysis, motions=tuple(motions), constraints=tuple(constraints)) \
+        if added or idles else analysis
+    return Arrangement(new_analysis, picked, tuple(added), changed, tuple(idles))
 
 
 __all__ = ["Arrangement", "arrange"]

@@ -90,11 +90,31 @@ def foot_moving(info: ClipMeta) -> tuple[tuple[float, float], ...]:
     return tuple(sorted(out))
 
 
+#: A swing shorter than this (s) is a foot's wobble in the capture, not a step.
+MIN_SWING = 0.1
+
+
+def cycle_steps(info: ClipMeta) -> int:
+    """Steps in one cycle of a looping clip: the swings of each foot (the gaps between its contacts,
+    the gap across the loop's seam counted once) of at least :data:`MIN_SWING`; 0 for a clip that
+    does not loop. The captured walks: 2, the backward walk: 4."""
+    if not info.cyclic:
+        return 0
+    n = 0
+    for side in ("left", "right"):
+        c = info.contacts(side)
+        if not c:
+            continue
+        gaps = [b0 - a1 for (_, a1), (b0, _) in zip(c, c[1:])] + [info.frames - c[-1][1] + c[0][0]]
+        n += sum(g / info.fps >= MIN_SWING for g in gaps)
+    return n
+
+
 def timing(info: ClipMeta) -> ClipTiming:
     """What :func:`plan.plan` needs to know of a clip (durations in seconds)."""
     begin, end = info.core
     return ClipTiming(info.name, info.duration, (begin, end), info.cyclic, info.body_part, foot_moving(info),
-                      info.character)
+                      info.character, cycle_steps(info))
 
 
 def played_duration(info: ClipMeta, fps: float) -> float:
@@ -102,4 +122,4 @@ def played_duration(info: ClipMeta, fps: float) -> float:
     return resampled_frames(info.frames, info.fps, fps) / fps
 
 
-__all__ = ["C", "ClipMeta", "ClipSource", "foot_moving", "played_duration", "timing"]
+__all__ = ["C", "ClipMeta", "ClipSource", "MIN_SWING", "cycle_steps", "foot_moving", "played_duration", "timing"]

@@ -11,15 +11,20 @@ from .types import ClipTiming
 MIN_LOOP = 2.0
 
 
-def played_length(clip: ClipTiming, speed: float, repeat: int, duration: float | None) -> float:
+def played_length(clip: ClipTiming, speed: float, repeat: int, duration: float | None,
+                  steps: bool = False) -> float:
     """Seconds an element plays after speed, repeats and an explicit duration.
 
     A cyclic clip loops to fill ``duration`` (without one: whole cycles for at
     least :data:`MIN_LOOP` seconds); any other clip plays whole and then holds
-    its last pose, or is trimmed, but never inside its core.
+    its last pose, or is trimmed, but never inside its core. With ``steps``
+    (a stepping verb: its repeat counts steps, docs/language.md §7.6) a looping
+    gait plays ``repeat`` steps: 3歩歩く is 1.5 cycles of a two-step walk.
     """
     if duration is not None:
         return duration if clip.cyclic else max(duration, clip.core[1] / speed)
+    if steps and clip.cyclic and clip.cycle_steps > 0:
+        return repeat / clip.cycle_steps * clip.duration / speed
     cycles = 1
     if clip.cyclic and clip.duration > 0:
         cycles = max(1, math.ceil(MIN_LOOP * speed / clip.duration - 1e-9))

@@ -20,6 +20,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 from text2anim.core.methods import Method
+from text2anim.nlp.lexicon import STEPPING_VERBS
 from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .errors import ScheduleError
@@ -42,6 +43,7 @@ class _Row:
     end: float
     body_part: str | None = None
     delay: float | None = None
+    repeat: int | None = None  # set by a rule (a short base repeated under a composition), else the text's
 
     @property
     def partial(self) -> bool:
@@ -50,7 +52,11 @@ class _Row:
     def freeze(self) -> Element:
         s = self.spec
         return Element(s.id, s.actor, s.verb, self.clip.name, self.method, self.prev, self.start, self.end,
-                       self.body_part, s.speed, s.repeat, s.hold, self.delay)
+                       self.body_part, s.speed, self.repeats, s.hold, self.delay)
+
+    @property
+    def repeats(self) -> int:
+        return self.spec.repeat if self.repeat is None else self.repeat
 
 
 _UNSIDED = {"arm": ("right_arm", "left_arm", "both_arms"), "leg": ("right_leg", "left_leg")}
@@ -91,6 +97,24 @@ def _order(analysis: Analysis) -> list[tuple[MotionSpec, Constraint | None]]:
     return out
 
 
+def _cover(base: _Row, end: float) -> None:
+    """A short whole-body base repeats to cover a composition that lasts until ``end`` (s):
+    ジャンプしながら手を叩く jumps for as long as the clapping lasts, not once then standing.
+
+    Only a base that neither loops nor is partial, whose text gave no count or duration
+    (3回, 5秒); the repetitions are the nearest whole number, at least 2 (the base then
+    holds its last pose for any rest).
+    """
+    s = base.spec
+    if base.clip.cyclic or base.partial or s.repeat != 1 or s.duration is not None or base.repeat is not None:
+        return
+    once = base.clip.duration / s.speed
+    n = round((end - base.start) / once) if once > 0 else 1
+    if n >= 2:
+        base.repeat = n
+        base.end = base.start + n * once
+
+
 class _Planner:
     def __init__(self, find: ClipFinder):
         self.find = find
@@ -101,7 +125,8 @@ class _Planner:
         prev_id = self.last.get(spec.actor)
         prefer = self.rows[prev_id].clip.character if prev_id is not None else None
         clip = self.find(spec, prefer)
-        length = played_length(clip, spec.speed, spec.repeat, spec.duration)
+        length = played_length(clip, spec.speed, spec.repeat, spec.duration,
+                              steps=spec.repeat > 1 and spec.verb in STEPPING_VERBS)
         first = self.rows.get(link.first) if link else None
         if link is None or first is None:
             self._sequence(spec, clip, length, "connection", start=None, delay=None)
@@ -134,7 +159,7 @@ class _Planner:
         if self.last.get(spec.actor) != first.spec.id:
             self._sequence(spec, clip, length, "connection", None, None)
             return
-        window = transition_window(first.clip, first.spec.speed, first.spec.repeat, first.end - first.start)
+        window = transition_window(first.clip, first.spec.speed, first.repeats, first.end - first.start)
         if window is None:  # no step after the core: join at the end, as a connection at the footstep
             self._sequence(spec, clip, length, "transition", None, None)
             return
@@ -160,6 +185,8 @@ class _Planner:
             top.end = top.start + length
         top.method, top.prev = "composition", base.spec.id
         top.body_part = _resolve_part(top.body_part, top.clip.body_part)
+        if not base.spec.hold:
+            _cover(base, top.end)
         base.end = max(base.end, top.end)
         self.rows[spec.id] = row
 

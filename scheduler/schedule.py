@@ -2,8 +2,8 @@
 
 1. :func:`plan.plan` times the text's motions with the clips a :class:`picker.Picker`
    takes (the best candidates' next variant; one variant per repetition);
-2. :func:`arrangement.arrange` makes the postures meet (other clips, bridging
-   motions) and, when it changed anything, the motions are planned again;
+2. :func:`arrangement.arrange` makes the postures meet (other clips, actions kept
+   seated as compositions onto a seated idle (:mod:`seated`), bridging motions) and, when it changed anything, the motions are planned again;
 3. ``check`` (the caller's limits) sees that table;
 4. :func:`fillers.fill_waits` adds the stops and idles of the waits as rows.
 """

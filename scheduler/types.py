@@ -23,6 +23,7 @@ class ClipTiming:
         body_part: the group a partial clip is declared for; ``None`` for whole-body.
         foot_moving: ``((begin, end), ...)`` intervals where one foot is off the ground, sorted.
         character: the character (skeleton) the clip belongs to.
+        cycle_steps: steps in one cycle of a looping clip (a walk's cycle: 2); 0 for any other.
     """
 
     name: str
@@ -32,6 +33,7 @@ class ClipTiming:
     body_part: BodyPart | None = None
     foot_moving: tuple[tuple[float, float], ...] = ()
     character: str = "default"
+    cycle_steps: int = 0
 
 
 @dataclass(frozen=True)
