@@ -63,7 +63,8 @@ def repair(tokens: list[Token], notes: list[str]) -> list[Token]:
 
 
 def _ends_predicate(tok: Token) -> bool:
-    return tok.pos1 in ("動詞", "助動詞", "助詞") or is_laughter(tok.surface)
+    """A predicate's last token, or the bracket closing a stage direction: (手を振る)ｗ."""
+    return tok.pos1 in ("動詞", "助動詞", "助詞") or is_laughter(tok.surface) or tok.surface == ")"
 
 
 def _mark_or_laugh(tok: Token) -> bool:
