@@ -136,3 +136,29 @@ def test_info_prints_a_joint_name_with_escape_codes_escaped(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert not _raw_controls(proc.stdout)
     assert "LHip\\x1b]0;pwned\\x07\\x9b2J\\u202e" in proc.stdout
+
+
+def test_a_replaced_output_keeps_its_mode_and_a_link_is_written_through(tmp_path):
+    private = tmp_path / "private.bvh"
+    private.write_text("old")
+    private.chmod(0o600)
+    assert text2anim("convert", TINY, "-o", private).returncode == 0
+    assert private.read_text().startswith("HIERARCHY") and (private.stat().st_mode & 0o777) == 0o600
+
+    (tmp_path / "real").mkdir()
+    target = tmp_path / "real" / "walk.bvh"
+    target.write_text("old")
+    link = tmp_path / "link.bvh"
+    link.symlink_to(target)
+    proc = text2anim("convert", TINY, "-o", link)
+    assert proc.returncode == 0, proc.stderr
+    assert link.is_symlink() and target.read_text().startswith("HIERARCHY")
+    assert not [p for p in tmp_path.rglob(".*.part")]
+
+
+def test_standard_input_over_the_limit_is_refused_not_cut(tmp_path):
+    from text2anim.limits import MAX_TEXT_CHARS
+
+    long_text = "太郎は歩く。" * (MAX_TEXT_CHARS * 4 // 6) + "花子は走る。"
+    proc = text2anim("parse", "-", input=long_text)
+    assert_clean_error(proc, "standard input holds more than", f"at most {MAX_TEXT_CHARS}")
