@@ -23,7 +23,12 @@ def say(*parts, sep: str = " ", file=None, flush: bool = False) -> None:
     print(printable(text, keep="\n"), file=file or sys.stdout, flush=flush)
 
 
+def safe_json(text: str) -> str:
+    """JSON text (as ``json.dumps(..., ensure_ascii=False)`` makes it, C0 escaped) with DEL, C1 and
+    text-direction controls escaped too, the JSON way (``\\u009b``): the same data, safe to print."""
+    return _JSON_UNSAFE.sub(lambda m: f"\\u{ord(m.group()):04x}", text)
+
+
 def say_json(obj) -> None:
     """``obj`` as indented JSON, non-ASCII kept readable, control characters as ``\\u`` escapes."""
-    text = json.dumps(obj, ensure_ascii=False, indent=1)  # json escapes C0 itself
-    print(_JSON_UNSAFE.sub(lambda m: f"\\u{ord(m.group()):04x}", text))
+    print(safe_json(json.dumps(obj, ensure_ascii=False, indent=1)))

@@ -91,7 +91,8 @@ def run_corpus(corpus: str, opts: Options, *, jobs: int = 1, scheduler: str | No
 def _run(items: list[Item], opts: Options, executor, chunk: int, manifest: Manifest | None,
          on_record: Callable[[dict, int, int], None] | None,
          on_start: Callable[[int, int], None] | None) -> Outcome:
-    """The lines not yet in ``manifest`` run on ``executor``, ``chunk`` lines a task; the manifest and summary written as they come."""
+    """The lines not yet in ``manifest`` run on ``executor``, ``chunk`` lines a task; the manifest and
+    summary written as they come."""
     summary = Summary()
     if manifest is not None:
         for rec in manifest.kept:

@@ -128,6 +128,14 @@ def test_names_already_in_a_database_are_printed_escaped(tmp_path):
     assert_clean_error(proc, "nothing\\x1b[2J")
     assert not _raw_controls(proc.stderr)
 
+    with sqlite3.connect(db) as con:  # the verb findable again: the poisoned clip name reaches plan and animate
+        con.execute("UPDATE verbs SET lemma = ?", ("歩く",))
+    for args in (["plan", "歩く。"], ["plan", "歩く。", "--json"], ["歩く。", "-o", tmp_path / "a.bvh"]):
+        proc = text2anim(*args, "--db", db)
+        assert proc.returncode == 0, (args, proc.stderr)
+        assert not _raw_controls(proc.stdout + proc.stderr), (args, proc.stdout, proc.stderr)
+        assert "walk\\x9b2J\\u202e" in proc.stdout or "walk\\u009b2J\\u202e" in proc.stdout, (args, proc.stdout)
+
 
 def test_info_prints_a_joint_name_with_escape_codes_escaped(tmp_path):
     crafted = tmp_path / "crafted.bvh"
