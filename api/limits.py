@@ -27,6 +27,9 @@ import numbers
 import os
 import unicodedata
 
+from text2anim.core.inputs import BIDI_CONTROLS as _BIDI_CONTROLS
+from text2anim.core.inputs import printable as printable  # the one escaping for a terminal, re-exported
+
 FPS_MIN = 1.0
 FPS_MAX = 240.0
 MAX_TEXT_CHARS = 2000
@@ -41,8 +44,6 @@ MAX_SECONDS_CEILING = 86_400.0
 
 #: Control characters that are kept in a text: line breaks and tabs (a text read from a file).
 _ALLOWED_CONTROLS = frozenset("\n\r\t")
-#: Bidirectional-override characters, which make a terminal show text other than what it is.
-_BIDI_CONTROLS = frozenset("\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
 
 
 class InputError(ValueError):
@@ -101,12 +102,6 @@ def check_budget(max_seconds) -> float:
     if not 0 < value <= MAX_SECONDS_CEILING:
         raise LimitError(f"max_seconds must be above 0 and at most {MAX_SECONDS_CEILING:g} s, not {max_seconds!r}")
     return value
-
-
-def printable(text: str) -> str:
-    """``text`` with control and bidi characters shown as ``\\x1b``/``\\u202e`` escapes (safe on a terminal)."""
-    return "".join(ch.encode("unicode_escape").decode("ascii")
-                   if unicodedata.category(ch) == "Cc" or ch in _BIDI_CONTROLS else ch for ch in text)
 
 
 def check_text(text) -> str:

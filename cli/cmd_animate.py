@@ -8,6 +8,7 @@ from .arg_types import fps_type, unit_float
 from .bvh_options import add_budget_option
 from .cmd_parse import read_text
 from .export_options import add_export_arguments, export_options
+from .terminal import say
 
 #: The BVH written when the command asks for no output at all (``text2anim TEXT``).
 DEFAULT_BVH = "animation.bvh"
@@ -53,7 +54,7 @@ def add_blend_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def _say(msg: str) -> None:
-    print(f"text2anim: {msg}", file=sys.stderr, flush=True)
+    say(f"text2anim: {msg}", file=sys.stderr, flush=True)
 
 
 class OutputArgumentError(ValueError):
@@ -107,14 +108,14 @@ def run(args: argparse.Namespace) -> int:
     summary = sys.stderr if to_stdout else sys.stdout  # standard output carries the BVH alone
     for e in anim.table.elements:
         actor = e.actor or "default"
-        print(f"{e.id:>2} {actor} {e.verb:8} {e.clip:18} {e.method:12} {e.start:6.2f}-{e.end:6.2f} s", file=summary)
+        say(f"{e.id:>2} {actor} {e.verb:8} {e.clip:18} {e.method:12} {e.start:6.2f}-{e.end:6.2f} s", file=summary)
     for name, m in anim.motions.items():
-        print(f"{name}: {m.n_frames} frames at {m.fps:g} fps ({m.duration:.2f} s)", file=summary)
+        say(f"{name}: {m.n_frames} frames at {m.fps:g} fps ({m.duration:.2f} s)", file=summary)
     if to_stdout:
         from text2anim.output.bvh_write import format_bvh
 
         sys.stdout.write(format_bvh(next(iter(anim.exported_motions(export).values()))))
         sys.stdout.flush()
     names = ["standard output"] if to_stdout else []
-    print("wrote " + ", ".join(names + [str(p) for p in written]), file=summary)
+    say("wrote " + ", ".join(names + [str(p) for p in written]), file=summary)
     return 0

@@ -36,6 +36,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", metavar="DIR",
                         help="also plan and animate every line: sharded BVH files, DIR/manifest.jsonl "
                              "(one record per line, resumable) and DIR/summary.json")
+    parser.add_argument("--wait", action="store_true",
+                        help="with --out: if another batch run owns DIR, wait for it to finish instead of "
+                             "refusing (a resumed run then does only what it left)")
     parser.add_argument("--jobs", type=int, default=1, metavar="N",
                         help="worker processes of a local Dask cluster (default 1: run in this process)")
     parser.add_argument("--scheduler", metavar="ADDRESS",
@@ -87,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
     progress = Progress()
     try:
         outcome = run_corpus(args.corpus, opts, jobs=args.jobs, scheduler=args.scheduler, chunk=args.chunk,
-                             on_start=progress.start, on_record=progress.update)
+                             on_start=progress.start, on_record=progress.update, wait=args.wait)
     finally:
         progress.close()
     sys.stdout.write(outcome.summary.format())

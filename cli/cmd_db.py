@@ -8,14 +8,15 @@ file path; default ``TEXT2ANIM_DB``, else the XDG data folder).
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import unicodedata
 
 from text2anim.core.bodyparts import GROUPS
+from text2anim.core.inputs import printable
 
 from .arg_types import core_span, frame_count
 from .bvh_options import add_read_options, read_options
+from .terminal import say, say_json
 
 NAME = "db"
 HELP = "the motion database: import BVH clips, list, show, export, remove, verbs, preview"
@@ -100,6 +101,7 @@ def _width(s: str) -> int:
 
 
 def _table(rows: list[list[str]], header: list[str]) -> str:
+    rows = [[printable(c) for c in r] for r in rows]  # escaped before measuring, so the columns line up
     widths = [max(_width(r[k]) for r in [header, *rows]) for k in range(len(header))]
     lines = []
     for r in [header, *rows]:
@@ -127,14 +129,14 @@ def _postures(c) -> str:
 
 def _print_clips(clips, as_json: bool) -> None:
     if as_json:
-        print(json.dumps([c.to_dict() for c in clips], ensure_ascii=False, indent=1))
+        say_json([c.to_dict() for c in clips])
         return
     if not clips:
-        print("(no clips)")
+        say("(no clips)")
         return
-    print(_table([_clip_row(c) for c in clips],
-                 ["clip", "character", "verbs", "objects", "part", "posture", "frames", "fps", "seconds",
-                  "cyclic", "source"]))
+    say(_table([_clip_row(c) for c in clips],
+               ["clip", "character", "verbs", "objects", "part", "posture", "frames", "fps", "seconds",
+                "cyclic", "source"]))
 
 
 def _show(c) -> str:
@@ -161,9 +163,9 @@ def _show(c) -> str:
 
 def _progress(done: int, total: int, path: str) -> None:
     if path:
-        print(f"text2anim db import: [{done + 1}/{total}] {path}", file=sys.stderr, flush=True)
+        say(f"text2anim db import: [{done + 1}/{total}] {path}", file=sys.stderr, flush=True)
     elif total > 1:
-        print(f"text2anim db import: read {total} files, storing", file=sys.stderr, flush=True)
+        say(f"text2anim db import: read {total} files, storing", file=sys.stderr, flush=True)
 
 
 # ---------------------------------------------------------------------- run
@@ -195,12 +197,12 @@ def _import(db, args) -> int:
                             start_posture=args.start_posture, end_posture=args.end_posture, joint_map=joint_map,
                             **read_options(args))
     infos = db.import_bvh(args.files, options, progress=_progress,
-                          notify=lambda path, msg: print(f"text2anim db import: {path}: {msg}", file=sys.stderr))
-    print(f"imported {len(infos)} clip{'s' if len(infos) != 1 else ''} into {db.url}:")
+                          notify=lambda path, msg: say(f"text2anim db import: {path}: {msg}", file=sys.stderr))
+    say(f"imported {len(infos)} clip{'s' if len(infos) != 1 else ''} into {db.url}:")
     for c in infos:
-        print(f"  {c.name}: {c.frames} frames at {c.fps:g} fps ({c.duration:.2f} s), "
-              f"{len(c.left_contacts)}+{len(c.right_contacts)} foot contacts, verbs {'/'.join(c.verbs)}, "
-              f"posture {_postures(c)}")
+        say(f"  {c.name}: {c.frames} frames at {c.fps:g} fps ({c.duration:.2f} s), "
+            f"{len(c.left_contacts)}+{len(c.right_contacts)} foot contacts, verbs {'/'.join(c.verbs)}, "
+            f"posture {_postures(c)}")
     return 0
 
 
@@ -216,7 +218,10 @@ def _list(db, args) -> int:
 
 def _show_action(db, args) -> int:
     c = db.info(args.clip)
-    print(json.dumps(c.to_dict(), ensure_ascii=False, indent=1) if args.json else _show(c))
+    if args.json:
+        say_json(c.to_dict())
+    else:
+        say(_show(c))
     return 0
 
 
@@ -225,26 +230,26 @@ def _export(db, args) -> int:
 
     m = db.load(args.clip)
     write_bvh(m, args.output)
-    print(f"wrote {args.output}: {m.n_frames} frames at {m.fps:g} fps, {m.duration:.3f} s")
+    say(f"wrote {args.output}: {m.n_frames} frames at {m.fps:g} fps, {m.duration:.3f} s")
     return 0
 
 
 def _remove(db, args) -> int:
     db.remove(args.clips)
-    print(f"removed {', '.join(args.clips)}")
+    say(f"removed {', '.join(args.clips)}")
     return 0
 
 
 def _verbs(db, args) -> int:
     verbs = db.verbs()
     if args.json:
-        print(json.dumps([{"lemma": v.lemma, "reading": v.reading, "clips": v.clips, "primary": v.primary}
-                          for v in verbs], ensure_ascii=False, indent=1))
+        say_json([{"lemma": v.lemma, "reading": v.reading, "clips": v.clips, "primary": v.primary}
+                  for v in verbs])
     elif not verbs:
-        print("(no verbs)")
+        say("(no verbs)")
     else:
-        print(_table([[v.lemma, v.reading, str(v.clips), str(v.primary)] for v in verbs],
-                     ["verb", "reading", "clips", "primary"]))
+        say(_table([[v.lemma, v.reading, str(v.clips), str(v.primary)] for v in verbs],
+                   ["verb", "reading", "clips", "primary"]))
     return 0
 
 
@@ -281,7 +286,7 @@ def _preview(db, args) -> int:
     alt = _alt_title(title, [_romanised(info.name), "/".join(_romanised(v) for v in info.verbs)],
                      f"({_romanised(info.character)}, {info.frames} frames, {info.fps:g} fps)")
     contact_sheet(motion, args.output, title=title, n=args.frames, core=info.core, alt_title=alt)
-    print(f"wrote {args.output}")
+    say(f"wrote {args.output}")
     return 0
 
 
@@ -298,7 +303,7 @@ def _preview_file(args) -> int:
     title = f"{name} {rest}"
     alt = _alt_title(title, [_romanised(name)], rest)
     contact_sheet(motion, args.output, title=title, n=args.frames, alt_title=alt)
-    print(f"wrote {args.output}")
+    say(f"wrote {args.output}")
     return 0
 
 

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from .bvh_options import add_read_options, read_options
+from .terminal import say
 
 NAME = "info"
 HELP = "summarise a BVH file: skeleton, frames, fps, duration, foot contact phases"
@@ -28,22 +29,22 @@ def run(args) -> int:
     from text2anim.core.contacts import detect_contacts
     m = read_bvh(args.file, **read_options(args))
     s = m.skeleton
-    print(f"file:      {args.file}")
-    print(f"frames:    {m.n_frames} at {m.fps:.3f} fps, {m.duration:.3f} s")
-    print(f"skeleton:  {s.n_joints} joints, {len(s.end_sites)} end sites, rest height {s.height():.3f} m")
-    print(f"root:      {s.names[0]}")
-    print(*_tree(s), sep="\n")
+    say(f"file:      {args.file}")
+    say(f"frames:    {m.n_frames} at {m.fps:.3f} fps, {m.duration:.3f} s")
+    say(f"skeleton:  {s.n_joints} joints, {len(s.end_sites)} end sites, rest height {s.height():.3f} m")
+    say(f"root:      {s.names[0]}")
+    say(*_tree(s), sep="\n")
     if m.n_frames == 0:
         return 0
     try:
         body_map(s)
     except BodyMapError as exc:
-        print(f"contacts:  not available ({exc})")
+        say(f"contacts:  not available ({exc})")
         return 0
     c = detect_contacts(m)
     for side in ("left", "right"):
         iv = c.intervals(side)
-        print(f"{side + ' foot:':10} {len(iv)} contacts: "
+        say(f"{side + ' foot:':10} {len(iv)} contacts: "
               + ", ".join(f"{a / m.fps:.2f}-{b / m.fps:.2f}s" for a, b in iv))
-    print("phases:    " + " ".join(f"{st}({(b - a) / m.fps:.2f}s)" for a, b, st in c.phases()))
+    say("phases:    " + " ".join(f"{st}({(b - a) / m.fps:.2f}s)" for a, b, st in c.phases()))
     return 0

@@ -22,15 +22,18 @@ def read_text(arg: str) -> str:
     Checked at the boundary (:func:`text2anim.limits.check_text`): a text with control
     characters or over the length limit is refused with one line saying so.
     """
-    from text2anim.limits import MAX_TEXT_CHARS, check_text
+    from text2anim.limits import MAX_TEXT_CHARS, InputError, LimitError, check_text
 
     if arg == "-":
+        bound = MAX_TEXT_CHARS * 4  # room for surrounding whitespace; never read more than this + 1
         try:
-            arg = sys.stdin.read(MAX_TEXT_CHARS * 4 + 1).strip()
+            raw = sys.stdin.read(bound + 1)
         except UnicodeDecodeError:
-            from text2anim.limits import InputError
-
             raise InputError("standard input is not UTF-8 text") from None
+        if len(raw) > bound:  # refused, not cut: the cut-off part (a second actor…) would vanish unseen
+            raise LimitError(f"standard input holds more than {bound} characters; at most {MAX_TEXT_CHARS} "
+                             "are accepted (split it into several texts)")
+        arg = raw.strip()
     return check_text(arg)
 
 

@@ -4,9 +4,12 @@ from __future__ import annotations
 import argparse
 import sys
 
+from text2anim.core.inputs import printable
+
 from .arg_types import fps_type
 from .bvh_options import add_budget_option
 from .cmd_parse import read_text
+from .terminal import safe_json, say
 
 NAME = "plan"
 HELP = "build the motion time table of a text (which clip, how joined, when)"
@@ -32,10 +35,11 @@ def run(args: argparse.Namespace) -> int:
     planned = text2anim.plan(read_text(args.text), args.db, fps=args.fps, skip_unknown=args.skip_unknown,
                              fallback=args.fallback, max_seconds=args.max_seconds)
     for note in planned.analysis.notes:
-        print(f"text2anim: {note}", file=sys.stderr)
+        say(f"text2anim: {note}", file=sys.stderr)
     for sub in planned.fallbacks:
-        print(f"text2anim: fallback: {sub}", file=sys.stderr)
+        say(f"text2anim: fallback: {sub}", file=sys.stderr)
     for verb in planned.skipped:
-        print(f"text2anim: skipped {verb}: not in the motion database", file=sys.stderr)
-    sys.stdout.write(planned.table.to_json() + "\n" if args.json else format_table(planned.table))
+        say(f"text2anim: skipped {verb}: not in the motion database", file=sys.stderr)
+    sys.stdout.write(safe_json(planned.table.to_json()) + "\n" if args.json
+                     else printable(format_table(planned.table), keep="\n"))
     return 0

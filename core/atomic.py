@@ -8,6 +8,8 @@
   then all are renamed into place; on a failure before the renames only the
   temporaries are removed.
 - The file and its folder are fsynced, so a crash after the call keeps the file.
+- A replaced file keeps its permission bits (a 0600 file stays 0600); a symbolic link at
+  the path is written through (the file it points to is replaced, the link stays).
 """
 from __future__ import annotations
 
@@ -106,8 +108,23 @@ def _fsync_dir(directory: Path) -> None:
         os.close(fd)
 
 
+def _mode(path: Path) -> int:
+    """The permission bits of the file at ``path`` if there is one, else a new file's (0666 less the umask)."""
+    try:
+        return stat.S_IMODE(os.stat(path).st_mode)
+    except OSError:
+        return 0o666 & ~_umask()
+
+
+def _through_links(path: Path) -> Path:
+    """The file a symbolic link at ``path`` points to (checked like any output), else ``path`` itself."""
+    if not path.is_symlink():
+        return path
+    return check_output_path(os.path.realpath(path))
+
+
 def _write_temp(path: Path, content: Content) -> Path:
-    """A fsynced temporary file beside ``path`` holding ``content``."""
+    """A fsynced temporary file beside ``path`` holding ``content``, with the mode of the file it replaces."""
     directory = path.parent
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:40]}.", suffix=".part", dir=directory)
@@ -129,7 +146,7 @@ def _write_temp(path: Path, content: Content) -> Path:
         os.fsync(fd)
         os.close(fd)
         fd = -1
-        os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp makes 0600; a new file gets the usual mode
+        os.chmod(tmp_path, _mode(path))  # mkstemp makes 0600; a new file gets the usual mode
     except BaseException as exc:
         if fd >= 0:
             os.close(fd)
@@ -150,14 +167,15 @@ def write_all(files: Mapping[Any, Content]) -> list[Path]:  # keys: str or os.Pa
     """
     paths = [check_output_path(p) for p in files]
     check_distinct(paths)
+    targets = [_through_links(p) for p in paths]
     temps: list[Path] = []
     renamed = 0
     try:
-        for path, content in zip(paths, files.values()):
+        for path, content in zip(targets, files.values()):
             temps.append(_write_temp(path, content))
-        for path in paths:  # again, just before the renames: nothing may have appeared meanwhile
+        for path in targets:  # again, just before the renames: nothing may have appeared meanwhile
             check_output_path(path)
-        for tmp, path in zip(temps, paths):
+        for tmp, path in zip(temps, targets):
             try:
                 os.replace(tmp, path)
             except OSError as exc:
@@ -166,7 +184,7 @@ def write_all(files: Mapping[Any, Content]) -> list[Path]:  # keys: str or os.Pa
     finally:
         for tmp in temps[renamed:]:
             tmp.unlink(missing_ok=True)
-    for directory in dict.fromkeys(p.parent for p in paths):
+    for directory in dict.fromkeys(p.parent for p in targets):
         _fsync_dir(directory)
     return paths
 

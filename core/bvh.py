@@ -38,6 +38,7 @@ import numpy as np
 from . import quat
 from .bvh_text import (FRAME_TIME_RANGE, MAX_DEGREES, MAX_JOINT_FRAMES, MAX_JOINTS, MAX_LENGTH, BVHError,
                        parse_channels)
+from .inputs import read_input
 from .motion import Motion
 from .skeleton import POSITION_CHANNELS, ROTATION_CHANNELS, Skeleton
 
@@ -183,12 +184,7 @@ def parse_bvh(text: str, *, source: str = "<bvh>", scale: float | str = "auto",
 def read_bvh(path: str | os.PathLike, **options) -> Motion:
     """Read a BVH file; options as :func:`parse_bvh`."""
     path = Path(path)
-    try:
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise BVHError(f"{path}: no such file") from None
-    except IsADirectoryError:
-        raise BVHError(f"{path}: is a directory, not a BVH file") from None
+    raw = read_input(path, "BVH", BVHError)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:

@@ -38,6 +38,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from .glb import BufferBuilder, pack_glb
+from .inputs import read_input
 from .gltf_prune import drop_animations
 from .motion import Motion, unroll_quaternions
 from .rigs import ROLES, RigError
@@ -85,10 +86,7 @@ def _bad(path: Path, why: str) -> RigError:
 
 def read_glb(path: Path) -> tuple[dict, bytes]:
     """The JSON and the BIN chunk (``b""`` if none) of a glTF binary; :class:`RigError` if it is not one."""
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise _bad(path, f"cannot read the rig ({exc.strerror or exc})") from None
+    data = read_input(path, "rig", RigError)
     if len(data) < 20 or data[:4] != b"glTF":
         raise _bad(path, "not a glTF binary (.glb/.vrm): it does not start with 'glTF'")
     version, length = struct.unpack_from("<II", data, 4)

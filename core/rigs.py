@@ -20,6 +20,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from .inputs import read_input
 from .skeleton import Skeleton
 
 _SIDED = ("Shoulder", "UpperArm", "LowerArm", "Hand", "UpperLeg", "LowerLeg", "Foot", "Toes")
@@ -88,9 +89,7 @@ def _key(name: str) -> str:
 def load_joint_map(path: str | Path) -> dict[str, str]:
     """Read a ``--map`` file: a JSON object ``{role: joint name}``; roles are :data:`ROLES`."""
     try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise RigError(f"{path}: cannot read the joint map ({exc.strerror or exc})") from None
+        data = json.loads(read_input(path, "joint map", RigError).decode("utf-8"))
     except (UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise RigError(f"{path}: not a JSON joint map ({exc})") from None
     if not isinstance(data, dict) or not all(isinstance(k, str) and isinstance(v, str) for k, v in data.items()):

@@ -9,6 +9,7 @@ import numpy as np
 
 from text2anim.core.bodyparts import GROUPS, BodyMapError, BodyPart
 from text2anim.core.contacts import detect_contacts
+from text2anim.core.inputs import control_in, printable
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
@@ -60,6 +61,7 @@ def _words(values, what: str, where: str, *, required: bool) -> tuple[str, ...]:
             raise ClipValidationError(f"{where}: empty {what}")
         if len(w) > MAX_WORD:
             raise ClipValidationError(f"{where}: {what} {w[:20]!r}… is longer than {MAX_WORD} characters")
+        _refuse_controls(w, what, where)
         if w not in out:
             out.append(w)
     if required and not out:
@@ -71,9 +73,18 @@ def _check_name(name, what: str, where: str) -> str:
     if not isinstance(name, str) or not normalize(name):
         raise ClipValidationError(f"{where}: the {what} name is empty")
     n = normalize(name)
-    if len(n) > MAX_NAME or any(ord(c) < 32 for c in n):
+    if len(n) > MAX_NAME:
         raise ClipValidationError(f"{where}: bad {what} name {n[:40]!r} (at most {MAX_NAME} printable characters)")
+    _refuse_controls(n, f"{what} name", where)
     return n
+
+
+def _refuse_controls(word: str, what: str, where: str) -> None:
+    """A control or text-direction character would reach every terminal that lists the database."""
+    ch = control_in(word)
+    if ch is not None:
+        raise ClipValidationError(f"{where}: the {what} '{printable(word[:40])}' holds the control character "
+                                  f"U+{ord(ch):04X}; remove it")
 
 
 def prepare_record(rec: ClipRecord, where: str | None = None, *,

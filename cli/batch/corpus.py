@@ -12,8 +12,11 @@ with ``#`` are skipped; an item keeps its line number in the file.
 from __future__ import annotations
 
 import hashlib
+import io
 import json
 from dataclasses import dataclass
+
+from text2anim.core.inputs import read_input
 
 
 class CorpusError(ValueError):
@@ -39,19 +42,15 @@ def text_hash(text: str) -> str:
 
 def load_corpus(path: str) -> list[Item]:
     """Every item of the corpus at ``path``, in file order; a malformed line raises :class:`CorpusError`."""
-    items = []
     try:
-        fh = open(path, encoding="utf-8")
-    except IsADirectoryError:
-        raise CorpusError(f"{path}: is a folder, not a corpus file") from None
-    with fh:
-        try:
-            for n, raw in enumerate(fh, 1):
-                line = raw.strip()
-                if line and not line.startswith("#"):
-                    items.append(_parse_line(line, n, path))
-        except UnicodeDecodeError:
-            raise CorpusError(f"{path}: not UTF-8 text") from None
+        text = read_input(path, "corpus", CorpusError).decode("utf-8")
+    except UnicodeDecodeError:
+        raise CorpusError(f"{path}: not UTF-8 text") from None
+    items = []
+    for n, raw in enumerate(io.StringIO(text, newline=None), 1):  # line numbers as a text file counts them
+        line = raw.strip()
+        if line and not line.startswith("#"):
+            items.append(_parse_line(line, n, path))
     return items
 
 

@@ -19,6 +19,7 @@ from . import lines
 from .corpus import CorpusError, Item, chunks, load_corpus
 from .errors import BatchError
 from .lines import Options
+from .lock import owning
 from .manifest import Manifest
 from .summary import Summary
 
@@ -56,8 +57,11 @@ class InProcess:
 def run_corpus(corpus: str, opts: Options, *, jobs: int = 1, scheduler: str | None = None,
                chunk: int = DEFAULT_CHUNK,
                on_record: Callable[[dict, int, int], None] | None = None,
-               on_start: Callable[[int, int], None] | None = None) -> Outcome:
+               on_start: Callable[[int, int], None] | None = None, wait: bool = False) -> Outcome:
     """Run every line of the corpus file ``corpus`` not already done in ``opts.out``.
+
+    ``opts.out`` is owned for the run (:mod:`.lock`): another run on it is a :class:`BatchError`,
+    or, with ``wait``, waited for.
 
     Args:
         opts: the outputs' options; ``opts.db`` as the user gave it (None: the default database).
@@ -66,6 +70,7 @@ def run_corpus(corpus: str, opts: Options, *, jobs: int = 1, scheduler: str | No
         chunk: lines per task.
         on_record: called with each new record, the number done so far and the number to do.
         on_start: called once with the number of lines to run and the number already done.
+        wait: wait for another run that owns ``opts.out`` instead of refusing.
     """
     if jobs < 1:
         raise BatchError("--jobs must be at least 1")
@@ -76,11 +81,20 @@ def run_corpus(corpus: str, opts: Options, *, jobs: int = 1, scheduler: str | No
         raise CorpusError(f"{corpus}: no lines to run")
     opts = _resolve(opts)
     executor = InProcess() if jobs == 1 and not scheduler else _cluster(jobs, scheduler)
+    if not opts.out:
+        return _run(items, opts, executor, chunk, None, on_record, on_start)
+    os.makedirs(opts.out, exist_ok=True)
+    with owning(opts.out, wait):
+        return _run(items, opts, executor, chunk, Manifest.open(opts.out, items, opts.key), on_record, on_start)
+
+
+def _run(items: list[Item], opts: Options, executor, chunk: int, manifest: Manifest | None,
+         on_record: Callable[[dict, int, int], None] | None,
+         on_start: Callable[[int, int], None] | None) -> Outcome:
+    """The lines not yet in ``manifest`` run on ``executor``, ``chunk`` lines a task; the manifest and
+    summary written as they come."""
     summary = Summary()
-    manifest = None
-    if opts.out:
-        os.makedirs(opts.out, exist_ok=True)
-        manifest = Manifest.open(opts.out, items, opts.key)
+    if manifest is not None:
         for rec in manifest.kept:
             summary.add(rec)
     todo = [it for it in items if manifest is None or not manifest.done(it)]
