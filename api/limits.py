@@ -27,7 +27,7 @@ import numbers
 import os
 import unicodedata
 
-from text2anim.core.inputs import BIDI_CONTROLS as _BIDI_CONTROLS
+from text2anim.core.inputs import BIDI_CONTROLS, is_control
 from text2anim.core.inputs import printable as printable  # the one escaping for a terminal, re-exported
 
 FPS_MIN = 1.0
@@ -116,8 +116,8 @@ def check_text(text) -> str:
             continue
         if unicodedata.category(ch) == "Cs":  # undecodable bytes of a command line (surrogateescape)
             raise InputError(f"the text is not valid UTF-8 (character {i + 1}); pass it as UTF-8")
-        if unicodedata.category(ch) == "Cc" or ch in _BIDI_CONTROLS:
-            kind = "a text-direction control" if ch in _BIDI_CONTROLS else "a control"
+        if is_control(ch):
+            kind = "a text-direction control" if ch in BIDI_CONTROLS else "a control"
             raise InputError(f"the text contains {kind} character (U+{ord(ch):04X} at character {i + 1}); "
                              "remove it")
     return text
