@@ -38,6 +38,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from .glb import BufferBuilder, pack_glb
+from .gltf_check import check_rig_json
 from .inputs import read_input
 from .gltf_prune import drop_animations
 from .motion import Motion, unroll_quaternions
@@ -149,31 +150,43 @@ def _node_tree(path: Path, nodes: list) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _joint_nodes(path: Path, gl: dict, parent: np.ndarray) -> list[int]:
-    """The skins' joints and the nodes between them, parents first (depth first in the file's child order)."""
+    """The skins' joints and the nodes between them, parents first (depth first in the file's child order).
+
+    Linear in the node count: each node's depth once, the joints under each node summed
+    deepest first; the skeleton's root is the deepest node above every joint.
+    """
     skins = gl.get("skins") or []
-    joints = {int(j) for s in skins for j in s.get("joints", [])}
+    joints = sorted({int(j) for s in skins for j in s.get("joints", [])})
     if not joints:
         raise _bad(path, "has no skin (no skinned mesh with joints): --rig needs a rigged character")
-
-    def ancestors(j: int) -> list[int]:
-        out = []
-        while j >= 0:
-            out.append(j)
+    n = len(parent)
+    depth = np.full(n, -1, dtype=np.int64)
+    for i in range(n):
+        chain = []
+        j = i
+        while j >= 0 and depth[j] < 0:
+            chain.append(j)
             j = int(parent[j])
-        return out
-
-    chains = [ancestors(j) for j in sorted(joints)]
-    common = set(chains[0]).intersection(*map(set, chains[1:]))
-    if not common:
+        d = depth[j] if j >= 0 else -1
+        for k in reversed(chain):
+            d += 1
+            depth[k] = d
+    below = np.zeros(n, dtype=np.int64)  # joints in each node's subtree
+    below[joints] = 1
+    for k in np.argsort(-depth, kind="stable"):
+        if parent[k] >= 0:
+            below[parent[k]] += below[k]
+    above_all = np.flatnonzero(below == len(joints))
+    if above_all.size == 0:
         raise _bad(path, "the skins' joints hang from separate scene roots; a rig has one skeleton")
-    root = next(a for a in chains[0] if a in common)
-    keep = {a for c in chains for a in c[:c.index(root) + 1]}
+    root = int(above_all[np.argmax(depth[above_all])])
+    keep = below > 0
     gl_nodes = gl["nodes"]
     order, stack = [], [root]
     while stack:
         j = stack.pop()
         order.append(j)
-        stack.extend(reversed([c for c in gl_nodes[j].get("children", []) if c in keep]))
+        stack.extend(reversed([c for c in gl_nodes[j].get("children", []) if keep[c]]))
     return order
 
 
@@ -202,24 +215,32 @@ def read_gltf_rig(path: str | os.PathLike) -> GltfRig:
     """The skinned character of a ``.glb``/``.vrm`` (see the module docstring); :class:`RigError` if there is none."""
     path = Path(path)
     gl, blob = read_glb(path)
-    nodes = gl.get("nodes")
-    if not isinstance(nodes, list) or not nodes:
-        raise _bad(path, "has no nodes: --rig needs a rigged character")
+    nodes = check_rig_json(path, gl)
     parent, world = _node_tree(path, nodes)
     order = _joint_nodes(path, gl, parent)
     index = {n: j for j, n in enumerate(order)}
     names: list[str] = []
+    seen: set[str] = set()
     for n in order:
         name = str(nodes[n].get("name") or f"node{n}")
-        names.append(name if name not in names else f"{name}#{n}")
+        names.append(name if name not in seen else f"{name}#{n}")
+        seen.add(names[-1])
     pos = world[order, :3, 3]
     parents = np.array([-1] + [index[int(parent[n])] for n in order[1:]])
     offsets = pos - np.vstack([np.zeros(3), pos[parents[1:]]])
+    lin = world[order, :3, :3]
+    finite = np.isfinite(lin).all(axis=(1, 2))
+    flat = ~finite | (np.linalg.norm(lin, axis=1) < 1e-9).any(axis=1)
+    flat |= np.linalg.det(np.where(finite[:, None, None], lin, np.eye(3))) <= 0  # a mirror is no rotation
+    if flat.any():
+        raise _bad(path, f"node {order[int(np.argmax(flat))]}'s rest transform is degenerate "
+                         "(a zero, negative or non-finite scale)")
     rw, sc = zip(*(_polar(world[n, :3, :3]) for n in order))
     # position channels on the root and down to the first joint that branches (the hips, under a root bone)
+    kids = np.bincount(parents[1:], minlength=len(order))
     moving = [0]
-    while len(kids := [j for j in range(len(order)) if parents[j] == moving[-1]]) == 1:
-        moving.append(kids[0])
+    while kids[moving[-1]] == 1:
+        moving.append(moving[-1] + 1)  # parents first, depth first: an only child comes right after its parent
     channels = tuple((POSITION_CHANNELS + _ROT) if j in moving else _ROT for j in range(len(order)))
     skel = Skeleton(tuple(names), parents, offsets, (), channels)
     root_parent = int(parent[order[0]])
