@@ -55,9 +55,10 @@ def side_of(name: str) -> str | None:
     if "right" in low:
         return "right"
     # L_Arm, Arm_L, l_arm, and VRoid's J_Bip_L_UpperArm
-    if re.match(r"^L(?=[A-Z_.\-])", n) or re.search(r"[_.\-][Ll]($|[_.\-])", n) or re.match(r"^l[_.\-]", n):
+    # Biped's "Bip01 L Thigh", Daz's lThigh
+    if re.match(r"^[Ll](?=[A-Z_.\- ])", n) or re.search(r"[_.\- ][Ll]($|[_.\- ])", n):
         return "left"
-    if re.match(r"^R(?=[A-Z_.\-])", n) or re.search(r"[_.\-][Rr]($|[_.\-])", n) or re.match(r"^r[_.\-]", n):
+    if re.match(r"^[Rr](?=[A-Z_.\- ])", n) or re.search(r"[_.\- ][Rr]($|[_.\- ])", n):
         return "right"
     return None
 
@@ -102,14 +103,34 @@ def _first(names: tuple[str, ...], members: tuple[int, ...], words: tuple[str, .
     return None
 
 
+def _role_label(role: str) -> tuple[str, str | None]:
+    """``(kind, side)`` of a humanoid role (:data:`core.rigs.ROLES`)."""
+    side = "left" if role.startswith("left") else "right" if role.startswith("right") else None
+    part = role[len(side):].lower() if side else role
+    if part in ("hips",):
+        return "hips", None
+    if part in ("spine", "chest", "upperChest"):
+        return "torso", None
+    if part in ("neck", "head"):
+        return "head", None
+    return ("leg" if part in ("upperleg", "lowerleg", "foot", "toes") else "arm"), side
+
+
 @lru_cache(maxsize=64)
 def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
+    from .rigs import REQUIRED, closest_rig  # numpy-free callers of this module never get here
+
+    _, found = closest_rig(names)
+    # A known rig's joints take the part of their role (Rigify's DEF-spine.006 is the head, whatever it says).
+    roles = {j: role for role, j in found.items()} if all(r in found for r in REQUIRED) else {}
     skel_parents = parents
     labels: list[str | None] = []
     unplaced = []
     for j, name in enumerate(names):
         kind = "hips" if j == 0 else kind_of(name)
         side = side_of(name)
+        if j in roles:
+            kind, side = _role_label(roles[j])
         if kind == "hips" and j != 0 and side is not None:
             kind = "leg"  # left_hip (SMPL), LeftHip: the thigh's joint
         if kind in ("arm", "leg"):
@@ -128,9 +149,9 @@ def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
         else:
             p = skel_parents[j]
             inherited = labels[p] if p >= 0 else None
-            if inherited in (None, "hips", "torso"):
+            if inherited is None or (inherited in ("hips", "torso") and not roles):
                 unplaced.append(name)
-            labels.append(inherited)
+            labels.append(inherited)  # a known rig's extra joint (lButtock, a twist bone) is part of its parent's
     if unplaced:
         raise BodyMapError("cannot place these joints in body parts (no known name pattern): " + ", ".join(unplaced))
     groups: dict[str, list[int]] = {g: [] for g in (*GROUPS, "hips")}
@@ -148,18 +169,19 @@ def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
     feet, hands = {}, {}
     for side in ("left", "right"):
         leg = frozen[f"{side}_leg"]
-        ankle = _first(names, leg, ("foot", "ankle"))
+        ankle = found.get(f"{side}Foot") if roles else _first(names, leg, ("foot", "ankle"))
         if ankle is None:
             raise BodyMapError(f"no {side} foot/ankle joint among: " + ", ".join(names[j] for j in leg))
-        toe = _first(names, leg, ("toe",))
+        toe = found.get(f"{side}Toes") if roles else None
+        toe = toe if toe is not None else _first(names, leg, ("toe",))
         if toe is None:
             kids = [j for j in leg if parents[j] == ankle]
             toe = kids[0] if kids else ankle
         feet[side] = (ankle, toe)
         arm = frozen[f"{side}_arm"]
-        hand = _first(names, arm, ("hand", "wrist"))
+        hand = found.get(f"{side}Hand") if roles else _first(names, arm, ("hand", "wrist"))
         hands[side] = hand if hand is not None else arm[-1]
-    head = _first(names, frozen["head"], ("head",))
+    head = found.get("head") if roles else _first(names, frozen["head"], ("head",))
     head = head if head is not None else frozen["head"][-1]
     neck = frozen["head"][0]
     chest = parents[neck] if parents[neck] in frozen["torso"] else (frozen["torso"][-1] if frozen["torso"] else 0)

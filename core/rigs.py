@@ -10,7 +10,8 @@ are left at their rest rotation relative to their parent.
 
 A rig is recognised by its joint names (:data:`RIGS`: CMU/cgspeed and the
 built-in skeleton, Mixamo, VRM, SMPL's 22 body joints, the Unreal
-mannequin); names are compared without a namespace prefix (``mixamorig:``)
+mannequin, cgspeed's Daz-friendly CMU, Daz Genesis, 3ds Max Biped, the
+Bandai Namco research set, Rokoko, Blender Rigify's ``DEF-`` bones); names are compared without a namespace prefix (``mixamorig:``)
 and without case. ``--map FILE`` gives the rest: a JSON object
 ``{role: joint name}`` (see :func:`load_joint_map`) laid over the best
 matching known rig.
@@ -72,8 +73,44 @@ _UNREAL = _sided({
     "leftHand": "hand_l", "leftUpperLeg": "thigh_l", "leftLowerLeg": "calf_l", "leftFoot": "foot_l",
     "leftToes": "ball_l"}, lambda n: n[:-1] + "r")
 
+# cgspeed's "Daz-friendly" CMU conversion (lButtock, a hip joint, has no role).
+_DAZ = _sided({
+    "hips": "hip", "spine": "abdomen", "chest": "chest", "neck": "neck", "head": "head",
+    "leftShoulder": "lCollar", "leftUpperArm": "lShldr", "leftLowerArm": "lForeArm", "leftHand": "lHand",
+    "leftUpperLeg": "lThigh", "leftLowerLeg": "lShin", "leftFoot": "lFoot", "leftToes": "lToe"}, lambda n: "r" + n[1:])
+# Daz Genesis 3/8: bend joints carry the role, twist joints are extras.
+_GENESIS = _sided({
+    "hips": "hip", "spine": "abdomenLower", "chest": "abdomenUpper", "upperChest": "chestLower", "neck": "neckLower",
+    "head": "head", "leftShoulder": "lCollar", "leftUpperArm": "lShldrBend", "leftLowerArm": "lForearmBend",
+    "leftHand": "lHand", "leftUpperLeg": "lThighBend", "leftLowerLeg": "lShin", "leftFoot": "lFoot",
+    "leftToes": "lToe"}, lambda n: "r" + n[1:])
+_BIPED = _sided({  # 3ds Max Biped
+    "hips": "Bip01 Pelvis", "spine": "Bip01 Spine", "chest": "Bip01 Spine1", "upperChest": "Bip01 Spine2",
+    "neck": "Bip01 Neck", "head": "Bip01 Head", "leftShoulder": "Bip01 L Clavicle",
+    "leftUpperArm": "Bip01 L UpperArm", "leftLowerArm": "Bip01 L Forearm", "leftHand": "Bip01 L Hand",
+    "leftUpperLeg": "Bip01 L Thigh", "leftLowerLeg": "Bip01 L Calf", "leftFoot": "Bip01 L Foot",
+    "leftToes": "Bip01 L Toe0"}, lambda n: n.replace(" L ", " R "))
+_BANDAI = _sided({  # Bandai Namco Research motion dataset
+    "hips": "Hips", "spine": "Spine", "chest": "Chest", "neck": "Neck", "head": "Head",
+    "leftShoulder": "Shoulder_L", "leftUpperArm": "UpperArm_L", "leftLowerArm": "LowerArm_L",
+    "leftHand": "Hand_L", "leftUpperLeg": "UpperLeg_L", "leftLowerLeg": "LowerLeg_L", "leftFoot": "Foot_L",
+    "leftToes": "Toes_L"}, lambda n: n[:-1] + "R")
+_ROKOKO = _sided({
+    "hips": "Hips", "spine": "Spine1", "chest": "Spine2", "upperChest": "Spine4", "neck": "Neck", "head": "Head",
+    "leftShoulder": "LeftShoulder", "leftUpperArm": "LeftArm", "leftLowerArm": "LeftForeArm",
+    "leftHand": "LeftHand", "leftUpperLeg": "LeftThigh", "leftLowerLeg": "LeftShin", "leftFoot": "LeftFoot",
+    "leftToes": "LeftToe"}, lambda n: "Right" + n[4:])
+_RIGIFY = _sided({  # Blender Rigify's deform bones
+    "hips": "DEF-spine", "spine": "DEF-spine.001", "chest": "DEF-spine.002", "upperChest": "DEF-spine.003",
+    "neck": "DEF-spine.004", "head": "DEF-spine.006", "leftShoulder": "DEF-shoulder.L",
+    "leftUpperArm": "DEF-upper_arm.L", "leftLowerArm": "DEF-forearm.L", "leftHand": "DEF-hand.L",
+    "leftUpperLeg": "DEF-thigh.L", "leftLowerLeg": "DEF-shin.L", "leftFoot": "DEF-foot.L",
+    "leftToes": "DEF-toe.L"}, lambda n: n[:-1] + "R")
+
 #: Known rigs: role -> joint name (compared without namespace and case).
-RIGS: dict[str, dict[str, str]] = {"cmu": _CMU, "mixamo": _MIXAMO, "vrm": _VRM, "smpl": _SMPL, "unreal": _UNREAL}
+RIGS: dict[str, dict[str, str]] = {
+    "cmu": _CMU, "mixamo": _MIXAMO, "vrm": _VRM, "smpl": _SMPL, "unreal": _UNREAL, "daz": _DAZ,
+    "genesis": _GENESIS, "biped": _BIPED, "bandai": _BANDAI, "rokoko": _ROKOKO, "rigify": _RIGIFY}
 
 
 class RigError(ValueError):
@@ -100,9 +137,16 @@ def load_joint_map(path: str | Path) -> dict[str, str]:
     return dict(data)
 
 
-def _place(skel: Skeleton, table: dict[str, str]) -> dict[str, int]:
-    index = {_key(n): j for j, n in enumerate(skel.names)}
+def _place(names: tuple[str, ...], table: dict[str, str]) -> dict[str, int]:
+    index = {_key(n): j for j, n in enumerate(names)}
     return {role: index[_key(name)] for role, name in table.items() if _key(name) in index}
+
+
+def closest_rig(names: tuple[str, ...]) -> tuple[str, dict[str, int]]:
+    """``(rig name, {role: joint index})`` of the known rig that places the most required roles, then the most roles."""
+    placed = {name: _place(names, t) for name, t in RIGS.items()}
+    closest = min(placed, key=lambda n: (-sum(r in placed[n] for r in REQUIRED), -len(placed[n]), n))
+    return closest, placed[closest]
 
 
 def rig_roles(skel: Skeleton, joint_map: dict[str, str] | None = None) -> tuple[str, dict[str, int]]:
@@ -113,16 +157,15 @@ def rig_roles(skel: Skeleton, joint_map: dict[str, str] | None = None) -> tuple[
     the required roles that stay unplaced, and any joint of the map the
     skeleton lacks.
     """
-    placed = {name: _place(skel, t) for name, t in RIGS.items()}
-    closest = min(placed, key=lambda n: (-sum(r in placed[n] for r in REQUIRED), -len(placed[n]), n))
-    roles = dict(placed[closest])
+    closest, found = closest_rig(skel.names)
+    roles = dict(found)
     best = closest
     if joint_map:
         missing = [n for n in joint_map.values() if _key(n) not in {_key(x) for x in skel.names}]
         if missing:
             raise RigError(f"the joint map names joints this skeleton lacks: {', '.join(missing)}")
-        roles.update(_place(skel, joint_map))
-        best = closest + "+map" if placed[closest] else "map"
+        roles.update(_place(skel.names, joint_map))
+        best = closest + "+map" if found else "map"
     unplaced = [r for r in REQUIRED if r not in roles]
     if unplaced:
         listed = ", ".join(f"{r} (e.g. {RIGS[closest].get(r, r)!r})" for r in unplaced)

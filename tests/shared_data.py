@@ -12,6 +12,10 @@ CMU_FILES = sorted(CMU_DIR.glob("*.bvh")) if CMU_DIR.is_dir() else []
 #: Where a skip sends a reader who wants these tests to run.
 HOW_TO_GET = "README.md: Real capture for the tests"
 requires_cmu = pytest.mark.skipif(not CMU_FILES, reason=f"shared CMU mocap not found at {CMU_DIR} ({HOW_TO_GET})")
+#: CMU everyday actions in cgspeed's Daz-friendly BVH (drinking, climbing, sitting, ...).
+EVERYDAY_DIR = SHARED / "mocap" / "cmu_everyday"
+requires_everyday = pytest.mark.skipif(not (EVERYDAY_DIR / "13_09.bvh").exists(),
+                                       reason=f"shared everyday capture not found at {EVERYDAY_DIR} ({HOW_TO_GET})")
 
 
 def cmu(name: str) -> Path:
