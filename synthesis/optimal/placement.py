@@ -66,6 +66,10 @@ def alignment(choice: Choice, s0: Found, tr: Motion, tr_contacts: FootContacts, 
 
 #: m: a support foot the locks leave further than this from the next motion's own is re-placed (settle)
 SETTLE = 0.005
+#: m: the most settle lifts or lowers the next motion. Two captures' floors differ by centimetres; a
+#: locked foot left higher than this was not held on the floor (its IK target out of reach, the foot
+#: hanging in the air) and must not carry the next motion up with it (a run into a walk lifted the walk 47 cm).
+MAX_LIFT = 0.05
 
 
 def settle(out: Motion, locks, window: tuple[int, int], plan: Plan) -> Plan | None:
@@ -78,7 +82,9 @@ def settle(out: Motion, locks, window: tuple[int, int], plan: Plan) -> Plan | No
     foot take over exactly: a slide on the ground, and a lift or drop where the two clips stand on
     different floors (captures of two people played on one skeleton: the next clip's feet may float or
     sink by centimetres, the locked foot stands on the first clip's floor). Connections and transitions only (an adaptation's
-    feet are the first motion's by construction). ``None`` when nothing needs to move.
+    feet are the first motion's by construction). ``None`` when nothing needs to move, and when the lock
+    left the foot more than :data:`MAX_LIFT` above or below the next motion's own (a foot the lock could not
+    hold on the floor says nothing about where the next motion stands).
     """
     if plan.adapted is not None or not locks:
         return None
@@ -97,7 +103,7 @@ def settle(out: Motion, locks, window: tuple[int, int], plan: Plan) -> Plan | No
     # the height from the foot's lowest point: a locked flat foot against the next clip's raised heel
     # (a dancer on the ball of the foot) is the same floor, not a sinking clip
     d[1] = at[[ankle, toe], 1].min() - plan.placed.positions[own, [ankle, toe], 1].min()
-    if np.linalg.norm(d) < SETTLE:
+    if np.linalg.norm(d) < SETTLE or abs(d[1]) > MAX_LIFT:
         return None
     rigid = plan.rigid.then(Rigid(0.0, (float(d[0]), float(d[2]))))
     placed = rigid.apply(plan.inc.motion)
