@@ -18,6 +18,7 @@ from pathlib import Path
 from .arg_types import fps_type, method_list, unit_float
 from .bvh_options import add_budget_option
 from .cmd_parse import read_text
+from .terminal import say
 
 NAME = "compare"
 HELP = "join the same time table with several methods and compare foot skate, jerk, core fidelity"
@@ -98,12 +99,12 @@ def run(args: argparse.Namespace) -> int:
         print(f"{m:10} " + " ".join(f.format(fig[k]).rjust(len(h)) for k, h, f in _HEAD) + f"  {joins}")
     for m, lines in missed.items():
         for line in lines:
-            print(f"{m}: {line}")
+            say(f"{m}: {line}")
     for m, anim in anims.items():
         for w in anim.warnings:
-            print(f"text2anim: {m}: warning: {w}", file=sys.stderr)
+            say(f"text2anim: {m}: warning: {w}", file=sys.stderr)
     if written:
-        print("wrote " + ", ".join(str(p) for p in written))
+        say("wrote " + ", ".join(str(p) for p in written))
     return 0
 
 

@@ -38,18 +38,21 @@ def read_text(arg: str) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    from text2anim.core.inputs import printable
     from text2anim.nlp import analyze  # lazy: keeps `text2anim --help` fast
+
+    from .terminal import safe_json, say
 
     analysis = analyze(read_text(args.text))
     for note in analysis.notes:
-        print(f"text2anim: {note}", file=sys.stderr)
-    out = sys.stdout
+        say(f"text2anim: {note}", file=sys.stderr)
+    out = sys.stdout  # the text is the user's, but may come from a file: printed with control characters escaped
     if args.json:
-        out.write(analysis.to_json() + "\n")
+        out.write(safe_json(analysis.to_json()) + "\n")
     else:
-        out.write(format_listing(analysis))
+        out.write(printable(format_listing(analysis), keep="\n"))
     if args.explain:
-        out.write(format_explain(analysis))
+        out.write(printable(format_explain(analysis), keep="\n"))
     return 0
 
 

@@ -197,9 +197,9 @@ def _main(argv: list[str], commands: dict) -> int:
             exc = _missing_extra(exc, args.command) or exc
         if not is_user_error(exc):
             raise
-        from text2anim.limits import printable
+        from .terminal import message
 
-        print(f"text2anim: error: {printable(str(exc))}", file=sys.stderr)
+        print(f"text2anim: error: {message(str(exc))}", file=sys.stderr)
         return EXIT_USER_ERROR
 
 

@@ -17,6 +17,20 @@ from text2anim.core.inputs import BIDI_CONTROLS, printable
 _JSON_UNSAFE = re.compile("[\x7f-\x9f" + "".join(sorted(BIDI_CONTROLS)) + "]")
 
 
+#: characters: the longest message a command prints on one line (a 9,999-joint file's error named every joint: 69 KB)
+MESSAGE_WIDTH = 1000
+
+
+def message(text: str, width: int = MESSAGE_WIDTH) -> str:
+    """``text`` escaped (:func:`printable`) and cut in its middle to at most about ``width`` characters,
+    saying how much was left out, so one bad file never floods the terminal."""
+    text = printable(text)
+    if len(text) <= width:
+        return text
+    left = len(text) - width
+    return f"{text[:width * 3 // 4]} … ({left:,} characters left out) … {text[-width // 4:]}"
+
+
 def say(*parts, sep: str = " ", file=None, flush: bool = False) -> None:
     """``print`` with every control character but the line breaks escaped."""
     text = sep.join(str(p) for p in parts)

@@ -8,12 +8,15 @@
   then all are renamed into place; on a failure before the renames only the
   temporaries are removed.
 - The file and its folder are fsynced, so a crash after the call keeps the file.
+- A temporary is named ``.NAME.PID.XXXXXXXX.part`` beside its file; one left by a writer that was
+  killed (its process gone) is removed on the next write of that file (:func:`remove_stale_parts`).
 - A replaced file keeps its permission bits (a 0600 file stays 0600); a symbolic link at
   the path is written through (the file it points to is replaced, the link stays).
 """
 from __future__ import annotations
 
 import os
+import re
 import stat
 import tempfile
 from collections.abc import Callable, Mapping
@@ -123,11 +126,42 @@ def _through_links(path: Path) -> Path:
     return check_output_path(os.path.realpath(path))
 
 
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError):
+        return True  # another user's process, or not a pid: not ours to judge
+    return True
+
+
+def remove_stale_parts(path: Path) -> list[Path]:
+    """Remove the temporaries of ``path`` (``.NAME.PID.XXXXXXXX.part``) whose writer process is gone
+    (killed during a write); returns them. Other files, and a live writer's temporaries, are left alone."""
+    pattern = re.compile(rf"\.{re.escape(path.name[:40])}\.(\d+)\.[A-Za-z0-9_]{{8}}\.part")
+    removed = []
+    try:
+        entries = list(os.scandir(path.parent))
+    except OSError:
+        return removed
+    for entry in entries:
+        m = pattern.fullmatch(entry.name)
+        if m and int(m.group(1)) != os.getpid() and not _alive(int(m.group(1))) and entry.is_file(follow_symlinks=False):
+            try:
+                os.unlink(entry.path)
+                removed.append(Path(entry.path))
+            except OSError:
+                pass
+    return removed
+
+
 def _write_temp(path: Path, content: Content) -> Path:
     """A fsynced temporary file beside ``path`` holding ``content``, with the mode of the file it replaces."""
     directory = path.parent
+    remove_stale_parts(path)
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:40]}.", suffix=".part", dir=directory)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:40]}.{os.getpid()}.", suffix=".part", dir=directory)
     except PermissionError:
         raise OutputError(f"{_shown(str(path))}: cannot write in {directory} (permission denied)") from None
     except OSError as exc:

@@ -22,6 +22,7 @@ from dataclasses import replace
 from typing import Any, Callable
 
 from distributed import Client, LocalCluster, Queue, WorkerPlugin, wait
+from text2anim.core.atomic import write_all
 
 from . import lines
 from .corpus import Item
@@ -44,11 +45,8 @@ class ShipDatabase(WorkerPlugin):
     def setup(self, worker):
         path = os.path.join(worker.local_directory, f"motions-{self.key}.sqlite")
         if not os.path.exists(path):
-            tmp = f"{path}.{os.getpid()}.part"
-            with open(tmp, "wb") as fh:
-                fh.write(self.data)
-            os.chmod(tmp, 0o444)
-            os.replace(tmp, path)
+            write_all({path: self.data})  # our atomic write: a killed worker's temporary is cleaned next time
+            os.chmod(path, 0o444)
         lines.register_copy(self.key, path)
 
 
