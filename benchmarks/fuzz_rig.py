@@ -6,64 +6,28 @@ read by ``core.gltf_rig.read_gltf_rig``. Prints the outcomes: accepted, refused 
 one-line error, or traceback (any other exception; each printed), with the slowest case in CPU
 time and the peak memory traced.
 """
-import json
 import random
 import resource
-import struct
 import sys
 import tempfile
 import time
 import tracemalloc
 from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from fuzz_mutations import damaged  # noqa: E402
 from rig_builders import mixamo_glb, vrm_file  # noqa: E402
 from text2anim.core.gltf_rig import read_gltf_rig  # noqa: E402
-
-def split(b):
-    n = struct.unpack_from("<I", b, 12)[0]
-    gl = json.loads(b[20:20 + n]); rest = b[20 + n:]
-    return gl, rest
-
-def join(gl, rest):
-    j = json.dumps(gl).encode(); j += b" " * (-len(j) % 4)
-    body = struct.pack("<II", len(j), 0x4E4F534A) + j + rest
-    return b"glTF" + struct.pack("<II", 2, 12 + len(body)) + body
-
-JUNK = [None, "x", -1, 10**9, 1.5, [], {}, [1, "a"], {"a": 1}, True, [[0]], "0"]
-
-def mutate(gl, rng):
-    def paths(o, p=()):
-        yield p
-        if isinstance(o, dict):
-            for k, v in o.items(): yield from paths(v, p + (k,))
-        elif isinstance(o, list):
-            for i, v in enumerate(o[:50]): yield from paths(v, p + (i,))
-    ps = [p for p in paths(gl) if p]
-    for _ in range(rng.randint(1, 3)):
-        p = rng.choice(ps); o = gl
-        try:
-            for k in p[:-1]: o = o[k]
-            r = rng.random()
-            if r < 0.7: o[p[-1]] = rng.choice(JUNK)
-            elif isinstance(o, dict): del o[p[-1]]
-            else: o[p[-1]] = o[p[-1]] * 2 if isinstance(o[p[-1]], int) else None
-        except Exception:
-            pass
-    return gl
 
 def main(n):
     rng = random.Random(int(sys.argv[2]) if len(sys.argv) > 2 else 7)
     out = {"accepted": 0, "refused": 0, "traceback": 0}; slow = 0.0; kinds = {}
     with tempfile.TemporaryDirectory() as tmp:
         srcs = [mixamo_glb(Path(tmp) / "m.glb"), vrm_file(Path(tmp) / "a.vrm"), vrm_file(Path(tmp) / "b.vrm", version="0.x")]
-        bases = [(s.suffix, *split(s.read_bytes())) for s in srcs]
+        bases = [(s.suffix, s.read_bytes()) for s in srcs]
         tracemalloc.start()
         for i in range(n):
-            suf, gl, rest = rng.choice(bases)
-            g = mutate(json.loads(json.dumps(gl)), rng)
-            data = join(g, rest)
-            if rng.random() < 0.2:  # byte damage too
-                b = bytearray(data); k = rng.randrange(len(b)); b[k] = rng.randrange(256); data = bytes(b)
+            suf, base = rng.choice(bases)
+            data = damaged(base, rng)
             p = Path(tmp) / f"f{i}{suf}"; p.write_bytes(data)
             t = time.process_time()
             try:
