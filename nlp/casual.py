@@ -51,15 +51,23 @@ def repair(tokens: list[Token], notes: list[str]) -> list[Token]:
             continue
         if is_laughter(tok.surface) and _ends_predicate(prev) and (nxt is None or _mark_or_laugh(nxt)):
             out[i] = replace(tok, pos1="補助記号", pos2="句点", pos3="*", lemma=tok.surface, orth=tok.surface)
-        elif (tok.surface == "わ" and tok.pos1 in ("助詞", "接尾辞") and _noun(prev) and nxt is not None
+        elif (tok.surface == "わ" and tok.pos1 in ("助詞", "接尾辞") and _name_end(out, i - 1) and nxt is not None
               and nxt.pos1 not in ("補助記号", "助詞", "助動詞")):
-            out[i] = replace(tok, surface="は", pos2="係助詞", lemma="は", orth="は")
+            out[i] = replace(tok, surface="は", pos1="助詞", pos2="係助詞", pos3="*", lemma="は", orth="は")
+            if _numeral(prev) and i >= 2 and out[i - 2] is not None and out[i - 2].pos2 == "固有名詞":
+                # 健 + 一 is the name 健一, as UniDic reads it before は
+                name = out[i - 2]
+                out[i - 1] = replace(name, surface=name.surface + prev.surface, orth=name.orth + prev.orth,
+                                     lemma=name.surface + prev.surface, kana=name.kana + prev.kana,
+                                     kana_form=name.kana_form + prev.kana_form, end=prev.end)
+                out[i - 2] = None  # type: ignore[call-overload]
+                prev = out[i - 1]
             notes.append(f"read {prev.surface}わ as {prev.surface}は (topic particle)")
         elif (tok.surface == "お" and tok.pos1 == "接頭辞" and _noun(prev) and nxt is not None
               and nxt.pos1 == "動詞" and not _polite(out, i + 1)):
             out[i] = replace(tok, surface="を", pos1="助詞", pos2="格助詞", pos3="*", lemma="を", orth="を")
             notes.append(f"read {prev.surface}お{nxt.surface} as {prev.surface}を{nxt.surface} (object particle)")
-    return out
+    return [t for t in out if t is not None]
 
 
 def _ends_predicate(tok: Token) -> bool:
@@ -73,6 +81,16 @@ def _mark_or_laugh(tok: Token) -> bool:
 
 def _noun(tok: Token) -> bool:
     return tok.pos1 in ("名詞", "代名詞") and not tok.is_number
+
+
+def _name_end(tokens: list[Token], j: int) -> bool:
+    """``tokens[j]`` ends a noun: a noun, or a name's numeral (健一: UniDic reads 健 + the number 一)."""
+    tok = tokens[j]
+    return _noun(tok) or (_numeral(tok) and j > 0 and tokens[j - 1].pos2 == "固有名詞")
+
+
+def _numeral(tok: Token) -> bool:
+    return tok.is_number or tok.pos2 == "数詞"
 
 
 def _polite(tokens: list[Token], v: int) -> bool:

@@ -73,6 +73,8 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
     pred.end = toks[_verb_end(toks, v)].end
     pred.negated = any(t.lemma in _NEGATIONS and t.pos1 in ("助動詞", "形容詞")
                        for t in toks[v:g + 1]) and not _invitation(toks, g)
+    if any(t.lemma == "たい" and t.pos1 == "助動詞" for t in toks[v:g + 1]):
+        pred.reason = "desire"  # 走りたい, 踊りたくて: a wish, not the action
     pred.ending, pred.cue = _ending(toks, g, ph, next_ph)
     settle_reason(pred, ph.quoted)
     return pred
@@ -111,7 +113,7 @@ def settle_reason(pred: Pred, quoted: bool) -> None:
         pred.reason = pred.ending
     elif pred.negated:
         pred.reason = "negated"
-    elif pred.reason not in ("light", "state", "potential", "non-agent"):
+    elif pred.reason not in ("light", "state", "potential", "non-agent", "desire"):
         pred.reason = ""
 
 

@@ -106,7 +106,31 @@ def tokenize(norm: str, notes: list[str] | None = None) -> list[Token]:
         if end < len(norm):
             tokens.append(Token("\n", "補助記号", "句点", "*", "*", "*", "\n", "\n", "", end, end + 1))
         pos = end + 1
-    return merge_numbers(_retag_list_items(tokens))
+    return merge_numbers(_join_phrasal_verbs(_retag_list_items(tokens)))
+
+
+#: noun + に + なる read as one verb (the library's spelling): 横になる is lying down, not "becoming"
+_PHRASAL = {"横": "横になる"}
+
+
+def _join_phrasal_verbs(tokens: list[Token]) -> list[Token]:
+    """横 + に + なって -> one verb token 横になって (lemma 横になる): UniDic reads なる as a state verb."""
+    if not any(t.surface in _PHRASAL for t in tokens):
+        return tokens
+    out: list[Token] = []
+    i = 0
+    while i < len(tokens):
+        tok = tokens[i]
+        if (tok.surface in _PHRASAL and i + 2 < len(tokens) and tokens[i + 1].surface == "に"
+                and tokens[i + 2].pos1 == "動詞" and tokens[i + 2].lemma == "成る"):
+            v, verb = tokens[i + 2], _PHRASAL[tok.surface]
+            out.append(Token(tok.surface + "に" + v.surface, "動詞", v.pos2, v.pos3, v.ctype, v.cform, verb, verb,
+                             tok.kana + "ニナル", tok.start, v.end, None, tok.kana_form + "ニ" + v.kana_form))
+            i += 3
+            continue
+        out.append(tok)
+        i += 1
+    return out
 
 
 def unwrap_direction(tokens: list[Token]) -> list[Token]:
