@@ -8,7 +8,10 @@ A foot is its ankle and toe joints. On each frame it is in contact when
 
 The floor level of a foot is its planted height: the 5th percentile of its
 lowest joint's height over the clip, clamped to ``[0, 0.10]`` m (joint
-centres sit a few centimetres above the ground: the CMU toes at 1-4 cm).
+centres sit a few centimetres above the ground: the CMU toes at 1-4 cm). A
+file whose feet are nowhere near y = 0 (a capture volume with its floor at
+0.93 m, or more than 10 cm below 0) is read from its own lower foot: ``[b, b + 0.10]`` with ``b``
+the lower of the two feet's levels.
 Labels are then cleaned by hysteresis: gaps and runs shorter than
 :data:`MIN_PHASE` seconds are absorbed into their neighbours, so a one-frame
 flicker is never a step.
@@ -91,7 +94,10 @@ def foot_tracks(motion: Motion) -> dict[str, FootTrack]:
     lowest = np.argmin(pos[..., 1], axis=2)  # (T, feet)
     y = pos[rows, cols, lowest, 1]
     if len(y):
-        floor = np.clip(np.percentile(y, FLOOR_PERCENTILE, axis=0), 0.0, MAX_FLOOR)
+        level = np.percentile(y, FLOOR_PERCENTILE, axis=0)  # (feet,)
+        # a file whose floor is not near y = 0 (PyMO's walk stands at 0.93 m): levels from its own lowest foot
+        base = float(level.min()) if abs(level.min()) > MAX_FLOOR else 0.0
+        floor = np.clip(level, base, base + MAX_FLOOR)
         speed = horizontal_speed(pos, motion.fps)[rows, cols, lowest]
     else:
         floor, speed = np.zeros(len(sides)), y

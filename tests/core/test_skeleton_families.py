@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from limb_checks import limb_errors
-from shared_data import EVERYDAY_DIR, requires_everyday
+from shared_data import EVERYDAY_DIR, library_motion, requires_everyday
 from skeleton_families import FAMILIES, family_bvh
 from text2anim.core import read_bvh
 from text2anim.core.bodyparts import body_map
@@ -56,3 +56,14 @@ def test_a_daz_friendly_cmu_take_imports_without_a_map(db):
     assert fc.left.mean() > 0.5 and fc.right.mean() > 0.5  # she stands still, both feet down
     head = clip.positions[:, body_map(clip.skeleton).head, 1]
     assert 1.4 < np.median(head) < 1.8  # a standing adult, in metres
+
+
+@pytest.mark.parametrize("dy", [0.93, -0.5])
+def test_contacts_come_from_the_motion_wherever_its_floor_is(dy):
+    """PyMO's demo walk stands 0.93 m up (its toes never near y = 0): both feet still plant, as on the floor."""
+    walk = library_motion("walk")
+    moved = walk.replace(root_positions=walk.root_positions + np.array([0.0, dy, 0.0]))
+    on_floor, off_floor = detect_contacts(walk), detect_contacts(moved)
+    for side in ("left", "right"):
+        assert off_floor.of(side).sum() > 10
+        assert np.mean(off_floor.of(side) == on_floor.of(side)) > 0.95
