@@ -63,6 +63,7 @@ class Cut:
     about: str = ""
     cycle: tuple[float, float] | None = None  # a stretch of the cut played ``cycles`` more times
     cycles: int = 0
+    folder: str = "cmu"  # the shared capture folder the file is in (../shared/mocap/FOLDER): cmu, cmu_everyday
 
     @property
     def extra(self) -> float:
@@ -72,7 +73,7 @@ class Cut:
     @property
     def trial(self) -> str:
         """The CMU subject and trial, ``16_15``."""
-        return "_".join(self.file.split("_")[:2])
+        return "_".join(self.file.split("_")[:2]).removesuffix(".bvh")
 
     @property
     def source(self) -> str:
@@ -94,7 +95,7 @@ def _cut(raw: dict) -> Cut:
                   starts_from=raw.get("starts_from"), ease=float(raw.get("ease", 0.0)),
                   lowpass=float(raw.get("lowpass", 0.0)), about=raw.get("about", ""),
                   cycle=tuple(float(x) for x in raw["cycle"]) if "cycle" in raw else None,  # type: ignore[arg-type]
-                  cycles=int(raw.get("cycles", 0)))
+                  cycles=int(raw.get("cycles", 0)), folder=str(raw.get("folder", "cmu")))
     except (KeyError, TypeError, ValueError) as exc:
         raise ClipDataError(f"capture.toml: clip {name}: {exc}") from None
     if not 0 <= t0 < t1:

@@ -265,16 +265,16 @@ def write_arrays(path: Path, arrays: dict[str, np.ndarray]) -> int:
 def build(cmu: Path, out: Path = ARRAYS, log=print) -> int:
     """Cut, retarget and write every clip of the cut list; returns the file's size in bytes."""
     cuts = cut_list()
-    takes: dict[str, Motion] = {}
+    takes: dict[tuple[str, str], Motion] = {}
     arrays: dict[str, np.ndarray] = {}
     built: dict[str, Motion] = {}
     for c in cuts:
-        if c.file not in takes:
-            path = cmu / c.file
+        if (c.folder, c.file) not in takes:
+            path = (cmu if c.folder == "cmu" else cmu.parent / c.folder) / c.file
             if not path.is_file():
                 raise FileNotFoundError(f"{path}: not found (pass --cmu DIR)")
-            takes[c.file] = load_take(path)
-        m = cut_clip(takes[c.file], c)
+            takes[c.folder, c.file] = load_take(path)
+        m = cut_clip(takes[c.folder, c.file], c)
         if c.starts_from:
             m = lock_feet(start_from(m, built[c.starts_from], _frames(c.ease, FPS)))
         built[c.name] = m

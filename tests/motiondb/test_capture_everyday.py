@@ -1,0 +1,56 @@
+"""Everyday actions from real capture (CMU subjects 13 and 14, cgspeed's Daz-friendly BVH in
+../shared/mocap/cmu_everyday) replace keyframes: drinking, wiping, boxing, directing traffic, exercises."""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from text2anim.core.contacts import detect_contacts
+from text2anim.core.floor import FOOT_CLEARANCE, lowest_foot_heights
+from text2anim.motiondb import MotionDB
+from text2anim.motiondb.library import capture
+from shared_data import EVERYDAY_DIR, requires_everyday
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "library"))  # the build scripts (not installed)
+import build_capture as build  # noqa: E402
+
+EVERYDAY = {"drink": "飲む", "wipe": "拭く", "box": "ボクシングする", "direct_traffic": "合図する",
+            "exercise": "体操する", "squat": "スクワットする"}
+CUTS = {c.name: c for c in capture.cut_list()}
+
+
+@pytest.mark.parametrize("name", sorted(EVERYDAY))
+def test_an_everyday_verb_plays_its_captured_clip(name, library_db):
+    cut = CUTS[name]
+    assert cut.folder == "cmu_everyday"
+    with MotionDB.open(library_db) as db:
+        best = db.search(EVERYDAY[name])[0]
+        assert best.name == name and best.source.startswith(f"builtin:capture:CMU {cut.trial} ")
+        clip = db.load(name)
+    planted = detect_contacts(clip)
+    low = lowest_foot_heights(clip)
+    both = np.concatenate([low[planted.left, 0], low[planted.right, 1]])
+    assert len(both) > 0.5 * clip.n_frames  # standing actions: a foot is down most of the time
+    assert 0.0 < np.median(both) < FOOT_CLEARANCE + 0.01  # on the floor (a deep squat rolls onto the toes: 1.3 cm)
+    assert low.min() > -0.01  # never through it
+    hips = clip.root_positions
+    assert np.ptp(hips[:, 1]) > 0.01 or np.ptp(hips[:, [0, 2]], axis=0).max() > 0.02  # a living body, not frozen legs
+
+
+def test_captured_clips_stand_in_for_the_keyframed_drink_and_wipe(library_db):
+    with MotionDB.open(library_db) as db:
+        sources = {c.name: c.source for c in db.search("飲む") + db.search("拭く")}
+    assert not any(s.startswith("keyframed:") for s in sources.values()), sources
+
+
+@requires_everyday
+def test_rebuilding_an_everyday_clip_gives_the_shipped_arrays():
+    """The Daz-friendly take is read by name (no joint map), cut, retargeted and floored bit for bit again."""
+    c = CUTS["drink"]
+    m = build.cut_clip(build.load_take(EVERYDAY_DIR / c.file), c)
+    with np.load(capture.ARRAYS) as shipped:
+        assert np.array_equal(m.rotations.astype(np.float32), shipped["drink.rot"])
+        assert np.array_equal(m.root_positions.astype(np.float32), shipped["drink.root"])
