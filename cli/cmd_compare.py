@@ -18,7 +18,7 @@ from pathlib import Path
 from .arg_types import fps_type, method_list, unit_float
 from .bvh_options import add_budget_option
 from .cmd_parse import read_text
-from .terminal import say
+from .terminal import safe_json, say
 
 NAME = "compare"
 HELP = "join the same time table with several methods and compare foot skate, jerk, core fidelity"
@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
                "joins_missed": {m: lines for m, lines in missed.items() if lines},
                "warnings": {m: list(anims[m].warnings) for m, (res, _) in results.items() if res.warnings},
                "written": [str(p) for p in written]}
-        print(json.dumps(doc, ensure_ascii=False, indent=2))
+        print(safe_json(json.dumps(doc, ensure_ascii=False, indent=2)))
         return 0
     print(f"{'method':10} " + " ".join(h for _, h, _ in _HEAD) + "  joins")
     for m, fig in rows.items():

@@ -6,6 +6,7 @@ import sys
 from .arg_types import fps_type
 from .bvh_options import add_read_options, read_options
 from .export_options import add_export_arguments, export_options
+from .terminal import say
 
 NAME = "convert"
 HELP = ("rewrite a BVH file in metres (optionally rescaled, resampled, Z-up→Y-up, T-pose dropped, put on the floor, "
@@ -36,17 +37,17 @@ def run(args) -> int:
     m = read_bvh(args.input, **read_options(args))
     if args.fps:
         m = m.resample(args.fps)
-    say = sys.stderr if args.output == "-" else sys.stdout  # standard output carries the BVH alone
+    notes = sys.stderr if args.output == "-" else sys.stdout  # standard output carries the BVH alone
     if args.floor or args.rig:
         m, floor = place_on_floor(m)
         print(f"floor: moved {'down' if floor.height >= 0 else 'up'} {100 * abs(floor.height):.1f} cm "
-              f"(from its {'foot contacts' if floor.method == 'contacts' else 'lowest foot reach'})", file=say)
+              f"(from its {'foot contacts' if floor.method == 'contacts' else 'lowest foot reach'})", file=notes)
     m = export_motion(m, export)
     if args.output == "-":
         sys.stdout.write(format_bvh(m))
         sys.stdout.flush()
-        print(f"wrote standard output: {m.n_frames} frames at {m.fps:g} fps, {m.duration:.3f} s", file=sys.stderr)
+        say(f"wrote standard output: {m.n_frames} frames at {m.fps:g} fps, {m.duration:.3f} s", file=sys.stderr)
         return 0
     write_bvh(m, args.output)
-    print(f"wrote {args.output}: {m.n_frames} frames at {m.fps:g} fps, {m.duration:.3f} s")
+    say(f"wrote {args.output}: {m.n_frames} frames at {m.fps:g} fps, {m.duration:.3f} s")
     return 0

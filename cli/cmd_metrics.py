@@ -12,6 +12,7 @@ import json
 
 
 from .bvh_options import add_read_options, read_options
+from .terminal import safe_json, say
 
 NAME = "metrics"
 HELP = "quality metrics of a BVH file: skating ratio, root pop, jerk, floor penetration, frozen frames"
@@ -29,9 +30,9 @@ def run(args) -> int:
     m = read_bvh(args.file, **read_options(args))
     met = compute_metrics(m)
     if args.json:
-        print(json.dumps({"file": args.file, **met.to_dict()}, ensure_ascii=False, indent=2))
+        print(safe_json(json.dumps({"file": args.file, **met.to_dict()}, ensure_ascii=False, indent=2)))
         return 0
-    print(f"{args.file}: {met.frames} frames, {met.fps:.3f} fps, {met.duration:.3f} s")
+    say(f"{args.file}: {met.frames} frames, {met.fps:.3f} fps, {met.duration:.3f} s")
     print(f"{'foot':6} {'contact frames':>14} {'skate cm/s':>11} {'slide cm':>9}")
     for side, fs in met.foot_skate.items():
         print(f"{side:6} {fs.contact_frames:14d} {fs.mean_speed_cm_s:11.2f} {fs.slide_cm:9.2f}")

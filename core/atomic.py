@@ -140,7 +140,7 @@ def remove_stale_parts(path: Path) -> list[Path]:
     """Remove the temporaries of ``path`` (``.NAME.PID.XXXXXXXX.part``) whose writer process is gone
     (killed during a write); returns them. Other files, and a live writer's temporaries, are left alone."""
     pattern = re.compile(rf"\.{re.escape(path.name[:40])}\.(\d+)\.[A-Za-z0-9_]{{8}}\.part")
-    removed = []
+    removed: list[Path] = []
     try:
         entries = list(os.scandir(path.parent))
     except OSError:
