@@ -86,7 +86,7 @@ def _noun(tok: Token) -> bool:
 def _name_end(tokens: list[Token], j: int) -> bool:
     """``tokens[j]`` ends a noun: a noun, or a name's numeral (健一: UniDic reads 健 + the number 一)."""
     tok = tokens[j]
-    return _noun(tok) or (_numeral(tok) and j > 0 and tokens[j - 1].pos2 == "固有名詞")
+    return _noun(tok) or (_numeral(tok) and j > 0 and tokens[j - 1] is not None and tokens[j - 1].pos2 == "固有名詞")
 
 
 def _numeral(tok: Token) -> bool:
