@@ -91,7 +91,34 @@ def migrate(s: Connection, version: int, skeletons: SkeletonCache) -> None:
         # 2 -> 3: the ranking table, filled from the stored clips (after their postures, above)
         tb.search_ranks.create(s)
         fill(s)
+    if version < 4:
+        _add_descriptions(s, skeletons)
     set_version(s, version=SCHEMA_VERSION)
+
+
+def _add_descriptions(s: Connection, skeletons: SkeletonCache) -> None:
+    """3 -> 4: ``clips.description``, measured from every stored clip's frames (one clip at a time)."""
+    import json
+
+    from text2anim.core.bodyparts import BodyMapError
+
+    from .blobs import decode_frames
+    from .description import describe
+
+    s.execute(text("ALTER TABLE clips ADD COLUMN description TEXT DEFAULT '{}' NOT NULL"))
+    clips, frames = tb.clips, tb.clip_frames.c
+    rows = s.execute(select(clips.c.id, clips.c.name, clips.c.fps, clips.c.frames, clips.c.skeleton_id,
+                            clips.c.core_begin, clips.c.core_end).order_by(clips.c.id)).all()
+    for row in rows:
+        enc, data = s.execute(select(frames.encoding, frames.data).where(frames.clip_id == row.id)).one()
+        try:
+            motion = decode_frames(data, skeletons.get(s, row.skeleton_id), row.fps, encoding=enc,
+                                   frames=row.frames, clip=row.name)
+            d = describe(motion, (row.core_begin, row.core_end))
+        except (DBError, BodyMapError, ValueError):
+            continue  # a clip that cannot be read keeps '{}'; loading it will say why
+        s.execute(clips.update().where(clips.c.id == row.id)
+                  .values(description=json.dumps(d.to_dict(), sort_keys=True)))
 
 
 def require_schema(s: Connection, url: str) -> None:

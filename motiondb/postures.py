@@ -38,6 +38,17 @@ def _leg_joints(skel: Skeleton, side: str) -> tuple[int, int, int, int]:
     return hip, knee, ankle, toe
 
 
+def leg_length(skel: Skeleton) -> float:
+    """Rest-pose height (metres) of the hip joints above the lowest foot joint: 0.86 m on the
+    built-in 1.70 m skeleton. Raises :class:`BodyMapError` without two legs, or when it is not positive."""
+    legs = [_leg_joints(skel, side) for side in ("left", "right")]
+    rest = skel.rest_positions()
+    length = float(np.mean([rest[leg[0], 1] for leg in legs]) - rest[[j for leg in legs for j in leg[2:]], 1].min())
+    if not length > 1e-6:
+        raise BodyMapError("the skeleton's hips are not above its feet in the rest pose")
+    return length
+
+
 def classify_posture(motion: Motion, frame: int = 0) -> Posture:
     """The posture (one of :data:`motiondb.types.POSTURES`) of one frame of ``motion``.
 
@@ -62,13 +73,10 @@ def classify_posture(motion: Motion, frame: int = 0) -> Posture:
     skel = motion.skeleton
     try:
         legs = [_leg_joints(skel, side) for side in ("left", "right")]
+        length = leg_length(skel)
     except BodyMapError:
         return DEFAULT_POSTURE
-    rest = skel.rest_positions()
     foot_joints = [j for leg in legs for j in leg[2:]]
-    length = float(np.mean([rest[leg[0], 1] for leg in legs]) - rest[foot_joints, 1].min())
-    if not length > 1e-6:
-        return DEFAULT_POSTURE
     pos = motion.positions
     floor = float(np.clip(np.percentile(pos[:, foot_joints, 1].min(axis=1), 5.0), 0.0, 0.10))
     p = pos[frame]

@@ -1,15 +1,17 @@
 """Reading clip metadata (never frame data) and skeletons, in plain column queries."""
 from __future__ import annotations
 
+import json
 from collections.abc import Iterator
 from datetime import timezone
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from sqlalchemy import BindParameter, Connection, bindparam, select
 
 from .errors import DBError
 from . import schema as tb
-from .types import ClipInfo
+from .types import ClipDescription, ClipInfo
 
 if TYPE_CHECKING:  # only named: metadata reads (`text2anim plan`) load no numpy
     from text2anim.core.skeleton import Skeleton
@@ -52,7 +54,7 @@ _OB, _CO, _CT = tb.objects.c, tb.clip_objects.c, tb.contacts.c
 _INFO_CLIPS = (
     select(_CL.id, _CL.name, _CH.name.label("character"), _CL.fps, _CL.frames, _CL.duration,
            _CL.core_begin, _CL.core_end, _CL.body_part, _CL.cyclic, _CL.source, _CL.created,
-           _CL.start_posture, _CL.end_posture, _SK.n_joints)
+           _CL.start_posture, _CL.end_posture, _CL.description, _SK.n_joints)
     .join(tb.characters, _CH.id == _CL.character_id)
     .join(tb.skeletons, _SK.id == _CL.skeleton_id)
     .where(_CL.id.in_(_IDS))
@@ -63,6 +65,16 @@ _INFO_OBJECTS = (select(_CO.clip_id, _OB.name).join(tb.objects, _OB.id == _CO.ob
                  .where(_CO.clip_id.in_(_IDS)).order_by(_CO.clip_id, _CO.position))
 _INFO_CONTACTS = (select(_CT.clip_id, _CT.side, _CT.start_frame, _CT.stop_frame)
                   .where(_CT.clip_id.in_(_IDS)).order_by(_CT.clip_id, _CT.start_frame))
+
+
+@lru_cache(maxsize=4096)
+def description(stored: str | None) -> ClipDescription:
+    """A clip's stored ``description`` JSON as a :class:`ClipDescription` (cached: searches read it per hit)."""
+    try:
+        d = json.loads(stored or "{}")
+    except ValueError:
+        d = {}
+    return ClipDescription.from_dict(d if isinstance(d, dict) else {})
 
 
 def clip_infos(s: Connection, ids: list[int]) -> list[ClipInfo]:
@@ -97,6 +109,6 @@ def clip_infos(s: Connection, ids: list[int]) -> list[ClipInfo]:
             core=(r.core_begin, r.core_end), body_part=r.body_part, cyclic=bool(r.cyclic), source=r.source,
             created=created, joints=int(r.n_joints),
             left_contacts=tuple(sides["left"]), right_contacts=tuple(sides["right"]),
-            start_posture=r.start_posture, end_posture=r.end_posture,
+            start_posture=r.start_posture, end_posture=r.end_posture, description=description(r.description),
         ))
     return out

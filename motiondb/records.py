@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import hashlib
 import math
-from dataclasses import dataclass, field
+import re
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -14,10 +15,11 @@ from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
 from .blobs import encode_frames, skeleton_json
+from .description import describe
 from .errors import ClipValidationError
 from .postures import classify_posture
 from .readings import normalize
-from .types import DEFAULT_POSTURE, POSTURES, ClipRecord, Posture
+from .types import DEFAULT_POSTURE, POSTURES, ClipDescription, ClipRecord, Posture
 
 #: Longest clip or character name, characters.
 MAX_NAME = 200
@@ -47,6 +49,7 @@ class PreparedClip:
     start_posture: Posture = DEFAULT_POSTURE
     end_posture: Posture = DEFAULT_POSTURE
     contacts: list[tuple[str, int, int]] = field(default_factory=list)
+    description: ClipDescription = ClipDescription()
 
 
 def _words(values, what: str, where: str, *, required: bool) -> tuple[str, ...]:
@@ -69,6 +72,16 @@ def _words(values, what: str, where: str, *, required: bool) -> tuple[str, ...]:
     return tuple(out)
 
 
+def _actions(values, where: str) -> tuple[str, ...]:
+    """A record's actions: WordNet verb synset offsets, 8 digits each (``"01908923"``)."""
+    out = tuple(str(v) for v in values or ())
+    bad = [v for v in out if not re.fullmatch(r"[0-9]{8}", v)]
+    if bad:
+        raise ClipValidationError(f"{where}: an action must be a WordNet verb synset offset of 8 digits, "
+                                  f"not {printable(bad[0][:20])!r}")
+    return tuple(dict.fromkeys(out))
+
+
 def _check_name(name, what: str, where: str) -> str:
     if not isinstance(name, str) or not normalize(name):
         raise ClipValidationError(f"{where}: the {what} name is empty")
@@ -88,11 +101,13 @@ def _refuse_controls(word: str, what: str, where: str) -> None:
 
 
 def prepare_record(rec: ClipRecord, where: str | None = None, *,
-                   contacts: list[tuple[str, int, int]] | None = None) -> PreparedClip:
-    """Validate a record and compute its blob, skeleton fingerprint and foot contacts.
+                   contacts: list[tuple[str, int, int]] | None = None,
+                   measured: ClipDescription | None = None) -> PreparedClip:
+    """Validate a record and compute its blob, skeleton fingerprint, foot contacts and description.
 
-    ``contacts`` (``(side, start, stop)`` frames) are the record's foot contacts when already
-    known (the built-in library ships them): they are not computed again.
+    ``contacts`` (``(side, start, stop)`` frames) are the record's foot contacts, and ``measured``
+    its description without actions, when already known (the built-in library ships them):
+    they are not computed again.
     Raises :class:`ClipValidationError` naming ``where`` (a file) or the clip.
     """
     where = where or f"clip {getattr(rec, 'name', '?')!r}"
@@ -146,6 +161,7 @@ def prepare_record(rec: ClipRecord, where: str | None = None, *,
             raise ClipValidationError(f"{where}: unknown {what} posture {declared!r}; known: {', '.join(POSTURES)}")
         else:
             postures.append(declared)
+    actions = _actions(rec.actions, where)
     definition = skeleton_json(m.skeleton)
     return PreparedClip(
         name=name, verbs=verbs, objects=objects, character=character, skeleton=m.skeleton,
@@ -153,4 +169,5 @@ def prepare_record(rec: ClipRecord, where: str | None = None, *,
         fps=float(m.fps), frames=int(m.n_frames), duration=float(duration), core=core,
         body_part=rec.body_part, cyclic=bool(rec.cyclic), source=str(rec.source or ""),
         blob=encode_frames(m), start_posture=postures[0], end_posture=postures[1], contacts=contacts,
+        description=(describe(m, core, actions) if measured is None else replace(measured, actions=actions)),
     )

@@ -7,7 +7,7 @@ Tables (schema version :data:`SCHEMA_VERSION`)::
     characters      id, name (unique), skeleton_id -> skeletons
     clips           id, name (unique), character_id -> characters, skeleton_id -> skeletons,
                     fps, frames, duration, core_begin, core_end, body_part, cyclic,
-                    source, created, start_posture, end_posture
+                    source, created, start_posture, end_posture, description
     clip_frames     clip_id (PK) -> clips, encoding, data (compressed .npy bytes)
     verbs           id, lemma (unique), reading (indexed)
     clip_verbs      clip_id -> clips, verb_id -> verbs, position, is_primary
@@ -35,7 +35,9 @@ Meaning and units:
   ``start_posture``/``end_posture`` the posture of the first and of the last
   frame, one of :data:`motiondb.types.POSTURES` (``standing``, ``seated``,
   ``crouched``, ``kneeling``, ``lying``; checked when stored, not by the
-  database, so the vocabulary can grow without a migration).
+  database, so the vocabulary can grow without a migration); ``description`` JSON
+  ``{"actions", "locomotion", "moving", "energy"}``, what the body does
+  (:class:`motiondb.types.ClipDescription`).
 - ``clip_frames``: the frame data in its own table, so listing and searching
   clips never reads it (see :mod:`motiondb.blobs` for the layout).
 - ``verbs``: lemmas (NFKC) and their katakana readings (see
@@ -59,6 +61,9 @@ older database in place, in one transaction, under the writers' lock):
   DEFAULT 'standing'``). Migrating from 1 adds them with ``ALTER TABLE ... ADD
   COLUMN`` and classifies every stored clip from its first and last frames;
 - 3: ``search_ranks``. Migrating from 2 creates it and fills it from the stored clips.
+- 4: ``clips.description`` (``TEXT NOT NULL DEFAULT '{}'``). Migrating from 3 adds it and
+  measures every stored clip from its frames (:func:`motiondb.description.describe`; no
+  actions: an imported clip's actions are read from its primary verb when a stand-in is sought).
 
 Deleting a clip deletes its frames, verb/object links and contacts (ON DELETE
 CASCADE); verbs, objects, characters and skeletons no clip uses any more are
@@ -94,7 +99,7 @@ from .types import DEFAULT_POSTURE
 
 #: Bumped whenever a table or column changes meaning; see :data:`schema_version` and the
 #: migrations in the module docstring.
-SCHEMA_VERSION = 3
+SCHEMA_VERSION = 4
 #: The oldest schema version :meth:`motiondb.store.MotionDB.open` can migrate from.
 OLDEST_MIGRATABLE = 1
 
@@ -154,6 +159,8 @@ clips = Table(
     # schema version 2
     Column("start_posture", String(16), nullable=False, default=DEFAULT_POSTURE, server_default=DEFAULT_POSTURE),
     Column("end_posture", String(16), nullable=False, default=DEFAULT_POSTURE, server_default=DEFAULT_POSTURE),
+    # schema version 4
+    Column("description", Text, nullable=False, default="{}", server_default="{}"),
     CheckConstraint("fps > 0", name="ck_clips_fps"),
     CheckConstraint("frames > 0", name="ck_clips_frames"),
     CheckConstraint("core_begin >= 0 AND core_begin < core_end", name="ck_clips_core"),

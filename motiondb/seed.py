@@ -13,7 +13,7 @@ from .errors import ClipValidationError, DBError, SeedWarning
 from .reads import SkeletonCache
 from .migrate import set_version
 from . import schema as tb
-from .types import ClipRecord
+from .types import ClipDescription, ClipRecord
 
 #: ``source`` of the built-in library's clips (``builtin`` or ``builtin:<file>``).
 BUILTIN_SOURCE = "builtin"
@@ -28,6 +28,8 @@ class SeedSource:
     builtin: bool  # the built-in library (refreshed when its tag changes)
     #: the records' foot contacts by clip name where known (the built-in library ships them)
     contacts: Callable[[], dict[str, list[tuple[str, int, int]]]] | None = None
+    #: the records' measured descriptions (no actions) by clip name where known (shipped likewise)
+    descriptions: Callable[[], dict[str, ClipDescription]] | None = None
 
 
 def seeding_needed(library: str | None, source: SeedSource | None) -> bool:
@@ -69,6 +71,12 @@ def _builtin_contacts() -> dict[str, list[tuple[str, int, int]]]:
     return importlib.import_module(_LIBRARY + ".keyframed").seeded_contacts()
 
 
+def _builtin_descriptions() -> dict[str, ClipDescription]:
+    import importlib
+
+    return importlib.import_module(_LIBRARY + ".keyframed").seeded_descriptions()
+
+
 def seed_source(seed) -> SeedSource | None:
     """What to seed a new database with; ``None`` for nothing (or the built-in library is absent).
 
@@ -86,7 +94,7 @@ def seed_source(seed) -> SeedSource | None:
     if spec is None or not spec.submodule_search_locations:
         return None  # the built-in library is not there (yet)
     return SeedSource(files_tag(Path(next(iter(spec.submodule_search_locations)))), _builtin_records, builtin=True,
-                      contacts=_builtin_contacts)
+                      contacts=_builtin_contacts, descriptions=_builtin_descriptions)
 
 
 def fill(s: Connection, source: SeedSource, library: str | None, url: str, skeletons: SkeletonCache) -> None:
@@ -101,7 +109,9 @@ def fill(s: Connection, source: SeedSource, library: str | None, url: str, skele
 
     try:
         known = source.contacts() if source.contacts is not None else {}
-        prepared = [prepare_record(r, contacts=known.get(r.name)) for r in source.records()]
+        measured = source.descriptions() if source.descriptions is not None else {}
+        prepared = [prepare_record(r, contacts=known.get(r.name), measured=measured.get(r.name))
+                    for r in source.records()]
     except ClipValidationError as exc:
         what = "the built-in motion library" if source.builtin else "the seed records"
         raise DBError(f"cannot fill {url} with {what}: {exc}") from None

@@ -30,6 +30,34 @@ POSTURES: tuple[Posture, ...] = get_args(Posture)
 DEFAULT_POSTURE: Posture = "standing"
 
 
+@dataclass(frozen=True)
+class ClipDescription:
+    """What the body does in a clip (stored with it; :mod:`motiondb.description` measures it).
+
+    Attributes:
+        actions: WordNet 3.1 verb synsets (8-digit offsets, ``"01908923"`` is walk) naming what
+            the body does; what makes the clip a stand-in for a verb it does not list
+            (``api/fallback.py``). Empty: the clip stands in for nothing.
+        locomotion: the hips travel (more than ``description.LOCOMOTION`` leg lengths per second).
+        moving: the parts that move relative to the hips, among ``head``, ``arms``, ``legs``, ``trunk``.
+        energy: mean speed of hands, feet and head relative to the hips, leg lengths per second.
+    """
+
+    actions: tuple[str, ...] = ()
+    locomotion: bool = False
+    moving: tuple[str, ...] = ()
+    energy: float = 0.0
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"actions": list(self.actions), "locomotion": self.locomotion, "moving": list(self.moving),
+                "energy": self.energy}
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> "ClipDescription":
+        return cls(actions=tuple(d.get("actions", ())), locomotion=bool(d.get("locomotion", False)),
+                   moving=tuple(d.get("moving", ())), energy=float(d.get("energy", 0.0)))
+
+
 @dataclass(frozen=True, eq=False)
 class ClipRecord:
     """A clip to store: the motion and its metadata.
@@ -48,6 +76,8 @@ class ClipRecord:
         start_posture, end_posture: the posture (one of :data:`POSTURES`) of the
             first and of the last frame; ``None``: classified from those frames
             when the clip is stored (:func:`motiondb.postures.classify_posture`).
+        actions: what the body does, as WordNet verb synsets (:class:`ClipDescription`); the
+            rest of the clip's description is measured from its frames when it is stored.
     """
 
     name: str
@@ -61,6 +91,7 @@ class ClipRecord:
     source: str = ""
     start_posture: Posture | None = None
     end_posture: Posture | None = None
+    actions: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -85,6 +116,7 @@ class ClipInfo:
         start_posture, end_posture: the posture of its first and of its last frame
             (:data:`motiondb.types.POSTURES`: ``standing``, ``seated``, ``crouched``,
             ``kneeling``, ``lying``).
+        description: what the body does (:class:`ClipDescription`).
     """
 
     name: str
@@ -104,6 +136,7 @@ class ClipInfo:
     right_contacts: tuple[tuple[int, int], ...] = ()
     start_posture: Posture = DEFAULT_POSTURE
     end_posture: Posture = DEFAULT_POSTURE
+    description: ClipDescription = ClipDescription()
 
     @property
     def verb(self) -> str:
@@ -124,6 +157,7 @@ class ClipInfo:
             "duration": self.duration, "core": list(self.core), "body_part": self.body_part,
             "cyclic": self.cyclic, "source": self.source, "created": self.created.isoformat(),
             "joints": self.joints, "start_posture": self.start_posture, "end_posture": self.end_posture,
+            "description": self.description.to_dict(),
             "contacts": {"left": [list(c) for c in self.left_contacts],
                          "right": [list(c) for c in self.right_contacts]},
         }

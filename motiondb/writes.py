@@ -5,6 +5,8 @@ a batch is all or nothing.
 """
 from __future__ import annotations
 
+import json
+
 from sqlalchemy import Connection, CursorResult, delete, exists, insert, select
 
 from text2anim.core.skeleton import Skeleton
@@ -61,7 +63,8 @@ def store_clips(s: Connection, prepared: list[PreparedClip], cache: SkeletonCach
         dict(name=p.name, character_id=clip_character[p.name], skeleton_id=clip_skeleton[p.name], fps=p.fps,
              frames=p.frames, duration=p.duration, core_begin=p.core[0], core_end=p.core[1],
              body_part=p.body_part, cyclic=p.cyclic, source=p.source, created=created,
-             start_posture=p.start_posture, end_posture=p.end_posture) for p in kept])
+             start_posture=p.start_posture, end_posture=p.end_posture,
+             description=json.dumps(p.description.to_dict(), sort_keys=True)) for p in kept])
     ids: dict[str, int] = {}
     for chunk in chunks([p.name for p in kept]):
         ids.update((n, i) for i, n in s.execute(select(tb.clips.c.id, tb.clips.c.name)

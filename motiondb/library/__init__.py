@@ -53,6 +53,7 @@ from text2anim.core.motion import Motion
 from . import capture, keyframed
 from .keyframes import CLIPS_DIR, POSTURE_OF, ClipData, ClipDataError, PlantSpec, load_json_dir, parse_clip
 from .near import with_near_synonyms
+from .actions import with_actions
 from .skeleton import ANKLE_HEIGHT, SHOE_SOLE, TOE_HEIGHT, canonical_skeleton
 
 if TYPE_CHECKING:  # the generator (scipy.interpolate, IK) is imported by build_clip only: seeding reads keyframed.npz
@@ -190,7 +191,8 @@ def build_all(fps: float = 30.0) -> tuple[BuiltClip, ...]:
 def builtin_clips(fps: float = 30.0) -> list[ClipRecord]:
     """The built-in library as :class:`ClipRecord` s on :func:`canonical_skeleton` (deterministic, cached):
     the keyframed clips no capture replaces, then the captured ones, with the near-synonyms of
-    ``near.json`` (:mod:`motiondb.library.near`) added to their verbs.
+    ``near.json`` (:mod:`motiondb.library.near`) added to their verbs and their actions from
+    ``actions.json`` (:mod:`motiondb.library.actions`).
 
     At the shipped rate (:data:`.keyframed.FPS`, 30 fps, what a database is seeded with) the
     keyframed clips are read from ``keyframed.npz`` (:mod:`.keyframed`); at another rate they
@@ -200,4 +202,4 @@ def builtin_clips(fps: float = 30.0) -> list[ClipRecord]:
     else:
         gone = capture.replaced()
         keyed = [b.record for b in build_all(float(fps)) if b.record.name not in gone]
-    return with_near_synonyms(keyed + list(capture.capture_records(float(fps))))
+    return with_actions(with_near_synonyms(keyed + list(capture.capture_records(float(fps)))))

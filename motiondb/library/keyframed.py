@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from text2anim.core.motion import Motion
-from text2anim.motiondb.types import ClipRecord
+from text2anim.motiondb.types import ClipDescription, ClipRecord
 
 from .keyframes import ClipDataError
 from .skeleton import canonical_skeleton
@@ -100,19 +100,21 @@ def records_of(meta: dict, planes) -> tuple[ClipRecord, ...]:
 
 
 @lru_cache(maxsize=1)
-def shipped(path: Path = ARRAYS) -> tuple[str, tuple[ClipRecord, ...], Contacts]:
-    """``(sources hash, records, contacts)`` of the shipped file: the keyframed clips at :data:`FPS`
-    (read-only motions) and the foot contacts of every seeded clip."""
+def shipped(path: Path = ARRAYS) -> tuple[str, tuple[ClipRecord, ...], Contacts, dict[str, ClipDescription]]:
+    """``(sources hash, records, contacts, descriptions)`` of the shipped file: the keyframed clips at
+    :data:`FPS` (read-only motions), and the foot contacts and measured descriptions (no actions) of
+    every seeded clip."""
     try:
         with np.load(path) as data:
             meta = json.loads(data["_meta"].tobytes().decode("utf-8"))
             records = records_of(meta, data)
         contacts = {name: [(str(side), int(a), int(b)) for side, a, b in rows]
                     for name, rows in meta["contacts"].items()}
+        described = {name: ClipDescription.from_dict(d) for name, d in meta["descriptions"].items()}
     except (OSError, KeyError, ValueError) as exc:
         raise ClipDataError(f"{path.name} cannot be read ({exc}): rebuild it "
                             "(python tools/library/build_keyframed.py)") from None
-    return str(meta["sources"]), records, contacts
+    return str(meta["sources"]), records, contacts, described
 
 
 def keyframed_records() -> tuple[ClipRecord, ...]:
@@ -123,3 +125,8 @@ def keyframed_records() -> tuple[ClipRecord, ...]:
 def seeded_contacts() -> Contacts:
     """The foot contacts of every clip a database is seeded with, by name, as shipped."""
     return shipped()[2]
+
+
+def seeded_descriptions() -> dict[str, ClipDescription]:
+    """The measured descriptions (no actions) of every clip a database is seeded with, by name, as shipped."""
+    return shipped()[3]

@@ -282,11 +282,12 @@ def test_an_unknown_posture_is_refused(empty_db, record):
 
 
 def _make_version_2(url: str) -> None:
-    """Turn a database of this version into what schema version 2 wrote (no ranking table)."""
+    """Turn a database of this version into what schema version 2 wrote (no ranking table, no descriptions)."""
     engine = create_engine(url)
     try:
         with engine.begin() as conn:
             conn.execute(text("DROP TABLE search_ranks"))
+            conn.execute(text("ALTER TABLE clips DROP COLUMN description"))
             conn.execute(text("UPDATE schema_version SET version = 2"))
     finally:
         engine.dispose()
@@ -331,7 +332,7 @@ def test_a_version_1_database_is_migrated_in_place(db_url, record):
     engine = create_engine(db_url)
     try:
         with engine.connect() as conn:
-            assert conn.execute(text("SELECT version FROM schema_version")).scalar() == SCHEMA_VERSION == 3
+            assert conn.execute(text("SELECT version FROM schema_version")).scalar() == SCHEMA_VERSION == 4
             # the columns were added with their default, for rows written by other tools
             conn.execute(text("SELECT start_posture, end_posture FROM clips")).all()
     finally:

@@ -7,8 +7,8 @@ Run after changing a clip's JSON or the generator (keyframes, planting, reach)::
 This is the one place the seeded keyframed frames are generated: every clip of
 :func:`motiondb.library.build_all` at :data:`motiondb.library.keyframed.FPS` that no captured clip replaces,
 with its metadata and the :func:`motiondb.library.keyframed.sources_hash` of what it was made from, and the
-foot contacts of every seeded clip (the captured ones from ``capture.npz``: rerun this after
-rebuilding that). The same sources give the same bytes. ``--check`` builds in memory and exits 1 when the file differs.
+foot contacts and the measured descriptions of every seeded clip (the captured ones from
+``capture.npz``: rerun this after rebuilding that). The same sources give the same bytes. ``--check`` builds in memory and exits 1 when the file differs.
 """
 from __future__ import annotations
 
@@ -37,6 +37,19 @@ def contacts(records) -> dict[str, list[list]]:
     return out
 
 
+def descriptions(records) -> dict[str, dict]:
+    """``{name: description}``: what storing each record measures (:func:`motiondb.description.describe`;
+    the actions come from ``actions.json`` when a database is seeded)."""
+    from text2anim.motiondb.description import describe
+
+    out = {}
+    for r in records:
+        d = describe(r.motion, r.core or (0.0, r.motion.duration)).to_dict()
+        del d["actions"]
+        out[r.name] = d
+    return out
+
+
 def arrays() -> dict[str, np.ndarray]:
     """The file's arrays, in order: ``_meta`` then each clip's frame planes."""
     from text2anim.motiondb.library import build_all, capture
@@ -59,6 +72,7 @@ def arrays() -> dict[str, np.ndarray]:
     # the contacts of the clips as seeded: the keyframed ones as read back from these arrays, the captured ones
     seeded = records_of(meta, out) + capture.capture_records(FPS)
     meta["contacts"] = contacts(seeded)
+    meta["descriptions"] = descriptions(seeded)
     return {"_meta": meta_array(meta), **out}
 
 
