@@ -1,62 +1,107 @@
-"""Verbs the motion database lacks: one error naming all of them, or the nearest motion by meaning.
+"""Verbs the motion database lacks: one error naming all of them, or a stand-in that does the same.
 
-``text2anim.nlp.meaning`` compares verbs by their chiVe word vectors.  Strict
-(the default): :func:`unknown_error` names every missing verb as the user wrote
-it (登る, not UniDic's lemma 上る) with the database verbs nearest in meaning.
-``--fallback nearest``: :func:`substitute` replaces each missing verb by the
-nearest database verb when it is a real neighbour (cosine at least
-``meaning.MIN_SIMILARITY`` and among the verb's ``meaning.MAX_RANK`` nearest
-vectors in the whole table) and records what it did, so the output and the report can say so.
+Strict (the default): :func:`unknown_error` names every missing verb as the user wrote it
+(登る, not UniDic's lemma 上る) with the database verbs nearest in meaning, and the stand-in
+``--fallback nearest`` would play or why there is none. ``--fallback nearest``:
+:func:`substitute` animates each missing verb with a clip that does the same thing, and
+records what it did and why, so the output and the report can say so.
+
+A clip stands in for a verb it does not list only when two independent resources agree:
+
+1. **what it does** (``text2anim.nlp.senses``, WordNet through JMdict): one of the verb's
+   bodily senses is the clip's action (its description's ``actions``; for a clip without
+   them, the first sense of its primary verb) or directly a kind of it (ぶらつく "stroll" is a
+   kind of walk), and a verb that travels (a kind of WordNet's travel/go/move) gets a clip
+   whose hips travel;
+2. **what it is near** (``text2anim.nlp.meaning``, chiVe vectors): one of the clip's verbs is
+   among the :data:`STANDIN_RANK` words nearest the verb in the whole vector table, at a
+   cosine of at least :data:`STANDIN_FLOOR`.
+
+The lexicon keeps a neighbour that only shares a context out (泳ぐ is near 潜る, but swimming is
+no ducking under a bar); the vectors keep a wrong English reading out (写生する's gloss
+"draw" is WordNet's pull). With neither, the verb is refused with what was looked for.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Sequence
 
-from text2anim.motiondb import MotionDB, UnknownVerbError
-from text2anim.nlp import meaning
+from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
+from text2anim.nlp import meaning, senses
 from text2anim.nlp.types import Analysis, MotionSpec
+
+#: One of a stand-in clip's verbs must be among this many vectors nearest the asked verb ...
+STANDIN_RANK = 30
+#: ... and at least this near (cosine).
+STANDIN_FLOOR = 0.30
+#: WordNet's travel.v.01 (travel, go, move, locomote): a verb that is a kind of it travels.
+TRAVEL = "01839438"
+
+
+@dataclass(frozen=True)
+class StandIn:
+    """Clip ``clip`` (animated as its verb ``verb``) stands in: the asked verb's ``sense`` is its
+    ``action`` (``kind_of`` False) or a kind of it (True); ``score`` the cosine of the vectors."""
+
+    verb: str
+    clip: str
+    sense: str
+    action: str
+    kind_of: bool
+    score: float
+
+    @property
+    def reason(self) -> str:
+        """Why, in words: ``stroll is a kind of walk``, ``swim is what it does``."""
+        asked, does = _lemmas([self.sense]), _lemmas([self.action])
+        return f"{asked} is a kind of {does}" if self.kind_of else f"both mean {does}"
 
 
 @dataclass(frozen=True)
 class Substitution:
-    """Motion ``id`` asked for ``written`` (no clip); ``used`` was animated instead (cosine ``score``)."""
+    """Motion ``id`` asked for ``written`` (no clip); ``used`` was animated instead (cosine ``score``),
+    ``reason`` says why it does the same (:class:`StandIn`)."""
 
     id: int
     written: str
     used: str
     score: float
+    reason: str = ""
 
     def to_dict(self) -> dict:
-        return {"id": self.id, "asked": self.written, "animated_as": self.used, "similarity": self.score}
+        return {"id": self.id, "asked": self.written, "animated_as": self.used, "similarity": self.score,
+                "because": self.reason}
 
     def __str__(self) -> str:
-        return f"{self.written} → {self.used} (nearest by meaning, cosine {self.score:.2f})"
+        return f"{self.written} → {self.used} ({self.reason}; cosine {self.score:.2f})"
 
 
 class UnknownVerbsError(UnknownVerbError):
     """Several motions (or one) whose verbs no clip has; the message names every one.
 
-    ``missing``: ``(written verb, [(nearest database verb, cosine), ...], stand-in or None)``
-    per missing verb, where the stand-in is what ``--fallback nearest`` would play.
+    ``missing``: ``(written verb, [(nearest database verb, cosine), ...], stand-in or None, why)``
+    per missing verb, where the stand-in is what ``--fallback nearest`` would play and ``why``
+    says why it does the same (or why nothing may stand in).
     """
 
-    def __init__(self, missing: list[tuple[str, list[tuple[str, float]], str | None]], hint: bool = True):
+    def __init__(self, missing: list[tuple[str, list[tuple[str, float]], str | None, str]], hint: bool = True):
         self.missing = tuple(missing)
         self.verb = missing[0][0]
         self.suggestions = tuple((v, "") for v, _ in missing[0][1])
         parts = []
-        for written, near, standin in missing:
+        for written, near, standin, why in missing:
             text = f"nearest by meaning: {', '.join(v for v, _ in near)}" if near else "nothing near in meaning"
-            if hint:
-                text += f"; --fallback nearest would play {standin}" if standin else "; no stand-in near enough"
+            if standin and hint:
+                text += f"; --fallback nearest would play {standin}: {why}"
+            elif not standin:
+                text += f"; no stand-in: {why}"
             parts.append(f"{written} ({text})")
         noun = "verb" if len(missing) == 1 else "verbs"
         msg = f"no clip in the motion database for the {noun} " + ", ".join(parts)
-        if not hint:
-            msg += (f"; none is near enough in meaning to stand in (cosine >= {meaning.MIN_SIMILARITY} "
-                    f"and among the verb's {meaning.MAX_RANK} nearest words)")
-        else:
+        if hint:
             msg += "; --skip-unknown drops such motions, `text2anim db verbs` lists the verbs there are"
+        else:
+            msg += "; nothing was animated in place of a verb no clip does"
         Exception.__init__(self, msg)
 
 
@@ -69,34 +114,77 @@ def database_verbs(db: MotionDB) -> list[str]:
     return [v.lemma for v in db.verbs()]
 
 
-def stand_in(verb: str, verbs: list[str]) -> tuple[str, float] | None:
-    """The database verb ``--fallback nearest`` plays for ``verb``: the nearest by meaning,
-    if it is a real neighbour (module docstring); else None."""
-    near = meaning.nearest(verb, verbs, n=1, floor=meaning.MIN_SIMILARITY, within=meaning.MAX_RANK)
-    return near[0] if near else None
+def clip_actions(clip: ClipInfo) -> tuple[str, ...]:
+    """What ``clip`` does: its description's actions, else the first sense of its primary verb."""
+    return clip.description.actions or senses.senses(clip.verb)[:1]
+
+
+def _travels(sense: str, depth: int = 6) -> bool:
+    """Is ``sense`` a kind of travelling (WordNet's travel.v.01 within ``depth`` hypernym steps)?"""
+    level = {sense}
+    for _ in range(depth):
+        if TRAVEL in level:
+            return True
+        level = {h for s in level for h in senses.hypernyms(s)}
+    return TRAVEL in level
+
+
+def find_stand_in(verb: str, clips: Sequence[ClipInfo]) -> tuple[StandIn | None, str]:
+    """The clip that stands in for ``verb`` (module docstring), or None with what was looked for.
+
+    Of several, the one matching the verb's earliest sense, then the same sense before a
+    kind of it, then the nearest by the vectors, then the first clip given.
+    """
+    wanted = senses.senses(verb)
+    if not wanted:
+        return None, "what it means as a bodily action is not in the lexicon (JMdict, WordNet)"
+    found: list[tuple[tuple, StandIn]] = []
+    lexical: dict[str, None] = {}  # senses some clip does, in order
+    for order, clip in enumerate(clips):
+        for action in clip_actions(clip):
+            for rank, sense in enumerate(wanted):
+                how = senses.relation(sense, action)
+                if how is None or (_travels(sense) and not clip.description.locomotion):
+                    continue
+                lexical[sense] = None
+                near = meaning.nearest(verb, clip.verbs, n=1, floor=STANDIN_FLOOR, within=STANDIN_RANK)
+                if near:
+                    found.append(((rank, how, -near[0][1], order),
+                                  StandIn(clip.verb, clip.name, sense, action, how == 1, near[0][1])))
+    if found:
+        return min(found, key=lambda f: f[0])[1], ""
+    if lexical:
+        return None, f"the clips that do {_lemmas(lexical)} are not near it in meaning (word vectors)"
+    return None, f"no clip does {_lemmas(wanted)} or what it is a kind of"
+
+
+def _lemmas(offsets) -> str:
+    return ", ".join(dict.fromkeys(senses.name(o).split(" (")[0] for o in offsets))
 
 
 def unknown_error(analysis: Analysis, unknown: dict[int, UnknownVerbError], db: MotionDB,
                   hint: bool = True) -> UnknownVerbsError:
     """The error for the motions ``unknown``: every missing verb once, as written, with its
-    three nearest database verbs by meaning and the stand-in the fallback would play."""
+    three nearest database verbs by meaning and the stand-in the fallback would play (or why none)."""
     verbs = database_verbs(db)
+    clips = db.clips()
     missing: dict[str, tuple] = {}
     for spec in analysis.motions:
         if spec.id in unknown and _written(spec) not in missing:
-            standin = stand_in(spec.verb, verbs)
-            missing[_written(spec)] = (meaning.nearest(spec.verb, verbs, n=3), standin[0] if standin else None)
-    return UnknownVerbsError([(w, near, st) for w, (near, st) in missing.items()], hint=hint)
+            standin, why = find_stand_in(spec.verb, clips)
+            missing[_written(spec)] = (meaning.nearest(spec.verb, verbs, n=3),
+                                       standin.verb if standin else None, standin.reason if standin else why)
+    return UnknownVerbsError([(w, near, st, why) for w, (near, st, why) in missing.items()], hint=hint)
 
 
 def substitute(analysis: Analysis, unknown: dict[int, UnknownVerbError],
                db: MotionDB) -> tuple[Analysis, tuple[Substitution, ...]]:
-    """``analysis`` with each unknown verb replaced by the nearest database verb by meaning.
+    """``analysis`` with each unknown verb animated by a clip that does the same (module docstring).
 
-    Raises :class:`UnknownVerbsError` naming the verbs that have nothing near
-    enough (see the module docstring): no unrelated motion is played.
+    Raises :class:`UnknownVerbsError` naming the verbs nothing may stand in for: no
+    unrelated motion is played.
     """
-    verbs = database_verbs(db)
+    clips = db.clips()
     subs: list[Substitution] = []
     specs = []
     far: dict[int, UnknownVerbError] = {}
@@ -104,13 +192,12 @@ def substitute(analysis: Analysis, unknown: dict[int, UnknownVerbError],
         if spec.id not in unknown:
             specs.append(spec)
             continue
-        near = stand_in(spec.verb, verbs)
-        if near is None:
+        standin, _ = find_stand_in(spec.verb, clips)
+        if standin is None:
             far[spec.id] = unknown[spec.id]
             continue
-        used, score = near
-        subs.append(Substitution(spec.id, _written(spec), used, score))
-        specs.append(replace(spec, verb=used, reading=""))
+        subs.append(Substitution(spec.id, _written(spec), standin.verb, standin.score, standin.reason))
+        specs.append(replace(spec, verb=standin.verb, reading=""))
     if far:
         raise unknown_error(analysis, far, db, hint=False)
     return replace(analysis, motions=tuple(specs)), tuple(subs)

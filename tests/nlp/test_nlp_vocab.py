@@ -42,39 +42,52 @@ def test_error_names_every_missing_verb_as_written(library_db):
     assert "nearest by meaning" in msg and "潜る" in msg.split("泳ぐ")[1]
 
 
-def test_fallback_nearest_animates_and_says_so(library_db, tmp_path):
+def test_fallback_nearest_animates_a_clip_that_does_the_same_and_says_why(library_db, tmp_path):
+    """ぶらつく (stroll) has no clip; strolling is a kind of walking (WordNet) and 歩く is among its
+    nearest words (chiVe), so the walk plays, and stderr and the report say so and why."""
     out, report = tmp_path / "a.bvh", tmp_path / "r.json"
-    strict = run("太郎は階段を降りる。", "-o", out, "--db", library_db)
-    assert strict.returncode == 2 and not out.exists() and "降りる" in strict.stderr
-    proc = run("太郎は階段を降りる。", "-o", out, "--db", library_db, "--fallback", "nearest", "--report", report)
+    strict = run("太郎は公園をぶらつく。", "-o", out, "--db", library_db)
+    assert strict.returncode == 2 and not out.exists() and "ぶらつく" in strict.stderr
+    assert "--fallback nearest would play 歩く: stroll is a kind of walk" in strict.stderr
+    proc = run("太郎は公園をぶらつく。", "-o", out, "--db", library_db, "--fallback", "nearest", "--report", report)
     assert proc.returncode == 0, proc.stderr
-    assert "fallback: 降りる → 向かう" in proc.stderr
+    assert "fallback: ぶらつく → 歩く (stroll is a kind of walk;" in proc.stderr
     data = json.loads(report.read_text())
-    assert [(f["id"], f["asked"], f["animated_as"]) for f in data["fallbacks"]] == [(1, "降りる", "向かう")]
-    assert data["fallbacks"][0]["similarity"] >= meaning.MIN_SIMILARITY
-    assert [e["verb"] for e in data["time_table"]] == ["向かう"]
+    assert [(f["id"], f["asked"], f["animated_as"], f["because"]) for f in data["fallbacks"]] == \
+        [(1, "ぶらつく", "歩く", "stroll is a kind of walk")]
+    assert [e["verb"] for e in data["time_table"]] == ["歩く"]
+
+
+@pytest.mark.parametrize("text, verb, why", [
+    ("太郎は泳ぐ。", "泳ぐ", "no clip does swim or what it is a kind of"),  # 潜る (duck) is only near in the vectors
+    ("太郎は階段を降りる。", "降りる", "no clip does descend"),  # 向かう (head for) was the vectors' stand-in
+    ("太郎は絵を写生する。", "写生する", "not near it in meaning"),  # gloss "draw" is WordNet's pull
+])
+def test_fallback_refuses_what_no_clip_does_and_says_what_it_looked_for(library_db, text, verb, why):
+    proc = run(text, "-o", "x.bvh", "--db", library_db, "--fallback", "nearest")
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert verb in proc.stderr and why in proc.stderr and "nothing was animated" in proc.stderr
 
 
 def test_plan_takes_fallback_nearest_too(library_db):
     """``text2anim plan --fallback nearest`` plans the stand-in and says so; strict refuses (exit 2)."""
-    strict = run("plan", "太郎は階段を降りて、座る。", "--db", library_db)
-    assert strict.returncode == 2 and "降りる" in strict.stderr and strict.stdout == ""
-    proc = run("plan", "太郎は階段を降りて、座る。", "--db", library_db, "--fallback", "nearest", "--json")
+    strict = run("plan", "太郎は公園をぶらついて、座る。", "--db", library_db)
+    assert strict.returncode == 2 and "ぶらつく" in strict.stderr and strict.stdout == ""
+    proc = run("plan", "太郎は公園をぶらついて、座る。", "--db", library_db, "--fallback", "nearest", "--json")
     assert proc.returncode == 0, proc.stderr
-    assert "fallback: 降りる → 向かう" in proc.stderr
+    assert "fallback: ぶらつく → 歩く" in proc.stderr
     table = json.loads(proc.stdout)
-    assert "向かう" in json.dumps(table, ensure_ascii=False) and "降りる" not in json.dumps(table, ensure_ascii=False)
+    assert "歩く" in json.dumps(table, ensure_ascii=False) and "ぶらつく" not in json.dumps(table, ensure_ascii=False)
     bad = run("plan", "太郎は歩く。", "--db", library_db, "--fallback", "closest")
     assert bad.returncode == 2 and "--fallback" in bad.stderr
 
 
 @pytest.mark.parametrize("text, verb", [("太郎は花びらを散らす。", "散らす"), ("太郎はガムを噛む。", "噛む")])
 def test_fallback_refuses_a_verb_nothing_is_near(library_db, text, verb):
-    """散らす: no library verb is even loosely near; 噛む: ちぎる (tear) is the nearest library
-    verb by cosine but not among 噛む's nearest words, so no stand-in is played."""
+    """散らす (scatter), 噛む (bite): no clip scatters or bites, whatever the vectors' neighbours."""
     with MotionDB.open(library_db) as db, pytest.raises(UnknownVerbError) as exc:
         plan_text(text, db, fallback="nearest")
-    assert verb in str(exc.value) and "near enough" in str(exc.value)
+    assert verb in str(exc.value) and "no stand-in: no clip does" in str(exc.value)
 
 
 @pytest.mark.parametrize("text, clip", [
