@@ -27,6 +27,7 @@ from dataclasses import dataclass, replace
 from typing import Sequence
 
 from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
+from text2anim.motiondb.seed import BUILTIN_SOURCE
 from text2anim.nlp import meaning, senses
 from text2anim.nlp.types import Analysis, MotionSpec
 
@@ -40,21 +41,13 @@ TRAVEL = "01839438"
 
 @dataclass(frozen=True)
 class StandIn:
-    """Clip ``clip`` (animated as its verb ``verb``) stands in: the asked verb's ``sense`` is its
-    ``action`` (``kind_of`` False) or a kind of it (True); ``score`` the cosine of the vectors."""
+    """Clip ``clip`` (animated as its verb ``verb``) stands in, for ``reason`` (in words: ``stroll is
+    a kind of walk``, ``both mean throw``, ``投げ込む is a way of 投げる``); ``score`` the cosine of the vectors."""
 
     verb: str
     clip: str
-    sense: str
-    action: str
-    kind_of: bool
+    reason: str
     score: float
-
-    @property
-    def reason(self) -> str:
-        """Why, in words: ``stroll is a kind of walk``, ``swim is what it does``."""
-        asked, does = _lemmas([self.sense]), _lemmas([self.action])
-        return f"{asked} is a kind of {does}" if self.kind_of else f"both mean {does}"
 
 
 @dataclass(frozen=True)
@@ -115,8 +108,11 @@ def database_verbs(db: MotionDB) -> list[str]:
 
 
 def clip_actions(clip: ClipInfo) -> tuple[str, ...]:
-    """What ``clip`` does: its description's actions, else the first sense of its primary verb."""
-    return clip.description.actions or senses.senses(clip.verb)[:1]
+    """What ``clip`` does: its description's actions; for an imported clip without them, the first
+    sense of its primary verb (a built-in clip without actions stands in for nothing)."""
+    if clip.description.actions or clip.source.startswith(BUILTIN_SOURCE):
+        return clip.description.actions
+    return senses.senses(clip.verb)[:1]
 
 
 def _travels(sense: str, depth: int = 6) -> bool:
@@ -133,11 +129,13 @@ def find_stand_in(verb: str, clips: Sequence[ClipInfo]) -> tuple[StandIn | None,
     """The clip that stands in for ``verb`` (module docstring), or None with what was looked for.
 
     Of several, the one matching the verb's earliest sense, then the same sense before a
-    kind of it, then the nearest by the vectors, then the first clip given.
+    kind of it, then the nearest by the vectors, then the first clip given. A compound verb
+    whose second verb keeps the first one's action (``senses.compound_head``: 投げ込む) that
+    WordNet cannot place is played as its first verb, when the vectors agree.
     """
     wanted = senses.senses(verb)
     if not wanted:
-        return None, "what it means as a bodily action is not in the lexicon (JMdict, WordNet)"
+        return _compound(verb, clips, "what it means as a bodily action is not in the lexicon (JMdict, WordNet)")
     found: list[tuple[tuple, StandIn]] = []
     lexical: dict[str, None] = {}  # senses some clip does, in order
     for order, clip in enumerate(clips):
@@ -149,13 +147,31 @@ def find_stand_in(verb: str, clips: Sequence[ClipInfo]) -> tuple[StandIn | None,
                 lexical[sense] = None
                 near = meaning.nearest(verb, clip.verbs, n=1, floor=STANDIN_FLOOR, within=STANDIN_RANK)
                 if near:
-                    found.append(((rank, how, -near[0][1], order),
-                                  StandIn(clip.verb, clip.name, sense, action, how == 1, near[0][1])))
+                    asked, does = _lemmas([sense]), _lemmas([action])
+                    reason = f"{asked} is a kind of {does}" if how else f"both mean {does}"
+                    found.append(((rank, how, -near[0][1], order), StandIn(clip.verb, clip.name, reason, near[0][1])))
     if found:
         return min(found, key=lambda f: f[0])[1], ""
     if lexical:
-        return None, f"the clips that do {_lemmas(lexical)} are not near it in meaning (word vectors)"
-    return None, f"no clip does {_lemmas(wanted)} or what it is a kind of"
+        return _compound(verb, clips, f"the clips that do {_lemmas(lexical)} are not near it in meaning (word vectors)")
+    return _compound(verb, clips, f"no clip does {_lemmas(wanted)} or what it is a kind of")
+
+
+def _compound(verb: str, clips: Sequence[ClipInfo], why: str) -> tuple[StandIn | None, str]:
+    """The first clip that lists and does ``verb``'s first verb (one of that verb's senses is the clip's
+    action or a kind of it), when ``verb`` is such a compound and that verb is among its nearest
+    words (module docstring); else None and ``why``."""
+    parts = senses.compound_head(verb)
+    if parts is None:
+        return None, why
+    head, tail = parts
+    near = meaning.nearest(verb, [head], n=1, floor=STANDIN_FLOOR, within=STANDIN_RANK)
+    meant = senses.senses(head)  # the clip must do what the first verb means: 叩く's clip claps, and
+    clip = next((c for c in clips if head in c.verbs and any(  # 叩きのめす (beat up) is no clapping
+        senses.relation(m, a) is not None for m in meant for a in clip_actions(c))), None)
+    if not near or clip is None:
+        return None, why + f"; nor does its first verb {head} stand in" + ("" if clip else f" (no clip does {head})")
+    return StandIn(head, clip.name, f"{verb} is {head} + {tail}, a way of {head}", near[0][1]), ""
 
 
 def _lemmas(offsets) -> str:

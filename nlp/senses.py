@@ -19,11 +19,12 @@ from pathlib import Path
 
 DATA = Path(__file__).with_name("verb_senses.json.gz")
 
-#: WordNet lexicographer files of senses a body can act out. A verb's senses in the
-#: others (stative, cognition, emotion, possession, social, weather) are no bodily action:
-#: 考える's "think" is cognition, and never makes a clip a stand-in.
+#: WordNet lexicographer files of senses a body can act out or show (pondering, reading: the
+#: cognition a clip shows). A verb's senses in the others (stative, emotion, possession,
+#: social, weather) are no action of a body: 背負う's "be burdened with" is stative, and never
+#: makes a clip a stand-in.
 BODILY = frozenset(["motion", "contact", "body", "consumption", "communication", "competition",
-                    "perception", "creation", "change"])
+                    "perception", "creation", "change", "cognition"])
 
 
 @lru_cache(maxsize=1)
@@ -74,4 +75,41 @@ def relation(sense: str, action: str) -> int | None:
         return 0
     if action in hypernyms(sense) and hypernyms(action):
         return 1
+    return None
+
+
+#: Second verbs of a compound verb (V1連用形 + V2) that leave V1's action as it is and add a path,
+#: a direction, a strength or an aspect: 駆け寄る runs (up to), 走り回る runs (around), 握り締める
+#: grips (tightly). Not 上げる/下ろす/出す, which change what is done (抱き上げる lifts, it does not
+#: hug), nor 込む, which often does (踏み込む steps in, it does not stamp), nor a second action (泣き叫ぶ).
+MANNER_V2 = frozenset(["寄る", "抜ける", "回る", "締める", "付ける", "掛かる", "かかる", "続ける",
+                       "始める", "直す", "まくる", "捲る", "通す", "切る", "留める", "集める", "のめす",
+                       "巡らす", "入る", "付く"])
+
+
+def _words(text: str) -> list[tuple[str, str, str, str]]:
+    """``(surface, pos1, cForm, orthBase)`` of each word of ``text`` (copied out: the tagger's
+    nodes are only valid until its next call)."""
+    from .tokens import tagger
+
+    return [(w.surface, w.feature.pos1 or "", w.feature.cForm or "", w.feature.orthBase or w.surface)
+            for w in tagger()(text)]
+
+
+@lru_cache(maxsize=4096)
+def compound_head(verb: str) -> tuple[str, str] | None:
+    """``(V1, V2)`` dictionary forms when ``verb`` is a compound verb V1 + V2 whose V2 keeps V1's
+    action (:data:`MANNER_V2`): 駆け寄る -> (駆ける, 寄る); else None (one verb, a phrase, or a V2
+    that changes the action)."""
+    if not 3 <= len(verb) <= 12 or _words(verb)[-1][1] != "動詞":
+        return None
+    for i in range(1, len(verb) - 1):
+        first = _words(verb[:i] + "ます")  # 投げ alone is read as a noun; 投げます is the verb
+        second = _words(verb[i:])
+        if len(first) != 2 or len(second) != 1 or first[0][0] != verb[:i]:
+            continue
+        (_, pos1, form1, base1), (surface2, pos2, form2, base2) = first[0], second[0]
+        if (pos1 == "動詞" and form1.startswith("連用形") and pos2 == "動詞" and form2.startswith("終止形")
+                and (surface2 in MANNER_V2 or base2 in MANNER_V2)):
+            return base1, base2
     return None

@@ -10,7 +10,8 @@ Sources (both downloaded from the registries this project uses, neither shipped 
 For every JMdict headword (kanji or kana spelling) with a verb sense (godan, ichidan, サ変 noun):
 the English glosses of its first ``SENSES`` verb senses, each read as an English verb
 ("to swim" -> swim; "to wave one's hand" -> wave_hand, then wave; "beckoning" -> beckon), and
-the most frequent WordNet verb synset of each (WordNet lists senses by frequency). The
+the most frequent WordNet verb synset of each (WordNet lists senses by frequency) of the first
+reading that is a bodily sense (``nlp.senses.BODILY``: "carry on one's back" is carry, not "carry on"). The
 output keeps, per word, a list per JMdict sense of those synsets in gloss order;
 and for every synset reached (and every synset the built-in clips' actions name,
 ``motiondb/library/actions.json``), its
@@ -27,13 +28,15 @@ import sqlite3
 import sys
 from pathlib import Path
 
+from text2anim.nlp.senses import BODILY
+
 ACTIONS = Path(__file__).resolve().parents[2] / "motiondb" / "library" / "actions.json"  # clips' synsets, kept too
 SENSES = 2  # JMdict verb senses read per headword: the first are the common ones
 LEXNAMES = {29: "body", 30: "change", 31: "cognition", 32: "communication", 33: "competition",
             34: "consumption", 35: "contact", 36: "creation", 37: "emotion", 38: "motion",
             39: "perception", 40: "possession", 41: "social", 42: "stative", 43: "weather"}
 VERB_POS = re.compile(r"verb|suru")
-OWNERS = {"one's", "someone's", "someone", "something", "sth", "somebody", "a", "an", "the"}
+OWNERS = {"one's", "someone's", "someone", "something", "sth", "somebody"}  # "throw a punch" is no throw
 OBJECTS = re.compile(r"\b(one's|oneself|someone's|someone|something|sth|somebody|a|an|the)\b")
 
 
@@ -57,19 +60,33 @@ def read_wordnet(folder: Path) -> tuple[dict[str, list[str]], dict[str, tuple[st
     return index, synsets
 
 
+#: Words a gloss may end in after its verb ("throw into", "kick hard", "carry around"): dropped
+#: one at a time when the whole phrase is not a WordNet verb.
+TRAILING = {"about", "around", "at", "away", "back", "down", "in", "into", "off", "on", "onto", "out",
+            "over", "through", "to", "up", "hard", "fast", "well", "together"}
+
+
 def english_verbs(gloss: str) -> list[str]:
-    """WordNet lemmas to try for one gloss, most specific first."""
+    """WordNet lemmas to try for one gloss, most specific first: the phrase, without its objects
+    ("wave one's hand" -> wave_hand, wave), its first half ("cry and shout" -> cry), without
+    trailing particles and adverbs ("grasp tightly" -> grasp, "throw into" -> throw), a サ変
+    noun's gloss as a verb ("jogging" -> jog)."""
     g = re.sub(r"\(.*?\)|\[.*?\]", " ", gloss).lower().strip()
     g = g.removeprefix("to ").strip()
-    if not g or len(g.split()) > 4:
+    if not g or len(g.split()) > 5:
         return []
     out = [g, OBJECTS.sub(" ", g)]
-    words = out[-1].split()
+    first = re.split(r"\b(?:and|or)\b|,|;", out[-1])[0]
+    words = first.split()
+    out.append(first)
+    if len(g.split()) > 1 and g.split()[1] in OWNERS:  # "wave one's hand" -> wave; not "draw near" -> draw
+        out.append(g.split()[0])
+    while len(words) > 1 and (words[-1] in TRAILING or words[-1].endswith("ly")):
+        words = words[:-1]
+        out.append(" ".join(words))
     if words and words[0].endswith("ing") and len(words[0]) > 5:  # a サ変 noun's gloss: beckoning
         stem = words[0][:-3]
         out += [stem, stem + "e", stem[:-1] if len(stem) > 2 and stem[-1] == stem[-2] else stem]
-    if len(g.split()) > 1 and g.split()[1] in OWNERS:  # "wave one's hand" -> wave; not "draw near" -> draw
-        out.append(g.split()[0])
     return list(dict.fromkeys("_".join(w.split()) for w in out if w.strip()))
 
 
@@ -107,7 +124,9 @@ def derive(jmdict: Path, wordnet: Path) -> dict:
     for word, senses in read_jmdict(jmdict).items():
         found: list[list[str]] = []
         for glosses in senses:
-            hits = [next((index[v][0] for v in english_verbs(g) if v in index), None) for g in glosses]
+            hits = [next((index[v][0] for v in english_verbs(g)  # the first reading a body can act out:
+                          if v in index and synsets[index[v][0]][0] in BODILY), None)  # not "carry on"
+                    for g in glosses]
             found.append(list(dict.fromkeys(h for h in hits if h)))
         if any(found):
             words[word] = found
