@@ -152,6 +152,8 @@ def _show(c) -> str:
         f"core:       {c.core[0]:.3f} .. {c.core[1]:.3f} s",
         f"body part:  {c.body_part or 'whole body'}",
         f"postures:   starts {c.start_posture}, ends {c.end_posture}",
+        f"does:       {_actions(c)}",
+        f"body:       {_body(c.description)}",
         f"cyclic:     {'yes' if c.cyclic else 'no'}",
         f"contacts:   left {intervals(c.left_contacts)}",
         f"            right {intervals(c.right_contacts)}   (frames [start, stop))",
@@ -159,6 +161,24 @@ def _show(c) -> str:
         f"stored:     {c.created.strftime('%Y-%m-%d %H:%M:%S')} UTC",
     ]
     return "\n".join(lines)
+
+
+def _actions(c) -> str:
+    """A clip's WordNet actions for people: ``walk (verb.motion)``; what it stands in for (api/fallback.py)."""
+    if not c.description.actions:
+        if c.source.startswith("builtin"):
+            return "- (stands in for no verb it does not list)"
+        return f"- (when a stand-in is sought: what {c.verb} means)"
+    from text2anim.nlp import senses
+
+    return ", ".join(senses.name(a) if senses.known(a) else a for a in c.description.actions)
+
+
+def _body(d) -> str:
+    """What the body does, measured (:class:`motiondb.types.ClipDescription`)."""
+    moving = ", ".join(d.moving) or "nothing"
+    return (f"{'travels' if d.locomotion else 'in place'}; moving: {moving}; "
+            f"energy {d.energy:.2f} leg lengths/s")
 
 
 def _progress(done: int, total: int, path: str) -> None:
