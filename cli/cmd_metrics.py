@@ -27,12 +27,18 @@ def add_arguments(p):
 def run(args) -> int:
     from text2anim.core import read_bvh
     from text2anim.core.metrics import BUILTIN_LIMITS, MAX_FROZEN, compute_metrics
-    m = read_bvh(args.file, **read_options(args))
+    from text2anim.core.size import HUMAN_LEG, at_human_size
+
+    m, k = at_human_size(read_bvh(args.file, **read_options(args)))  # a 0.2 m or 20 m body: as a person's
     met = compute_metrics(m)
     if args.json:
-        print(safe_json(json.dumps({"file": args.file, **met.to_dict()}, ensure_ascii=False, indent=2)))
+        print(safe_json(json.dumps({"file": args.file, "scaled_to_human": k, **met.to_dict()},
+                                   ensure_ascii=False, indent=2)))
         return 0
     say(f"{args.file}: {met.frames} frames, {met.fps:.3f} fps, {met.duration:.3f} s")
+    if k != 1.0:
+        say(f"measured at human size: the body scaled by {k:.4g} to legs of {HUMAN_LEG} m "
+            "(lengths and speeds below are the scaled body's)")
     print(f"{'foot':6} {'contact frames':>14} {'skate cm/s':>11} {'slide cm':>9}")
     for side, fs in met.foot_skate.items():
         print(f"{side:6} {fs.contact_frames:14d} {fs.mean_speed_cm_s:11.2f} {fs.slide_cm:9.2f}")

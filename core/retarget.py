@@ -82,6 +82,10 @@ AIM = {
 #: Height (m) below which a toe keeps the source's height above the floor (see :func:`foot_height`):
 #: just above the 5 cm under which docs/timetable.md section 3 calls a foot low; the swing above it scales.
 GROUND_BAND = 0.06
+#: Leg-length ratios within which a body counts as the source's size (the band keeps toe heights) ...
+SAME_SIZE = 1.25
+#: ... and beyond which toe heights scale like every other length (see :func:`foot_height`).
+OTHER_SIZE = 1.5
 #: Seconds over which the hips' lowering (where a leg cannot reach) is spread.
 DROP_WINDOW = 0.2
 _LIMBS = {f"{s}_{k}": (f"{s}{a}", f"{s}{b}", f"{s}{c}") for s in ("left", "right") for k, (a, b, c) in (
@@ -308,13 +312,19 @@ def _aim_torso(out: Motion, source: Motion, mapping: Mapping, world: dict[str, n
 
 
 def foot_height(y: np.ndarray, s: float) -> np.ndarray:
-    """A toe's height on the target: as the source's up to :data:`GROUND_BAND`, scaled by ``s`` above it.
+    """A toe's height on the target: as the source's up to :data:`GROUND_BAND`, scaled by ``s`` above it,
+    for a body of about the source's size; scaled by ``s`` throughout for a body of another size.
 
     Contact and the first centimetres of a step are a matter of the ground, not of the body's size:
     scaled by 0.93, a toe skimming at 5.2 cm would scuff at 4.8 cm (and count as skating, docs/timetable.md
-    section 3); the swing above the band scales with the legs. Continuous at the band.
+    section 3); the swing above the band scales with the legs. Continuous at the band. A 0.2 m or a 20 m
+    character is another matter: 4 cm of sole under a 0.2 m body is a quarter of its height (its legs
+    could not reach down, it would squat and float), so outside :data:`SAME_SIZE` the band fades out
+    (fully gone at :data:`OTHER_SIZE`) and every height scales with the legs.
     """
-    return np.where(y <= GROUND_BAND, y, GROUND_BAND + s * (y - GROUND_BAND))
+    w = float(np.clip((np.log(OTHER_SIZE) - abs(np.log(s))) / (np.log(OTHER_SIZE) - np.log(SAME_SIZE)), 0.0, 1.0))
+    kept = np.where(y <= GROUND_BAND, y, GROUND_BAND + s * (y - GROUND_BAND))
+    return w * kept + (1.0 - w) * s * y
 
 
 def _limb_goals(out: Motion, source: Motion, mapping: Mapping, world: dict[str, np.ndarray]):

@@ -12,8 +12,8 @@ import numpy as np
 
 from text2anim.core.bodyparts import BodyMapError, body_map
 from text2anim.core.motion import Motion
+from text2anim.core.size import leg_length
 
-from .postures import leg_length
 from .types import ClipDescription
 
 #: Hips travelling faster than this (leg lengths per second, horizontally, start to end of

@@ -9,6 +9,7 @@ import numpy as np
 
 from text2anim.core.bodyparts import BodyMapError, body_map
 from text2anim.core.motion import Motion
+from text2anim.core.size import leg_length
 from text2anim.core.skeleton import Skeleton
 
 from .types import DEFAULT_POSTURE, Posture
@@ -36,17 +37,6 @@ def _leg_joints(skel: Skeleton, side: str) -> tuple[int, int, int, int]:
     if knee < 0 or hip < 0:
         raise BodyMapError(f"the {side} leg has no knee and hip above its ankle")
     return hip, knee, ankle, toe
-
-
-def leg_length(skel: Skeleton) -> float:
-    """Rest-pose height (metres) of the hip joints above the lowest foot joint: 0.86 m on the
-    built-in 1.70 m skeleton. Raises :class:`BodyMapError` without two legs, or when it is not positive."""
-    legs = [_leg_joints(skel, side) for side in ("left", "right")]
-    rest = skel.rest_positions()
-    length = float(np.mean([rest[leg[0], 1] for leg in legs]) - rest[[j for leg in legs for j in leg[2:]], 1].min())
-    if not length > 1e-6:
-        raise BodyMapError("the skeleton's hips are not above its feet in the rest pose")
-    return length
 
 
 def classify_posture(motion: Motion, frame: int = 0) -> Posture:

@@ -1,0 +1,69 @@
+"""Characters of any size (issue 29): a 0.2 m, a 1.7 m and a 20 m character move alike.
+
+The rigs are Mixamo-named glTF characters the tests make (an A-pose rest, an armature scaled by 0.01,
+joint translations in centimetres), at three heights; the sentence is animated with the built-in library
+and retargeted onto each as ``--rig`` does. Before, the toes kept the source's heights in absolute metres:
+the 0.2 m character stood on 4 cm soles, a quarter of its height, its legs could not reach down, and it
+squatted and floated.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import text2anim
+from rig_builders import mixamo_glb
+from text2anim.core import read_bvh
+from text2anim.core.metrics import BUILTIN_LIMITS, quality
+from text2anim.core.size import HUMAN_LEG, at_human_size, leg_length
+from text2anim.export import ExportOptions
+
+TEXT = "太郎は走って、ボールを蹴る。"
+HEIGHTS = (0.2, 1.7, 20.0)
+
+
+@pytest.fixture(scope="module")
+def outputs(library_db, tmp_path_factory):
+    """Height -> the exported motion on a rig of that height (metres), read back from its BVH."""
+    tmp = tmp_path_factory.mktemp("sizes")
+    anim = text2anim.animate(TEXT, db=library_db)
+    out = {}
+    for h in HEIGHTS:
+        rig = mixamo_glb(tmp / f"rig_{h}.glb", scale=h / 1.7)
+        path, = anim.save_bvh(tmp / f"out_{h}.bvh", ExportOptions(rig=rig))
+        out[h] = read_bvh(path, scale=1.0)
+    return out
+
+
+def _relative(motion) -> tuple[np.ndarray, float]:
+    """World joint positions in leg lengths ``(T, J, 3)``, and the leg length (m)."""
+    leg = leg_length(motion.skeleton)
+    return motion.positions / leg, leg
+
+
+def test_every_size_moves_as_the_human_sized_one(outputs):
+    ref, ref_leg = _relative(outputs[1.7])
+    for h in (0.2, 20.0):
+        rel, leg = _relative(outputs[h])
+        assert leg == pytest.approx(ref_leg * h / 1.7, rel=1e-6)
+        assert np.abs(rel - ref).max() < 5e-3, h  # the same pose, frame by frame (up to the BVH text's digits)
+
+
+def test_the_small_character_stands_on_the_floor_and_does_not_squat(outputs):
+    rel, _ = _relative(outputs[0.2])
+    names = outputs[0.2].skeleton.names
+    hips = names.index("mixamorig:Hips")
+    feet = [i for i, n in enumerate(names) if "Foot" in n or "Toe" in n]
+    lowest = rel[:, feet, 1].min(axis=1)
+    assert np.median(lowest) < 0.08  # soles on the floor as a person's (it floated at 0.46 leg lengths)
+    assert np.median(rel[:, hips, 1]) > 0.95  # standing hips, about one leg length up
+
+
+@pytest.mark.parametrize("h", HEIGHTS)
+def test_every_size_meets_the_built_in_limits_measured_at_human_size(outputs, h):
+    motion, k = at_human_size(outputs[h])
+    assert (k == 1.0) == (h == 1.7)
+    assert leg_length(motion.skeleton) == pytest.approx(HUMAN_LEG if h != 1.7 else leg_length(outputs[1.7].skeleton))
+    q = quality(motion)
+    assert q.skating_ratio <= BUILTIN_LIMITS["skating_ratio"]
+    assert q.floor_penetration_cm <= BUILTIN_LIMITS["floor_penetration_cm"]
