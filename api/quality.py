@@ -11,7 +11,7 @@ at one rate:
   whole clip) and whether the window meets each criterion of
   :func:`core.metrics.against_sources` (skating ≤ the sources' larger + 0.01,
   root pop and jerk p99 ≤ 1.2 × the sources' larger, floor penetration ≤ 1 cm,
-  frozen frames ≤ 5 %);
+  frozen frames ≤ 5 %, a foot floating ≤ the sources' larger + 2 cm);
 - per actor, the root pop the method *introduced* (:func:`introduced_root_pop`): over the frames whose
   hips acceleration is not that of a source clip as placed (turned and moved, played verbatim, or moved
   by a constant offset), the worst jolt of the frames the method made itself.
@@ -34,7 +34,7 @@ def rounded(q: Quality) -> dict:
     d = q.to_dict()
     for k in ("skating_ratio", "frozen_fraction"):
         d[k] = round(d[k], 4)
-    for k in ("root_pop", "jerk_p99", "floor_penetration_cm"):
+    for k in ("root_pop", "jerk_p99", "floor_penetration_cm", "floating_cm"):
         d[k] = round(d[k], 2)
     return d
 

@@ -20,8 +20,9 @@
    Each output is compared with its two source clips at 30 fps
    (:func:`core.metrics.against_sources`): skating ratio ≤ the sources' larger
    + 0.01; root pop ≤ 1.2 × the sources' larger; joint jerk p99 ≤ 1.2 × the
-   sources' larger; floor penetration ≤ 1 cm; frozen frames ≤ 5 %. Printed per
-   method: the share of pairs meeting each criterion and all five, and how
+   sources' larger; floor penetration ≤ 1 cm; frozen frames ≤ 5 %; a foot standing on air
+   (:mod:`core.floating`) ≤ the sources' larger + 2 cm. Printed per
+   method: the share of pairs meeting each criterion and all six, and how
    often optimal beats crossfade and pose on root pop, skating and jerk p99,
    read two ways side by side: on the whole output (the criteria's reading;
    its largest hips acceleration often lies in a source clip's core, which
@@ -61,7 +62,7 @@ CMU = REPO.parent / "shared" / "mocap" / "cmu"
 CORPUS = REPO / "tests" / "corpus" / "nlp_corpus.jsonl"
 FPS = 30.0
 METHODS = ("optimal", "constraint", "pose", "crossfade")
-CRITERIA = ("skating", "root_pop", "jerk", "penetration", "frozen")
+CRITERIA = ("skating", "root_pop", "jerk", "penetration", "frozen", "floating")  # core.metrics.CRITERIA
 
 #: name: (file stem, cut (s) or "cycle", core (s, relative to the cut)); the action is the file's label
 CLIPS = {
@@ -212,10 +213,10 @@ def run_sentences(texts: list[str], methods, db_url: str) -> list[dict]:
 
 
 def share_table(rows: list[dict], methods, title: str, four: bool = False) -> None:
-    """Per method, the share of rows meeting each criterion and all five (and, with ``four``, all but frozen:
+    """Per method, the share of rows meeting each criterion and all six (and, with ``four``, all but frozen:
     the list issue 11 gives for built-in sentences)."""
     print(f"\n{title}")
-    print(f"{'method':11} {'n':>4} " + " ".join(f"{c:>11}" for c in CRITERIA) + f" {'all five':>9}"
+    print(f"{'method':11} {'n':>4} " + " ".join(f"{c:>11}" for c in CRITERIA) + f" {'all six':>9}"
           + (f" {'all but frozen':>15}" if four else ""))
     for m in methods:
         mine = [r for r in rows if r["method"] == m]
@@ -229,9 +230,9 @@ def share_table(rows: list[dict], methods, title: str, four: bool = False) -> No
 
 
 def median_table(rows: list[dict], methods) -> None:
-    keys = ("skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction")
+    keys = ("skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction", "floating_cm")
     print(f"{'method':11} " + " ".join(f"{k:>21}" for k in ("skating", "root pop m/s2", "jerk p99 m/s3",
-                                                            "penetration cm", "frozen")) + "   (median / max)")
+                                                            "penetration cm", "frozen", "floating cm")) + "   (median / max)")
     for m in methods:
         mine = [r["quality"] for r in rows if r["method"] == m]
         if mine:
@@ -288,12 +289,12 @@ def failing(rows: list[dict], method: str) -> None:
     print(f"\n{method}: pairs that miss a criterion ({len(bad)}): figure (sources' larger)")
     for r in bad:
         q, s = r["quality"], r["sources"]
-        worst = {k: max(x[k] for x in s) for k in ("skating_ratio", "root_pop", "jerk_p99")}
+        worst = {k: max(x[k] for x in s) for k in ("skating_ratio", "root_pop", "jerk_p99", "floating_cm")}
         miss = [c for c, ok in r["meets"].items() if not ok]
         print(f"  {r['pair']:26} {r['how']:10} {','.join(miss):32} skate {q['skating_ratio']:.3f} "
               f"({worst['skating_ratio']:.3f}) pop {q['root_pop']:5.1f} ({worst['root_pop']:4.1f}) "
               f"jerk {q['jerk_p99']:5.0f} ({worst['jerk_p99']:4.0f}) floor {q['floor_penetration_cm']:.1f} "
-              f"frozen {q['frozen_fraction']:.2f}")
+              f"frozen {q['frozen_fraction']:.2f} floating {q['floating_cm']:.1f} ({worst['floating_cm']:.1f})")
 
 
 def join_losses(rows: list[dict]) -> None:
@@ -401,7 +402,7 @@ def main(argv=None) -> int:
                 miss = [c for c, ok in r["meets"].items() if not ok]
                 print(f"  {r['text']} [{r['actor']}] {','.join(miss)}: skate {q['skating_ratio']:.3f} pop "
                       f"{q['root_pop']:.1f} jerk {q['jerk_p99']:.0f} floor {q['floor_penetration_cm']:.1f} "
-                      f"frozen {q['frozen_fraction']:.2f}")
+                      f"frozen {q['frozen_fraction']:.2f} floating {q['floating_cm']:.1f} ({worst['floating_cm']:.1f})")
     out = Path(args.out)
     try:
         import matplotlib  # noqa: F401

@@ -15,7 +15,8 @@ from .bvh_options import add_read_options, read_options
 from .terminal import safe_json, say
 
 NAME = "metrics"
-HELP = "quality metrics of a BVH file: skating ratio, root pop, jerk, floor penetration, frozen frames"
+HELP = ("quality metrics of a BVH file: skating ratio, root pop, jerk, floor penetration, frozen frames, "
+        "floating feet")
 
 
 def add_arguments(p):
@@ -52,6 +53,7 @@ def run(args) -> int:
             ("root pop, hips' horizontal accel. m/s^2", f"{q.root_pop:8.2f}", f"{lim['root_pop']:g}"),
             ("joint jerk p99 m/s^3", f"{q.jerk_p99:8.0f}", f"{lim['jerk_p99']:g}"),
             ("floor penetration cm", f"{q.floor_penetration_cm:8.2f}", f"{lim['floor_penetration_cm']:g}"),
-            ("frozen frames (fraction)", f"{q.frozen_fraction:8.4f}", f"{MAX_FROZEN:g}")):
+            ("frozen frames (fraction)", f"{q.frozen_fraction:8.4f}", f"{MAX_FROZEN:g}"),
+            ("floating foot cm (a still foot on air)", f"{q.floating_cm:8.2f}", f"{lim['floating_cm']:g}")):
         print(f"  {label:42} {value:>8}   {limit}")
     return 0

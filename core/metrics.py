@@ -13,7 +13,9 @@ acceleration and jerk grow with the frame rate):
   every joint on every frame;
 - **floor penetration**: how far the lowest joint goes below y = 0 (cm);
 - **frozen frames**: the fraction of frame pairs on which every joint moves
-  slower than 0.5 cm/s.
+  slower than 0.5 cm/s;
+- **floating foot**: how high above the floor a foot stands on air (cm: a still foot
+  on a leg hanging straight down, :mod:`core.floating`).
 
 And the per-file figures of ``text2anim metrics`` at the file's own rate:
 
@@ -40,6 +42,7 @@ from scipy.ndimage import uniform_filter1d
 
 from .bodyparts import body_map
 from .contacts import detect_contacts, foot_tracks
+from .floating import floating_heights
 from .motion import Motion
 
 # --------------------------------------------------------------------------- the literature's figures
@@ -52,13 +55,16 @@ FROZEN_SPEED = 0.005  # m/s: a frame pair on which every joint is slower than th
 JERK_PERCENTILE = 99.0
 
 #: Thresholds for motion made from the built-in library (issue 11): root pop (m/s²), joint jerk p99
-#: (m/s³), skating ratio, floor penetration (cm); the frozen-frame fraction is held to :data:`MAX_FROZEN`.
-BUILTIN_LIMITS = {"root_pop": 15.0, "jerk_p99": 2300.0, "skating_ratio": 0.02, "floor_penetration_cm": 1.0}
+#: (m/s³), skating ratio, floor penetration (cm), floating foot (cm: the built-in clips float at most 6.5,
+#: :mod:`core.floating`); the frozen-frame fraction is held to :data:`MAX_FROZEN`.
+BUILTIN_LIMITS = {"root_pop": 15.0, "jerk_p99": 2300.0, "skating_ratio": 0.02, "floor_penetration_cm": 1.0,
+                  "floating_cm": 10.0}
 MAX_PENETRATION_CM = 1.0  # a join may put no joint deeper than this below the floor
 MAX_FROZEN = 0.05  # nor hold more than this fraction of frozen frame pairs
 SKATING_MARGIN = 0.01  # a join may skate this much more than the more skating of its two sources
 SOURCE_FACTOR = 1.2  # and pop / jerk up to this factor above the larger of its sources'
-CRITERIA = ("skating", "root_pop", "jerk", "penetration", "frozen")
+FLOAT_MARGIN_CM = 2.0  # a join may float a foot this much higher than the more floating of its sources
+CRITERIA = ("skating", "root_pop", "jerk", "penetration", "frozen", "floating")
 
 
 def toe_joints(motion: Motion) -> list[int]:
@@ -119,7 +125,8 @@ class Series:
     ``skating``, ``frozen``: ``(T,)`` 1.0/0.0 for the frame pair (t, t+1), NaN on the last frame;
     ``root_acc``: ``(T,)`` hips' horizontal acceleration (m/s²) centred on frame t, NaN on the 2 frames
     at each end; ``jerk``: ``(T, J)`` jerk magnitude (m/s³) of frames t-1 .. t+2, NaN on frame 0 and the
-    last two; ``lowest``: ``(T,)`` height (m) of the lowest joint.
+    last two; ``lowest``: ``(T,)`` height (m) of the lowest joint; ``floating``: ``(T,)`` height (m) a foot
+    stands on air by (:func:`core.floating.floating_heights`).
     """
 
     fps: float
@@ -128,6 +135,7 @@ class Series:
     root_acc: np.ndarray
     jerk: np.ndarray
     lowest: np.ndarray
+    floating: np.ndarray
 
 
 def _padded(values: np.ndarray, before: int, n: int) -> np.ndarray:
@@ -195,7 +203,8 @@ def series(motion: Motion, floor: float = 0.0) -> Series:
     jerk_tj = joint_jerk(pos, fps)
     return Series(fps, _padded(skating_pairs(motion, floor).astype(float), 0, n), _padded(frozen, 0, n),
                   _padded(root_acceleration(motion), (ROOT_POP_WINDOW - 1) // 2 + 1, n),
-                  _padded(jerk_tj, 1, n), pos[..., 1].min(axis=1) - floor if n else np.zeros(0))
+                  _padded(jerk_tj, 1, n), pos[..., 1].min(axis=1) - floor if n else np.zeros(0),
+                  floating_heights(motion, floor))
 
 
 @dataclass(frozen=True)
@@ -209,6 +218,7 @@ class Quality:
     jerk_p99: float  # m/s³
     floor_penetration_cm: float
     frozen_fraction: float
+    floating_cm: float = 0.0
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -228,7 +238,8 @@ def summarise(s: Series, start: int = 0, stop: int | None = None) -> Quality:
     low = s.lowest[start:stop]
     return Quality(s.fps, max(0, stop - start), _nanreduce(np.mean, sk), _nanreduce(np.max, s.root_acc[start:stop]),
                    jerk_p99(s.jerk[start:stop]),
-                   max(0.0, -float(low.min()) * 100) if low.size else 0.0, _nanreduce(np.mean, fr))
+                   max(0.0, -float(low.min()) * 100) if low.size else 0.0, _nanreduce(np.mean, fr),
+                   float(s.floating[start:stop].max()) * 100 if low.size else 0.0)
 
 
 def at_rate(motion: Motion, fps: float | None = COMPARE_FPS) -> Motion:
@@ -244,7 +255,7 @@ def window_frames(fps: float, window: tuple[float, float]) -> tuple[int, int]:
 
 def quality(motion: Motion, fps: float | None = COMPARE_FPS, window: tuple[float, float] | None = None,
             floor: float = 0.0) -> Quality:
-    """The five figures of ``motion`` after resampling to ``fps`` (None: its own rate).
+    """The six figures of ``motion`` after resampling to ``fps`` (None: its own rate).
 
     ``window`` = ``(t0, t1)`` seconds limits them to the frames in ``[t0, t1)``; the figures are
     taken on the whole motion first, so a window's edges see the motion around them (a GMD
@@ -261,14 +272,17 @@ def against_sources(out: Quality, sources: list[Quality]) -> dict[str, bool]:
     """Whether ``out`` (a join's output) meets each criterion of issue 11 against its source clips.
 
     skating ≤ the sources' larger + 0.01; root pop and jerk p99 ≤ 1.2 × the sources' larger;
-    floor penetration ≤ 1 cm; frozen frames ≤ 5 %. Compare figures taken at one rate (30 fps).
+    floor penetration ≤ 1 cm; frozen frames ≤ 5 %; a floating foot ≤ the sources' larger + 2 cm.
+    Compare figures taken at one rate (30 fps).
     """
-    worst = {k: max([getattr(q, k) for q in sources] or [0.0]) for k in ("skating_ratio", "root_pop", "jerk_p99")}
+    worst = {k: max([getattr(q, k) for q in sources] or [0.0])
+             for k in ("skating_ratio", "root_pop", "jerk_p99", "floating_cm")}
     return {"skating": out.skating_ratio <= worst["skating_ratio"] + SKATING_MARGIN + 1e-12,
             "root_pop": out.root_pop <= SOURCE_FACTOR * worst["root_pop"] + 1e-9,
             "jerk": out.jerk_p99 <= SOURCE_FACTOR * worst["jerk_p99"] + 1e-9,
             "penetration": out.floor_penetration_cm <= MAX_PENETRATION_CM,
-            "frozen": out.frozen_fraction <= MAX_FROZEN}
+            "frozen": out.frozen_fraction <= MAX_FROZEN,
+            "floating": out.floating_cm <= worst["floating_cm"] + FLOAT_MARGIN_CM + 1e-9}
 
 
 def against_limits(out: Quality, limits: dict = BUILTIN_LIMITS) -> dict[str, bool]:
@@ -277,7 +291,8 @@ def against_limits(out: Quality, limits: dict = BUILTIN_LIMITS) -> dict[str, boo
             "root_pop": out.root_pop <= limits["root_pop"],
             "jerk": out.jerk_p99 <= limits["jerk_p99"],
             "penetration": out.floor_penetration_cm <= limits["floor_penetration_cm"],
-            "frozen": out.frozen_fraction <= MAX_FROZEN}
+            "frozen": out.frozen_fraction <= MAX_FROZEN,
+            "floating": out.floating_cm <= limits["floating_cm"]}
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,8 @@ from cli_run import text2anim as run
 from text2anim.core.metrics import CRITERIA, quality
 
 EXAMPLE = "太郎は走って、ボールを蹴る。そして喜ぶ。"
-FIGURES = {"fps", "frames", "skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction"}
+FIGURES = {"fps", "frames", "skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction",
+           "floating_cm"}
 
 
 @pytest.fixture(scope="module")

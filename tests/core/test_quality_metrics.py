@@ -143,7 +143,7 @@ def test_criteria_against_sources_and_limits():
     src = [quality(_held(60, _slide(1.0 if k else 0.2))) for k in (0, 1)]
     still = quality(_held(60, _slide(0.0)))
     assert against_sources(src[0], src) == {"skating": True, "root_pop": True, "jerk": True,
-                                            "penetration": True, "frozen": True}
+                                            "penetration": True, "frozen": True, "floating": True}
     bad = against_sources(still, src)
     assert bad["frozen"] is False and bad["skating"] is True
     assert against_limits(src[1])["skating"] is False  # a 1 m/s slide skates on every frame

@@ -15,6 +15,7 @@ from shared_data import SHARED
 from text2anim.core import read_bvh
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.floor import FOOT_CLEARANCE, lowest_foot_heights
+from text2anim.core.metrics import BUILTIN_LIMITS, quality
 
 REPRO = SHARED / "mocap" / "cmu_repro"
 pytestmark = pytest.mark.skipif(not (REPRO / "05_01_walk.bvh").exists(),
@@ -41,3 +42,4 @@ def test_a_run_into_a_walk_keeps_the_walk_on_the_floor(tmp_path):
     assert len(planted) > 20  # the walk steps
     assert np.median(planted) == pytest.approx(FOOT_CLEARANCE, abs=0.02)  # planted feet on the floor (47 cm up before)
     assert low[walk].min(axis=1).max() < 0.15  # always a foot near the floor while walking
+    assert quality(motion).floating_cm <= BUILTIN_LIMITS["floating_cm"]  # no foot stands on air (44 cm before)
