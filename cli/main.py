@@ -27,6 +27,7 @@ COMMAND_MODULES = [
     "text2anim.cli.cmd_parse",
     "text2anim.cli.cmd_plan",
     "text2anim.cli.cmd_batch",
+    "text2anim.cli.cmd_studio",
 ]
 
 #: Commands that run with Python's cyclic garbage collector paused: one text, one animation, bounded by

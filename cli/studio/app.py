@@ -1,0 +1,99 @@
+"""The studio's web application (Starlette): the page, its assets, and three JSON/file endpoints.
+
+- ``GET /`` the page (``/?text=…`` opens it with that text animated: a link to share);
+- ``GET /static/NAME`` one of the page's own files (a fixed list: no path comes from the client);
+- ``POST /api/animate`` ``{"text"}`` -> the viewer page and the time table (:mod:`.work`);
+- ``POST /api/export`` ``{"text"}`` -> the BVH file (a zip of one per actor when there are several).
+
+Requests are bounded: a body of at most :data:`MAX_BODY` bytes, a text of at most
+``work.MAX_TEXT`` characters, the API's own limits on what a text may ask for, and
+:data:`TIMEOUT` seconds of work. :class:`.guard.SameOrigin` refuses other hosts and origins.
+"""
+from __future__ import annotations
+
+import asyncio
+import json
+from importlib import resources
+
+from starlette.applications import Starlette
+from starlette.concurrency import run_in_threadpool
+from starlette.requests import Request
+from starlette.responses import HTMLResponse, JSONResponse, Response
+from starlette.routing import Route
+
+from .guard import SameOrigin, own_hosts
+from .work import Studio
+
+#: Largest request body (bytes).
+MAX_BODY = 64 * 1024
+#: Seconds a request may work before the page is told to try a shorter text.
+TIMEOUT = 60.0
+#: The page's own files: name -> content type.
+ASSETS = {"studio.js": "text/javascript; charset=utf-8", "studio.css": "text/css; charset=utf-8"}
+
+
+def _asset(name: str) -> str:
+    return resources.files(__package__).joinpath("static").joinpath(name).read_text(encoding="utf-8")
+
+
+async def _text_of(request: Request) -> str | Response:
+    """The ``text`` of a JSON request body, or the response refusing the request."""
+    body = b""
+    async for chunk in request.stream():
+        body += chunk
+        if len(body) > MAX_BODY:
+            return JSONResponse({"ok": False, "error": f"the request is over {MAX_BODY // 1024} KB"}, status_code=413)
+    try:
+        text = json.loads(body or b"{}").get("text", "")
+    except (ValueError, AttributeError):
+        return JSONResponse({"ok": False, "error": "the request must be JSON: {\"text\": \"...\"}"}, status_code=400)
+    if not isinstance(text, str):
+        return JSONResponse({"ok": False, "error": "text must be a string"}, status_code=400)
+    return text
+
+
+def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) -> Starlette:
+    """The studio answering on ``host``:``port`` (the ``Host`` its requests must carry) over ``db_url``."""
+    studio = Studio.open(db_url)
+
+    async def page(request: Request) -> Response:
+        return HTMLResponse(_asset("studio.html"), headers={"Cache-Control": "no-store"})
+
+    async def asset(request: Request) -> Response:
+        name = request.path_params["name"]
+        if name not in ASSETS:
+            return Response("not found", status_code=404)
+        return Response(_asset(name), media_type=ASSETS[name])
+
+    async def work(request: Request, fn):
+        text = await _text_of(request)
+        if isinstance(text, Response):
+            return text
+        try:
+            return await asyncio.wait_for(run_in_threadpool(fn, text), TIMEOUT)
+        except asyncio.TimeoutError:
+            return JSONResponse({"ok": False, "error": f"this text took over {TIMEOUT:g} s; try a shorter one"},
+                                status_code=503)
+
+    async def animate(request: Request) -> Response:
+        def run(text):
+            payload = studio.animate(text)
+            return JSONResponse({k: v for k, v in payload.items() if not k.startswith("_")},
+                                status_code=200 if payload["ok"] else 422)
+        return await work(request, run)
+
+    async def export(request: Request) -> Response:
+        def run(text):
+            made = studio.bvh(text)
+            if made is None:
+                return JSONResponse({"ok": False, "error": studio.animate(text)["error"]}, status_code=422)
+            name, data = made
+            kind = "application/zip" if name.endswith(".zip") else "text/plain; charset=utf-8"
+            return Response(data, media_type=kind, headers={"Content-Disposition": f'attachment; filename="{name}"'})
+        return await work(request, run)
+
+    app = Starlette(routes=[Route("/", page), Route("/static/{name}", asset),
+                            Route("/api/animate", animate, methods=["POST"]),
+                            Route("/api/export", export, methods=["POST"])])
+    app.add_middleware(SameOrigin, hosts=own_hosts(host, port))
+    return app

@@ -1,0 +1,151 @@
+/* text2anim studio: the text box drives /api/animate (after a pause in typing; the latest text wins,
+ * a stale request is aborted); the answer's viewer page plays in the iframe and its time table is
+ * drawn below. "add" appends a sentence and resumes playback at the time on screen.
+ * State for tests and the benchmark: window.__studio. */
+(function () {
+  "use strict";
+  var $ = function (id) { return document.getElementById(id); };
+  var DEBOUNCE_MS = 250;
+  var S = { text: null, seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
+            renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false };
+  window.__studio = S;
+
+  function status(msg) { $("status").textContent = msg; }
+
+  function schedule() {
+    clearTimeout(S.timer);
+    S.timer = setTimeout(animate, DEBOUNCE_MS);
+  }
+
+  function animate() {
+    var text = $("text").value;
+    if (text === S.text && !S.error) return;
+    if (S.controller) S.controller.abort();
+    var ctl = new AbortController(), seq = ++S.seq;
+    S.controller = ctl; S.firedAt = performance.now(); S.busy = true;
+    status("animating…");
+    fetch("/api/animate", { method: "POST", headers: { "Content-Type": "application/json" },
+                            body: JSON.stringify({ text: text }), signal: ctl.signal })
+      .then(function (r) { return r.json(); })
+      .then(function (data) { if (seq === S.seq) show(data, text, seq); })
+      .catch(function (e) { if (e.name !== "AbortError" && seq === S.seq) fail(String(e)); });
+  }
+
+  function fail(msg) {
+    S.error = msg; S.busy = false;
+    $("error").textContent = msg;
+    status("");
+  }
+
+  function show(data, text, seq) {
+    if (!data.ok) { S.text = text; fail(data.error); return; }
+    S.error = ""; S.text = text; S.table = data.table;
+    $("error").textContent = "";
+    $("share").href = "/?text=" + encodeURIComponent(text);
+    var view = $("view");
+    view.onload = function () { ready(view, seq, data); };
+    view.srcdoc = data.html;
+    timeline(data);
+  }
+
+  function ready(view, seq, data) {
+    var w = view.contentWindow, tries = 0;
+    (function wait() {
+      var api = w.__t2a;
+      if (!api || !api.ready) { if (tries++ < 500) setTimeout(wait, 2); return; }
+      if (S.resumeAt !== null) { api.seek(Math.min(S.resumeAt, api.duration)); api.play(); S.resumeAt = null; }
+      w.requestAnimationFrame(function () {  // the first frame of the new animation is on screen
+        var ms = performance.now() - S.firedAt;
+        S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq; S.busy = false;
+        status(data.duration.toFixed(2) + " s of animation, on screen " + Math.round(ms) + " ms after the pause");
+      });
+    })();
+  }
+
+  function svg(tag, attrs, text) {
+    var el = document.createElementNS("http://www.w3.org/2000/svg", tag);
+    for (var k in attrs) el.setAttribute(k, attrs[k]);
+    if (text !== undefined) el.textContent = text;
+    return el;
+  }
+
+  function lanes(rows) {
+    // each bar in the first lane where it overlaps nothing (a transition starts before the last one ends)
+    var ends = [];
+    return rows.map(function (e) {
+      var k = 0;
+      while (k < ends.length && ends[k] > e.start + 1e-6) k++;
+      ends[k] = e.end;
+      return k;
+    });
+  }
+
+  function timeline(data) {
+    var g = $("timeline"), W = g.clientWidth || 900, LEFT = 90, ROW = 28, BLEND = 8, y = 8;
+    while (g.firstChild) g.removeChild(g.firstChild);
+    var actors = [];
+    data.table.forEach(function (e) { if (actors.indexOf(e.actor) < 0) actors.push(e.actor); });
+    var T = Math.max(data.duration, 0.1), x = function (t) { return LEFT + (W - LEFT - 10) * t / T; };
+    actors.forEach(function (a) {
+      var rows = data.table.filter(function (e) { return e.actor === a; }), lane = lanes(rows);
+      var n = Math.max.apply(null, lane.concat([0])) + 1;
+      g.appendChild(svg("text", { x: 8, y: y + 18, "class": "actor" }, a));
+      rows.forEach(function (e, i) {
+        var top = y + lane[i] * ROW;
+        var bar = svg("rect", { x: x(e.start), y: top + 2, width: Math.max(2, x(e.end) - x(e.start)), height: ROW - 6,
+                                rx: 4, "class": "bar " + e.method, "data-id": e.id });
+        bar.appendChild(svg("title", {}, e.id + " " + e.verb + " (" + e.clip + ", " + e.method + ") " +
+                            e.start.toFixed(2) + "–" + e.end.toFixed(2) + " s"));
+        g.appendChild(bar);
+        g.appendChild(svg("text", { x: x(e.start) + 6, y: top + 18 }, e.id + " " + e.verb + " · " + e.method));
+      });
+      y += n * ROW;
+      data.blends.filter(function (b) { return b.actor === a; }).forEach(function (b) {
+        var blend = svg("rect", { x: x(b.start), y: y, width: Math.max(1, x(b.end) - x(b.start)), height: BLEND,
+                                  "class": "blend" });
+        blend.appendChild(svg("title", {}, b.label + " " + (b.part || "") + " " + b.start.toFixed(2) + "–" +
+                              b.end.toFixed(2) + " s"));
+        g.appendChild(blend);
+      });
+      y += BLEND + 10;
+    });
+    g.appendChild(svg("text", { x: LEFT, y: y + 12, "class": "actor" }, "0 s"));
+    g.appendChild(svg("text", { x: W - 60, y: y + 12, "class": "actor" }, T.toFixed(2) + " s"));
+    g.setAttribute("height", String(y + 20));
+  }
+
+  function append() {
+    var more = $("add").value.trim();
+    if (!more) return;
+    var api = $("view").contentWindow && $("view").contentWindow.__t2a;
+    S.resumeAt = api && api.ready ? api.time : 0;  // playback goes on from the frame on screen
+    var text = $("text").value.trim();
+    $("text").value = text + (/[。！？!?]$/.test(text) || !text ? "" : "。") + more;
+    $("add").value = "";
+    clearTimeout(S.timer);
+    animate();
+  }
+
+  function exportBvh() {
+    var text = $("text").value;
+    fetch("/api/export", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ text: text }) })
+      .then(function (r) {
+        if (!r.ok) return r.json().then(function (d) { fail(d.error || "cannot export"); });
+        var name = /filename="([^"]+)"/.exec(r.headers.get("Content-Disposition") || "");
+        return r.blob().then(function (blob) {
+          var a = document.createElement("a");
+          a.href = URL.createObjectURL(blob); a.download = name ? name[1] : "animation.bvh";
+          document.body.appendChild(a); a.click(); a.remove();
+        });
+      })
+      .catch(function (e) { fail(String(e)); });
+  }
+
+  $("text").addEventListener("input", schedule);
+  $("add-btn").addEventListener("click", append);
+  $("add").addEventListener("keydown", function (e) { if (e.key === "Enter") append(); });
+  $("export").addEventListener("click", exportBvh);
+  var start = new URLSearchParams(location.search).get("text");
+  $("text").value = start !== null ? start : "太郎は走って、ボールを蹴る。そして喜ぶ。";
+  animate();
+})();

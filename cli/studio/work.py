@@ -1,0 +1,92 @@
+"""A text into what the studio shows: the viewer page, the time table and the messages.
+
+One animation at a time (the synthesis is CPU-bound; a newer text makes the page abort the older
+request). The same text with the same database gives the same bytes, so the last few results are
+kept: going back to a text, or appending to it, costs nothing for what was already made.
+"""
+from __future__ import annotations
+
+import threading
+from collections import OrderedDict
+from dataclasses import dataclass
+
+#: Longest text the studio animates (characters); the API's own limits apply too.
+MAX_TEXT = 2000
+#: Results kept (text -> payload).
+CACHE = 32
+
+
+@dataclass
+class Studio:
+    """The studio's state: its database (a :class:`motiondb.MotionDB`) and recent results."""
+
+    db: object
+    lock: threading.Lock
+    cache: "OrderedDict[str, dict]"
+
+    @classmethod
+    def open(cls, db_url: str | None) -> "Studio":
+        from text2anim.motiondb import MotionDB
+
+        return cls(MotionDB.open(db_url), threading.Lock(), OrderedDict())
+
+    def animate(self, text: str) -> dict:
+        """``{"ok": True, "html", "table", "duration", "notes"}`` for ``text``, or ``{"ok": False, "error"}``
+        with the message the command line would print (never a traceback)."""
+        text = text.strip()
+        if not text:
+            return {"ok": False, "error": "type a sentence, e.g. 太郎は走って、ボールを蹴る。"}
+        if len(text) > MAX_TEXT:
+            return {"ok": False, "error": f"the text is {len(text)} characters long; the studio takes at most {MAX_TEXT}"}
+        with self.lock:
+            hit = self.cache.get(text)
+            if hit is not None:
+                self.cache.move_to_end(text)
+                return hit
+            payload = self._make(text)
+            self.cache[text] = payload
+            while len(self.cache) > CACHE:
+                self.cache.popitem(last=False)
+            return payload
+
+    def _make(self, text: str) -> dict:
+        import text2anim
+        from text2anim.cli.terminal import message
+        from text2anim.output.viewer import render_html
+
+        try:
+            anim = text2anim.animate(text, db=self.db)
+        except Exception as exc:  # the stages' user errors carry user_facing; anything else is a bug to show
+            if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
+                raise
+            return {"ok": False, "error": message(str(exc))}
+        rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
+                 "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part}
+                for e in anim.table.elements]
+        blends = [{"actor": s.actor, "start": round(s.start, 3), "end": round(s.end, 3), "part": s.part,
+                   "label": s.label} for s in anim.spans() if s.kind == "blend"]
+        return {"ok": True, "text": text, "html": render_html(anim.tracks(), anim.spans(), title=text),
+                "table": rows, "blends": blends, "warnings": list(anim.warnings),
+                "duration": round(max((m.duration for m in anim.motions.values()), default=0.0), 3),
+                "_anim": anim}
+
+    def bvh(self, text: str) -> tuple[str, bytes] | None:
+        """``(file name, bytes)`` of ``text``'s animation as BVH (a zip of one BVH per actor when several);
+        None when it cannot be animated."""
+        import io
+        import zipfile
+
+        from text2anim.output.bvh_write import format_bvh
+
+        payload = self.animate(text)
+        if not payload["ok"]:
+            return None
+        motions = payload["_anim"].motions
+        if len(motions) == 1:
+            (motion,) = motions.values()
+            return "animation.bvh", format_bvh(motion).encode()
+        buf = io.BytesIO()
+        with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
+            for name, motion in sorted(motions.items()):
+                z.writestr(f"animation_{name}.bvh", format_bvh(motion))
+        return "animation.zip", buf.getvalue()

@@ -1,0 +1,119 @@
+"""The studio in a real browser: Debian's Chromium driven by Playwright, against the real server on a free port.
+
+Type and watch, add a sentence while it plays (playback goes on from the frame on screen), export a BVH and
+read it back, open a shared link. Skipped, saying why, without /usr/bin/chromium or Playwright.
+"""
+from __future__ import annotations
+
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from text2anim.cli.cmd_studio import free_port
+from text2anim.core.bvh import parse_bvh
+
+CHROMIUM = "/usr/bin/chromium"
+FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync"]
+playwright_api = pytest.importorskip("playwright.sync_api", reason="Playwright is not installed (pip install '.[test]')")
+pytestmark = pytest.mark.skipif(not Path(CHROMIUM).exists(),
+                                reason=f"{CHROMIUM} not installed (apt-get install chromium); the studio is not tested "
+                                       "in a browser")
+
+
+@pytest.fixture(scope="module")
+def studio(library_db):
+    """The studio's URL, served by uvicorn in a thread for the module's tests."""
+    import uvicorn
+
+    from text2anim.cli.studio.app import create_app
+
+    port = free_port("127.0.0.1")
+    server = uvicorn.Server(uvicorn.Config(create_app(library_db, "127.0.0.1", port), host="127.0.0.1", port=port,
+                                           log_level="warning"))
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + 20
+    while not server.started and time.monotonic() < deadline:
+        time.sleep(0.05)
+    yield f"http://127.0.0.1:{port}/"
+    server.should_exit = True
+    thread.join(10)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with playwright_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=FLAGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture
+def page(browser, studio, tmp_path):
+    context = browser.new_context(viewport={"width": 1100, "height": 900}, accept_downloads=True)
+    pg = context.new_page()
+    errors: list[str] = []
+    pg.on("pageerror", lambda e: errors.append(str(e)))
+    pg.goto(studio)
+    pg.wait_for_function("window.__studio && window.__studio.renders >= 1", timeout=30000)
+    yield pg
+    assert errors == []
+    context.close()
+
+
+def _canvas(pg) -> bytes:
+    return pg.frame_locator("#view").locator("canvas").first.screenshot()
+
+
+def test_typing_a_sentence_changes_the_animation_and_the_time_table(page, tmp_path):
+    before = _canvas(page)
+    assert page.evaluate("window.__studio.table.map(e => e.verb)") == ["走る", "蹴る", "喜ぶ"]
+    page.fill("#text", "花子は歩いて、座る。")
+    page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
+    assert page.evaluate("window.__studio.table.map(e => e.verb)") == ["歩く", "座る"]
+    assert page.locator("#timeline rect.bar").count() == 2
+    assert _canvas(page) != before
+    page.screenshot(path=str(tmp_path / "typed.png"))
+
+
+def test_an_unknown_verb_is_shown_under_the_text_and_the_last_animation_stays(page):
+    page.fill("#text", "太郎は泳ぐ。")
+    page.wait_for_function("document.getElementById('error').textContent.includes('泳ぐ')", timeout=30000)
+    assert "no stand-in" in page.inner_text("#error")
+    assert page.evaluate("window.__studio.table.length") == 3  # the seed sentence still plays
+
+
+def test_adding_a_sentence_while_it_plays_goes_on_from_the_frame_on_screen(page):
+    view = page.frame_locator("#view")
+    page.wait_for_function("document.getElementById('view').contentWindow.__t2a.time > 1.5", timeout=30000)
+    page.fill("#add", "そして座る。")
+    at = page.evaluate("document.getElementById('view').contentWindow.__t2a.time")
+    page.click("#add-btn")
+    page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
+    now = page.evaluate("document.getElementById('view').contentWindow.__t2a.time")
+    assert page.input_value("#text").endswith("そして座る。")
+    assert page.evaluate("window.__studio.table.map(e => e.verb)")[-1] == "座る"
+    assert now >= at - 0.05  # not restarted from 0
+    assert page.evaluate("document.getElementById('view').contentWindow.__t2a.playing")
+    assert view.locator("body").get_attribute("data-ready") == "1"
+
+
+def test_the_exported_bvh_reads_back(page, tmp_path):
+    with page.expect_download() as dl:
+        page.click("#export")
+    path = tmp_path / dl.value.suggested_filename
+    dl.value.save_as(path)
+    motion = parse_bvh(path.read_text(encoding="utf-8"))
+    assert path.name == "animation.bvh" and motion.duration > 3.0
+
+
+def test_a_shared_link_opens_with_its_text(browser, studio):
+    pg = browser.new_page()
+    pg.goto(studio + "?text=" + "太郎は歩く。")
+    pg.wait_for_function("window.__studio && window.__studio.renders >= 1", timeout=30000)
+    assert pg.input_value("#text") == "太郎は歩く。"
+    assert pg.evaluate("window.__studio.table.map(e => e.verb)") == ["歩く"]
+    pg.close()

@@ -1,0 +1,71 @@
+"""The studio's server (Starlette, through its test client): what it animates, what it exports, what it refuses.
+
+The browser side is tests/studio/test_studio_browser.py; these check the HTTP contract a page relies on.
+"""
+from __future__ import annotations
+
+import pytest
+from starlette.testclient import TestClient
+
+from text2anim.cli.studio.app import MAX_BODY, create_app
+from text2anim.core.bvh import parse_bvh
+
+PORT = 8123
+BASE = f"http://127.0.0.1:{PORT}"
+
+
+@pytest.fixture(scope="module")
+def client(library_db):
+    return TestClient(create_app(library_db, "127.0.0.1", PORT), base_url=BASE)
+
+
+def test_the_page_and_its_own_files_are_served(client):
+    page = client.get("/")
+    assert page.status_code == 200 and "text2anim studio" in page.text and "/static/studio.js" in page.text
+    assert client.get("/static/studio.js").status_code == 200
+    assert client.get("/static/../app.py").status_code == 404  # no path comes from the client
+    assert client.get("/static/viewer.js").status_code == 404
+
+
+def test_a_text_becomes_the_viewer_page_and_its_time_table(client):
+    r = client.post("/api/animate", json={"text": "太郎は走って、ボールを蹴る。"})
+    data = r.json()
+    assert r.status_code == 200 and data["ok"]
+    assert [(e["verb"], e["method"]) for e in data["table"]] == [("走る", "initial"), ("蹴る", "transition")]
+    assert "__t2a" in data["html"] and data["duration"] > 1.0 and data["blends"]
+
+
+def test_what_cannot_be_animated_says_why_in_the_users_terms(client):
+    r = client.post("/api/animate", json={"text": "太郎は泳ぐ。"})
+    assert r.status_code == 422 and "泳ぐ" in r.json()["error"] and "Traceback" not in r.text
+    r = client.post("/api/animate", json={"text": "雨が降る。"})
+    assert r.status_code == 422 and "no motion" in r.json()["error"]
+    assert client.post("/api/animate", json={"text": "  "}).json()["ok"] is False
+
+
+def test_the_bvh_export_reads_back(client):
+    r = client.post("/api/export", json={"text": "太郎は歩く。"})
+    assert r.status_code == 200 and 'filename="animation.bvh"' in r.headers["content-disposition"]
+    motion = parse_bvh(r.text)
+    assert motion.n_frames > 10 and motion.skeleton.n_joints > 20
+    two = client.post("/api/export", json={"text": "太郎は歩く。花子は座る。"})
+    assert two.status_code == 200 and two.headers["content-type"] == "application/zip"
+
+
+@pytest.mark.parametrize("headers", [{"host": f"evil.example:{PORT}"}, {"host": "127.0.0.1:9"},
+                                     {"origin": "http://evil.example"}, {"origin": f"http://127.0.0.1:{PORT + 1}"}])
+def test_another_host_or_origin_is_refused(client, headers):
+    """A page on another site (or a rebound DNS name) must not drive a local tool."""
+    r = client.post("/api/animate", json={"text": "太郎は歩く。"}, headers=headers)
+    assert r.status_code == 403 and "refused" in r.text
+    assert client.get("/", headers=headers).status_code == 403
+
+
+def test_requests_are_bounded(client):
+    big = client.post("/api/animate", content=b'{"text": "' + b"a" * (MAX_BODY + 10) + b'"}',
+                      headers={"content-type": "application/json"})
+    assert big.status_code == 413
+    long = client.post("/api/animate", json={"text": "歩く。" * 1000})
+    assert long.status_code == 422 and "at most" in long.json()["error"]
+    bad = client.post("/api/animate", content=b"not json", headers={"content-type": "application/json"})
+    assert bad.status_code == 400
