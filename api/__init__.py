@@ -47,7 +47,8 @@ def plan(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: floa
 
 def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: float = 30.0,
             skip_unknown: bool = False, lock_feet: bool = True, sway: bool = True, blend: str = "optimal",
-            smoothness: float = 0.5, fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS) -> Animation:
+            smoothness: float = 0.5, fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS,
+            edits=()) -> Animation:
     """Analyse ``text``, schedule it, and synthesise one motion per actor.
 
     Args:
@@ -65,6 +66,8 @@ def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: f
             smoothly as it can.
         max_seconds: the output budget (seconds of animation summed over the actors; see
             :mod:`text2anim.limits`).
+        edits: :class:`text2anim.edits.Edit` s of the time table (a motion moved, stretched or
+            joined another way), kept as constraints on the text's analysis.
 
     Raises:
         limits.InputTypeError: an argument of the wrong type (a ``TypeError``).
@@ -87,7 +90,7 @@ def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: f
     opened = db if isinstance(db, MotionDB) else MotionDB.open(db)
     try:
         planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback,
-                            max_seconds=max_seconds)
+                            max_seconds=max_seconds, edits=edits)
         tracks = build_tracks(planned, opened, fps)
     finally:
         if opened is not db:

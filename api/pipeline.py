@@ -32,7 +32,7 @@ class Planned(Schedule[ClipInfo]):
 
 
 def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False,
-              fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS) -> Planned:
+              fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS, edits=()) -> Planned:
     """Analyse ``text`` and schedule its motions with clips from ``db``, the waits filled.
 
     The table holds everything that will play: the text's motions, the clips
@@ -42,17 +42,20 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
     unless ``skip_unknown``, which drops those motions, or ``fallback="nearest"``, which
     animates each with the database verb nearest in meaning (:mod:`text2anim.fallback`).
     A text that asks for more than :mod:`text2anim.limits` allows (output over
-    ``max_seconds``) raises :class:`limits.LimitError` before any frame is made.
+    ``max_seconds``) raises :class:`limits.LimitError` before any frame is made. ``edits``
+    (:class:`text2anim.edits.Edit`) change the analysis before it is scheduled (the studio's timeline).
     """
     limits.check_text(text)
     with db.memoised():  # the same motions are searched again by each step below
-        return _plan(text, db, fps, skip_unknown, fallback, max_seconds)
+        return _plan(text, db, fps, skip_unknown, fallback, max_seconds, tuple(edits))
 
 
-def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str, max_seconds: float) -> Planned:
+def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str, max_seconds: float,
+          edits: tuple = ()) -> Planned:
     from . import fallback as _fallback
+    from .edits import apply_edits
 
-    analysis = nlp.analyze(text)
+    analysis = apply_edits(nlp.analyze(text), edits)
     limits.check_analysis(analysis, max_seconds)
     unknown = unknown_motions(analysis, db)
     skipped: tuple[str, ...] = ()

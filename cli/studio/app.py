@@ -2,8 +2,9 @@
 
 - ``GET /`` the page (``/?text=…`` opens it with that text animated: a link to share);
 - ``GET /static/NAME`` one of the page's own files (a fixed list: no path comes from the client);
-- ``POST /api/animate`` ``{"text"}`` -> the viewer page and the time table (:mod:`.work`);
-- ``POST /api/export`` ``{"text"}`` -> the BVH file (a zip of one per actor when there are several).
+- ``POST /api/animate`` ``{"text", "edits"}`` -> the viewer page and the time table (:mod:`.work`);
+  ``edits`` are the timeline's (:class:`text2anim.edits.Edit` as JSON: verb, nth, shift, duration, method);
+- ``POST /api/export`` ``{"text", "edits"}`` -> the BVH file (a zip of one per actor when there are several).
 
 Requests are bounded: a body of at most :data:`MAX_BODY` bytes, a text of at most
 ``work.MAX_TEXT`` characters, the API's own limits on what a text may ask for, and
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+from collections.abc import Callable
 from importlib import resources
 
 from starlette.applications import Starlette
@@ -36,20 +38,32 @@ def _asset(name: str) -> str:
     return resources.files(__package__).joinpath("static").joinpath(name).read_text(encoding="utf-8")
 
 
-async def _text_of(request: Request) -> str | Response:
-    """The ``text`` of a JSON request body, or the response refusing the request."""
+#: Most time-table edits a request may carry.
+MAX_EDITS = 200
+
+
+async def _text_of(request: Request) -> tuple[str, tuple] | Response:
+    """``(text, edits)`` of a JSON request body ``{"text", "edits": [...]}``, or the response refusing it."""
+    from text2anim.edits import Edit, EditError
+
     body = b""
     async for chunk in request.stream():
         body += chunk
         if len(body) > MAX_BODY:
             return JSONResponse({"ok": False, "error": f"the request is over {MAX_BODY // 1024} KB"}, status_code=413)
     try:
-        text = json.loads(body or b"{}").get("text", "")
+        data = json.loads(body or b"{}")
+        text, raw = data.get("text", ""), data.get("edits") or []
     except (ValueError, AttributeError):
         return JSONResponse({"ok": False, "error": "the request must be JSON: {\"text\": \"...\"}"}, status_code=400)
-    if not isinstance(text, str):
-        return JSONResponse({"ok": False, "error": "text must be a string"}, status_code=400)
-    return text
+    if not isinstance(text, str) or not isinstance(raw, list) or len(raw) > MAX_EDITS:
+        return JSONResponse({"ok": False, "error": f"text must be a string and edits a list of at most {MAX_EDITS}"},
+                            status_code=400)
+    try:
+        edits = tuple(Edit.from_dict(e) for e in raw if isinstance(e, dict))
+    except EditError as exc:
+        return JSONResponse({"ok": False, "error": str(exc)}, status_code=400)
+    return text, edits
 
 
 def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) -> Starlette:
@@ -65,34 +79,38 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
             return Response("not found", status_code=404)
         return Response(_asset(name), media_type=ASSETS[name])
 
-    async def work(request: Request, fn):
-        text = await _text_of(request)
-        if isinstance(text, Response):
-            return text
+    async def work(request: Request, fn: Callable[[str, tuple], Response]) -> Response:
+        got = await _text_of(request)
+        if isinstance(got, Response):
+            return got
+        text, edits = got
         try:
-            return await asyncio.wait_for(run_in_threadpool(fn, text), TIMEOUT)
+            return await asyncio.wait_for(run_in_threadpool(fn, text, edits), TIMEOUT)
         except asyncio.TimeoutError:
             return JSONResponse({"ok": False, "error": f"this text took over {TIMEOUT:g} s; try a shorter one"},
                                 status_code=503)
 
     async def animate(request: Request) -> Response:
-        def run(text):
-            payload = studio.animate(text)
+        def run(text, edits):
+            payload = studio.animate(text, edits)
             return JSONResponse({k: v for k, v in payload.items() if not k.startswith("_")},
                                 status_code=200 if payload["ok"] else 422)
         return await work(request, run)
 
     async def export(request: Request) -> Response:
-        def run(text):
-            made = studio.bvh(text)
+        def run(text, edits):
+            made = studio.bvh(text, edits)
             if made is None:
-                return JSONResponse({"ok": False, "error": studio.animate(text)["error"]}, status_code=422)
+                return JSONResponse({"ok": False, "error": studio.animate(text, edits)["error"]}, status_code=422)
             name, data = made
             kind = "application/zip" if name.endswith(".zip") else "text/plain; charset=utf-8"
             return Response(data, media_type=kind, headers={"Content-Disposition": f'attachment; filename="{name}"'})
         return await work(request, run)
 
-    app = Starlette(routes=[Route("/", page), Route("/static/{name}", asset),
+    async def favicon(request: Request) -> Response:
+        return Response(status_code=204)
+
+    app = Starlette(routes=[Route("/", page), Route("/static/{name}", asset), Route("/favicon.ico", favicon),
                             Route("/api/animate", animate, methods=["POST"]),
                             Route("/api/export", export, methods=["POST"])])
     app.add_middleware(SameOrigin, hosts=own_hosts(host, port))

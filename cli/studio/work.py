@@ -30,39 +30,44 @@ class Studio:
 
         return cls(MotionDB.open(db_url), threading.Lock(), OrderedDict())
 
-    def animate(self, text: str) -> dict:
-        """``{"ok": True, "html", "table", "duration", "notes"}`` for ``text``, or ``{"ok": False, "error"}``
-        with the message the command line would print (never a traceback)."""
+    def animate(self, text: str, edits: tuple = ()) -> dict:
+        """``{"ok": True, "html", "table", "blends", "duration", "warnings"}`` for ``text`` with the time-table
+        ``edits`` (:class:`text2anim.edits.Edit`), or ``{"ok": False, "error"}`` with the message the command
+        line would print (never a traceback). Each table row carries its edit key (verb, nth), or None for
+        what the scheduler added (a stop, an idle, a posture bridge)."""
         text = text.strip()
         if not text:
             return {"ok": False, "error": "type a sentence, e.g. 太郎は走って、ボールを蹴る。"}
         if len(text) > MAX_TEXT:
             return {"ok": False, "error": f"the text is {len(text)} characters long; the studio takes at most {MAX_TEXT}"}
+        key = text + "\0" + repr(edits)
         with self.lock:
-            hit = self.cache.get(text)
+            hit = self.cache.get(key)
             if hit is not None:
-                self.cache.move_to_end(text)
+                self.cache.move_to_end(key)
                 return hit
-            payload = self._make(text)
-            self.cache[text] = payload
+            payload = self._make(text, edits)
+            self.cache[key] = payload
             while len(self.cache) > CACHE:
                 self.cache.popitem(last=False)
             return payload
 
-    def _make(self, text: str) -> dict:
+    def _make(self, text: str, edits: tuple) -> dict:
         import text2anim
         from text2anim.cli.terminal import message
+        from text2anim.edits import occurrences
         from text2anim.output.viewer import render_html
 
         try:
-            anim = text2anim.animate(text, db=self.db)
+            anim = text2anim.animate(text, db=self.db, edits=edits)
         except Exception as exc:  # the stages' user errors carry user_facing; anything else is a bug to show
             if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                 raise
             return {"ok": False, "error": message(str(exc))}
+        keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
         rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
-                 "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part}
-                for e in anim.table.elements]
+                 "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part,
+                 "key": keys.get(e.id)} for e in anim.table.elements]
         blends = [{"actor": s.actor, "start": round(s.start, 3), "end": round(s.end, 3), "part": s.part,
                    "label": s.label} for s in anim.spans() if s.kind == "blend"]
         return {"ok": True, "text": text, "html": render_html(anim.tracks(), anim.spans(), title=text),
@@ -70,7 +75,7 @@ class Studio:
                 "duration": round(max((m.duration for m in anim.motions.values()), default=0.0), 3),
                 "_anim": anim}
 
-    def bvh(self, text: str) -> tuple[str, bytes] | None:
+    def bvh(self, text: str, edits: tuple = ()) -> tuple[str, bytes] | None:
         """``(file name, bytes)`` of ``text``'s animation as BVH (a zip of one BVH per actor when several);
         None when it cannot be animated."""
         import io
@@ -78,7 +83,7 @@ class Studio:
 
         from text2anim.output.bvh_write import format_bvh
 
-        payload = self.animate(text)
+        payload = self.animate(text, edits)
         if not payload["ok"]:
             return None
         motions = payload["_anim"].motions

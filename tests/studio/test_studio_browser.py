@@ -117,3 +117,35 @@ def test_a_shared_link_opens_with_its_text(browser, studio):
     assert pg.input_value("#text") == "太郎は歩く。"
     assert pg.evaluate("window.__studio.table.map(e => e.verb)") == ["歩く"]
     pg.close()
+
+
+def _row(page, verb):
+    return page.evaluate(f"window.__studio.table.find(e => e.verb === '{verb}')")
+
+
+def test_moving_a_bar_moves_the_motion_in_the_time_table_and_the_animation(page):
+    before, length = _row(page, "喜ぶ"), page.evaluate("document.getElementById('view').contentWindow.__t2a.duration")
+    bar = page.locator('#timeline rect.bar[data-verb="喜ぶ"]').bounding_box()
+    page.mouse.move(bar["x"] + 20, bar["y"] + bar["height"] / 2)
+    page.mouse.down()
+    page.mouse.move(bar["x"] + 120, bar["y"] + bar["height"] / 2, steps=5)
+    page.mouse.up()
+    page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
+    after = _row(page, "喜ぶ")
+    assert after["start"] > before["start"] + 0.3  # later by the drag
+    assert page.evaluate("document.getElementById('view').contentWindow.__t2a.duration") > length + 0.3
+    assert page.evaluate("Object.values(window.__studio.edits)")[0]["verb"] == "喜ぶ"
+    # the edit is kept while the text changes: appending a sentence keeps 喜ぶ late
+    page.fill("#add", "そして座る。")
+    page.click("#add-btn")
+    page.wait_for_function("window.__studio.renders >= 3 && !window.__studio.busy", timeout=30000)
+    assert _row(page, "喜ぶ")["start"] == pytest.approx(after["start"], abs=0.05)
+
+
+def test_clicking_a_bar_changes_how_it_joins(page):
+    assert _row(page, "蹴る")["method"] == "transition"
+    page.locator('#timeline rect.bar[data-verb="蹴る"]').click()
+    page.select_option("#method", "connection")
+    page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
+    kick, run = _row(page, "蹴る"), _row(page, "走る")
+    assert kick["method"] == "connection" and kick["start"] >= run["end"] - 1e-6

@@ -1,13 +1,16 @@
 /* text2anim studio: the text box drives /api/animate (after a pause in typing; the latest text wins,
  * a stale request is aborted); the answer's viewer page plays in the iframe and its time table is
- * drawn below. "add" appends a sentence and resumes playback at the time on screen.
- * State for tests and the benchmark: window.__studio. */
+ * drawn below. Dragging a bar moves the motion, dragging its right end stretches it, clicking it picks
+ * how it joins the one before; the edits are kept by verb and occurrence (text2anim.edits) and sent with
+ * every text, so editing the text keeps those that still apply. "add" appends a sentence and resumes
+ * playback at the time on screen. State for tests and the benchmark: window.__studio. */
 (function () {
   "use strict";
   var $ = function (id) { return document.getElementById(id); };
   var DEBOUNCE_MS = 250;
   var S = { text: null, seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
-            renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false };
+            renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false,
+            edits: {}, sent: "" };
   window.__studio = S;
 
   function status(msg) { $("status").textContent = msg; }
@@ -17,15 +20,20 @@
     S.timer = setTimeout(animate, DEBOUNCE_MS);
   }
 
+  function editList() {
+    return Object.keys(S.edits).sort().map(function (k) { return S.edits[k]; });
+  }
+
   function animate() {
-    var text = $("text").value;
-    if (text === S.text && !S.error) return;
+    var text = $("text").value, edits = editList(), sent = text + "\u0000" + JSON.stringify(edits);
+    if (sent === S.sent && !S.error) return;
+    S.sent = sent;
     if (S.controller) S.controller.abort();
     var ctl = new AbortController(), seq = ++S.seq;
     S.controller = ctl; S.firedAt = performance.now(); S.busy = true;
     status("animating…");
     fetch("/api/animate", { method: "POST", headers: { "Content-Type": "application/json" },
-                            body: JSON.stringify({ text: text }), signal: ctl.signal })
+                            body: JSON.stringify({ text: text, edits: edits }), signal: ctl.signal })
       .then(function (r) { return r.json(); })
       .then(function (data) { if (seq === S.seq) show(data, text, seq); })
       .catch(function (e) { if (e.name !== "AbortError" && seq === S.seq) fail(String(e)); });
@@ -93,7 +101,9 @@
       rows.forEach(function (e, i) {
         var top = y + lane[i] * ROW;
         var bar = svg("rect", { x: x(e.start), y: top + 2, width: Math.max(2, x(e.end) - x(e.start)), height: ROW - 6,
-                                rx: 4, "class": "bar " + e.method, "data-id": e.id });
+                                rx: 4, "class": "bar " + e.method + (e.key ? " editable" : ""), "data-id": e.id,
+                                "data-verb": e.verb });
+        if (e.key) draggable(bar, e, (W - LEFT - 10) / T);
         bar.appendChild(svg("title", {}, e.id + " " + e.verb + " (" + e.clip + ", " + e.method + ") " +
                             e.start.toFixed(2) + "–" + e.end.toFixed(2) + " s"));
         g.appendChild(bar);
@@ -114,6 +124,46 @@
     g.setAttribute("height", String(y + 20));
   }
 
+  function edit(e) {
+    var k = e.key[0] + "#" + e.key[1];
+    return S.edits[k] || (S.edits[k] = { verb: e.key[0], nth: e.key[1] });
+  }
+
+  function draggable(bar, e, pxPerS) {
+    // drag the body: move (shift); drag the right end: stretch (duration); a click: the join method menu
+    bar.addEventListener("pointerdown", function (ev) {
+      var r = bar.getBoundingClientRect(), stretch = ev.clientX > r.right - 10, x0 = ev.clientX;
+      var x = parseFloat(bar.getAttribute("x")), w = parseFloat(bar.getAttribute("width"));
+      bar.setPointerCapture(ev.pointerId);
+      function move(mv) {
+        var dx = mv.clientX - x0;
+        if (stretch) bar.setAttribute("width", String(Math.max(4, w + dx)));
+        else bar.setAttribute("x", String(x + dx));
+      }
+      function up(uv) {
+        bar.removeEventListener("pointermove", move);
+        bar.removeEventListener("pointerup", up);
+        var dt = (uv.clientX - x0) / pxPerS;
+        if (Math.abs(uv.clientX - x0) < 3) { menu(e, uv); return; }
+        var ed = edit(e);
+        if (stretch) ed.duration = Math.max(0.2, Math.round((e.end - e.start + dt) * 100) / 100);
+        else ed.shift = Math.round(((ed.shift || 0) + dt) * 100) / 100;
+        animate();
+      }
+      bar.addEventListener("pointermove", move);
+      bar.addEventListener("pointerup", up);
+    });
+  }
+
+  function menu(e, ev) {
+    var m = $("method");
+    m.value = e.method === "composition" || e.method === "transition" ? e.method : "connection";
+    m.style.left = ev.pageX + "px"; m.style.top = ev.pageY + "px"; m.style.display = "block";
+    m.onchange = function () { edit(e).method = m.value; m.style.display = "none"; animate(); };
+    m.onblur = function () { m.style.display = "none"; };
+    m.focus();
+  }
+
   function append() {
     var more = $("add").value.trim();
     if (!more) return;
@@ -128,7 +178,8 @@
 
   function exportBvh() {
     var text = $("text").value;
-    fetch("/api/export", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ text: text }) })
+    fetch("/api/export", { method: "POST", headers: { "Content-Type": "application/json" },
+                           body: JSON.stringify({ text: text, edits: editList() }) })
       .then(function (r) {
         if (!r.ok) return r.json().then(function (d) { fail(d.error || "cannot export"); });
         var name = /filename="([^"]+)"/.exec(r.headers.get("Content-Disposition") || "");
@@ -145,6 +196,7 @@
   $("add-btn").addEventListener("click", append);
   $("add").addEventListener("keydown", function (e) { if (e.key === "Enter") append(); });
   $("export").addEventListener("click", exportBvh);
+  $("reset-edits").addEventListener("click", function () { S.edits = {}; animate(); });
   var start = new URLSearchParams(location.search).get("text");
   $("text").value = start !== null ? start : "太郎は走って、ボールを蹴る。そして喜ぶ。";
   animate();
