@@ -4,7 +4,8 @@
 - ``GET /static/NAME`` one of the page's own files (a fixed list: no path comes from the client);
 - ``POST /api/animate`` ``{"text", "edits"}`` -> the viewer page and the time table (:mod:`.work`);
   ``edits`` are the timeline's (:class:`text2anim.edits.Edit` as JSON: verb, nth, shift, duration, method);
-- ``POST /api/export`` ``{"text", "edits"}`` -> the BVH file (a zip of one per actor when there are several).
+- ``POST /api/export`` ``{"text", "edits", "format"}`` -> the animation as ``bvh`` (default), ``glb``, ``vrma``
+  or the ``report`` (a zip of one file per actor when there are several).
 
 Requests are bounded: a body of at most :data:`MAX_BODY` bytes, a text of at most
 ``work.MAX_TEXT`` characters, the API's own limits on what a text may ask for, and
@@ -24,7 +25,7 @@ from starlette.responses import HTMLResponse, JSONResponse, Response
 from starlette.routing import Route
 
 from .guard import SameOrigin, own_hosts
-from .work import Studio
+from .work import FORMATS, Studio
 
 #: Largest request body (bytes).
 MAX_BODY = 64 * 1024
@@ -42,8 +43,9 @@ def _asset(name: str) -> str:
 MAX_EDITS = 200
 
 
-async def _text_of(request: Request) -> tuple[str, tuple] | Response:
-    """``(text, edits)`` of a JSON request body ``{"text", "edits": [...]}``, or the response refusing it."""
+async def _text_of(request: Request) -> tuple[str, tuple, str] | Response:
+    """``(text, edits, format)`` of a JSON request body ``{"text", "edits": [...], "format"}``, or the
+    response refusing it."""
     from text2anim.edits import Edit, EditError
 
     body = b""
@@ -54,8 +56,11 @@ async def _text_of(request: Request) -> tuple[str, tuple] | Response:
     try:
         data = json.loads(body or b"{}")
         text, raw = data.get("text", ""), data.get("edits") or []
+        fmt = data.get("format", "bvh")
     except (ValueError, AttributeError):
         return JSONResponse({"ok": False, "error": "the request must be JSON: {\"text\": \"...\"}"}, status_code=400)
+    if fmt not in FORMATS:
+        return JSONResponse({"ok": False, "error": f"format must be one of {', '.join(FORMATS)}"}, status_code=400)
     if not isinstance(text, str) or not isinstance(raw, list) or len(raw) > MAX_EDITS:
         return JSONResponse({"ok": False, "error": f"text must be a string and edits a list of at most {MAX_EDITS}"},
                             status_code=400)
@@ -63,7 +68,7 @@ async def _text_of(request: Request) -> tuple[str, tuple] | Response:
         edits = tuple(Edit.from_dict(e) for e in raw if isinstance(e, dict))
     except EditError as exc:
         return JSONResponse({"ok": False, "error": str(exc)}, status_code=400)
-    return text, edits
+    return text, edits, fmt
 
 
 def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) -> Starlette:
@@ -79,31 +84,32 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
             return Response("not found", status_code=404)
         return Response(_asset(name), media_type=ASSETS[name])
 
-    async def work(request: Request, fn: Callable[[str, tuple], Response]) -> Response:
+    async def work(request: Request, fn: Callable[[str, tuple, str], Response]) -> Response:
         got = await _text_of(request)
         if isinstance(got, Response):
             return got
-        text, edits = got
+        text, edits, fmt = got
         try:
-            return await asyncio.wait_for(run_in_threadpool(fn, text, edits), TIMEOUT)
+            return await asyncio.wait_for(run_in_threadpool(fn, text, edits, fmt), TIMEOUT)
         except asyncio.TimeoutError:
             return JSONResponse({"ok": False, "error": f"this text took over {TIMEOUT:g} s; try a shorter one"},
                                 status_code=503)
 
     async def animate(request: Request) -> Response:
-        def run(text, edits):
+        def run(text, edits, fmt):
             payload = studio.animate(text, edits)
             return JSONResponse({k: v for k, v in payload.items() if not k.startswith("_")},
                                 status_code=200 if payload["ok"] else 422)
         return await work(request, run)
 
     async def export(request: Request) -> Response:
-        def run(text, edits):
-            made = studio.bvh(text, edits)
+        def run(text, edits, fmt):
+            made = studio.export(text, edits, fmt)
             if made is None:
                 return JSONResponse({"ok": False, "error": studio.animate(text, edits)["error"]}, status_code=422)
             name, data = made
-            kind = "application/zip" if name.endswith(".zip") else "text/plain; charset=utf-8"
+            kind = {"zip": "application/zip", "bvh": "text/plain; charset=utf-8", "json": "application/json",
+                    "glb": "model/gltf-binary", "vrma": "model/gltf-binary"}[name.rsplit(".", 1)[1]]
             return Response(data, media_type=kind, headers={"Content-Disposition": f'attachment; filename="{name}"'})
         return await work(request, run)
 

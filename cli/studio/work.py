@@ -14,6 +14,8 @@ from dataclasses import dataclass
 MAX_TEXT = 2000
 #: Results kept (text -> payload).
 CACHE = 32
+#: What the page may download: format -> file suffix (``Animation.outputs``' keywords).
+FORMATS = {"bvh": "bvh", "glb": "glb", "vrma": "vrma", "report": "json"}
 
 
 @dataclass
@@ -63,7 +65,7 @@ class Studio:
         except Exception as exc:  # the stages' user errors carry user_facing; anything else is a bug to show
             if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                 raise
-            return {"ok": False, "error": message(str(exc))}
+            return {"ok": False, "error": message(str(exc)), "unknown": unknown_verbs(text, exc)}
         keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
         rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
                  "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part,
@@ -71,27 +73,45 @@ class Studio:
         blends = [{"actor": s.actor, "start": round(s.start, 3), "end": round(s.end, 3), "part": s.part,
                    "label": s.label} for s in anim.spans() if s.kind == "blend"]
         return {"ok": True, "text": text, "html": render_html(anim.tracks(), anim.spans(), title=text),
+                "notes": list(anim.planned.analysis.notes),
                 "table": rows, "blends": blends, "warnings": list(anim.warnings),
                 "duration": round(max((m.duration for m in anim.motions.values()), default=0.0), 3),
                 "_anim": anim}
 
-    def bvh(self, text: str, edits: tuple = ()) -> tuple[str, bytes] | None:
-        """``(file name, bytes)`` of ``text``'s animation as BVH (a zip of one BVH per actor when several);
-        None when it cannot be animated."""
+    def export(self, text: str, edits: tuple = (), fmt: str = "bvh") -> tuple[str, bytes] | None:
+        """``(file name, bytes)`` of ``text``'s animation as ``fmt`` (:data:`FORMATS`: one file per actor
+        for BVH, GLB and VRMA, zipped when there are several); None when it cannot be animated."""
         import io
+        import tempfile
         import zipfile
-
-        from text2anim.output.bvh_write import format_bvh
+        from pathlib import Path
 
         payload = self.animate(text, edits)
         if not payload["ok"]:
             return None
-        motions = payload["_anim"].motions
-        if len(motions) == 1:
-            (motion,) = motions.values()
-            return "animation.bvh", format_bvh(motion).encode()
+        with tempfile.TemporaryDirectory() as tmp:  # names only: nothing is written there
+            files = payload["_anim"].outputs(**{fmt: Path(tmp) / f"animation.{FORMATS[fmt]}"})
+        if len(files) == 1:
+            ((path, data),) = files.items()
+            return path.name, bytes(data)  # type: ignore[arg-type]
         buf = io.BytesIO()
         with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
-            for name, motion in sorted(motions.items()):
-                z.writestr(f"animation_{name}.bvh", format_bvh(motion))
+            for path, data in sorted(files.items()):
+                z.writestr(path.name, bytes(data))  # type: ignore[arg-type]
         return "animation.zip", buf.getvalue()
+
+
+def unknown_verbs(text: str, exc: Exception) -> list[dict]:
+    """For an error naming verbs no clip has (``fallback.UnknownVerbsError``): each one's place in ``text``
+    (``span``, characters), the database verbs nearest in meaning, the stand-in ``--fallback nearest`` plays
+    (or None) and why; empty for any other error."""
+    missing = getattr(exc, "missing", None)
+    if not missing:
+        return []
+    from text2anim.nlp import analyze
+
+    spans: dict[str, list[int]] = {}
+    for m in analyze(text).motions:
+        spans.setdefault(m.written or m.verb, list(m.span))
+    return [{"written": w, "span": spans.get(w), "nearest": [v for v, _ in near], "standin": standin, "why": why}
+            for w, near, standin, why in missing]

@@ -149,3 +149,16 @@ def test_clicking_a_bar_changes_how_it_joins(page):
     page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
     kick, run = _row(page, "蹴る"), _row(page, "走る")
     assert kick["method"] == "connection" and kick["start"] >= run["end"] - 1e-6
+
+
+def test_an_unknown_verb_is_underlined_with_what_may_stand_in_each_previewable(page):
+    page.fill("#text", "太郎は公園をぶらついて、泳ぐ。")
+    page.wait_for_function("document.querySelectorAll('#marks u.unknown').length === 2", timeout=30000)
+    assert page.locator("#marks u.unknown").all_inner_texts() == ["ぶらつい", "泳ぐ"]
+    standin = page.locator("#marks button.standin")
+    assert standin.count() == 1 and standin.inner_text() == "stand-in 歩く"  # ぶらつく has one, 泳ぐ none
+    n = page.evaluate("window.__studio.renders")
+    standin.click()
+    page.wait_for_function("window.__studio.previewing === '歩く'", timeout=30000)
+    assert page.input_value("#text") == "太郎は公園をぶらついて、泳ぐ。"  # the text stays as written
+    assert page.evaluate("window.__studio.renders") == n

@@ -69,3 +69,12 @@ def test_requests_are_bounded(client):
     assert long.status_code == 422 and "at most" in long.json()["error"]
     bad = client.post("/api/animate", content=b"not json", headers={"content-type": "application/json"})
     assert bad.status_code == 400
+
+
+@pytest.mark.parametrize("fmt, name, magic", [("glb", "animation.glb", b"glTF"), ("vrma", "animation.vrma", b"glTF"),
+                                              ("report", "animation.json", b"{")])
+def test_the_other_downloads(client, fmt, name, magic):
+    r = client.post("/api/export", json={"text": "太郎は歩く。", "format": fmt})
+    assert r.status_code == 200 and f'filename="{name}"' in r.headers["content-disposition"]
+    assert r.content[:len(magic)] == magic
+    assert client.post("/api/export", json={"text": "太郎は歩く。", "format": "exe"}).status_code == 400

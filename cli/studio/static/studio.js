@@ -45,7 +45,59 @@
     status("");
   }
 
+  function marks(text, data) {
+    // unknown verbs underlined where they are written, with what may stand in (each previewable);
+    // the analyser's notes (a typo read as meant) on hover
+    var box = $("marks"), unknown = (data && data.unknown) || [], notes = (data && data.notes) || [];
+    while (box.firstChild) box.removeChild(box.firstChild);
+    S.unknown = unknown;
+    if (!unknown.length && !notes.length) return;
+    var spans = unknown.filter(function (u) { return u.span; }).sort(function (a, b) { return a.span[0] - b.span[0]; });
+    var at = 0;
+    spans.forEach(function (u) {
+      if (u.span[0] < at) return;
+      box.appendChild(document.createTextNode(text.slice(at, u.span[0])));
+      var mark = document.createElement("u");
+      mark.className = "unknown"; mark.title = u.why; mark.textContent = text.slice(u.span[0], u.span[1]);
+      box.appendChild(mark);
+      at = u.span[1];
+    });
+    if (spans.length) box.appendChild(document.createTextNode(text.slice(at)));
+    unknown.forEach(function (u) {
+      var row = document.createElement("div");
+      row.appendChild(document.createTextNode(u.written + ": "));
+      (u.standin ? [u.standin] : []).concat(u.nearest).forEach(function (v, i) {
+        var b = document.createElement("button");
+        b.type = "button"; b.className = i === 0 && u.standin ? "standin" : "nearest";
+        b.textContent = (i === 0 && u.standin ? "stand-in " : "preview ") + v;
+        b.title = i === 0 && u.standin ? u.why : "the database's " + v + ", nearest by meaning (not a stand-in)";
+        b.addEventListener("click", function () { preview(v); });
+        row.appendChild(b);
+      });
+      box.appendChild(row);
+    });
+    if (notes.length) {
+      var n = document.createElement("span");
+      n.className = "note"; n.textContent = "read differently from how it is written"; n.title = notes.join("\n");
+      box.appendChild(n);
+    }
+  }
+
+  function preview(verb) {
+    // the verb's clip in the view, the text left as it is
+    fetch("/api/animate", { method: "POST", headers: { "Content-Type": "application/json" },
+                            body: JSON.stringify({ text: verb + "。" }) })
+      .then(function (r) { return r.json(); })
+      .then(function (data) {
+        if (!data.ok) { fail(data.error); return; }
+        S.previewing = verb;
+        $("view").srcdoc = data.html;
+        status("preview: " + verb + " (" + data.table.map(function (e) { return e.clip; }).join(", ") + ")");
+      });
+  }
+
   function show(data, text, seq) {
+    marks(text, data);
     if (!data.ok) { S.text = text; fail(data.error); return; }
     S.error = ""; S.text = text; S.table = data.table;
     $("error").textContent = "";
@@ -179,7 +231,7 @@
   function exportBvh() {
     var text = $("text").value;
     fetch("/api/export", { method: "POST", headers: { "Content-Type": "application/json" },
-                           body: JSON.stringify({ text: text, edits: editList() }) })
+                           body: JSON.stringify({ text: text, edits: editList(), format: $("format").value }) })
       .then(function (r) {
         if (!r.ok) return r.json().then(function (d) { fail(d.error || "cannot export"); });
         var name = /filename="([^"]+)"/.exec(r.headers.get("Content-Disposition") || "");
