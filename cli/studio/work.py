@@ -93,11 +93,11 @@ class Studio:
             files = payload["_anim"].outputs(**{fmt: Path(tmp) / f"animation.{FORMATS[fmt]}"})
         if len(files) == 1:
             ((path, data),) = files.items()
-            return path.name, bytes(data)  # type: ignore[arg-type]
+            return path.name, bytes(data)
         buf = io.BytesIO()
         with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
             for path, data in sorted(files.items()):
-                z.writestr(path.name, bytes(data))  # type: ignore[arg-type]
+                z.writestr(path.name, bytes(data))
         return "animation.zip", buf.getvalue()
 
 
