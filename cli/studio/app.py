@@ -5,9 +5,12 @@
 - ``POST /api/animate`` ``{"text", "edits"}`` -> the viewer page and the time table (:mod:`.work`);
   ``edits`` are the timeline's (:class:`text2anim.edits.Edit` as JSON: verb, nth, shift, duration, method);
 - ``POST /api/export`` ``{"text", "edits", "format"}`` -> the animation as ``bvh`` (default), ``glb``, ``vrma``
-  or the ``report`` (a zip of one file per actor when there are several).
+  or the ``report`` (a zip of one file per actor when there are several);
+- ``GET /api/verbs?q=`` the library's verbs holding ``q``; ``POST /api/import`` a dropped BVH (its bytes,
+  ``X-Verb`` the verb it shows) stored as ``db import`` stores it; ``POST /api/rig`` a dropped ``.glb``/``.vrm``
+  character the animation is shown and exported on, as ``--rig`` does.
 
-Requests are bounded: a body of at most :data:`MAX_BODY` bytes, a text of at most
+Requests are bounded: a body of at most :data:`MAX_BODY` bytes (a dropped file :data:`MAX_UPLOAD`), a text of at most
 ``work.MAX_TEXT`` characters, the API's own limits on what a text may ask for, and
 :data:`TIMEOUT` seconds of work. :class:`.guard.SameOrigin` refuses other hosts and origins.
 """
@@ -16,6 +19,7 @@ from __future__ import annotations
 import asyncio
 import json
 from collections.abc import Callable
+from pathlib import Path
 from importlib import resources
 
 from starlette.applications import Starlette
@@ -39,6 +43,8 @@ def _asset(name: str) -> str:
     return resources.files(__package__).joinpath("static").joinpath(name).read_text(encoding="utf-8")
 
 
+#: Largest file dropped on the page (bytes): a BVH to import, a GLB/VRM character.
+MAX_UPLOAD = 30 * 1024 * 1024
 #: Most time-table edits a request may carry.
 MAX_EDITS = 200
 
@@ -69,6 +75,18 @@ async def _text_of(request: Request) -> tuple[str, tuple, str] | Response:
     except EditError as exc:
         return JSONResponse({"ok": False, "error": str(exc)}, status_code=400)
     return text, edits, fmt
+
+
+async def _upload(request: Request) -> bytes | Response:
+    """A dropped file's bytes (at most :data:`MAX_UPLOAD`), or the response refusing it."""
+    data = b""
+    async for chunk in request.stream():
+        data += chunk
+        if len(data) > MAX_UPLOAD:
+            return JSONResponse({"ok": False, "error": f"the file is over {MAX_UPLOAD // 2**20} MB"}, status_code=413)
+    if not data:
+        return JSONResponse({"ok": False, "error": "the file is empty"}, status_code=400)
+    return data
 
 
 def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) -> Starlette:
@@ -113,11 +131,42 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
             return Response(data, media_type=kind, headers={"Content-Disposition": f'attachment; filename="{name}"'})
         return await work(request, run)
 
+    async def verbs(request: Request) -> Response:
+        q = request.query_params.get("q", "")[:100]
+        return JSONResponse({"ok": True, "verbs": await run_in_threadpool(studio.verbs, q)})
+
+    async def import_bvh(request: Request) -> Response:
+        from urllib.parse import unquote
+
+        verb = unquote(request.headers.get("x-verb", "")).strip()[:100]
+        name = unquote(request.headers.get("x-filename", "dropped.bvh"))[:200]
+        if not verb:
+            return JSONResponse({"ok": False, "error": "name the verb the clip shows (X-Verb)"}, status_code=400)
+        data = await _upload(request)
+        if isinstance(data, Response):
+            return data
+        cyclic = request.headers.get("x-cyclic", "") == "1"
+        done = await run_in_threadpool(studio.import_bvh, data, name, verb, cyclic)
+        return JSONResponse(done, status_code=200 if done["ok"] else 422)
+
+    async def rig(request: Request) -> Response:
+        from urllib.parse import unquote
+
+        suffix = Path(unquote(request.headers.get("x-filename", ""))).suffix.lower()
+        if suffix not in (".glb", ".vrm"):
+            return JSONResponse({"ok": False, "error": "drop a .glb or .vrm character"}, status_code=400)
+        data = await _upload(request)
+        if isinstance(data, Response):
+            return data
+        done = await run_in_threadpool(studio.set_rig, data, suffix)
+        return JSONResponse(done, status_code=200 if done["ok"] else 422)
+
     async def favicon(request: Request) -> Response:
         return Response(status_code=204)
 
     app = Starlette(routes=[Route("/", page), Route("/static/{name}", asset), Route("/favicon.ico", favicon),
                             Route("/api/animate", animate, methods=["POST"]),
-                            Route("/api/export", export, methods=["POST"])])
+                            Route("/api/export", export, methods=["POST"]), Route("/api/verbs", verbs),
+                            Route("/api/import", import_bvh, methods=["POST"]), Route("/api/rig", rig, methods=["POST"])])
     app.add_middleware(SameOrigin, hosts=own_hosts(host, port))
     return app

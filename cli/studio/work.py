@@ -6,9 +6,12 @@ kept: going back to a text, or appending to it, costs nothing for what was alrea
 """
 from __future__ import annotations
 
+import re
+import tempfile
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass
+from pathlib import Path
 
 #: Longest text the studio animates (characters); the API's own limits apply too.
 MAX_TEXT = 2000
@@ -20,17 +23,69 @@ FORMATS = {"bvh": "bvh", "glb": "glb", "vrma": "vrma", "report": "json"}
 
 @dataclass
 class Studio:
-    """The studio's state: its database (a :class:`motiondb.MotionDB`) and recent results."""
+    """The studio's state: its database (a :class:`motiondb.MotionDB`), recent results, and the user's
+    character when one was dropped (a ``.glb``/``.vrm`` kept in ``folder``, a private temporary folder)."""
 
     db: object
     lock: threading.Lock
     cache: "OrderedDict[str, dict]"
+    folder: "tempfile.TemporaryDirectory[str]"
+    rig: Path | None = None
 
     @classmethod
     def open(cls, db_url: str | None) -> "Studio":
         from text2anim.motiondb import MotionDB
 
-        return cls(MotionDB.open(db_url), threading.Lock(), OrderedDict())
+        return cls(MotionDB.open(db_url), threading.Lock(), OrderedDict(), tempfile.TemporaryDirectory(prefix="t2a-studio-"))
+
+    def verbs(self, query: str, limit: int = 50) -> list[dict]:
+        """The database's verbs whose spelling or reading holds ``query`` (all when empty), with their clip counts."""
+        q = query.strip()
+        return [{"verb": v.lemma, "reading": v.reading, "clips": v.clips} for v in self.db.verbs()  # type: ignore[attr-defined]
+                if not q or q in v.lemma or q in v.reading][:limit]
+
+    def import_bvh(self, data: bytes, filename: str, verb: str, cyclic: bool) -> dict:
+        """Store a dropped BVH file as a clip of ``verb`` through ``db import``'s own reader and checks (the
+        same limits); ``{"ok", "clip"}`` or ``{"ok": False, "error"}``. The name comes from ``filename``'s
+        letters and digits only; nothing the client sends becomes a path."""
+        from text2anim.cli.terminal import message
+        from text2anim.motiondb import ImportOptions
+
+        name = re.sub(r"[^0-9A-Za-z_-]+", "_", Path(filename).stem)[:60].strip("_") or "dropped"
+        path = Path(self.folder.name) / "upload.bvh"
+        with self.lock:
+            path.write_bytes(data)
+            try:
+                (info,) = self.db.import_bvh([path], ImportOptions((verb,), cyclic=cyclic, names=(name,)))  # type: ignore[attr-defined]
+            except Exception as exc:
+                if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
+                    raise
+                return {"ok": False, "error": message(str(exc).replace(str(path), filename))}
+            finally:
+                path.unlink(missing_ok=True)
+            self.cache.clear()  # the database changed: what was made may play other clips now
+        return {"ok": True, "clip": info.name, "verbs": list(info.verbs), "frames": info.frames,
+                "seconds": round(info.duration, 3)}
+
+    def set_rig(self, data: bytes, suffix: str) -> dict:
+        """Keep a dropped ``.glb``/``.vrm`` character for what follows (read as ``--rig`` reads it: refused
+        with the reader's message when it is no human rig); ``{"ok", "joints"}`` or ``{"ok": False, "error"}``."""
+        from text2anim.cli.terminal import message
+        from text2anim.core.gltf_rig import read_gltf_rig
+
+        path = Path(self.folder.name) / f"character{suffix}"
+        with self.lock:
+            path.write_bytes(data)
+            try:
+                rig = read_gltf_rig(path)
+            except Exception as exc:
+                if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
+                    raise
+                path.unlink(missing_ok=True)
+                return {"ok": False, "error": message(str(exc).replace(str(path), f"the dropped {suffix} file"))}
+            self.rig = path
+            self.cache.clear()
+        return {"ok": True, "joints": len(rig.skeleton.names)}
 
     def animate(self, text: str, edits: tuple = ()) -> dict:
         """``{"ok": True, "html", "table", "blends", "duration", "warnings"}`` for ``text`` with the time-table
@@ -42,7 +97,7 @@ class Studio:
             return {"ok": False, "error": "type a sentence, e.g. 太郎は走って、ボールを蹴る。"}
         if len(text) > MAX_TEXT:
             return {"ok": False, "error": f"the text is {len(text)} characters long; the studio takes at most {MAX_TEXT}"}
-        key = text + "\0" + repr(edits)
+        key = text + "\0" + repr(edits) + "\0" + str(self.rig)
         with self.lock:
             hit = self.cache.get(key)
             if hit is not None:
@@ -67,12 +122,18 @@ class Studio:
                 raise
             return {"ok": False, "error": message(str(exc)), "unknown": unknown_verbs(text, exc)}
         keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
+        tracks = anim.tracks()
+        if self.rig is not None:  # the user's character: its own skeleton and proportions
+            from text2anim.export import ExportOptions
+
+            tracks = anim.exported_motions(ExportOptions(rig=self.rig), units=False)
         rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
                  "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part,
                  "key": keys.get(e.id)} for e in anim.table.elements]
         blends = [{"actor": s.actor, "start": round(s.start, 3), "end": round(s.end, 3), "part": s.part,
                    "label": s.label} for s in anim.spans() if s.kind == "blend"]
-        return {"ok": True, "text": text, "html": render_html(anim.tracks(), anim.spans(), title=text),
+        return {"ok": True, "text": text, "html": render_html(tracks, anim.spans(), title=text),
+                "rig": self.rig is not None,
                 "notes": list(anim.planned.analysis.notes),
                 "table": rows, "blends": blends, "warnings": list(anim.warnings),
                 "duration": round(max((m.duration for m in anim.motions.values()), default=0.0), 3),
@@ -82,15 +143,18 @@ class Studio:
         """``(file name, bytes)`` of ``text``'s animation as ``fmt`` (:data:`FORMATS`: one file per actor
         for BVH, GLB and VRMA, zipped when there are several); None when it cannot be animated."""
         import io
-        import tempfile
         import zipfile
-        from pathlib import Path
 
         payload = self.animate(text, edits)
         if not payload["ok"]:
             return None
+        export = None
+        if self.rig is not None and fmt in ("bvh", "glb", "vrma"):
+            from text2anim.export import ExportOptions
+
+            export = ExportOptions(rig=self.rig)
         with tempfile.TemporaryDirectory() as tmp:  # names only: nothing is written there
-            files = payload["_anim"].outputs(**{fmt: Path(tmp) / f"animation.{FORMATS[fmt]}"})
+            files = payload["_anim"].outputs(**{fmt: Path(tmp) / f"animation.{FORMATS[fmt]}"}, export=export)
         if len(files) == 1:
             ((path, data),) = files.items()
             return path.name, bytes(data)

@@ -24,14 +24,16 @@ pytestmark = pytest.mark.skipif(not Path(CHROMIUM).exists(),
 
 
 @pytest.fixture(scope="module")
-def studio(library_db):
-    """The studio's URL, served by uvicorn in a thread for the module's tests."""
+def studio(tmp_path_factory):
+    """The studio's URL, served by uvicorn in a thread for the module's tests, on a database of its own
+    (the drop tests import clips into it)."""
     import uvicorn
 
     from text2anim.cli.studio.app import create_app
 
+    db = f"sqlite:///{tmp_path_factory.mktemp('studio-db') / 'motions.sqlite'}"
     port = free_port("127.0.0.1")
-    server = uvicorn.Server(uvicorn.Config(create_app(library_db, "127.0.0.1", port), host="127.0.0.1", port=port,
+    server = uvicorn.Server(uvicorn.Config(create_app(db, "127.0.0.1", port), host="127.0.0.1", port=port,
                                            log_level="warning"))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
@@ -125,6 +127,7 @@ def _row(page, verb):
 
 def test_moving_a_bar_moves_the_motion_in_the_time_table_and_the_animation(page):
     before, length = _row(page, "喜ぶ"), page.evaluate("document.getElementById('view').contentWindow.__t2a.duration")
+    page.locator('#timeline rect.bar[data-verb="喜ぶ"]').scroll_into_view_if_needed()
     bar = page.locator('#timeline rect.bar[data-verb="喜ぶ"]').bounding_box()
     page.mouse.move(bar["x"] + 20, bar["y"] + bar["height"] / 2)
     page.mouse.down()
@@ -162,3 +165,62 @@ def test_an_unknown_verb_is_underlined_with_what_may_stand_in_each_previewable(p
     page.wait_for_function("window.__studio.previewing === '歩く'", timeout=30000)
     assert page.input_value("#text") == "太郎は公園をぶらついて、泳ぐ。"  # the text stays as written
     assert page.evaluate("window.__studio.renders") == n
+
+
+def test_the_library_is_searched_and_a_verb_previewed(page):
+    page.fill("#search", "ジャンプ")
+    page.wait_for_function("document.querySelectorAll('#verbs button').length > 0", timeout=30000)
+    first = page.locator("#verbs button").first
+    assert "ジャンプ" in first.inner_text()
+    first.click()
+    page.wait_for_function("(window.__studio.previewing || '').includes('ジャンプ')", timeout=30000)
+
+
+def _drop(page, path: Path, verb: str | None = None):
+    """Hand ``path`` to the page as a drop does (a File in the page), answering the verb prompt."""
+    if verb is not None:
+        page.once("dialog", lambda d: d.accept(verb))
+    data = list(path.read_bytes())
+    page.evaluate("([name, bytes]) => window.__studio.drop(new File([new Uint8Array(bytes)], name))",
+                  [path.name, data])
+
+
+def test_a_dropped_bvh_is_imported_and_plays(page, tmp_path, library_db):
+    """Into the studio's own database (the shared library is only where the test's clip comes from)."""
+    import text2anim
+    from text2anim.output.bvh_write import format_bvh
+
+    wave = text2anim.animate("太郎は手を振る。", db=library_db)
+    (motion,) = wave.motions.values()
+    path = tmp_path / "my wave.bvh"
+    path.write_text(format_bvh(motion))
+    _drop(page, path, "手招きする")
+    page.wait_for_function("document.getElementById('dropped').textContent.includes('stored as clip')", timeout=30000)
+    assert "my_wave" in page.inner_text("#dropped")
+    page.fill("#text", "花子は手招きする。")
+    page.wait_for_function("window.__studio.table.length === 1 && window.__studio.table[0].clip === 'my_wave'",
+                           timeout=30000)
+
+
+def test_a_broken_file_dropped_says_why_and_changes_nothing(page, tmp_path):
+    bad = tmp_path / "broken.bvh"
+    bad.write_text("HIERARCHY\nROOT hips\n{\n")
+    _drop(page, bad, "歩く")
+    page.wait_for_function("document.getElementById('error').textContent.length > 0", timeout=30000)
+    assert "broken.bvh" in page.inner_text("#error") and "Traceback" not in page.inner_text("#error")
+
+
+def test_a_dropped_vrm_character_is_animated(page, tmp_path):
+    from rig_builders import vrm_file
+
+    avatar = vrm_file(tmp_path / "avatar.vrm")
+    _drop(page, avatar)
+    page.wait_for_function("document.getElementById('dropped').textContent.includes('this character')",
+                           timeout=30000)
+    page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
+    with page.expect_download() as dl:
+        page.select_option("#format", "glb")
+        page.click("#export")
+    out = tmp_path / dl.value.suggested_filename
+    dl.value.save_as(out)
+    assert out.read_bytes()[:4] == b"glTF" and out.stat().st_size > avatar.stat().st_size

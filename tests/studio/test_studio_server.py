@@ -78,3 +78,24 @@ def test_the_other_downloads(client, fmt, name, magic):
     assert r.status_code == 200 and f'filename="{name}"' in r.headers["content-disposition"]
     assert r.content[:len(magic)] == magic
     assert client.post("/api/export", json={"text": "太郎は歩く。", "format": "exe"}).status_code == 400
+
+
+def test_the_library_is_searched_by_spelling_and_reading(client):
+    verbs = client.get("/api/verbs", params={"q": "ジャンプ"}).json()["verbs"]
+    assert any(v["verb"] == "ジャンプする" for v in verbs) and all("ジャンプ" in v["verb"] + v["reading"] for v in verbs)
+
+
+def test_dropped_files_are_bounded_and_checked_before_anything_is_stored(client):
+    from urllib.parse import quote
+
+    from text2anim.cli.studio.app import MAX_UPLOAD
+
+    assert client.post("/api/import", content=b"HIERARCHY", headers={"x-filename": "a.bvh"}).status_code == 400  # no verb
+    broken = client.post("/api/import", content=b"HIERARCHY\nROOT x\n{", headers={"x-filename": "a.bvh", "x-verb": "x"})
+    assert broken.status_code == 422 and "a.bvh" in broken.json()["error"] and "Traceback" not in broken.text
+    assert client.post("/api/rig", content=b"glTF", headers={"x-filename": "a.fbx"}).status_code == 400
+    bad_rig = client.post("/api/rig", content=b"glTF\x02\x00\x00\x00", headers={"x-filename": "a.glb"})
+    assert bad_rig.status_code == 422 and bad_rig.json()["ok"] is False
+    big = client.post("/api/import", content=b"x" * (MAX_UPLOAD + 1), headers={"x-filename": "a.bvh",
+                                                                               "x-verb": quote("歩く")})
+    assert big.status_code == 413 and "MB" in big.json()["error"]

@@ -244,6 +244,53 @@
       .catch(function (e) { fail(String(e)); });
   }
 
+  function search() {
+    fetch("/api/verbs?q=" + encodeURIComponent($("search").value))
+      .then(function (r) { return r.json(); })
+      .then(function (data) {
+        var box = $("verbs");
+        while (box.firstChild) box.removeChild(box.firstChild);
+        data.verbs.forEach(function (v) {
+          var b = document.createElement("button");
+          b.type = "button"; b.textContent = v.verb + " (" + v.clips + ")"; b.title = v.reading + ": preview";
+          b.addEventListener("click", function () { preview(v.verb); });
+          box.appendChild(b);
+        });
+      });
+  }
+
+  function dropped(file) {
+    var name = file.name || "", lower = name.toLowerCase(), headers = { "X-Filename": encodeURIComponent(name) };
+    var url;
+    if (/\.bvh$/.test(lower)) {
+      var verb = window.prompt("Which verb does " + name + " show? (e.g. 歩く)", "");
+      if (!verb) return;
+      headers["X-Verb"] = encodeURIComponent(verb);
+      url = "/api/import";
+    } else if (/\.(glb|vrm)$/.test(lower)) {
+      url = "/api/rig";
+    } else { fail(name + ": drop a .bvh clip or a .glb/.vrm character"); return; }
+    $("dropped").textContent = name + ": reading…";
+    fetch(url, { method: "POST", headers: headers, body: file })
+      .then(function (r) { return r.json(); })
+      .then(function (d) {
+        if (!d.ok) { $("dropped").textContent = ""; fail(d.error); return; }
+        $("dropped").textContent = url === "/api/import"
+          ? name + ": stored as clip " + d.clip + " (" + d.verbs.join("/") + ", " + d.seconds + " s)"
+          : name + ": the animation is shown and exported on this character (" + d.joints + " joints)";
+        S.sent = ""; animate();  // what plays may have changed
+      })
+      .catch(function (e) { fail(String(e)); });
+  }
+
+  document.addEventListener("dragover", function (e) { e.preventDefault(); document.body.classList.add("dragging"); });
+  document.addEventListener("dragleave", function () { document.body.classList.remove("dragging"); });
+  document.addEventListener("drop", function (e) {
+    e.preventDefault(); document.body.classList.remove("dragging");
+    if (e.dataTransfer && e.dataTransfer.files.length) dropped(e.dataTransfer.files[0]);
+  });
+  window.__studio.drop = dropped;  // tests hand it a File, as a drop does
+  $("search").addEventListener("input", search);
   $("text").addEventListener("input", schedule);
   $("add-btn").addEventListener("click", append);
   $("add").addEventListener("keydown", function (e) { if (e.key === "Enter") append(); });
