@@ -1,7 +1,8 @@
 """The studio's web application (Starlette): the page, its assets, and three JSON/file endpoints.
 
 - ``GET /`` the page (``/?text=…`` opens it with that text animated: a link to share);
-- ``GET /static/NAME`` one of the page's own files (a fixed list: no path comes from the client);
+- ``GET /static/NAME`` one of the page's own files, ``GET /static/vendor/...`` the vendored three.js files
+  (fixed lists: no path comes from the client);
 - ``POST /api/animate`` ``{"text", "edits"}`` -> the viewer page and the time table (:mod:`.work`);
   ``edits`` are the timeline's (:class:`text2anim.edits.Edit` as JSON: verb, nth, shift, duration, method);
 - ``POST /api/export`` ``{"text", "edits", "format"}`` -> the animation as ``bvh`` (default), ``glb``, ``vrma``
@@ -36,7 +37,14 @@ MAX_BODY = 64 * 1024
 #: Seconds a request may work before the page is told to try a shorter text.
 TIMEOUT = 60.0
 #: The page's own files: name -> content type.
-ASSETS = {"studio.js": "text/javascript; charset=utf-8", "studio.css": "text/css; charset=utf-8"}
+ASSETS = {"studio.js": "text/javascript; charset=utf-8", "studio3d.js": "text/javascript; charset=utf-8",
+          "studio.css": "text/css; charset=utf-8"}
+
+
+def _vendored() -> dict[str, Path]:
+    """``{relative path: file}`` of the vendored libraries' JavaScript (``static/vendor/``)."""
+    root = Path(str(resources.files(__package__).joinpath("static").joinpath("vendor")))
+    return {p.relative_to(root).as_posix(): p for p in root.rglob("*.js")}
 
 
 def _asset(name: str) -> str:
@@ -102,6 +110,15 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
             return Response("not found", status_code=404)
         return Response(_asset(name), media_type=ASSETS[name])
 
+    vendored = _vendored()
+
+    async def vendor(request: Request) -> Response:
+        path = vendored.get(request.path_params["path"])  # the client's path only picks from our own list
+        if path is None:
+            return Response("not found", status_code=404)
+        return Response(path.read_bytes(), media_type="text/javascript; charset=utf-8",
+                        headers={"Cache-Control": "max-age=86400"})
+
     async def work(request: Request, fn: Callable[[str, tuple, str], Response]) -> Response:
         got = await _text_of(request)
         if isinstance(got, Response):
@@ -152,6 +169,9 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
     async def rig(request: Request) -> Response:
         from urllib.parse import unquote
 
+        if request.method == "DELETE":
+            await run_in_threadpool(studio.clear_rig)
+            return JSONResponse({"ok": True})
         suffix = Path(unquote(request.headers.get("x-filename", ""))).suffix.lower()
         if suffix not in (".glb", ".vrm"):
             return JSONResponse({"ok": False, "error": "drop a .glb or .vrm character"}, status_code=400)
@@ -164,9 +184,10 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
     async def favicon(request: Request) -> Response:
         return Response(status_code=204)
 
-    app = Starlette(routes=[Route("/", page), Route("/static/{name}", asset), Route("/favicon.ico", favicon),
+    app = Starlette(routes=[Route("/", page), Route("/static/vendor/{path:path}", vendor),
+                            Route("/static/{name}", asset), Route("/favicon.ico", favicon),
                             Route("/api/animate", animate, methods=["POST"]),
                             Route("/api/export", export, methods=["POST"]), Route("/api/verbs", verbs),
-                            Route("/api/import", import_bvh, methods=["POST"]), Route("/api/rig", rig, methods=["POST"])])
+                            Route("/api/import", import_bvh, methods=["POST"]), Route("/api/rig", rig, methods=["POST", "DELETE"])])
     app.add_middleware(SameOrigin, hosts=own_hosts(host, port))
     return app

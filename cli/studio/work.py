@@ -67,6 +67,14 @@ class Studio:
         return {"ok": True, "clip": info.name, "verbs": list(info.verbs), "frames": info.frames,
                 "seconds": round(info.duration, 3)}
 
+    def clear_rig(self) -> None:
+        """Back to the built-in character."""
+        with self.lock:
+            if self.rig is not None:
+                self.rig.unlink(missing_ok=True)
+            self.rig = None
+            self.cache.clear()
+
     def set_rig(self, data: bytes, suffix: str) -> dict:
         """Keep a dropped ``.glb``/``.vrm`` character for what follows (read as ``--rig`` reads it: refused
         with the reader's message when it is no human rig); ``{"ok", "joints"}`` or ``{"ok": False, "error"}``."""

@@ -15,8 +15,9 @@ from text2anim.cli.cmd_studio import free_port
 from text2anim.core.bvh import parse_bvh
 
 CHROMIUM = "/usr/bin/chromium"
-FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
-         "--disable-component-update", "--disable-sync"]
+FLAGS = ["--no-sandbox", "--disable-quic", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync",
+         "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]  # WebGL on the CPU, for the skinned view
 playwright_api = pytest.importorskip("playwright.sync_api", reason="Playwright is not installed (pip install '.[test]')")
 pytestmark = pytest.mark.skipif(not Path(CHROMIUM).exists(),
                                 reason=f"{CHROMIUM} not installed (apt-get install chromium); the studio is not tested "
@@ -210,17 +211,26 @@ def test_a_broken_file_dropped_says_why_and_changes_nothing(page, tmp_path):
     assert "broken.bvh" in page.inner_text("#error") and "Traceback" not in page.inner_text("#error")
 
 
-def test_a_dropped_vrm_character_is_animated(page, tmp_path):
+def test_a_dropped_vrm_character_is_drawn_skinned_and_animated(page, tmp_path):
     from rig_builders import vrm_file
 
     avatar = vrm_file(tmp_path / "avatar.vrm")
     _drop(page, avatar)
     page.wait_for_function("document.getElementById('dropped').textContent.includes('this character')",
                            timeout=30000)
-    page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
+    page.wait_for_function("window.__studio3d && window.__studio3d.loads >= 1 && !window.__studio.busy", timeout=60000)
+    assert page.locator("#view3d").is_visible() and not page.locator("#view").is_visible()
+    t0 = page.evaluate("window.__studio3d.time")
+    first = page.locator("#view3d canvas").screenshot()
+    page.wait_for_timeout(700)
+    assert page.evaluate("window.__studio3d.time") > t0  # it plays
+    assert page.locator("#view3d canvas").screenshot() != first  # and the picture moves
+    page.screenshot(path=str(tmp_path / "skinned.png"))
     with page.expect_download() as dl:
         page.select_option("#format", "glb")
         page.click("#export")
     out = tmp_path / dl.value.suggested_filename
     dl.value.save_as(out)
     assert out.read_bytes()[:4] == b"glTF" and out.stat().st_size > avatar.stat().st_size
+    page.click("#builtin")  # back to the built-in character, in the viewer
+    page.wait_for_function("!document.getElementById('view').hidden && !window.__studio.busy", timeout=30000)

@@ -91,6 +91,8 @@
       .then(function (data) {
         if (!data.ok) { fail(data.error); return; }
         S.previewing = verb;
+        $("view").onload = null;  // a preview is no render of the text
+        $("view3d").hidden = true; $("view").hidden = false;
         $("view").srcdoc = data.html;
         status("preview: " + verb + " (" + data.table.map(function (e) { return e.clip; }).join(", ") + ")");
       });
@@ -103,9 +105,11 @@
     $("error").textContent = "";
     $("share").href = "/?text=" + encodeURIComponent(text);
     var view = $("view");
+    timeline(data);
+    if (data.rig) { skinned(text, seq, data); return; }
+    $("view3d").hidden = true; view.hidden = false;
     view.onload = function () { ready(view, seq, data); };
     view.srcdoc = data.html;
-    timeline(data);
   }
 
   function ready(view, seq, data) {
@@ -120,6 +124,29 @@
         status(data.duration.toFixed(2) + " s of animation, on screen " + Math.round(ms) + " ms after the pause");
       });
     })();
+  }
+
+  function skinned(text, seq, data) {
+    // the dropped character, skinned: the GLB the studio exports for it, drawn by three.js (studio3d.js)
+    if (!window.__studio3dApi) { setTimeout(function () { skinned(text, seq, data); }, 20); return; }  // module loading
+    var api3d = window.__studio3dApi, s3 = window.__studio3d;
+    var at = S.resumeAt !== null ? S.resumeAt : (s3 && s3.ready ? s3.time : 0);
+    $("builtin").hidden = false;
+    S.resumeAt = null;
+    fetch("/api/export", { method: "POST", headers: { "Content-Type": "application/json" },
+                           body: JSON.stringify({ text: text, edits: editList(), format: "glb" }) })
+      .then(function (r) { if (!r.ok) throw new Error("cannot draw the character"); return r.arrayBuffer(); })
+      .then(function (buffer) {
+        $("view").hidden = true; $("view3d").hidden = false;
+        return api3d.show(buffer, at);
+      })
+      .then(function () {
+        if (seq !== S.seq) return;
+        var ms = performance.now() - S.firedAt;
+        S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq; S.busy = false;
+        status(data.duration.toFixed(2) + " s of animation on your character, on screen " + Math.round(ms) + " ms after the pause");
+      })
+      .catch(function (e) { fail(String(e)); });
   }
 
   function svg(tag, attrs, text) {
@@ -219,8 +246,9 @@
   function append() {
     var more = $("add").value.trim();
     if (!more) return;
-    var api = $("view").contentWindow && $("view").contentWindow.__t2a;
-    S.resumeAt = api && api.ready ? api.time : 0;  // playback goes on from the frame on screen
+    var api = $("view").contentWindow && $("view").contentWindow.__t2a, s3 = window.__studio3d;
+    if (!$("view3d").hidden && s3 && s3.ready) S.resumeAt = s3.time;  // playback goes on from the frame on screen
+    else S.resumeAt = api && api.ready ? api.time : 0;
     var text = $("text").value.trim();
     $("text").value = text + (/[。！？!?]$/.test(text) || !text ? "" : "。") + more;
     $("add").value = "";
@@ -291,6 +319,11 @@
   });
   window.__studio.drop = dropped;  // tests hand it a File, as a drop does
   $("search").addEventListener("input", search);
+  $("builtin").addEventListener("click", function () {
+    fetch("/api/rig", { method: "DELETE" }).then(function () {
+      $("builtin").hidden = true; $("dropped").textContent = ""; S.sent = ""; animate();
+    });
+  });
   $("text").addEventListener("input", schedule);
   $("add-btn").addEventListener("click", append);
   $("add").addEventListener("keydown", function (e) { if (e.key === "Enter") append(); });
