@@ -25,6 +25,9 @@ def test_the_page_and_its_own_files_are_served(client):
     assert client.get("/static/studio.js").status_code == 200
     assert client.get("/static/../app.py").status_code == 404  # no path comes from the client
     assert client.get("/static/viewer.js").status_code == 404
+    for vendored in ("three/three.module.js", "three/three.core.js", "three/examples/jsm/loaders/GLTFLoader.js"):
+        assert client.get(f"/static/vendor/{vendored}").status_code == 200, vendored  # shipped with the package
+    assert client.get("/static/vendor/../app.py").status_code == 404
 
 
 def test_a_text_becomes_the_viewer_page_and_its_time_table(client):
