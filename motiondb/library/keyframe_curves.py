@@ -34,6 +34,29 @@ SWAY_TERMS = (
 )
 
 
+#: The captured standing idle whose hips' drift (weight shifting from foot to foot, breathing in the
+#: knees) keyframed gestures standing on both feet play over, instead of the root terms of
+#: :data:`SWAY_TERMS`: a living body (the synthetic drift moved the hips 0.7 cm in a nod; capture 2-3 cm).
+IDLE_CLIP = "wait"
+
+
+def idle_drift(times: np.ndarray) -> np.ndarray:
+    """``(T, 3)`` metres: the captured idle's hips position at ``times`` (seconds) less where it starts, its
+    net travel taken out; played forward and back (ping-pong) for clips longer than the idle."""
+    from .capture import captured_clip
+
+    idle = captured_clip(IDLE_CLIP)
+    root = idle.root_positions - idle.root_positions.mean(axis=0)
+    n = len(root)
+    root = root - np.linspace(0.0, 1.0, n)[:, None] * (root[-1] - root[0])  # no net travel: a loop of drift
+    frames = np.asarray(times) * idle.fps
+    period = 2 * (n - 1)
+    k = np.mod(frames, period)
+    k = np.where(k > n - 1, period - k, k)  # forward, then back
+    out = np.stack([np.interp(k, np.arange(n), root[:, a]) for a in range(3)], axis=1)
+    return out - out[0]
+
+
 @dataclass
 class Curves:
     """Sampled keyframe curves: ``root`` ``(T, 3)`` metres, ``euler`` ``(T, J, 3)`` degrees (x, y, z)."""
@@ -170,12 +193,18 @@ def sample_curves(clip: ClipData, poses: dict, skeleton: Skeleton, times: np.nda
 
     sway = float(raw.get("sway", 0.0 if clip.cyclic else 1.0))
     if sway:
+        # a gesture standing on both feet drifts as the captured idle's hips do (a loop keeps its own drift,
+        # a clip that steps or travels its keyed path)
+        captured = not clip.cyclic and raw.get("plants") == "both"
+        if captured:
+            root += sway * idle_drift(times)
         for joint, ch, amp, freq in SWAY_TERMS:
             if clip.cyclic:  # whole cycles per period, so the loop stays exact
                 freq = max(1, round(freq * clip.period)) / clip.period
             wave = sway * amp * np.sin(2 * np.pi * freq * times)
             if joint == "root":
-                root[:, ch] += wave
+                if not captured:
+                    root[:, ch] += wave
             else:
                 euler[:, skeleton.index(joint), ch] += wave
     return Curves(np.asarray(times, dtype=np.float64), root, euler)
