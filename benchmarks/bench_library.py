@@ -2,15 +2,17 @@
 
     python benchmarks/bench_library.py [--engine optimal|constraint] [--db URL]
 
-Prints three tables:
+Prints these tables:
 
 1. the library: clips and verbs by source (CMU capture or keyframed), the size of the
    shipped arrays, the time to seed a fresh SQLite database (CPU beside wall);
-2. per sentence (the golden set and the issue's cases): length, the share of frozen frames
+2. per clip at 30 fps, the worst first: GMD skating, floor penetration, floating foot, and how many
+   clips are over what issue 24 holds them to;
+3. per sentence (the golden set and the issue's cases): length, the share of frozen frames
    (``docs/timetable.md`` §3: every joint slower than 0.5 cm/s), the longest frozen run, the
    foot-skating ratio, and for repeats the seconds per repetition;
-3. co-actors: whether two actors doing the same verb play identical joint angles;
-4. loops and repeats: each looping captured clip's cycle and the hips' net travel over it (a
+4. co-actors: whether two actors doing the same verb play identical joint angles;
+5. loops and repeats: each looping captured clip's cycle and the hips' net travel over it (a
    dance loops on the spot, a gait cycle moves on by a stride), and for repeated and long
    sentences the seconds per repetition and how far the hips get from where they started.
 
@@ -147,6 +149,29 @@ def loop_table(db_url: str, engine: str) -> None:
     db.close()
 
 
+def clip_table(db_url: str, worst: int = 12) -> None:
+    """Per built-in clip at 30 fps: skating, floor penetration and floating foot; the worst rows and the
+    clips over :data:`core.metrics.CLIP_LIMITS`."""
+    from text2anim.core.metrics import CLIP_LIMITS, quality
+    from text2anim.motiondb import MotionDB
+
+    with MotionDB.open(db_url) as db:
+        rows = [(c.name, c.source.split(":")[1] if c.source.startswith("builtin:") else c.source,
+                 quality(db.load(c.name))) for c in db.clips()]
+    over = [r for r in rows if any(getattr(r[2], k) > v for k, v in CLIP_LIMITS.items())]
+    print(f"per clip at 30 fps: {len(rows)} clips, {len(over)} over a limit "
+          f"(skating <= {CLIP_LIMITS['skating_ratio']}, floor <= {CLIP_LIMITS['floor_penetration_cm']:g} cm, "
+          f"floating <= {CLIP_LIMITS['floating_cm']:g} cm)")
+    print("| clip | source | skating | floor cm | floating cm |")
+    print("| --- | --- | ---: | ---: | ---: |")
+    key = lambda r: (r[2].skating_ratio / CLIP_LIMITS["skating_ratio"]  # noqa: E731 - the worst first
+                     + r[2].floor_penetration_cm / CLIP_LIMITS["floor_penetration_cm"]
+                     + r[2].floating_cm / CLIP_LIMITS["floating_cm"])
+    for name, source, q in sorted(rows, key=key, reverse=True)[:worst]:
+        print(f"| {name} | {source} | {q.skating_ratio:.3f} | {q.floor_penetration_cm:.2f} | {q.floating_cm:.1f} |")
+    print()
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--engine", default="optimal")
@@ -155,6 +180,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         url = args.db or str(Path(tmp) / "bench.sqlite")
         library_table(url)
+        clip_table(url)
         sentence_table(url, args.engine)
         loop_table(url, args.engine)
 

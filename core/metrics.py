@@ -59,6 +59,8 @@ JERK_PERCENTILE = 99.0
 #: :mod:`core.floating`); the frozen-frame fraction is held to :data:`MAX_FROZEN`.
 BUILTIN_LIMITS = {"root_pop": 15.0, "jerk_p99": 2300.0, "skating_ratio": 0.02, "floor_penetration_cm": 1.0,
                   "floating_cm": 10.0}
+#: What every clip of the built-in library is held to on its own (issue 24), at 30 fps.
+CLIP_LIMITS = {"skating_ratio": 0.03, "floor_penetration_cm": 1.0, "floating_cm": 10.0}
 MAX_PENETRATION_CM = 1.0  # a join may put no joint deeper than this below the floor
 MAX_FROZEN = 0.05  # nor hold more than this fraction of frozen frame pairs
 SKATING_MARGIN = 0.01  # a join may skate this much more than the more skating of its two sources

@@ -485,3 +485,19 @@ def test_a_standing_gesture_plays_over_a_living_body(name):
     """Issue 24: the hips shift weight as the captured idle's do (keyframe_curves.IDLE_CLIP), never frozen legs."""
     hips = CLIPS[name].motion.root_positions
     assert np.ptp(hips[:, [0, 2]], axis=0).max() > 0.01
+
+
+def test_every_seeded_clip_meets_the_clip_limits(library_db):
+    """Issue 24, measured as bench_library prints it: at 30 fps no built-in clip skates (GMD), goes through
+    the floor or holds a foot on air beyond core.metrics.CLIP_LIMITS."""
+    from text2anim.core.metrics import CLIP_LIMITS, quality
+    from text2anim.motiondb import MotionDB
+
+    with MotionDB.open(library_db) as db:
+        over = {}
+        for c in db.clips():
+            q = quality(db.load(c.name))
+            bad = {k: round(getattr(q, k), 3) for k, v in CLIP_LIMITS.items() if getattr(q, k) > v}
+            if bad:
+                over[c.name] = bad
+    assert over == {}
