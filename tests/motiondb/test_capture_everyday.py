@@ -70,3 +70,15 @@ def test_rebuilding_an_everyday_clip_gives_the_shipped_arrays():
     with np.load(capture.ARRAYS) as shipped:
         assert np.array_equal(m.rotations.astype(np.float32), shipped["drink.rot"])
         assert np.array_equal(m.root_positions.astype(np.float32), shipped["drink.root"])
+
+
+def test_a_verb_with_several_takes_gives_co_actors_and_repeats_different_drinks(library_db):
+    """Three subjects' drinks (14_37, 13_09, 14_05): two people drinking, or one drinking again, are no clones."""
+    import text2anim
+
+    with MotionDB.open(library_db) as db:
+        table = text2anim.plan("太郎と花子が飲む。", db).table.elements
+        again = text2anim.plan("太郎は3回飲む。", db)
+    assert len({e.clip for e in table if e.verb == "飲む"}) == 2
+    (drink,) = [e for e in again.table.elements if e.verb == "飲む"]
+    assert len(set(again.repeats.get(drink.id, ()))) >= 2
