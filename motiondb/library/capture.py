@@ -64,6 +64,7 @@ class Cut:
     cycle: tuple[float, float] | None = None  # a stretch of the cut played ``cycles`` more times
     cycles: int = 0
     folder: str = "cmu"  # the shared capture folder the file is in (../shared/mocap/FOLDER): cmu, cmu_everyday
+    mime: bool = False  # a climb played on the flat: the height the feet climb taken out of the hips (README)
 
     @property
     def extra(self) -> float:
@@ -95,7 +96,8 @@ def _cut(raw: dict) -> Cut:
                   starts_from=raw.get("starts_from"), ease=float(raw.get("ease", 0.0)),
                   lowpass=float(raw.get("lowpass", 0.0)), about=raw.get("about", ""),
                   cycle=tuple(float(x) for x in raw["cycle"]) if "cycle" in raw else None,  # type: ignore[arg-type]
-                  cycles=int(raw.get("cycles", 0)), folder=str(raw.get("folder", "cmu")))
+                  cycles=int(raw.get("cycles", 0)), folder=str(raw.get("folder", "cmu")),
+                  mime=bool(raw.get("mime", False)))
     except (KeyError, TypeError, ValueError) as exc:
         raise ClipDataError(f"capture.toml: clip {name}: {exc}") from None
     if not 0 <= t0 < t1:

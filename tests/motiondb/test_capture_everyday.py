@@ -82,3 +82,23 @@ def test_a_verb_with_several_takes_gives_co_actors_and_repeats_different_drinks(
     assert len({e.clip for e in table if e.verb == "飲む"}) == 2
     (drink,) = [e for e in again.table.elements if e.verb == "飲む"]
     assert len(set(again.repeats.get(drink.id, ()))) >= 2
+
+
+@pytest.mark.parametrize("text, clip", [("はしごを登る。", "climb_ladder"), ("階段を上る。", "climb_steps"),
+                                        ("階段を上がる。", "climb_steps"), ("山に登る。", "walk"), ("登る。", "walk")])
+def test_a_climb_is_mimed_on_the_floor(library_db, text, clip):
+    """The scene has no ladder or stairs: a climb keeps its hips at standing height and a foot on the floor
+    (the climbed height taken out of the hips), a knee lifting to each rung or step; climbing a hill is walked."""
+    import text2anim
+
+    with MotionDB.open(library_db) as db:
+        planned = text2anim.plan(text, db)
+        assert planned.table.elements[0].clip == clip
+        if not clip.startswith("climb"):
+            return
+        m = db.load(clip)
+    low = lowest_foot_heights(m)
+    assert low.min() > -0.01 and np.median(low.min(axis=1)) < FOOT_CLEARANCE + 0.02  # a foot on the floor
+    assert low.max() > 0.2  # the other lifted to the next rung or step
+    hips = m.root_positions[:, 1]
+    assert np.ptp(hips) < 0.15  # not climbing into the air (the capture rose 0.6-0.8 m)

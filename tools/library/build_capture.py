@@ -194,6 +194,24 @@ def repeat_cycle(m: Motion, cut: Cut) -> Motion:
                      rotations=np.concatenate([p.rotations for p in parts]))
 
 
+#: Seconds over which a mimed climb's support height is averaged (about one step of a ladder or a stair).
+MIME_WINDOW = 0.6
+
+
+def mime_in_place(m: Motion) -> Motion:
+    """A climb on the flat: the height of the supporting (lower) foot, averaged over :data:`MIME_WINDOW`,
+    taken out of the hips, so the lower foot stays on the floor while the other steps up to the next rung."""
+    from scipy.ndimage import uniform_filter1d
+
+    from text2anim.core.floor import lowest_foot_heights
+
+    support = lowest_foot_heights(m).min(axis=1)  # (T,) m: the lower foot's lowest joint
+    support = uniform_filter1d(support - support[0], max(1, int(round(MIME_WINDOW * m.fps))), mode="nearest")
+    root = m.root_positions.copy()
+    root[:, 1] -= support
+    return m.replace(root_positions=root)
+
+
 def cut_clip(take: Motion, cut: Cut) -> Motion:
     """One clip of the cut list from its (retargeted, floored) take, at :data:`FPS`, facing +Z."""
     t0, t1 = cut.cut
@@ -205,7 +223,10 @@ def cut_clip(take: Motion, cut: Cut) -> Motion:
     if i1 > take.n_frames - (cut.loop in ("stride", "spot")):
         raise ValueError(f"{cut.name}: the cut ends at {t1} s, after the take's {take.duration:.2f} s")
     src = lowpass(take, cut.lowpass) if cut.lowpass else take
-    m = clear_floor(lift_swings(lock_feet(src.frames(i0, i1).resample(FPS))))
+    m = src.frames(i0, i1).resample(FPS)
+    if cut.mime:
+        m = mime_in_place(m)
+    m = clear_floor(lift_swings(lock_feet(m)))
     if cut.cycle is not None:
         m = lift_swings(lock_feet(repeat_cycle(m, cut)))
     if cut.loop == "spot":
