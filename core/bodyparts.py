@@ -117,10 +117,10 @@ def _role_label(role: str) -> tuple[str, str | None]:
 
 
 @lru_cache(maxsize=64)
-def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
+def _body_map(names: tuple[str, ...], parents: tuple[int, ...], known: tuple[tuple[str, int], ...] = ()) -> BodyMap:
     from .rigs import REQUIRED, closest_rig  # numpy-free callers of this module never get here
 
-    _, found = closest_rig(names)
+    found = dict(known) if known else closest_rig(names)[1]
     # A known rig's joints take the part of their role (Rigify's DEF-spine.006 is the head, whatever it says).
     roles = {j: role for role, j in found.items()} if all(r in found for r in REQUIRED) else {}
     skel_parents = parents
@@ -189,8 +189,22 @@ def _body_map(names: tuple[str, ...], parents: tuple[int, ...]) -> BodyMap:
 
 
 def body_map(skeleton: Skeleton) -> BodyMap:
-    """The :class:`BodyMap` of ``skeleton``; raises :class:`BodyMapError` naming unplaceable joints."""
-    return _body_map(skeleton.names, tuple(skeleton.parents.tolist()))
+    """The :class:`BodyMap` of ``skeleton``; raises :class:`BodyMapError` naming unplaceable joints.
+
+    Joints are placed by name (known rigs' tables, then name patterns); a skeleton no name places is
+    read by its shape (:func:`core.skeleton_shape.infer_roles`), and refused when that finds no human."""
+    parents = tuple(skeleton.parents.tolist())
+    try:
+        return _body_map(skeleton.names, parents)
+    except BodyMapError as by_name:
+        from .rig_error import RigError
+        from .skeleton_shape import infer_roles
+
+        try:
+            roles = tuple(sorted(infer_roles(skeleton).items()))
+        except RigError as exc:
+            raise BodyMapError(f"{by_name}; read by its shape: {exc}") from None
+        return _body_map(skeleton.names, parents, roles)
 
 
 def mirror_index(skeleton: Skeleton) -> list[int]:

@@ -21,6 +21,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from .rig_error import RigError
 from .inputs import read_input
 from .skeleton import Skeleton
 
@@ -113,12 +114,6 @@ RIGS: dict[str, dict[str, str]] = {
     "genesis": _GENESIS, "biped": _BIPED, "bandai": _BANDAI, "rokoko": _ROKOKO, "rigify": _RIGIFY}
 
 
-class RigError(ValueError):
-    """A skeleton whose humanoid roles cannot be placed; the message names the missing ones."""
-
-    user_facing = True
-
-
 def _key(name: str) -> str:
     return name.rsplit(":", 1)[-1].lower()
 
@@ -167,8 +162,20 @@ def rig_roles(skel: Skeleton, joint_map: dict[str, str] | None = None) -> tuple[
         roles.update(_place(skel.names, joint_map))
         best = closest + "+map" if found else "map"
     unplaced = [r for r in REQUIRED if r not in roles]
+    if unplaced and not joint_map:  # no name table knows it: read the limbs from the skeleton's shape
+        from .skeleton_shape import infer_roles
+
+        try:
+            shape = infer_roles(skel)  # the names where they place roles; the shape the required ones they miss
+            merged = {**roles, **{r: shape[r] for r in unplaced if r in shape}} if roles else shape
+            return ("shape" if not roles else closest + "+shape"), dict(
+                sorted(merged.items(), key=lambda kv: ROLES.index(kv[0])))
+        except RigError as exc:
+            why = f"; read by its shape: {exc}"
+    else:
+        why = ""
     if unplaced:
         listed = ", ".join(f"{r} (e.g. {RIGS[closest].get(r, r)!r})" for r in unplaced)
-        raise RigError(f"cannot place these joints of the rig (closest known rig: {closest}): {listed}; "
+        raise RigError(f"cannot place these joints of the rig (closest known rig: {closest}): {listed}{why}; "
                        "give them with --map FILE, a JSON object of role -> joint name")
     return best, dict(sorted(roles.items(), key=lambda kv: ROLES.index(kv[0])))

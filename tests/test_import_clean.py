@@ -70,25 +70,22 @@ def test_subjects_imported_under_one_character_are_retargeted_onto_its_skeleton(
         assert any(p.endswith(f"{name}.bvh") and msg.startswith("retargeted") for p, msg in notes)
 
 
-def test_a_skeleton_that_cannot_be_mapped_is_refused_naming_its_joints(empty_db, tmp_path):
+def test_a_skeleton_no_name_table_maps_is_read_by_its_shape_and_a_map_still_places_it(empty_db, tmp_path):
     empty_db.import_bvh([cmu(CHARACTER)], ImportOptions(("歩く",), character="cmu", drop_first=True))
     text = cmu("07_02_walk").read_text()
     odd = tmp_path / "odd_rig.bvh"  # a rig whose spine and upper-leg joints have names no known rig uses
     odd.write_text(text.replace("LowerBack", "Waist").replace("LeftUpLeg", "LeftThighBone")
                    .replace("RightUpLeg", "RightThighBone"))
-    with pytest.raises(ClipValidationError) as err:
-        empty_db.import_bvh([odd], ImportOptions(("歩く",), character="cmu", drop_first=True))
-    msg = str(err.value)
-    assert "odd_rig.bvh" in msg and "character 'cmu'" in msg and "nothing was imported" in msg
-    assert "leftUpperLeg" in msg and "rightUpperLeg" in msg and "--map" in msg
-    assert [c.name for c in empty_db.clips()] == [CHARACTER]
-    # a joint map places them, and the clip joins the character on its skeleton
+    # no --map needed: the shape places the thighs where the names would (core/skeleton_shape.py)
+    empty_db.import_bvh([odd], ImportOptions(("歩く",), character="cmu", drop_first=True, names=("by_shape",)))
+    # a joint map places them too, and the clip joins the character on its skeleton: the same motion
     empty_db.import_bvh([odd], ImportOptions(("歩く",), character="cmu", drop_first=True, names=("mapped",),
                                              joint_map={"leftUpperLeg": "LeftThighBone",
                                                         "rightUpperLeg": "RightThighBone"}))
-    mapped = empty_db.load("mapped")
+    mapped, by_shape = empty_db.load("mapped"), empty_db.load("by_shape")
     assert mapped.skeleton.names == empty_db.load(CHARACTER).skeleton.names and abs(find_floor(mapped).height) < 0.01
+    assert np.abs(mapped.positions - by_shape.positions).max() < 1e-6
     # under a character of its own it is its own skeleton: nothing to map, it is only put on the floor
     empty_db.import_bvh([odd], ImportOptions(("歩く",), character="odd", drop_first=True))
     assert abs(find_floor(empty_db.load("odd_rig")).height) < 1e-9
-    assert sorted(c.name for c in empty_db.clips()) == sorted([CHARACTER, "mapped", "odd_rig"])
+    assert sorted(c.name for c in empty_db.clips()) == sorted([CHARACTER, "by_shape", "mapped", "odd_rig"])
