@@ -130,7 +130,7 @@ def find_stand_in(verb: str, clips: Sequence[ClipInfo]) -> tuple[StandIn | None,
 
     Of several, the one matching the verb's earliest sense, then the same sense before a
     kind of it, then the nearest by the vectors, then the first clip given. A compound verb
-    whose second verb keeps the first one's action (``senses.compound_head``: 投げ込む) that
+    whose second verb keeps the first one's action (``senses.compound_head``: 走り回る) that
     WordNet cannot place is played as its first verb, when the vectors agree.
     """
     wanted = senses.senses(verb)
