@@ -1,0 +1,33 @@
+"""Issue 29's own scene set (tests/corpus/scenes.txt: chains, compositions, repeats, several characters,
+delays, falls, objects, the everyday captures): every animation meets all six built-in limits at 30 fps,
+the floating foot included. benchmarks/bench_quality.py prints the same figures beside a baseline."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import text2anim
+from text2anim.core.metrics import against_limits, quality
+from text2anim.motiondb import MotionDB
+
+SCENES = [t for t in (line.strip() for line in (Path(__file__).resolve().parents[1] / "corpus" / "scenes.txt")
+                      .read_text(encoding="utf-8").splitlines()) if t and not t.startswith("#")]
+
+
+def test_the_set_has_forty_scenes():
+    assert len(SCENES) == len(set(SCENES)) == 40
+
+
+@pytest.fixture(scope="module")
+def db(library_db):
+    with MotionDB.open(library_db) as opened:
+        yield opened
+
+
+@pytest.mark.parametrize("text", SCENES)
+def test_every_scene_is_clean(db, text):
+    anim = text2anim.animate(text, db=db)
+    for actor, motion in anim.motions.items():
+        q = quality(motion)
+        assert all(against_limits(q).values()), (actor, q)
