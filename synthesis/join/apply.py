@@ -24,7 +24,7 @@ from text2anim.core.motion import Motion, concatenate
 
 from .align import Rigid
 from .blend import blend, sample
-from .footlock import FootLocks, Lock, lift_swings, lock_feet, plan_locks
+from .footlock import FootLocks, Lock, lift_swings, lock_feet, plan_locks, reachable_locks
 from .timing import hold
 
 #: The weight profile of joins' blends and of the feet's locks (:mod:`synthesis.join.blend`).
@@ -176,6 +176,9 @@ def lock_join(blended: Blended, b_contacts: FootContacts, join: Join, lift: bool
         ra[:w1 - w0] = a_pose.rotations[:, ankle]
         feet_locks[side] = FootLocks(mine, [pa, b_pose.positions[:, ankle]], [ra, b_pose.rotations[:, ankle]],
                                      [wa * a_contacts[side], wb * src_planted[side]])
+    if feet_locks:
+        feet_locks = reachable_locks(out, feet_locks, w0)
+        locks = [lk for side in ("left", "right") if side in feet_locks for lk in feet_locks[side].locks]
     out = lock_feet(out, feet_locks, w0, PROFILE)
     return (lift_join(out, locks, join.window) if lift else out), locks
 

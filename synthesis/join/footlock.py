@@ -37,17 +37,21 @@ from text2anim.core.motion import Motion
 from .blend import ease, ratio, slerp
 from .legsolve import REACH, LegGoal, leg_chain, quaternions, solve_goals, solve_leg
 
-__all__ = ["Lock", "FootLocks", "planted_targets", "lock_feet", "lift_swings", "plan_locks", "REACH", "solve_leg"]
+__all__ = ["Lock", "FootLocks", "planted_targets", "lock_feet", "reachable_locks", "lift_swings", "plan_locks", "REACH", "solve_leg"]
 
 
 @dataclass(frozen=True)
 class Lock:
-    """One foot held on the ground: ``side``; frames ``[begin, end)`` locked, released over ``[end, release_end)``."""
+    """One foot held on the ground: ``side``; frames ``[begin, end)`` locked, released over ``[end, release_end)``.
+    ``at``: a foot put down again where a lock could not hold it (:func:`reachable_locks`): the ankle's
+    world position (m), held still, turned as the foot's previous lock began; ``None``: the planted sources
+    say where (:func:`planted_targets`)."""
 
     side: str
     begin: int
     end: int
     release_end: int
+    at: tuple[float, float, float] | None = None
 
 
 def planted_targets(start_pos: np.ndarray, start_rot: np.ndarray, positions: list[np.ndarray],
@@ -128,9 +132,16 @@ def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray
     w = np.stack([x[:T] for x in feet.weights])
     steps_p, steps_r = _steps([x[:T] for x in positions], sources)  # once for all the locks
     starts, turns, rows = [], [], []
+    start_rot = r[:1]
     for lk in locks:  # planted_targets of each lock, its rotations converted below for all at once
         i0, i1 = lk.begin - first, lk.end - first
         tot = w[:, i0].sum()
+        if lk.at is not None:  # put down again: still, turned as the lock before it began
+            d[i0:i1] = np.asarray(lk.at) - p[i0:i1]
+            starts.append(np.repeat(start_rot, i1 - i0, axis=0))
+            turns.append(np.zeros((i1 - i0, 3)))
+            rows.append(np.arange(i0, i1))
+            continue
         if tot > 1e-9:
             share = w[:, i0] / tot
             start = sum(share[k] * positions[k][i0] for k in range(len(positions)))
@@ -157,6 +168,75 @@ def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray
         prev_d, prev_e = d[prev_end - 1].copy(), e[prev_end - 1].copy()
     goal = LegGoal(side, first, stop, p + d, rk.as_quat(rk.compose(r, rk.from_rotvec(e))))
     return goal, prev_d, prev_e
+
+
+#: s: a foot a lock cannot hold any longer (its leg cannot reach the target) steps this long before it is
+#: put down again: a walking stride's swing lasts 0.35-0.4 s, a run's 0.25-0.3 s
+STEP_S = 0.4
+#: m: how far beyond the leg's IK reach (:data:`REACH`) a target may be before the lock is cut: the
+#: library's own joins reach up to 7 cm past it for a frame or two as a foot rolls off (the post pass plants
+#: it again, and every criterion holds); a foot left behind by a travelling body misses by metres
+HANG = 0.10
+
+
+def _held_path(lk: Lock, first: int, w: np.ndarray, positions: list[np.ndarray], steps: list[np.ndarray],
+               own: np.ndarray) -> np.ndarray:
+    """``(n, 3)`` where a lock holds the ankle over its frames (:func:`_lock_goal` 's positions): from the
+    planted sources' weighted place on its first frame (``own``, the motion's ankle ``(T, 3)``, where no
+    source has it planted), moved as they move; a put-down lock's ``at``, still."""
+    i0, i1 = lk.begin - first, lk.end - first
+    if lk.at is not None:
+        return np.repeat(np.asarray(lk.at, dtype=np.float64)[None], i1 - i0, axis=0)
+    tot = w[:, i0].sum()
+    start = own[i0] if tot <= 1e-9 else sum((w[k, i0] / tot) * positions[k][i0] for k in range(len(positions)))
+    return _integrate(start, [x[i0:i1] for x in w], [x[i0:i1 - 1] for x in steps],
+                      [np.zeros((max(0, i1 - i0 - 1), 3))] * len(steps))[0]
+
+
+def reachable_locks(motion: Motion, feet: dict[str, FootLocks], first: int) -> dict[str, FootLocks]:
+    """The locks cut where the leg cannot reach what they hold, the foot stepping on instead.
+
+    A lock holds a foot where the planted sources have it while the hips go where the blend takes them;
+    when the blend carries the hips on faster than the sources' feet follow (a run braking into a walk
+    through a frozen pose), the target leaves the leg's reach and IK would leave the foot hanging behind on a
+    straight leg, in the air (50 cm up, for 1.7 s, before). On the first frame the hip is further than the
+    leg's reach (:data:`REACH` + :data:`HANG`) from the target, the lock ends: the foot swings for
+    :data:`STEP_S` (lifted by :func:`lift_swings`) and is put down where the motion itself has it then, at
+    the height it stood at, held still (``Lock.at``) — and cut again if the hips outrun that too. A lock its
+    leg reaches throughout is returned as it was.
+    """
+    hi = min(motion.n_frames, max(lk.end for f in feet.values() for lk in f.locks))
+    pos = motion[first:hi].pose.positions  # the hips are final (a lock turns the legs' joints only)
+    n_step = max(1, int(round(STEP_S * motion.fps)))
+    offs = motion.skeleton.offsets
+    out = {}
+    for side, f in feet.items():
+        hip, knee, ankle = leg_chain(motion, side)
+        reach = REACH * (np.linalg.norm(offs[knee]) + np.linalg.norm(offs[ankle])) + HANG
+        T = hi - first
+        w = np.stack([x[:T] for x in f.weights])
+        steps = [np.diff(x[:T], axis=0) for x in f.positions]
+        kept: list[Lock] = []
+        for lk in sorted(f.locks, key=lambda x: x.begin):
+            cur = lk
+            while True:
+                held = _held_path(cur, first, w, f.positions, steps, pos[:, ankle])
+                far = np.flatnonzero(np.linalg.norm(held - pos[cur.begin - first:cur.end - first, hip], axis=1) > reach)
+                if not len(far):
+                    kept.append(cur)
+                    break
+                cut, land = cur.begin + int(far[0]), cur.begin + int(far[0]) + n_step
+                if land >= cur.end:  # no room to put it down again: released from here
+                    if cut > cur.begin:
+                        kept.append(Lock(side, cur.begin, cut, max(cur.release_end, cut), cur.at))
+                    break
+                if cut > cur.begin:
+                    kept.append(Lock(side, cur.begin, cut, land, cur.at))
+                x, _, z = pos[land - first, ankle]
+                cur = Lock(side, land, cur.end, cur.release_end, (float(x), float(held[0, 1]), float(z)))
+        out[side] = f if kept == sorted(f.locks, key=lambda x: x.begin) else FootLocks(kept, f.positions, f.rotations,
+                                                                                        f.weights)
+    return out
 
 
 def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: str = "smooth") -> Motion:

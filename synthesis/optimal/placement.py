@@ -88,7 +88,9 @@ def settle(out: Motion, locks, window: tuple[int, int], plan: Plan) -> Plan | No
     """
     if plan.adapted is not None or not locks:
         return None
-    after = [lk for lk in locks if lk.end > window[1]]
+    # a foot put down again where a lock could not hold it (Lock.at) stands where the join chose, not where
+    # either clip stands: it places nothing
+    after = [lk for lk in locks if lk.end > window[1] and lk.at is None]
     mine = [lk for lk in after if lk.side == plan.support] or after
     if not mine:
         return None
