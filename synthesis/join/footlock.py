@@ -23,6 +23,10 @@ the ground in the next motion and is **released while it is in the air**: the le
 solution back to the motion's own by eq. (3) with the ratio of eq. (4) over
 the air phase ``[end, release_end)``, so it lands where the next motion puts
 it.
+
+A lock holds only what the leg can reach (:func:`reachable_locks`): where the blend carries the hips on
+faster than the planted sources' foot follows, the lock ends as the target leaves the leg's reach, and the
+foot steps and is put down again under the body; it never hangs behind on a straight leg.
 """
 from __future__ import annotations
 
