@@ -11,7 +11,10 @@ previous motion has it. :func:`adapt`:
   support foot, ``d`` for the other), so a foot that is planted in the motion
   stays planted, where the previous motion had it;
 - **the hips keep their place relative to both feet** (§4.1, last paragraph
-  of the method list): they move by the mean of the two offsets;
+  of the method list): they move by the mean of the two offsets, and sink
+  where the legs could not otherwise reach a stance wider than the motion's
+  own (:func:`_sink`; beyond the paper, which leaves an unreachable foot
+  hanging above its place);
 - both legs are solved by two-bone IK (:func:`core.ik.leg_ik`) and each
   ankle keeps its world orientation (:func:`core.ik.set_world_rotation`),
   so the sole stays on the ground; the upper body is untouched (its joints are
@@ -27,11 +30,13 @@ which would otherwise let a planted foot drift by a few millimetres per frame.
 from __future__ import annotations
 
 import numpy as np
+from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.ik import leg_ik, set_world_rotation
 from text2anim.core.motion import Motion
+from text2anim.core.size import leg_length
 
 
 def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
@@ -50,12 +55,49 @@ def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
     mask = k > 1e-9
     shift = np.outer(k, 0.5 * (d["left"] + d["right"]))
     pose = motion.pose
+    shift[:, 1] = -_sink(motion, {s: pose.positions[:, feet[s][0]] + np.outer(k, d[s]) for s in feet}, shift)
     out = motion.replace(root_positions=motion.root_positions + shift)
     for side in ("left", "right"):
         ankle = feet[side][0]
         out = leg_ik(out, side, pose.positions[:, ankle] + np.outer(k, d[side]), mask=mask)
         out = set_world_rotation(out, ankle, rk.as_quat(rk.from_matrix(pose.rotations[:, ankle])), mask=mask)
     return out
+
+
+#: fraction of a leg's length the adapted legs may stretch to (a straight leg has no bend left to give)
+STRETCH = 0.98
+#: leg lengths: the most the hips sink (a lunge's depth; further, a knee would reach the floor)
+MAX_SINK = 0.15
+#: s: the hips sink and rise over at least this (a Gaussian of this sigma over the frames that need it)
+SINK_S = 0.1
+
+
+def _sink(motion: Motion, targets: dict[str, np.ndarray], shift: np.ndarray) -> np.ndarray:
+    """``(T,)`` metres the hips sink so both legs reach their adapted feet ``targets`` (per side ``(T, 3)``)
+    from the hips moved by ``shift`` ``(T, 3)``: a stance wider than the motion's own is stood in lower, as
+    a person does, instead of leaving a foot hanging above its place on a straightened leg. Held over
+    :data:`SINK_S` either side and smoothed (the most any frame needs is kept), 0 where the legs reach."""
+    skel = motion.skeleton
+    offs = skel.offsets
+    pos = motion.pose.positions
+    need = np.zeros(motion.n_frames)
+    for side, ankle in ((s, body_map(skel).feet[s][0]) for s in targets):
+        knee = int(skel.parents[ankle])
+        hip = int(skel.parents[knee])
+        reach = STRETCH * (np.linalg.norm(offs[knee]) + np.linalg.norm(offs[ankle]))
+
+        def over(h: np.ndarray, t: np.ndarray) -> np.ndarray:  # how far the hip is above its highest place
+            flat = np.hypot(*(t - h)[:, [0, 2]].T)  # a foot further away than the leg reaches: sinking cannot help
+            top = np.sqrt(np.maximum(reach ** 2 - np.minimum(flat, reach) ** 2, 0.0))
+            return np.where(flat < reach, h[:, 1] - (t[:, 1] + top), 0.0)
+        # only what the adaptation adds: a leg the motion itself holds straight is not the adaptation's to bend
+        need = np.maximum(need, over(pos[:, hip] + shift, targets[side]) - np.maximum(over(pos[:, hip], pos[:, ankle]), 0.0))
+    need = np.clip(need, 0.0, MAX_SINK * leg_length(skel))
+    if not need.any():
+        return need
+    n = max(1, int(round(SINK_S * motion.fps)))
+    held = maximum_filter1d(need, 2 * n + 1, mode="nearest")
+    return np.maximum(gaussian_filter1d(held, n, mode="nearest"), need)
 
 
 def pin_feet(motion: Motion, reference: Motion, masks: dict[str, np.ndarray]) -> Motion:
