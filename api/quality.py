@@ -12,6 +12,9 @@ at one rate:
   :func:`core.metrics.against_sources` (skating ≤ the sources' larger + 0.01,
   root pop and jerk p99 ≤ 1.2 × the sources' larger, floor penetration ≤ 1 cm,
   frozen frames ≤ 5 %, a foot floating ≤ the sources' larger + 2 cm);
+- per join, what a body could not do on the frames the method made (``transition``,
+  :func:`transition_figures`): the centre of mass outside the feet (:mod:`core.balance`) and the hips
+  gliding at a steady speed (:mod:`core.glide`), each with whether it is within what capture does;
 - per actor, the root pop the method *introduced* (:func:`introduced_root_pop`): over the frames whose
   hips acceleration is not that of a source clip as placed (turned and moved, played verbatim, or moved
   by a constant offset), the worst jolt of the frames the method made itself.
@@ -27,6 +30,28 @@ from text2anim.core.metrics import (COMPARE_FPS, ROOT_POP_WINDOW, Quality, Serie
                                     series, summarise, window_frames)
 
 JOIN_MARGIN = 0.5  # s added before and after a join's blend intervals
+
+
+def transition_figures(motion30, made: np.ndarray, per_frame: tuple[np.ndarray, np.ndarray] | None = None) -> dict:
+    """Balance (cm, :func:`core.balance.balance_cm`) and the longest glide (s, :func:`core.glide.glide_s`)
+    of a motion at 30 fps over the bool mask ``made`` ``(T,)`` of the frames a method made (a join's
+    window, not played as recorded), each with whether it is within capture's limit. ``per_frame``: the
+    motion's :func:`transition_frames`, when already taken."""
+    from text2anim.core import balance, glide
+
+    runs_cm, gliding = transition_frames(motion30) if per_frame is None else per_frame
+    b = float(np.where(made, runs_cm, 0.0).max()) if len(made) else 0.0
+    g = glide.longest_s(gliding & made, motion30.fps)
+    return {"balance_cm": round(b, 2), "glide_s": round(g, 3),
+            "meets": {"balance": b <= balance.LIMIT_CM, "glide": g <= glide.LIMIT_S}}
+
+
+def transition_frames(motion30) -> tuple[np.ndarray, np.ndarray]:
+    """Per frame of a motion at 30 fps: the balance runs (cm at a person's size, :func:`core.balance.balance_runs`)
+    and whether the hips glide (:func:`core.glide.gliding`), ``(T,)`` each."""
+    from text2anim.core import balance, glide
+
+    return balance.balance_runs(motion30) * 100.0 * glide.human_scale(motion30), glide.gliding(motion30)
 
 
 def rounded(q: Quality) -> dict:
@@ -72,6 +97,7 @@ def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS,
     clips = {e.id: e.clip for t in tracks for e in t.elements}
     by_actor: dict = dict(series_of or {})
     by_clip: dict = {}
+    made_by: dict = {}  # per actor: its motion at fps and the frames no placed clip plays as recorded
     out: list[dict | None] = []
     for j in result.joins:
         actor = result.actor_of(j.second)
@@ -83,8 +109,18 @@ def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS,
         if actor not in by_actor:
             by_actor[actor] = series(at_rate(motion, fps))
         s = by_actor[actor]
-        here = summarise(s, *window_frames(s.fps, window))
+        a, b = window_frames(s.fps, window)
+        here = summarise(s, a, b)
         entry = {"fps": fps, "window_s": [round(window[0], 3), round(window[1], 3)], "join": rounded(here)}
+        if actor not in made_by:
+            paths = result.placed_paths.get(actor)
+            m30 = at_rate(motion, fps)
+            made_by[actor] = (m30, np.ones(m30.n_frames, dtype=bool) if paths is None else
+                              ~played_frames(motion, paths, fps), transition_frames(m30))
+        m30, made, per_frame = made_by[actor]
+        inside = np.zeros(m30.n_frames, dtype=bool)
+        inside[max(0, a):max(0, b)] = True
+        entry["transition"] = transition_figures(m30, made & inside, per_frame)
         src = {}
         for key, eid in (("first", j.first), ("second", j.second)):
             clip = clips.get(eid)

@@ -186,6 +186,7 @@ def run_pairs(clips: dict, pairs: list, methods, smoothness: float) -> list[dict
                          "quality": q.to_dict(), "meets": against_sources(q, sources),
                          "join": None if join is None else {"window_s": join["window_s"], **join["join"]},
                          "introduced_root_pop": introduced_root_pop(res)[None],
+                         "transitions": [] if join is None else [join["transition"]],
                          "sources": [s.to_dict() for s in sources],
                          "blend": ",".join(j.blend for j in res.joins), "_motion": motion, "_result": res})
     return rows
@@ -195,6 +196,7 @@ def run_sentences(texts: list[str], methods, db_url: str) -> list[dict]:
     import text2anim
     from text2anim.core.metrics import against_limits, quality
     from text2anim.motiondb import MotionDB
+    from text2anim.quality import join_quality
 
     rows = []
     with MotionDB.open(db_url) as db:
@@ -206,10 +208,13 @@ def run_sentences(texts: list[str], methods, db_url: str) -> list[dict]:
                     if getattr(exc, "user_facing", False):
                         break
                     raise
+                joins = join_quality(anim.result)
                 for actor, m in anim.motions.items():
                     q = quality(m)
+                    mine = [e["transition"] for j, e in zip(anim.result.joins, joins)
+                            if e is not None and anim.result.actor_of(j.second) == actor]
                     rows.append({"text": text, "actor": actor, "method": method, "quality": q.to_dict(),
-                                 "meets": against_limits(q)})
+                                 "meets": against_limits(q), "transitions": mine})
     return rows
 
 
@@ -228,6 +233,23 @@ def share_table(rows: list[dict], methods, title: str, four: bool = False) -> No
         ok = 100 * sum(all(r["meets"].values()) for r in mine) / n
         ok4 = 100 * sum(all(v for c, v in r["meets"].items() if c != "frozen") for r in mine) / n
         print(f"{m:11} {n:4d} " + " ".join(cells) + f" {ok:8.0f}%" + (f" {ok4:14.0f}%" if four else ""))
+
+
+def transition_table(rows: list[dict], methods, what: str) -> None:
+    """Per method, over every join of ``rows``: the share within capture's balance and glide limits
+    (core.balance, core.glide, on the frames the method made) and the worst of each."""
+    from text2anim.core.balance import LIMIT_CM
+    from text2anim.core.glide import LIMIT_S
+
+    print(f"  transitions of {what} (frames no source plays as recorded): balance <= {LIMIT_CM} cm, glide <= {LIMIT_S} s")
+    for m in methods:
+        ts = [t for r in rows if r["method"] == m for t in r.get("transitions", [])]
+        if not ts:
+            continue
+        n = len(ts)
+        print(f"  {m:11} {n:4d} joins  balance {100 * sum(t['meets']['balance'] for t in ts) / n:4.0f}% "
+              f"(max {max(t['balance_cm'] for t in ts):5.1f} cm)  glide {100 * sum(t['meets']['glide'] for t in ts) / n:4.0f}% "
+              f"(max {max(t['glide_s'] for t in ts):4.2f} s)")
 
 
 def median_table(rows: list[dict], methods) -> None:
@@ -388,6 +410,7 @@ def main(argv=None) -> int:
           f"x {len(methods)} methods; all figures at 30 fps")
     share_table(rows, methods, "CMU pairs: share meeting each criterion against their two source clips")
     median_table(rows, methods)
+    transition_table(rows, methods, "the CMU pairs")
     if "optimal" in methods:
         beats_table(rows)
     print(f"(pairs: {c_pairs.cpu:.1f} s CPU, {c_pairs.wall:.1f} s wall)")
@@ -397,11 +420,13 @@ def main(argv=None) -> int:
                                    "root pop <= 15 m/s2, jerk p99 <= 2300 m/s3, skating <= 0.02, floor <= 1 cm, "
                                    "frozen <= 5 %", four=True)
         median_table(sent, methods)
+        transition_table(sent, methods, "the corpus sentences")
         print(f"(sentences: {c_sent.cpu:.1f} s CPU, {c_sent.wall:.1f} s wall)")
     n_scenes = len({r["text"] for r in scenes})
     share_table(scenes, methods, f"scene set (tests/corpus/scenes.txt): {n_scenes} sentences, the same limits "
                                  "and floating <= 10 cm", four=True)
     median_table(scenes, methods)
+    transition_table(scenes, methods, "the scene set")
     print(f"(scenes: {c_scene.cpu:.1f} s CPU, {c_scene.wall:.1f} s wall)")
     if args.list:
         for m in methods:
@@ -428,7 +453,7 @@ def main(argv=None) -> int:
         print(f"\nFig. 5 speed curves: {len(written)} PNGs in {out}/")
     print(f"total: {time.process_time():.1f} s CPU, {time.perf_counter() - t0:.1f} s wall")
     if args.json:
-        doc = {"pairs": [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows], "sentences": sent}
+        doc = {"pairs": [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows], "sentences": sent, "scenes": scenes}
         Path(args.json).write_text(json.dumps(doc, ensure_ascii=False, indent=1) + "\n")
     return 0
 

@@ -1,6 +1,7 @@
 """Issue 29's own scene set (tests/corpus/scenes.txt: chains, compositions, repeats, several characters,
 delays, falls, objects, the everyday captures): every animation meets all six built-in limits at 30 fps,
-the floating foot included. benchmarks/bench_quality.py prints the same figures beside a baseline."""
+the floating foot included, and every join keeps the body balanced (core.balance). benchmarks/bench_quality.py
+prints the same figures beside a baseline."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -8,6 +9,7 @@ from pathlib import Path
 import pytest
 
 import text2anim
+from text2anim.core.balance import LIMIT_CM
 from text2anim.core.metrics import against_limits, quality
 from text2anim.motiondb import MotionDB
 
@@ -31,3 +33,6 @@ def test_every_scene_is_clean(db, text):
     for actor, motion in anim.motions.items():
         q = quality(motion)
         assert all(against_limits(q).values()), (actor, q)
+    for join in anim.report["joins"]:  # the frames a join made keep the centre of mass over the feet
+        t = join["quality"]["transition"]
+        assert t["balance_cm"] <= LIMIT_CM, (join["first"], join["second"], t)

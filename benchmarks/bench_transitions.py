@@ -1,0 +1,143 @@
+"""Transitions a body could do (docs/timetable.md §3): balance (core.balance) and glides (core.glide),
+calibrated on capture, then measured on what we generate.
+
+    python benchmarks/bench_transitions.py [--scenes N]
+
+Prints three tables, each with CPU beside wall time:
+
+1. **Capture** (``../shared/mocap/cmu`` and ``cmu_everyday``, at 30 fps, each take's T-pose first frame
+   dropped): per take the frames the balance figure judges (a foot down, the centre of mass slower than
+   0.3 m/s, the hips above 0.75 leg lengths), the figure (cm the centre of mass stays outside its support
+   area for 0.2 s or more, at a person's size), the share of judged frames outside at all, and the longest
+   glide (s: the hips travelling at a steady speed). The limits ``core.balance.LIMIT_CM`` and
+   ``core.glide.LIMIT_S`` are the largest of these (the sit-down 14_27 left out of balance).
+2. **The built-in library**, per clip, the worst first.
+3. **Generated transitions**: the scene set (tests/corpus/scenes.txt) and the golden sentences, both
+   figures over the frames no source clip plays as recorded (``text2anim.quality.played_frames``) beside
+   the whole motion's.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO))
+SHARED = REPO.parent / "shared" / "mocap"
+
+
+class Clock:
+    def __enter__(self):
+        self.cpu, self.wall = time.process_time(), time.perf_counter()
+        return self
+
+    def __exit__(self, *exc):
+        self.cpu, self.wall = time.process_time() - self.cpu, time.perf_counter() - self.wall
+
+
+def capture() -> list[tuple[str, int, float, float, float]]:
+    from text2anim.core import read_bvh
+    from text2anim.core.balance import balance_heights, balance_runs
+    from text2anim.core.glide import glide_s
+    from text2anim.core.metrics import at_rate
+    from text2anim.core.size import HUMAN_LEG, leg_length
+
+    rows = []
+    for path in sorted(SHARED.glob("cmu/*.bvh")) + sorted(SHARED.glob("cmu_everyday/*.bvh")):
+        m = at_rate(read_bvh(path, drop_first=True), 30.0)
+        k = 100.0 * HUMAN_LEG / leg_length(m.skeleton)
+        h = balance_heights(m)
+        judged = np.isfinite(h)
+        outside = float((h[judged] > 0).mean()) if judged.any() else 0.0
+        rows.append((f"{path.parent.name}/{path.stem}", int(judged.sum()), float(balance_runs(m).max()) * k, outside,
+                     glide_s(m)))
+    return rows
+
+
+def library() -> list[tuple[str, float, float]]:
+    from text2anim.core.balance import balance_cm
+    from text2anim.core.glide import glide_s
+    from text2anim.core.metrics import at_rate
+    from text2anim.motiondb import MotionDB
+
+    with MotionDB.open(f"sqlite:///{tempfile_dir()}/lib.sqlite") as db:
+        return [(c.name, balance_cm(m), glide_s(m)) for c in db.clips() for m in [at_rate(db.load(c.name), 30.0)]]
+
+
+def tempfile_dir() -> str:
+    import tempfile
+
+    return tempfile.mkdtemp(prefix="bench-balance-")
+
+
+def generated(texts: list[str]) -> list[tuple[str, str, float, float, float, float]]:
+    import text2anim
+    from text2anim.core.balance import balance_cm
+    from text2anim.core.glide import glide_s
+    from text2anim.core.metrics import at_rate
+    from text2anim.motiondb import MotionDB
+    from text2anim.quality import played_frames
+
+    rows = []
+    with MotionDB.open(f"sqlite:///{tempfile_dir()}/lib.sqlite") as db:
+        for text in texts:
+            anim = text2anim.animate(text, db=db)
+            for actor, motion in anim.motions.items():
+                m30 = at_rate(motion, 30.0)
+                paths = anim.result.placed_paths.get(actor)
+                changed = None if paths is None else ~played_frames(motion, paths, 30.0)  # None: one clip, as placed
+                rows.append((text, str(actor), 0.0 if changed is None else balance_cm(m30, changed), balance_cm(m30),
+                             0.0 if changed is None else glide_s(m30, changed), glide_s(m30)))
+    return rows
+
+
+def main(argv=None) -> int:
+    from text2anim.core.balance import LIMIT_CM
+    from text2anim.core.glide import LIMIT_S
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenes", type=int, default=None, help="only the first N scenes (default all)")
+    args = ap.parse_args(argv)
+    if SHARED.is_dir():
+        with Clock() as c:
+            rows = capture()
+        print(f"capture: {len(rows)} takes ({c.cpu:.1f} s CPU, {c.wall:.1f} s wall)")
+        print(f"{'take':28} {'judged':>7} {'outside cm':>11} {'share outside':>14} {'glide s':>8}")
+        for name, n, cm, share, gl in sorted(rows, key=lambda r: (-r[2], -r[4]))[:10]:
+            print(f"{name:28} {n:7d} {cm:11.1f} {share:14.2f} {gl:8.2f}")
+        standing = [r for r in rows if not r[0].endswith("14_27_sit")]
+        print(f"balance, largest: {max(r[2] for r in rows):.1f} cm; without the sit-down 14_27: "
+              f"{max(r[2] for r in standing):.1f} cm (the limit: {LIMIT_CM} cm)")
+        worst = max(rows, key=lambda r: r[4])
+        print(f"glide, longest: {worst[4]:.2f} s ({worst[0]}; the limit: {LIMIT_S} s)\n")
+    else:
+        print(f"no capture at {SHARED}: the calibration table is skipped\n")
+    with Clock() as c:
+        lib = library()
+    print(f"built-in library: {len(lib)} clips, {sum(r[1] > LIMIT_CM for r in lib)} over {LIMIT_CM} cm of balance, "
+          f"{sum(r[2] > LIMIT_S for r in lib)} gliding over {LIMIT_S} s ({c.cpu:.1f} s CPU, {c.wall:.1f} s wall)")
+    for name, cm, gl in sorted(lib, key=lambda r: (-r[1], -r[2]))[:6]:
+        print(f"  {name:28} {cm:6.1f} cm {gl:5.2f} s")
+    for name, cm, gl in sorted(lib, key=lambda r: -r[2])[:4]:
+        print(f"  {name:28} {cm:6.1f} cm {gl:5.2f} s")
+    scenes = [t for t in (line.strip() for line in (REPO / "tests" / "corpus" / "scenes.txt")
+                          .read_text(encoding="utf-8").splitlines()) if t and not t.startswith("#")]
+    golden = [t for t in (REPO / "tests" / "golden" / "sentences.txt").read_text(encoding="utf-8").splitlines() if t]
+    texts = scenes[:args.scenes] + golden
+    with Clock() as c:
+        gen = generated(texts)
+    print(f"\ngenerated transitions: {len(gen)} animations of {len(texts)} sentences; "
+          f"{sum(r[2] > LIMIT_CM for r in gen)} over {LIMIT_CM} cm of balance, "
+          f"{sum(r[4] > LIMIT_S for r in gen)} gliding over {LIMIT_S} s ({c.cpu:.1f} s CPU, {c.wall:.1f} s wall)")
+    print(f"  {'balance cm':>10} {'(whole)':>8} {'glide s':>8} {'(whole)':>8}  sentence")
+    for text, actor, g, w, gl, glw in sorted(gen, key=lambda r: (-max(r[2] / LIMIT_CM, r[4] / LIMIT_S)))[:10]:
+        print(f"  {g:10.1f} {w:8.1f} {gl:8.2f} {glw:8.2f}  {text} ({actor})")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
