@@ -11,8 +11,10 @@ from the hip), shank 4.33 % (44.59 % from the knee), foot 1.37 % (halfway from t
 joint). The shares add up to 100 %.
 
 **Support area**: on each frame, the convex hull of the ankle and toe joints (on the ground plane) of
-the feet on the floor (the lowest joint within the contact rule's 5 cm of the foot's floor,
-:func:`core.contacts.foot_tracks`, at any speed: a foot pivoting or sliding still carries weight), widened by :data:`FOOT_RADIUS` (half a
+the feet on the floor (the lowest joint within the contact rule's 5 cm of where a planted foot's lowest
+joint stands, :data:`core.floor.FOOT_CLEARANCE` above the floor at y = 0; at any speed: a foot pivoting or
+sliding still carries weight; the floor, not each foot's lowest reach in the motion, since clips of two
+captures plant their feet a few centimetres apart), widened by :data:`FOOT_RADIUS` (half a
 foot's width and the heel behind the ankle joint), in leg lengths (:func:`core.size.leg_length`,
 0.86 m for a person) so size does not matter.
 
@@ -23,14 +25,15 @@ lying body rests on more than its feet), how far (cm, at a person's size) the ce
 projection is outside the support area, over runs of at least :data:`RUN` s (the least of each run);
 the largest over the motion. Calibrated on the shared capture
 (``benchmarks/bench_transitions.py``): the limit :data:`LIMIT_CM` is what capture does — over the 68 shared
-CMU takes at most 8.1 cm (a deep squat), except a sit-down onto a chair (14_27: 19 cm, its weight going
-onto the seat while the hips are still above :data:`SEATED`), which the limit leaves out.
+CMU takes at most 5.4 cm (a dance), except a sit-down onto a chair (14_27: 19 cm, its weight going onto
+the seat while the hips are still above :data:`SEATED`), which the limit leaves out.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .contacts import HEIGHT_THRESHOLD, foot_tracks
+from .contacts import HEIGHT_THRESHOLD
+from .floor import FOOT_CLEARANCE
 from .motion import Motion
 from .rigs import rig_roles
 from .rig_error import RigError
@@ -54,9 +57,9 @@ SLOW = 0.3
 RUN = 0.2
 #: leg lengths: hips lower than this above the feet's floor are seated, kneeling or lying
 SEATED = 0.75
-#: cm: the most capture's centre of mass stays outside its support area (bench_transitions.py: 8.1 cm, a deep
-#: squat, CMU 14_06; dances 5.9, swordplay 3.7, everything else 0), rounded up
-LIMIT_CM = 8.5
+#: cm: the most capture's centre of mass stays outside its support area (bench_transitions.py: 5.4 cm, a dance,
+#: CMU 05_02; swordplay 3.7, a deep squat 2.7, everything else under 1.5), rounded up
+LIMIT_CM = 6.0
 
 
 def _side(role: str, side: str) -> str:
@@ -134,13 +137,12 @@ def balance_heights(motion: Motion) -> np.ndarray:
     if T < 2:
         return np.full(T, np.nan)
     pos = motion.positions
-    tracks = foot_tracks(motion)
     corners, down = [], []
     for side in ("left", "right"):
         ankle = roles[_side("foot", side)]
         toe = roles.get(_side("toes", side), ankle)
         corners += [pos[:, ankle, :][:, [0, 2]], pos[:, toe, :][:, [0, 2]]]
-        low = tracks[side].height < HEIGHT_THRESHOLD
+        low = np.minimum(pos[:, ankle, 1], pos[:, toe, 1]) < (FOOT_CLEARANCE + HEIGHT_THRESHOLD) / (HUMAN_LEG / leg)
         down += [low, low]
     out = outside_support(com[:, [0, 2]], np.stack(corners, axis=1), np.stack(down, axis=1))
     out = np.maximum(0.0, out - FOOT_RADIUS * leg)
