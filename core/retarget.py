@@ -48,7 +48,9 @@ Steps, each vectorised over frames (one numpy step per joint):
      step-2 world rotations back. The knee and elbow hinges come from the
      target's rest pose: a knee flexes backwards (``forward x thigh``), an
      elbow forwards (``upper arm x forward``); the knee turns towards the thigh's own forward (a pole
-     in front of it), so a straight stance leg keeps its twist.
+     in front of it), so a straight stance leg keeps its twist. An ankle goal near the leg's full
+     length is pulled in softly (:func:`soft_reach`, soft IK from 97 % of it): the knee never snaps
+     straight for a frame; a fully stretched leg's foot stays up to 1.1 % of the leg short of its goal.
 
    Feet therefore plant where the scaled source's do and slide no more than
    they do (in proportion ``s``).
@@ -385,6 +387,28 @@ def _drop_hips(out: Motion, legs, hips: int) -> Motion:
     return out.replace(translations=trans)
 
 
+#: fraction of a leg's length from which its reach is softened (:func:`soft_reach`)
+SOFT_FROM = 0.97
+
+
+def _chain_length(skel: Skeleton, chain: tuple[int, int, int]) -> float:
+    rest = skel.rest_positions()
+    return float(np.linalg.norm(rest[chain[1]] - rest[chain[0]]) + np.linalg.norm(rest[chain[2]] - rest[chain[1]]))
+
+
+def soft_reach(root: np.ndarray, goal: np.ndarray, length: float) -> np.ndarray:
+    """Goals ``(T, 3)`` of a two-bone chain from ``root`` ``(T, 3)`` pulled in where they near its ``length``:
+    beyond :data:`SOFT_FROM` of it, the distance ``d`` becomes ``s + (L - s)(1 - exp(-(d - s) / (L - s)))``
+    (soft IK), so the chain straightens only as the goal goes to infinity. A goal that reaches the chain's
+    length a frame at a time otherwise snaps the knee straight for that frame and bends it the next (the
+    knee's jerk, 4x the default body's on a Mixamo rig). At full length it falls 1.1 % of the length short."""
+    v = goal - root
+    d = np.linalg.norm(v, axis=-1)
+    s = SOFT_FROM * length
+    soft = np.where(d > s, s + (length - s) * (1.0 - np.exp(-(d - s) / (length - s))), d)
+    return root + v * (soft / np.maximum(d, 1e-12))[:, None]
+
+
 def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndarray]) -> Motion:
     """Step 4: hips lowered where a leg cannot reach, chest and shoulders aimed, ankles and wrists onto the
     scaled source's by IK, their world rotations restored."""
@@ -402,6 +426,7 @@ def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndar
             # leg has no bend plane and the IK's twist about the hip-ankle line flips from frame to frame
             pose = out.pose
             pole = pose.positions[:, chain[1]] + 0.5 * np.einsum("tij,j->ti", pose.rotations[:, chain[0]], fwd_t)
+            goal = soft_reach(pose.positions[:, chain[0]], goal, _chain_length(out.skeleton, chain))
         out = two_bone_ik(out, chain, goal, pole=pole, hinge=tuple(hinge))
         out = set_world_rotation(out, chain[2], matrix_to_quat(end_world))
     return out
