@@ -52,10 +52,10 @@ def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
     if max(np.abs(x).max() for x in d.values()) < 1e-9:
         return motion
     k = np.ones(motion.n_frames) if scale is None else np.asarray(scale, dtype=np.float64).reshape(-1)
-    mask = k > 1e-9
     shift = np.outer(k, 0.5 * (d["left"] + d["right"]))
     pose = motion.pose
     shift[:, 1] = -_sink(motion, {s: pose.positions[:, feet[s][0]] + np.outer(k, d[s]) for s in feet}, shift)
+    mask = (k > 1e-9) | (shift[:, 1] < -1e-9)  # the legs solved wherever the hips moved (a sink eases in and out)
     out = motion.replace(root_positions=motion.root_positions + shift)
     for side in ("left", "right"):
         ankle = feet[side][0]
