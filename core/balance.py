@@ -87,11 +87,11 @@ def centre_of_mass(motion: Motion) -> np.ndarray:
     return com
 
 
-def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``(T,)`` distance of 2-D points ``p`` ``(T, 2)`` from segments ``a``-``b`` ``(T, 2)``."""
+def _segment_nearest(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``(T, 2)`` the points of segments ``a``-``b`` ``(T, 2)`` nearest the 2-D points ``p`` ``(T, 2)``."""
     ab = b - a
     t = np.clip(np.einsum("ti,ti->t", p - a, ab) / np.maximum(np.einsum("ti,ti->t", ab, ab), 1e-12), 0.0, 1.0)
-    return np.linalg.norm(p - (a + t[:, None] * ab), axis=-1)
+    return a + t[:, None] * ab
 
 
 def _inside_triangle(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
@@ -104,38 +104,51 @@ def _inside_triangle(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray)
     return ~(neg & pos)
 
 
-def outside_support(point: np.ndarray, corners: np.ndarray, down: np.ndarray) -> np.ndarray:
-    """``(T,)`` metres the 2-D ``point`` ``(T, 2)`` lies outside the convex hull of the ``corners``
-    ``(T, K, 2)`` that are ``down`` ``(T, K)`` (0 inside; NaN where none is down). The hull of K points
-    holds the point iff one of their triangles does, and outside it the nearest of the segments between
-    them is on its boundary (every other segment lies inside it)."""
+def support_gap(point: np.ndarray, corners: np.ndarray, down: np.ndarray) -> np.ndarray:
+    """``(T, 2)`` metres from the 2-D ``point`` ``(T, 2)`` to the nearest point of the convex hull of the
+    ``corners`` ``(T, K, 2)`` that are ``down`` ``(T, K)`` (0 inside; NaN where none is down). The hull of
+    K points holds the point iff one of their triangles does, and outside it the nearest of the segments
+    between them is on its boundary (every other segment lies inside it)."""
     T, K = down.shape
     best = np.full(T, np.inf)
+    gap = np.zeros((T, 2))
     inside = np.zeros(T, dtype=bool)
     for i in range(K):
         for j in range(i, K):
             ok = down[:, i] & down[:, j]
-            best = np.where(ok, np.minimum(best, _segment_distance(point, corners[:, i], corners[:, j])), best)
+            near = _segment_nearest(point, corners[:, i], corners[:, j])
+            d = np.linalg.norm(near - point, axis=-1)
+            better = ok & (d < best)
+            best = np.where(better, d, best)
+            gap[better] = (near - point)[better]
             for k in range(j + 1, K):
                 tri = ok & down[:, k]
                 inside |= tri & _inside_triangle(point, corners[:, i], corners[:, j], corners[:, k])
-    out = np.where(inside, 0.0, best)
-    return np.where(down.any(axis=1), out, np.nan)
+    gap[inside] = 0.0
+    gap[~down.any(axis=1)] = np.nan
+    return gap
 
 
-def balance_heights(motion: Motion) -> np.ndarray:
-    """``(T,)`` metres at the body's own size: how far the centre of mass's ground projection is outside the
-    support area, widened by :data:`FOOT_RADIUS` (module docstring); NaN on frames the figure does not
-    judge (no foot down, moving fast, seated). All NaN for a rig whose humanoid joints cannot be placed."""
+def outside_support(point: np.ndarray, corners: np.ndarray, down: np.ndarray) -> np.ndarray:
+    """``(T,)`` metres the 2-D ``point`` ``(T, 2)`` lies outside the convex hull of the ``corners``
+    ``(T, K, 2)`` that are ``down`` ``(T, K)`` (:func:`support_gap`'s length; NaN where none is down)."""
+    return np.linalg.norm(support_gap(point, corners, down), axis=-1)
+
+
+def balance_gaps(motion: Motion) -> np.ndarray:
+    """``(T, 2)`` metres at the body's own size, on the ground plane (x, z): how far, and which way, the centre
+    of mass's ground projection must move to reach the support area widened by :data:`FOOT_RADIUS` (module
+    docstring); 0 inside it; NaN on frames the figure does not judge (no foot down, moving fast, seated).
+    All NaN for a rig whose humanoid joints cannot be placed."""
     T = motion.n_frames
     try:
         com = centre_of_mass(motion)
         leg = leg_length(motion.skeleton)
         _, roles = rig_roles(motion.skeleton)
     except (RigError, ValueError):
-        return np.full(T, np.nan)
+        return np.full((T, 2), np.nan)
     if T < 2:
-        return np.full(T, np.nan)
+        return np.full((T, 2), np.nan)
     pos = motion.positions
     corners, down = [], []
     for side in ("left", "right"):
@@ -144,13 +157,20 @@ def balance_heights(motion: Motion) -> np.ndarray:
         corners += [pos[:, ankle, :][:, [0, 2]], pos[:, toe, :][:, [0, 2]]]
         low = np.minimum(pos[:, ankle, 1], pos[:, toe, 1]) < (FOOT_CLEARANCE + HEIGHT_THRESHOLD) / (HUMAN_LEG / leg)
         down += [low, low]
-    out = outside_support(com[:, [0, 2]], np.stack(corners, axis=1), np.stack(down, axis=1))
-    out = np.maximum(0.0, out - FOOT_RADIUS * leg)
+    gap = support_gap(com[:, [0, 2]], np.stack(corners, axis=1), np.stack(down, axis=1))
+    dist = np.linalg.norm(gap, axis=-1)
+    out = gap * (np.maximum(0.0, dist - FOOT_RADIUS * leg) / np.maximum(dist, 1e-12))[:, None]
     speed = np.linalg.norm(np.gradient(com[:, [0, 2]], axis=0), axis=-1) * motion.fps * (HUMAN_LEG / leg)
     feet_floor = np.minimum(pos[:, roles["leftFoot"], 1], pos[:, roles["rightFoot"], 1])
     seated = pos[:, roles["hips"], 1] - feet_floor < SEATED * leg
     out[(speed >= SLOW) | seated] = np.nan
     return out
+
+
+def balance_heights(motion: Motion) -> np.ndarray:
+    """``(T,)`` metres at the body's own size: how far the centre of mass's ground projection is outside the
+    support area (:func:`balance_gaps`' length); NaN on frames the figure does not judge."""
+    return np.linalg.norm(balance_gaps(motion), axis=-1)
 
 
 def balance_runs(motion: Motion) -> np.ndarray:

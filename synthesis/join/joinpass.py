@@ -44,6 +44,11 @@ own two source clips (as recorded, at the track's rate):
    lifted clear (:func:`clear_swings`); after an adaptation, whose fitted legs
    reach through the next clip's core, up to the next join.
 
+5. **Weight over the feet**: where the finished region stands a slow body on its feet with its centre of
+   mass beside them (``core.balance``), its hips are moved over them, the legs solved back onto the feet
+   (:func:`synthesis.join.overfeet.over_feet`; the shift is scaled down to keep the hips' acceleration
+   within the sources'; the report's ``post.weight_shift_cm``).
+
 **Cores** are kept: the region stops at the next clip's core (except where the
 engine's own adaptation returns inside it) and starts after the first clip's
 (a looped first clip is all core, and its braking strides become the join's).
@@ -64,6 +69,7 @@ from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion
 
 from .blend import sample
+from .overfeet import over_feet
 from .inertialize import inertialize_at, inertialize_before
 from .legsolve import solve_leg
 from .pruning import Tried, least, may_keep, replaces
@@ -306,7 +312,9 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     # outside [lo, h2) the frames are the input's (those the seams left alone): their kinematics is known
     rows = np.concatenate([np.arange(lo), np.full(h2 - lo, -1), np.arange(hi, T)])
     done = lift_off_floor(clear_swings(chosen.motion().share_pose(motion, rows), lo, h2), lo, h2)
+    done, shifted = over_feet(done, lo, h2, pop_lim * SLACK)
     info = {"smoothing_frames": sigma, "stretch": stretch, "added_s": round((h2 - hi) / fps, 3),
+            "weight_shift_cm": round(100 * shifted, 2),
             "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
             "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
     return done, info, (lo, whi, whi - lo + (h2 - hi), seam)

@@ -90,3 +90,14 @@ def test_the_report_gives_both_figures_per_join(tmp_path, library_db):
         t = j["quality"]["transition"]
         assert t["meets"] == {"balance": t["balance_cm"] <= LIMIT_CM, "glide": t["glide_s"] <= LIMIT_S}
         assert all(t["meets"].values())
+
+
+def test_a_walk_started_from_standing_shifts_the_weight_first(db):
+    """花子 waits, then walks: the blend lifted her foot with the centre of mass still between her feet,
+    7.5 cm outside the one she stood on; the post-pass moves her hips over it first (synthesis.join.overfeet)."""
+    anim = text2anim.animate("太郎は走る。3秒後に花子が歩く。", db=db)
+    joins = [j for j in anim.report["joins"] if j["first"] != 1]
+    assert joins
+    for j in joins:
+        assert j["quality"]["transition"]["balance_cm"] <= LIMIT_CM, j["quality"]["transition"]
+    assert max(j["metrics"]["post"]["weight_shift_cm"] for j in joins) > 1.0
