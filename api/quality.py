@@ -32,14 +32,14 @@ from text2anim.core.metrics import (COMPARE_FPS, ROOT_POP_WINDOW, Quality, Serie
 JOIN_MARGIN = 0.5  # s added before and after a join's blend intervals
 
 
-def transition_figures(motion30, made: np.ndarray, per_frame: tuple[np.ndarray, np.ndarray] | None = None) -> dict:
+def transition_figures(motion30, made: np.ndarray, per_frame: tuple[np.ndarray, np.ndarray]) -> dict:
     """Balance (cm, :func:`core.balance.balance_cm`) and the longest glide (s, :func:`core.glide.glide_s`)
     of a motion at 30 fps over the bool mask ``made`` ``(T,)`` of the frames a method made (a join's
     window, not played as recorded), each with whether it is within capture's limit. ``per_frame``: the
-    motion's :func:`transition_frames`, when already taken."""
+    motion's :func:`transition_frames` (taken once per actor, for all its joins)."""
     from text2anim.core import balance, glide
 
-    runs_cm, gliding = transition_frames(motion30) if per_frame is None else per_frame
+    runs_cm, gliding = per_frame
     b = float(np.where(made, runs_cm, 0.0).max()) if len(made) else 0.0
     g = glide.longest_s(gliding & made, motion30.fps)
     return {"balance_cm": round(b, 2), "glide_s": round(g, 3),
@@ -47,11 +47,11 @@ def transition_figures(motion30, made: np.ndarray, per_frame: tuple[np.ndarray, 
 
 
 def transition_frames(motion30) -> tuple[np.ndarray, np.ndarray]:
-    """Per frame of a motion at 30 fps: the balance runs (cm at a person's size, :func:`core.balance.balance_runs`)
-    and whether the hips glide (:func:`core.glide.gliding`), ``(T,)`` each."""
+    """Per frame of a motion at 30 fps: the balance runs (:func:`core.balance.balance_runs_cm`) and whether
+    the hips glide (:func:`core.glide.gliding`), ``(T,)`` each."""
     from text2anim.core import balance, glide
 
-    return balance.balance_runs(motion30) * 100.0 * glide.human_scale(motion30), glide.gliding(motion30)
+    return balance.balance_runs_cm(motion30), glide.gliding(motion30)
 
 
 def rounded(q: Quality) -> dict:

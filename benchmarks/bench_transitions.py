@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -50,46 +51,38 @@ def capture() -> list[tuple[str, int, float, float, float]]:
     return rows
 
 
-def library() -> list[tuple[str, float, float]]:
+def library(db) -> list[tuple[str, float, float]]:
+    """Per built-in clip of the database ``db``: its balance (cm) and longest glide (s) at 30 fps."""
     from text2anim.core.balance import balance_cm
     from text2anim.core.glide import glide_s
     from text2anim.core.metrics import at_rate
-    from text2anim.motiondb import MotionDB
 
-    with MotionDB.open(f"sqlite:///{tempfile_dir()}/lib.sqlite") as db:
-        return [(c.name, balance_cm(m), glide_s(m)) for c in db.clips() for m in [at_rate(db.load(c.name), 30.0)]]
+    return [(c.name, balance_cm(m), glide_s(m)) for c in db.clips() for m in [at_rate(db.load(c.name), 30.0)]]
 
 
-def tempfile_dir() -> str:
-    import tempfile
-
-    return tempfile.mkdtemp(prefix="bench-balance-")
-
-
-def generated(texts: list[str]) -> list[tuple[str, str, float, float, float, float]]:
+def generated(db, texts: list[str]) -> list[tuple[str, str, float, float, float, float]]:
     import text2anim
     from text2anim.core.balance import balance_cm
     from text2anim.core.glide import glide_s
     from text2anim.core.metrics import at_rate
-    from text2anim.motiondb import MotionDB
     from text2anim.quality import played_frames
 
     rows = []
-    with MotionDB.open(f"sqlite:///{tempfile_dir()}/lib.sqlite") as db:
-        for text in texts:
-            anim = text2anim.animate(text, db=db)
-            for actor, motion in anim.motions.items():
-                m30 = at_rate(motion, 30.0)
-                paths = anim.result.placed_paths.get(actor)
-                changed = None if paths is None else ~played_frames(motion, paths, 30.0)  # None: one clip, as placed
-                rows.append((text, str(actor), 0.0 if changed is None else balance_cm(m30, changed), balance_cm(m30),
-                             0.0 if changed is None else glide_s(m30, changed), glide_s(m30)))
+    for text in texts:
+        anim = text2anim.animate(text, db=db)
+        for actor, motion in anim.motions.items():
+            m30 = at_rate(motion, 30.0)
+            paths = anim.result.placed_paths.get(actor)
+            changed = None if paths is None else ~played_frames(motion, paths, 30.0)  # None: one clip, as placed
+            rows.append((text, str(actor), 0.0 if changed is None else balance_cm(m30, changed), balance_cm(m30),
+                         0.0 if changed is None else glide_s(m30, changed), glide_s(m30)))
     return rows
 
 
 def main(argv=None) -> int:
     from text2anim.core.balance import LIMIT_CM
     from text2anim.core.glide import LIMIT_S
+    from text2anim.motiondb import MotionDB
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scenes", type=int, default=None, help="only the first N scenes (default all)")
@@ -108,8 +101,18 @@ def main(argv=None) -> int:
         print(f"glide, longest: {worst[4]:.2f} s ({worst[0]}; the limit: {LIMIT_S} s)\n")
     else:
         print(f"no capture at {SHARED}: the calibration table is skipped\n")
+    with tempfile.TemporaryDirectory(prefix="bench-transitions-") as tmp, \
+            MotionDB.open(f"sqlite:///{tmp}/library.sqlite") as db:
+        return _library_and_generated(db, args)
+
+
+def _library_and_generated(db, args) -> int:
+    """Tables 2 and 3 of the module docstring, on the built-in library's database ``db``."""
+    from text2anim.core.balance import LIMIT_CM
+    from text2anim.core.glide import LIMIT_S
+
     with Clock() as c:
-        lib = library()
+        lib = library(db)
     print(f"built-in library: {len(lib)} clips, {sum(r[1] > LIMIT_CM for r in lib)} over {LIMIT_CM} cm of balance, "
           f"{sum(r[2] > LIMIT_S for r in lib)} gliding over {LIMIT_S} s ({c.cpu:.1f} s CPU, {c.wall:.1f} s wall)")
     for name, cm, gl in sorted(lib, key=lambda r: (-r[1], -r[2]))[:6]:
@@ -121,7 +124,7 @@ def main(argv=None) -> int:
     golden = [t for t in (REPO / "tests" / "golden" / "sentences.txt").read_text(encoding="utf-8").splitlines() if t]
     texts = scenes[:args.scenes] + golden
     with Clock() as c:
-        gen = generated(texts)
+        gen = generated(db, texts)
     print(f"\ngenerated transitions: {len(gen)} animations of {len(texts)} sentences; "
           f"{sum(r[2] > LIMIT_CM for r in gen)} over {LIMIT_CM} cm of balance, "
           f"{sum(r[4] > LIMIT_S for r in gen)} gliding over {LIMIT_S} s ({c.cpu:.1f} s CPU, {c.wall:.1f} s wall)")

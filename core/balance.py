@@ -32,12 +32,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from .contacts import HEIGHT_THRESHOLD
+from .contacts import HEIGHT_THRESHOLD, runs
 from .floor import FOOT_CLEARANCE
 from .motion import Motion
 from .rigs import rig_roles
 from .rig_error import RigError
-from .size import HUMAN_LEG, leg_length
+from .size import HUMAN_LEG, human_scale, leg_length
 
 #: (proximal role, distal role, mass share, centre's place from proximal to distal) — de Leva 1996, Table 4
 #: (males). The head, hands and feet have no distal joint of their own in a rig: module docstring.
@@ -66,10 +66,11 @@ def _side(role: str, side: str) -> str:
     return side + role[0].upper() + role[1:]
 
 
-def centre_of_mass(motion: Motion) -> np.ndarray:
-    """``(T, 3)`` world positions (m) of the body's centre of mass (module docstring). Raises
-    :class:`RigError` for a rig whose humanoid joints cannot be placed."""
-    _, roles = rig_roles(motion.skeleton)
+def centre_of_mass(motion: Motion, roles: dict[str, int] | None = None) -> np.ndarray:
+    """``(T, 3)`` world positions (m) of the body's centre of mass (module docstring). ``roles``: the rig's
+    :func:`core.rigs.rig_roles`, when already read. Raises :class:`RigError` for a rig whose humanoid joints
+    cannot be placed."""
+    roles = rig_roles(motion.skeleton)[1] if roles is None else roles
     pos = motion.positions  # (T, J, 3)
     neck = pos[:, roles.get("neck", roles["head"])]
     head = pos[:, roles["head"]]
@@ -129,12 +130,6 @@ def support_gap(point: np.ndarray, corners: np.ndarray, down: np.ndarray) -> np.
     return gap
 
 
-def outside_support(point: np.ndarray, corners: np.ndarray, down: np.ndarray) -> np.ndarray:
-    """``(T,)`` metres the 2-D ``point`` ``(T, 2)`` lies outside the convex hull of the ``corners``
-    ``(T, K, 2)`` that are ``down`` ``(T, K)`` (:func:`support_gap`'s length; NaN where none is down)."""
-    return np.linalg.norm(support_gap(point, corners, down), axis=-1)
-
-
 def balance_gaps(motion: Motion) -> np.ndarray:
     """``(T, 2)`` metres at the body's own size, on the ground plane (x, z): how far, and which way, the centre
     of mass's ground projection must move to reach the support area widened by :data:`FOOT_RADIUS` (module
@@ -142,9 +137,9 @@ def balance_gaps(motion: Motion) -> np.ndarray:
     All NaN for a rig whose humanoid joints cannot be placed."""
     T = motion.n_frames
     try:
-        com = centre_of_mass(motion)
-        leg = leg_length(motion.skeleton)
         _, roles = rig_roles(motion.skeleton)
+        com = centre_of_mass(motion, roles)
+        leg = leg_length(motion.skeleton)
     except (RigError, ValueError):
         return np.full((T, 2), np.nan)
     if T < 2:
@@ -181,24 +176,21 @@ def balance_runs(motion: Motion) -> np.ndarray:
     h = balance_heights(motion)
     out = np.zeros(motion.n_frames)
     n = max(2, int(round(RUN * motion.fps)))
-    off = np.isfinite(h) & (np.nan_to_num(h) > 0.0)
-    edges = np.flatnonzero(np.diff(np.r_[0, off.astype(np.int8), 0]))
-    for a, b in zip(edges[::2], edges[1::2]):
+    for a, b in runs(np.isfinite(h) & (np.nan_to_num(h) > 0.0)):
         if b - a >= n:
             out[a:b] = h[a:b].min()
     return out
 
 
+def balance_runs_cm(motion: Motion) -> np.ndarray:
+    """:func:`balance_runs` in centimetres at a person's size (× 0.86 m / the body's leg length), ``(T,)``."""
+    return balance_runs(motion) * 100.0 * human_scale(motion)
+
+
 def balance_cm(motion: Motion, frames: np.ndarray | None = None) -> float:
-    """The most the centre of mass stays outside the support area (cm, at a person's size:
-    :func:`balance_runs` × 0.86 m / leg length) over the motion, or over the bool mask ``frames`` ``(T,)``."""
-    h = balance_runs(motion)
+    """The most the centre of mass stays outside the support area (cm, at a person's size,
+    :func:`balance_runs_cm`) over the motion, or over the bool mask ``frames`` ``(T,)``."""
+    h = balance_runs_cm(motion)
     if frames is not None:
         h = np.where(frames, h, 0.0)
-    if not h.size:
-        return 0.0
-    try:
-        k = HUMAN_LEG / leg_length(motion.skeleton)
-    except ValueError:
-        k = 1.0
-    return float(h.max()) * 100.0 * k
+    return float(h.max()) if h.size else 0.0

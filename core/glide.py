@@ -15,9 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from .contacts import runs
 from .metrics import hips_acceleration
 from .motion import Motion
-from .size import HUMAN_LEG, leg_length
+from .size import human_scale
 
 #: m/s at a person's size: slower hips do not travel (a sway, a shift of weight)
 TRAVEL = 0.3
@@ -25,14 +26,6 @@ TRAVEL = 0.3
 STEADY = 0.3
 #: s: the longest glide capture has (0.17 s), rounded up
 LIMIT_S = 0.2
-
-
-def human_scale(motion: Motion) -> float:
-    """0.86 m / the body's leg length: lengths times this are at a person's size (1 for legs not found)."""
-    try:
-        return HUMAN_LEG / leg_length(motion.skeleton)
-    except ValueError:
-        return 1.0
 
 
 def gliding(motion: Motion) -> np.ndarray:
@@ -55,8 +48,8 @@ def gliding_path(root_positions: np.ndarray, fps: float) -> np.ndarray:
 
 def longest_s(mask: np.ndarray, fps: float) -> float:
     """The longest run of True in ``mask`` ``(T,)``, seconds at ``fps``."""
-    edges = np.flatnonzero(np.diff(np.r_[0, np.asarray(mask, dtype=np.int8), 0]))
-    return int((edges[1::2] - edges[::2]).max()) / fps if len(edges) else 0.0
+    r = runs(mask)
+    return int((r[:, 1] - r[:, 0]).max()) / fps if len(r) else 0.0
 
 
 def glide_s(motion: Motion, frames: np.ndarray | None = None) -> float:

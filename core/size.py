@@ -43,6 +43,15 @@ def leg_length(skel: Skeleton) -> float:
     return length
 
 
+def human_scale(motion: Motion) -> float:
+    """:data:`HUMAN_LEG` / the body's :func:`leg_length`: lengths times this are at a person's size (1 for
+    a skeleton whose legs cannot be found)."""
+    try:
+        return HUMAN_LEG / leg_length(motion.skeleton)
+    except BodyMapError:
+        return 1.0
+
+
 def at_human_size(motion: Motion) -> tuple[Motion, float]:
     """``(motion, k)``: ``motion`` scaled by ``k`` to a human leg length when its body is outside
     :data:`HUMAN_RANGE` of :data:`HUMAN_LEG` (``k`` = 1 and the motion as it is otherwise, or when

@@ -69,9 +69,9 @@ from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion
 
 from .blend import sample
-from .overfeet import over_feet
 from .inertialize import inertialize_at, inertialize_before
 from .legsolve import solve_leg
+from .overfeet import over_feet
 from .pruning import Tried, least, may_keep, replaces
 from .smoothing import Smoothed, Stretch, plant_all
 

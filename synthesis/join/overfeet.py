@@ -41,7 +41,8 @@ def over_feet(motion: Motion, lo: int, hi: int, pop_limit: float = float("inf"))
     n = hi - lo
     if n < 4:
         return motion, 0.0
-    gaps = np.nan_to_num(balance_gaps(motion[lo:hi]), nan=0.0)  # (n, 2), body's own size
+    region = motion[lo:hi]
+    gaps = np.nan_to_num(balance_gaps(region), nan=0.0)  # (n, 2), body's own size
     if not np.abs(gaps).max() > 0.0:
         return motion, 0.0
     sigma = max(1.0, SHIFT_S * motion.fps)
@@ -66,7 +67,7 @@ def over_feet(motion: Motion, lo: int, hi: int, pop_limit: float = float("inf"))
     else:
         return motion, 0.0
     shift = scale * shift
-    pose = motion[lo:hi].pose
+    pose = region.pose
     out = motion.replace(root_positions=root)
     feet = body_map(motion.skeleton).feet
     frames = np.flatnonzero(moved)
