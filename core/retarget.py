@@ -366,10 +366,9 @@ def _drop_hips(out: Motion, legs, hips: int) -> Motion:
     if not legs:
         return out
     pos = out.positions
-    rest = out.skeleton.rest_positions()
     drops = []
     for _, (up, mid, end), goal, _ in legs:
-        reach = 0.999 * (np.linalg.norm(rest[mid] - rest[up]) + np.linalg.norm(rest[end] - rest[mid]))
+        reach = 0.999 * _chain_length(out.skeleton, (up, mid, end))
         v = goal - pos[:, up]
         flat = np.sqrt(np.maximum(reach ** 2 - v[:, 0] ** 2 - v[:, 2] ** 2, 0.0))
         drops.append(np.maximum(-v[:, 1] - flat, 0.0))

@@ -39,7 +39,7 @@ from text2anim.core.contacts import runs
 from text2anim.core.motion import Motion
 
 from .blend import ease, ratio, slerp
-from .legsolve import REACH, LegGoal, leg_chain, quaternions, solve_goals, solve_leg
+from .legsolve import REACH, LegGoal, chain_length, leg_chain, quaternions, solve_goals, solve_leg
 
 __all__ = ["Lock", "FootLocks", "planted_targets", "lock_feet", "reachable_locks", "lift_swings", "plan_locks", "REACH", "solve_leg"]
 
@@ -212,11 +212,10 @@ def reachable_locks(motion: Motion, feet: dict[str, FootLocks], first: int) -> d
     hi = min(motion.n_frames, max(lk.end for f in feet.values() for lk in f.locks))
     pos = motion[first:hi].pose.positions  # the hips are final (a lock turns the legs' joints only)
     n_step = max(1, int(round(STEP_S * motion.fps)))
-    offs = motion.skeleton.offsets
     out = {}
     for side, f in feet.items():
-        hip, knee, ankle = leg_chain(motion, side)
-        reach = REACH * (np.linalg.norm(offs[knee]) + np.linalg.norm(offs[ankle])) + HANG
+        hip, _knee, ankle = chain = leg_chain(motion, side)
+        reach = REACH * chain_length(motion, chain) + HANG
         T = hi - first
         w = np.stack([x[:T] for x in f.weights])
         steps = [np.diff(x[:T], axis=0) for x in f.positions]

@@ -26,6 +26,12 @@ def leg_chain(motion: Motion, side: str) -> tuple[int, int, int]:
     return int(motion.skeleton.parents[knee]), knee, ankle
 
 
+def chain_length(motion: Motion, chain: tuple[int, int, int]) -> float:
+    """Thigh plus shin (m) of a leg ``(hip, knee, ankle)`` (:func:`leg_chain`), from the skeleton's offsets."""
+    offs = motion.skeleton.offsets
+    return float(np.linalg.norm(offs[chain[1]]) + np.linalg.norm(offs[chain[2]]))
+
+
 #: IK targets are kept within this fraction of the leg's length from the hip: a leg pulled fully
 #: straight has no bend plane, and the knee would flip from frame to frame. Captured legs reach 0.99
 #: of their length, the built-in ones 0.999.
@@ -41,8 +47,7 @@ def solve_leg(motion: Motion, side: str, targets: np.ndarray, ankle: np.ndarray 
         return solve_legs(motion, [LegGoal(side, 0, motion.n_frames, np.asarray(targets, dtype=np.float64),
                                            np.asarray(ankle, dtype=np.float64).reshape(-1, 4))])
     hip, knee, foot = leg_chain(motion, side)
-    offs = motion.skeleton.offsets
-    reach = REACH * (np.linalg.norm(offs[knee]) + np.linalg.norm(offs[foot]))
+    reach = REACH * chain_length(motion, (hip, knee, foot))
     pos = motion.positions
     h = pos[:, hip]
     v = targets - h
@@ -73,13 +78,11 @@ def solve_goals(span: Motion, lo: int, goals: list[LegGoal]) -> np.ndarray:
     solved: :func:`solve_leg` then :func:`core.ik.set_world_rotation` per goal, all goals' frames as rows of
     one solve (per row the same arithmetic: the same bits). The goals of one leg must not overlap."""
     skel = span.skeleton
-    offs = skel.offsets
     chains = [leg_chain(span, g.side) for g in goals]
     frames = np.concatenate([np.arange(g.begin - lo, g.end - lo) for g in goals])
     hip, knee, ankle = (np.concatenate([np.full(g.end - g.begin, c[k]) for g, c in zip(goals, chains)])
                         for k in range(3))
-    reach = np.concatenate([np.full(g.end - g.begin, REACH * (np.linalg.norm(offs[c[1]]) + np.linalg.norm(offs[c[2]])))
-                            for g, c in zip(goals, chains)])
+    reach = np.concatenate([np.full(g.end - g.begin, REACH * chain_length(span, c)) for g, c in zip(goals, chains)])
     pose = span.pose
     P, R = pose.positions, pose.rotations
     h = P[frames, hip]

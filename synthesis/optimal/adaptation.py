@@ -38,6 +38,8 @@ from text2anim.core.ik import leg_ik, set_world_rotation
 from text2anim.core.motion import Motion
 from text2anim.core.size import leg_length
 
+from ..join.legsolve import chain_length, leg_chain
+
 
 def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
     """``motion`` with each foot moved by ``offsets[side]`` (metres, ``(3,)``; only x and z are used),
@@ -77,14 +79,11 @@ def _sink(motion: Motion, targets: dict[str, np.ndarray], shift: np.ndarray) -> 
     from the hips moved by ``shift`` ``(T, 3)``: a stance wider than the motion's own is stood in lower, as
     a person does, instead of leaving a foot hanging above its place on a straightened leg. Held over
     :data:`SINK_S` either side and smoothed (the most any frame needs is kept), 0 where the legs reach."""
-    skel = motion.skeleton
-    offs = skel.offsets
     pos = motion.pose.positions
     need = np.zeros(motion.n_frames)
-    for side, ankle in ((s, body_map(skel).feet[s][0]) for s in targets):
-        knee = int(skel.parents[ankle])
-        hip = int(skel.parents[knee])
-        reach = STRETCH * (np.linalg.norm(offs[knee]) + np.linalg.norm(offs[ankle]))
+    for side in targets:
+        hip, _knee, ankle = chain = leg_chain(motion, side)
+        reach = STRETCH * chain_length(motion, chain)
 
         def over(h: np.ndarray, t: np.ndarray) -> np.ndarray:  # how far the hip is above its highest place
             flat = np.hypot(*(t - h)[:, [0, 2]].T)  # a foot further away than the leg reaches: sinking cannot help
@@ -92,7 +91,7 @@ def _sink(motion: Motion, targets: dict[str, np.ndarray], shift: np.ndarray) -> 
             return np.where(flat < reach, h[:, 1] - (t[:, 1] + top), 0.0)
         # only what the adaptation adds: a leg the motion itself holds straight is not the adaptation's to bend
         need = np.maximum(need, over(pos[:, hip] + shift, targets[side]) - np.maximum(over(pos[:, hip], pos[:, ankle]), 0.0))
-    need = np.clip(need, 0.0, MAX_SINK * leg_length(skel))
+    need = np.clip(need, 0.0, MAX_SINK * leg_length(motion.skeleton))
     if not need.any():
         return need
     n = max(1, int(round(SINK_S * motion.fps)))
