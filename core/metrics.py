@@ -245,8 +245,12 @@ def summarise(s: Series, start: int = 0, stop: int | None = None) -> Quality:
 
 
 def at_rate(motion: Motion, fps: float | None = COMPARE_FPS) -> Motion:
-    """``motion`` resampled to ``fps`` (unchanged when ``fps`` is None or already its rate)."""
-    return motion if fps is None or motion.fps == fps else motion.resample(fps)
+    """``motion`` resampled to ``fps`` (unchanged when ``fps`` is None or already its rate); kept in the
+    motion's cache, so the figures read from one output (the whole motion's, each join's, what it played
+    as placed, balance and glides) resample it once."""
+    if fps is None or motion.fps == fps:
+        return motion
+    return motion.cache.get(("at_rate", float(fps)), lambda: motion.resample(fps))
 
 
 def window_frames(fps: float, window: tuple[float, float]) -> tuple[int, int]:
