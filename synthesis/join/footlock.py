@@ -122,6 +122,17 @@ class FootLocks:
     weights: list[np.ndarray]
 
 
+def _lock_start(w: np.ndarray, positions: list[np.ndarray], i0: int) -> tuple[np.ndarray | None, int]:
+    """Where a lock starting on frame ``i0`` holds the ankle: the planted sources' weighted mean (``w``
+    ``(S, T)`` their weights, ``positions`` per source the ankle ``(T, 3)``), and the source with the
+    largest share (whose rotation the lock starts with); ``(None, -1)`` where no source has it planted."""
+    tot = w[:, i0].sum()
+    if tot <= 1e-9:
+        return None, -1
+    share = w[:, i0] / tot
+    return sum(share[k] * positions[k][i0] for k in range(len(positions))), int(np.argmax(share))
+
+
 def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray], feet: FootLocks, first: int,
                profile: str):
     """The goal holding one foot over ``[first, stop)`` (see :func:`lock_feet`): ``p`` ``(T, 3)`` and ``r``
@@ -139,17 +150,15 @@ def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray
     start_rot = r[:1]
     for lk in locks:  # planted_targets of each lock, its rotations converted below for all at once
         i0, i1 = lk.begin - first, lk.end - first
-        tot = w[:, i0].sum()
         if lk.at is not None:  # put down again: still, turned as the lock before it began
             d[i0:i1] = np.asarray(lk.at) - p[i0:i1]
             starts.append(np.repeat(start_rot, i1 - i0, axis=0))
             turns.append(np.zeros((i1 - i0, 3)))
             rows.append(np.arange(i0, i1))
             continue
-        if tot > 1e-9:
-            share = w[:, i0] / tot
-            start = sum(share[k] * positions[k][i0] for k in range(len(positions)))
-            start_rot = sources[int(np.argmax(share))][i0:i0 + 1]
+        start, lead = _lock_start(w, positions, i0)
+        if start is not None:
+            start_rot = sources[lead][i0:i0 + 1]
         else:
             start, start_rot = p[i0], r[i0:i0 + 1]
         tp, turned = _integrate(start, [x[i0:i1] for x in w], [x[i0:i1 - 1] for x in steps_p],
@@ -191,9 +200,8 @@ def _held_path(lk: Lock, first: int, w: np.ndarray, positions: list[np.ndarray],
     i0, i1 = lk.begin - first, lk.end - first
     if lk.at is not None:
         return np.repeat(np.asarray(lk.at, dtype=np.float64)[None], i1 - i0, axis=0)
-    tot = w[:, i0].sum()
-    start = own[i0] if tot <= 1e-9 else sum((w[k, i0] / tot) * positions[k][i0] for k in range(len(positions)))
-    return _integrate(start, [x[i0:i1] for x in w], [x[i0:i1 - 1] for x in steps],
+    start, _ = _lock_start(w, positions, i0)
+    return _integrate(own[i0] if start is None else start, [x[i0:i1] for x in w], [x[i0:i1 - 1] for x in steps],
                       [np.zeros((max(0, i1 - i0 - 1), 3))] * len(steps))[0]
 
 
