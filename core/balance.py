@@ -30,6 +30,8 @@ the seat while the hips are still above :data:`SEATED`), which the limit leaves 
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from .contacts import HEIGHT_THRESHOLD, runs
@@ -130,20 +132,39 @@ def support_gap(point: np.ndarray, corners: np.ndarray, down: np.ndarray) -> np.
     return gap
 
 
-def balance_gaps(motion: Motion) -> np.ndarray:
-    """``(T, 2)`` metres at the body's own size, on the ground plane (x, z): how far, and which way, the centre
-    of mass's ground projection must move to reach the support area widened by :data:`FOOT_RADIUS` (module
-    docstring); 0 inside it; NaN on frames the figure does not judge (no foot down, moving fast, seated).
-    All NaN for a rig whose humanoid joints cannot be placed."""
-    T = motion.n_frames
+@dataclass(frozen=True)
+class Stance:
+    """What the balance figure reads of a motion's ``T`` frames, on the ground plane (x, z), metres.
+
+    ``com`` ``(T, 2)``: the centre of mass's projection; ``corners`` ``(T, K, 2)``: the ankle and toe joints of
+    both feet, ``down`` ``(T, K)`` those on the floor; ``speed`` ``(T,)``: the centre of mass's (m/s at a
+    person's size); ``seated`` ``(T,)``: hips lower than :data:`SEATED`; ``radius``: :data:`FOOT_RADIUS` at the
+    body's size."""
+
+    com: np.ndarray
+    corners: np.ndarray
+    down: np.ndarray
+    speed: np.ndarray
+    seated: np.ndarray
+    radius: float
+
+    def standing(self, slow: float = SLOW) -> np.ndarray:
+        """``(T,)``: a foot down, the centre of mass slower than ``slow`` (m/s at a person's size), not seated
+        (with the default, the frames the figure judges)."""
+        return self.down.any(axis=1) & (self.speed < slow) & ~self.seated
+
+
+def stance(motion: Motion) -> Stance | None:
+    """The :class:`Stance` of ``motion``; None for a rig whose humanoid joints cannot be placed or a
+    motion shorter than 2 frames."""
+    if motion.n_frames < 2:
+        return None
     try:
         _, roles = rig_roles(motion.skeleton)
         com = centre_of_mass(motion, roles)
         leg = leg_length(motion.skeleton)
     except (RigError, ValueError):
-        return np.full((T, 2), np.nan)
-    if T < 2:
-        return np.full((T, 2), np.nan)
+        return None
     pos = motion.positions
     corners, down = [], []
     for side in ("left", "right"):
@@ -152,13 +173,24 @@ def balance_gaps(motion: Motion) -> np.ndarray:
         corners += [pos[:, ankle, :][:, [0, 2]], pos[:, toe, :][:, [0, 2]]]
         low = np.minimum(pos[:, ankle, 1], pos[:, toe, 1]) < (FOOT_CLEARANCE + HEIGHT_THRESHOLD) / (HUMAN_LEG / leg)
         down += [low, low]
-    gap = support_gap(com[:, [0, 2]], np.stack(corners, axis=1), np.stack(down, axis=1))
-    dist = np.linalg.norm(gap, axis=-1)
-    out = gap * (np.maximum(0.0, dist - FOOT_RADIUS * leg) / np.maximum(dist, 1e-12))[:, None]
     speed = np.linalg.norm(np.gradient(com[:, [0, 2]], axis=0), axis=-1) * motion.fps * (HUMAN_LEG / leg)
     feet_floor = np.minimum(pos[:, roles["leftFoot"], 1], pos[:, roles["rightFoot"], 1])
     seated = pos[:, roles["hips"], 1] - feet_floor < SEATED * leg
-    out[(speed >= SLOW) | seated] = np.nan
+    return Stance(com[:, [0, 2]], np.stack(corners, axis=1), np.stack(down, axis=1), speed, seated, FOOT_RADIUS * leg)
+
+
+def balance_gaps(motion: Motion) -> np.ndarray:
+    """``(T, 2)`` metres at the body's own size, on the ground plane (x, z): how far, and which way, the centre
+    of mass's ground projection must move to reach the support area widened by :data:`FOOT_RADIUS` (module
+    docstring); 0 inside it; NaN on frames the figure does not judge (no foot down, moving fast, seated).
+    All NaN for a rig whose humanoid joints cannot be placed."""
+    st = stance(motion)
+    if st is None:
+        return np.full((motion.n_frames, 2), np.nan)
+    gap = support_gap(st.com, st.corners, st.down)
+    dist = np.linalg.norm(gap, axis=-1)
+    out = gap * (np.maximum(0.0, dist - st.radius) / np.maximum(dist, 1e-12))[:, None]
+    out[~st.standing()] = np.nan
     return out
 
 
