@@ -305,6 +305,24 @@ def beats_table(rows: list[dict]) -> None:
                   if key == "root_pop" and (p, "optimal") in by_own and (p, other) in by_own]
             own = "{:18d} {:5d} {:6d}".format(*counts(ib)) if ib else f"{'-':>18} {'-':>5} {'-':>6}"
             print(f"{other:10} {label:14} {b:20d} {t:5d} {w:6d}   {cells}   {own} {len(both):4d}")
+    decided_table(by_own, pairs)
+
+
+#: m/s²: the introduced root pops of two methods closer than this are a tie (issue 29's decision)
+DECIDED = 0.5
+
+
+def decided_table(by_own: dict, pairs: list[str]) -> None:
+    """Issue 29's decided reading: over the pairs where optimal's introduced root pop and a baseline's differ
+    by more than :data:`DECIDED` m/s², the share optimal beats (the target: 90 % against each baseline)."""
+    for other in ("crossfade", "pose"):
+        both = [(by_own[p, "optimal"], by_own[p, other]) for p in pairs
+                if (p, "optimal") in by_own and (p, other) in by_own]
+        apart = [(o, x) for o, x in both if abs(o - x) > DECIDED]
+        if apart:
+            won = sum(o < x for o, x in apart)
+            print(f"  introduced root pop, decided (pairs differing by more than {DECIDED} m/s2): optimal beats "
+                  f"{other} on {won} of {len(apart)} ({100 * won / len(apart):.0f} %; target 90 %)")
 
 
 def failing(rows: list[dict], method: str) -> None:
