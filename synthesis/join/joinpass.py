@@ -48,6 +48,10 @@ own two source clips (as recorded, at the track's rate):
    mass beside them (``core.balance``), its hips are moved over them, the legs solved back onto the feet
    (:func:`synthesis.join.overfeet.over_feet`; the shift is scaled down to keep the hips' acceleration
    within the sources'; the report's ``post.weight_shift_cm``).
+6. **The hips' path of least acceleration**: the hips' horizontal path over the region bent, by at most a
+   few centimetres, into the path that accelerates least and keeps a slow body over its feet, the legs
+   solved back onto the feet (:func:`synthesis.join.hipspath.least_acceleration`: a departure from eq. (8)
+   of paper 000, written there; ``post.hips_bent_cm``).
 
 **Cores** are kept: the region stops at the next clip's core (except where the
 engine's own adaptation returns inside it) and starts after the first clip's
@@ -69,6 +73,7 @@ from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion
 
 from .blend import sample
+from .hipspath import least_acceleration
 from .inertialize import inertialize_at, inertialize_before
 from .legsolve import solve_leg
 from .overfeet import over_feet
@@ -313,8 +318,9 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     rows = np.concatenate([np.arange(lo), np.full(h2 - lo, -1), np.arange(hi, T)])
     done = lift_off_floor(clear_swings(chosen.motion().share_pose(motion, rows), lo, h2), lo, h2)
     done, shifted = over_feet(done, lo, h2, pop_lim * SLACK)
+    done, bent = least_acceleration(done, lo, h2)
     info = {"smoothing_frames": sigma, "stretch": stretch, "added_s": round((h2 - hi) / fps, 3),
-            "weight_shift_cm": round(100 * shifted, 2),
+            "weight_shift_cm": round(100 * shifted, 2), "hips_bent_cm": round(100 * bent, 2),
             "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
             "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
     return done, info, (lo, whi, whi - lo + (h2 - hi), seam)

@@ -37,7 +37,8 @@ def _b_side(plan: Plan) -> Motion:
     deformation's own speed, 0: the fade is the Hermite curve with zero slopes at both ends (S3's eq. (16)
     weights, taken from the speeds of the whole poses, would start and stop moving the hips by the
     deformation with a jump in their velocity: a root pop at S3's ends, inside the next motion's core).
-    Case (c) is the literal pose–pose blend of the adapted pose at ``t0`` and the motion's pose at ``t1``,
+    The hips' path through the return is then bent by the join post-pass (:mod:`synthesis.join.hipspath`,
+    a departure from eq. (8) written there). Case (c) is the literal pose–pose blend of the adapted pose at ``t0`` and the motion's pose at ``t1``,
     planted feet pinned.
     """
     if plan.adapted is None:

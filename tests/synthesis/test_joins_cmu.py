@@ -17,8 +17,9 @@ from dataclasses import replace
 
 import numpy as np
 
+from text2anim.core.balance import LIMIT_CM
 from text2anim.core.metrics import MAX_PENETRATION_CM, SKATING_MARGIN, SOURCE_FACTOR, against_sources, quality
-from text2anim.quality import introduced_root_pop, played_frames
+from text2anim.quality import introduced_root_pop, join_quality, played_frames
 from text2anim.motiondb import MotionDB
 from text2anim.synthesis.registry import synthesize_with
 from text2anim.synthesis.tracks import Track
@@ -120,6 +121,27 @@ def test_an_adaptation_returns_into_the_next_core_no_harder_than_that_clip_moves
     (join,) = res.joins
     assert join.blend == "motion_adaptation_step"
     assert introduced_root_pop(res)[None] <= SOURCE_FACTOR * quality(clips["jump118"][1].motion).root_pop
+
+
+@pytest.mark.parametrize("first, second", [("pickup", "lunge"), ("jump118", "lunge"), ("kick10_03", "jump118"),
+                                           ("pickup", "jump118")])
+def test_a_change_of_stance_is_carried_over_the_join_not_jolted_into_one_step(clips, first, second):
+    """Adaptations whose next clip stands 15-93 cm from where the first left the feet (issue 29's decision):
+    eq. (8) returned the hips over one step, 6-8 m/s2 of acceleration where the crossfade slides at 0.2-1.9.
+    The hips' path of least acceleration spreads the travel: what the join introduces is no more than the
+    crossfade's + 0.5 m/s2 (the decision's tie), with the feet planted as the sources plant them (all six
+    criteria against the sources) and the body over its feet while it moves slowly (the balance figure)."""
+    track = track_of(clips, first, second)
+    res = synthesize_with("optimal", [track], FPS)
+    (join,) = res.joins
+    assert join.blend == "motion_adaptation_step"
+    base = synthesize_with("crossfade", [track], FPS)
+    assert introduced_root_pop(res)[None] <= introduced_root_pop(base)[None] + 0.5
+    out = quality(res.motions[None])
+    assert all(against_sources(out, [quality(clips[first][1].motion), quality(clips[second][1].motion)]).values())
+    (entry,) = join_quality(res, [track])
+    assert entry["transition"]["balance_cm"] <= LIMIT_CM
+    assert 0.0 < join.metrics["post"]["hips_bent_cm"] <= 8.0 / np.cos(np.pi / 8) + 0.01  # the band's octagon
 
 
 def test_the_introduced_root_pop_reads_the_frames_a_method_changed(clips):
