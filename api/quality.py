@@ -13,8 +13,9 @@ at one rate:
   root pop and jerk p99 ≤ 1.2 × the sources' larger, floor penetration ≤ 1 cm,
   frozen frames ≤ 5 %, a foot floating ≤ the sources' larger + 2 cm);
 - per join, what a body could not do on the frames the method made (``transition``,
-  :func:`transition_figures`): the centre of mass outside the feet (:mod:`core.balance`) and the hips
-  gliding at a steady speed (:mod:`core.glide`), each with whether it is within what capture does;
+  :func:`transition_figures`): the centre of mass outside the feet (:mod:`core.balance`), the hips
+  gliding at a steady speed (:mod:`core.glide`) and the body held up in the air (:mod:`core.hang`), each
+  with whether it is within what capture does;
 - per actor, the root pop the method *introduced* (:func:`introduced_root_pop`): over the frames whose
   hips acceleration is not that of a source clip as placed (turned and moved, played verbatim, or moved
   by a constant offset), the worst jolt of the frames the method made itself.
@@ -32,26 +33,29 @@ from text2anim.core.metrics import (COMPARE_FPS, ROOT_POP_WINDOW, Quality, Serie
 JOIN_MARGIN = 0.5  # s added before and after a join's blend intervals
 
 
-def transition_figures(motion30, made: np.ndarray, per_frame: tuple[np.ndarray, np.ndarray]) -> dict:
-    """Balance (cm, :func:`core.balance.balance_cm`) and the longest glide (s, :func:`core.glide.glide_s`)
-    of a motion at 30 fps over the bool mask ``made`` ``(T,)`` of the frames a method made (a join's
-    window, not played as recorded), each with whether it is within capture's limit. ``per_frame``: the
-    motion's :func:`transition_frames` (taken once per actor, for all its joins)."""
-    from text2anim.core import balance, glide
+def transition_figures(motion30, made: np.ndarray, per_frame: tuple[np.ndarray, np.ndarray, np.ndarray]) -> dict:
+    """Balance (cm, :func:`core.balance.balance_cm`), the longest glide (s, :func:`core.glide.glide_s`) and the
+    longest hang in the air (s, :func:`core.hang.hang_s`) of a motion at 30 fps over the bool mask ``made``
+    ``(T,)`` of the frames a method made (a join's window, not played as recorded), each with whether it is
+    within capture's limit. ``per_frame``: the motion's :func:`transition_frames` (taken once per actor, for
+    all its joins)."""
+    from text2anim.core import balance, glide, hang
 
-    runs_cm, gliding = per_frame
+    runs_cm, gliding, hanging = per_frame
     b = float(np.where(made, runs_cm, 0.0).max()) if len(made) else 0.0
     g = glide.longest_s(gliding & made, motion30.fps)
-    return {"balance_cm": round(b, 2), "glide_s": round(g, 3),
-            "meets": {"balance": b <= balance.LIMIT_CM, "glide": g <= glide.LIMIT_S}}
+    h = float(np.where(made, hanging, 0.0).max()) if len(made) else 0.0
+    return {"balance_cm": round(b, 2), "glide_s": round(g, 3), "hang_s": round(h, 3),
+            "meets": {"balance": b <= balance.LIMIT_CM, "glide": g <= glide.LIMIT_S, "hang": h <= hang.LIMIT_S}}
 
 
-def transition_frames(motion30) -> tuple[np.ndarray, np.ndarray]:
-    """Per frame of a motion at 30 fps: the balance runs (:func:`core.balance.balance_runs_cm`) and whether
-    the hips glide (:func:`core.glide.gliding`), ``(T,)`` each."""
-    from text2anim.core import balance, glide
+def transition_frames(motion30) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per frame of a motion at 30 fps: the balance runs (:func:`core.balance.balance_runs_cm`), whether the
+    hips glide (:func:`core.glide.gliding`) and how long its airborne run hangs (:func:`core.hang.hang_times`),
+    ``(T,)`` each."""
+    from text2anim.core import balance, glide, hang
 
-    return balance.balance_runs_cm(motion30), glide.gliding(motion30)
+    return balance.balance_runs_cm(motion30), glide.gliding(motion30), hang.hang_times(motion30)
 
 
 def rounded(q: Quality) -> dict:

@@ -241,7 +241,10 @@ def transition_table(rows: list[dict], methods, what: str) -> None:
     from text2anim.core.balance import LIMIT_CM
     from text2anim.core.glide import LIMIT_S
 
-    print(f"  transitions of {what} (frames no source plays as recorded): balance <= {LIMIT_CM} cm, glide <= {LIMIT_S} s")
+    from text2anim.core import hang
+
+    print(f"  transitions of {what} (frames no source plays as recorded): balance <= {LIMIT_CM} cm, glide <= {LIMIT_S} s, "
+          f"hang in the air <= {hang.LIMIT_S} s")
     for m in methods:
         ts = [t for r in rows if r["method"] == m for t in r.get("transitions", [])]
         if not ts:
@@ -249,7 +252,8 @@ def transition_table(rows: list[dict], methods, what: str) -> None:
         n = len(ts)
         print(f"  {m:11} {n:4d} joins  balance {100 * sum(t['meets']['balance'] for t in ts) / n:4.0f}% "
               f"(max {max(t['balance_cm'] for t in ts):5.1f} cm)  glide {100 * sum(t['meets']['glide'] for t in ts) / n:4.0f}% "
-              f"(max {max(t['glide_s'] for t in ts):4.2f} s)")
+              f"(max {max(t['glide_s'] for t in ts):4.2f} s)  hang {100 * sum(t['meets']['hang'] for t in ts) / n:4.0f}% "
+              f"(max {max(t['hang_s'] for t in ts):4.2f} s)")
 
 
 def median_table(rows: list[dict], methods) -> None:

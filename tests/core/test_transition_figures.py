@@ -1,5 +1,5 @@
-"""What a body could not do (docs/timetable.md §3): the centre of mass outside the feet (core.balance) and
-hips carried at a steady speed (core.glide). Calibrated on real capture; they catch the defects they are
+"""What a body could not do (docs/timetable.md §3): the centre of mass outside the feet (core.balance),
+hips carried at a steady speed (core.glide) and a body held up in the air (core.hang). Calibrated on real capture; they catch the defects they are
 for on motions made from real clips; the report gives them per join."""
 from __future__ import annotations
 
@@ -9,12 +9,14 @@ import numpy as np
 import pytest
 
 import text2anim
-from shared_data import CMU_FILES, EVERYDAY_DIR, requires_cmu, requires_everyday
+from shared_data import CMU_FILES, EVERYDAY_DIR, cmu, requires_cmu, requires_everyday
 from text2anim.core import read_bvh
 from text2anim.core.balance import LIMIT_CM, balance_cm, centre_of_mass
-from text2anim.core.floor import lowest_foot_heights
+from text2anim.core.floor import lowest_foot_heights, place_on_floor
+from text2anim.core.hang import LIMIT_S as HANG_S, hang_s
 from text2anim.core.glide import LIMIT_S, glide_s
 from text2anim.core.ik import leg_ik
+from text2anim.synthesis.join.blend import sample
 from text2anim.core.metrics import at_rate
 from text2anim.motiondb import MotionDB
 
@@ -40,6 +42,19 @@ def test_capture_stays_within_both_limits():
     assert max(balance.values()) <= LIMIT_CM, max(balance.items(), key=lambda kv: kv[1])
     glides = {name: glide_s(m) for name, m in takes}
     assert max(glides.values()) <= LIMIT_S, max(glides.items(), key=lambda kv: kv[1])
+
+
+@requires_cmu
+def test_a_body_in_the_air_falls_as_gravity_takes_it():
+    """Jumps and runs leave the floor and come down in the time their hips' rise allows: they do not hang.
+    The same run played three times slower holds the body up through each flight (0.1 s become 0.3-0.4 s
+    with the hips level): that is what a join slowing a run's flight, or blending into it, made."""
+    for stem in ("16_01_jump", "16_05_jump", "118_10_jump", "02_03_run", "127_07_run", "08_02_walk"):
+        m, _ = place_on_floor(at_rate(read_bvh(cmu(stem), drop_first=True), 30.0))
+        assert hang_s(m) <= HANG_S, stem
+    run, _ = place_on_floor(at_rate(read_bvh(cmu("127_07_run"), drop_first=True), 30.0))
+    slow = sample(run, np.arange(0.0, run.n_frames - 1.0, 1.0 / 3.0))
+    assert hang_s(slow) > HANG_S
 
 
 def test_the_centre_of_mass_of_a_person_standing_is_between_the_feet(db):
@@ -78,7 +93,7 @@ def test_hips_carried_at_constant_speed_glide(db):
     assert glide_s(glided) > walk.duration - 0.2
 
 
-def test_the_report_gives_both_figures_per_join(tmp_path, library_db):
+def test_the_report_gives_the_figures_per_join(tmp_path, library_db):
     out, report = tmp_path / "taro.bvh", tmp_path / "taro.json"
     from cli_run import text2anim as run
 
@@ -88,7 +103,8 @@ def test_the_report_gives_both_figures_per_join(tmp_path, library_db):
     assert len(joins) == 2
     for j in joins:
         t = j["quality"]["transition"]
-        assert t["meets"] == {"balance": t["balance_cm"] <= LIMIT_CM, "glide": t["glide_s"] <= LIMIT_S}
+        assert t["meets"] == {"balance": t["balance_cm"] <= LIMIT_CM, "glide": t["glide_s"] <= LIMIT_S,
+                              "hang": t["hang_s"] <= HANG_S}
         assert all(t["meets"].values())
 
 
