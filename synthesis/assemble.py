@@ -177,7 +177,7 @@ def finish_joins(laid: Laid) -> None:
     report gets what the pass did (``post``). Where the pass gave a join more time (a region retimed
     over more frames), the next element and every later one move later by as much: their placement,
     the later joins' frames, and ``laid.delays`` (the partial elements laid on them follow)."""
-    from .join.joinpass import Region, finish_track, warp_frames
+    from .join.joinpass import Region, finish_track
 
     fps = laid.motion.fps  # the post-pass retimes frames, never the rate
     idx, regions = [], []
@@ -195,7 +195,7 @@ def finish_joins(laid: Laid) -> None:
         near = (join_side(first.element.clip, "out"), join_side(second.element.clip, "in", whole=into_core))
         regions.append(Region(int(w0), int(w1), int(r1), sources, keep, brake, seams, into_core, near))
     laid.motion, infos, warps = finish_track(laid.motion, regions)
-    for k, info, (lo, hi, n_new, seam) in zip(idx, infos, warps):
+    for k, info, (lo, hi, n_new, src) in zip(idx, infos, warps):
         lj = laid.joins[k]
         assert lj.first is not None and lj.second is not None  # only carried-out joins of two placed elements
         first = laid.placed[lj.first]
@@ -203,7 +203,6 @@ def finish_joins(laid: Laid) -> None:
         laid.joins[k] = replace(lj, report=replace(lj.report, metrics={**lj.report.metrics, "post": info}))
         if delta <= 0:
             continue
-        src = warp_frames(hi - lo, n_new, seam)
 
         def moved(f: int) -> int:
             if f < lo:

@@ -17,7 +17,8 @@ own two source clips (as recorded, at the track's rate):
    blend when the first clip loops) is **retimed** (:func:`warp_frames`): played
    over up to 1.9 times its frames, the rate 1 at both ends and dipping where the
    hips' speed changes fastest — a run that must stop takes its last strides
-   slower, braking over its own steps instead of halting in a frame — and its
+   slower, braking over its own steps instead of halting in a frame; a flight it
+   would slow into hanging in the air keeps its own time (:func:`flights`) — and its
    local rotations and hips' path are **low-passed** (a Gaussian over frames,
    quaternions unrolled and renormalised, faded in and out with the quintic
    ``smooth`` profile). The smallest stretch of :data:`STRETCHES` and width of
@@ -69,6 +70,7 @@ from scipy.ndimage import gaussian_filter1d, maximum_filter1d, uniform_filter1d
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.easing import smootherstep_area
+from text2anim.core.hang import slowed_into_hanging
 from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion
 
@@ -189,7 +191,7 @@ STRETCHES = (1.0, 1.4, 1.7, 1.9)
 BRAKE = 0.6  # s: how far before its blend a looped first clip may be slowed (its braking steps)
 
 
-def warp_frames(n: int, n_new: int, seam: int | None = None) -> np.ndarray:
+def warp_frames(n: int, n_new: int, seam: int | None = None, air: np.ndarray | None = None) -> np.ndarray:
     """``(n_new,)`` source positions (frames, in ``[0, n)``) of a region of ``n`` frames played over ``n_new``.
 
     The playback rate is 1 at both ends (the velocity carried in and out is the motion's own) and dips
@@ -197,6 +199,11 @@ def warp_frames(n: int, n_new: int, seam: int | None = None) -> np.ndarray:
     ``c = 2 (n_new - n) / n_new``: rising and falling by the quintic ``smoothstep``, so the rate is C2.
     Slowed there, the motion's own changes of speed (a run that stops: the hips from 3 m/s to standing)
     are spread over more time — the clip's own steps, time-warped — instead of happening in a frame.
+
+    ``air`` ``(n,)`` bool: frames of a flight the warp must not slow (:func:`flights`). A body in the air
+    falls as gravity takes it, so those frames keep their own time: the time the warp would add to them
+    goes to the frames on the floor, in proportion to what each already gets (the edges eased over
+    :data:`AIR_EASE` frames; :func:`_off_the_air`).
     """
     if n_new <= n:
         return np.arange(n, dtype=np.float64)
@@ -207,16 +214,53 @@ def warp_frames(n: int, n_new: int, seam: int | None = None) -> np.ndarray:
     before = ts * smootherstep_area(np.clip(tau / ts, 0.0, 1.0))
     after = (n_new - ts) * (0.5 - smootherstep_area(np.clip((n_new - tau) / (n_new - ts), 0.0, 1.0)))
     area = np.where(tau <= ts, before, ts / 2.0 + after)
-    return np.clip(tau - c * area, 0.0, n - 1e-9)
+    warp = np.clip(tau - c * area, 0.0, n - 1e-9)
+    if air is None or not np.asarray(air).any():
+        return warp
+    return _off_the_air(warp, n, np.asarray(air, dtype=bool))
 
 
-def retime(motion: Motion, lo: int, hi: int, n_new: int, seam: int | None = None) -> Motion:
+#: frames over which the rate returns to 1 either side of a body's flight
+AIR_EASE = 2.0
+
+
+def _times(warp: np.ndarray, n: int) -> np.ndarray:
+    """``(n + 1,)``: the new time (frames) at which each of ``n`` source frames starts, and the last ends, under
+    ``warp`` (the source positions of the new frames)."""
+    return np.interp(np.arange(n + 1), np.r_[warp, n], np.arange(len(warp) + 1))
+
+
+def flights(region: Motion, n_new: int, seam: int | None) -> np.ndarray:
+    """``(n,)`` bool: the frames of the flights of ``region`` (its ``n`` frames) that :func:`warp_frames` over
+    ``n_new`` would slow into hanging in the air (:func:`core.hang.slowed_into_hanging`): a standing pose
+    blended into a run's flight, played slowly, holds the body up for a second."""
+    return slowed_into_hanging(region, _times(warp_frames(region.n_frames, n_new, seam), region.n_frames))
+
+
+def _off_the_air(warp: np.ndarray, n: int, air: np.ndarray) -> np.ndarray:
+    """``warp`` (source positions of the new frames) with the time it adds to the ``air`` frames ``(n,)`` moved
+    onto the others (:func:`warp_frames`); the warp as it is when every frame is in the air."""
+    n_new = len(warp)
+    t_at = _times(warp, n)  # the new time each source frame starts
+    extra = np.maximum(np.diff(t_at) - 1.0, 0.0)  # (n,) the time added to each source frame
+    free = np.clip(1.0 - gaussian_filter1d(air.astype(np.float64), AIR_EASE, mode="nearest") * 2.0, 0.0, 1.0)
+    free[air] = 0.0
+    kept = extra * free
+    if not kept.sum() > 1e-9:
+        return warp
+    dt = 1.0 + kept * (extra.sum() / kept.sum())
+    knots = np.r_[0.0, np.cumsum(dt)]
+    return np.clip(np.interp(np.arange(n_new, dtype=np.float64), knots, np.arange(n + 1.0)), 0.0, n - 1e-9)
+
+
+def retime(motion: Motion, lo: int, hi: int, n_new: int, seam: int | None = None,
+           air: np.ndarray | None = None) -> Motion:
     """``motion`` with frames ``[lo, hi)`` played over ``n_new`` frames by :func:`warp_frames` (later frames follow)."""
     if n_new <= hi - lo:
         return motion
     from text2anim.core.motion import concatenate
 
-    mid = sample(motion, lo + warp_frames(hi - lo, n_new, seam))
+    mid = sample(motion, lo + warp_frames(hi - lo, n_new, seam, air))
     return concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
 
 
@@ -245,11 +289,12 @@ def _hardest(m: Motion, lo: int, hi: int) -> int:
 AHEAD = 2  # widths re-planted beside the one asked for, when they may count too (one IK solve for all)
 
 
-def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int, int]]:
+def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
     """One join finished (steps 1–4 of the module docstring).
 
-    Returns the motion, what was done, and ``(lo, hi, n_new, seam)``: the frames ``[lo, hi)`` now play
-    over ``n_new`` (:func:`warp_frames` with ``seam``; later frames are ``n_new - (hi - lo)`` later).
+    Returns the motion, what was done, and ``(lo, hi, n_new, src)``: the frames ``[lo, hi)`` now play
+    over ``n_new``, new frame ``k`` showing source frame ``lo + src[k]`` (:func:`warp_frames`; later frames
+    are ``n_new - (hi - lo)`` later).
     """
     fps = motion.fps
     T = motion.n_frames
@@ -282,8 +327,9 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     seam = _hardest(seamed, lo, whi)
     for stretch in STRETCHES:
         n_new = int(round((whi - lo) * stretch))
-        base, ref = retime(seamed, lo, whi, n_new, seam), retime(motion, lo, whi, n_new, seam)
-        idx = np.round(np.concatenate([np.arange(lo), lo + warp_frames(whi - lo, n_new, seam),
+        air = flights(seamed[lo:whi], n_new, seam)
+        base, ref = retime(seamed, lo, whi, n_new, seam, air), retime(motion, lo, whi, n_new, seam, air)
+        idx = np.round(np.concatenate([np.arange(lo), lo + warp_frames(whi - lo, n_new, seam, air),
                                        np.arange(whi, T)])).astype(int)
         mask = {k: v[np.clip(idx, 0, T - 1)] for k, v in planted.items()}
         h2 = hi + max(n_new, whi - lo) - (whi - lo)
@@ -323,14 +369,15 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
             "weight_shift_cm": round(100 * shifted, 2), "hips_bent_cm": round(100 * bent, 2),
             "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
             "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
-    return done, info, (lo, whi, whi - lo + (h2 - hi), seam)
+    n_new = whi - lo + (h2 - hi)
+    return done, info, (lo, whi, n_new, warp_frames(whi - lo, n_new, seam, flights(seamed[lo:whi], n_new, seam)))
 
 
-def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, int]]]:
+def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, np.ndarray]]]:
     """All joins of a track finished in time order (the clips' own floor is the import's: only the joins'
     regions are lifted off it, and after an adaptation, which fits the next clip's legs to the previous
     feet through its core, everything up to the next join). Returns the motion, per join what was done, and per join the retiming
-    ``(lo, hi, n_new, seam)`` in the frames of the motion as it was *before* that join (earlier joins' added
+    ``(lo, hi, n_new, src)`` in the frames of the motion as it was *before* that join (earlier joins' added
     frames included)."""
     infos, warps = [], []
     out = motion

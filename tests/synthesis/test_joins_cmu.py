@@ -18,6 +18,7 @@ from dataclasses import replace
 import numpy as np
 
 from text2anim.core.balance import LIMIT_CM
+from text2anim.core.hang import LIMIT_S as HANG_S
 from text2anim.core.metrics import MAX_PENETRATION_CM, SKATING_MARGIN, SOURCE_FACTOR, against_sources, quality
 from text2anim.quality import introduced_root_pop, join_quality, played_frames
 from text2anim.motiondb import MotionDB
@@ -142,6 +143,17 @@ def test_a_change_of_stance_is_carried_over_the_join_not_jolted_into_one_step(cl
     (entry,) = join_quality(res, [track])
     assert entry["transition"]["balance_cm"] <= LIMIT_CM
     assert 0.0 < join.metrics["post"]["hips_bent_cm"] <= 8.0 / np.cos(np.pi / 8) + 0.01  # the band's octagon
+
+
+def test_a_run_started_from_standing_does_not_hang_in_the_air(clips):
+    """shot → run (06_14 → 127_07): the post-pass slowed the run's first strides, flights included, and held
+    the body 10 cm up with its hips level for 0.43 s (the run's own flights: 0.1 s). A flight keeps its own
+    time now; the time goes to the frames on the floor."""
+    track = track_of(clips, "shot", "run127")
+    res = synthesize_with("optimal", [track], FPS)
+    (entry,) = join_quality(res, [track])
+    assert entry["transition"]["hang_s"] <= HANG_S
+    assert all(entry["transition"]["meets"].values())
 
 
 def test_the_introduced_root_pop_reads_the_frames_a_method_changed(clips):
