@@ -78,3 +78,11 @@ def airborne(motion: Motion, floor: float = 0.0) -> np.ndarray:
     """``(T,)`` bool: frames where the body's lowest joint is higher than :data:`AIR` above ``floor`` (at a
     person's size): it touches nothing."""
     return (motion.positions[..., 1].min(axis=1) - floor) * human_scale(motion) > AIR
+
+
+def off_its_floor(motion: Motion) -> np.ndarray:
+    """``(T,)`` bool: frames where the body's lowest joint is more than the contact rule's height (at a
+    person's size) above the lowest any frame of the motion reaches: airborne on the motion's own floor, for
+    a clip not placed on y = 0 (a lying or seated body rests on its floor and is not in the air)."""
+    low = motion.positions[..., 1].min(axis=1)
+    return (low - low.min()) * human_scale(motion) > HEIGHT_THRESHOLD

@@ -2,11 +2,15 @@
 
 The features (Kovar's point clouds, :mod:`synthesis.optimal.posedist`) of the join's sources are looked up per
 body part once (:class:`Features`); :mod:`synthesis.optimal.blend_search` evaluates every candidate pair.
+A blend of the legs into a held pose never ends on a frame where the second source is off its floor
+(:func:`core.hang.off_its_floor`; unless that is so everywhere in the range): a standing pose
+blended into a run's flight lifts both feet with the hips level, a body hanging in the air (``core.hang``).
 """
 from __future__ import annotations
 
 import numpy as np
 
+from text2anim.core.hang import off_its_floor
 from text2anim.core.motion import Motion
 
 from ..join.placed import Placed
@@ -32,6 +36,15 @@ class Features:
         motion, off = self.src[name]
         return features(motion, self.joints[part], np.asarray(frames) - off)
 
+    def airborne(self, name: str, frames) -> np.ndarray:
+        """``(len(frames),)`` bool: whether source ``name`` is off its own floor at these track frames
+        (:func:`core.hang.off_its_floor`; frames outside it count as down)."""
+        motion, off = self.src[name]
+        air = motion.cache.get(("off_its_floor",), lambda: off_its_floor(motion))
+        i = np.asarray(frames) - off
+        ok = (i >= 0) & (i < len(air))
+        return np.where(ok, air[np.clip(i, 0, len(air) - 1)], False)
+
 
 def grid(r: Range, feats: Features, fps: float, weights: Weights, min_len: int):
     """eq. (10) over every candidate pair of the range (:mod:`synthesis.optimal.blend_search`)."""
@@ -43,7 +56,12 @@ def grid(r: Range, feats: Features, fps: float, weights: Weights, min_len: int):
                                 r.p_len, min_len)
     f_from = feats(r.src[0], r.part, np.arange(r.t0[0], r.t0[1] + 2))
     f_to = feats(r.src[1], r.part, np.arange(r.t1[0] - 1, r.t1[1] + 1))
-    return evaluate(f_from, f_to, r.t0, r.t1, fps, weights, r.p_len, min_len)
+    g = evaluate(f_from, f_to, r.t0, r.t1, fps, weights, r.p_len, min_len)
+    if r.part == "lower":
+        air = feats.airborne(r.src[1], g.t1)
+        if air.any() and not air.all():  # a blend of the legs never ends on a pose in the air
+            g.cost[:, air] = np.inf
+    return g
 
 
 def search(r: Range, feats: Features, fps: float, weights: Weights, min_len: int) -> Found:

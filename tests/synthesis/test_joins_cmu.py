@@ -145,11 +145,14 @@ def test_a_change_of_stance_is_carried_over_the_join_not_jolted_into_one_step(cl
     assert 0.0 < join.metrics["post"]["hips_bent_cm"] <= 8.0 / np.cos(np.pi / 8) + 0.01  # the band's octagon
 
 
-def test_a_run_started_from_standing_does_not_hang_in_the_air(clips):
+@pytest.mark.parametrize("first, second", [("shot", "run127"), ("pickup", "run")])
+def test_a_run_started_from_standing_does_not_hang_in_the_air(clips, first, second):
     """shot → run (06_14 → 127_07): the post-pass slowed the run's first strides, flights included, and held
-    the body 10 cm up with its hips level for 0.43 s (the run's own flights: 0.1 s). A flight keeps its own
-    time now; the time goes to the frames on the floor."""
-    track = track_of(clips, "shot", "run127")
+    the body 10 cm up with its hips level for 0.43 s (the run's own flights: 0.1 s); a flight keeps its own
+    time now, the time goes to the frames on the floor. pick-up → run (02_06 → 02_03): the legs' blend
+    ended on the run's flight pose, the body lifted off the floor through the blend (0.22 s too long); a
+    blend of the legs now ends on a pose with a foot down."""
+    track = track_of(clips, first, second)
     res = synthesize_with("optimal", [track], FPS)
     (entry,) = join_quality(res, [track])
     assert entry["transition"]["hang_s"] <= HANG_S
