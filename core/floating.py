@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from .bodyparts import BodyMapError, body_map
+from .contacts import runs
 from .motion import Motion
 
 #: Ankle speed (m/s) below which a foot is still.
@@ -27,12 +28,6 @@ RUN = 0.3
 #: Hip-to-ankle vertical drop, as a fraction of the leg's length (thigh + shin at rest), of a leg that
 #: hangs straight down.
 STRAIGHT = 0.9
-
-
-def _runs(mask: np.ndarray, n: int) -> list[tuple[int, int]]:
-    """``[start, stop)`` of every run of True in ``mask`` ``(T,)`` at least ``n`` frames long."""
-    edges = np.flatnonzero(np.diff(np.r_[0, mask.astype(np.int8), 0]))
-    return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2]) if b - a >= n]
 
 
 def floating_heights(motion: Motion, floor: float = 0.0) -> np.ndarray:
@@ -59,8 +54,9 @@ def floating_heights(motion: Motion, floor: float = 0.0) -> np.ndarray:
         speed = np.r_[speed[0], speed]  # frame t: the step that reaches it (frame 0: the first step)
         stands = (pos[:, hip, 1] - pos[:, ankle, 1] >= STRAIGHT * leg) & (speed < SLOW)
         low = pos[:, [ankle, toe], 1].min(axis=1) - floor
-        for a, b in _runs(stands, n):
-            out[a:b] = np.maximum(out[a:b], max(0.0, float(low[a:b].min())))
+        for a, b in runs(stands):
+            if b - a >= n:
+                out[a:b] = np.maximum(out[a:b], max(0.0, float(low[a:b].min())))
     return out
 
 
