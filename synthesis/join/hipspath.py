@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import sparse
 from scipy.optimize import linprog
-from scipy.spatial import ConvexHull
+from scipy.spatial import ConvexHull, QhullError
 
 from text2anim.core import rotkernels as rk
 from text2anim.core.balance import SLOW, Stance, stance
@@ -117,7 +117,10 @@ def support_of(st: Stance) -> Support:
     normals, gaps, frames = [], [], []
     for i in np.flatnonzero(st.standing(NEAR_SLOW * SLOW)):
         pts = (st.corners[i][st.down[i]][:, None, :] + ring[None]).reshape(-1, 2)
-        eq = ConvexHull(pts).equations  # (E, 3): normal · p + offset <= 0 inside
+        try:
+            eq = ConvexHull(pts).equations  # (E, 3): normal · p + offset <= 0 inside
+        except (QhullError, ValueError):  # a degenerate foot (no radius, no extent): nothing to hold it to
+            continue
         normals.append(eq[:, :2])
         gaps.append(eq[:, :2] @ st.com[i] + eq[:, 2])
         frames.append(np.full(len(eq), i))
@@ -219,6 +222,8 @@ def least_acceleration(motion: Motion, lo: int, hi: int) -> tuple[Motion, float]
         return motion, 0.0
     k = human_scale(motion)
     xz = motion.root_positions[:, [0, 2]]
+    if not np.isfinite(xz[lo - 2:hi + 2]).all():
+        return motion, 0.0
     st = stance(motion[lo:hi])
     support = None if st is None else support_of(st)
     speed = np.linalg.norm(np.gradient(xz[lo - 1:hi + 1], axis=0), axis=-1)[1:-1] * motion.fps * k
