@@ -33,6 +33,8 @@ def test_every_scene_is_clean(db, text):
     for actor, motion in anim.motions.items():
         q = quality(motion)
         assert all(against_limits(q).values()), (actor, q)
-    for join in anim.report["joins"]:  # the frames a join made keep the centre of mass over the feet
+    for join in anim.report["joins"]:  # the frames a join made keep the centre of mass over the feet, the hips
+        # change speed as a body's do, and nothing hangs in the air (the calibrated limits)
         t = join["quality"]["transition"]
         assert t["balance_cm"] <= LIMIT_CM, (join["first"], join["second"], t)
+        assert all(t["meets"].values()), (join["first"], join["second"], t)
