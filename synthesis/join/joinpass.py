@@ -290,7 +290,7 @@ AHEAD = 2  # widths re-planted beside the one asked for, when they may count too
 
 
 def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
-    """One join finished (steps 1–4 of the module docstring).
+    """One join finished (steps 1–6 of the module docstring).
 
     Returns the motion, what was done, and ``(lo, hi, n_new, src)``: the frames ``[lo, hi)`` now play
     over ``n_new``, new frame ``k`` showing source frame ``lo + src[k]`` (:func:`warp_frames`; later frames
