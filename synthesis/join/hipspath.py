@@ -25,7 +25,7 @@ the support area (the hull of the feet on the floor widened by the foot's radius
 centre of mass — moved at most as far as the hips — goes no further out than :data:`BALANCE_ROOM` or than
 it was, and each metre it stays outside costs :data:`OUTSIDE` (``outside[t]``), so the path also stands a
 body over its feet where the join left it beside them. Both legs are then solved back onto where the
-feet were (ankle position and world rotation, :func:`synthesis.join.legsolve.solve_legs`): no foot moves,
+feet were (ankle position and world rotation, :func:`synthesis.join.legsolve.feet_kept`): no foot moves,
 the upper body rides on the hips. Lengths and accelerations are at a person's size
 (:func:`core.size.human_scale`).
 
@@ -42,13 +42,11 @@ from scipy import sparse
 from scipy.optimize import linprog
 from scipy.spatial import ConvexHull, QhullError
 
-from text2anim.core import rotkernels as rk
 from text2anim.core.balance import SLOW, Stance, stance
-from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
 from text2anim.core.size import human_scale
 
-from .legsolve import LegGoal, solve_legs
+from .legsolve import feet_kept
 
 #: m at a person's size: how far the hips may be moved off the path the join gave them (along each of four
 #: directions: an octagon, its corners 8 % further)
@@ -235,10 +233,7 @@ def least_acceleration(motion: Motion, lo: int, hi: int) -> tuple[Motion, float]
     size = float(np.linalg.norm(path - xz[lo:hi], axis=1).max())
     if size < MIN_MOVE / k:
         return motion, 0.0
-    pose = motion[lo:hi].pose
     root = motion.root_positions.copy()
     root[lo:hi, 0] = path[:, 0]
     root[lo:hi, 2] = path[:, 1]
-    goals = [LegGoal(side, lo, hi, pose.positions[:, ankle], rk.as_quat(rk.from_matrix(pose.rotations[:, ankle])))
-             for side, (ankle, _toe) in body_map(motion.skeleton).feet.items()]
-    return solve_legs(motion.replace(root_positions=root), goals), size
+    return feet_kept(motion, motion.replace(root_positions=root), lo, hi), size

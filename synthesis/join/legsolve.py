@@ -121,3 +121,13 @@ def quaternions(blocks: list[np.ndarray]) -> list[np.ndarray]:
     independent: the same bits): a list of ``(n_i, 4)``."""
     q = rk.from_matrix(np.concatenate(blocks))
     return np.split(q, np.cumsum([len(b) for b in blocks])[:-1])
+
+
+def feet_kept(before: Motion, after: Motion, a: int, b: int) -> Motion:
+    """``after`` (``before`` with its hips moved) with both legs solved back, over frames ``[a, b)``, onto
+    where ``before`` has its feet: each ankle's world position and rotation (:func:`solve_legs`), so no foot
+    moves and the upper body rides on the hips."""
+    pose = before[a:b].pose
+    goals = [LegGoal(side, a, b, pose.positions[:, ankle], rk.as_quat(rk.from_matrix(pose.rotations[:, ankle])))
+             for side, (ankle, _toe) in body_map(before.skeleton).feet.items()]
+    return solve_legs(after, goals)

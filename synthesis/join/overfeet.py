@@ -6,7 +6,7 @@ support). A person shifts the weight onto the stance foot first. Over a join's r
 balance figure judges (:func:`core.balance.balance_gaps`: a foot down, slow, not seated), the hips are moved
 on the ground plane by the gap, made :data:`MARGIN` larger and smoothed over :data:`SHIFT_S` (a weight shift
 begins before the foot lifts), fading to 0 at the region's ends; both legs are solved back onto their feet
-(position and world rotation, :func:`synthesis.join.legsolve.solve_legs`), so no foot moves. Vectorised over
+(position and world rotation, :func:`synthesis.join.legsolve.feet_kept`), so no foot moves. Vectorised over
 frames; deterministic.
 """
 from __future__ import annotations
@@ -14,14 +14,12 @@ from __future__ import annotations
 import numpy as np
 from scipy.ndimage import gaussian_filter1d
 
-from text2anim.core import rotkernels as rk
 from text2anim.core.balance import balance_gaps
-from text2anim.core.bodyparts import body_map
 from text2anim.core.easing import smootherstep
 from text2anim.core.metrics import peak_hips_acceleration
 from text2anim.core.motion import Motion
 
-from .legsolve import LegGoal, solve_legs
+from .legsolve import feet_kept
 
 #: s: the Gaussian's sigma over which the weight shift is spread
 SHIFT_S = 0.12
@@ -67,12 +65,6 @@ def over_feet(motion: Motion, lo: int, hi: int, pop_limit: float = float("inf"))
     else:
         return motion, 0.0
     shift = scale * shift
-    pose = region.pose
-    out = motion.replace(root_positions=root)
-    feet = body_map(motion.skeleton).feet
     frames = np.flatnonzero(moved)
     a, b = lo + int(frames[0]), lo + int(frames[-1]) + 1
-    goals = [LegGoal(side, a, b, pose.positions[a - lo:b - lo, ankle],
-                     rk.as_quat(rk.from_matrix(pose.rotations[a - lo:b - lo, ankle])))
-             for side, (ankle, _toe) in feet.items()]
-    return solve_legs(out, goals), float(np.linalg.norm(shift, axis=-1).max())
+    return feet_kept(motion, motion.replace(root_positions=root), a, b), float(np.linalg.norm(shift, axis=-1).max())
