@@ -34,8 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .contacts import HEIGHT_THRESHOLD, runs
-from .floor import FOOT_CLEARANCE
+from .contacts import runs
+from .floor import ON_FLOOR
 from .motion import Motion
 from .rigs import rig_roles
 from .rig_error import RigError
@@ -171,7 +171,7 @@ def stance(motion: Motion) -> Stance | None:
         ankle = roles[_side("foot", side)]
         toe = roles.get(_side("toes", side), ankle)
         corners += [pos[:, ankle, :][:, [0, 2]], pos[:, toe, :][:, [0, 2]]]
-        low = np.minimum(pos[:, ankle, 1], pos[:, toe, 1]) < (FOOT_CLEARANCE + HEIGHT_THRESHOLD) / (HUMAN_LEG / leg)
+        low = np.minimum(pos[:, ankle, 1], pos[:, toe, 1]) < ON_FLOOR / (HUMAN_LEG / leg)
         down += [low, low]
     speed = np.linalg.norm(np.gradient(com[:, [0, 2]], axis=0), axis=-1) * motion.fps * (HUMAN_LEG / leg)
     feet_floor = np.minimum(pos[:, roles["leftFoot"], 1], pos[:, roles["rightFoot"], 1])

@@ -47,11 +47,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from .bodyparts import body_map
-from .contacts import detect_contacts
+from .contacts import HEIGHT_THRESHOLD, detect_contacts
 from .motion import Motion
 
 #: Height of a planted foot's lowest joint centre above the floor (m): median of the CMU takes (docstring).
 FOOT_CLEARANCE = 0.038
+#: m at a person's size: a lowest joint higher than this above the floor touches nothing (a planted foot's
+#: height and the contact rule's margin over it): the balance figure's feet on the floor, the hang's air
+ON_FLOOR = FOOT_CLEARANCE + HEIGHT_THRESHOLD
 #: Contact frames (both feet together) needed to trust the contact-based floor; fewer: the coarse level.
 MIN_CONTACT_FRAMES = 6
 #: Percentile of the lowest foot joint's height used for the coarse level.

@@ -20,13 +20,13 @@ from __future__ import annotations
 import numpy as np
 
 from .contacts import HEIGHT_THRESHOLD, runs
-from .floor import FOOT_CLEARANCE
+from .floor import ON_FLOOR
 from .motion import Motion
 from .size import human_scale
 
 G = 9.81  # m/s²
 #: m at a person's size: a body whose lowest joint is higher than this touches nothing
-AIR = FOOT_CLEARANCE + HEIGHT_THRESHOLD
+AIR = ON_FLOOR
 #: s: the longest hang capture has (0.18 s, a walk, 08_02), rounded up; bodies held by a prop (a ladder, a
 #: stool, a bar) left out (bench_transitions.py)
 LIMIT_S = 0.2
@@ -35,12 +35,18 @@ LIMIT_S = 0.2
 def hang_times(motion: Motion, floor: float = 0.0) -> np.ndarray:
     """``(T,)`` s: on every frame of an airborne run, how much longer than a ballistic flight the run lasts
     (module docstring; 0 where the body touches the floor or falls as fast as gravity takes it)."""
-    air = airborne(motion, floor)
-    hips = motion.root_positions[:, 1] * human_scale(motion)
     out = np.zeros(motion.n_frames)
-    for a, b in runs(air):
-        out[a:b] = max(0.0, (b - a - 1) / motion.fps - ballistic_s(hips, int(a), int(b)))
+    for a, b, hang in _hangs(motion, np.arange(motion.n_frames + 1.0), floor):
+        out[a:b] = max(0.0, hang)
     return out
+
+
+def _hangs(motion: Motion, times: np.ndarray, floor: float) -> list[tuple[int, int, float]]:
+    """``(a, b, s)`` per airborne run ``[a, b)`` of ``motion``: how much longer than a ballistic flight it lasts
+    played at the new times ``times`` ``(T + 1,)`` (frames, when each frame starts and the last ends)."""
+    hips = motion.root_positions[:, 1] * human_scale(motion)
+    return [(int(a), int(b), (times[b] - times[a] - 1) / motion.fps - ballistic_s(hips, int(a), int(b)))
+            for a, b in runs(airborne(motion, floor))]
 
 
 def ballistic_s(hips: np.ndarray, a: int, b: int) -> float:
@@ -56,12 +62,9 @@ def ballistic_s(hips: np.ndarray, a: int, b: int) -> float:
 def slowed_into_hanging(motion: Motion, times: np.ndarray, floor: float = 0.0) -> np.ndarray:
     """``(T,)`` bool: the frames of each airborne run of ``motion`` that, played at the new times ``times``
     ``(T + 1,)`` (frames, when each frame starts and the last ends), would hang longer than :data:`LIMIT_S`."""
-    hips = motion.root_positions[:, 1] * human_scale(motion)
     out = np.zeros(motion.n_frames, dtype=bool)
-    for a, b in runs(airborne(motion, floor)):
-        a, b = int(a), int(b)
-        if (times[b] - times[a] - 1) / motion.fps - ballistic_s(hips, a, b) > LIMIT_S:
-            out[a:b] = True
+    for a, b, hang in _hangs(motion, times, floor):
+        out[a:b] = hang > LIMIT_S
     return out
 
 
