@@ -253,14 +253,19 @@ def _off_the_air(warp: np.ndarray, n: int, air: np.ndarray) -> np.ndarray:
     return np.clip(np.interp(np.arange(n_new, dtype=np.float64), knots, np.arange(n + 1.0)), 0.0, n - 1e-9)
 
 
-def retime(motion: Motion, lo: int, hi: int, n_new: int, seam: int | None = None,
-           air: np.ndarray | None = None) -> Motion:
+def retime(motion: Motion, lo: int, hi: int, n_new: int, seam: int | None = None) -> Motion:
     """``motion`` with frames ``[lo, hi)`` played over ``n_new`` frames by :func:`warp_frames` (later frames follow)."""
     if n_new <= hi - lo:
         return motion
+    return replay(motion, lo, hi, warp_frames(hi - lo, n_new, seam))
+
+
+def replay(motion: Motion, lo: int, hi: int, src: np.ndarray) -> Motion:
+    """``motion`` with frames ``[lo, hi)`` replaced by its frames ``lo + src`` (``src`` ``(n_new,)``: a
+    :func:`warp_frames`; later frames follow)."""
     from text2anim.core.motion import concatenate
 
-    mid = sample(motion, lo + warp_frames(hi - lo, n_new, seam, air))
+    mid = sample(motion, lo + src)
     return concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
 
 
@@ -325,12 +330,15 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     kept: Tried | None = None  # within the limits, nearest
     whi = max(min(hi, region.keep[1]), region.w0 + 2)  # retimed: [lo, whi), never the next core
     seam = _hardest(seamed, lo, whi)
+    played: dict[float, np.ndarray] = {}  # per stretch, the warp of [lo, whi) (flights kept at their time)
     for stretch in STRETCHES:
         n_new = int(round((whi - lo) * stretch))
-        air = flights(seamed[lo:whi], n_new, seam)
-        base, ref = retime(seamed, lo, whi, n_new, seam, air), retime(motion, lo, whi, n_new, seam, air)
-        idx = np.round(np.concatenate([np.arange(lo), lo + warp_frames(whi - lo, n_new, seam, air),
-                                       np.arange(whi, T)])).astype(int)
+        src = played[stretch] = warp_frames(whi - lo, n_new, seam, flights(seamed[lo:whi], n_new, seam))
+        if n_new > whi - lo:
+            base, ref = replay(seamed, lo, whi, src), replay(motion, lo, whi, src)
+        else:
+            base, ref = seamed, motion
+        idx = np.round(np.concatenate([np.arange(lo), lo + src, np.arange(whi, T)])).astype(int)
         mask = {k: v[np.clip(idx, 0, T - 1)] for k, v in planted.items()}
         h2 = hi + max(n_new, whi - lo) - (whi - lo)
         pad = max(1, min(pad0, (h2 - lo) // 3))
@@ -369,8 +377,7 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
             "weight_shift_cm": round(100 * shifted, 2), "hips_bent_cm": round(100 * bent, 2),
             "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
             "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
-    n_new = whi - lo + (h2 - hi)
-    return done, info, (lo, whi, n_new, warp_frames(whi - lo, n_new, seam, flights(seamed[lo:whi], n_new, seam)))
+    return done, info, (lo, whi, whi - lo + (h2 - hi), played[stretch])
 
 
 def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, np.ndarray]]]:
