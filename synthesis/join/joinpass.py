@@ -331,9 +331,10 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     whi = max(min(hi, region.keep[1]), region.w0 + 2)  # retimed: [lo, whi), never the next core
     seam = _hardest(seamed, lo, whi)
     played: dict[float, np.ndarray] = {}  # per stretch, the warp of [lo, whi) (flights kept at their time)
+    span = seamed[lo:whi]  # one slice: its kinematics are computed once for every stretch's flights
     for stretch in STRETCHES:
         n_new = int(round((whi - lo) * stretch))
-        src = played[stretch] = warp_frames(whi - lo, n_new, seam, flights(seamed[lo:whi], n_new, seam))
+        src = played[stretch] = warp_frames(whi - lo, n_new, seam, flights(span, n_new, seam))
         if n_new > whi - lo:
             base, ref = replay(seamed, lo, whi, src), replay(motion, lo, whi, src)
         else:
