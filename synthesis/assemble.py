@@ -235,10 +235,24 @@ def _moved_span(span, moved):
     return None if span is None else (moved(span[0]), moved(span[1]))
 
 
+#: m/s at a person's size: a track whose hips end slower than this ends at rest, and is held
+END_MOVING = 0.1
+
+
 def same_length(motions: dict) -> dict:
     """Every actor's motion made as long as the longest: a join the post-pass gave more time lengthens its
-    actor's track, and the others play their last 2 s (at least 4x the difference) that much slower
-    (:func:`synthesis.join.joinpass.retime`) rather than holding a frozen pose; a track too short for that is held."""
+    actor's track, and the others wait for it.
+
+    A track that ends at rest (its hips slower than :data:`END_MOVING` over its last 0.2 s) holds its last
+    pose (:func:`ease_hold`; the finish step makes a held pose play the idle and breathe,
+    :mod:`synthesis.alive`): its motion keeps its own time. Slowing it instead played a whole short track
+    up to half speed, stood a body on one foot through a slowed step and moved every frame away from the
+    times the report gives its joins and elements. A track that ends moving (a walk or a run still going
+    when the scene ends) cannot stop dead: its last 2 s (at least 4x the difference) play that much slower
+    (:func:`synthesis.join.joinpass.retime`); a track too short for that is held.
+    """
+    from text2anim.core.size import human_scale
+
     from .join.joinpass import retime
 
     n = max((m.n_frames for m in motions.values()), default=0)
@@ -248,11 +262,17 @@ def same_length(motions: dict) -> dict:
         k = min(m.n_frames, max(4 * delta + 2, int(round(2 * m.fps))))
         if delta <= 0:
             out[actor] = m
-        elif k > delta + 1:
+        elif k > delta + 1 and _end_speed(m) * human_scale(m) > END_MOVING:
             out[actor] = retime(m, m.n_frames - k, m.n_frames, k + delta)
         else:
             out[actor] = ease_hold(m, n)
     return out
+
+
+def _end_speed(m: Motion) -> float:
+    """The hips' mean horizontal speed (m/s) over the last 0.2 s of ``m``."""
+    xz = m.root_positions[-max(2, int(round(0.2 * m.fps)) + 1):, [0, 2]]
+    return float(np.linalg.norm(np.diff(xz, axis=0), axis=1).mean() * m.fps) if len(xz) > 1 else 0.0
 
 
 def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False, finished: bool = True) -> Result:

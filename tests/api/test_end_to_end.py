@@ -160,6 +160,30 @@ def test_an_actor_who_finishes_early_stands_until_the_end(library_db):
     assert np.linalg.norm(hips[-1] - hips[0]) < 0.1
 
 
+def test_an_actor_waiting_for_a_longer_join_keeps_its_own_time(library_db):
+    """花子's walk into the sit takes 2 s more than scheduled; 太郎, done earlier, waits at rest instead of
+    having his run and stop played up to half speed (which stood him on one foot in a slowed step, and
+    moved his frames away from the report's times)."""
+    from text2anim.motiondb import MotionDB
+
+    anim = text2anim.animate("太郎は走る。花子が歩く。そして座る。", db=library_db)
+    taro = anim.motions["太郎"]
+    assert taro.n_frames == anim.motions["花子"].n_frames
+    (run,) = [r for r in anim.report["time_table"] if r["actor"] == "太郎" and r["clip"] == "run"]
+    t0, t1 = anim.report["elements"][str(run["id"])]["core"]
+    with MotionDB.open(library_db) as db:
+        clip = db.load("run")
+
+    def speed(m, a: float, b: float) -> float:
+        xz = m.root_positions[int(round(a * m.fps)):int(round(b * m.fps)) + 1, [0, 2]]
+        return float(np.linalg.norm(np.diff(xz, axis=0), axis=1).sum() / (b - a))
+
+    assert speed(taro, t0, t1) == pytest.approx(speed(clip, 0.0, (clip.n_frames - 1) / clip.fps), rel=0.05)
+    joins = [j for j in anim.report["joins"] if j["second"] in {r["id"] for r in anim.report["time_table"]
+                                                                 if r["actor"] == "太郎"}]
+    assert joins and all(all(j["quality"]["transition"]["meets"].values()) for j in joins)
+
+
 @pytest.mark.parametrize("text, clip", [("スキップする。", "skip"), ("歩く。", "walk"), ("下がる。", "walk_back")])
 def test_a_looping_clip_alone_plays_as_recorded(library_db, text, clip):
     """A clip that already loops is not 'corrected' at its seam (the skip's landing once made it skate).
