@@ -39,7 +39,13 @@
    animated with the built-in library by each method, against the fixed
    thresholds of :data:`core.metrics.BUILTIN_LIMITS` (root pop ≤ 15 m/s²,
    jerk p99 ≤ 2,300 m/s³, skating ≤ 0.02, penetration ≤ 1 cm; frozen ≤ 5 %).
-3. **Fig. 5 speed curves** (PNG) of three pairs for each method in ``--out``.
+3. **Characters.** The corpus sentences and the scene set animated by the default engine, each output
+   retargeted (as ``--rig`` does) onto a Mixamo-named A-pose glTF character the tests make
+   (``tests/rig_builders.mixamo_glb``: an armature scaled by 0.01, centimetre joints) 0.2 m, 1.7 m and
+   20 m tall, and measured at a person's size (:func:`core.size.at_human_size`): the same six limits,
+   and the transition figures over each join's window on the frames the engine made (``--no-rigs``
+   skips it).
+4. **Fig. 5 speed curves** (PNG) of three pairs for each method in ``--out``.
 
 Run: ``python benchmarks/bench_quality.py [--pairs N] [--sentences N] [--methods ...] [--out DIR]
 [--json FILE] [--list]``. CPU and wall time are printed per part.
@@ -214,6 +220,55 @@ def run_sentences(texts: list[str], methods, db_url: str) -> list[dict]:
                     mine = [e["transition"] for j, e in zip(anim.result.joins, joins)
                             if e is not None and anim.result.actor_of(j.second) == actor]
                     rows.append({"text": text, "actor": actor, "method": method, "quality": q.to_dict(),
+                                 "meets": against_limits(q), "transitions": mine})
+    return rows
+
+
+#: heights (m) of the Mixamo-named A-pose characters the sentences are retargeted onto
+RIG_HEIGHTS = (0.2, 1.7, 20.0)
+
+
+def run_rigs(texts: list[str], db_url: str, tmp: Path) -> list[dict]:
+    """Rows as :func:`run_sentences` gives, ``method`` naming the character (``rig 0.2 m``): each sentence
+    animated once by the default engine and retargeted onto a Mixamo-named A-pose character of each of
+    :data:`RIG_HEIGHTS`, measured at a person's size. The transition figures are read on the frames the
+    engine made (found on its own skeleton: retargeting keeps every frame where it is)."""
+    import text2anim
+    from rig_builders import mixamo_glb
+    from text2anim.core.metrics import COMPARE_FPS, against_limits, at_rate, quality, window_frames
+    from text2anim.core.size import at_human_size
+    from text2anim.export import ExportOptions
+    from text2anim.motiondb import MotionDB
+    from text2anim.quality import join_window, played_frames, transition_figures, transition_frames
+
+    rigs = {h: ExportOptions(rig=mixamo_glb(tmp / f"mixamo_{h}.glb", scale=h / 1.7)) for h in RIG_HEIGHTS}
+    rows = []
+    with MotionDB.open(db_url) as db:
+        for text in texts:
+            try:
+                anim = text2anim.animate(text, db=db)
+            except Exception as exc:  # an unknown verb, a refused sentence: not animated
+                if getattr(exc, "user_facing", False):
+                    continue
+                raise
+            res = anim.result
+            for h, export in rigs.items():
+                for actor, m in anim.exported_motions(export, units=False).items():
+                    m30 = at_rate(at_human_size(m)[0], COMPARE_FPS)
+                    paths = res.placed_paths.get(actor)
+                    made = (np.ones(m30.n_frames, dtype=bool) if paths is None
+                            else ~played_frames(res.motions[actor], paths, COMPARE_FPS)[:m30.n_frames])
+                    per_frame = transition_frames(m30)
+                    mine = []
+                    for j in res.joins:
+                        window = join_window(j, m.duration) if res.actor_of(j.second) == actor else None
+                        if window is not None:
+                            a, b = window_frames(COMPARE_FPS, window)
+                            inside = np.zeros(m30.n_frames, dtype=bool)
+                            inside[max(0, a):max(0, b)] = True
+                            mine.append(transition_figures(m30, made & inside, per_frame))
+                    q = quality(m30, COMPARE_FPS)
+                    rows.append({"text": text, "actor": actor, "method": f"rig {h:g} m", "quality": q.to_dict(),
                                  "meets": against_limits(q), "transitions": mine})
     return rows
 
@@ -406,6 +461,7 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default="bench_quality_out", help="folder for the Fig. 5 PNGs (default %(default)s)")
     ap.add_argument("--json", help="write every figure to this file")
     ap.add_argument("--list", action="store_true", help="also list the failing pairs and sentences")
+    ap.add_argument("--no-rigs", action="store_true", help="skip the characters of other rigs and sizes")
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
     methods = [m for m in args.methods.split(",") if m]
@@ -428,6 +484,11 @@ def main(argv=None) -> int:
             sent = run_sentences(texts, methods, f"sqlite:///{tmp}/library.sqlite") if texts else []
         with Clock() as c_scene:
             scenes = run_sentences(scene_texts(), methods, f"sqlite:///{tmp}/library.sqlite")
+        rigged: dict[str, list[dict]] = {}
+        with Clock() as c_rigs:
+            if not args.no_rigs:
+                for name, these in (("corpus", texts), ("scenes", scene_texts())):
+                    rigged[name] = run_rigs(these, f"sqlite:///{tmp}/library.sqlite", Path(tmp))
     print(f"CMU: {len(clips)} clips imported ({c_db.cpu:.1f} s CPU, {c_db.wall:.1f} s wall); {len(pairs)} pairs "
           f"x {len(methods)} methods; all figures at 30 fps")
     share_table(rows, methods, "CMU pairs: share meeting each criterion against their two source clips")
@@ -450,13 +511,23 @@ def main(argv=None) -> int:
     median_table(scenes, methods)
     transition_table(scenes, methods, "the scene set")
     print(f"(scenes: {c_scene.cpu:.1f} s CPU, {c_scene.wall:.1f} s wall)")
+    labels = [f"rig {h:g} m" for h in RIG_HEIGHTS]
+    for name, these in rigged.items():
+        what = "the corpus sentences" if name == "corpus" else "the scene set"
+        share_table(these, labels, f"{what} on a Mixamo-named A-pose character of {', '.join(f'{h:g}' for h in RIG_HEIGHTS)} m "
+                                   "(retargeted as --rig does; measured at a person's size)", four=True)
+        median_table(these, labels)
+        transition_table(these, labels, what)
+    if rigged:
+        print(f"(characters: {c_rigs.cpu:.1f} s CPU, {c_rigs.wall:.1f} s wall)")
     if args.list:
         for m in methods:
             failing(rows, m)
         if "optimal" in methods:
             join_losses(rows)
-        for m in methods:
-            bad = [r for r in sent + scenes if r["method"] == m and not all(r["meets"].values())]
+        every = sent + scenes + [r for these in rigged.values() for r in these]
+        for m in methods + (labels if rigged else []):
+            bad = [r for r in every if r["method"] == m and not all(r["meets"].values())]
             print(f"\n{m}: built-in sentences that miss a threshold ({len(bad)})")
             for r in bad:
                 q = r["quality"]
@@ -464,6 +535,12 @@ def main(argv=None) -> int:
                 print(f"  {r['text']} [{r['actor']}] {','.join(miss)}: skate {q['skating_ratio']:.3f} pop "
                       f"{q['root_pop']:.1f} jerk {q['jerk_p99']:.0f} floor {q['floor_penetration_cm']:.1f} "
                       f"frozen {q['frozen_fraction']:.2f} floating {q['floating_cm']:.1f}")
+            over = [(r, t) for r in every if r["method"] == m for t in r.get("transitions", [])
+                    if not all(t["meets"].values())]
+            print(f"{m}: built-in sentences' joins over a transition limit ({len(over)})")
+            for r, t in over:
+                print(f"  {r['text']} [{r['actor']}] balance {t['balance_cm']:.1f} cm, glide {t['glide_s']:.2f} s, "
+                      f"hang {t['hang_s']:.2f} s")
     out = Path(args.out)
     try:
         import matplotlib  # noqa: F401
@@ -475,7 +552,8 @@ def main(argv=None) -> int:
         print(f"\nFig. 5 speed curves: {len(written)} PNGs in {out}/")
     print(f"total: {time.process_time():.1f} s CPU, {time.perf_counter() - t0:.1f} s wall")
     if args.json:
-        doc = {"pairs": [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows], "sentences": sent, "scenes": scenes}
+        doc = {"pairs": [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows], "sentences": sent, "scenes": scenes,
+               **{f"{name}_on_rigs": these for name, these in rigged.items()}}
         Path(args.json).write_text(json.dumps(doc, ensure_ascii=False, indent=1) + "\n")
     return 0
 
