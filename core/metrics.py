@@ -190,11 +190,13 @@ def jerk_p99(jerk: np.ndarray) -> float:
     return _nanreduce(lambda v: np.percentile(v, JERK_PERCENTILE), jerk.ravel())
 
 
-def frozen_pairs(motion: Motion) -> np.ndarray:
-    """``(T-1,)`` bool: frame pairs (t, t+1) on which every joint moves slower than :data:`FROZEN_SPEED`."""
+def frozen_pairs(motion: Motion, factor: float = 1.0) -> np.ndarray:
+    """``(T-1,)`` bool: frame pairs (t, t+1) on which every joint moves slower than :data:`FROZEN_SPEED`
+    (times ``factor``)."""
     if motion.n_frames < 2:
         return np.zeros(0, dtype=bool)
-    return np.linalg.norm(np.diff(motion.positions, axis=0), axis=-1).max(axis=1) * motion.fps < FROZEN_SPEED
+    speed = np.linalg.norm(np.diff(motion.positions, axis=0), axis=-1).max(axis=1) * motion.fps
+    return speed < FROZEN_SPEED * factor
 
 
 def series(motion: Motion, floor: float = 0.0) -> Series:

@@ -4,7 +4,10 @@ A track holds a pose where nothing plays: before its first element starts, after
 its last one ends (a co-actor still acting, a join given more time), where an
 element is not executed, and where a clip ends at rest (lying after 転ぶ).
 Every joint then moves slower than :data:`core.metrics.FROZEN_SPEED` (0.5 cm/s):
-a frozen frame (docs/timetable.md §3), which no living body shows.
+a frozen frame (docs/timetable.md §3), which no living body shows. The layer is laid
+wherever every joint is slower than :data:`NEAR_FROZEN` times that: retargeted onto
+another rig (its own proportions, the legs solved again) a body lying still at 0.6 cm/s
+moved at 0.3 and read frozen.
 
 :func:`keep_alive` finds those frames and settles them into the track's captured
 idle (for the built-in character the ``wait`` clip, CMU 10_01 before the kick:
@@ -42,6 +45,8 @@ from text2anim.core.skeleton import Skeleton
 #: (joint, cone half-angle in degrees, frequency Hz) of the breathing layer.
 CHEST_DEG, CHEST_HZ = 1.2, 0.25
 NECK_DEG, NECK_HZ = 1.5, 0.17
+#: Frames whose joints are all slower than this times core.metrics.FROZEN_SPEED get the layer (module docstring).
+NEAR_FROZEN = 2.0
 #: Seconds over which the layer fades in before a frozen stretch and out after it.
 FADE = 0.4
 #: The share of the idle's turn laid on each joint.
@@ -49,12 +54,13 @@ IDLE_WEIGHTS = {"LowerBack": 1.0, "Spine": 1.0, "Spine1": 1.0, "Neck": 1.0, "Nec
                 "LeftArm": 0.5, "RightArm": 0.5, "LeftForeArm": 0.5, "RightForeArm": 0.5}
 
 
-def frozen_frames(motion: Motion) -> np.ndarray:
-    """``(T,)`` bool: frames on which every joint moves slower than FROZEN_SPEED (:func:`core.metrics.frozen_pairs`, either neighbouring pair)."""
+def frozen_frames(motion: Motion, factor: float = 1.0) -> np.ndarray:
+    """``(T,)`` bool: frames on which every joint moves slower than ``factor`` times FROZEN_SPEED
+    (:func:`core.metrics.frozen_pairs`, either neighbouring pair)."""
     T = motion.n_frames
     if T < 2:
         return np.zeros(T, dtype=bool)
-    pair = frozen_pairs(motion)  # (T-1,)
+    pair = frozen_pairs(motion, factor)  # (T-1,)
     out = np.zeros(T, dtype=bool)
     out[:-1] |= pair
     out[1:] |= pair
@@ -97,7 +103,7 @@ def keep_alive(motion: Motion, idle: Callable[[], Motion | None] | None = None) 
     pose is held; laid when it fits) and the breathing layer on its frozen frames (unchanged when it has
     none)."""
     names = motion.skeleton.names
-    frozen = frozen_frames(motion)
+    frozen = frozen_frames(motion, NEAR_FROZEN)
     if not frozen.any() or "Spine1" not in names:
         return motion
     w = layer_weight(frozen, int(round(FADE * motion.fps)))

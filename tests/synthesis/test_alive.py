@@ -41,3 +41,18 @@ def test_another_character_breathes_without_the_built_in_idle():
     assert not frozen_pairs(out).any()
     assert joint_range_cm(out, "Head") < 2.5  # the breathing layer alone (the idle moves it 12 cm)
     assert joint_range_cm(out, "LeftToeBase") < 1e-6
+
+
+def test_a_body_lying_still_stays_alive_on_another_rig(library_db, tmp_path):
+    """After 転ぶ the body lies moving its legs at about 0.6 cm/s, just above the frozen speed, so it got no
+    breathing layer; retargeted onto a Mixamo-named A-pose character (the legs solved again on its own
+    proportions) it moved at 0.3 cm/s and 6 % of its frames read frozen."""
+    import text2anim
+    from rig_builders import mixamo_glb
+    from text2anim.core.metrics import at_rate
+    from text2anim.export import ExportOptions
+
+    anim = text2anim.animate("太郎は転んでしまう。", db=library_db)
+    rig = ExportOptions(rig=mixamo_glb(tmp_path / "rig.glb", scale=1.0))
+    for motion in (*anim.motions.values(), *anim.exported_motions(rig, units=False).values()):
+        assert not frozen_pairs(at_rate(motion, 30.0)).any(), motion.skeleton.names[0]
