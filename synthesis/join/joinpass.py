@@ -52,10 +52,13 @@ own two source clips (as recorded, at the track's rate):
 6. **The hips' path of least acceleration**: the hips' horizontal path over the region bent, by at most a
    few centimetres, into the path that accelerates least and keeps a slow body over its feet, the legs
    solved back onto the feet (:func:`synthesis.join.hipspath.least_acceleration`: a departure from eq. (8)
-   of paper 000, written there; ``post.hips_bent_cm``).
+   of paper 000, written there; ``post.hips_bent_cm``). Where the feet a connection released after its
+   blend land inside the next clip's core (the engine's frames there, not the clip's) and the body stands
+   beside them on one of those frames, this step reaches to where they have landed (``Region.r1``): a
+   dance ending on tiptoe, its last step landing 0.2 s into the bow, stood the body 6-8 cm outside its feet.
 
 **Cores** are kept: the region stops at the next clip's core (except where the
-engine's own adaptation returns inside it) and starts after the first clip's
+engine's own adaptation returns inside it, or step 6 above) and starts after the first clip's
 (a looped first clip is all core, and its braking strides become the join's).
 
 All vectorised over frames and joints; deterministic.
@@ -70,6 +73,7 @@ from scipy.ndimage import gaussian_filter1d, maximum_filter1d, uniform_filter1d
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.easing import smootherstep_area
+from text2anim.core.balance import balance_heights
 from text2anim.core.hang import slowed_into_hanging
 from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion
@@ -372,13 +376,26 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     # outside [lo, h2) the frames are the input's (those the seams left alone): their kinematics is known
     rows = np.concatenate([np.arange(lo), np.full(h2 - lo, -1), np.arange(hi, T)])
     done = lift_off_floor(clear_swings(chosen.motion().share_pose(motion, rows), lo, h2), lo, h2)
+    # the feet a connection released after its blend may land inside the next core (the engine's frames, not
+    # the clip's): where the body stands beside them there, the hips' path is bent over them too
+    he = _landing_end(done, h2, region.r1 + h2 - hi)
     done, shifted = over_feet(done, lo, h2, pop_lim * SLACK)
-    done, bent = least_acceleration(done, lo, h2)
+    done, bent = least_acceleration(done, lo, he)
     info = {"smoothing_frames": sigma, "stretch": stretch, "added_s": round((h2 - hi) / fps, 3),
             "weight_shift_cm": round(100 * shifted, 2), "hips_bent_cm": round(100 * bent, 2),
             "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
             "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
     return done, info, (lo, whi, whi - lo + (h2 - hi), played[stretch])
+
+
+def _landing_end(motion: Motion, h2: int, r1: int) -> int:
+    """``r1`` (clamped to the motion) when the body stands outside its feet (``core.balance``) on a frame of
+    ``[h2, r1)``, where a connection's released feet land inside the next core; else ``h2``."""
+    r1 = min(motion.n_frames, r1)
+    if r1 - h2 < 2:
+        return h2
+    h = balance_heights(motion[h2:r1])
+    return r1 if bool((np.nan_to_num(h) > 0.0).any()) else h2
 
 
 def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, np.ndarray]]]:
