@@ -193,6 +193,34 @@ def introduced_root_pop(result, fps: float = COMPARE_FPS, series_of: dict | None
     return out
 
 
+def exported_figures(result, motions: dict, fps: float = COMPARE_FPS) -> dict[Any, tuple[Quality, list[dict]]]:
+    """``{actor: (quality, transitions)}`` of ``motions``: ``result``'s animation as exported onto another
+    character (retargeted frame for frame, at any size: :meth:`Animation.exported_motions` in metres),
+    measured at a person's size (:func:`core.size.at_human_size`): the whole motion's :class:`Quality` at
+    ``fps`` and, per join of the actor (in order, those with a blend interval), :func:`transition_figures`
+    over its window on the frames the method made (found on ``result``'s own motion: a retarget keeps every
+    frame where it is)."""
+    from text2anim.core.size import at_human_size
+
+    out: dict[Any, tuple[Quality, list[dict]]] = {}
+    for actor, m in motions.items():
+        m30 = at_rate(at_human_size(m)[0], fps)
+        paths = result.placed_paths.get(actor)
+        made = (np.ones(m30.n_frames, dtype=bool) if paths is None
+                else ~played_frames(result.motions[actor], paths, fps)[:m30.n_frames])
+        per_frame = transition_frames(m30)
+        mine = []
+        for j in result.joins:
+            window = join_window(j, m.duration) if result.actor_of(j.second) == actor else None
+            if window is not None:
+                a, b = window_frames(fps, window)
+                inside = np.zeros(m30.n_frames, dtype=bool)
+                inside[max(0, a):max(0, b)] = True
+                mine.append(transition_figures(m30, made & inside, per_frame))
+        out[actor] = (quality(m30, fps), mine)
+    return out
+
+
 def missed_criteria(entry: dict) -> list[str]:
     """The criteria a :func:`join_quality` entry misses, each with its figure and its limit:
     ``"jerk p99 3971 m/s³ > 1.2 × the sources' larger 2950 = 3540"`` (none without ``meets``)."""

@@ -235,11 +235,10 @@ def run_rigs(texts: list[str], db_url: str, tmp: Path) -> list[dict]:
     engine made (found on its own skeleton: retargeting keeps every frame where it is)."""
     import text2anim
     from rig_builders import mixamo_glb
-    from text2anim.core.metrics import COMPARE_FPS, against_limits, at_rate, quality, window_frames
-    from text2anim.core.size import at_human_size
+    from text2anim.core.metrics import against_limits
     from text2anim.export import ExportOptions
     from text2anim.motiondb import MotionDB
-    from text2anim.quality import join_window, played_frames, transition_figures, transition_frames
+    from text2anim.quality import exported_figures
 
     rigs = {h: ExportOptions(rig=mixamo_glb(tmp / f"mixamo_{h}.glb", scale=h / 1.7)) for h in RIG_HEIGHTS}
     rows = []
@@ -251,23 +250,9 @@ def run_rigs(texts: list[str], db_url: str, tmp: Path) -> list[dict]:
                 if getattr(exc, "user_facing", False):
                     continue
                 raise
-            res = anim.result
             for h, export in rigs.items():
-                for actor, m in anim.exported_motions(export, units=False).items():
-                    m30 = at_rate(at_human_size(m)[0], COMPARE_FPS)
-                    paths = res.placed_paths.get(actor)
-                    made = (np.ones(m30.n_frames, dtype=bool) if paths is None
-                            else ~played_frames(res.motions[actor], paths, COMPARE_FPS)[:m30.n_frames])
-                    per_frame = transition_frames(m30)
-                    mine = []
-                    for j in res.joins:
-                        window = join_window(j, m.duration) if res.actor_of(j.second) == actor else None
-                        if window is not None:
-                            a, b = window_frames(COMPARE_FPS, window)
-                            inside = np.zeros(m30.n_frames, dtype=bool)
-                            inside[max(0, a):max(0, b)] = True
-                            mine.append(transition_figures(m30, made & inside, per_frame))
-                    q = quality(m30, COMPARE_FPS)
+                figures = exported_figures(anim.result, anim.exported_motions(export, units=False))
+                for actor, (q, mine) in figures.items():
                     rows.append({"text": text, "actor": actor, "method": f"rig {h:g} m", "quality": q.to_dict(),
                                  "meets": against_limits(q), "transitions": mine})
     return rows

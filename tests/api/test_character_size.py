@@ -67,3 +67,25 @@ def test_every_size_meets_the_built_in_limits_measured_at_human_size(outputs, h)
     q = quality(motion)
     assert q.skating_ratio <= BUILTIN_LIMITS["skating_ratio"]
     assert q.floor_penetration_cm <= BUILTIN_LIMITS["floor_penetration_cm"]
+
+
+#: sentences of the corpus whose joins came nearest a limit (a bow after a dance ending on tiptoe, an actor
+#: waiting for a longer join, a body lying after a fall) and the seed sentence
+HARD = ("花子は踊り終わったら、お辞儀する。", "太郎は走る。花子が歩く。そして座る。", "太郎は転んでしまう。", "太郎は走って、ボールを蹴る。そして喜ぶ。")
+
+
+@pytest.mark.parametrize("text", HARD)
+def test_every_size_of_a_mixamo_character_is_as_clean_as_the_built_in_one(library_db, tmp_path, text):
+    """Issue 29: the six built-in limits and the transition figures (balance, glide, hang) hold on a
+    Mixamo-named A-pose character of 0.2, 1.7 and 20 m as on the built-in skeleton, measured at a person's size."""
+    from text2anim.core.metrics import against_limits
+    from text2anim.quality import exported_figures
+
+    anim = text2anim.animate(text, db=library_db)
+    for h in HEIGHTS:
+        rig = ExportOptions(rig=mixamo_glb(tmp_path / f"rig_{h}.glb", scale=h / 1.7))
+        figures = exported_figures(anim.result, anim.exported_motions(rig, units=False))
+        assert set(figures) == set(anim.motions)
+        for actor, (q, transitions) in figures.items():
+            assert all(against_limits(q).values()), (h, actor, q)
+            assert all(all(t["meets"].values()) for t in transitions), (h, actor, transitions)
