@@ -3,8 +3,10 @@
 The features (Kovar's point clouds, :mod:`synthesis.optimal.posedist`) of the join's sources are looked up per
 body part once (:class:`Features`); :mod:`synthesis.optimal.blend_search` evaluates every candidate pair.
 A blend of the legs into a held pose never ends on a frame where the second source is off its floor
-(:func:`core.hang.off_its_floor`; unless that is so everywhere in the range): a standing pose
-blended into a run's flight lifts both feet with the hips level, a body hanging in the air (``core.hang``).
+(:func:`core.hang.off_its_floor`), and a blend between two poses not within :data:`AIR_AHEAD` before it
+leaves it (each unless it leaves no blend that fits): a standing pose blended into
+a run's flight, or its toe-off, lifts both feet with the hips level, a body hanging in the air
+(``core.hang``); blended into the stance, one foot stays down while the other swings, as a run starts.
 """
 from __future__ import annotations
 
@@ -17,6 +19,11 @@ from ..join.placed import Placed
 from .blend_ranges import Range
 from .blend_search import Found, Weights, best, evaluate, evaluate_motions
 from .posedist import distance, features, part_joints
+
+
+#: s: where it has the choice, a blend of the legs between two poses does not end this close before the second
+#: source leaves its floor: blended from standing into a run's toe-off, both feet rose together and the flight hung (0.25 s)
+AIR_AHEAD = 0.1
 
 
 def _sources(tr: Motion, inc: Placed, adapted: Motion | None):
@@ -58,9 +65,14 @@ def grid(r: Range, feats: Features, fps: float, weights: Weights, min_len: int):
     f_to = feats(r.src[1], r.part, np.arange(r.t1[0] - 1, r.t1[1] + 1))
     g = evaluate(f_from, f_to, r.t0, r.t1, fps, weights, r.p_len, min_len)
     if r.part == "lower":
-        air = feats.airborne(r.src[1], g.t1)
-        if air.any() and not air.all():  # a blend of the legs never ends on a pose in the air
-            g.cost[:, air] = np.inf
+        # a blend of the legs never ends on a pose in the air, nor (where it has the choice) a blend between two
+        # poses just before one: it would lift both feet together into the take-off
+        ahead = max(1, int(round(AIR_AHEAD * fps))) if r.kind == "pose-pose" else 0
+        air = [feats.airborne(r.src[1], g.t1 + k) for k in range(ahead + 1)]
+        for mask in (np.any(air, axis=0), air[0]):
+            if mask.any() and np.isfinite(g.cost[:, ~mask]).any():  # unless that leaves no blend
+                g.cost[:, mask] = np.inf
+                break
     return g
 
 

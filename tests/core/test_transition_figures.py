@@ -117,3 +117,16 @@ def test_a_walk_started_from_standing_shifts_the_weight_first(db):
     for j in joins:
         assert j["quality"]["transition"]["balance_cm"] <= LIMIT_CM, j["quality"]["transition"]
     assert max(j["metrics"]["post"]["weight_shift_cm"] for j in joins) > 1.0
+
+
+def test_a_run_started_from_standing_does_not_hang_in_the_air(db):
+    """花子 waits, then runs: the legs' blend ended on the run's toe-off, both feet rose together and, slowed
+    by the post-pass, the body hung 0.25 s in the air. Blended into the stance instead, one foot stays on the
+    floor while the other swings, and every figure of her join holds."""
+    anim = text2anim.animate("太郎は歩く。花子は太郎が止まった後で走る。", db=db)
+    ids = {r["id"] for r in anim.report["time_table"] if r["actor"] == "花子"}
+    joins = [j for j in anim.report["joins"] if j["second"] in ids]
+    assert joins
+    for j in joins:
+        t = j["quality"]["transition"]
+        assert t["hang_s"] <= HANG_S and all(t["meets"].values()), t
