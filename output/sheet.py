@@ -11,8 +11,12 @@ foot that slides moves against them). A foot in contact (as
 :func:`core.contacts.detect_contacts` labels it) is marked with a green
 dot. Frames inside the ``core`` interval have a bold title. A strip under the
 frames plots root and foot heights over the whole clip with the contact
-intervals shaded, and the core interval if given. A Japanese title needs a CJK
-font; without one a romanised alternative is drawn (:mod:`.fonts`).
+intervals shaded, and the core interval if given. A character far from a
+person's size (a 0.2 m rig, a 20 m giant) is drawn at a person's size
+(:func:`core.size.at_human_size`), the factor in the strip's label: drawn as it
+is it filled a corner of each panel, and its contacts were read by a person's
+thresholds. A Japanese title needs a CJK font; without one a romanised
+alternative is drawn (:mod:`.fonts`).
 
 matplotlib is an optional extra (``pip install text2anim[plot]``); it is
 imported only when a sheet is drawn.
@@ -32,6 +36,7 @@ from text2anim.core.atomic import atomic_write_bytes
 from text2anim.core.bodyparts import body_map, side_of
 from text2anim.core.contacts import detect_contacts, foot_tracks
 from text2anim.core.motion import Motion
+from text2anim.core.size import at_human_size
 
 
 #: matplotlib is not installed (:class:`.extras.MissingExtraError`).
@@ -87,6 +92,7 @@ LONG_FPS = 30.0
 def _draw(Figure, FigureCanvasAgg, motion: Motion, title: str, n: int, core, dpi: int) -> bytes:
     if motion.n_frames > LONG_FRAMES and motion.fps > LONG_FPS:
         motion = motion.resample(LONG_FPS)
+    motion, k = at_human_size(motion)
     T = motion.n_frames
     if T == 0:
         raise ValueError("cannot draw a contact sheet of an empty motion")
@@ -166,7 +172,8 @@ def _draw(Figure, FigureCanvasAgg, motion: Motion, title: str, n: int, core, dpi
         ax.axvline(f / fps, color="#cccccc", lw=0.6, zorder=0)
     ax.set_xlim(0, max(times[-1], 1e-3))
     ax.set_ylim(-0.16, max(1.2, float(root[:, 1].max()) + 0.1))
-    ax.set_xlabel("seconds (bars: contacts, left above right)", fontsize=8)
+    ax.set_xlabel("seconds (bars: contacts, left above right)"
+                  + (f"; drawn at a person's size, {k:.3g} times the character's" if k != 1.0 else ""), fontsize=8)
     ax.tick_params(labelsize=7)
     ax.legend(fontsize=7, loc="upper right", ncol=4)
     if title:

@@ -464,6 +464,24 @@ def test_contact_sheet_png(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["walk.png"]  # no temporary file left
 
 
+def test_a_small_character_is_drawn_at_a_person_s_size(tmp_path):
+    """A 0.2 m rig's walk filled a corner of each panel, its feet never marked as down (the contact rule's
+    centimetres are a person's): its stick figures are now drawn as the 1.7 m walk's."""
+    pytest.importorskip("matplotlib")
+    from matplotlib.image import imread
+
+    from text2anim.core.conventions import scaled
+    from text2anim.output.sheet import contact_sheet
+
+    walk = CLIPS["walk"].motion
+    contact_sheet(walk, tmp_path / "person.png", n=4)
+    contact_sheet(scaled(walk, 0.2 / 1.7), tmp_path / "small.png", n=4)
+    person, small = imread(tmp_path / "person.png"), imread(tmp_path / "small.png")
+    assert person.shape == small.shape
+    panels = slice(0, int(0.7 * person.shape[0]))  # the frames; the strip's label names the factor
+    assert np.abs(person[panels] - small[panels]).max() < 0.05
+
+
 def test_contact_sheet_without_matplotlib_says_how_to_install(tmp_path, monkeypatch):
     from text2anim.output import sheet
 
