@@ -70,10 +70,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d, uniform_filter1d
 
+from text2anim.core.balance import balance_heights
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.easing import smootherstep_area
-from text2anim.core.balance import balance_heights
 from text2anim.core.hang import slowed_into_hanging
 from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion
