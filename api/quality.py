@@ -117,14 +117,10 @@ def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS,
         here = summarise(s, a, b)
         entry = {"fps": fps, "window_s": [round(window[0], 3), round(window[1], 3)], "join": rounded(here)}
         if actor not in made_by:
-            paths = result.placed_paths.get(actor)
             m30 = at_rate(motion, fps)
-            made_by[actor] = (m30, np.ones(m30.n_frames, dtype=bool) if paths is None else
-                              ~played_frames(motion, paths, fps), transition_frames(m30))
+            made_by[actor] = (m30, made_frames(result, actor, m30.n_frames, fps), transition_frames(m30))
         m30, made, per_frame = made_by[actor]
-        inside = np.zeros(m30.n_frames, dtype=bool)
-        inside[max(0, a):max(0, b)] = True
-        entry["transition"] = transition_figures(m30, made & inside, per_frame)
+        entry["transition"] = transition_figures(m30, _within(made, a, b), per_frame)
         src = {}
         for key, eid in (("first", j.first), ("second", j.second)):
             clip = clips.get(eid)
@@ -137,6 +133,22 @@ def join_quality(result, tracks: Sequence = (), fps: float = COMPARE_FPS,
             entry["meets"] = against_sources(here, [q for _, q in src.values()])
         out.append(entry)
     return out
+
+
+def made_frames(result, actor, n: int, fps: float = COMPARE_FPS) -> np.ndarray:
+    """``(n,)`` bool at ``fps``: the frames of ``actor``'s motion in ``result`` that no placed clip plays as
+    recorded (:func:`played_frames`; all of them where the placed paths are not known)."""
+    paths = result.placed_paths.get(actor)
+    if paths is None:
+        return np.ones(n, dtype=bool)
+    return ~played_frames(result.motions[actor], paths, fps)[:n]
+
+
+def _within(mask: np.ndarray, a: int, b: int) -> np.ndarray:
+    """``mask`` ``(T,)`` left True only on frames ``[a, b)`` (a window's frames, :func:`window_frames`)."""
+    inside = np.zeros(len(mask), dtype=bool)
+    inside[max(0, a):max(0, b)] = True
+    return mask & inside
 
 
 #: m: how far a hips path may stray from a placed element's moved by one constant offset and still be its own
@@ -205,18 +217,13 @@ def exported_figures(result, motions: dict, fps: float = COMPARE_FPS) -> dict[An
     out: dict[Any, tuple[Quality, list[dict]]] = {}
     for actor, m in motions.items():
         m30 = at_rate(at_human_size(m)[0], fps)
-        paths = result.placed_paths.get(actor)
-        made = (np.ones(m30.n_frames, dtype=bool) if paths is None
-                else ~played_frames(result.motions[actor], paths, fps)[:m30.n_frames])
+        made = made_frames(result, actor, m30.n_frames, fps)
         per_frame = transition_frames(m30)
         mine = []
         for j in result.joins:
             window = join_window(j, m.duration) if result.actor_of(j.second) == actor else None
             if window is not None:
-                a, b = window_frames(fps, window)
-                inside = np.zeros(m30.n_frames, dtype=bool)
-                inside[max(0, a):max(0, b)] = True
-                mine.append(transition_figures(m30, made & inside, per_frame))
+                mine.append(transition_figures(m30, _within(made, *window_frames(fps, window)), per_frame))
         out[actor] = (quality(m30, fps), mine)
     return out
 
