@@ -19,7 +19,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from text2anim.core.contacts import detect_contacts, foot_tracks
+from text2anim.core.contacts import detect_contacts, foot_tracks, horizontal_speed
 from text2anim.core.metrics import jerk, skating_ratio
 from text2anim.core.motion import Motion
 
@@ -271,8 +271,8 @@ def same_length(motions: dict) -> dict:
 
 def _end_speed(m: Motion) -> float:
     """The hips' mean horizontal speed (m/s) over the last 0.2 s of ``m``."""
-    xz = m.root_positions[-max(2, int(round(0.2 * m.fps)) + 1):, [0, 2]]
-    return float(np.linalg.norm(np.diff(xz, axis=0), axis=1).mean() * m.fps) if len(xz) > 1 else 0.0
+    tail = m.root_positions[-max(2, int(round(0.2 * m.fps)) + 1):]
+    return float(horizontal_speed(tail, m.fps).mean()) if len(tail) > 1 else 0.0
 
 
 def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False, finished: bool = True) -> Result:
