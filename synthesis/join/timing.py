@@ -138,7 +138,12 @@ def cycle_frames(motion: Motion, speed: float, fps: float) -> Motion:
     is rounded to whole output frames and the clip is sampled (slerp) at
     that spacing, so looping keeps the clip's exact tempo to within a frame.
     """
-    return _cycle(motion, max(3, int(round(motion.n_frames / motion.fps / speed * fps))), fps)
+    return _cycle(motion, _cycle_length(motion, speed, fps), fps)
+
+
+def _cycle_length(motion: Motion, speed: float, fps: float) -> int:
+    """Frames (at least 3) of one cycle of a cyclic clip at ``speed``, sampled at ``fps``."""
+    return max(3, int(round(motion.n_frames / motion.fps / speed * fps)))
 
 
 def _cycle(motion: Motion, n_cycle: int, fps: float) -> Motion:
@@ -159,7 +164,7 @@ def cycle_at_speed(motion: Motion, speed: float, fps: float) -> Motion:
     from text2anim.core.metrics import BUILTIN_LIMITS, quality
 
     cycle = cycle_frames(motion, speed, fps)
-    own = cycle_frames(motion, 1.0, fps).n_frames
+    own = _cycle_length(motion, 1.0, fps)
     while cycle.n_frames < own:
         looped = loop(make_cyclic(cycle), 2 * cycle.n_frames, 0)
         if quality(looped).jerk_p99 <= JERK_ROOM * BUILTIN_LIMITS["jerk_p99"]:
