@@ -198,22 +198,29 @@ def run_pairs(clips: dict, pairs: list, methods, smoothness: float) -> list[dict
     return rows
 
 
-def run_sentences(texts: list[str], methods, db_url: str) -> list[dict]:
+def run_sentences(texts: list[str], methods, db_url: str, rigs: dict | None = None) -> tuple[list[dict], list[dict]]:
+    """Rows per sentence, actor and method; and with ``rigs`` (:func:`characters`) the rows of the default
+    engine's animation of each sentence on those characters (:func:`rig_rows`), from the same animation."""
     import text2anim
     from text2anim.core.metrics import against_limits, quality
     from text2anim.motiondb import MotionDB
     from text2anim.quality import join_quality
 
-    rows = []
+    rows: list[dict] = []
+    rigged: list[dict] = []
     with MotionDB.open(db_url) as db:
         for text in texts:
-            for method in methods:
+            for method in list(methods) + ([] if rigs is None or DEFAULT in methods else [DEFAULT]):
                 try:
                     anim = text2anim.animate(text, db=db, blend=method)
                 except Exception as exc:  # an unknown verb, a refused sentence: not animated
                     if getattr(exc, "user_facing", False):
                         break
                     raise
+                if rigs is not None and method == DEFAULT:
+                    rigged += rig_rows(text, anim, rigs)
+                if method not in methods:
+                    continue
                 joins = join_quality(anim.result)
                 for actor, m in anim.motions.items():
                     q = quality(m)
@@ -221,40 +228,38 @@ def run_sentences(texts: list[str], methods, db_url: str) -> list[dict]:
                             if e is not None and anim.result.actor_of(j.second) == actor]
                     rows.append({"text": text, "actor": actor, "method": method, "quality": q.to_dict(),
                                  "meets": against_limits(q), "transitions": mine})
-    return rows
+    return rows, rigged
 
 
+#: the engine text2anim uses when none is asked for: the one the characters section exports
+DEFAULT = "optimal"
 #: heights (m) of the Mixamo-named A-pose characters the sentences are retargeted onto
 RIG_HEIGHTS = (0.2, 1.7, 20.0)
 
 
-def run_rigs(texts: list[str], db_url: str, tmp: Path) -> list[dict]:
-    """Rows as :func:`run_sentences` gives, ``method`` naming the character (``rig 0.2 m``): each sentence
-    animated once by the default engine and retargeted onto a Mixamo-named A-pose character of each of
-    :data:`RIG_HEIGHTS`, measured at a person's size. The transition figures are read on the frames the
-    engine made (found on its own skeleton: retargeting keeps every frame where it is)."""
-    import text2anim
+def characters(tmp: Path) -> dict:
+    """``{height: ExportOptions}``: a Mixamo-named A-pose character of each of :data:`RIG_HEIGHTS` (m), written
+    into ``tmp``."""
     from rig_builders import mixamo_glb
-    from text2anim.core.metrics import against_limits
     from text2anim.export import ExportOptions
-    from text2anim.motiondb import MotionDB
+
+    return {h: ExportOptions(rig=mixamo_glb(tmp / f"mixamo_{h}.glb", scale=h / 1.7)) for h in RIG_HEIGHTS}
+
+
+def rig_rows(text: str, anim, rigs: dict) -> list[dict]:
+    """Rows as :func:`run_sentences` gives, ``method`` naming the character (``rig 0.2 m``): ``anim``
+    retargeted onto each character of ``rigs`` (:func:`characters`), measured at a person's size. The
+    transition figures are read on the frames the engine made (found on its own skeleton: retargeting keeps
+    every frame where it is)."""
+    from text2anim.core.metrics import against_limits
     from text2anim.quality import exported_figures
 
-    rigs = {h: ExportOptions(rig=mixamo_glb(tmp / f"mixamo_{h}.glb", scale=h / 1.7)) for h in RIG_HEIGHTS}
     rows = []
-    with MotionDB.open(db_url) as db:
-        for text in texts:
-            try:
-                anim = text2anim.animate(text, db=db)
-            except Exception as exc:  # an unknown verb, a refused sentence: not animated
-                if getattr(exc, "user_facing", False):
-                    continue
-                raise
-            for h, export in rigs.items():
-                figures = exported_figures(anim.result, anim.exported_motions(export, units=False))
-                for actor, (q, mine) in figures.items():
-                    rows.append({"text": text, "actor": actor, "method": f"rig {h:g} m", "quality": q.to_dict(),
-                                 "meets": against_limits(q), "transitions": mine})
+    for h, export in rigs.items():
+        figures = exported_figures(anim.result, anim.exported_motions(export, units=False))
+        for actor, (q, mine) in figures.items():
+            rows.append({"text": text, "actor": actor, "method": f"rig {h:g} m", "quality": q.to_dict(),
+                         "meets": against_limits(q), "transitions": mine})
     return rows
 
 
@@ -465,15 +470,14 @@ def main(argv=None) -> int:
         with Clock() as c_pairs:
             rows = run_pairs(clips, pairs, methods, args.smoothness)
         texts = corpus_texts(args.sentences)
-        with Clock() as c_sent:
-            sent = run_sentences(texts, methods, f"sqlite:///{tmp}/library.sqlite") if texts else []
-        with Clock() as c_scene:
-            scenes = run_sentences(scene_texts(), methods, f"sqlite:///{tmp}/library.sqlite")
+        rigs = None if args.no_rigs else characters(Path(tmp))
         rigged: dict[str, list[dict]] = {}
-        with Clock() as c_rigs:
-            if not args.no_rigs:
-                for name, these in (("corpus", texts), ("scenes", scene_texts())):
-                    rigged[name] = run_rigs(these, f"sqlite:///{tmp}/library.sqlite", Path(tmp))
+        with Clock() as c_sent:
+            sent, rigged["corpus"] = run_sentences(texts, methods, f"sqlite:///{tmp}/library.sqlite", rigs)
+        with Clock() as c_scene:
+            scenes, rigged["scenes"] = run_sentences(scene_texts(), methods, f"sqlite:///{tmp}/library.sqlite", rigs)
+        if rigs is None:
+            rigged = {}
     print(f"CMU: {len(clips)} clips imported ({c_db.cpu:.1f} s CPU, {c_db.wall:.1f} s wall); {len(pairs)} pairs "
           f"x {len(methods)} methods; all figures at 30 fps")
     share_table(rows, methods, "CMU pairs: share meeting each criterion against their two source clips")
@@ -504,7 +508,7 @@ def main(argv=None) -> int:
         median_table(these, labels)
         transition_table(these, labels, what)
     if rigged:
-        print(f"(characters: {c_rigs.cpu:.1f} s CPU, {c_rigs.wall:.1f} s wall)")
+        print("(the characters' figures are timed with the sentences and scenes they export)")
     if args.list:
         for m in methods:
             failing(rows, m)
