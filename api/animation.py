@@ -103,6 +103,11 @@ class Animation:
 
         return [Track(name, m) for name, m in self.motions.items()]
 
+    def props(self):
+        """The things of the scene as the viewer and the GLB draw them (:class:`output.viewer.types.Prop`):
+        none yet (the scene stage will place them)."""
+        return []
+
     def spans(self):
         """Time-table elements and blend intervals as viewer spans."""
         from text2anim.output.viewer.types import Span

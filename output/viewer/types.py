@@ -4,7 +4,9 @@
 - :class:`Span`: an interval on an actor's timeline, either a time-table
   element (``kind="element"``, label like ``"2 蹴る (transition)"``) or a blend
   interval (``kind="blend"``, ``part`` ``"upper"``, ``"lower"`` or ``None`` for
-  the whole body).
+  the whole body);
+- :class:`Prop`: a thing of the scene (a ball, a chair, a cup) as a simple shape moving
+  over the same frames.
 
 Times are seconds from the start of the animation, the same clock for every actor.
 """
@@ -14,9 +16,16 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+import numpy as np
+
 from text2anim.core.motion import Motion
 
 SPAN_KINDS = ("element", "blend")
+
+#: The shapes a :class:`Prop` is drawn as. Each is centred on its bounding box, ``size`` (w, h, d) metres
+#: along its own x, y, z; a ``chair`` (seat, four legs, a back) faces +z (its back at -z), as does a
+#: ``bench`` (seat and legs, no back); a ``door`` is a thin panel in its x-y plane.
+PROP_SHAPES = ("sphere", "box", "cylinder", "chair", "bench", "door", "book", "cup", "stick")
 
 #: Body-part names (``core.bodyparts.GROUPS``) drawn in the lower-body lane of a blend;
 #: every other named part (arms, head, torso, "upper") in the upper lane; ``None``: both.
@@ -108,3 +117,45 @@ def as_spans(spans: Iterable[Span]) -> list[Span]:
         if not isinstance(s, Span):
             raise TypeError(f"expected Span objects, got {type(s).__name__}")
     return out
+
+
+@dataclass(frozen=True, eq=False)
+class Prop:
+    """A thing of the scene: its name as the text writes it (ボール), a simple shape, and where it is.
+
+    Attributes:
+        name: the noun as written; the GLB node's name and the viewer's label.
+        shape: one of :data:`PROP_SHAPES`.
+        size: ``(w, h, d)`` metres, the shape's bounding box (a sphere of diameter 0.22: ``(0.22,) * 3``).
+        positions: ``(T, 3)`` metres, Y up: the bounding box's centre at each frame.
+        rotations: ``(T, 4)`` quaternions ``(x, y, z, w)`` as scipy writes them: the shape's turn at each frame.
+        fps: frames per second, the actors' own (frame ``i`` is at ``i / fps`` s).
+        color: ``#rrggbb``.
+    """
+
+    name: str
+    shape: str
+    size: tuple[float, float, float]
+    positions: np.ndarray
+    rotations: np.ndarray
+    fps: float
+    color: str = "#c8b27a"
+
+    def __post_init__(self):
+        if self.shape not in PROP_SHAPES:
+            raise ValueError(f"prop {self.name!r}: unknown shape {self.shape!r}; one of {', '.join(PROP_SHAPES)}")
+        pos = np.asarray(self.positions, dtype=float)
+        rot = np.asarray(self.rotations, dtype=float)
+        if pos.ndim != 2 or pos.shape[1] != 3 or len(pos) == 0:
+            raise ValueError(f"prop {self.name!r}: positions must be (T, 3), got {pos.shape}")
+        if rot.shape != (len(pos), 4):
+            raise ValueError(f"prop {self.name!r}: rotations must be ({len(pos)}, 4), got {rot.shape}")
+        if not (np.all(np.isfinite(pos)) and np.all(np.isfinite(rot))):
+            raise ValueError(f"prop {self.name!r}: non-finite positions or rotations")
+        object.__setattr__(self, "positions", pos)
+        object.__setattr__(self, "rotations", rot)
+        object.__setattr__(self, "size", tuple(float(v) for v in self.size))
+
+    @property
+    def n_frames(self) -> int:
+        return len(self.positions)
