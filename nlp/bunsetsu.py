@@ -21,7 +21,7 @@ class Phrase:
     """A mutable bunsetsu under analysis (``types.Bunsetsu`` is its frozen view)."""
 
     __slots__ = ("index", "tokens", "sentence", "group", "quoted", "role", "head",
-                 "why", "pred")
+                 "why", "pred", "persons")
 
     def __init__(self, index: int, tokens: list[Token], sentence: int, quoted: bool):
         self.index = index
@@ -33,6 +33,9 @@ class Phrase:
         self.head: int | None = None
         self.why = ""
         self.pred: Pred | None = None  # for predicate phrases
+        #: the persons the phrase names, by their canonical names (彼女 -> ("花子",); 二人 ->
+        #: ("太郎", "花子")): set by reference.resolve_persons for every phrase naming a person
+        self.persons: tuple[str, ...] = ()
 
     @property
     def predicate(self) -> Pred:

@@ -18,6 +18,7 @@ from .lexicon import (
 )
 from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
+from .reference import resolve_persons
 from .casual import recover_homophone
 from .tokens import is_name
 
@@ -37,8 +38,9 @@ class TimeCue:
     cue: str
 
 
-def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
-    """Give every phrase its role; return the predicates and the time cues."""
+def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[list[Pred], list[TimeCue]]:
+    """Give every phrase its role; return the predicates and the time cues.  How pronouns were
+    read (:func:`reference.resolve_persons`) is appended to ``notes``."""
     values: dict[int, float] = {}
     for i, ph in enumerate(phrases):
         nxt = phrases[i + 1] if i + 1 < len(phrases) else None
@@ -56,6 +58,9 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     _merge_light_verbs(phrases)
     _mark_non_agents(phrases)
     _mark_embedded(phrases)
+    said = resolve_persons(phrases)
+    if notes is not None:
+        notes.extend(said)
     assign_actors(phrases)
     cues = _attach_modifiers(phrases, values)
     for pred in preds:

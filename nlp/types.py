@@ -40,7 +40,10 @@ class Bunsetsu:
 
     ``head`` is the index of the bunsetsu this one depends on (``None`` for
     the last one of a sentence); ``role`` says what the analyzer made of it
-    and ``why`` how the head was chosen, for ``parse --explain``.
+    and ``why`` how the head was chosen, for ``parse --explain``.  ``persons``
+    are the persons it names, by the names the actor field uses, pronouns and
+    group words resolved (彼女に -> ("花子",), 二人で -> ("太郎", "花子");
+    docs/language.md §8), whatever its particle.
     """
 
     index: int
@@ -50,6 +53,7 @@ class Bunsetsu:
     role: str = ""
     head: int | None = None
     why: str = ""
+    persons: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True, slots=True)
