@@ -106,6 +106,16 @@ ASPECT_AUX = frozenset(
     なさる 為さる""".split()
 )
 
+#: Honorific verbs and the plain verb each stands for (docs/language.md §8, :mod:`keigo`).
+#: いらっしゃる is also いる after a て-form; 召し上がる is 飲む with a drink (``DRINKS``).
+HONORIFIC_VERBS = {"いらっしゃる": "来る", "召し上がる": "食べる", "仰る": "言う"}
+
+#: Verbs that are honorific only inside お + 連用形 + になる: お見えになる, お越しになる, おいでになる (来る).
+PREFIXED_HONORIFIC_VERBS = {"見える": "来る", "越す": "来る", "出でる": "来る"}
+
+#: Drinks (by UniDic lemma): 召し上がる with one of them as its object is 飲む.
+DRINKS = frozenset("茶 お茶 コーヒー 紅茶 水 お水 ジュース 牛乳 ミルク 酒 お酒 ビール ワイン スープ 味噌汁 湯".split())
+
 #: Polite request auxiliaries after an お + 連用形 verb (お座りください, お待ち下さい),
 #: by lemma: the request is the verb before it, not a motion of its own.
 POLITE_AFTER_RENYOU = frozenset("下さる 為さる".split())
