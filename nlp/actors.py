@@ -10,7 +10,7 @@ from __future__ import annotations
 from .bunsetsu import FUNCTION_POS, Phrase
 from .endings import ENDINGS
 from .lexicon import HONORIFICS, PERSON_NOUNS, SCRIPT_HEADINGS
-from .persons import group_size, is_person_noun, pronoun_sex, words_of
+from .persons import refers, words_of
 from .together import Joined, together
 from .tokens import is_name
 from .types import Token
@@ -56,16 +56,23 @@ def person_name(ph: Phrase) -> str | None:
     toks = ph.tokens
     if toks[-1].surface == ":":
         return speaker_label(ph)
-    nouns = [t for t in toks if t.pos1 in ("名詞", "代名詞")]
+    nouns: list[Token] = []
+    affixed = honorific = proper = False
+    for t in toks:  # one pass: this runs on most phrases of every text
+        pos1 = t.pos1
+        if pos1 == "名詞" or pos1 == "代名詞":
+            nouns.append(t)
+            proper = proper or t.pos3 == "人名"
+        elif pos1 == "接頭辞":
+            affixed = True
+        elif pos1 == "接尾辞":
+            affixed = True
+            honorific = honorific or t.surface in HONORIFICS
     if not nouns:
         return None
-    name = "".join(t.surface for t in nouns)
-    affixed = any(t.pos1 in ("接頭辞", "接尾辞") for t in toks)
-    honorific = affixed and any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in toks)
-    words = words_of(toks)
-    if not (honorific or name in PERSON_NOUNS or any(t.pos3 == "人名" for t in nouns)
-            or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name))
-            or is_person_noun(words) or group_size(words) is not None or pronoun_sex(words) is not None):
+    name = nouns[0].surface if len(nouns) == 1 else "".join(t.surface for t in nouns)
+    if not (honorific or proper or name in PERSON_NOUNS
+            or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name)) or refers(words_of(toks))):
         return None
     return as_written(toks) if affixed else name
 

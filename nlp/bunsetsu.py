@@ -21,7 +21,7 @@ class Phrase:
     """A mutable bunsetsu under analysis (``types.Bunsetsu`` is its frozen view)."""
 
     __slots__ = ("index", "tokens", "sentence", "group", "quoted", "role", "head",
-                 "why", "pred", "persons")
+                 "why", "pred", "persons", "key")
 
     def __init__(self, index: int, tokens: list[Token], sentence: int, quoted: bool):
         self.index = index
@@ -36,6 +36,8 @@ class Phrase:
         #: the persons the phrase names, by their canonical names (彼女 -> ("花子",); 二人 ->
         #: ("太郎", "花子")): set by reference.resolve_persons for every phrase naming a person
         self.persons: tuple[str, ...] = ()
+        #: the surface without trailing punctuation (for lexicon look-ups; tokens are fixed once chunked)
+        self.key = _key(tokens)
 
     @property
     def predicate(self) -> Pred:
@@ -57,15 +59,6 @@ class Phrase:
         return "".join(t.surface for t in self.tokens)
 
     @property
-    def key(self) -> str:
-        """The surface without trailing punctuation (for lexicon look-ups)."""
-        toks = self.tokens
-        n = len(toks)
-        while n > 1 and toks[n - 1].pos1 == "補助記号":
-            n -= 1
-        return "".join(t.surface for t in toks[:n])
-
-    @property
     def content(self) -> list[Token]:
         return [t for t in self.tokens if t.pos1 not in FUNCTION_POS]
 
@@ -74,6 +67,13 @@ class Phrase:
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"Phrase({self.index}:{self.surface}/{self.role}->{self.head})"
+
+
+def _key(toks: list[Token]) -> str:
+    n = len(toks)
+    while n > 1 and toks[n - 1].pos1 == "補助記号":
+        n -= 1
+    return "".join(t.surface for t in toks[:n])
 
 
 def split_sentences(tokens: list[Token]) -> list[list[Token]]:

@@ -29,13 +29,21 @@ from .types import Token
 _PREFIXES = frozenset(["お", "ご", "御"])
 _LIGHT = frozenset(["為る", "致す"])  # する, いたす after お + 連用形 or a サ変 noun
 _POLITE_LIGHT = frozenset(["為さる", "致す"])  # なさる, いたす: する after a noun or を
-#: Lemmas whose presence makes a line worth the pass (a fast test).
+#: Lemmas whose presence makes a text worth the pass, and what the text must hold to have one of
+#: them or a prefix (a fast test on the text first: most texts have none).
 _TRIGGERS = frozenset(["為さる", "致す", "いらっしゃる", "召し上がる", "仰る", "御覧"])
+_IN_TEXT = ("お", "ご", "御", "なさ", "為さ", "致", "いたさ", "いたし", "いたす", "いたせ", "いたそ", "いらっしゃ",
+            "召", "めしあが", "覧")
 
 
-def may_apply(tokens: list[Token]) -> bool:
-    """Could :func:`plain` change anything in ``tokens``?"""
-    return any(t.lemma in _TRIGGERS or (t.pos1 == "接頭辞" and t.surface in _PREFIXES) for t in tokens)
+def may_apply(text: str, tokens: list[Token]) -> bool:
+    """Could :func:`plain` change anything in ``tokens`` (of ``text``)?"""
+    if not any(w in text for w in _IN_TEXT):
+        return False
+    for t in tokens:
+        if t.lemma in _TRIGGERS or (t.pos1 == "接頭辞" and t.surface in _PREFIXES):
+            return True
+    return False
 
 
 def plain(tokens: list[Token]) -> list[Token]:

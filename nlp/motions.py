@@ -184,11 +184,9 @@ def _mark_manner(phrases: list[Phrase]) -> None:
 
 def _bodily(verb: str) -> bool:
     """A library verb, or one whose nearest library verb is near in meaning."""
-    if verb in LIBRARY_VERBS:
-        return True
     from . import meaning  # loads the vectors on first use only
 
-    return bool(meaning.nearest(verb, sorted(LIBRARY_VERBS), n=1, floor=meaning.MIN_SIMILARITY))
+    return meaning.bodily(verb, LIBRARY_VERBS)
 
 
 def _merge_light_verbs(phrases: list[Phrase]) -> None:

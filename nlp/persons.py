@@ -33,18 +33,31 @@ def is_person_noun(words: list[Token]) -> bool:
     list (``lexicon.PERSON_NOUNS``), by a person suffix after a noun (``PERSON_SUFFIXES``), or by
     the ending of a one-word noun (駅員, 記者, 店長; not the ``PERSONLESS_NOUNS`` 身長, 定員 nor a
     サ変 noun: 延長, 成長).  A compound is a person when its last noun is."""
-    nouns = [t for t in words if t.pos1 in ("名詞", "代名詞") and not t.is_number and t.pos2 != "数詞"]
-    if not nouns:
+    if not words:
         return False
     last = words[-1]
     if last.pos1 == "接尾辞" and last.surface in PERSON_SUFFIXES and len(words) >= 2:
         before = words[-2]
         return before.pos1 == "名詞" and not before.is_number and before.pos2 != "数詞"
-    noun = nouns[-1]
-    if noun.surface in PERSONLESS_NOUNS:
+    noun = next((t for t in reversed(words) if (t.pos1 == "名詞" or t.pos1 == "代名詞")
+                 and not t.is_number and t.pos2 != "数詞"), None)
+    if noun is None or noun.surface in PERSONLESS_NOUNS:
         return False
     return noun.surface in PERSON_NOUNS or (
         len(noun.surface) >= 2 and noun.surface.endswith(PERSON_ENDINGS) and noun.pos3 != "サ変可能")
+
+
+def refers(words: list[Token]) -> bool:
+    """Do ``words`` name a person beyond a name or the person list: a person noun by its suffix or
+    ending (:func:`is_person_noun`), a group word (:func:`group_size`) or a pronoun (:func:`pronoun_sex`)?"""
+    if not words:
+        return False
+    first = words[0]
+    if first.surface in DEMONSTRATIVES or first.is_number:
+        return group_size(words[1:] if first.surface in DEMONSTRATIVES else words) is not None \
+            or pronoun_sex(words) is not None
+    text = first.surface if len(words) == 1 else "".join(t.surface for t in words)
+    return text in GROUP_WORDS or text in PRONOUNS or is_person_noun(words)
 
 
 def group_size(words: list[Token]) -> int | None:

@@ -23,18 +23,17 @@ names; the analysis says every reading of a pronoun or group in ``notes`` (stder
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from .actors import case_particle, person_name
 from .bunsetsu import Phrase
-from .lexicon import HONORIFICS, PERSON_HEADS, SPEAKERS
+from .lexicon import GROUP_WORDS, HONORIFICS, PERSON_HEADS, PRONOUNS, SPEAKERS
 from .persons import DEMONSTRATIVES, group_size, is_person_noun, name_sex, noun_sex, pronoun_sex, words_of
 from .tokens import is_name
 from .types import Token
 
 
-@dataclass(frozen=True, slots=True)
-class Mention:
+class Mention(NamedTuple):
     """What one phrase says of a person.
 
     ``kind``: ``name`` (a name or person noun), ``pronoun`` (彼, その人, その男) or ``group`` (二人,
@@ -64,14 +63,17 @@ def mention(phrases: list[Phrase], i: int) -> Mention | None:
     prev = _neighbour(phrases, i, -1)
     if prev is not None and prev.key in DEMONSTRATIVES:
         words = [prev.tokens[0], *words]  # あの人: UniDic tags this あの a filler, a phrase of its own
-    bare = words[1:] if words and words[0].surface in DEMONSTRATIVES else words
-    size = group_size(bare)
-    if size is not None:
-        return Mention("group", name, count=size)
-    sex = pronoun_sex(words)
-    if sex is not None:
-        noun = "".join(t.surface for t in bare) if len(words) > len(bare) else ""
-        return Mention("pronoun", "".join(t.surface for t in words), sex, noun="" if noun in PERSON_HEADS else noun)
+    if words and (name in PRONOUNS or name in GROUP_WORDS or words[0].surface in DEMONSTRATIVES
+                  or words[0].is_number):
+        bare = words[1:] if words[0].surface in DEMONSTRATIVES else words
+        size = group_size(bare)
+        if size is not None:
+            return Mention("group", name, count=size)
+        sex = pronoun_sex(words)
+        if sex is not None:
+            noun = "".join(t.surface for t in bare) if len(words) > len(bare) else ""
+            return Mention("pronoun", "".join(t.surface for t in words), sex,
+                           noun="" if noun in PERSON_HEADS else noun)
     if _modifies_person(ph, _neighbour(phrases, i, 1)):
         return None  # 新入社員の山田さん, 係の人: the phrase after it names the person
     if prev is not None and _modifier(prev):
@@ -91,6 +93,8 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
     notes: list[str] = []
     acting: dict[int, list[str]] = {}  # clause group -> the persons its actor phrases named so far
     for i, ph in enumerate(phrases):
+        if ph.role not in _MAY_NAME:
+            continue
         m = mention(phrases, i)
         if m is None:
             continue
@@ -111,6 +115,10 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
         if actor:
             acting.setdefault(ph.group, []).extend(persons)
     return notes
+
+
+#: The roles of a phrase that may name a person (not a predicate, a body part, a time or manner word).
+_MAY_NAME = frozenset(["actor", "object", ""])
 
 
 class _Named:

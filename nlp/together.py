@@ -41,7 +41,7 @@ def together(phrases: list[Phrase], partners: Callable[[list[Phrase], int], list
     """
     out: dict[int, Joined] = {}
     for i, ph in enumerate(phrases):
-        if ph.key not in TOGETHER_WORDS and not _counted_group(ph):
+        if ph.key not in TOGETHER_WORDS and (ph.tokens[0].value is None or not _counted_group(ph)):
             continue
         target = next((k for k in range(i + 1, len(phrases))
                        if phrases[k].group == ph.group and phrases[k].pred), None)

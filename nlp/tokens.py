@@ -6,7 +6,7 @@ from __future__ import annotations
 import unicodedata
 from functools import lru_cache
 
-from . import casual, keigo
+from . import casual, keigo, spoken
 from .numbers import merge_numbers
 from .tagging import as_verb, tag, tagger
 from .types import Token
@@ -98,7 +98,9 @@ def tokenize(norm: str, notes: list[str] | None = None) -> list[Token]:
             tokens.append(Token("\n", "補助記号", "句点", "*", "*", "*", "\n", "\n", "", end, end + 1))
         pos = end + 1
     tokens = merge_numbers(_join_phrasal_verbs(_retag_list_items(tokens)))
-    return keigo.plain(tokens) if keigo.may_apply(tokens) else tokens
+    if keigo.may_apply(norm, tokens):
+        tokens = keigo.plain(tokens)
+    return spoken.plain(tokens) if spoken.may_apply(norm, tokens) else tokens
 
 
 #: noun + に + なる read as one verb (the library's spelling): 横になる is lying down, not "becoming"

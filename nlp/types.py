@@ -11,9 +11,14 @@ from dataclasses import dataclass, field
 CONSTRAINT_METHODS = ("connection", "transition", "composition")
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, eq=False)
 class Token:
-    """One morpheme of the NFKC-normalised text (offsets into that text)."""
+    """One morpheme of the NFKC-normalised text (offsets into that text).
+
+    Never changed once made (a changed token is a new one, ``dataclasses.replace``), but not a
+    frozen dataclass: a text makes and remakes dozens of them, and a frozen dataclass's
+    ``__init__`` costs six times a plain one's (a sixth of the whole analysis).  It stays in the
+    nlp stage."""
 
     surface: str
     pos1: str
