@@ -8,8 +8,9 @@ punctuation.  Formal nouns that make temporal connectives (まま, 前, 後, 間
 """
 from __future__ import annotations
 
-from .lexicon import ASPECT_AUX, AUX_AFTER_TE, AUX_KANJI_MAIN, FORMAL_NOUNS, POLITE_AFTER_RENYOU
+from .lexicon import ASPECT_AUX, AUX_AFTER_TE, AUX_KANJI_MAIN, FORMAL_NOUNS, PERSON_NOUNS, POLITE_AFTER_RENYOU
 from .pred import Pred
+from .tokens import is_name
 from .types import Token
 
 FUNCTION_POS = frozenset(["助詞", "助動詞", "接尾辞", "補助記号", "空白"])
@@ -110,7 +111,7 @@ def chunk(sentences: list[list[Token]]) -> list[Phrase]:
         prev: Token | None = None
         numunit = False  # the current phrase is a number (+ counter)
         for tok in sent:
-            if cur and _starts_phrase(tok, prev, numunit):
+            if cur and (_starts_phrase(tok, prev, numunit) or (prev is sent[0] and _name_then_thing(prev, tok))):
                 phrases.append(Phrase(len(phrases), cur, s_index, quoted))
                 cur, numunit, quoted = [], False, False
             if tok.surface in _OPEN:
@@ -161,6 +162,13 @@ def _is_formal(tok: Token) -> bool:
     if tok.surface == "間":
         return tok.kana == "アイダ"  # 間 (while), not 秒間 / 間 (ma)
     return tok.surface in FORMAL_NOUNS or tok.lemma in FORMAL_NOUNS
+
+
+def _name_then_thing(prev: Token, tok: Token) -> bool:
+    """太郎 + ボール, 花子 + 手 opening a sentence: a person's name and a common noun that is no
+    person (田中 + 先生 is one) are two phrases, the name's particle left out (docs/language.md §8)."""
+    return (tok.pos1 == "名詞" and tok.pos2 == "普通名詞" and prev.pos1 == "名詞" and tok.surface not in PERSON_NOUNS
+            and (prev.pos3 == "人名" or (prev.pos2 == "普通名詞" and is_name(prev.surface))))
 
 
 def _adverbial(tok: Token) -> bool:

@@ -19,11 +19,12 @@ The honorific passive (座られる, 散歩される) needs no rewrite: the verb
 """
 from __future__ import annotations
 
+import re
 from dataclasses import replace
 from functools import lru_cache
 
 from .lexicon import DRINKS, HONORIFIC_VERBS, LIBRARY_VERBS, PREFIXED_HONORIFIC_VERBS
-from .tagging import as_verb, make_token, tagger
+from .tagging import as_verb, tag
 from .types import Token
 
 _PREFIXES = frozenset(["お", "ご", "御"])
@@ -32,13 +33,12 @@ _POLITE_LIGHT = frozenset(["為さる", "致す"])  # なさる, いたす: す�
 #: Lemmas whose presence makes a text worth the pass, and what the text must hold to have one of
 #: them or a prefix (a fast test on the text first: most texts have none).
 _TRIGGERS = frozenset(["為さる", "致す", "いらっしゃる", "召し上がる", "仰る", "御覧"])
-_IN_TEXT = ("お", "ご", "御", "なさ", "為さ", "致", "いたさ", "いたし", "いたす", "いたせ", "いたそ", "いらっしゃ",
-            "召", "めしあが", "覧")
+_IN_TEXT = re.compile("お|ご|御|なさ|為さ|致|いた[さしすせそ]|いらっしゃ|召|めしあが|覧")
 
 
 def may_apply(text: str, tokens: list[Token]) -> bool:
     """Could :func:`plain` change anything in ``tokens`` (of ``text``)?"""
-    if not any(w in text for w in _IN_TEXT):
+    if _IN_TEXT.search(text) is None:
         return False
     for t in tokens:
         if t.lemma in _TRIGGERS or (t.pos1 == "接頭辞" and t.surface in _PREFIXES):
@@ -116,9 +116,9 @@ def _as(verb: Token, covered: list[Token], form: Token) -> Token:
 @lru_cache(maxsize=64)
 def _dictionary_form(verb: str) -> Token:
     """The token of the plain ``verb`` (見る, 来る) in its dictionary form."""
-    words = tagger()(verb)
-    assert words and words[0].feature.pos1 == "動詞", verb  # the lexicon names plain verbs
-    return make_token(words[0].surface, words[0].feature, 0, len(verb))
+    words = tag(verb, 0)
+    assert words and words[0].pos1 == "動詞", verb  # the lexicon names plain verbs
+    return words[0]
 
 
 def _relemma(tokens: list[Token], i: int, before: list[Token]) -> Token:

@@ -247,11 +247,13 @@ STEPPING_VERBS = frozenset(
 #: "object" — with a を-noun (降る takes none: 手を降る is 手を振る; 雨が降る is left alone);
 #: "no object" — without one (振り替える needs one: 予定を振り替える);
 #: "motion" — whenever it is still an action of the actor (経つ is said of time only,
-#: and 時間が経つ is already no action: its subject is not a person).
+#: and 時間が経つ is already no action: its subject is not a person);
+#: "human" — when the actor is no animal (``ANIMALS``): 鳴く is what a dog does, 太郎が鳴く is 泣く.
 HOMOPHONE_TYPOS = {
     "降る": ("振る", "object"),
     "経つ": ("立つ", "motion"),
     "振り替える": ("振り返る", "no object"),
+    "鳴く": ("泣く", "human"),
 }
 
 #: Default delay of しばらくして, in seconds.

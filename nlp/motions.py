@@ -138,7 +138,11 @@ def _bare_objects(phrases: list[Phrase]) -> None:
     """ボール蹴って！ / 手振って / 太郎歩く: casual speech drops を and が; a bare noun right
     before the predicate (no particle, no comma, not a time word (副詞可能) or a
     number) is its actor when it names a person, else its object or body part."""
-    for ph, nxt in zip(phrases, phrases[1:]):
+    for k, (ph, nxt) in enumerate(zip(phrases, phrases[1:])):
+        if (not ph.role and not nxt.pred and nxt.sentence == ph.sentence and _opens_sentence(phrases, k)
+                and not ph.has_comma() and all(t.pos1 != "助詞" for t in ph.tokens) and person_name(ph)):
+            ph.role = "actor"  # 太郎ボールを蹴る: the topic's は left out (docs/language.md §8)
+            continue
         if ph.role or not nxt.pred or nxt.sentence != ph.sentence or ph.has_comma():
             continue
         toks = [t for t in ph.tokens if t.pos1 != "補助記号"]
@@ -151,6 +155,10 @@ def _bare_objects(phrases: list[Phrase]) -> None:
             ph.role = "actor"  # 太郎歩く: が dropped too
         elif not is_name(ph.key):
             ph.role = "body part" if noun_of(ph) in BODY_PARTS else "object"
+
+
+def _opens_sentence(phrases: list[Phrase], k: int) -> bool:
+    return k == 0 or phrases[k - 1].sentence != phrases[k].sentence
 
 
 def _mark_manner(phrases: list[Phrase]) -> None:

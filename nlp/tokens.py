@@ -6,7 +6,7 @@ from __future__ import annotations
 import unicodedata
 from functools import lru_cache
 
-from . import casual, keigo, spoken
+from . import casual, keigo, spelling, spoken
 from .numbers import merge_numbers
 from .tagging import as_verb, tag, tagger
 from .types import Token
@@ -89,7 +89,7 @@ def tokenize(norm: str, notes: list[str] | None = None) -> list[Token]:
     said = [] if notes is None else notes
     for line in norm.split("\n"):
         if line.strip():
-            tagged = _tag_line(line, pos)
+            tagged = spelling.repair(line, pos, _tag_line(line, pos), said)
             if casual.may_apply(line):
                 tagged = casual.repair(tagged, said)
             tokens.extend(unwrap_direction(tagged) if "(" in line else tagged)
