@@ -5,6 +5,7 @@ repetition (:meth:`variants.Variants.take`); a looping clip repeats itself inste
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Generic
 
 from text2anim.nlp.types import MotionSpec
@@ -24,8 +25,10 @@ class Picker(Generic[C]):
         repeats: for a repeated motion whose clip does not loop, the clip of each repetition.
     """
 
-    def __init__(self, source: ClipSource[C]):
+    def __init__(self, source: ClipSource[C], together: Mapping[int, tuple[int, ...]] | None = None):
+        """``together``: motion id -> the motions performed together with it (:func:`together.together`)."""
         self.source = source
+        self.together = together or {}
         self.chosen: dict[int, C] = {}
         self.mirrored: set[int] = set()
         self.repeats: dict[int, tuple[Pick[C], ...]] = {}
@@ -37,13 +40,26 @@ class Picker(Generic[C]):
             raise ScheduleError(f"the motion database has {spec.verb} but no clip of it fits"
                                 + (f" the {spec.body_part}" if spec.body_part else ""))
         n = max(1, int(spec.repeat))
-        picks = self.variants.take(hits, n)
+        picks = self._as_long_as_mates(spec.id, self.variants.take(hits, n))
         self.chosen[spec.id] = picks[0].clip
         if picks[0].mirrored:
             self.mirrored.add(spec.id)
         if n > 1 and not picks[0].clip.cyclic:
             self.repeats[spec.id] = tuple(picks)
         return timing(picks[0].clip)
+
+    def _as_long_as_mates(self, mid: int, picks: list[Pick[C]]) -> list[Pick[C]]:
+        """A variant that does not loop and lasts another time than the clip of a motion performed
+        together with ``mid`` (chosen already) gives way to that clip, mirrored (:mod:`together`)."""
+        mate = next((m for m in self.together.get(mid, ()) if m in self.chosen), None)
+        if mate is None or picks[0].clip.cyclic:
+            return picks
+        theirs = list(self.repeats.get(mate, ())) or [Pick(self.chosen[mate], mate in self.mirrored)]
+        if len(theirs) == len(picks) and all(
+                abs(a.clip.duration - b.clip.duration) < 1e-9 for a, b in zip(theirs, picks)):
+            return picks
+        return [Pick(p.clip, mirrored=not p.mirrored and p.clip.body_part is None) for p in theirs][:len(picks)] \
+            if len(theirs) == len(picks) else picks
 
     def take(self, spec: MotionSpec, clip: C) -> ClipTiming:
         """Record ``clip`` as ``spec``'s, chosen elsewhere (:meth:`postures.Arrangement.finder`)."""
