@@ -94,6 +94,8 @@ class Animation:
             "actors": whole,
             "skipped": list(self.planned.skipped),
             **({"fallbacks": [f.to_dict() for f in self.planned.fallbacks]} if self.planned.fallbacks else {}),
+            # what the text was read as where it differs from what is written (typos, 彼女 -> 花子)
+            **({"notes": list(self.planned.analysis.notes)} if self.planned.analysis.notes else {}),
             "warnings": list(self.warnings),
         }
 

@@ -173,7 +173,7 @@ class _Named:
         """(the persons group ``m`` names, in the order they were named, why) or ((), "")."""
         if len(self.order) < max(2, m.count):
             return (), ""
-        if not m.count:
+        if not m.count or m.count == len(self.order):
             return tuple(self.order), "the persons named so far"
         last = set(self.recent[-m.count:])
         return tuple(p for p in self.order if p in last), f"the last {m.count} persons named"
