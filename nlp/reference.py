@@ -118,7 +118,7 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
 
 
 #: The roles of a phrase that may name a person (not a predicate, a body part, a time or manner word).
-_MAY_NAME = frozenset(["actor", "object", ""])
+_MAY_NAME = frozenset(["actor", "object", "", "number"])  # number: 三人で
 
 
 class _Named:

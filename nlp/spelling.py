@@ -5,7 +5,7 @@ Run on each line's tokens before :mod:`casual` (whose わ typed for は must not
 
 - **okurigana**: a verb's kanji followed by kana UniDic reads as something else (歩るいて: 歩 + る +
   いて; 座わって: 座 + わ + って) is tagged again with one kana after the kanji left out (歩いて),
-  or with the one a user most often forgets put in (叩た -> 叩いた, 走て -> 走って, 転だ -> 転んだ);
+  or with the one a user most often forgets put in (叩た -> 叩いた, 走て -> 走って);
   the repair stands when the kanji then opens a verb.  A kanji that opens a verb but that no such
   repair reads is said to be unread (``could not read 歩るて``), never dropped in silence;
 - **drawn-out verbs**: ー or a small vowel after a verb's kana (おどろー, すわるぅ) is read as the
