@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .lexicon import LIBRARY_VERBS
+from .lexicon import CONNECTIVES, LIBRARY_VERBS
 from .tagging import as_verb
 from .types import Token
 
@@ -98,8 +98,8 @@ def _command(tokens: list[Token], i: int, before: list[Token]) -> Token | None:
     if tok.pos1 != "名詞" or tok.is_number or not (_ends_sentence(tokens, i) or softened):
         return None
     prefix = before[-1] if before and before[-1].pos1 == "接頭辞" else None
-    opener = before[-2:-1] if prefix is not None else before[-1:]
-    if opener and not _opens(opener[0]):
+    head = before[:-1] if prefix is not None else before
+    if head and not (_opens(head[-1]) or _after_connective(head)):
         return None  # 太郎のジャンプ。: a noun of the sentence, not a command
     if tok.pos3 == "サ変可能" and not softened:
         whole = (prefix.surface if prefix is not None else "") + tok.lemma + "する"
@@ -120,6 +120,11 @@ def _command(tokens: list[Token], i: int, before: list[Token]) -> Token | None:
     return replace(made, pos1="動詞", pos2="一般", pos3="*", cform="命令形")
 
 
+def _after_connective(before: list[Token]) -> bool:
+    """The tokens before end with a connective (最後にお辞儀, そしてジャンプ！: ``lexicon.CONNECTIVES``)."""
+    return any("".join(t.surface for t in before[-n:]) in CONNECTIVES for n in (1, 2, 3))
+
+
 def _softened(tokens: list[Token], i: int) -> bool:
     """A softening particle (``SOFTENERS``) ends the sentence right after ``tokens[i]``: 座りな。"""
     return i + 1 < len(tokens) and tokens[i + 1].surface in SOFTENERS and _ends_sentence(tokens, i + 1)
@@ -127,7 +132,7 @@ def _softened(tokens: list[Token], i: int) -> bool:
 
 def _opens(tok: Token) -> bool:
     """Can a command follow ``tok`` in its sentence: a mark (、・) -), a number (1.), はい, an adverb,
-    the を of its object (ボールをキャッチ！)?"""
+    the を of its object (ボールをキャッチ！)?  (Or a connective: :func:`_after_connective`.)"""
     return tok.pos1 in ("補助記号", "感動詞", "記号", "副詞") or tok.is_number or tok.surface == "を"
 
 

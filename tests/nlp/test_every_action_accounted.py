@@ -38,8 +38,9 @@ def _stem_of_a_verb(kanji: str) -> bool:
 
 
 def looks_like_an_action(text: str) -> list[tuple[str, tuple[int, int]]]:
-    """(word, span in ``text``) of every verb the dictionary reads in ``text``, and every one-kanji
-    noun that is a verb's stem written with kana right after it (歩るいて, 座わって)."""
+    """(word, span in ``text``) of every verb the dictionary reads in ``text``, every one-kanji noun
+    that is a verb's stem written with kana right after it (歩るいて, 座わって), and every action noun
+    ending its sentence without する (最後にお辞儀, ジャンプ！)."""
     norm, offsets = normalize(text)
     words = tag(norm, 0)
     out = []
@@ -49,7 +50,8 @@ def looks_like_an_action(text: str) -> list[tuple[str, tuple[int, int]]]:
                     and nxt is not None and nxt.start == w.end and "\u3041" <= nxt.surface[0] <= "\u309f"
                     and nxt.pos2 not in ("格助詞", "係助詞") and nxt.lemma not in ("だ", "です")
                     and _stem_of_a_verb(w.surface))  # 急に: a noun and the copula's に
-        if w.pos1 == "動詞" or misspelt:
+        command = (w.pos1 == "名詞" and w.pos3 == "サ変可能" and (nxt is None or nxt.pos2 == "句点"))
+        if w.pos1 == "動詞" or misspelt or command:
             out.append((w.surface, offsets.span(w.start, w.end)))
     return out
 
@@ -83,14 +85,16 @@ def test_every_word_that_looks_like_an_action_is_accounted_for_in_every_corpus()
 
 
 @pytest.mark.parametrize("text, word", [
+    ("1. 座る\n2. 最後にお辞儀", "辞儀"),  # a command without a verb ending: a motion
     ("太郎は歩るいて、ころぶ。", "歩"),  # repaired: a walk, said in a note
     ("太郎は歩るて、転ぶ。", "歩"),  # not repaired: said to be unread
     ("花子は手を叩た。", "叩"),
 ])
-def test_the_check_sees_misspelt_verbs_and_the_analysis_says_them(text, word):
+def test_the_check_sees_misspelt_verbs_and_commands_and_the_analysis_reads_them(text, word):
     assert word in [w[0] for w in looks_like_an_action(text)]
     assert unaccounted(text) == []
-    assert any(word in n for n in analyze(text).notes)
+    analysis = analyze(text)
+    assert any(word in n for n in analysis.notes) or any(word in m.verb for m in analysis.motions)
 
 
 def test_a_word_dropped_in_silence_is_caught():
