@@ -14,10 +14,11 @@ from .wording import Terms
 
 if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never imports it
     from text2anim.core.motion import Motion
+    from text2anim.scene import Staging
     from text2anim.scheduler import TimeTable
     from text2anim.synthesis.result import Result
 
-    from .pipeline import Planned
+    from .planning import Planned
 
 DEFAULT_ACTOR = "default"
 
@@ -36,6 +37,7 @@ class Animation:
     blend: str = "optimal"
     smoothness: float = 0.5
     synthesis_tracks: tuple = ()  # the synthesis input (source clips per element), for the report's join figures
+    staging: Staging | None = None  # where the actors stood (the scene stage)
 
     @property
     def text(self) -> str:
