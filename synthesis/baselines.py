@@ -28,10 +28,10 @@ from dataclasses import replace
 import numpy as np
 
 from text2anim.core.contacts import detect_contacts
+from text2anim.core.ground import match, root_headings
 from text2anim.core.motion import Motion
 
 from .assemble import assemble
-from .join.align import match, root_headings
 from .join.apply import Join, apply_join
 from .join.commit import commit
 from .join.gait import steps

@@ -5,10 +5,11 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation, Slerp
 
-from text2anim.synthesis.join.align import Rigid, align_through_foot, headings, match, wrap_angle
+from text2anim.synthesis.join.align import align_through_foot
 from text2anim.synthesis.join.blend import blend, ramp, sample, slerp
 from text2anim.synthesis.join.composition import hermite_sway
 from text2anim.core.contacts import FootContacts
+from text2anim.core.ground import Rigid, headings, match, wrap_angle
 from text2anim.synthesis.join.footlock import plan_locks, planted_targets
 from text2anim.core.motion import Motion
 from text2anim.synthesis.tracks import Track
