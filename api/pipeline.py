@@ -4,12 +4,13 @@ Like spaCy's pipeline over one document, each stage takes the work so far and re
 part filled in; :func:`text2anim.animate` runs them all, :func:`text2anim.plan` the first, and
 ``text2anim compare`` runs them up to the tracks once, then the rest once per joining method:
 
-============ =============================================================================
-``plan``     analyse, settle the verbs the database lacks, schedule (:func:`plan_text`)
-``stage``    the scene: where each actor stands (:func:`scene.stage`)
-``tracks``   each row's clip loaded from the database (:func:`text2anim.tracks.build_tracks`)
+============= =============================================================================
+``plan``      analyse, settle the verbs the database lacks, schedule (:func:`plan_text`)
+``staging``   where each actor starts, what each row is directed at (:func:`scene.stage`)
+``tracks``    each row's clip loaded from the database (:func:`text2anim.tracks.build_tracks`)
 ``synthesis`` the motions, by the asked joiner (:func:`synthesis.registry.synthesize_with`)
-============ =============================================================================
+``scene``     the actors moved where the text wants them, the things placed (:func:`scene.place`)
+============= =============================================================================
 
 This module only calls the stages in order; :class:`Planned` and :func:`plan_text` (the first stage)
 are :mod:`text2anim.planning`'s, named here too.
@@ -26,7 +27,7 @@ from . import limits
 from .planning import Planned, plan_text
 
 if TYPE_CHECKING:
-    from text2anim.scene import Staging
+    from text2anim.scene import Scene, Staging
     from text2anim.synthesis.result import Result
 
 
@@ -50,29 +51,49 @@ class Request:
 class Work:
     """One text on its way through :data:`STAGES`: each stage fills its own field.
 
-    ``db`` is needed by ``plan`` and ``tracks`` only (the caller may close it after them).
+    ``db`` is needed by ``plan``, ``staging`` and ``tracks`` only (the caller may close it after them).
     """
 
     request: Request
     db: MotionDB | None = None
+    timing: tuple = ()  # edits of the time table the staging asked for (two people's contact instants met)
     planned: Planned | None = None
     staging: Staging | None = None
     tracks: tuple = ()
     result: Result | None = None
+    scene: Scene | None = None
 
 
 def _plan_stage(work: Work) -> Work:
     r = work.request
     assert work.db is not None
     return replace(work, planned=plan_text(r.text, work.db, fps=r.fps, skip_unknown=r.skip_unknown,
-                                           fallback=r.fallback, max_seconds=r.max_seconds, edits=r.edits))
+                                           fallback=r.fallback, max_seconds=r.max_seconds,
+                                           edits=r.edits + work.timing))
 
 
-def _scene_stage(work: Work) -> Work:
-    from text2anim.scene import stage
+def _staging_stage(work: Work) -> Work:
+    """The staging; first, when two people's contact instants do not meet, the text planned again with the
+    later one started later (:func:`scene.sync_shifts`, kept as edits of the time table)."""
+    from text2anim.scene import stage, sync_shifts
 
-    assert work.planned is not None
-    return replace(work, staging=stage(work.planned))
+    from .edits import Edit, apply_edits, occurrences
+    from .tracks import contact_instants
+
+    assert work.planned is not None and work.db is not None
+    planned = work.planned
+    shifts = sync_shifts(planned.table.elements, planned.analysis.constraints,
+                         contact_instants(planned, work.db, work.request.fps))
+    if shifts:
+        from text2anim import nlp
+
+        names = {i: key for key, i in occurrences(apply_edits(nlp.analyze(work.request.text),
+                                                              work.request.edits)).items()}
+        edits = tuple(Edit(names[i][0], names[i][1], shift=s) for i, s in sorted(shifts.items()) if i in names)
+        work = _plan_stage(replace(work, timing=work.timing + edits))
+        assert work.planned is not None
+        planned = work.planned
+    return replace(work, staging=stage(planned))
 
 
 def _tracks_stage(work: Work) -> Work:
@@ -90,9 +111,20 @@ def _synthesis_stage(work: Work) -> Work:
                                                 lock_feet=r.lock_feet, sway=r.sway))
 
 
+def _place_stage(work: Work) -> Work:
+    from text2anim.scene import place
+
+    from .placed import moved_result, played_rows
+
+    assert work.planned is not None and work.result is not None and work.staging is not None
+    scene = place(work.staging, played_rows(work.planned.table, work.result), work.result.motions, work.request.fps)
+    return replace(work, scene=scene, result=moved_result(work.result, scene.rigids))
+
+
 #: The stages in order: (name, stage). Each takes the :class:`Work` so far and returns it with its part.
 STAGES: tuple[tuple[str, Callable[[Work], Work]], ...] = (
-    ("plan", _plan_stage), ("stage", _scene_stage), ("tracks", _tracks_stage), ("synthesis", _synthesis_stage),
+    ("plan", _plan_stage), ("staging", _staging_stage), ("tracks", _tracks_stage),
+    ("synthesis", _synthesis_stage), ("scene", _place_stage),
 )
 NAMES = tuple(name for name, _ in STAGES)
 
@@ -113,7 +145,7 @@ def animation(work: Work) -> Any:
 
     r = work.request
     assert work.planned is not None and work.result is not None
-    return Animation(work.planned, work.result, r.fps, r.blend, r.smoothness, work.tracks, work.staging)
+    return Animation(work.planned, work.result, r.fps, r.blend, r.smoothness, work.tracks, work.staging, work.scene)
 
 
 __all__ = ["NAMES", "STAGES", "Planned", "Request", "Work", "animation", "plan_text", "run"]

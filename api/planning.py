@@ -56,6 +56,7 @@ def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str
 
     analysis = apply_edits(nlp.analyze(text), edits)
     limits.check_analysis(analysis, max_seconds)
+    analysis = _cast(analysis, db)
     unknown = unknown_motions(analysis, db)
     skipped: tuple[str, ...] = ()
     subs: tuple = ()
@@ -72,3 +73,15 @@ def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str
     done = schedule(analysis, DatabaseClips(db), fps, check=lambda table: limits.check_table(table, fps, max_seconds))
     return Planned(done.analysis, done.table, done.clips, done.fillers, done.mirrored, done.repeats,
                    skipped=skipped, fallbacks=subs)
+
+
+def _cast(analysis, db: MotionDB):
+    """:func:`scene.cast`: a person who is only a target waits in the scene; not when ``db`` has no idle
+    (a database of the user's own without 待つ clips: they are left out, as before)."""
+    from text2anim.scene import cast
+
+    casted = cast(analysis)
+    if casted is analysis:
+        return analysis
+    added = {m.id for m in casted.motions} - {m.id for m in analysis.motions}
+    return analysis if set(unknown_motions(casted, db)) & added else casted

@@ -93,4 +93,30 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float, staging: Staging | 
     return tracks
 
 
-__all__ = ["IDLE_VERB", "MIRRORED", "ClipLoader", "build_tracks"]
+def contact_instants(planned: Planned, db: MotionDB, fps: float) -> Callable:
+    """``instant(row) -> seconds``: when a row's clip makes contact with another person, on the animation's
+    clock (:mod:`scene.timing`): the hand (both hands for a hug or a taking) furthest out in front of the
+    hips within the clip's core (:func:`scene.bodies.furthest`), the clip read as the row plays it."""
+    from text2anim.scene import bodies
+
+    clips = ClipLoader(db, fps)
+
+    def instant(row) -> float | None:
+        info = planned.clips.get(row.id)
+        if info is None:
+            return None
+        m = clips.get(info, row.id in planned.mirrored).motion
+        both = row.verb in BOTH_HANDS
+        side = "left" if row.id in planned.mirrored else "right"
+        point = bodies.hands(m) if both else bodies.hand(m, side)
+        lo, hi = (int(round(t * m.fps)) for t in info.core)
+        return row.start + bodies.furthest(point, m, lo, hi + 1) / m.fps / row.speed
+
+    return instant
+
+
+#: Contact verbs done with both hands (the instant is when both reach furthest).
+BOTH_HANDS = frozenset("受け取る 貰う 抱き合う 抱き締める".split())
+
+
+__all__ = ["BOTH_HANDS", "IDLE_VERB", "MIRRORED", "ClipLoader", "build_tracks", "contact_instants"]

@@ -49,7 +49,7 @@ def analyze(text: str) -> Analysis:
                    p.duration, offsets.span(p.start, p.end),
                    hold=p.ending == "mama", reading=p.reading, delay=p.delay,
                    written=p.written or p.verb, target=p.target, target_role=p.target_role,
-                   target_side=p.target_side)
+                   target_side=p.target_side, target_person=p.target_person)
         for p in motions
     ]
     constraints = list(constraints)

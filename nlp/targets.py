@@ -274,7 +274,8 @@ def add_counterparts(specs: list[MotionSpec], constraints: list[Constraint]) -> 
             continue
         role = "source" if cp[2] == "recipient" else "recipient"
         other = replace(spec, id=next_id, actor=spec.target, verb=verb, written=verb, reading=reading,
-                        target=spec.actor, target_role=role, target_side=None, repeat=1, delay=None)
+                        target=spec.actor, target_role=role, target_side=None, target_person=True, repeat=1,
+                        delay=None)
         for k, c in enumerate(constraints):
             if c.first == spec.id and _actor_of(specs, c.second) == spec.target:
                 constraints[k] = replace(c, first=next_id)

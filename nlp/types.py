@@ -78,6 +78,7 @@ class MotionSpec:
     target: str | None = None
     target_role: str | None = None
     target_side: str | None = None
+    target_person: bool = False  # the target is a person (a name, a person noun), not a thing or a place
 
     def to_dict(self, extra: bool = False) -> dict:
         d = {
@@ -89,7 +90,8 @@ class MotionSpec:
         if extra or self.delay is not None:
             d["delay"] = self.delay  # the §5 object gains it only when the text opens with one
         if extra or self.target is not None:  # §8: only when the motion is directed at someone or something
-            d.update(target=self.target, target_role=self.target_role, target_side=self.target_side)
+            d.update(target=self.target, target_role=self.target_role, target_side=self.target_side,
+                     target_person=self.target_person)
         if extra:
             d["hold"] = self.hold
             d["reading"] = self.reading
