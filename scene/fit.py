@@ -46,49 +46,64 @@ def fit(motions: dict[str | None, Motion], rels: Sequence[Relation]) -> tuple[di
     return rigids, [measure(motions, rigids, rel) for rel in rels]
 
 
-def _at(motion: Motion, rigid: Rigid, time: float) -> tuple[np.ndarray, float]:
-    """The hips' floor point ``(3,)`` and heading of ``motion`` at ``time`` s after ``rigid``."""
+def _at(motion: Motion, rigid: Rigid, time: float, span: tuple[float, float] | None = None) -> tuple[np.ndarray, float]:
+    """The hips' floor point ``(3,)`` of ``motion`` at ``time`` s after ``rigid``, and its heading then (or
+    its mean heading over ``span`` s: a throw's wind-up turns the body away and back)."""
     path, heading = hips_path(motion)
     f = int(np.clip(round(time * motion.fps), 0, len(path) - 1))
-    return rigid.apply_points(path[f]), float(heading[f] + rigid.yaw)
+    h = float(heading[f])
+    if span is not None:
+        lo, hi = (int(np.clip(round(t * motion.fps), 0, len(path) - 1)) for t in span)
+        h = float(np.arctan2(np.sin(heading[lo:hi + 1]).mean(), np.cos(heading[lo:hi + 1]).mean()))
+    return rigid.apply_points(path[f]), h + rigid.yaw
 
 
-def _move_to(motion: Motion, time: float, point: np.ndarray, heading: float) -> Rigid:
-    """The move that puts ``motion``'s hips over ``point`` facing ``heading`` at ``time``."""
-    p, h = _at(motion, Rigid(), time)
-    return match(p, h, point, heading)
+def _actor_at(motions, rigids, rel: Relation) -> tuple[np.ndarray, float]:
+    """The relation's placed actor's hips and facing at its time (its own ``facing`` where set)."""
+    rigid = rigids[rel.actor]
+    p, h = _at(motions[rel.actor], rigid, rel.time, rel.span)
+    return p, (h if rel.facing is None else rel.facing + rigid.yaw)
+
+
+def _move_to(motion: Motion, rel: Relation, point: np.ndarray, heading: float, own: float | None = None) -> Rigid:
+    """The move that puts ``motion``'s hips over ``point`` at the relation's time, facing ``heading`` (over
+    its span; ``own``: the facing to turn, where the motion's own heading is not it)."""
+    p, h = _at(motion, Rigid(), rel.time, rel.span)
+    return match(p, h if own is None else own, point, heading)
 
 
 def _place_other(motions, rigids, rel: Relation) -> Rigid:
     """``rel.other`` placed relative to the placed ``rel.actor``."""
-    p, h = _at(motions[rel.actor], rigids[rel.actor], rel.time)
+    p, h = _actor_at(motions, rigids, rel)
     fwd, left = forward(h), forward(h + np.pi / 2)
+    other = motions[rel.other]
     if rel.kind == "face":
-        return _move_to(motions[rel.other], rel.time, p + rel.distance * fwd, h + np.pi)
+        return _move_to(other, rel, p + rel.distance * fwd, h + np.pi)
     if rel.kind == "behind":  # the actor behind the other: the other ahead, facing the same way
-        return _move_to(motions[rel.other], rel.time, p + rel.distance * fwd, h)
+        return _move_to(other, rel, p + rel.distance * fwd, h)
     if rel.kind == "beside":  # the actor on the other's left: the other on the actor's right
-        return _move_to(motions[rel.other], rel.time, p - rel.distance * left, h)
-    return _move_to(motions[rel.other], rel.time, p - rel.distance * fwd, h)  # away: the other behind, watching
+        return _move_to(other, rel, p - rel.distance * left, h)
+    return _move_to(other, rel, p - rel.distance * fwd, h)  # away: the other behind, watching
 
 
 def _place_actor(motions, rigids, rel: Relation) -> Rigid:
     """``rel.actor`` placed relative to the placed ``rel.other``."""
-    p, h = _at(motions[rel.other], rigids[rel.other], rel.time)
+    p, h = _at(motions[rel.other], rigids[rel.other], rel.time, rel.span)
     fwd, left = forward(h), forward(h + np.pi / 2)
+    mine, own = motions[rel.actor], rel.facing
     if rel.kind == "face":
-        return _move_to(motions[rel.actor], rel.time, p + rel.distance * fwd, h + np.pi)
+        return _move_to(mine, rel, p + rel.distance * fwd, h + np.pi, own)
     if rel.kind == "behind":
-        return _move_to(motions[rel.actor], rel.time, p - rel.distance * fwd, h)
+        return _move_to(mine, rel, p - rel.distance * fwd, h, own)
     if rel.kind == "beside":
-        return _move_to(motions[rel.actor], rel.time, p + rel.distance * left, h)
-    return _move_to(motions[rel.actor], rel.time, p + rel.distance * fwd, h)
+        return _move_to(mine, rel, p + rel.distance * left, h, own)
+    return _move_to(mine, rel, p + rel.distance * fwd, h, own)
 
 
 def measure(motions, rigids, rel: Relation) -> Met:
     """The hips' distance and the actor's heading error for ``rel`` as placed."""
-    pa, ha = _at(motions[rel.actor], rigids[rel.actor], rel.time)
-    pb, hb = _at(motions[rel.other], rigids[rel.other], rel.time)
+    pa, ha = _actor_at(motions, rigids, rel)
+    pb, hb = _at(motions[rel.other], rigids[rel.other], rel.time, rel.span)
     if rel.kind == "face":
         want = heading_to(pa, pb)
     elif rel.kind == "away":
