@@ -2,10 +2,12 @@
 
 Each actor's motion was synthesised on its own track from its default spot; moving all of it by a yaw and a
 ground translation changes nothing of the motion itself (feet, joins, quality figures stay as they are) and
-puts it where the text wants it. The relations are taken in time order: the first places its actor where
-the default staging put them and the other relative to them; a later relation places whichever of its two
-actors is still free, relative to the placed one; a relation between two actors already placed is only
-measured (:class:`~scene.types.Met`). Actors no relation places keep their default spot, moved aside
+puts it where the text wants it. The relations that place a body (a goal, a source, a partner, a patient,
+a recipient) are taken first, then those that only turn it (an addressee), each group in time order: the
+first places its actor where the default staging put them and the other relative to them; a later relation
+places whichever of its two actors is still free, relative to the placed one; a relation between two
+actors already placed is only measured (:class:`~scene.types.Met`). So 太郎は花子に手を振った。それから
+花子に近づいた。 puts 花子 where his walk ends, and his wave, earlier, is towards her there. Actors no relation places keep their default spot, moved aside
 (:data:`ASIDE`) while they would stand within :data:`CLEARANCE` of a placed actor.
 """
 from __future__ import annotations
@@ -30,7 +32,7 @@ def fit(motions: dict[str | None, Motion], rels: Sequence[Relation]) -> tuple[di
     """One :class:`Rigid` per actor of ``motions`` (identity for those no relation moves) and how well each
     relation holds after all moves."""
     rigids: dict[str | None, Rigid] = {}
-    for rel in rels:
+    for rel in sorted(rels, key=lambda r: (r.role == "addressee", r.time, r.element)):
         a, b = rel.actor, rel.other
         if a in rigids and b in rigids:
             continue
