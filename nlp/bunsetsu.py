@@ -166,7 +166,7 @@ def _is_formal(tok: Token) -> bool:
 
 def _name_then_thing(prev: Token, tok: Token) -> bool:
     """太郎 + ボール, 花子 + 手 opening a sentence: a person's name and a common noun that is no
-    person (田中 + 先生 is one) are two phrases, the name's particle left out (docs/language.md §8)."""
+    person (田中 + 先生 is one) are two phrases, the name's particle left out (docs/language.md §9)."""
     return (tok.pos1 == "名詞" and tok.pos2 == "普通名詞" and prev.pos1 == "名詞" and tok.surface not in PERSON_NOUNS
             and (prev.pos3 == "人名" or (prev.pos2 == "普通名詞" and is_name(prev.surface))))
 

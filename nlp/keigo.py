@@ -1,4 +1,4 @@
-"""Keigo: honorific and humble forms read as the plain action (docs/language.md §8).
+"""Keigo: honorific and humble forms read as the plain action (docs/language.md §9).
 
 Run on the tokens of the text before chunking, it rewrites each form into tokens the rest of the
 analyzer reads as it reads plain text, the offsets kept (the motion's span is what was written):

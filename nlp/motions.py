@@ -20,6 +20,7 @@ from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
 from .reference import resolve_persons
 from .casual import recover_homophone
+from .targets import attach_targets
 from .tokens import is_name
 
 _SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
@@ -65,6 +66,7 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     cues = _attach_modifiers(phrases, values)
     for pred in preds:
         recover_homophone(pred)
+    attach_targets(phrases)
     for ph in phrases:
         if ph.pred:
             ph.role = "motion" if ph.pred.motion else f"not a motion: {ph.pred.reason}"
@@ -141,7 +143,7 @@ def _bare_objects(phrases: list[Phrase]) -> None:
     for k, (ph, nxt) in enumerate(zip(phrases, phrases[1:])):
         if (not ph.role and not nxt.pred and nxt.sentence == ph.sentence and _opens_sentence(phrases, k)
                 and not ph.has_comma() and all(t.pos1 != "助詞" for t in ph.tokens) and person_name(ph)):
-            ph.role = "actor"  # 太郎ボールを蹴る: the topic's は left out (docs/language.md §8)
+            ph.role = "actor"  # 太郎ボールを蹴る: the topic's は left out (docs/language.md §9)
             continue
         if ph.role or not nxt.pred or nxt.sentence != ph.sentence or ph.has_comma():
             continue

@@ -1,5 +1,5 @@
 """What the words of a noun phrase say of a person: a person noun beyond the list, a pronoun,
-a group, and whether it names a man or a woman (docs/language.md §8).
+a group, and whether it names a man or a woman (docs/language.md §9).
 
 These are word-level readings of one phrase; :mod:`reference` reads them across the text
 (who 彼 is).  ``words`` below are a phrase's content tokens: prefixes, nouns, pronouns and

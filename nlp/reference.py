@@ -1,4 +1,4 @@
-"""Reference: whom each phrase naming a person refers to, across sentences (docs/language.md §8).
+"""Reference: whom each phrase naming a person refers to, across sentences (docs/language.md §9).
 
 The text is read in order and every person it names (a name, a person noun, a speaker label: 花子,
 店長, 係の人, おまわりさん) is remembered, the most recently named last, whatever the phrase's

@@ -1,4 +1,4 @@
-"""Misspelt verbs read as the verb meant, or said to be unread (docs/language.md §8).
+"""Misspelt verbs read as the verb meant, or said to be unread (docs/language.md §9).
 
 Run on each line's tokens before :mod:`casual` (whose わ typed for は must not read 座わって as
 座は), it repairs what UniDic cannot tag as a verb and says every repair in ``notes``:

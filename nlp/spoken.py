@@ -1,4 +1,4 @@
-"""Spoken and terse writing read as the action it asks for (docs/language.md §8).
+"""Spoken and terse writing read as the action it asks for (docs/language.md §9).
 
 Run on the tokens of the text before chunking (after :mod:`keigo`), the offsets kept:
 

@@ -1,4 +1,4 @@
-"""Acting together: 一緒に, 揃って, 二人で, みんなで (docs/language.md §8).
+"""Acting together: 一緒に, 揃って, 二人で, みんなで (docs/language.md §9).
 
 A together word (``lexicon.TOGETHER_WORDS``) makes more persons perform the motion it modifies:
 the persons joined to it by と (太郎は花子と一緒に歩く: 花子 walks too; 友達と二人で), or, with no

@@ -1,6 +1,6 @@
 """Co-actors of one motion perform it together, for the same time.
 
-太郎と花子が踊る, and 太郎は花子と一緒に踊る (docs/language.md §8), give each actor a motion of the same
+太郎と花子が踊る, and 太郎は花子と一緒に踊る (docs/language.md §9), give each actor a motion of the same
 words of the text: the analysis copies the motion for every co-actor, with the same span and verb.
 The picker gives each a variant of its own (:mod:`variants`: another capture, or the same mirrored),
 and the variants of a looping clip differ in length (the captured dances: 6.0 and 3.2 s), so 花子

@@ -1,6 +1,6 @@
 """The story corpus (issue 39): stories, keigo, instructions, spoken text, typos and actors together,
 through the real analyzer and the real planner (the built-in library), and the rules behind them
-(docs/language.md §8)."""
+(docs/language.md §9)."""
 from __future__ import annotations
 
 import json
