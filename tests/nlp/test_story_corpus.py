@@ -111,7 +111,8 @@ def test_a_person_suffix_in_an_object_is_no_actor():
 
 @pytest.mark.parametrize("text, actors", [
     ("太郎は花子と一緒に歩く。", ["太郎", "花子"]),
-    ("太郎は花子と歩く。", ["太郎"]),  # と without 一緒に: 花子 is whom he walks with (a target)
+    ("太郎は花子と歩く。", ["太郎", "花子"]),  # と alone: 花子 is his partner, who acts too (§8)
+    ("太郎は花子に会った。彼女と握手した。", ["太郎", "太郎", "花子"]),  # the partner 彼女 is 花子
     ("太郎と花子は一緒に歩く。", ["太郎", "花子"]),
     ("花子は友達と二人でジャンプした。", ["花子", "友達"]),
     ("みんなで踊ろう。", [None]),
