@@ -8,9 +8,11 @@ punctuation.  Formal nouns that make temporal connectives (まま, 前, 後, 間
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 from .lexicon import ASPECT_AUX, AUX_AFTER_TE, AUX_KANJI_MAIN, FORMAL_NOUNS, PERSON_NOUNS, POLITE_AFTER_RENYOU
 from .pred import Pred
-from .tokens import is_name
+from .tagging import tag
 from .types import Token
 
 FUNCTION_POS = frozenset(["助詞", "助動詞", "接尾辞", "補助記号", "空白"])
@@ -110,8 +112,9 @@ def chunk(sentences: list[list[Token]]) -> list[Phrase]:
         quoted = False  # the current phrase's content lies inside 「…」
         prev: Token | None = None
         numunit = False  # the current phrase is a number (+ counter)
-        for tok in sent:
-            if cur and (_starts_phrase(tok, prev, numunit) or (prev is sent[0] and _name_then_thing(prev, tok))):
+        for k, tok in enumerate(sent):
+            if cur and (_starts_phrase(tok, prev, numunit) or (
+                    k == 1 and _name_then_thing(prev, tok, sent[2] if len(sent) > 2 else None))):
                 phrases.append(Phrase(len(phrases), cur, s_index, quoted))
                 cur, numunit, quoted = [], False, False
             if tok.surface in _OPEN:
@@ -164,11 +167,20 @@ def _is_formal(tok: Token) -> bool:
     return tok.surface in FORMAL_NOUNS or tok.lemma in FORMAL_NOUNS
 
 
-def _name_then_thing(prev: Token, tok: Token) -> bool:
-    """太郎 + ボール, 花子 + 手 opening a sentence: a person's name and a common noun that is no
-    person (田中 + 先生 is one) are two phrases, the name's particle left out (docs/language.md §9)."""
+def _name_then_thing(prev: Token, tok: Token, after: Token | None) -> bool:
+    """太郎 + ボールを, 花子 + 手を opening a sentence: a person's name and a common noun with its own
+    particle, no person (田中 + 先生 is one), are two phrases, the name's particle left out
+    (docs/language.md §9).  The name must be one: tagged so here or on its own (UniDic tags 太郎 a
+    common noun before ボール; 宇宙 of 宇宙遊泳 is none)."""
     return (tok.pos1 == "名詞" and tok.pos2 == "普通名詞" and prev.pos1 == "名詞" and tok.surface not in PERSON_NOUNS
-            and (prev.pos3 == "人名" or (prev.pos2 == "普通名詞" and is_name(prev.surface))))
+            and after is not None and after.pos1 == "助詞" and (prev.pos3 == "人名" or _name_alone(prev.surface)))
+
+
+@lru_cache(maxsize=1024)
+def _name_alone(surface: str) -> bool:
+    """Does the dictionary tag ``surface``, written on its own, a person's name?"""
+    words = tag(surface, 0)
+    return len(words) == 1 and words[0].pos3 == "人名"
 
 
 def _adverbial(tok: Token) -> bool:

@@ -5,8 +5,9 @@ words of the text: the analysis copies the motion for every co-actor, with the s
 The picker gives each a variant of its own (:mod:`variants`: another capture, or the same mirrored),
 and the variants of a looping clip differ in length (the captured dances: 6.0 and 3.2 s), so 花子
 stopped dancing after 3.2 s while 太郎 danced on.  Now the first of them placed fixes the time every
-other one plays (:func:`plan.plan`): a looping clip loops for it, any other clip is the first one's own
-clip (mirrored) unless its variant lasts exactly as long (:class:`picker.Picker`).
+other one plays (:func:`plan.plan`): a looping clip loops for it; any other clip is a capture about as
+long (within ``picker.TOGETHER_SLACK``), held at its last pose or trimmed to that time, or else the
+first one's own clip mirrored (:class:`picker.Picker`).
 """
 from __future__ import annotations
 
