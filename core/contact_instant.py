@@ -10,7 +10,7 @@ look for (:data:`KINDS`):
   palms, the take of something handed over, a catch, arms closing in a hug). Its forward distance
   is measured along the hips' heading from the hips' ground point, frame by frame; the instant is
   the first frame within :data:`REACH_TOLERANCE` of the largest, then on while the effector still
-  slows down there: where it comes to its stop.
+  moves forward: where it stops (a hold's first frame; an offer pushed slowly on, its end).
 - ``strike``: the effector's fastest frame (a kick meets the ball at full speed).
 - ``release``: the frame the effector flies out from its limb's root fastest (the shoulder for a
   hand, the hip for a foot): the arm's whip at a throw's release. Not simply the fastest frame: a
@@ -69,10 +69,9 @@ def _forward(motion: Motion, positions: np.ndarray) -> np.ndarray:
 def _reach(motion: Motion, joints: list[int], a: int, b: int) -> int:
     p = motion.positions[:, joints].mean(axis=1)
     ahead = _forward(motion, p)[a:b + 1]
-    speed = np.linalg.norm(np.gradient(p, axis=0), axis=1)[a:b + 1]
     near = ahead >= ahead.max() - REACH_TOLERANCE
     k = int(np.argmax(near))
-    while k + 1 < len(near) and near[k + 1] and speed[k + 1] < speed[k]:
+    while k + 1 < len(near) and near[k + 1] and ahead[k + 1] > ahead[k]:
         k += 1
     return a + k
 
