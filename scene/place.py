@@ -33,8 +33,8 @@ def place(staging: Staging, rows: Sequence[Element], motions: dict[str | None, M
     sends = {r.id: t for r in rows if r.actor in motions
              and (t := send_instant(r, motions[r.actor], fps)) is not None}
     rels = relations(rows, set(motions), scale, sends)
-    rigids, met = fit(motions, rels)
-    moved = {a: rigids[a].apply(m) for a, m in motions.items()}
+    steered, rigids, met = fit(motions, rels)
+    moved = {a: rigids[a].apply(m) for a, m in steered.items()}
     spots = tuple(_moved_spot(s, rigids) for s in staging.spots if s.actor in rigids)
     made, said = things(rows, moved, scale, fps)
     said = [*(_missed(m, scale) for m in met if _misses(m, scale)), *_unknown_targets(rows, motions, made), *said]

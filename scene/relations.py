@@ -69,8 +69,9 @@ def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str
         facing = None
         if r.id in sends:
             (time, facing), span = sends[r.id], None
+        start = r.start if r.target_role == "goal" else None
         out.append(Relation(r.id, r.actor, r.target, kind, dist * scale.get(r.actor, 1.0), time, r.verb,
-                            r.target_role or "", span, facing))
+                            r.target_role or "", span, facing, start))
     return sorted(out, key=lambda rel: (rel.time, rel.element))
 
 

@@ -82,6 +82,8 @@ class Relation:
     #: rad, in the actor's own synthesised frame: where the actor faces at ``time`` when it is not where the
     #: hips face (a throw or a kick sends the thing where the hand or foot moves at its release)
     facing: float | None = None
+    #: s: when an approach sets off (its row's start), ``None`` for any other relation
+    start: float | None = None
 
 
 @dataclass(frozen=True)
