@@ -95,7 +95,7 @@ def choose(candidates_by_motion: Sequence[Sequence[C]] | Mapping[Any, Sequence[C
     the actor there, as :mod:`seated` plays it: 膝をついて、祈って、立ち上がる rises
     from the knee), then the candidates' ranks, the first motion's rank first (so
     with no mismatch to avoid, every motion gets its best candidate). A dynamic
-    programme over the sequence and the posture the actor is in: O(n k² p) for n
+    programme over the sequence and the posture the actor is in: O(n k p) for n
     motions of k candidates and p postures.
     """
     keys = list(candidates_by_motion) if isinstance(candidates_by_motion, Mapping) else None
