@@ -114,7 +114,7 @@ def chunk(sentences: list[list[Token]]) -> list[Phrase]:
         numunit = False  # the current phrase is a number (+ counter)
         for k, tok in enumerate(sent):
             if cur and (_starts_phrase(tok, prev, numunit) or (
-                    k == 1 and _name_then_thing(prev, tok, sent[2] if len(sent) > 2 else None))):
+                    k == 1 and prev is not None and _name_then_thing(prev, tok, sent[2] if len(sent) > 2 else None))):
                 phrases.append(Phrase(len(phrases), cur, s_index, quoted))
                 cur, numunit, quoted = [], False, False
             if tok.surface in _OPEN:

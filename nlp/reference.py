@@ -38,7 +38,7 @@ class Mention(NamedTuple):
 
     ``kind``: ``name`` (a name or person noun), ``pronoun`` (彼, その人, その男) or ``group`` (二人,
     みんな); ``written``: the name as the analysis writes it (花子 for 花子さん) or the pronoun as
-    written; ``sex``: "m", "f" or "" (either); ``count``: a group's size (0: everyone named);
+    written; ``sex``: "m", "f" or "" (either); ``size``: a group's size (0: everyone named);
     ``noun``: a description's own person noun (その店員: 店員), matched before any other;
     ``guessed``: the sex is read from a name's ending, not said by a word (父, 彼).
     """
@@ -46,7 +46,7 @@ class Mention(NamedTuple):
     kind: str
     written: str
     sex: str = ""
-    count: int = 0
+    size: int = 0
     noun: str = ""
     guessed: bool = False
 
@@ -68,7 +68,7 @@ def mention(phrases: list[Phrase], i: int) -> Mention | None:
         bare = words[1:] if words[0].surface in DEMONSTRATIVES else words
         size = group_size(bare)
         if size is not None:
-            return Mention("group", name, count=size)
+            return Mention("group", name, size=size)
         sex = pronoun_sex(words)
         if sex is not None:
             noun = "".join(t.surface for t in bare) if len(words) > len(bare) else ""
@@ -171,12 +171,12 @@ class _Named:
 
     def group(self, m: Mention) -> tuple[tuple[str, ...], str]:
         """(the persons group ``m`` names, in the order they were named, why) or ((), "")."""
-        if len(self.order) < max(2, m.count):
+        if len(self.order) < max(2, m.size):
             return (), ""
-        if not m.count or m.count == len(self.order):
+        if not m.size or m.size == len(self.order):
             return tuple(self.order), "the persons named so far"
-        last = set(self.recent[-m.count:])
-        return tuple(p for p in self.order if p in last), f"the last {m.count} persons named"
+        last = set(self.recent[-m.size:])
+        return tuple(p for p in self.order if p in last), f"the last {m.size} persons named"
 
 
 def _unresolved(ph: Phrase, m: Mention) -> tuple[str, ...]:
