@@ -40,19 +40,55 @@ _O_ROW = frozenset("おこごそぞとどのほぼぽもよろょ")
 def repair(line: str, offset: int, tokens: list[Token], notes: list[str]) -> list[Token]:
     """The tokens of ``line`` (starting at ``offset`` in the text) with misspelt verbs read as meant."""
     singles = [k for k, t in enumerate(tokens) if len(t.surface) == 1]  # the pass reads no other
-    if singles:
-        if any(k + 1 < len(tokens) and tokens[k + 1].pos1 == "動詞" for k in singles):
-            tokens = _same_sound(tokens, notes)
-        k = 0
-        while k < len(tokens):
-            if _suspect(tokens, k):
-                fixed = _okurigana(line, offset, tokens, k, notes)
-                if fixed is not None:
-                    tokens = fixed
-            k += 1
-    if not _DRAWL.isdisjoint(line):
-        tokens = _drawn_out(line, offset, tokens)
-    return tokens
+    if not singles and _DRAWL.isdisjoint(line):
+        return tokens
+    if any(k + 1 < len(tokens) and tokens[k + 1].pos1 == "動詞" for k in singles):
+        tokens = _same_sound(tokens, notes)
+    edited = _Line(line, offset)
+    k = 0
+    while k < len(tokens):  # each repair tags the edited line again: read on from its tokens
+        if len(tokens[k].surface) == 1 and _suspect(tokens, k):
+            again = _okurigana(edited, tokens[k], notes)
+            if again is not None:
+                edited, tokens = again
+        k += 1
+    return _drawn_out(edited, tokens) if not _DRAWL.isdisjoint(line) else tokens
+
+
+class _Line:
+    """A line as repaired so far: its text, and where each of its characters was in the line as
+    written (a character put in: where the one after it was), to put tokens back on the text."""
+
+    __slots__ = ("text", "where", "length", "offset")
+
+    def __init__(self, text: str, offset: int, where: list[int] | None = None, length: int | None = None):
+        self.text, self.offset = text, offset
+        self.where = list(range(len(text))) if where is None else where
+        self.length = len(text) if length is None else length
+
+    def at(self, pos: int) -> int:
+        """Where the character written at ``pos`` (in the text) is in this line."""
+        return self.where.index(pos - self.offset)
+
+    def edited(self, at: int, kana: str) -> _Line:
+        """This line with the character at ``at`` left out (``kana`` empty) or ``kana`` put in there."""
+        if not kana:
+            return _Line(self.text[:at] + self.text[at + 1:], self.offset, self.where[:at] + self.where[at + 1:],
+                         self.length)
+        return _Line(self.text[:at] + kana + self.text[at:], self.offset,
+                     self.where[:at] + [self.place(at)] * len(kana) + self.where[at:], self.length)
+
+    def place(self, i: int) -> int:
+        """The position in the line as written of this line's character ``i`` (its end: the length)."""
+        return self.where[i] if i < len(self.where) else self.length
+
+    def tokens(self) -> list[Token]:
+        """The line tagged, each token's offsets those of what it covers as written."""
+        out = []
+        for t in tag(self.text, 0):
+            start, end = self.place(t.start), self.place(t.end) if t.end < len(self.text) else self.length
+            out.append(replace(t, start=self.offset + start, end=self.offset + max(start, end)))
+        return out
 
 
 def _is_kanji(ch: str) -> bool:
@@ -76,23 +112,23 @@ def _suspect(tokens: list[Token], k: int) -> bool:
     return not ((nxt.pos1 == "助詞" and nxt.pos2 in _NOUN_PARTICLES) or nxt.lemma in _COPULAS)
 
 
-def _okurigana(line: str, offset: int, tokens: list[Token], k: int, notes: list[str]) -> list[Token] | None:
-    """``tokens`` tagged again with the kana after ``tokens[k]`` repaired, or ``None``."""
-    kanji = tokens[k]
-    at = kanji.end - offset  # where the kana after the kanji start in the line
+def _okurigana(line: _Line, kanji: Token, notes: list[str]) -> tuple[_Line, list[Token]] | None:
+    """The line and its tokens with the kana after ``kanji`` repaired, or ``None`` (said when the kanji
+    opens a verb)."""
+    first = line.at(kanji.start)
+    at = first + 1  # where the kana after the kanji start
     end = at
-    while end < len(line) and _is_hiragana(line[end]):
+    while end < len(line.text) and _is_hiragana(line.text[end]):
         end += 1
-    edits = [(line[:at] + line[at + 1:], -1)] + [(line[:at] + kana + line[at:], +1) for kana in _FORGOTTEN]
-    for new_line, shift in edits:
-        again = tag(new_line, offset)
-        if not _one_verb(again, kanji.start, offset + end + shift):
+    for kana, shift in [("", -1)] + [(kana, +1) for kana in _FORGOTTEN]:
+        new = line.edited(at, kana)
+        again = tag(new.text, 0)
+        if not _one_verb(again, first, end + shift):
             continue
-        notes.append(f"read {line[kanji.start - offset:end]} as {new_line[kanji.start - offset:end + shift]}"
-                     " (a verb's okurigana)")
-        return [_moved(t, offset + at, -shift) for t in again]
+        notes.append(f"read {line.text[first:end]} as {new.text[first:end + shift]} (a verb's okurigana)")
+        return new, new.tokens()
     if _opens_verb(kanji.surface):
-        notes.append(f"could not read {line[kanji.start - offset:end]}: no verb of the dictionary is "
+        notes.append(f"could not read {line.text[first:end]}: no verb of the dictionary is "
                      "written so (a misspelt verb?), it is left out")
     return None
 
@@ -107,15 +143,6 @@ def _one_verb(tokens: list[Token], start: int, end: int) -> bool:
                or (t.pos1 == "動詞" and t.pos2 == "非自立可能") for t in inside[1:])
 
 
-def _moved(tok: Token, at: int, shift: int) -> Token:
-    """``tok`` of a line edited at ``at``, its offsets put back on the line as written: ``shift`` +1
-    where the character at ``at`` was left out (what followed it moved back one), -1 where one was
-    put in at ``at`` (what followed it moved on one)."""
-    start = tok.start + shift if tok.start > at or (shift > 0 and tok.start == at) else tok.start
-    end = tok.end + shift if tok.end > at else tok.end
-    return tok if (start, end) == (tok.start, tok.end) else replace(tok, start=start, end=max(start, end))
-
-
 @lru_cache(maxsize=512)
 def _opens_verb(kanji: str) -> bool:
     """Does ``kanji`` open a verb's dictionary form (歩 + く, 座 + る)?"""
@@ -126,20 +153,20 @@ def _opens_verb(kanji: str) -> bool:
     return False
 
 
-def _drawn_out(line: str, offset: int, tokens: list[Token]) -> list[Token]:
+def _drawn_out(line: _Line, tokens: list[Token]) -> list[Token]:
     """おどろー -> おどろう, すわるぅ -> すわる: a drawl after kana read as a verb UniDic did not see."""
-    for q in range(1, len(line)):
-        if line[q] not in _DRAWL or not _is_hiragana(line[q - 1]):
+    text = line.text
+    for q in range(1, len(text)):
+        if text[q] not in _DRAWL or not _is_hiragana(text[q - 1]):
             continue
-        if any(t.pos1 == "動詞" and t.start <= offset + q - 1 < t.end for t in tokens):
+        kana = line.place(q - 1) + line.offset  # the drawn-out kana, in the text
+        if any(t.pos1 == "動詞" and t.start <= kana < t.end for t in tokens):
             continue  # すわるぅ: the verb is read already
-        if line[q - 1] in _O_ROW and line[q] == "ー":
-            again = tag(line[:q] + "う" + line[q + 1:], offset)  # same length: the offsets hold
-            shift = 0
-        else:
-            again, shift = tag(line[:q] + line[q + 1:], offset), 1
-        if any(t.pos1 == "動詞" and t.start <= offset + q - 1 < t.end for t in again):
-            return [_moved(t, offset + q, shift) for t in again]
+        new = line.edited(q, "") if not (text[q - 1] in _O_ROW and text[q] == "ー") else \
+            _Line(text[:q] + "う" + text[q + 1:], line.offset, line.where, line.length)  # the same length
+        again = new.tokens()
+        if any(t.pos1 == "動詞" and t.start <= kana < t.end for t in again):
+            return again
     return tokens
 
 

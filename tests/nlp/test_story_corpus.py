@@ -152,6 +152,7 @@ def test_what_asks_for_no_action_is_refused_with_its_reason(text, why):
     ("花子は手を叩た。", ["叩く"], "read 叩た as 叩いた"),
     ("太郎は壁を指刺した。", ["指さす"], "read 指刺す as 指さす"),
     ("太郎は歩るて、転ぶ。", ["転ぶ"], "could not read 歩るて"),
+    ("太郎は歩るいて、ゆーっくり座わった。", ["歩く", "座る"], "read 座わった as 座った"),  # two in a line
 ])
 def test_misspelt_verbs_are_read_or_said_unread(text, verbs, note):
     analysis = analyze(text)
