@@ -75,7 +75,8 @@ def _plan_stage(work: Work) -> Work:
 def _staging_stage(work: Work) -> Work:
     """The staging; first, when two people's contact instants do not meet, the text planned again with the
     later one started later (:func:`scene.sync_shifts`, kept as edits of the time table)."""
-    from text2anim.scene import stage, sync_shifts
+    from text2anim.scene.staging import stage
+    from text2anim.scene.timing import sync_shifts
 
     from .edits import Edit, apply_edits, occurrences
     from .tracks import contact_instants
@@ -112,7 +113,7 @@ def _synthesis_stage(work: Work) -> Work:
 
 
 def _place_stage(work: Work) -> Work:
-    from text2anim.scene import place
+    from text2anim.scene.place import place
 
     from .placed import moved_result, played_rows
 

@@ -78,7 +78,7 @@ def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str
 def _cast(analysis, db: MotionDB):
     """:func:`scene.cast`: a person who is only a target waits in the scene; not when ``db`` has no idle
     (a database of the user's own without 待つ clips: they are left out, as before)."""
-    from text2anim.scene import cast
+    from text2anim.scene.cast import cast
 
     casted = cast(analysis)
     if casted is analysis:

@@ -73,7 +73,7 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float, staging: Staging | 
     Every row of the table plays, the fillers of the waits included (:mod:`scheduler.fillers`),
     a repeated one as one element per repetition (:mod:`scheduler.repeats`).
     """
-    from text2anim.scene import stage
+    from text2anim.scene.staging import stage
     from text2anim.synthesis.tracks import Element, Track
 
     staging = staging if staging is not None else stage(planned)
