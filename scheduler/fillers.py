@@ -92,7 +92,8 @@ def _fill_gap(find: _Finder[C], add: _Adder[C], prev: Element, prev_info: C, sta
               character: str | None, fps: float) -> list[Element]:
     """Elements that fill ``[start, end)`` s after ``prev``: a stop for a looping motion, then idling."""
     out: list[Element] = []
-    stop = find.by_verb(STOP_VERB, character) if prev_info.cyclic else None
+    stop = find.by_verb(STOP_VERB, character) if prev_info.cyclic and prev.verb != IDLE_VERB else None  # an
+    # idle (a person waiting, the scene's own) loops but goes nowhere: it has nothing to stop
     if stop is not None:
         t1 = min(end, start + played_duration(stop, fps))
         if end - t1 <= IDLE_GAP:
