@@ -47,7 +47,7 @@ def analyze(text: str) -> Analysis:
         MotionSpec(p.id, p.actor, p.verb, p.object, p.body_part, p.repeat, p.speed,
                    p.duration, offsets.span(p.start, p.end),
                    hold=p.ending == "mama", reading=p.reading, delay=p.delay,
-                   written=p.written or p.verb)
+                   written=p.written or p.verb, phrase=p.verb_phrase, manner=p.manner)
         for p in motions
     ]
     constraints = list(constraints)

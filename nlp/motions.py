@@ -2,8 +2,9 @@
 
 Roles: predicates (motions or not, with the reason), actors (person + は/が/も),
 objects and body parts (を / で), repeat (N回), duration (N秒間), speed
-(ゆっくり), manner て-forms (急いで), and time cues (そして, N秒後に,
-しばらくして, ...) that adjust the link into the motion they modify.
+(ゆっくり), manner て-forms (急いで), mimetics (ぱちぱち, よろよろ: ``mimetics``), and
+time cues (そして, N秒後に, しばらくして, ...) that adjust the link into the motion they
+modify. A verb with its を-noun may be an idiom (腰を上げる: ``phrases``).
 """
 from __future__ import annotations
 
@@ -16,6 +17,8 @@ from .lexicon import (
     BODY_PARTS, CONNECTIVES, COUNTERS, LIBRARY_VERBS, MANNER_TE, REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS,
     STEPPING_VERBS,
 )
+from . import mimetics
+from .phrases import read_phrases
 from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
 from .casual import recover_homophone
@@ -60,6 +63,8 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     cues = _attach_modifiers(phrases, values)
     for pred in preds:
         recover_homophone(pred)
+    read_phrases(phrases)
+    mimetics.apply(phrases)
     for ph in phrases:
         if ph.pred:
             ph.role = "motion" if ph.pred.motion else f"not a motion: {ph.pred.reason}"
@@ -81,6 +86,8 @@ def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
         values[ph.index] = REPEAT_WORDS[key]
         return "repeat"
     toks = ph.tokens
+    if toks[0].pos1 == "副詞" and mimetics.word(key):
+        return "mimetic"
     if not toks[0].is_number or toks[0].value is None:
         return ""
     values[ph.index] = toks[0].value

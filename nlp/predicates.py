@@ -1,8 +1,8 @@
 """Predicates: which bunsetsu hold a verb, which verb, and how the clause ends.
 
-A predicate bunsetsu holds a verb (走って), a サ変 noun + する (ジャンプする), or
-a bare する whose action noun is in the bunsetsu before (ジャンプをする,
-お辞儀をする).  Its *verb group* is the verb with its auxiliaries (た, ない,
+A predicate bunsetsu holds a verb (走って), a サ変 noun + する (ジャンプする), a
+mimetic + する (きょろきょろする), or a bare する whose action noun is in the bunsetsu
+before (ジャンプをする, お辞儀をする).  Its *verb group* is the verb with its auxiliaries (た, ない,
 ている, aspect auxiliaries 始める/続ける/出す/終わる) and a trailing て: the
 ``span`` of the motion.  What follows the group is the clause ending
 (``endings.ENDINGS``) or a reason why the predicate is not a motion.
@@ -13,6 +13,7 @@ from .bunsetsu import Phrase
 from .lexicon import (
     BODY_PARTS, LIBRARY_BY_READING, LIBRARY_VERBS, NON_ACTION_LEMMAS, VERB_ALIASES,
 )
+from .mimetics import REPEATS, as_verb, repeats
 from .pred import Pred
 from .types import Token
 
@@ -49,7 +50,13 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
     if v is None:
         return None
     first = toks[v]
-    if first.lemma == "為る" and v > 0:
+    mimetic = as_verb(toks[v - 1]) if first.lemma == "為る" and v > 0 else None
+    if mimetic:  # きょろきょろする, うろうろする (nlp/mimetics.py)
+        verb, written, manner = mimetic
+        pred = Pred(ph.index, verb, toks[v - 1].kana_form + "スル", "為る", toks[v - 1].start, 0)
+        pred.written, pred.manner = written, manner
+        pred.repeat = REPEATS if repeats(manner) else 1
+    elif first.lemma == "為る" and v > 0:
         if toks[v - 1].pos1 != "名詞":
             return None  # しばらくして, そうして: an adverb + する
         s = _noun_run_start(toks, v)

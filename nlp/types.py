@@ -72,6 +72,11 @@ class MotionSpec:
     #: their constraints instead.
     delay: float | None = None
     written: str = ""  # the verb as the user spelled it, dictionary form (登る for verb 上る)
+    #: the verb with its を-noun as written, dictionary form (足を止める), when it has one: a clip
+    #: that declares the phrase plays it (docs/language.md §2)
+    phrase: str = ""
+    #: a manner word the text gives the motion (よろよろ, とぼとぼ: §7.9), as written in hiragana
+    manner: str | None = None
 
     def to_dict(self, extra: bool = False) -> dict:
         d = {
@@ -82,10 +87,13 @@ class MotionSpec:
         }
         if extra or self.delay is not None:
             d["delay"] = self.delay  # the §5 object gains it only when the text opens with one
+        if extra or self.manner is not None:
+            d["manner"] = self.manner  # likewise only when the text gives one
         if extra:
             d["hold"] = self.hold
             d["reading"] = self.reading
             d["written"] = self.written
+            d["phrase"] = self.phrase
         return d
 
 
@@ -130,7 +138,7 @@ class Analysis:
     notes: tuple[str, ...] = field(default=(), compare=False)
 
     def to_dict(self, extra: bool = False) -> dict:
-        """docs/language.md §5; ``extra`` adds ``hold``, ``reading`` and ``cue``."""
+        """docs/language.md §5; ``extra`` adds ``hold``, ``reading``, ``written``, ``phrase`` and ``cue``."""
         return {
             "text": self.text,
             "motions": [m.to_dict(extra) for m in self.motions],

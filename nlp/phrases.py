@@ -1,0 +1,91 @@
+"""What a phrase means: the action of a verb together with its を-noun.
+
+The verb alone does not always name the action: 腰を上げる is standing up (上げる alone raises
+a hand), 肩を落とす a droop, 膝をつく kneeling, 足を組む no arm crossing. :func:`read_phrases`
+gives every motion with a を-noun its ``phrase`` (noun + を + the verb as written: 足を止める),
+which a clip declaring that phrase plays first (``api/clip_search.py``), and reads the idioms
+of ``phrases.json`` as the action they mean: the motion's verb becomes that action, ``written``
+keeps the phrase as the user wrote it (dictionary form), and the noun is no object.
+docs/language.md §2 ("What a phrase means") lists the rules with examples.
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+from .actors import case_particle, noun_of
+from .bunsetsu import Phrase
+from .pred import Pred
+
+DATA = Path(__file__).with_name("phrases.json")
+
+
+@dataclass(frozen=True, slots=True)
+class Idiom:
+    """A を-noun + verb that means ``action`` (done with body part ``part``; None: the whole body),
+    when one of the words ``with_`` (if any) modifies the verb too."""
+
+    action: str
+    part: str | None
+    with_: frozenset[str]
+
+
+@lru_cache(maxsize=1)
+def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], frozenset[str]]:
+    """``((noun, verb) -> idioms, body nouns)`` from ``phrases.json``; an idiom with ``with`` words first."""
+    data = json.loads(DATA.read_text(encoding="utf-8"))
+    table: dict[tuple[str, str], list[Idiom]] = {}
+    for entry in data["idioms"]:
+        idiom = Idiom(entry["action"], entry["part"], frozenset(entry.get("with", ())))
+        for noun in entry["nouns"]:
+            for verb in entry["verbs"]:
+                table.setdefault((noun, verb), []).append(idiom)
+    ordered = {k: tuple(sorted(v, key=lambda i: not i.with_)) for k, v in table.items()}
+    return ordered, frozenset(data["body_nouns"])
+
+
+def body_nouns() -> frozenset[str]:
+    """Nouns of the actor's body that ``lexicon.BODY_PARTS`` gives no body part (目, 肩, 膝, ...)."""
+    return _data()[1]
+
+
+def idiom(noun: str, verbs: tuple[str, ...], words: frozenset[str] = frozenset()) -> Idiom | None:
+    """The idiom ``noun`` + one of ``verbs`` (spellings of one verb: as written, its lemma) is, given
+    the other ``words`` that modify the verb; None when the phrase means what its verb does."""
+    table = _data()[0]
+    for verb in verbs:
+        for entry in table.get((noun, verb), ()):
+            if not entry.with_ or entry.with_ & words:
+                return entry
+    return None
+
+
+def read_phrases(phrases: list[Phrase]) -> None:
+    """Give each motion with a を-noun (or a bare noun: 手振って) its ``phrase`` and read an idiom
+    as the action it means (module docstring)."""
+    noun_of_pred: dict[int, str] = {}
+    words: dict[int, set[str]] = {}
+    for ph in phrases:
+        if ph.pred or ph.head is None:
+            continue
+        words.setdefault(ph.head, set()).add(ph.key)
+        if ph.role in ("object", "body part") and case_particle(ph) in ("を", None, ""):
+            noun_of_pred[ph.head] = noun_of(ph)
+    for ph in phrases:
+        pred = ph.pred
+        noun = noun_of_pred.get(ph.index, "")
+        if pred is None or not pred.motion or not noun:
+            continue
+        _read(pred, noun, frozenset(words.get(ph.index, ())))
+
+
+def _read(pred: Pred, noun: str, words: frozenset[str]) -> None:
+    written = pred.written or pred.verb
+    pred.verb_phrase = f"{noun}を{written}"
+    found = idiom(noun, (written, pred.lemma, pred.verb), words)
+    if found is None:
+        return
+    pred.verb, pred.written, pred.reading = found.action, pred.verb_phrase, ""
+    pred.object, pred.body_part = None, found.part
