@@ -31,6 +31,8 @@ from text2anim.motiondb.seed import BUILTIN_SOURCE
 from text2anim.nlp import meaning, senses
 from text2anim.nlp.types import Analysis, MotionSpec
 
+from . import phrase_sense
+
 #: One of a stand-in clip's verbs must be among this many vectors nearest the asked verb ...
 STANDIN_RANK = 30
 #: ... and at least this near (cosine).
@@ -99,7 +101,16 @@ class UnknownVerbsError(UnknownVerbError):
 
 
 def _written(spec: MotionSpec) -> str:
-    return spec.written or spec.verb
+    return phrase_sense.asked(spec)
+
+
+def _stand_in(spec: MotionSpec, clips: Sequence[ClipInfo]) -> tuple[StandIn | None, str]:
+    """:func:`find_stand_in` for ``spec``: a phrase about the actor's body (目を閉じる) is looked for
+    as a whole, among the clips that act on that part of the body (``phrase_sense.does_body``)."""
+    if phrase_sense.body_phrase(spec) is None:
+        return find_stand_in(spec.verb, clips)
+    return find_stand_in(spec.phrase, [c for c in clips if phrase_sense.does_body(spec, c)
+                                       and phrase_sense.same_sense(spec, c)])
 
 
 def database_verbs(db: MotionDB) -> list[str]:
@@ -187,7 +198,7 @@ def unknown_error(analysis: Analysis, unknown: dict[int, UnknownVerbError], db: 
     missing: dict[str, tuple] = {}
     for spec in analysis.motions:
         if spec.id in unknown and _written(spec) not in missing:
-            standin, why = find_stand_in(spec.verb, clips)
+            standin, why = _stand_in(spec, clips)
             missing[_written(spec)] = (meaning.nearest(spec.verb, verbs, n=3),
                                        standin.verb if standin else None, standin.reason if standin else why)
     return UnknownVerbsError([(w, near, st, why) for w, (near, st, why) in missing.items()], hint=hint)
@@ -208,7 +219,7 @@ def substitute(analysis: Analysis, unknown: dict[int, UnknownVerbError],
         if spec.id not in unknown:
             specs.append(spec)
             continue
-        standin, _ = find_stand_in(spec.verb, clips)
+        standin, _ = _stand_in(spec, clips)
         if standin is None:
             far[spec.id] = unknown[spec.id]
             continue

@@ -33,8 +33,9 @@ class Idiom:
 
 
 @lru_cache(maxsize=1)
-def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], frozenset[str]]:
-    """``((noun, verb) -> idioms, body nouns)`` from ``phrases.json``; an idiom with ``with`` words first."""
+def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], dict[str, str]]:
+    """``((noun, verb) -> idioms, body noun -> its part)`` from ``phrases.json``; an idiom with ``with``
+    words first."""
     data = json.loads(DATA.read_text(encoding="utf-8"))
     table: dict[tuple[str, str], list[Idiom]] = {}
     for entry in data["idioms"]:
@@ -43,11 +44,12 @@ def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], frozenset[str]]:
             for verb in entry["verbs"]:
                 table.setdefault((noun, verb), []).append(idiom)
     ordered = {k: tuple(sorted(v, key=lambda i: not i.with_)) for k, v in table.items()}
-    return ordered, frozenset(data["body_nouns"])
+    return ordered, dict(data["body_nouns"])
 
 
-def body_nouns() -> frozenset[str]:
-    """Nouns of the actor's body that ``lexicon.BODY_PARTS`` gives no body part (目, 肩, 膝, ...)."""
+def body_nouns() -> dict[str, str]:
+    """Nouns of the actor's body that ``lexicon.BODY_PARTS`` gives no body part (目, 肩, 膝, ...), each with
+    the part it is on: ``head``, ``torso``, ``arm`` or ``leg``."""
     return _data()[1]
 
 
@@ -87,5 +89,7 @@ def _read(pred: Pred, noun: str, words: frozenset[str]) -> None:
     found = idiom(noun, (written, pred.lemma, pred.verb), words)
     if found is None:
         return
+    if found.with_:  # 首を縦に振る: the word that makes it this idiom is part of the phrase
+        pred.verb_phrase = f"{noun}を{min(found.with_ & words)}{written}"
     pred.verb, pred.written, pred.reading = found.action, pred.verb_phrase, ""
     pred.object, pred.body_part = None, found.part

@@ -27,6 +27,10 @@ BODILY = frozenset(["motion", "contact", "body", "consumption", "communication",
                     "perception", "creation", "change", "cognition"])
 
 
+#: Phrases whose meaning is their noun's (ポーズをとる, 伸びをする): looked up like their noun.
+_LIGHT_PHRASES = ("をする", "をとる", "を取る")
+
+
 @lru_cache(maxsize=1)
 def _table() -> tuple[dict[str, list[list[str]]], dict[str, tuple[str, str, tuple[str, ...]]]]:
     data = json.loads(gzip.decompress(DATA.read_bytes()))
@@ -51,12 +55,16 @@ def senses(verb: str) -> tuple[str, ...]:
 
     ``verb`` is looked up as ``meaning.forms`` spells it (as written, without する, its head
     verb), first spelling found; a word's later JMdict senses are left out (跳ねる "to close
-    (a show)" is its third). Empty when the verb is not in the table or has no bodily sense.
+    (a show)" is its third). A phrase with a を-noun (目を閉じる, 胸を張る) is looked up whole
+    only: its verb alone is another action (閉じる closes a door, 張る glues), and a gloss drops
+    the noun ("to close one's eyes" is read as close). Empty when the verb is not in the table
+    or has no bodily sense.
     """
     from .meaning import forms
 
     words, synsets = _table()
-    for w in forms(verb):
+    whole = "を" in verb and not verb.endswith(_LIGHT_PHRASES)
+    for w in [verb] if whole else forms(verb):
         if w in words and words[w]:
             return tuple(o for o in words[w][0] if synsets[o][0] in BODILY)
     return ()
