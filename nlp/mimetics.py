@@ -63,12 +63,12 @@ def as_verb(adverb: Token) -> tuple[str, str, str] | None:
 def apply(phrases: list[Phrase]) -> None:
     """Record each mimetic phrase on the motion it modifies: its manner, and for a repeating one
     ``REPEATS`` repeats unless a count (N回, 何度も) modifies the same motion."""
+    found = [ph for ph in phrases if ph.role == "mimetic" and ph.head is not None]
+    if not found:
+        return
     counted = {ph.head for ph in phrases if ph.role == "repeat"}
-    by_index = {ph.index: ph for ph in phrases}
-    for ph in phrases:
-        if ph.role != "mimetic" or ph.head is None:
-            continue
-        pred = by_index[ph.head].pred
+    for ph in found:
+        pred = phrases[ph.head].pred  # phrase indices are list positions
         mimetic = word(ph.key)
         if pred is None or not pred.motion or mimetic is None:
             continue

@@ -11,6 +11,7 @@ docs/language.md §2 ("What a phrase means") lists the rules with examples.
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -53,13 +54,14 @@ def body_nouns() -> dict[str, str]:
     return _data()[1]
 
 
-def idiom(noun: str, verbs: tuple[str, ...], words: frozenset[str] = frozenset()) -> Idiom | None:
+def idiom(noun: str, verbs: tuple[str, ...], words: Callable[[], frozenset[str]] = frozenset) -> Idiom | None:
     """The idiom ``noun`` + one of ``verbs`` (spellings of one verb: as written, its lemma) is, given
-    the other ``words`` that modify the verb; None when the phrase means what its verb does."""
+    the other ``words()`` that modify the verb (asked only of an idiom that needs one); None when
+    the phrase means what its verb does."""
     table = _data()[0]
     for verb in verbs:
         for entry in table.get((noun, verb), ()):
-            if not entry.with_ or entry.with_ & words:
+            if not entry.with_ or entry.with_ & words():
                 return entry
     return None
 
@@ -67,29 +69,23 @@ def idiom(noun: str, verbs: tuple[str, ...], words: frozenset[str] = frozenset()
 def read_phrases(phrases: list[Phrase]) -> None:
     """Give each motion with a を-noun (or a bare noun: 手振って) its ``phrase`` and read an idiom
     as the action it means (module docstring)."""
-    noun_of_pred: dict[int, str] = {}
-    words: dict[int, set[str]] = {}
+    nouns = {ph.head: noun_of(ph) for ph in phrases
+             if ph.pred is None and ph.head is not None and ph.role in ("object", "body part")
+             and case_particle(ph) in ("を", "")}
     for ph in phrases:
-        if ph.pred or ph.head is None:
-            continue
-        words.setdefault(ph.head, set()).add(ph.key)
-        if ph.role in ("object", "body part") and case_particle(ph) in ("を", None, ""):
-            noun_of_pred[ph.head] = noun_of(ph)
-    for ph in phrases:
-        pred = ph.pred
-        noun = noun_of_pred.get(ph.index, "")
-        if pred is None or not pred.motion or not noun:
-            continue
-        _read(pred, noun, frozenset(words.get(ph.index, ())))
+        pred, noun = ph.pred, nouns.get(ph.index, "")
+        if pred is not None and pred.motion and noun:
+            index = ph.index
+            _read(pred, noun, lambda: frozenset(p.key for p in phrases if p.head == index and p.pred is None))
 
 
-def _read(pred: Pred, noun: str, words: frozenset[str]) -> None:
+def _read(pred: Pred, noun: str, words: Callable[[], frozenset[str]]) -> None:
     written = pred.written or pred.verb
     pred.verb_phrase = f"{noun}を{written}"
     found = idiom(noun, (written, pred.lemma, pred.verb), words)
     if found is None:
         return
     if found.with_:  # 首を縦に振る: the word that makes it this idiom is part of the phrase
-        pred.verb_phrase = f"{noun}を{min(found.with_ & words)}{written}"
+        pred.verb_phrase = f"{noun}を{min(found.with_ & words())}{written}"
     pred.verb, pred.written, pred.reading = found.action, pred.verb_phrase, ""
     pred.object, pred.body_part = None, found.part
