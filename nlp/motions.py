@@ -22,6 +22,7 @@ from .phrases import read_phrases
 from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
 from .casual import recover_homophone
+from .targets import attach_targets
 from .tokens import is_name
 
 _SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
@@ -63,8 +64,9 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     cues = _attach_modifiers(phrases, values)
     for pred in preds:
         recover_homophone(pred)
-    read_phrases(phrases)
+    read_phrases(phrases)  # before the targets: their roles read the action (腰を下ろす: 座る on a support)
     mimetics.apply(phrases)
+    attach_targets(phrases)
     for ph in phrases:
         if ph.pred:
             ph.role = "motion" if ph.pred.motion else f"not a motion: {ph.pred.reason}"

@@ -31,6 +31,10 @@ class Pred:
     manner: str | None = None  # a mimetic manner word: よろよろ (MotionSpec.manner)
     note: str = ""  # how the verb was read differently from how it is written (手を降る -> 振る)
     head: int | None = None  # phrase index of the head motion
+    target: str | None = None  # whom or what it is directed at (nlp.targets)
+    target_role: str | None = None
+    target_side: str | None = None
+    target_person: bool = False
     id: int = 0
 
     @property
