@@ -11,6 +11,7 @@ clip metadata is read: the verbs a clip declares, its body part and its objects.
 from __future__ import annotations
 
 from text2anim.motiondb import ClipInfo
+from text2anim.motiondb.readings import reading
 from text2anim.nlp.lexicon import BODY_PARTS
 from text2anim.nlp.phrases import body_nouns
 from text2anim.nlp.types import MotionSpec
@@ -28,14 +29,21 @@ def split(phrase: str) -> tuple[str, str]:
     return (noun, verb) if verb else ("", phrase)
 
 
+#: Prefixes that name which or how many of a part, not another part: 両膝, 片膝 and 膝 are knees.
+_WHICH = ("両", "片", "右", "左")
+
+
 def body(noun: str) -> str | None:
     """What of the actor's body ``noun`` names, as finely as the nouns tell it apart: the part for
-    a body-part noun (手 and 右手 -> arm, 首 -> head), the noun itself for another noun of the body
-    (目, 肩: no other noun is the same thing); None for a thing (窓)."""
+    a body-part noun (手 and 右手 -> arm, 首 -> head), the reading of another noun of the body
+    without 両/片/右/左 (膝, ひざ, 両膝 -> ヒザ; 目 and 口 are not the same thing); None for a thing (窓)."""
     part = BODY_PARTS.get(noun)
     if part is not None:
         return _PART[part]
-    return noun if noun in body_nouns() else None
+    if noun not in body_nouns():
+        return None
+    bare = noun[1:] if noun.startswith(_WHICH) and len(noun) > 1 else noun
+    return reading(bare) or bare
 
 
 def _part(noun: str) -> str | None:

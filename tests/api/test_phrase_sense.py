@@ -50,3 +50,13 @@ def test_a_user_s_clip_declaring_a_phrase_plays_it(tmp_path, db):
         assert _clips("太郎は肩を回した。", own) == ["shoulder_roll"]
         with pytest.raises(UnknownVerbError):
             text2anim.plan("太郎は腕を回した。", own)
+
+
+def test_両膝_and_膝_are_the_same_knees(tmp_path, db):
+    """A kneeling clip declaring 膝をつく plays 両膝をつく: 両 says how many, not another part."""
+    crouch = db.load("crouch_down")
+    with MotionDB.open(tmp_path / "own.sqlite", seed=False) as own:
+        own.add([ClipRecord("my_kneel", crouch, ("ひざまずく", "膝をつく"))])
+        assert _clips("太郎は床に両膝をついた。", own) == ["my_kneel"]
+        assert _clips("花子はひざをついた。", own) == ["my_kneel"]
+
