@@ -55,8 +55,8 @@ def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str
               sends: dict[int, tuple[float, float]] | None = None) -> list[Relation]:
     """The relations of ``rows`` (played times) between actors in ``present``, in time order;
     ``scale`` is each actor's size against the built-in body (its hips height over :data:`HIPS_HEIGHT`);
-    ``sends`` the instant (s) a row sends a thing off (a throw's release, a kick's strike) and the heading
-    the hand or foot sends it along: the recipient stands that way then, whatever the wind-up."""
+    ``sends`` the instant (s) a row sends a thing off (a throw's release, a kick's strike) and where the
+    chest faces then: the recipient stands that way, whatever the hips do in the wind-up."""
     sends = sends or {}
     out = []
     for i, r in enumerate(rows):
