@@ -242,6 +242,12 @@ def release(m: Motion, f0: int, f1: int) -> int:
     return _instant(m, "right_hand", "release", f0, f1)
 
 
+def reach_instant(r: Element, m: Motion, effector: str, fps: float) -> float:
+    """When row ``r``'s ``effector`` reaches out (:func:`core.contact_instant.contact_instant`), s."""
+    f0, f1 = _frames(r, fps, m.n_frames)
+    return _instant(m, effector, "reach", f0, f1) / fps
+
+
 def send_instant(r: Element, m: Motion, fps: float) -> tuple[float, float] | None:
     """When row ``r`` sends a thing off (a kick's strike, a throw's release), s, and where the chest faces
     then (rad); ``None`` for other verbs."""

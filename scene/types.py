@@ -84,6 +84,9 @@ class Relation:
     facing: float | None = None
     #: s: when an approach sets off (its row's start), ``None`` for any other relation
     start: float | None = None
+    #: the effectors (``right_hand``, ``both_hands``) of the actor and the other that meet at ``time`` (a
+    #: handshake, a hand-over and its taking): the two are placed hand to hand
+    hands: tuple[str, str] | None = None
 
 
 @dataclass(frozen=True)
