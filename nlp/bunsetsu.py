@@ -21,7 +21,7 @@ class Phrase:
     """A mutable bunsetsu under analysis (``types.Bunsetsu`` is its frozen view)."""
 
     __slots__ = ("index", "tokens", "sentence", "group", "quoted", "role", "head",
-                 "why", "pred", "_key")
+                 "why", "pred")
 
     def __init__(self, index: int, tokens: list[Token], sentence: int, quoted: bool):
         self.index = index
@@ -33,7 +33,6 @@ class Phrase:
         self.head: int | None = None
         self.why = ""
         self.pred: Pred | None = None  # for predicate phrases
-        self._key: str | None = None  # ``key``, once asked (the tokens never change)
 
     @property
     def predicate(self) -> Pred:
@@ -57,13 +56,11 @@ class Phrase:
     @property
     def key(self) -> str:
         """The surface without trailing punctuation (for lexicon look-ups)."""
-        if self._key is None:
-            toks = self.tokens
-            n = len(toks)
-            while n > 1 and toks[n - 1].pos1 == "補助記号":
-                n -= 1
-            self._key = "".join(t.surface for t in toks[:n])
-        return self._key
+        toks = self.tokens
+        n = len(toks)
+        while n > 1 and toks[n - 1].pos1 == "補助記号":
+            n -= 1
+        return "".join(t.surface for t in toks[:n])
 
     @property
     def content(self) -> list[Token]:

@@ -60,14 +60,16 @@ def as_verb(adverb: Token) -> tuple[str, str, str] | None:
     return _data()[2].get(mimetic, written), written, mimetic
 
 
-def apply(phrases: list[Phrase]) -> None:
-    """Record each mimetic phrase on the motion it modifies: its manner, and for a repeating one
-    ``REPEATS`` repeats unless a count (N回, 何度も) modifies the same motion."""
-    found = [ph for ph in phrases if ph.role == "mimetic" and ph.head is not None]
+def apply(found: list[Phrase], phrases: list[Phrase]) -> None:
+    """Record each mimetic phrase of ``found`` on the motion it modifies: its manner, and for a
+    repeating one ``REPEATS`` repeats unless a count (N回, 何度も) modifies the same motion;
+    ``phrases`` are the text's."""
     if not found:
         return
     counted = {ph.head for ph in phrases if ph.role == "repeat"}
     for ph in found:
+        if ph.head is None:
+            continue
         pred = phrases[ph.head].pred  # phrase indices are list positions
         mimetic = word(ph.key)
         if pred is None or not pred.motion or mimetic is None:

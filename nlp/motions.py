@@ -44,11 +44,14 @@ class TimeCue:
 def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     """Give every phrase its role; return the predicates and the time cues."""
     values: dict[int, float] = {}
+    mimetic: list[Phrase] = []
     for i, ph in enumerate(phrases):
         nxt = phrases[i + 1] if i + 1 < len(phrases) else None
         role = _modifier_role(ph, values)
         if role:
             ph.role = role
+            if role == "mimetic":
+                mimetic.append(ph)
             continue
         ph.pred = find_predicate(ph, nxt)
         opens = i == 0 or phrases[i - 1].sentence != ph.sentence
@@ -64,8 +67,8 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     cues = _attach_modifiers(phrases, values)
     for pred in preds:
         recover_homophone(pred)
-    read_phrases(phrases)  # before the targets: their roles read the action (腰を下ろす: 座る on a support)
-    mimetics.apply(phrases)
+    read_phrases(preds, phrases)  # before the targets: their roles read the action (腰を下ろす: 座る on a support)
+    mimetics.apply(mimetic, phrases)
     attach_targets(phrases)
     for ph in phrases:
         if ph.pred:
@@ -264,9 +267,12 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         elif not pred.motion:
             continue
         elif role == "object":
-            pred.object = noun_of(ph) or None  # never an empty string
+            pred.noun = noun_of(ph)
+            pred.object = pred.noun or None  # never an empty string
         elif role == "body part":
             pred.body_part = _body_part(phrases, i)
+            if case_particle(ph) != "で":  # 右手で投げる: the limb used, not what the verb acts on
+                pred.noun = noun_of(ph)
         elif role == "repeat":
             if values[i] >= 1 and float(values[i]).is_integer():
                 pred.repeat = int(values[i])

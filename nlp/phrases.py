@@ -2,7 +2,7 @@
 
 The verb alone does not always name the action: 腰を上げる is standing up (上げる alone raises
 a hand), 肩を落とす a droop, 膝をつく kneeling, 足を組む no arm crossing. :func:`read_phrases`
-gives every motion with a を-noun its ``phrase`` (noun + を + the verb as written: 足を止める),
+gives every motion with a を-noun (``Pred.noun``, set with the object and body part) its ``phrase`` (noun + を + the verb as written: 足を止める),
 which a clip declaring that phrase plays first (``api/clip_search.py``), and reads the idioms
 of ``phrases.json`` as the action they mean: the motion's verb becomes that action, ``written``
 keeps the phrase as the user wrote it (dictionary form), and the noun is no object.
@@ -16,7 +16,6 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-from .actors import case_particle, noun_of
 from .bunsetsu import Phrase
 from .pred import Pred
 
@@ -66,17 +65,13 @@ def idiom(noun: str, verbs: tuple[str, ...], words: Callable[[], frozenset[str]]
     return None
 
 
-def read_phrases(phrases: list[Phrase]) -> None:
-    """Give each motion with a を-noun (or a bare noun: 手振って) its ``phrase`` and read an idiom
-    as the action it means (module docstring)."""
-    nouns = {ph.head: noun_of(ph) for ph in phrases
-             if ph.pred is None and ph.head is not None and ph.role in ("object", "body part")
-             and case_particle(ph) in ("を", "")}
-    for ph in phrases:
-        pred, noun = ph.pred, nouns.get(ph.index, "")
-        if pred is not None and pred.motion and noun:
-            index = ph.index
-            _read(pred, noun, lambda: frozenset(p.key for p in phrases if p.head == index and p.pred is None))
+def read_phrases(preds: list[Pred], phrases: list[Phrase]) -> None:
+    """Give each motion of ``preds`` with a を-noun (``Pred.noun``: or a bare noun, 手振って) its
+    phrase and read an idiom as the action it means (module docstring); ``phrases`` are the text's."""
+    for pred in preds:
+        if pred.noun and pred.motion:
+            index = pred.phrase
+            _read(pred, pred.noun, lambda: frozenset(p.key for p in phrases if p.head == index and p.pred is None))
 
 
 def _read(pred: Pred, noun: str, words: Callable[[], frozenset[str]]) -> None:

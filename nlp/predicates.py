@@ -50,15 +50,11 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
     if v is None:
         return None
     first = toks[v]
-    mimetic = as_verb(toks[v - 1]) if first.lemma == "為る" and v > 0 else None
-    if mimetic:  # きょろきょろする, うろうろする (nlp/mimetics.py)
-        verb, written, manner = mimetic
-        pred = Pred(ph.index, verb, toks[v - 1].kana_form + "スル", "為る", toks[v - 1].start, 0)
-        pred.written, pred.manner = written, manner
-        pred.repeat = REPEATS if repeats(manner) else 1
-    elif first.lemma == "為る" and v > 0:
-        if toks[v - 1].pos1 != "名詞":
+    if first.lemma == "為る" and v > 0 and toks[v - 1].pos1 != "名詞":
+        pred = _mimetic_verb(ph.index, toks[v - 1])
+        if pred is None:
             return None  # しばらくして, そうして: an adverb + する
+    elif first.lemma == "為る" and v > 0:
         s = _noun_run_start(toks, v)
         reading = "".join(t.kana_form for t in toks[s:v]) + "スル"
         pred = Pred(ph.index, "", reading, "為る", toks[s].start, 0)
@@ -84,6 +80,18 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
         pred.reason = "desire"  # 走りたい, 踊りたくて: a wish, not the action
     pred.ending, pred.cue = _ending(toks, g, ph, next_ph)
     settle_reason(pred, ph.quoted)
+    return pred
+
+
+def _mimetic_verb(phrase: int, adverb: Token) -> Pred | None:
+    """きょろきょろする, うろうろする: a mimetic of motion + する (``mimetics.as_verb``), else None."""
+    found = as_verb(adverb)
+    if found is None:
+        return None
+    verb, written, manner = found
+    pred = Pred(phrase, verb, adverb.kana_form + "スル", "為る", adverb.start, 0)
+    pred.written, pred.manner = written, manner
+    pred.repeat = REPEATS if repeats(manner) else 1
     return pred
 
 
