@@ -2,8 +2,9 @@
 
 :class:`DatabaseClips` is the :class:`scheduler.clips.ClipSource` the pipeline hands
 the scheduler over a :class:`motiondb.MotionDB`. It decides which word a motion's verb
-is (the spelling the user wrote, the dictionary's lemma, a kana spelling's kanji),
-and nothing about the time table.
+is (the phrase the user wrote, the spelling, the dictionary's lemma, a kana spelling's
+kanji) and which of its clips do that sense of it (:mod:`phrase_sense`), and nothing about
+the time table.
 """
 from __future__ import annotations
 
@@ -13,6 +14,8 @@ from text2anim.core.bodyparts import GROUPS
 from text2anim.motiondb import ClipInfo, MotionDB, UnknownVerbError
 from text2anim.motiondb.readings import same_word
 from text2anim.nlp.types import Analysis, MotionSpec
+
+from .phrase_sense import asked, same_sense
 
 
 def _kana_only(word: str) -> bool:
@@ -28,9 +31,44 @@ class DatabaseClips:
 
     def search(self, spec: MotionSpec, prefer: str | None) -> list[ClipInfo]:
         """The ranked clips of ``spec`` (``prefer``: that character's first); raises
-        :class:`UnknownVerbError` for a verb the database lacks."""
+        :class:`UnknownVerbError` for a verb the database lacks.
+
+        Of the verb's clips, those declaring the motion's phrase (手を振る, 首を振る) come first, and
+        those doing another sense of the verb (:func:`phrase_sense.same_sense`: the clips of 上げる
+        raise a hand, not 足を上げる) are left out. Only where the verb finds nothing (手を合わせる:
+        no clip lists 合わせる) or nothing of its sense is the phrase asked of the database itself,
+        so a plan still asks once per motion.
+        """
         part = spec.body_part if spec.body_part in GROUPS else None
-        if spec.written and spec.written != spec.verb:
+        try:
+            hits = self._by_verb(spec, part, prefer)
+        except UnknownVerbError:
+            declared = self._by_phrase(spec, part, prefer)
+            if declared:
+                return declared
+            raise
+        hits = sorted(hits, key=lambda h: spec.phrase not in h.verbs)  # stable: the database's order otherwise
+        same = [h for h in hits if same_sense(spec, h)]
+        if hits and not same:
+            declared = self._by_phrase(spec, part, prefer)
+            if declared:
+                return declared
+            raise UnknownVerbError(asked(spec))
+        return same
+
+    def _by_phrase(self, spec: MotionSpec, part: str | None, prefer: str | None) -> list[ClipInfo]:
+        """The clips declaring ``spec``'s phrase itself (a user's clip imported as 肩を回す), best first."""
+        if not spec.phrase or spec.phrase == spec.verb:
+            return []
+        try:
+            hits = self.db.search(spec.phrase, object=spec.object, body_part=part, prefer_character=prefer)
+        except UnknownVerbError:
+            return []
+        return [h for h in hits if spec.phrase in h.verbs]
+
+    def _by_verb(self, spec: MotionSpec, part: str | None, prefer: str | None) -> list[ClipInfo]:
+        """The clips of ``spec``'s verb: as written, by lemma, or a kana spelling by its reading."""
+        if spec.written and spec.written not in (spec.verb, spec.phrase):
             # The dictionary's lemma may be another word of the same sound (撮る -> 取る, 閉める ->
             # 締める, 指す -> 差す): a clip declaring the verb as the user spelled it comes first.
             try:

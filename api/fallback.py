@@ -31,10 +31,17 @@ from text2anim.motiondb.seed import BUILTIN_SOURCE
 from text2anim.nlp import meaning, senses
 from text2anim.nlp.types import Analysis, MotionSpec
 
+from . import phrase_sense
+
 #: One of a stand-in clip's verbs must be among this many vectors nearest the asked verb ...
 STANDIN_RANK = 30
 #: ... and at least this near (cosine).
 STANDIN_FLOOR = 0.30
+#: ... unless the clip does the very action of one of the verb's first SAME_SENSES senses (not a kind
+#: of it): then the cosine alone must reach STANDIN_FLOOR. A rarer word (囁く, 退場する) has few clip
+#: verbs among its nearest words even where it names the clip's action; a kind of an action (a lick
+#: is a kind of stroke) and a later sense still need the stricter agreement.
+SAME_SENSES = 2
 #: WordNet's travel.v.01 (travel, go, move, locomote): a verb that is a kind of it travels.
 TRAVEL = "01839438"
 
@@ -99,7 +106,18 @@ class UnknownVerbsError(UnknownVerbError):
 
 
 def _written(spec: MotionSpec) -> str:
-    return spec.written or spec.verb
+    return phrase_sense.asked(spec)
+
+
+def _stand_in(spec: MotionSpec, clips: Sequence[ClipInfo]) -> tuple[StandIn | None, str]:
+    """:func:`find_stand_in` for ``spec``: a phrase about the actor's body (目を閉じる) is looked for
+    as a whole, among the clips that act on that part of the body (``phrase_sense.does_body``)."""
+    if phrase_sense.body_phrase(spec) is None:
+        # the verb as written when the dictionary knows it so (泣きじゃくる; its lemma 泣き噦る is not)
+        written = spec.written if spec.written and senses.senses(spec.written) else spec.verb
+        return find_stand_in(written, clips)
+    return find_stand_in(spec.phrase, [c for c in clips if phrase_sense.does_body(spec, c)
+                                       and phrase_sense.same_sense(spec, c)])
 
 
 def database_verbs(db: MotionDB) -> list[str]:
@@ -138,6 +156,7 @@ def find_stand_in(verb: str, clips: Sequence[ClipInfo]) -> tuple[StandIn | None,
         return _compound(verb, clips, "what it means as a bodily action is not in the lexicon (JMdict, WordNet)")
     found: list[tuple[tuple, StandIn]] = []
     lexical: dict[str, None] = {}  # senses some clip does, in order
+    first = _first_verb(verb, clips)
     for order, clip in enumerate(clips):
         for action in clip_actions(clip):
             for rank, sense in enumerate(wanted):
@@ -146,15 +165,32 @@ def find_stand_in(verb: str, clips: Sequence[ClipInfo]) -> tuple[StandIn | None,
                     continue
                 lexical[sense] = None
                 near = meaning.nearest(verb, clip.verbs, n=1, floor=STANDIN_FLOOR, within=STANDIN_RANK)
+                loose = not near and how == 0 and rank < SAME_SENSES and first in (None, *clip.verbs)
+                if loose:  # the very action of one of its first senses: the vectors need only agree
+                    near = meaning.nearest(verb, clip.verbs, n=1, floor=STANDIN_FLOOR)
                 if near:
                     asked, does = _lemmas([sense]), _lemmas([action])
                     reason = f"{asked} is a kind of {does}" if how else f"both mean {does}"
-                    found.append(((rank, how, -near[0][1], order), StandIn(clip.verb, clip.name, reason, near[0][1])))
+                    found.append(((loose, rank, how, -near[0][1], order),
+                                  StandIn(clip.verb, clip.name, reason, near[0][1])))
     if found:
         return min(found, key=lambda f: f[0])[1], ""
     if lexical:
         return _compound(verb, clips, f"the clips that do {_lemmas(lexical)} are not near it in meaning (word vectors)")
     return _compound(verb, clips, f"no clip does {_lemmas(wanted)} or what it is a kind of")
+
+
+def _first_verb(verb: str, clips: Sequence[ClipInfo]) -> str | None:
+    """The first verb of ``verb`` when it is a compound of two actions that clips list (泣き叫ぶ: 泣く
+    and 叫ぶ): its main action, which a clip matched by the cosine alone must list too (a shout is
+    not 泣き叫ぶ's crying); None otherwise (立ち去る: no clip lists 去る; 怒鳴りつける: 付ける only
+    adds a manner, ``senses.MANNER_V2``)."""
+    parts = senses.compound_parts(verb)
+    listed = {v for c in clips for v in c.verbs}
+    if (parts is None or parts[0] not in listed or not {parts[1], parts[2]} & listed
+            or {parts[1], parts[2]} & senses.MANNER_V2):
+        return None
+    return parts[0]
 
 
 def _compound(verb: str, clips: Sequence[ClipInfo], why: str) -> tuple[StandIn | None, str]:
@@ -187,7 +223,7 @@ def unknown_error(analysis: Analysis, unknown: dict[int, UnknownVerbError], db: 
     missing: dict[str, tuple] = {}
     for spec in analysis.motions:
         if spec.id in unknown and _written(spec) not in missing:
-            standin, why = find_stand_in(spec.verb, clips)
+            standin, why = _stand_in(spec, clips)
             missing[_written(spec)] = (meaning.nearest(spec.verb, verbs, n=3),
                                        standin.verb if standin else None, standin.reason if standin else why)
     return UnknownVerbsError([(w, near, st, why) for w, (near, st, why) in missing.items()], hint=hint)
@@ -208,7 +244,7 @@ def substitute(analysis: Analysis, unknown: dict[int, UnknownVerbError],
         if spec.id not in unknown:
             specs.append(spec)
             continue
-        standin, _ = find_stand_in(spec.verb, clips)
+        standin, _ = _stand_in(spec, clips)
         if standin is None:
             far[spec.id] = unknown[spec.id]
             continue

@@ -24,12 +24,13 @@ import tempfile
 import time
 from pathlib import Path
 
-SET = Path(__file__).resolve().parent.parent / "tests" / "corpus" / "standin_set.json"
+CORPUS = Path(__file__).resolve().parent.parent / "tests" / "corpus"
+SETS = (CORPUS / "standin_set.json", CORPUS / "standin_unseen.json")
 
 
-def judged_set() -> tuple[dict[str, list[str]], dict[str, str]]:
-    """``(acceptable clips by verb, why by verb to refuse)`` of the stand-in set."""
-    data = json.loads(SET.read_text(encoding="utf-8"))
+def judged_set(path: Path = SETS[0]) -> tuple[dict[str, list[str]], dict[str, str]]:
+    """``(acceptable clips by verb, why by verb to refuse)`` of the stand-in set at ``path``."""
+    data = json.loads(path.read_text(encoding="utf-8"))
     return data["acceptable"], data["refuse"]
 
 
@@ -76,9 +77,10 @@ def judge(clip: str | None, accepted: list[str] | None) -> str:
     return "right" if accepted is not None and base(clip) in accepted else "wrong"
 
 
-def score(db, play) -> tuple[dict, dict, list]:
-    """Counts over the acceptable verbs and over the refuse verbs, and the rows (verb, clip, verdict)."""
-    acceptable, refuse = judged_set()
+def score(db, play, path: Path = SETS[0]) -> tuple[dict, dict, list]:
+    """Counts over the acceptable verbs and over the refuse verbs of the set at ``path``, and the rows
+    (verb, clip, verdict)."""
+    acceptable, refuse = judged_set(path)
     rows = []
     for verb, accepted in acceptable.items():
         clip = play(verb, db)
@@ -93,16 +95,24 @@ def score(db, play) -> tuple[dict, dict, list]:
 
 
 def main(argv: list[str]) -> int:
+    paths = [Path(a) for a in argv if not a.startswith("--")] or list(SETS)
+    for path in paths:
+        table(path, "--list" in argv)
+    return 0
+
+
+def table(path: Path, listing: bool) -> None:
+    """Print the scores of the set at ``path`` (and each verb's verdict with ``listing``)."""
     from text2anim.motiondb import MotionDB
 
     t0, c0 = time.perf_counter(), time.process_time()
     with tempfile.TemporaryDirectory() as tmp, MotionDB.open(f"{tmp}/lib.sqlite") as db:
-        now = score(db, played_now)
-        before = score(db, played_before)
+        now = score(db, played_now, path)
+        before = score(db, played_before, path)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-    acceptable, refuse = judged_set()
+    acceptable, refuse = judged_set(path)
     n, m = len(acceptable), len(refuse)
-    print(f"stand-in set: {n} verbs with an acceptable clip, {m} verbs nothing may stand in for")
+    print(f"{path.name}: {n} verbs with an acceptable clip, {m} verbs nothing may stand in for")
     print("| verbs | verdict | vectors only (before) | lexicon + vectors (now) |")
     print("| --- | --- | ---: | ---: |")
     for has, total, label in ((True, n, "with a stand-in"), (False, m, "to refuse")):
@@ -112,10 +122,10 @@ def main(argv: list[str]) -> int:
             b, a = before[0 if has else 1][verdict], now[0 if has else 1][verdict]
             print(f"| {label} | {verdict} | {b} ({100 * b / total:.0f} %) | {a} ({100 * a / total:.0f} %) |")
     print(f"wall {wall:.1f} s, CPU {cpu:.1f} s (both rules, {n + m} verbs each)")
-    if "--list" in argv:
+    if listing:
         for (verb, clip, verdict, _), (_, old, old_verdict, _) in zip(now[2], before[2]):
             print(f"{verb}\t{clip or '-'}\t{verdict}\t(before: {old or '-'} {old_verdict})")
-    return 0
+    print()
 
 
 if __name__ == "__main__":

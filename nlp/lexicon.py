@@ -49,6 +49,7 @@ BODY_PARTS = {
     "右足": "right_leg", "右脚": "right_leg",
     "左足": "left_leg", "左脚": "left_leg",
     "足": "leg", "脚": "leg", "両足": "leg", "両脚": "leg",
+    "片手": "arm", "片腕": "arm", "片足": "leg", "片脚": "leg",
     "頭": "head", "首": "head", "顔": "head",
     "腰": "torso", "体": "torso", "身体": "torso",
     "上体": "torso", "上半身": "torso", "背中": "torso", "胸": "torso",

@@ -2,8 +2,9 @@
 
 Roles: predicates (motions or not, with the reason), actors (person + は/が/も),
 objects and body parts (を / で), repeat (N回), duration (N秒間), speed
-(ゆっくり), manner て-forms (急いで), and time cues (そして, N秒後に,
-しばらくして, ...) that adjust the link into the motion they modify.
+(ゆっくり), manner て-forms (急いで), mimetics (ぱちぱち, よろよろ: ``mimetics``), and
+time cues (そして, N秒後に, しばらくして, ...) that adjust the link into the motion they
+modify. A verb with its を-noun may be an idiom (腰を上げる: ``phrases``).
 """
 from __future__ import annotations
 
@@ -16,6 +17,8 @@ from .lexicon import (
     BODY_PARTS, CONNECTIVES, COUNTERS, LIBRARY_VERBS, MANNER_TE, REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS,
     STEPPING_VERBS,
 )
+from . import mimetics
+from .phrases import read_phrases
 from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
 from .reference import resolve_persons
@@ -43,11 +46,14 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     """Give every phrase its role; return the predicates and the time cues.  How pronouns were
     read (:func:`reference.resolve_persons`) is appended to ``notes``."""
     values: dict[int, float] = {}
+    mimetic: list[Phrase] = []
     for i, ph in enumerate(phrases):
         nxt = phrases[i + 1] if i + 1 < len(phrases) else None
         role = _modifier_role(ph, values)
         if role:
             ph.role = role
+            if role == "mimetic":
+                mimetic.append(ph)
             continue
         ph.pred = find_predicate(ph, nxt)
         opens = i == 0 or phrases[i - 1].sentence != ph.sentence
@@ -66,6 +72,8 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     cues = _attach_modifiers(phrases, values)
     for pred in preds:
         recover_homophone(pred)
+    read_phrases(preds, phrases)  # before the targets: their roles read the action (腰を下ろす: 座る on a support)
+    mimetics.apply(mimetic, phrases)
     attach_targets(phrases)
     for ph in phrases:
         if ph.pred:
@@ -88,6 +96,8 @@ def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
         values[ph.index] = REPEAT_WORDS[key]
         return "repeat"
     toks = ph.tokens
+    if toks[0].pos1 == "副詞" and mimetics.word(key):
+        return "mimetic"
     if not toks[0].is_number or toks[0].value is None:
         return ""
     values[ph.index] = toks[0].value
@@ -268,9 +278,12 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         elif not pred.motion:
             continue
         elif role == "object":
-            pred.object = noun_of(ph) or None  # never an empty string
+            pred.noun = noun_of(ph)
+            pred.object = pred.noun or None  # never an empty string
         elif role == "body part":
             pred.body_part = _body_part(phrases, i)
+            if case_particle(ph) != "で":  # 右手で投げる: the limb used, not what the verb acts on
+                pred.noun = noun_of(ph)
         elif role == "repeat":
             if values[i] >= 1 and float(values[i]).is_integer():
                 pred.repeat = int(values[i])

@@ -1,8 +1,8 @@
 """Predicates: which bunsetsu hold a verb, which verb, and how the clause ends.
 
-A predicate bunsetsu holds a verb (走って), a サ変 noun + する (ジャンプする), or
-a bare する whose action noun is in the bunsetsu before (ジャンプをする,
-お辞儀をする).  Its *verb group* is the verb with its auxiliaries (た, ない,
+A predicate bunsetsu holds a verb (走って), a サ変 noun + する (ジャンプする), a
+mimetic + する (きょろきょろする), or a bare する whose action noun is in the bunsetsu
+before (ジャンプをする, お辞儀をする).  Its *verb group* is the verb with its auxiliaries (た, ない,
 ている, aspect auxiliaries 始める/続ける/出す/終わる) and a trailing て: the
 ``span`` of the motion.  What follows the group is the clause ending
 (``endings.ENDINGS``) or a reason why the predicate is not a motion.
@@ -13,6 +13,7 @@ from .bunsetsu import Phrase
 from .lexicon import (
     BODY_PARTS, LIBRARY_BY_READING, LIBRARY_VERBS, NON_ACTION_LEMMAS, VERB_ALIASES,
 )
+from .mimetics import REPEATS, as_verb, repeats
 from .pred import Pred
 from .types import Token
 
@@ -49,9 +50,11 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
     if v is None:
         return None
     first = toks[v]
-    if first.lemma == "為る" and v > 0:
-        if toks[v - 1].pos1 != "名詞":
+    if first.lemma == "為る" and v > 0 and toks[v - 1].pos1 != "名詞":
+        pred = _mimetic_verb(ph.index, toks[v - 1])
+        if pred is None:
             return None  # しばらくして, そうして: an adverb + する
+    elif first.lemma == "為る" and v > 0:
         s = _noun_run_start(toks, v)
         reading = "".join(t.kana_form for t in toks[s:v]) + "スル"
         pred = Pred(ph.index, "", reading, "為る", toks[s].start, 0)
@@ -79,6 +82,18 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
         pred.reason = "prohibition"
     pred.ending, pred.cue = _ending(toks, g, ph, next_ph)
     settle_reason(pred, ph.quoted)
+    return pred
+
+
+def _mimetic_verb(phrase: int, adverb: Token) -> Pred | None:
+    """きょろきょろする, うろうろする: a mimetic of motion + する (``mimetics.as_verb``), else None."""
+    found = as_verb(adverb)
+    if found is None:
+        return None
+    verb, written, manner = found
+    pred = Pred(phrase, verb, adverb.kana_form + "スル", "為る", adverb.start, 0)
+    pred.written, pred.manner = written, manner
+    pred.repeat = REPEATS if repeats(manner) else 1
     return pred
 
 

@@ -27,6 +27,10 @@ BODILY = frozenset(["motion", "contact", "body", "consumption", "communication",
                     "perception", "creation", "change", "cognition"])
 
 
+#: Phrases whose meaning is their noun's (ポーズをとる, 伸びをする): looked up like their noun.
+_LIGHT_PHRASES = ("をする", "をとる", "を取る")
+
+
 @lru_cache(maxsize=1)
 def _table() -> tuple[dict[str, list[list[str]]], dict[str, tuple[str, str, tuple[str, ...]]]]:
     data = json.loads(gzip.decompress(DATA.read_bytes()))
@@ -51,12 +55,16 @@ def senses(verb: str) -> tuple[str, ...]:
 
     ``verb`` is looked up as ``meaning.forms`` spells it (as written, without する, its head
     verb), first spelling found; a word's later JMdict senses are left out (跳ねる "to close
-    (a show)" is its third). Empty when the verb is not in the table or has no bodily sense.
+    (a show)" is its third). A phrase with a を-noun (目を閉じる, 胸を張る) is looked up whole
+    only: its verb alone is another action (閉じる closes a door, 張る glues), and a gloss drops
+    the noun ("to close one's eyes" is read as close). Empty when the verb is not in the table
+    or has no bodily sense.
     """
     from .meaning import forms
 
     words, synsets = _table()
-    for w in forms(verb):
+    whole = "を" in verb and not verb.endswith(_LIGHT_PHRASES)
+    for w in [verb] if whole else forms(verb):
         if w in words and words[w]:
             return tuple(o for o in words[w][0] if synsets[o][0] in BODILY)
     return ()
@@ -82,7 +90,7 @@ def relation(sense: str, action: str) -> int | None:
 #: a direction, a strength or an aspect: 駆け寄る runs (up to), 走り回る runs (around), 握り締める
 #: grips (tightly). Not 上げる/下ろす/出す, which change what is done (抱き上げる lifts, it does not
 #: hug), nor 込む, which often does (踏み込む steps in, it does not stamp), nor a second action (泣き叫ぶ).
-MANNER_V2 = frozenset(["寄る", "抜ける", "回る", "締める", "付ける", "掛かる", "かかる", "続ける",
+MANNER_V2 = frozenset(["寄る", "抜ける", "回る", "締める", "付ける", "つける", "掛かる", "かかる", "続ける",
                        "始める", "直す", "まくる", "捲る", "通す", "切る", "留める", "集める", "のめす",
                        "巡らす", "入る", "付く"])
 
@@ -101,6 +109,14 @@ def compound_head(verb: str) -> tuple[str, str] | None:
     """``(V1, V2)`` dictionary forms when ``verb`` is a compound verb V1 + V2 whose V2 keeps V1's
     action (:data:`MANNER_V2`): 駆け寄る -> (駆ける, 寄る); else None (one verb, a phrase, or a V2
     that changes the action)."""
+    parts = compound_parts(verb)
+    return parts[:2] if parts and (parts[2] in MANNER_V2 or parts[1] in MANNER_V2) else None
+
+
+@lru_cache(maxsize=4096)
+def compound_parts(verb: str) -> tuple[str, str, str] | None:
+    """``(V1, V2, V2 as written)`` dictionary forms when ``verb`` is a compound verb V1連用形 + V2
+    (泣き叫ぶ -> (泣く, 叫ぶ, 叫ぶ)), whatever V2 does; else None (one verb, a phrase)."""
     if not 3 <= len(verb) <= 12 or _words(verb)[-1][1] != "動詞":
         return None
     for i in range(1, len(verb) - 1):
@@ -109,7 +125,6 @@ def compound_head(verb: str) -> tuple[str, str] | None:
         if len(first) != 2 or len(second) != 1 or first[0][0] != verb[:i]:
             continue
         (_, pos1, form1, base1), (surface2, pos2, form2, base2) = first[0], second[0]
-        if (pos1 == "動詞" and form1.startswith("連用形") and pos2 == "動詞" and form2.startswith("終止形")
-                and (surface2 in MANNER_V2 or base2 in MANNER_V2)):
-            return base1, base2
+        if pos1 == "動詞" and form1.startswith("連用形") and pos2 == "動詞" and form2.startswith("終止形"):
+            return base1, base2, surface2
     return None

@@ -81,6 +81,11 @@ class MotionSpec:
     #: their constraints instead.
     delay: float | None = None
     written: str = ""  # the verb as the user spelled it, dictionary form (登る for verb 上る)
+    #: the verb with its を-noun as written, dictionary form (足を止める), when it has one: a clip
+    #: that declares the phrase plays it (docs/language.md §2)
+    phrase: str = ""
+    #: a manner word the text gives the motion (よろよろ, とぼとぼ: §7.9), as written in hiragana
+    manner: str | None = None
     #: whom or what the motion is directed at, as written (a person by the actor's name: 花子), its role
     #: (goal, source, addressee, patient, recipient, partner, support, destination, at) and the side of it
     #: (front, behind, beside, near, on, left, right): docs/language.md §8
@@ -98,6 +103,8 @@ class MotionSpec:
         }
         if extra or self.delay is not None:
             d["delay"] = self.delay  # the §5 object gains it only when the text opens with one
+        if extra or self.manner is not None:
+            d["manner"] = self.manner  # likewise only when the text gives one
         if extra or self.target is not None:  # §8: only when the motion is directed at someone or something
             d.update(target=self.target, target_role=self.target_role, target_side=self.target_side,
                      target_person=self.target_person)
@@ -105,6 +112,7 @@ class MotionSpec:
             d["hold"] = self.hold
             d["reading"] = self.reading
             d["written"] = self.written
+            d["phrase"] = self.phrase
         return d
 
 
@@ -149,7 +157,7 @@ class Analysis:
     notes: tuple[str, ...] = field(default=(), compare=False)
 
     def to_dict(self, extra: bool = False) -> dict:
-        """docs/language.md §5; ``extra`` adds ``hold``, ``reading`` and ``cue``."""
+        """docs/language.md §5; ``extra`` adds ``hold``, ``reading``, ``written``, ``phrase`` and ``cue``."""
         return {
             "text": self.text,
             "motions": [m.to_dict(extra) for m in self.motions],

@@ -181,9 +181,10 @@ def unknown_verbs(text: str, exc: Exception) -> list[dict]:
     if not missing:
         return []
     from text2anim.nlp import analyze
+    from text2anim.phrase_sense import asked
 
     spans: dict[str, list[int]] = {}
     for m in analyze(text).motions:
-        spans.setdefault(m.written or m.verb, list(m.span))
+        spans.setdefault(asked(m), list(m.span))  # as the error names it: 足を上げる, not 上げる
     return [{"written": w, "span": spans.get(w), "nearest": [v for v, _ in near], "standin": standin, "why": why}
             for w, near, standin, why in missing]

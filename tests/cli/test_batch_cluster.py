@@ -96,7 +96,8 @@ def test_every_corpus_sentence_animates_without_skating(capsys, tmp_path, librar
     st, reasons = summary["status"], summary["reasons"]["refused"]
     unknown = sum(n for r, n in reasons.items() if r.startswith("unknown verb"))
     assert st["failed"] == 0 and st["animated"] + st["refused"] == len(items)
-    assert st["refused"] - unknown == refused and unknown <= 2
+    # unknown: 腰を回す, and 足を上げる / 左足を上げる, which played the raised hand before issue 39 (no clip lifts a leg)
+    assert st["refused"] - unknown == refused and unknown <= 3
     q = summary["quality"]
     assert q["skating_ratio"]["max"] <= 0.02
     assert q["join_skating_ratio"]["max"] <= 0.075 and q["join_root_pop"]["max"] <= 15.0

@@ -46,6 +46,14 @@ def test_what_cannot_be_animated_says_why_in_the_users_terms(client):
     assert client.post("/api/animate", json={"text": "  "}).json()["ok"] is False
 
 
+def test_a_phrase_no_clip_does_is_marked_where_it_is_written(client):
+    """足を上げる: the clips of 上げる raise a hand; the error names the phrase, and the page underlines
+    its verb (issue 39)."""
+    r = client.post("/api/animate", json={"text": "太郎は左足を上げた。"})
+    (unknown,) = r.json()["unknown"]
+    assert r.status_code == 422 and unknown["written"] == "左足を上げる" and unknown["span"] == [6, 8]
+
+
 def test_the_bvh_export_reads_back(client):
     r = client.post("/api/export", json={"text": "太郎は歩く。"})
     assert r.status_code == 200 and 'filename="animation.bvh"' in r.headers["content-disposition"]

@@ -11,7 +11,11 @@ For every JMdict headword (kanji or kana spelling) with a verb sense (godan, ich
 the English glosses of its first ``SENSES`` verb senses, each read as an English verb
 ("to swim" -> swim; "to wave one's hand" -> wave_hand, then wave; "beckoning" -> beckon), and
 the most frequent WordNet verb synset of each (WordNet lists senses by frequency) of the first
-reading that is a bodily sense (``nlp.senses.BODILY``: "carry on one's back" is carry, not "carry on"). The
+reading that is a bodily sense (``nlp.senses.BODILY``: "carry on one's back" is carry, not "carry on");
+failing that, the first bodily sense of a reading ("to embrace": hug, not include), of the gloss's
+leading verb ("to kick flying": kick), or of a verb WordNet derives from a noun gloss ("prayer":
+pray; サ変 nouns are often glossed with nouns) (:func:`reading`). A sense JMdict says is said of
+things ("operation (of a machine, etc.)" of 運転) has none (:func:`said_of_things`). The
 output keeps, per word, a list per JMdict sense of those synsets in gloss order;
 and for every synset reached (and every synset the built-in clips' actions name,
 ``motiondb/library/actions.json``), its
@@ -66,11 +70,49 @@ TRAILING = {"about", "around", "at", "away", "back", "down", "in", "into", "off"
             "over", "through", "to", "up", "hard", "fast", "well", "together"}
 
 
+def read_noun_verbs(folder: Path) -> dict[str, list[str]]:
+    """English noun -> the WordNet verb synsets derivationally related to it (WordNet's "+"
+    pointers from that word of each of its synsets, most frequent sense first): prayer -> pray,
+    evasion -> evade."""
+    words: dict[str, list[str]] = {}  # noun synset -> its lemmas
+    pointers: dict[str, dict[int, list[str]]] = {}  # noun synset -> word number -> verb synsets
+    for line in (folder / "data.noun").read_text("latin-1").splitlines():
+        if line.startswith("  "):
+            continue
+        f = line.partition("|")[0].split()
+        k = 4 + 2 * int(f[3], 16)
+        words[f[0]] = [w.lower() for w in f[4:k:2]]
+        for i in range(int(f[k])):
+            symbol, target, pos, source = f[k + 1 + 4 * i: k + 5 + 4 * i]
+            if symbol == "+" and pos == "v":
+                pointers.setdefault(f[0], {}).setdefault(int(source[:2], 16), []).append(target)
+    out: dict[str, list[str]] = {}
+    for line in (folder / "index.noun").read_text("latin-1").splitlines():
+        if line.startswith("  "):
+            continue
+        f = line.split()
+        lemma, verbs = f[0], out.setdefault(f[0], [])
+        for off in f[-int(f[2]):]:
+            here = words[off].index(lemma) + 1 if lemma in words[off] else 0
+            verbs += [t for t in pointers.get(off, {}).get(here, []) if t not in verbs]
+    return out
+
+
+def english_nouns(gloss: str) -> list[str]:
+    """WordNet noun lemmas a noun gloss may be (a サ変 noun glossed with a noun: "prayer (for
+    something)" -> prayer, "silent prayer" -> silent_prayer, prayer): the phrase, then its head."""
+    g = re.sub(r"\(.*?\)|\[.*?\]", " ", gloss).lower().strip()
+    words = g.split()
+    if not words or len(words) > 3:
+        return []
+    return list(dict.fromkeys(["_".join(words), words[-1]]))
+
+
 def english_verbs(gloss: str) -> list[str]:
     """WordNet lemmas to try for one gloss, most specific first: the phrase, without its objects
     ("wave one's hand" -> wave_hand, wave), its first half ("cry and shout" -> cry), without
     trailing particles and adverbs ("grasp tightly" -> grasp, "throw into" -> throw), a サ変
-    noun's gloss as a verb ("jogging" -> jog)."""
+    noun's gloss as a verb ("jogging" -> jog, "going to bed" -> go_to_bed)."""
     g = re.sub(r"\(.*?\)|\[.*?\]", " ", gloss).lower().strip()
     g = g.removeprefix("to ").strip()
     if not g or len(g.split()) > 5:
@@ -84,10 +126,30 @@ def english_verbs(gloss: str) -> list[str]:
     while len(words) > 1 and (words[-1] in TRAILING or words[-1].endswith("ly")):
         words = words[:-1]
         out.append(" ".join(words))
-    if words and words[0].endswith("ing") and len(words[0]) > 5:  # a サ変 noun's gloss: beckoning
+    if words and words[0].endswith("ing") and len(words[0]) > 4:  # a サ変 noun's gloss: beckoning
         stem = words[0][:-3]
-        out += [stem, stem + "e", stem[:-1] if len(stem) > 2 and stem[-1] == stem[-2] else stem]
+        stems = [stem, stem + "e", stem[:-1] if len(stem) > 2 and stem[-1] == stem[-2] else stem]
+        if len(words) > 1:  # "going to bed" -> go_to_bed, before go alone
+            out += [" ".join([s, *words[1:]]) for s in stems]
+        if len(words[0]) > 5:
+            out += stems
     return list(dict.fromkeys("_".join(w.split()) for w in out if w.strip()))
+
+
+def leading_verbs(gloss: str) -> list[str]:
+    """The leading verb of a verb gloss, with its particle ("to pick up in one's fingers" -> pick_up,
+    pick; "to kick flying" -> kick; "to stand stock still" -> stand): tried only when no reading of
+    the whole gloss (:func:`english_verbs`) is a bodily verb, as "draw near" is approach, not draw;
+    never a verb with an object ("to throw a punch at" is no throw) nor a noun gloss ("divine
+    service")."""
+    g = re.sub(r"\(.*?\)|\[.*?\]", " ", gloss).lower().strip()
+    if not g.startswith("to "):
+        return []
+    words = re.split(r"\b(?:and|or)\b|,|;", g.removeprefix("to "))[0].split()
+    if len(words) < 2 or OBJECTS.fullmatch(words[1]) or words[1] in OWNERS:
+        return []
+    out = ["_".join(words[:2])] if words[1] in TRAILING else []
+    return out + [words[0]]
 
 
 def read_jmdict(path: Path) -> dict[str, list[list[str]]]:
@@ -118,16 +180,43 @@ def read_jmdict(path: Path) -> dict[str, list[list[str]]]:
     return out
 
 
+#: What a sense "(of ...)" may be said of and still be a person's action.
+PERSONS = re.compile(r"\(of (a |an |the )?(person|people|someone|somebody|one|oneself|a child|children|"
+                     r"an animal|animals|a bird|birds|a dog|a cat|a horse|man|men|woman|women)\b")
+
+
+def said_of_things(gloss: str) -> bool:
+    """Is the sense whose first gloss is ``gloss`` said of things, not of a person ("operation (of a
+    machine, etc.)" of 運転: its later gloss "running" is no run), as JMdict's "(of ...)" says?"""
+    return "(of " in gloss and not PERSONS.search(gloss)
+
+
+def reading(gloss: str, index: dict[str, list[str]], synsets: dict, nouns: dict[str, list[str]]) -> str | None:
+    """The WordNet verb synset a body can act out that ``gloss`` names, or None. In this order:
+    the most frequent sense of the first reading of the gloss whose most frequent sense is bodily
+    ("carry on one's back" is carry, not carry on); else the first bodily sense of a reading
+    ("to embrace": include is its most frequent sense, hug the first bodily one); else the gloss's
+    leading verb the same way ("to kick flying" -> kick); else, for a noun gloss, the first bodily
+    verb derived from the noun ("prayer" -> pray, "evasion" -> evade)."""
+    def bodily(offsets):
+        return [o for o in offsets if synsets[o][0] in BODILY]
+
+    verbs = [v for v in english_verbs(gloss) if v in index]
+    lead = [v for v in leading_verbs(gloss) if v in index]
+    ranked = ([index[v][:1] for v in verbs] + [index[v] for v in verbs] + [index[v][:1] for v in lead]
+              + [index[v] for v in lead] + [nouns.get(n, []) for n in english_nouns(gloss)])
+    return next((b[0] for offsets in ranked if (b := bodily(offsets))), None)
+
+
 def derive(jmdict: Path, wordnet: Path) -> dict:
     index, synsets = read_wordnet(wordnet)
+    nouns = read_noun_verbs(wordnet)
     words: dict[str, list[list[str]]] = {}
     for word, senses in read_jmdict(jmdict).items():
         found: list[list[str]] = []
         for glosses in senses:
-            hits = [next((index[v][0] for v in english_verbs(g)  # the first reading a body can act out:
-                          if v in index and synsets[index[v][0]][0] in BODILY), None)  # not "carry on"
-                    for g in glosses]
-            found.append(list(dict.fromkeys(h for h in hits if h)))
+            hits = [reading(g, index, synsets, nouns) for g in glosses]
+            found.append([] if said_of_things(glosses[0]) else list(dict.fromkeys(h for h in hits if h)))
         if any(found):
             words[word] = found
     keep: set[str] = set()

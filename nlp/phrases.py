@@ -1,0 +1,86 @@
+"""What a phrase means: the action of a verb together with its を-noun.
+
+The verb alone does not always name the action: 腰を上げる is standing up (上げる alone raises
+a hand), 肩を落とす a droop, 膝をつく kneeling, 足を組む no arm crossing. :func:`read_phrases`
+gives every motion with a を-noun (``Pred.noun``, set with the object and body part) its ``phrase`` (noun + を + the verb as written: 足を止める),
+which a clip declaring that phrase plays first (``api/clip_search.py``), and reads the idioms
+of ``phrases.json`` as the action they mean: the motion's verb becomes that action, ``written``
+keeps the phrase as the user wrote it (dictionary form), and the noun is no object.
+docs/language.md §2 ("What a phrase means") lists the rules with examples.
+"""
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+from .bunsetsu import Phrase
+from .pred import Pred
+
+DATA = Path(__file__).with_name("phrases.json")
+
+
+@dataclass(frozen=True, slots=True)
+class Idiom:
+    """A を-noun + verb that means ``action`` (done with body part ``part``; None: the whole body),
+    when one of the words ``with_`` (if any) modifies the verb too."""
+
+    action: str
+    part: str | None
+    with_: frozenset[str]
+
+
+@lru_cache(maxsize=1)
+def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], dict[str, str]]:
+    """``((noun, verb) -> idioms, body noun -> its part)`` from ``phrases.json``; an idiom with ``with``
+    words first."""
+    data = json.loads(DATA.read_text(encoding="utf-8"))
+    table: dict[tuple[str, str], list[Idiom]] = {}
+    for entry in data["idioms"]:
+        idiom = Idiom(entry["action"], entry["part"], frozenset(entry.get("with", ())))
+        for noun in entry["nouns"]:
+            for verb in entry["verbs"]:
+                table.setdefault((noun, verb), []).append(idiom)
+    ordered = {k: tuple(sorted(v, key=lambda i: not i.with_)) for k, v in table.items()}
+    return ordered, dict(data["body_nouns"])
+
+
+def body_nouns() -> dict[str, str]:
+    """Nouns of the actor's body that ``lexicon.BODY_PARTS`` gives no body part (目, 肩, 膝, ...), each with
+    the part it is on: ``head``, ``torso``, ``arm`` or ``leg``."""
+    return _data()[1]
+
+
+def idiom(noun: str, verbs: tuple[str, ...], words: Callable[[], frozenset[str]] = frozenset) -> Idiom | None:
+    """The idiom ``noun`` + one of ``verbs`` (spellings of one verb: as written, its lemma) is, given
+    the other ``words()`` that modify the verb (asked only of an idiom that needs one); None when
+    the phrase means what its verb does."""
+    table = _data()[0]
+    for verb in verbs:
+        for entry in table.get((noun, verb), ()):
+            if not entry.with_ or entry.with_ & words():
+                return entry
+    return None
+
+
+def read_phrases(preds: list[Pred], phrases: list[Phrase]) -> None:
+    """Give each motion of ``preds`` with a を-noun (``Pred.noun``: or a bare noun, 手振って) its
+    phrase and read an idiom as the action it means (module docstring); ``phrases`` are the text's."""
+    for pred in preds:
+        if pred.noun and pred.motion:
+            index = pred.phrase
+            _read(pred, pred.noun, lambda: frozenset(p.key for p in phrases if p.head == index and p.pred is None))
+
+
+def _read(pred: Pred, noun: str, words: Callable[[], frozenset[str]]) -> None:
+    written = pred.written or pred.verb
+    pred.verb_phrase = f"{noun}を{written}"
+    found = idiom(noun, (written, pred.lemma, pred.verb), words)
+    if found is None:
+        return
+    if found.with_:  # 首を縦に振る: the word that makes it this idiom is part of the phrase
+        pred.verb_phrase = f"{noun}を{min(found.with_ & words())}{written}"
+    pred.verb, pred.written, pred.reading = found.action, pred.verb_phrase, ""
+    pred.object, pred.body_part = None, found.part
