@@ -111,6 +111,16 @@ def _steered(motions, rigids, rel: Relation) -> Motion:
 STILL = 0.2
 
 
+def arrival(m: Motion, t: float) -> float:
+    """When an approach whose row ends at ``t`` s has arrived: the first frame from ``t`` on, at most 2 s later,
+    at which the hips stand still (a run into a hug slows on through the hug's first steps), s."""
+    path = hips_path(m)[0]
+    speed = np.linalg.norm(np.diff(path[:, [0, 2]], axis=0), axis=1) * m.fps
+    f = int(np.clip(round(t * m.fps), 0, len(speed)))
+    still = np.nonzero(speed[f:f + int(2 * m.fps)] < STILL)[0]
+    return (f + int(still[0])) / m.fps if len(still) else t
+
+
 def setting_off(m: Motion, f: int) -> int:
     """The frame an approach whose row plays from ``f`` sets off: the last frame, at most a second before
     ``f``, at which the hips stood still (a join may have started the walk before its row)."""

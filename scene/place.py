@@ -12,7 +12,7 @@ import numpy as np
 from text2anim.core.motion import Motion
 from text2anim.scheduler.types import Element
 
-from .fit import fit
+from .fit import arrival, fit
 from .relations import HANDS, HIPS_HEIGHT, relations
 from .things import reach_instant, send_instant, things
 from .types import Met, Scene, Spot, Staging
@@ -34,7 +34,9 @@ def place(staging: Staging, rows: Sequence[Element], motions: dict[str | None, M
              and (t := send_instant(r, motions[r.actor], fps)) is not None}
     reaches = {r.id: reach_instant(r, motions[r.actor], HANDS[r.verb], fps) for r in rows
                if r.actor in motions and r.verb in HANDS}
-    rels = relations(rows, set(motions), scale, sends, reaches)
+    arrivals = {r.id: arrival(motions[r.actor], r.end) for r in rows
+                if r.actor in motions and r.target_role == "goal"}
+    rels = relations(rows, set(motions), scale, sends, reaches, arrivals)
     steered, rigids, met = fit(motions, rels)
     moved = {a: rigids[a].apply(m) for a, m in steered.items()}
     spots = tuple(_moved_spot(s, rigids) for s in staging.spots if s.actor in rigids)

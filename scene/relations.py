@@ -8,7 +8,8 @@ time from the row's played times:
 =========================== ========== ================================= ==========================
 role (side)                 kind       distance                          time
 =========================== ========== ================================= ==========================
-goal (front, none)          ``face``   the next act's for the same       the row's end (arrival)
+goal (front, none)          ``face``   the next act's for the same       when the body has come to
+                                                                          rest after the row's end
                                        person, else :data:`APPROACH`
 goal (behind)               ``behind`` :data:`BEHIND`                     the row's end
 goal (beside, near, ...)    ``beside`` :data:`BESIDE`                     the row's end
@@ -57,13 +58,14 @@ HIPS_HEIGHT = 0.93
 
 def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str | None, float],
               sends: dict[int, tuple[float, float]] | None = None,
-              reaches: dict[int, float] | None = None) -> list[Relation]:
+              reaches: dict[int, float] | None = None, arrivals: dict[int, float] | None = None) -> list[Relation]:
     """The relations of ``rows`` (played times) between actors in ``present``, in time order;
     ``scale`` is each actor's size against the built-in body (its hips height over :data:`HIPS_HEIGHT`);
     ``sends`` the instant (s) a row sends a thing off (a throw's release, a kick's strike) and where the
     chest faces then: the recipient stands that way, whatever the hips do in the wind-up; ``reaches`` the
-    instant (s) a row's hand reaches out to another's (:data:`HANDS`): the two are placed then, hand to hand."""
-    sends, reaches = sends or {}, reaches or {}
+    instant (s) a row's hand reaches out to another's (:data:`HANDS`): the two are placed then, hand to hand;
+    ``arrivals`` when an approach's body has come to rest (s; its row's end by default)."""
+    sends, reaches, arrivals = sends or {}, reaches or {}, arrivals or {}
     out = []
     for i, r in enumerate(rows):
         if r.target is None or r.target == r.actor or r.target not in present or (
@@ -80,6 +82,8 @@ def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str
             if other is not None:
                 time, hands = reaches[r.id], (HANDS[r.verb], HANDS[other.verb])
         start = r.start if r.target_role == "goal" else None
+        if r.id in arrivals:
+            time = arrivals[r.id]
         out.append(Relation(r.id, r.actor, r.target, kind, dist * scale.get(r.actor, 1.0), time, r.verb,
                             r.target_role or "", span, facing, start, hands))
     return sorted(out, key=lambda rel: (rel.time, rel.element))
