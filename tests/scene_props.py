@@ -15,8 +15,9 @@ from text2anim.core.bodyparts import body_map
 from text2anim.core.motion import Motion
 from text2anim.output.viewer.types import Prop
 
-BALL = "#e53935"
-CHAIR = "#b07a3c"
+#: Colours apart from the first actors' (blue, orange) and the floor's red x axis, so a test can find each thing's pixels.
+BALL = "#d63384"
+CHAIR = "#6aa84f"
 
 
 def in_hand(motion: Motion, name: str = "ボール", side: str = "right", diameter: float = 0.22,
@@ -50,4 +51,4 @@ def scene(db: str, text: str = TEXT):
 
     anim = text2anim.animate(text, db=db)
     motions = list(anim.motions.values())
-    return anim, [in_hand(motions[-1]), chair_beside(motions[0])]
+    return anim, [in_hand(motions[-1]), chair_beside(motions[0], across=-1.0)]  # on the side away from the other
