@@ -106,6 +106,7 @@
     $("share").href = "/?text=" + encodeURIComponent(text);
     var view = $("view");
     timeline(data);
+    window.__studioTop.show(data.top);
     if (data.rig) { skinned(text, seq, data); return; }
     $("view3d").hidden = true; view.hidden = false;
     view.onload = function () { ready(view, seq, data); };
