@@ -39,11 +39,14 @@ class Part:
     axis: int = 1
 
 
+def _xyz(v: np.ndarray) -> tuple[float, float, float]:
+    return float(v[0]), float(v[1]), float(v[2])
+
+
 def _part(kind: str, size, centre_frac, size_frac, axis: int = 1) -> Part:
     """A part placed in fractions of the bounding box (centre -0.5 .. 0.5, size 0 .. 1 of each side)."""
     s = np.asarray(size, dtype=float)
-    return Part(kind, tuple(float(v) for v in np.asarray(centre_frac) * s),
-                tuple(float(v) for v in np.asarray(size_frac) * s), axis)
+    return Part(kind, _xyz(np.asarray(centre_frac) * s), _xyz(np.asarray(size_frac) * s), axis)
 
 
 def parts(shape: str, size: tuple[float, float, float]) -> list[Part]:
@@ -73,9 +76,15 @@ def parts(shape: str, size: tuple[float, float, float]) -> list[Part]:
 
 
 # --------------------------------------------------------------------------- triangles
-def _box(p: Part):
+#: A part's triangles as the meshers build them: positions, normals (lists of 3-vectors), indices.
+Triangles = tuple[list[np.ndarray], list[np.ndarray], list[int]]
+
+
+def _box(p: Part) -> Triangles:
     c, half = np.asarray(p.centre), np.asarray(p.size) / 2
-    pos, nrm, idx = [], [], []
+    pos: list[np.ndarray] = []
+    nrm: list[np.ndarray] = []
+    idx: list[int] = []
     for axis in range(3):
         for sign in (-1.0, 1.0):
             u, v = [(1, 2), (2, 0), (0, 1)][axis]  # (u, v, axis) right-handed: u x v = axis
@@ -97,7 +106,7 @@ def _frame(axis: int) -> tuple[int, int, int]:
     return [(1, 2, 0), (2, 0, 1), (0, 1, 2)][axis]
 
 
-def _cylinder(p: Part, n: int = CYLINDER_SEGMENTS):
+def _cylinder(p: Part, n: int = CYLINDER_SEGMENTS) -> Triangles:
     a, b, ax = _frame(p.axis)
     c, half = np.asarray(p.centre), np.asarray(p.size) / 2
     ang = np.arange(n) * 2 * np.pi / n
@@ -108,7 +117,9 @@ def _cylinder(p: Part, n: int = CYLINDER_SEGMENTS):
     side_n /= np.linalg.norm(side_n, axis=1, keepdims=True)
     top = np.zeros(3)
     top[ax] = half[ax]
-    pos, nrm, idx = [], [], []
+    pos: list[np.ndarray] = []
+    nrm: list[np.ndarray] = []
+    idx: list[int] = []
     for i in range(n):  # side: bottom i, bottom i+1, top i+1, top i (counter-clockwise from outside)
         j = (i + 1) % n
         base = len(pos)
@@ -130,9 +141,11 @@ def _cylinder(p: Part, n: int = CYLINDER_SEGMENTS):
     return pos, nrm, idx
 
 
-def _sphere(p: Part, rings: int = SPHERE_RINGS, segs: int = SPHERE_SEGMENTS):
+def _sphere(p: Part, rings: int = SPHERE_RINGS, segs: int = SPHERE_SEGMENTS) -> Triangles:
     c, r = np.asarray(p.centre), np.asarray(p.size) / 2
-    pos, nrm, idx = [], [], []
+    pos: list[np.ndarray] = []
+    nrm: list[np.ndarray] = []
+    idx: list[int] = []
     for i in range(rings + 1):
         th = np.pi * i / rings  # from the top (+y) down
         for k in range(segs + 1):

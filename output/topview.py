@@ -32,7 +32,7 @@ from . import fonts
 from .shapes import parts
 from .viewer.types import Prop, Span, as_props, as_spans, as_tracks
 
-__all__ = ["Footprint", "TopActor", "TopProp", "TopView", "plot_top_view", "top_view"]
+__all__ = ["Footprint", "TopActor", "TopProp", "TopView", "footprint", "plot_top_view", "top_view"]
 
 #: Shapes whose footprint is a circle.
 ROUND = frozenset({"sphere", "cylinder", "cup"})
@@ -172,9 +172,9 @@ def _actor(name: str, color: str, motion: Motion, spans: list[Span]) -> TopActor
 
 def _hull(pts: np.ndarray) -> np.ndarray:
     """The convex hull of 2-D points, counter-clockwise (Andrew's monotone chain)."""
-    pts = sorted(set(map(tuple, np.round(pts, 6))))
-    if len(pts) < 3:
-        return np.array(pts)
+    unique = sorted(set(map(tuple, np.round(pts, 6))))
+    if len(unique) < 3:
+        return np.array(unique)
 
     def half(seq):
         out: list = []
@@ -185,7 +185,7 @@ def _hull(pts: np.ndarray) -> np.ndarray:
             out.append(p)
         return out
 
-    lower, upper = half(pts), half(reversed(pts))
+    lower, upper = half(unique), half(reversed(unique))
     return np.array(lower[:-1] + upper[:-1])
 
 

@@ -177,8 +177,9 @@ class Prop:
 
     def scaled(self, k: float) -> "Prop":
         """The prop in a world scaled by ``k`` about the origin (the scene of a character of another size)."""
-        return Prop(self.name, self.shape, tuple(v * k for v in self.size), self.positions * k, self.rotations,
-                    self.fps, self.color)
+        w, h, d = self.size
+        return Prop(self.name, self.shape, (w * k, h * k, d * k), self.positions * k, self.rotations, self.fps,
+                    self.color)
 
     @property
     def is_static(self) -> bool:

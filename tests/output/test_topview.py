@@ -1,9 +1,6 @@
 """The scene seen from above: its numbers (paths, facings, elements, footprints), the picture and ``--top-view``."""
 from __future__ import annotations
 
-import logging
-import warnings
-
 import numpy as np
 import pytest
 
@@ -13,16 +10,6 @@ from text2anim.output.topview import plot_top_view, top_view
 from text2anim.output.viewer import PALETTE
 
 mpimg = pytest.importorskip("matplotlib.image")
-
-
-@pytest.fixture
-def strict(caplog):
-    """No Python warnings and no matplotlib log warnings (missing glyphs, fixed limits) while drawing."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        with caplog.at_level(logging.WARNING, logger="matplotlib"):
-            yield
-    assert [r.getMessage() for r in caplog.records if r.name.startswith("matplotlib")] == []
 
 
 def _rgb(color: str) -> np.ndarray:
