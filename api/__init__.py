@@ -12,6 +12,7 @@ The public Python API; the command line is a thin layer over it::
 from __future__ import annotations
 
 import os
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from . import limits
@@ -20,7 +21,7 @@ from .limits import InputError, InputTypeError, LimitError
 if TYPE_CHECKING:  # `import text2anim` stays light: the stages load on first use
     from text2anim.animation import Animation
     from text2anim.motiondb import MotionDB
-    from text2anim.pipeline import Planned
+    from text2anim.planning import Planned
 
 __version__ = "0.1.0"
 
@@ -35,7 +36,7 @@ def plan(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: floa
     """
     from text2anim.motiondb import MotionDB
 
-    from .pipeline import plan_text
+    from .planning import plan_text
 
     fps, max_seconds, _ = limits.check_options(text, db, fps, max_seconds, skip_unknown=skip_unknown, fallback=fallback)
     if isinstance(db, MotionDB):
@@ -76,27 +77,23 @@ def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: f
             the stages' own errors (``ValueError`` too) for a text they cannot serve.
     """
     from text2anim.motiondb import MotionDB
-    from text2anim.synthesis.registry import check_method, synthesize_with
+    from text2anim.synthesis.registry import check_method
 
-    from .animation import Animation
-    from .pipeline import plan_text
-    from .tracks import build_tracks
+    from .pipeline import Request, Work, animation, run
 
     fps, max_seconds, smoothness = limits.check_options(text, db, fps, max_seconds, smoothness, fallback,
                                                         skip_unknown=skip_unknown, lock_feet=lock_feet, sway=sway)
     if not isinstance(blend, str):
         raise limits.InputTypeError(f"blend must be a str, not {type(blend).__name__}")
     check_method(blend)
+    request = Request(text, fps, skip_unknown, fallback, max_seconds, tuple(edits), blend, smoothness, lock_feet, sway)
     opened = db if isinstance(db, MotionDB) else MotionDB.open(db)
     try:
-        planned = plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback,
-                            max_seconds=max_seconds, edits=edits)
-        tracks = build_tracks(planned, opened, fps)
+        work = run(Work(request, opened), until="tracks")
     finally:
         if opened is not db:
             opened.close()
-    result = synthesize_with(blend, tracks, fps, smoothness=smoothness, lock_feet=lock_feet, sway=sway)
-    return Animation(planned, result, fps, blend, smoothness, tuple(tracks))
+    return animation(run(replace(work, db=None), after="tracks"))
 
 
 __all__ = ["InputError", "InputTypeError", "LimitError", "__version__", "animate", "limits", "plan"]

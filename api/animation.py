@@ -14,10 +14,11 @@ from .wording import Terms
 
 if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never imports it
     from text2anim.core.motion import Motion
+    from text2anim.scene import Scene, Staging
     from text2anim.scheduler import TimeTable
     from text2anim.synthesis.result import Result
 
-    from .pipeline import Planned
+    from .planning import Planned
 
 DEFAULT_ACTOR = "default"
 
@@ -36,6 +37,8 @@ class Animation:
     blend: str = "optimal"
     smoothness: float = 0.5
     synthesis_tracks: tuple = ()  # the synthesis input (source clips per element), for the report's join figures
+    staging: Staging | None = None  # where the actors started (the staging stage)
+    scene: Scene | None = None  # the actors placed where the text wants them, and the things (the scene stage)
 
     @property
     def text(self) -> str:
@@ -92,6 +95,7 @@ class Animation:
             "joins": joins,
             "elements": {str(k): v.to_dict() for k, v in self.result.elements.items()},
             "actors": whole,
+            **({"scene": self.scene.to_dict()} if self.scene is not None and not self.scene.empty else {}),
             "skipped": list(self.planned.skipped),
             **({"fallbacks": [f.to_dict() for f in self.planned.fallbacks]} if self.planned.fallbacks else {}),
             "warnings": list(self.warnings),
@@ -104,9 +108,12 @@ class Animation:
         return [Track(name, m) for name, m in self.motions.items()]
 
     def props(self):
-        """The things of the scene as the viewer and the GLB draw them (:class:`output.viewer.types.Prop`):
-        none yet (the scene stage will place them)."""
-        return []
+        """The things of the scene as the viewer and the GLB draw them (:class:`output.viewer.types.Prop`)."""
+        from text2anim.output.viewer.types import Prop
+
+        if self.scene is None:
+            return []
+        return [Prop(t.name, t.shape, t.size, t.positions, t.rotations, self.fps, t.color) for t in self.scene.things]
 
     def spans(self):
         """Time-table elements and blend intervals as viewer spans."""

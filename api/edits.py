@@ -5,8 +5,9 @@ walk of the text), not by id: after the text is edited, an edit applies to the m
 there, and one whose motion is gone is dropped. What an edit can say (docs/language.md §2-§3):
 
 - ``shift`` (s): added to the delay of the constraint that starts the motion (a bar dragged later or
-  earlier; never below no delay), or to the opening delay of an actor's first motion; a transition
-  moved later no longer flows out of the motion before it: it becomes a connection after that delay;
+  earlier; never below no delay, except on a parallel link to another actor's motion, which may start it
+  before that one), or to the opening delay of an actor's first motion; a transition moved later no
+  longer flows out of the motion before it: it becomes a connection after that delay;
 - ``duration`` (s): how long it plays (a bar's end dragged), as 3秒間 says;
 - ``method``: how it joins the motion before it: ``connection`` (after it ends), ``transition``
   (flowing out of its last step) or ``composition`` (at the same time).
@@ -70,6 +71,10 @@ def occurrences(analysis: Analysis) -> dict[tuple[str, int], int]:
     return out
 
 
+def _actor(analysis: Analysis, motion_id: int) -> str | None:
+    return next((m.actor for m in analysis.motions if m.id == motion_id), None)
+
+
 def apply_edits(analysis: Analysis, edits) -> Analysis:
     """``analysis`` with ``edits`` (:class:`Edit`) applied; an edit whose motion is gone is dropped."""
     if not edits:
@@ -90,7 +95,9 @@ def apply_edits(analysis: Analysis, edits) -> Analysis:
             if e.method is not None:
                 relation, overlap = METHODS[e.method]
                 c = replace(c, relation=relation, overlap=overlap, method=e.method)
-            if e.shift:
+            if e.shift and c.relation == "parallel" and _actor(analysis, c.first) != _actor(analysis, c.second):
+                c = replace(c, delay=round((c.delay or 0.0) + e.shift, 6) or None)  # either way off the other's start
+            elif e.shift:
                 if e.shift > 0 and c.method == "transition":
                     c = replace(c, relation="serial", overlap=False, method="connection")
                 c = replace(c, delay=max(0.0, (c.delay or 0.0) + e.shift) or None)

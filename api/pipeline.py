@@ -1,75 +1,151 @@
-"""Text → :class:`Planned`: analyse, settle the verbs the database lacks, schedule.
+"""The pipeline: one ordered list of stages (:data:`STAGES`) over one piece of :class:`Work`.
 
-This module only calls the stages in order. The rules that write the time table
-are the scheduler's (:func:`scheduler.schedule`); the clips it is offered come
-from the database through :class:`clip_search.DatabaseClips`. :func:`text2anim.animate`
-goes on: the rows' clips loaded (:mod:`text2anim.tracks`), synthesis, the :class:`Animation`.
+Like spaCy's pipeline over one document, each stage takes the work so far and returns it with its own
+part filled in; :func:`text2anim.animate` runs them all, :func:`text2anim.plan` the first, and
+``text2anim compare`` runs them up to the tracks once, then the rest once per joining method:
+
+============= =============================================================================
+``plan``      analyse, settle the verbs the database lacks, schedule (:func:`plan_text`)
+``staging``   where each actor starts, what each row is directed at (:func:`scene.stage`)
+``tracks``    each row's clip loaded from the database (:func:`text2anim.tracks.build_tracks`)
+``synthesis`` the motions, by the asked joiner (:func:`synthesis.registry.synthesize_with`)
+``scene``     the actors moved where the text wants them, the things placed (:func:`scene.place`)
+============= =============================================================================
+
+This module only calls the stages in order; :class:`Planned` and :func:`plan_text` (the first stage)
+are :mod:`text2anim.planning`'s, named here too.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
-from text2anim import nlp
-from text2anim.motiondb import ClipInfo, MotionDB
-from text2anim.scheduler import Schedule, ScheduleError, schedule, without
+from text2anim.motiondb import MotionDB
 
 from . import limits
-from .clip_search import DatabaseClips, unknown_motions
+from .planning import Planned, plan_text
+
+if TYPE_CHECKING:
+    from text2anim.scene import Scene, Staging
+    from text2anim.synthesis.result import Result
 
 
 @dataclass(frozen=True)
-class Planned(Schedule[ClipInfo]):
-    """A text's analysis and time table, with the clip chosen for each element id.
+class Request:
+    """What the user asked for: the text and every option of :func:`text2anim.animate` (checked there)."""
 
-    ``fillers`` are the ids of the elements added to fill the waits (stops, idles:
-    :mod:`scheduler.fillers`); ``skipped`` the verbs dropped as unknown; ``mirrored`` the
-    element ids whose clip plays mirrored and ``repeats``, for a repeated element, the clip
-    of each repetition (co-actors and repeats are not clones: :mod:`scheduler.variants`).
+    text: str
+    fps: float = 30.0
+    skip_unknown: bool = False
+    fallback: str = "strict"
+    max_seconds: float = limits.MAX_SECONDS
+    edits: tuple = ()
+    blend: str = "optimal"
+    smoothness: float = 0.5
+    lock_feet: bool = True
+    sway: bool = True
+
+
+@dataclass(frozen=True)
+class Work:
+    """One text on its way through :data:`STAGES`: each stage fills its own field.
+
+    ``db`` is needed by ``plan``, ``staging`` and ``tracks`` only (the caller may close it after them).
     """
 
-    skipped: tuple[str, ...] = ()
-    fallbacks: tuple = ()  # fallback.Substitution per motion animated with a verb nearest in meaning
+    request: Request
+    db: MotionDB | None = None
+    timing: tuple = ()  # edits of the time table the staging asked for (two people's contact instants met)
+    planned: Planned | None = None
+    staging: Staging | None = None
+    tracks: tuple = ()
+    result: Result | None = None
+    scene: Scene | None = None
 
 
-def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool = False,
-              fallback: str = "strict", max_seconds: float = limits.MAX_SECONDS, edits=()) -> Planned:
-    """Analyse ``text`` and schedule its motions with clips from ``db``, the waits filled.
-
-    The table holds everything that will play: the text's motions, the clips
-    bridging postures (:mod:`scheduler.arrangement`) and the stops and idles in
-    the waits (:mod:`scheduler.fillers`). Unknown verbs raise :class:`UnknownVerbError`
-    (naming every missing verb as written and the database verbs nearest in meaning)
-    unless ``skip_unknown``, which drops those motions, or ``fallback="nearest"``, which
-    animates each with the database verb nearest in meaning (:mod:`text2anim.fallback`).
-    A text that asks for more than :mod:`text2anim.limits` allows (output over
-    ``max_seconds``) raises :class:`limits.LimitError` before any frame is made. ``edits``
-    (:class:`text2anim.edits.Edit`) change the analysis before it is scheduled (the studio's timeline).
-    """
-    limits.check_text(text)
-    with db.memoised():  # the same motions are searched again by each step below
-        return _plan(text, db, fps, skip_unknown, fallback, max_seconds, tuple(edits))
+def _plan_stage(work: Work) -> Work:
+    r = work.request
+    assert work.db is not None
+    return replace(work, planned=plan_text(r.text, work.db, fps=r.fps, skip_unknown=r.skip_unknown,
+                                           fallback=r.fallback, max_seconds=r.max_seconds,
+                                           edits=r.edits + work.timing))
 
 
-def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str, max_seconds: float,
-          edits: tuple = ()) -> Planned:
-    from . import fallback as _fallback
-    from .edits import apply_edits
+def _staging_stage(work: Work) -> Work:
+    """The staging; first, when two people's contact instants do not meet, the text planned again with the
+    later one started later (:func:`scene.sync_shifts`, kept as edits of the time table)."""
+    from text2anim.scene import stage, sync_shifts
 
-    analysis = apply_edits(nlp.analyze(text), edits)
-    limits.check_analysis(analysis, max_seconds)
-    unknown = unknown_motions(analysis, db)
-    skipped: tuple[str, ...] = ()
-    subs: tuple = ()
-    if unknown and fallback == "nearest":
-        analysis, subs = _fallback.substitute(analysis, unknown, db)
-        unknown = {}
-    if unknown:
-        if not skip_unknown:
-            raise _fallback.unknown_error(analysis, unknown, db)
-        skipped = tuple(m.verb for m in analysis.motions if m.id in unknown)
-        analysis = without(analysis, set(unknown))
-        if not analysis.motions:
-            raise ScheduleError("no motion of this text is in the motion database: " + "、".join(skipped))
-    done = schedule(analysis, DatabaseClips(db), fps, check=lambda table: limits.check_table(table, fps, max_seconds))
-    return Planned(done.analysis, done.table, done.clips, done.fillers, done.mirrored, done.repeats,
-                   skipped=skipped, fallbacks=subs)
+    from .edits import Edit, apply_edits, occurrences
+    from .tracks import contact_instants
+
+    assert work.planned is not None and work.db is not None
+    planned = work.planned
+    shifts = sync_shifts(planned.table.elements, planned.analysis.constraints,
+                         contact_instants(planned, work.db, work.request.fps))
+    if shifts:
+        from text2anim import nlp
+
+        names = {i: key for key, i in occurrences(apply_edits(nlp.analyze(work.request.text),
+                                                              work.request.edits)).items()}
+        edits = tuple(Edit(names[i][0], names[i][1], shift=s) for i, s in sorted(shifts.items()) if i in names)
+        work = _plan_stage(replace(work, timing=work.timing + edits))
+        assert work.planned is not None
+        planned = work.planned
+    return replace(work, staging=stage(planned))
+
+
+def _tracks_stage(work: Work) -> Work:
+    from .tracks import build_tracks
+
+    assert work.db is not None and work.planned is not None and work.staging is not None
+    return replace(work, tracks=tuple(build_tracks(work.planned, work.db, work.request.fps, work.staging)))
+
+
+def _synthesis_stage(work: Work) -> Work:
+    from text2anim.synthesis.registry import synthesize_with
+
+    r = work.request
+    return replace(work, result=synthesize_with(r.blend, work.tracks, r.fps, smoothness=r.smoothness,
+                                                lock_feet=r.lock_feet, sway=r.sway))
+
+
+def _place_stage(work: Work) -> Work:
+    from text2anim.scene import place
+
+    from .placed import moved_result, played_rows
+
+    assert work.planned is not None and work.result is not None and work.staging is not None
+    scene = place(work.staging, played_rows(work.planned.table, work.result), work.result.motions, work.request.fps)
+    return replace(work, scene=scene, result=moved_result(work.result, scene.rigids))
+
+
+#: The stages in order: (name, stage). Each takes the :class:`Work` so far and returns it with its part.
+STAGES: tuple[tuple[str, Callable[[Work], Work]], ...] = (
+    ("plan", _plan_stage), ("staging", _staging_stage), ("tracks", _tracks_stage),
+    ("synthesis", _synthesis_stage), ("scene", _place_stage),
+)
+NAMES = tuple(name for name, _ in STAGES)
+
+
+def run(work: Work, *, after: str | None = None, until: str | None = None) -> Work:
+    """``work`` through the stages after the stage ``after`` (from the first when ``None``) up to and
+    including ``until`` (to the last when ``None``)."""
+    first = NAMES.index(after) + 1 if after is not None else 0
+    last = NAMES.index(until) + 1 if until is not None else len(NAMES)
+    for _, step in STAGES[first:last]:
+        work = step(work)
+    return work
+
+
+def animation(work: Work) -> Any:
+    """The :class:`~text2anim.animation.Animation` of a work that went through every stage."""
+    from .animation import Animation
+
+    r = work.request
+    assert work.planned is not None and work.result is not None
+    return Animation(work.planned, work.result, r.fps, r.blend, r.smoothness, work.tracks, work.staging, work.scene)
+
+
+__all__ = ["NAMES", "STAGES", "Planned", "Request", "Work", "animation", "plan_text", "run"]

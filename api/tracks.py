@@ -16,9 +16,10 @@ from text2anim.scheduler.repeats import played_rows
 
 if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never imports it
     from text2anim.core.motion import Motion
+    from text2anim.scene import Staging
     from text2anim.synthesis import tracks as splan
 
-    from .pipeline import Planned
+    from .planning import Planned
 
 #: The verb of the clips a held pose plays (a cyclic one: the built-in ``wait``, captured).
 IDLE_VERB = "待つ"
@@ -65,13 +66,17 @@ class ClipLoader:
         return fetch
 
 
-def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track]:
-    """The synthesis tracks of a time table: its played rows with their clips loaded from ``db`` at ``fps``.
+def build_tracks(planned: Planned, db: MotionDB, fps: float, staging: Staging | None = None) -> list[splan.Track]:
+    """The synthesis tracks of a time table: its played rows with their clips loaded from ``db`` at ``fps``,
+    each actor at its spot of ``staging`` (default: :func:`scene.stage` of ``planned``).
 
     Every row of the table plays, the fillers of the waits included (:mod:`scheduler.fillers`),
     a repeated one as one element per repetition (:mod:`scheduler.repeats`).
     """
+    from text2anim.scene import stage
     from text2anim.synthesis.tracks import Element, Track
+
+    staging = staging if staging is not None else stage(planned)
 
     clips = ClipLoader(db, fps)
     tracks = []
@@ -83,8 +88,35 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float) -> list[splan.Track
                                     r.speed, r.repeat, r.hold, r.body_part))
         last = actor.last
         idle = clips.idle(last.character, last.end_posture) if last is not None else None
-        tracks.append(Track(actor.actor, tuple(elements), idle=idle))
+        spot = staging.spot(actor.actor)
+        tracks.append(Track(actor.actor, tuple(elements), spot.origin, spot.heading, idle=idle))
     return tracks
 
 
-__all__ = ["IDLE_VERB", "MIRRORED", "ClipLoader", "build_tracks"]
+def contact_instants(planned: Planned, db: MotionDB, fps: float) -> Callable:
+    """``instant(row) -> seconds``: when a row's clip makes contact with another person, on the animation's
+    clock (:mod:`scene.timing`): the hand (both hands for a hug or a taking) furthest out in front of the
+    hips within the clip's core (:func:`scene.bodies.furthest`), the clip read as the row plays it."""
+    from text2anim.scene import bodies
+
+    clips = ClipLoader(db, fps)
+
+    def instant(row) -> float | None:
+        info = planned.clips.get(row.id)
+        if info is None:
+            return None
+        m = clips.get(info, row.id in planned.mirrored).motion
+        both = row.verb in BOTH_HANDS
+        side = "left" if row.id in planned.mirrored else "right"
+        point = bodies.hands(m) if both else bodies.hand(m, side)
+        lo, hi = (int(round(t * m.fps)) for t in info.core)
+        return row.start + bodies.furthest(point, m, lo, hi + 1) / m.fps / row.speed
+
+    return instant
+
+
+#: Contact verbs done with both hands (the instant is when both reach furthest).
+BOTH_HANDS = frozenset("受け取る 貰う 抱き合う 抱き締める".split())
+
+
+__all__ = ["BOTH_HANDS", "IDLE_VERB", "MIRRORED", "ClipLoader", "build_tracks", "contact_instants"]

@@ -55,11 +55,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from dataclasses import replace
+
     from text2anim.motiondb import MotionDB
-    from text2anim.synthesis.comparison import compare
-    from text2anim.animation import Animation
-    from text2anim.pipeline import plan_text
-    from text2anim.tracks import build_tracks
+    from text2anim.synthesis.comparison import figures
+    from text2anim.pipeline import Request, Work, animation, run
 
     text = read_text(args.text)
     out_dir = Path(args.out) if args.out else None
@@ -69,11 +69,12 @@ def run(args: argparse.Namespace) -> int:
         from text2anim.animation import check_plot_path
 
         check_plot_path(args.plot)
+    request = Request(text, args.fps, args.skip_unknown, max_seconds=args.max_seconds, smoothness=args.smoothness)
     with MotionDB.open(args.db) as db:
-        planned = plan_text(text, db, fps=args.fps, skip_unknown=args.skip_unknown, max_seconds=args.max_seconds)
-        tracks = build_tracks(planned, db, args.fps)
-    results = compare(tracks, args.fps, args.methods, args.smoothness)
-    anims = {m: Animation(planned, res, args.fps, m, args.smoothness, tuple(tracks)) for m, (res, _) in results.items()}
+        work = replace(run(Work(request, db), until="tracks"), db=None)
+    tracks = work.tracks
+    anims = {m: animation(run(replace(work, request=replace(request, blend=m)), after="tracks")) for m in args.methods}
+    results = {m: (anim.result, figures(anim.result)) for m, anim in anims.items()}
     written = []
     if out_dir is not None:
         out_dir.mkdir(parents=True, exist_ok=True)

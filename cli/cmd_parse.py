@@ -65,7 +65,9 @@ def format_listing(analysis) -> str:
             ("repeat", m.repeat if m.repeat != 1 else None),
             ("speed", m.speed if m.speed != 1.0 else None),
             ("duration", f"{m.duration:g}s" if m.duration is not None else None),
-            ("hold", "yes" if m.hold else None)) if v is not None]
+            ("hold", "yes" if m.hold else None),
+            (m.target_role, m.target + (f" ({m.target_side})" if m.target_side else "") if m.target else None))
+            if v is not None]
         actor = m.actor or "(default)"
         word = analysis.text[m.span[0]:m.span[1]]
         lines.append(f"  {m.id:>2}  {actor}  {m.verb}  {' '.join(extras)}".rstrip()

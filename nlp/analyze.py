@@ -8,6 +8,7 @@ from .constraints import build_constraints
 from .dependency import link_heads
 from .errors import NLPError
 from .motions import annotate
+from .targets import add_counterparts
 from .tokens import OffsetMap, normalize, tokenize
 from .types import Analysis, Bunsetsu, Constraint, MotionSpec
 
@@ -47,17 +48,20 @@ def analyze(text: str) -> Analysis:
         MotionSpec(p.id, p.actor, p.verb, p.object, p.body_part, p.repeat, p.speed,
                    p.duration, offsets.span(p.start, p.end),
                    hold=p.ending == "mama", reading=p.reading, delay=p.delay,
-                   written=p.written or p.verb)
+                   written=p.written or p.verb, target=p.target, target_role=p.target_role,
+                   target_side=p.target_side, target_person=p.target_person)
         for p in motions
     ]
     constraints = list(constraints)
     _add_co_actors(specs, constraints, {p.id: p.co_actors for p in motions if p.co_actors})
+    notes.extend(add_counterparts(specs, constraints))
     return Analysis(text, tuple(specs), tuple(constraints), _bunsetsu(text, offsets, phrases),
                     tuple(notes))
 
 
 def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: dict[int, tuple[str, ...]]) -> None:
-    """太郎と花子が歩く: each co-actor gets a copy of the motions (ids after the text's own, same span).
+    """太郎と花子が歩く: each co-actor gets a copy of the motions (ids after the text's own, same span); a
+    partner's copy is directed at the actor (太郎は花子と握手する: 花子's handshake is with 太郎).
 
     Links among the copied motions are copied; a copy with no copied link starts
     with its original (parallel), so every actor's track is linked as the contract says.
@@ -69,7 +73,9 @@ def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: d
         copies: dict[int, int] = {}
         for orig in sorted(i for i, group in co.items() if name in group):
             copies[orig] = next_id
-            specs.append(replace(by_id[orig], id=next_id, actor=name))
+            spec = by_id[orig]
+            target = spec.actor if spec.target_role == "partner" and spec.target == name else spec.target
+            specs.append(replace(spec, id=next_id, actor=name, target=target))
             next_id += 1
         linked = set()
         for c in list(constraints):

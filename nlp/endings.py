@@ -62,4 +62,6 @@ NOT_MOTION = {
     "potential": "potential form (an ability, not an action: 泳げる)",
     "desire": "a wish (走りたい: wanting to, not doing it)",
     "non-agent": "its subject is not a person (雨が降る, 音楽が流れる)",
+    "direction": "says which way the next motion goes (花子に向かって走る)",
+    "facing": "says that the actors face each other (向かい合って)",
 }

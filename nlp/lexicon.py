@@ -117,7 +117,7 @@ PERSON_NOUNS = frozenset(
     ロボット 主人公 犬 猫 王様 騎士 忍者 ダンサー 彼 彼女 私 僕 俺 あなた 彼ら 自分
     わたし ぼく おれ あたし 家族 店員 客 観客 警官 兵士 侍 魔法使い
     子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣 ゾンビ 宇宙人 おじさん おばさん
-    お兄さん お姉さん 兄ちゃん 姉ちゃん""".split()
+    お兄さん お姉さん 兄ちゃん 姉ちゃん 相手""".split()
 )
 
 #: Script headings that open a line like a speaker label (ト書き：花子が座る) but name no
@@ -195,3 +195,75 @@ COUNTERS = {
     "秒間": ("duration", 1.0), "分間": ("duration", 60.0),
     "秒": ("seconds", 1.0), "分": ("seconds", 60.0),
 }
+
+
+# ---------------------------------------------------------------- the scene (docs/language.md §8)
+
+#: Verbs that take the actor somewhere: a に / へ / まで noun is where they go (the ``goal``).
+LOCOMOTION_VERBS = frozenset(
+    """歩く 走る 駆ける 駆け出す 駆け寄る 駆け込む 走り寄る 近付く 近寄る 歩み寄る 寄る 行く 来る 向かう 戻る
+    帰る 入る 進む 前進する 移動する 急ぐ 逃げる 離れる 下がる 後ずさりする 後退りする スキップする 歩き出す
+    走り出す 出る 出掛ける 這う 飛び込む 近寄る 立つ 隠れる 回り込む 詰め寄る""".split()
+)
+
+#: Verbs whose に-thing holds the body up (the ``support``): 椅子に座る, ベッドに寝る.
+SUPPORT_VERBS = frozenset(
+    """座る 腰掛ける 着席する 座り込む 寝る 横になる 寝転ぶ 寝そべる 乗る 登る 上る 上がる 寄り掛かる
+    もたれる""".split()
+)
+
+#: Verbs that send a thing to a person (the に-person is the ``recipient``) or to a place (``destination``).
+TRANSFER_VERBS = frozenset(
+    """渡す 手渡す 差し出す 投げる 放る 放り投げる 蹴る パスする 返す 見せる 上げる 送る 届ける 配る
+    投げ渡す 転がす 差し上げる 呉れる""".split()
+)
+
+#: Verbs that put a thing somewhere: the に-noun is its ``destination`` (机に置く).
+PLACING_VERBS = frozenset(
+    """置く 載せる 乗せる 入れる 掛ける 貼る 立て掛ける 仕舞う 戻す 並べる 下ろす 降ろす 積む 飾る 吊るす""".split()
+)
+
+#: Nouns after 〜の that say where, relative to the noun before them (花子の前に, 花子の隣に).
+SIDE_NOUNS = {
+    "前": "front", "まえ": "front", "正面": "front", "目の前": "front",
+    "後ろ": "behind", "うしろ": "behind", "後": "behind", "背後": "behind",
+    "隣": "beside", "となり": "beside", "横": "beside", "よこ": "beside", "そば": "near", "傍": "near",
+    "近く": "near", "側": "near", "脇": "beside",
+    "上": "on", "うえ": "on",
+    "左": "left", "右": "right",
+}
+
+#: Nouns after 〜の that only say "where X is" (花子のところへ, 花子の方へ, 花子のもとへ).
+PLACE_OF_NOUNS = frozenset("ところ 所 方 ほう もと 元 側".split())
+
+#: て-forms that say which way the next motion goes, no motion of their own (花子に向かって走る).
+DIRECTION_TE = frozenset("向かう 向ける".split())
+
+#: Verbs by which two people face each other (二人は向かい合ってお辞儀する): no motion of their own.
+FACING_VERBS = frozenset("向かい合う 向き合う 対面する".split())
+
+#: Demonstratives that name the thing last named (花子はそれを投げた: the ball 太郎 handed her).
+THING_ANAPHORS = frozenset("それ これ あれ そいつ".split())
+
+#: A motion that hands a thing over implies its counterpart by the other person, played at the same time:
+#: verb (lemma) -> (the counterpart's verb, its reading, the role the first motion's target has).
+COUNTERPARTS = {
+    "渡す": ("受け取る", "ウケトル", "recipient"), "手渡す": ("受け取る", "ウケトル", "recipient"),
+    "差し出す": ("受け取る", "ウケトル", "recipient"),
+    "受け取る": ("渡す", "ワタス", "source"), "貰う": ("渡す", "ワタス", "source"),
+}
+
+#: Verbs done to a person by touching them: the person is the ``patient`` (close by), not an addressee.
+CONTACT_VERBS = frozenset(
+    """抱き締める 抱く 抱きつく 抱き付く 押す 叩く 殴る 撫でる 触る 触れる 起こす 揺り起こす 掴む 引く 引っ張る
+    突き飛ばす 支える 担ぐ おんぶする 抱っこする くすぐる""".split()
+)
+
+#: Verbs two people do to each other: co-actors of one are each other's partner (太郎と花子は握手する).
+RECIPROCAL_VERBS = frozenset(
+    """握手する ハイタッチする 話す 会話する 話し合う 喧嘩する けんかする 戦う 乾杯する キスする 見つめ合う
+    抱き合う 向かい合う 組み合う""".split()
+)
+
+#: Nouns before に / と that are no target (一緒に is "together", not a place).
+NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())

@@ -19,6 +19,7 @@ from .lexicon import (
 from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
 from .casual import recover_homophone
+from .targets import attach_targets
 from .tokens import is_name
 
 _SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
@@ -60,6 +61,7 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     cues = _attach_modifiers(phrases, values)
     for pred in preds:
         recover_homophone(pred)
+    attach_targets(phrases)
     for ph in phrases:
         if ph.pred:
             ph.role = "motion" if ph.pred.motion else f"not a motion: {ph.pred.reason}"

@@ -29,6 +29,10 @@ class Pred:
     written: str = ""  # the verb in the user's spelling, dictionary form (登る where verb is 上る)
     note: str = ""  # how the verb was read differently from how it is written (手を降る -> 振る)
     head: int | None = None  # phrase index of the head motion
+    target: str | None = None  # whom or what it is directed at (nlp.targets)
+    target_role: str | None = None
+    target_side: str | None = None
+    target_person: bool = False
     id: int = 0
 
     @property

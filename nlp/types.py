@@ -72,6 +72,13 @@ class MotionSpec:
     #: their constraints instead.
     delay: float | None = None
     written: str = ""  # the verb as the user spelled it, dictionary form (登る for verb 上る)
+    #: whom or what the motion is directed at, as written (a person by the actor's name: 花子), its role
+    #: (goal, source, addressee, patient, recipient, partner, support, destination, at) and the side of it
+    #: (front, behind, beside, near, on, left, right): docs/language.md §8
+    target: str | None = None
+    target_role: str | None = None
+    target_side: str | None = None
+    target_person: bool = False  # the target is a person (a name, a person noun), not a thing or a place
 
     def to_dict(self, extra: bool = False) -> dict:
         d = {
@@ -82,6 +89,9 @@ class MotionSpec:
         }
         if extra or self.delay is not None:
             d["delay"] = self.delay  # the §5 object gains it only when the text opens with one
+        if extra or self.target is not None:  # §8: only when the motion is directed at someone or something
+            d.update(target=self.target, target_role=self.target_role, target_side=self.target_side,
+                     target_person=self.target_person)
         if extra:
             d["hold"] = self.hold
             d["reading"] = self.reading

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from typing import Generic
 
+from text2anim.nlp.lexicon import RECIPROCAL_VERBS
 from text2anim.nlp.types import MotionSpec
 
 from .clips import C, ClipSource, timing
@@ -38,6 +39,8 @@ class Picker(Generic[C]):
                                 + (f" the {spec.body_part}" if spec.body_part else ""))
         n = max(1, int(spec.repeat))
         picks = self.variants.take(hits, n)
+        if picks[0].mirrored and spec.target_role == "partner" and spec.verb in RECIPROCAL_VERBS:
+            picks[0] = Pick(picks[0].clip, mirrored=False)  # two people shake right hands: not mirrored
         self.chosen[spec.id] = picks[0].clip
         if picks[0].mirrored:
             self.mirrored.add(spec.id)

@@ -52,7 +52,8 @@ class _Row:
     def freeze(self) -> Element:
         s = self.spec
         return Element(s.id, s.actor, s.verb, self.clip.name, self.method, self.prev, self.start, self.end,
-                       self.body_part, s.speed, self.repeats, s.hold, self.delay)
+                       self.body_part, s.speed, self.repeats, s.hold, self.delay, s.object, s.target, s.target_role,
+                       s.target_side)
 
     @property
     def repeats(self) -> int:
@@ -205,7 +206,8 @@ class _Planner:
     # -- across actors -------------------------------------------------------------------------
     def _cross_actor(self, spec, clip, length, link: Constraint, first: _Row):
         if link.relation == "parallel":
-            t0 = first.start
+            # a delay (either way: a partner's instant of contact met, scene.timing) moves it off the first's start
+            t0 = max(0.0, first.start + (link.delay or 0.0))
         elif link.overlap:
             t0 = first.start + first.clip.core[1] / first.spec.speed
         else:

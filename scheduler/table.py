@@ -5,6 +5,10 @@ from .types import TimeTable
 
 _METHOD_NAMES = {"initial": "初期動作", "connection": "Connection", "transition": "Transition",
                  "composition": "Composition"}
+#: docs/language.md §8's target roles and sides in the table's own words.
+_ROLES = {"goal": "行き先", "source": "出発点", "addressee": "相手", "patient": "相手", "recipient": "受け手",
+          "partner": "一緒にする相手", "support": "支え", "destination": "置き場所", "at": "場所"}
+_SIDES = {"front": "前", "behind": "後ろ", "beside": "隣", "near": "そば", "on": "上", "left": "左", "right": "右"}
 
 
 def format_table(table: TimeTable) -> str:
@@ -16,6 +20,11 @@ def format_table(table: TimeTable) -> str:
         part = f"  (部位: {e.body_part})" if e.body_part else ""
         out.append(f"  動作データ {e.clip}{part}")
         out.append(f"  動作名    {e.verb}")
+        if e.object:
+            out.append(f"  対象物    {e.object}")
+        if e.target:
+            side = f" ({_SIDES.get(e.target_side, e.target_side)})" if e.target_side else ""
+            out.append(f"  相手/場所 {e.target}{side} [{_ROLES.get(e.target_role or '', e.target_role)}]")
         out.append(f"  接続形式  {_METHOD_NAMES[e.method]}")
         if e.prev is not None:
             out.append(f"  前要素    要素 {e.prev}")

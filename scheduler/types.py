@@ -41,7 +41,9 @@ class Element:
     """One row of the motion time table (Table 1 of paper 003), times in seconds on the actor's track.
 
     ``body_part`` is set for a composition: the part taken from this element's clip.
-    ``speed``, ``repeat``, ``hold`` and ``delay`` say how the clip is played.
+    ``speed``, ``repeat``, ``hold`` and ``delay`` say how the clip is played. ``object`` is the thing the
+    motion handles (ボール) and ``target``, ``target_role``, ``target_side`` whom or what it is directed at
+    (docs/language.md §8), as the analysis found them; the scene stage places them.
     """
 
     id: int
@@ -57,14 +59,24 @@ class Element:
     repeat: int = 1
     hold: bool = False
     delay: float | None = None
+    object: str | None = None
+    target: str | None = None
+    target_role: str | None = None
+    target_side: str | None = None
 
     def to_dict(self) -> dict:
-        return {
+        """The row's JSON; ``object`` and the target fields only where the text gives them."""
+        d = {
             "id": self.id, "actor": self.actor, "verb": self.verb, "clip": self.clip,
             "method": self.method, "prev": self.prev,
             "start": round(self.start, 3), "end": round(self.end, 3), "body_part": self.body_part,
             "speed": self.speed, "repeat": self.repeat, "hold": self.hold,
         }
+        if self.object is not None:
+            d["object"] = self.object
+        if self.target is not None:
+            d.update(target=self.target, target_role=self.target_role, target_side=self.target_side)
+        return d
 
 
 @dataclass(frozen=True)

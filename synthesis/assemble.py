@@ -278,7 +278,7 @@ def _end_speed(m: Motion) -> float:
 def assemble(tracks, fps: float, lay, sway: bool = True, post: bool = False, finished: bool = True) -> Result:
     """Lay every track with ``lay(track, whole_elements) -> Laid``, compose its partial elements, measure.
 
-    ``tracks`` are already spread (:func:`synthesis.actors.spread_actors`) if they should be. ``post``
+    Each track is laid at its own origin and heading (the scene stage's staging, :mod:`text2anim.scene`). ``post``
     runs the join post-pass (:func:`finish_joins`) before the compositions are laid. ``finished=False``
     leaves the motions before :func:`synthesis.finish.finish` (for a caller that finishes them itself).
     """

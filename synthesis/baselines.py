@@ -28,11 +28,10 @@ from dataclasses import replace
 import numpy as np
 
 from text2anim.core.contacts import detect_contacts
+from text2anim.core.ground import match, root_headings
 from text2anim.core.motion import Motion
 
-from .actors import spread_actors
 from .assemble import assemble
-from .join.align import match, root_headings
 from .join.apply import Join, apply_join
 from .join.commit import commit
 from .join.gait import steps
@@ -123,10 +122,8 @@ def lay_track(track: Track, whole, fps: float, method: str, blend_s: float = BLE
 
 
 def synthesize_baseline(tracks: Sequence[Track], fps: float = 30.0, method: str = "crossfade", *,
-                        sway: bool = True, spread: bool = True, blend_s: float = BLEND) -> Result:
+                        sway: bool = True, blend_s: float = BLEND) -> Result:
     """Tracks → one motion per actor by the ``pose`` or ``crossfade`` baseline (see the module docstring)."""
     if method not in BASELINES:
         raise ValueError(f"unknown baseline {method!r}; known: {', '.join(BASELINES)}")
-    if spread:
-        tracks = spread_actors(tracks)
     return assemble(tracks, fps, lambda track, whole: lay_track(track, whole, fps, method, blend_s), sway)

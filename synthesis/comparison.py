@@ -1,7 +1,7 @@
-"""The same tracks joined by several methods, and the figures of ``docs/timetable.md`` §3 side by side.
+"""The figures of ``docs/timetable.md`` §3 of one joining method's result, to set methods side by side.
 
-:func:`compare` runs :func:`synthesis.registry.synthesize_with` once per
-method; :func:`figures` reduces a :class:`~synthesis.result.Result` to one row:
+``text2anim compare`` synthesises the same tracks once per method (the pipeline's stages after the
+tracks, :mod:`text2anim.pipeline`); :func:`figures` reduces a :class:`~synthesis.result.Result` to one row:
 
 - ``foot_skate_cm_s``: mean horizontal speed of the feet while in contact,
   over every actor's whole motion (weighted by contact frames), cm/s;
@@ -18,13 +18,10 @@ method; :func:`figures` reduces a :class:`~synthesis.result.Result` to one row:
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 import numpy as np
 
 from text2anim.core.metrics import foot_skate, skating_ratio
 
-from .registry import METHODS, check_method, synthesize_with
 
 FIELDS = ("foot_skate_cm_s", "slide_cm", "skating_ratio", "join_skating_ratio", "jerk_max", "jerk_rms",
           "source_jerk_max", "core_fidelity_cm", "duration_s")
@@ -55,14 +52,3 @@ def figures(result) -> dict:
         "joins": len(result.joins),
         "not_executed": sum(1 for j in result.joins if j.blend == "not_executed"),
     }
-
-
-def compare(tracks: Sequence, fps: float = 30.0, methods: Sequence[str] = METHODS, smoothness: float = 0.5,
-            lock_feet: bool = True, sway: bool = True) -> dict:
-    """``{method: (Result, figures)}`` for the same tracks, in the order given."""
-    out = {}
-    for method in methods:
-        check_method(method)
-        res = synthesize_with(method, tracks, fps, smoothness=smoothness, lock_feet=lock_feet, sway=sway)
-        out[method] = (res, figures(res))
-    return out

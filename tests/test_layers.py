@@ -1,7 +1,7 @@
 """The layering of the installed package, read from its modules' source (AST, nothing imported but the packages).
 
 Stages and what each may import (README "Layout"): ``core`` no stage; ``nlp`` core;
-``scheduler`` nlp and core; ``motiondb`` core; ``synthesis`` core; ``output`` (the writers
+``scheduler`` nlp and core; ``scene`` scheduler, nlp and core; ``motiondb`` core; ``synthesis`` core; ``output`` (the writers
 and pictures) core; the API (``text2anim`` itself, folder ``api/``) anything but the command
 line; ``cli`` anything. Every module counts, in every subpackage of every stage, and every
 import, at module level or inside a function, and under ``if TYPE_CHECKING`` too. No module
@@ -15,17 +15,18 @@ from dataclasses import dataclass
 from pathlib import Path
 
 ROOT = "text2anim"
-STAGES = ("core", "output", "nlp", "scheduler", "motiondb", "synthesis", "cli")
+STAGES = ("core", "output", "nlp", "scheduler", "scene", "motiondb", "synthesis", "cli")
 #: The stages each stage may import (its own included); "api" is the ``text2anim`` package itself.
 MAY_IMPORT = {
     "core": {"core"},
     "output": {"output", "core"},
     "nlp": {"nlp", "core"},
     "scheduler": {"scheduler", "nlp", "core"},
+    "scene": {"scene", "scheduler", "nlp", "core"},
     "motiondb": {"motiondb", "core"},
     "synthesis": {"synthesis", "core"},
-    "api": {"api", "core", "nlp", "scheduler", "motiondb", "synthesis", "output"},
-    "cli": {"cli", "api", "core", "nlp", "scheduler", "motiondb", "synthesis", "output"},
+    "api": {"api", "core", "nlp", "scheduler", "scene", "motiondb", "synthesis", "output"},
+    "cli": {"cli", "api", "core", "nlp", "scheduler", "scene", "motiondb", "synthesis", "output"},
 }
 
 @dataclass(frozen=True)

@@ -2,7 +2,7 @@
 
 Both joins take the track built so far (the first motion ``A`` is on it) and
 the next element's prepared clip ``B``, and decide a :class:`Join`: where
-``B`` is placed (a :class:`~synthesis.join.align.Rigid` through the support foot
+``B`` is placed (a :class:`~core.ground.Rigid` through the support foot
 and a frame offset on the track), the blend window, which frame of each
 motion every window frame shows (a time warp for transitions) and the blend
 weights. :func:`synthesis.join.apply.apply_join` (the join layer every engine shares) then writes it and

@@ -15,9 +15,8 @@ For each :class:`~synthesis.tracks.Track`:
    in the blend, largest and RMS jerk in the blend against the source clips,
    and the core fidelity of each element.
 
-Several tracks are independent; :func:`default_origins` spaces actors that
-were given no place of their own (:func:`spread_actors`), so characters do not
-start inside each other.
+Several tracks are independent; where each actor stands is the scene stage's
+(:mod:`text2anim.scene`), given as each track's origin and heading.
 """
 from __future__ import annotations
 
@@ -26,7 +25,6 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..actors import default_origins, spread_actors
 from ..assemble import assemble
 from ..join.apply import Join, apply_join
 from ..join.commit import commit, lock_report
@@ -40,7 +38,7 @@ from .connection import connection, transition
 
 #: Names users import from here (they live in :mod:`synthesis.actors`, :mod:`synthesis.join.measure`,
 #: :mod:`synthesis.result`).
-__all__ = ["Result", "default_origins", "hips_frame", "spread_actors", "synthesize"]
+__all__ = ["Result", "hips_frame", "synthesize"]
 
 
 def _join(state: TrackState, inc: Placed, fps: float, lock: bool) -> None:
@@ -75,18 +73,15 @@ def lay_track(track: Track, whole: Sequence[Element], fps: float, lock: bool) ->
 
 
 def synthesize(tracks: Sequence[Track], fps: float = 30.0, *, lock_feet: bool = True, sway: bool = True,
-               spread: bool = True, finished: bool = True) -> Result:
+               finished: bool = True) -> Result:
     """Turn actor tracks into one motion per actor (paper 003 §4) and report every join.
 
     Args:
-        tracks: one :class:`~synthesis.tracks.Track` per actor.
+        tracks: one :class:`~synthesis.tracks.Track` per actor, each at its staged origin and heading.
         fps: the output frame rate.
         lock_feet: lock planted feet during blends (turn off only to measure what it does).
         sway: transfer the sway of composed clips (§4.4.3).
-        spread: give actors sharing one origin the :func:`default_origins`.
         finished: ``False`` leaves the motions before :func:`synthesis.finish.finish` (the caller finishes them).
     """
-    if spread:
-        tracks = spread_actors(tracks)
     return assemble(tracks, fps, lambda track, whole: lay_track(track, whole, fps, lock_feet), sway, post=lock_feet,
                     finished=finished)

@@ -28,9 +28,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from text2anim.core.contacts import FootContacts
+from text2anim.core.ground import headings, to_heading_frame
 from text2anim.core.motion import Motion
 
-from ..join.align import headings, to_heading_frame
 from ..join.gait import foot_points
 PARTIAL_STATE_COST = 0.3  # s-equivalent: prefer the full state when it costs less than 0.3 s of motion
 OTHER_FOOT_COST = 1.0  # per metre the other planted foot would have to move

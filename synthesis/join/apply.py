@@ -20,9 +20,9 @@ import numpy as np
 
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts, runs
+from text2anim.core.ground import Rigid
 from text2anim.core.motion import Motion, concatenate
 
-from .align import Rigid
 from .blend import blend, sample
 from .footlock import FootLocks, Lock, lift_swings, lock_feet, plan_locks, reachable_locks
 from .timing import hold

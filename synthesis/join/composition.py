@@ -57,9 +57,9 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from text2anim.core.bodyparts import body_map
+from text2anim.core.ground import headings, to_heading_frame
 from text2anim.core.motion import Motion
 
-from .align import headings, to_heading_frame
 from .blend import ease, ratio, sample, slerp
 
 ALPHA, BETA, GAMMA = 1.0, 0.2, 0.5

@@ -15,10 +15,10 @@ from scipy.ndimage import gaussian_filter1d
 from scipy.spatial.transform import Rotation
 
 from text2anim.core.contacts import detect_contacts
+from text2anim.core.ground import Rigid, headings, yaw_rotation
 from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion, unroll_quaternions
 
-from .align import Rigid, headings, yaw_rotation
 from .blend import ease, slerp
 from .loopfeet import plant_cycle
 

@@ -13,10 +13,9 @@ import numpy as np
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.fk import quat_to_matrix
+from text2anim.core.ground import rest_forward
 from text2anim.core.ik import leg_ik, solve_rows, world_to_local
 from text2anim.core.motion import Motion
-
-from .align import rest_forward
 
 
 def leg_chain(motion: Motion, side: str) -> tuple[int, int, int]:

@@ -25,10 +25,10 @@ import numpy as np
 
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, runs
+from text2anim.core.ground import Rigid
 from text2anim.core.ik import set_world_rotation
 from text2anim.core.motion import Motion
 
-from .align import Rigid
 from .footlock import solve_leg
 
 LOW = 0.05  # m: a toe below this is low (GMD's contact height); feet change height only above it

@@ -16,11 +16,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from text2anim.core.contacts import FootContacts
+from text2anim.core.ground import Rigid
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
 from ..tracks import Element
-from .align import Rigid
 from .timing import Prepared
 
 

@@ -68,7 +68,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ..actors import spread_actors
 from ..assemble import assemble
 from ..result import Result
 from ..tracks import Track
@@ -85,17 +84,16 @@ __all__ = ["CORE_TOLERANCE", "MAX_SHIFT", "MIN_BLEND", "MIN_ROOM", "RUNNERS_UP",
 
 
 def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: float = 0.5, *,
-                       lock_feet: bool = True, sway: bool = True, spread: bool = True,
+                       lock_feet: bool = True, sway: bool = True,
                        min_blend: float = MIN_BLEND, finished: bool = True) -> Result:
     """Tracks → one motion per actor by optimal blending (paper 000), compositions as every engine lays them.
 
     Args:
-        tracks: one :class:`~synthesis.tracks.Track` per actor.
+        tracks: one :class:`~synthesis.tracks.Track` per actor, each at its staged origin and heading.
         fps: output frame rate.
         smoothness: ``W`` of §4.3, 0 (time first: short blends) to 1 (smoothness first).
         lock_feet: lock planted feet during blends.
         sway: transfer the sway of composed clips.
-        spread: give actors sharing one origin :func:`~synthesis.actors.default_origins`.
         min_blend: the shortest blend interval, seconds.
         finished: ``False`` leaves the motions before :func:`synthesis.finish.finish` (the caller finishes them).
 
@@ -103,8 +101,6 @@ def synthesize_optimal(tracks: Sequence[Track], fps: float = 30.0, smoothness: f
     report has ``blend`` (the §4.1 method), ``intervals`` (lower/upper, kinds), ``cost`` (eq. (10) terms).
     """
     weights = preset(smoothness)
-    if spread:
-        tracks = spread_actors(tracks)
 
     def lay(track: Track, whole):
         return lay_track(track, whole, fps, weights, lock_feet, min_blend)

@@ -8,9 +8,9 @@ import numpy as np
 
 from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import FootContacts
+from text2anim.core.ground import Rigid, headings, to_heading_frame
 from text2anim.core.motion import Motion
 
-from ..join.align import Rigid, headings, to_heading_frame
 from ..join.gait import foot_points
 from ..join.placed import Placed
 from .blend_search import Found

@@ -22,9 +22,8 @@ from __future__ import annotations
 import numpy as np
 
 from text2anim.core.bodyparts import body_map
+from text2anim.core.ground import root_headings
 from text2anim.core.motion import Motion
-
-from ..join.align import root_headings
 
 
 def part_joints(motion: Motion, part: str) -> list[int]:

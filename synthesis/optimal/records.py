@@ -6,9 +6,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from text2anim.core.ground import Rigid
 from text2anim.core.motion import Motion
 
-from ..join.align import Rigid
 from ..join.placed import Placed
 from .blend_ranges import Range
 from .blend_search import Found

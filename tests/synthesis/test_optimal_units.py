@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from text2anim.core import read_bvh
+from text2anim.core.ground import Rigid
 from text2anim.synthesis.optimal.blend_ranges import Bounds, after, ranges
 from text2anim.synthesis.optimal.blend_search import SMOOTH_FIRST, TIME_FIRST, evaluate, evaluate_motions, preset, search
 from text2anim.synthesis.join.gait import Step
@@ -159,7 +160,6 @@ def test_motion_motion_search_is_the_global_minimum_too():
 
 
 def test_the_pose_distance_ignores_where_the_clip_stands():
-    from text2anim.synthesis.join.align import Rigid
 
     walk = _cmu("16_15_walk")
     moved = Rigid(1.1, (3.0, -2.0)).apply(walk)

@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation, Slerp
 
-from text2anim.synthesis.join.align import Rigid, align_through_foot, headings, match, wrap_angle
+from text2anim.synthesis.join.align import align_through_foot
 from text2anim.synthesis.join.blend import blend, ramp, sample, slerp
 from text2anim.synthesis.join.composition import hermite_sway
 from text2anim.core.contacts import FootContacts
-from text2anim.synthesis.constraint.engine import default_origins, spread_actors
+from text2anim.core.ground import Rigid, headings, match, wrap_angle
 from text2anim.synthesis.join.footlock import plan_locks, planted_targets
 from text2anim.core.motion import Motion
 from text2anim.synthesis.tracks import Track
@@ -107,16 +107,6 @@ def test_match_and_align_through_foot():
     foot = [3, 4]
     assert np.allclose(placed.positions[5, foot].mean(0)[[0, 2]], a.positions[10, foot].mean(0)[[0, 2]])
     assert abs(wrap_angle(headings(placed, 0.5)[5] - headings(a, 0.5)[10])) < 1e-9
-
-
-def test_default_origins_keep_actors_apart():
-    o = default_origins(3)
-    d = [np.hypot(o[i][0] - o[j][0], o[i][1] - o[j][1]) for i in range(3) for j in range(i)]
-    assert min(d) >= 1.0
-    tracks = spread_actors([Track("a", ()), Track("b", ())])
-    assert abs(tracks[0].origin[0] - tracks[1].origin[0]) >= 1.0
-    kept = spread_actors([Track("a", (), origin=(0, 0)), Track("b", (), origin=(5, 5))])
-    assert kept[1].origin == (5, 5)
 
 
 # ------------------------------------------------------------------------------------------ timing

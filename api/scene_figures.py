@@ -1,0 +1,303 @@
+"""Figures of a placed scene, measured on the output (the actors' final motions and the things as drawn),
+never on the scene stage's own bookkeeping: what ``benchmarks/bench_scene.py`` prints and
+``tests/scene/test_scene_corpus.py`` holds, for the checks of ``tests/corpus/scene_corpus.jsonl``.
+
+=========== ============================================================== =========================
+check       figure                                                         passes when
+=========== ============================================================== =========================
+approach    hips to hips (m) at the end of the actor's row; to a place:    0.3-1.6 m, facing within
+            to its marker                                                  :data:`FACING_DEG`
+faces       the actor's heading error towards the target (deg), mean over  < :data:`FACING_DEG`
+            the middle half of the row (heading from hips and thighs)
+sync        the two actors' reach instants apart (s: each one's hand       < :data:`SYNC_S`
+            furthest out in front of the hips, in the rows' overlap)
+holds       the thing's centre to the holding hand's wrist (m, worst       < :data:`HOLD_M`
+            frame of the row; the wrists' midpoint for a two-hand thing)
+launch      the thing's first fast frame to the striking foot's or hand's  < :data:`LAUNCH_S`
+            closest frame to it (s)
+catch       the thing to the catcher's wrists' midpoint when it stops      < :data:`CATCH_M`
+            flying (m)
+seat        the seat's centre to the hips over the floor (m) where they    < 0.2 m, hips 0-0.3 m
+            sit, and the hips above the seat's top                          above the top
+present     the person is one of the scene's actors                        yes
+together    the two actors' rows start apart (s)                           < :data:`SYNC_S`, side by
+                                                                           side within 2 m
+leaves      the distance grows over the row (m)                            > 0.5 m
+behind      the angle of the actor around the target from where it faces   > 120°
+reaches     the hand to the door at the row's nearest frame (m)            < 0.15 m
+=========== ============================================================== =========================
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from text2anim.core.bodyparts import body_map
+from text2anim.core.conventions import path_and_heading
+from text2anim.core.ground import wrap_angle
+
+from .placed import played_rows
+
+FACING_DEG = 20.0
+SYNC_S = 0.1
+HOLD_M = 0.10
+LAUNCH_S = 0.1
+CATCH_M = 0.15
+
+
+@dataclass(frozen=True)
+class Figure:
+    """One check's figure: its ``value`` (in ``unit``), whether it ``passed``, and a readable ``note``."""
+
+    check: str
+    value: float
+    unit: str
+    passed: bool
+    note: str = ""
+
+
+def figures(anim, checks: list[dict]) -> list[Figure]:
+    """The figure of each check (the ``scene`` list of a corpus line) on the animation ``anim``."""
+    rows = played_rows(anim.table, anim.result)
+    props = {p.name: p for p in anim.props()}
+    return [_one(anim, rows, props, c) for c in checks]
+
+
+def _one(anim, rows, props, c: dict) -> Figure:
+    kind = c["check"]
+    try:
+        return _MEASURES[kind](anim, rows, props, c)
+    except _Missing as why:
+        return Figure(kind, float("nan"), "", False, str(why))
+
+
+class _Missing(Exception):
+    """What a check needs is not in the animation (no such row, actor or thing)."""
+
+
+def _row(rows, actor, verb):
+    for r in rows:
+        if r.actor == actor and r.verb == verb and r.method != "composition":
+            return r
+    for r in rows:
+        if r.actor == actor and r.verb == verb:
+            return r
+    raise _Missing(f"no row of {actor} {verb}")
+
+
+def _motion(anim, actor):
+    if actor not in anim.motions:
+        raise _Missing(f"{actor} is not in the scene")
+    return anim.motions[actor]
+
+
+def _frame(anim, t: float, m) -> int:
+    return int(np.clip(round(t * anim.fps), 0, m.n_frames - 1))
+
+
+def _floor(p):
+    return np.array([p[0], 0.0, p[2]])
+
+
+def _facing_error(m, f: int, point) -> float:
+    _, heading = path_and_heading(m)
+    hips = m.root_positions[f]
+    want = np.arctan2(point[0] - hips[0], point[2] - hips[2])
+    return float(np.degrees(abs(wrap_angle(heading[f] - want))))
+
+
+def _approach(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    f = _frame(anim, r.end, m) if r.end * anim.fps < m.n_frames else m.n_frames - 1
+    hips = _floor(m.root_positions[f])
+    if c["target"] in anim.motions:
+        other = _floor(anim.motions[c["target"]].root_positions[f])
+    elif c["target"] in props:
+        other = _floor(props[c["target"]].positions[f])
+    else:
+        raise _Missing(f"{c['target']} is not in the scene")
+    d = float(np.linalg.norm(hips - other))
+    err = _facing_error(m, f, other)
+    return Figure("approach", d, "m", 0.3 <= d <= 1.6 and err < 30.0, f"facing {err:.0f}° off")
+
+
+def _faces(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    other = _motion(anim, c["target"])
+    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
+    q = max(1, (f1 - f0) // 4)
+    errs = [_facing_error(m, f, other.root_positions[f]) for f in range(f0 + q, max(f0 + q + 1, f1 - q))]
+    e = float(np.mean(errs))
+    return Figure("faces", e, "deg", e < FACING_DEG)
+
+
+#: Verbs whose contact is made with both hands (a hug, a taking): their reach is the wrists' midpoint's.
+BOTH_HANDS = frozenset("受け取る 貰う 抱き合う 抱き締める".split())
+
+
+def _reach(m, f0: int, f1: int, both: bool = False) -> int:
+    """The frame in ``[f0, f1)`` where the right wrist (``both``: the wrists' midpoint) is furthest in front of
+    the hips."""
+    _, heading = path_and_heading(m)
+    left, right = _wrists(m)
+    wrist = 0.5 * (left + right) if both else right
+    rel = wrist[f0:f1] - m.root_positions[f0:f1]
+    ahead = rel[:, 0] * np.sin(heading[f0:f1]) + rel[:, 2] * np.cos(heading[f0:f1])
+    return f0 + int(np.argmax(ahead))
+
+
+def _sync(anim, rows, props, c):
+    a, b = c["actors"]
+    ra = _row(rows, a, c["verb"])
+    counterpart = {"渡す": "受け取る", "受け取る": "渡す"}.get(c["verb"], c["verb"])
+    rb = _row(rows, b, counterpart)
+    ma, mb = _motion(anim, a), _motion(anim, b)
+    lo, hi = max(ra.start, rb.start), min(ra.end, rb.end)
+    if hi <= lo:
+        return Figure("sync", abs(ra.start - rb.start), "s", False, "the two rows do not overlap")
+    f0, f1 = _frame(anim, lo, ma), _frame(anim, hi, ma) + 1
+    ta = _reach(ma, f0, f1, ra.verb in BOTH_HANDS) / anim.fps
+    tb = _reach(mb, f0, f1, rb.verb in BOTH_HANDS) / anim.fps
+    return Figure("sync", abs(ta - tb), "s", abs(ta - tb) < SYNC_S, f"{a} at {ta:.2f} s, {b} at {tb:.2f} s")
+
+
+def _wrists(m):
+    bm = body_map(m.skeleton)
+    return m.positions[:, bm.hands["left"]], m.positions[:, bm.hands["right"]]
+
+
+def _holds(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    if c["thing"] not in props:
+        raise _Missing(f"{c['thing']} is not in the scene")
+    p = props[c["thing"]]
+    left, right = _wrists(m)
+    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
+    a, b = _HELD_PART.get(r.verb, (1 / 3, 2 / 3))  # taken at the start of a pick, given away in a hand-over, ...
+    lo = f0 + int(a * (f1 - f0))
+    hi = max(lo + 1, f0 + int(b * (f1 - f0)))
+    pos = p.positions[lo:hi]
+    d = np.minimum.reduce([np.linalg.norm(pos - w[lo:hi], axis=1) for w in (left, right, 0.5 * (left + right))])
+    return Figure("holds", float(d.max()), "m", float(d.max()) < HOLD_M)
+
+
+#: The part of a row (fractions of it) in which its actor holds the thing: after a pick, before a put or a
+#: hand-over, after a taking; the middle third of any other.
+_HELD_PART = {**dict.fromkeys(("拾う", "持ち上げる", "拾い上げる"), (0.7, 1.0)),
+              **dict.fromkeys(("置く", "下ろす", "降ろす"), (0.0, 0.3)),
+              **dict.fromkeys(("渡す", "手渡す", "差し出す"), (0.1, 0.45)),
+              **dict.fromkeys(("受け取る", "貰う"), (0.7, 1.0))}
+
+
+def _launch(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    if c["thing"] not in props:
+        raise _Missing(f"{c['thing']} is not in the scene")
+    p = props[c["thing"]]
+    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
+    v = np.linalg.norm(np.gradient(p.positions, 1.0 / anim.fps, axis=0), axis=1)
+    bm = body_map(m.skeleton)
+    kick = c["verb"] in ("蹴る", "キックする", "シュートする")
+    joints = [bm.feet["left"][1], bm.feet["right"][1]] if kick else [bm.hands["right"], bm.hands["left"]]
+    ends = m.positions[:, joints]
+    near = np.linalg.norm(ends[f0:f1] - p.positions[f0:f1, None], axis=2).min(axis=1)
+    if kick:
+        contact = f0 + int(np.argmin(near))
+        moving = np.nonzero(v[f0:f1] > 1.0)[0]
+    else:  # a throw: the thing leaves the hand (its distance to the hand starts growing fast)
+        away = np.nonzero(near > 0.25)[0]
+        moving = away
+        contact = f0 + int(away[0]) - 1 if len(away) else f1
+    if not len(moving):
+        return Figure("launch", float("nan"), "s", False, "the thing never moves")
+    dt = abs((f0 + int(moving[0])) - contact) / anim.fps
+    return Figure("launch", dt, "s", dt <= LAUNCH_S)
+
+
+def _catch(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    p = props.get(c["thing"])
+    if p is None:
+        raise _Missing(f"{c['thing']} is not in the scene")
+    left, right = _wrists(m)
+    mid = 0.5 * (left + right)
+    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
+    d = np.linalg.norm(p.positions[f0:f1] - mid[f0:f1], axis=1)
+    best = float(d.min())
+    return Figure("catch", best, "m", best < CATCH_M)
+
+
+def _seat(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    p = props.get(c["thing"])
+    if p is None:
+        raise _Missing(f"{c['thing']} is not in the scene")
+    f = _frame(anim, r.start, m) if c["verb"] in ("立ち上がる", "立つ") else min(_frame(anim, r.end, m), m.n_frames - 1)
+    hips = m.root_positions[f]
+    top = p.positions[f, 1] + (0.0 if p.shape == "chair" else 0.5 * p.size[1])  # a chair's seat: half its height
+    d = float(np.hypot(*(hips - p.positions[f])[[0, 2]]))
+    above = float(hips[1] - top)
+    return Figure("seat", d, "m", d < 0.2 and 0.0 <= above <= 0.3, f"hips {above:.2f} m above the seat")
+
+
+def _present(anim, rows, props, c):
+    ok = c["actor"] in anim.motions
+    return Figure("present", float(ok), "", ok)
+
+
+def _together(anim, rows, props, c):
+    a, b = c["actors"]
+    ra, rb = _row(rows, a, c["verb"]), _row(rows, b, c["verb"])
+    ma, mb = _motion(anim, a), _motion(anim, b)
+    f = _frame(anim, 0.5 * (ra.start + ra.end), ma)
+    d = float(np.hypot(*(ma.root_positions[f] - mb.root_positions[f])[[0, 2]]))
+    dt = abs(ra.start - rb.start)
+    return Figure("together", dt, "s", dt < SYNC_S and d <= 2.0, f"{d:.2f} m apart")
+
+
+def _leaves(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m, o = _motion(anim, c["actor"]), _motion(anim, c["target"])
+    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
+    d = [float(np.hypot(*(m.root_positions[f] - o.root_positions[f])[[0, 2]])) for f in (f0, f1)]
+    return Figure("leaves", d[1] - d[0], "m", d[1] - d[0] > 0.5)
+
+
+def _behind(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m, o = _motion(anim, c["actor"]), _motion(anim, c["target"])
+    f = min(_frame(anim, r.end, m), m.n_frames - 1)
+    _, heading = path_and_heading(o)
+    rel = m.root_positions[f] - o.root_positions[f]
+    angle = float(np.degrees(abs(wrap_angle(np.arctan2(rel[0], rel[2]) - heading[f]))))
+    return Figure("behind", angle, "deg", angle > 120.0)
+
+
+def _reaches(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    p = props.get(c["thing"])
+    if p is None:
+        raise _Missing(f"{c['thing']} is not in the scene")
+    _, right = _wrists(m)
+    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
+    half = 0.5 * np.array(p.size)
+    from scipy.spatial.transform import Rotation
+
+    local = Rotation.from_quat(p.rotations[f0:f1]).inv().apply(right[f0:f1] - p.positions[f0:f1])
+    outside = np.maximum(np.abs(local) - half, 0.0)
+    d = float(np.linalg.norm(outside, axis=1).min())
+    return Figure("reaches", d, "m", d < 0.15)
+
+
+_MEASURES = {"approach": _approach, "faces": _faces, "sync": _sync, "holds": _holds, "launch": _launch,
+             "catch": _catch, "seat": _seat, "present": _present, "together": _together, "leaves": _leaves,
+             "behind": _behind, "reaches": _reaches}
+CHECKS = tuple(_MEASURES)

@@ -1,0 +1,290 @@
+"""Targets: whom or what a motion is directed at, and where it goes (docs/language.md §8).
+
+A person or thing marked に / へ / まで / から / と (also 〜の前に, 〜のところへ, 〜に向かって) or a person
+marked を becomes a field of the motion it depends on, not a motion: ``target`` (the noun as
+written, a person by the actor's name), ``target_role`` and ``target_side``:
+
+============== ======================================================================
+``goal``       where a motion that travels ends: 花子に近づく, 駅まで走る, 花子の前に立つ
+``source``     where it starts from: 花子から離れる, 椅子から立ち上がる, 店を出る
+``addressee``  whom a gesture or speech is for: 花子に手を振る, 先生にお辞儀する
+``patient``    the person a motion is done to: 花子を抱きしめる, 花子を指さす
+``recipient``  the person a thing is sent to: 花子に本を渡す, 花子にボールを投げる
+``partner``    the person who does it with the actor: 花子と握手する, 花子と歩く
+``support``    the thing that holds the body up: 椅子に座る, ベンチに腰掛ける
+``destination`` where a thing is put: 机に置く
+``at``         any other thing the motion is done at: 壁に手をつく
+============== ======================================================================
+
+``target_side`` says where relative to the target (花子の前に: ``front``; ``behind``, ``beside``,
+``near``, ``on``, ``left``, ``right``). A partner performs the motion too (a co-actor, facing or
+beside the actor: the scene decides by the verb); 向かい合って / 向き合って make the actors of the
+next motion each other's partners and are no motion of their own, nor is に向かって (its noun is
+the next motion's goal). A gesture with no target of its own right after a motion of the same actor
+directed at a person (近づいて、お辞儀する) is addressed to that person. それ / これ as an object is the
+thing last named.
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from .actors import noun_of, person_name
+from .bunsetsu import Phrase
+from .lexicon import (
+    BODY_PARTS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
+    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
+    TRANSFER_VERBS,
+)
+from .pred import Pred
+from .types import Constraint, MotionSpec
+
+#: Particles that mark a target, and the ones a 〜の + noun phrase may end with.
+TARGET_PARTICLES = frozenset("に へ まで から と".split())
+#: Verbs whose を-place is where the actor leaves from (店を出る).
+LEAVING_VERBS = frozenset("出る 離れる 去る 降りる 立ち去る 出て行く".split())
+#: Roles a person keeps as the addressee of a following gesture (近づいて、お辞儀する).
+DIRECTED = frozenset(("goal", "addressee", "partner", "patient", "recipient"))
+
+
+class Target:
+    """A noun a motion is directed at: ``name`` as written, whether it is a ``person``, the particle
+    that marked it and the side (``SIDE_NOUNS``), and the phrases it spans (``phrases``)."""
+
+    __slots__ = ("name", "person", "particle", "side", "phrases")
+
+    def __init__(self, name: str, person: bool, particle: str, side: str | None, phrases: tuple[int, ...]):
+        self.name, self.person, self.particle, self.side, self.phrases = name, person, particle, side, phrases
+
+
+def attach_targets(phrases: list[Phrase]) -> None:
+    """Give each motion its target (this module's docstring); a thing read from それ is said in its note."""
+    _mark_direction_and_facing(phrases)
+    pending: list[Target] = []
+    group = None
+    for i, ph in enumerate(phrases):
+        if ph.group != group:
+            pending, group = [], ph.group
+        pred = ph.pred
+        if pred is None:
+            found = _target_at(phrases, i)
+            if found is not None and (not pending or i not in pending[-1].phrases):
+                pending.append(found)
+            continue
+        if pred.reason in ("direction", "facing"):
+            continue  # its noun waits for the motion it says the way of
+        if pred.motion:
+            _settle(pred, pending, phrases)
+        pending = []
+    _facing_partners(phrases)
+    _inherit_addressee(phrases)
+    _things_named_before(phrases)
+
+
+# ---------------------------------------------------------------- the nouns
+
+
+def _particle(ph: Phrase) -> str:
+    """The last particle of a noun phrase (に of 花子の前に), '' if none."""
+    for t in reversed(ph.tokens):
+        if t.pos1 == "助詞":
+            return t.surface
+        if t.pos1 != "補助記号":
+            return ""
+    return ""
+
+
+def _name(ph: Phrase, strict: bool = False) -> tuple[str, bool]:
+    """The noun a phrase names and whether it is a person (花子さんに -> 花子). ``strict`` (a を-object:
+    本を渡す) does not take a word for a name only because it can be one (本 is also a surname): the
+    word must be tagged a name, be a person noun or carry an honorific."""
+    person = person_name(ph)
+    if person and strict and not _surely_person(ph):
+        person = None
+    return (person, True) if person else (noun_of(ph), False)
+
+
+def _surely_person(ph: Phrase) -> bool:
+    toks = ph.tokens
+    return (any(t.pos3 == "人名" for t in toks) or noun_of(ph) in PERSON_NOUNS
+            or any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in toks))
+
+
+def _before_no(ph: Phrase) -> Phrase | None:
+    """``ph`` itself when it ends in の after a noun (花子の), else ``None``."""
+    return ph if ph.key.endswith("の") and _particle(ph) == "の" and noun_of(ph) else None
+
+
+def _target_at(phrases: list[Phrase], i: int) -> Target | None:
+    """The target phrase ``i`` opens, if any: 花子に, 花子の + 前に, 花子の前に, 駅まで, 花子を (a person)."""
+    ph = phrases[i]
+    if ph.role == "object":
+        name, person = _name(ph, strict=True)
+        return Target(name, person, "を", None, (i,)) if name else None
+    if ph.role:
+        return None
+    nxt = phrases[i + 1] if i + 1 < len(phrases) else None
+    if _before_no(ph) and nxt is not None and nxt.group == ph.group and not nxt.pred and not nxt.role:
+        rel = noun_of(nxt)
+        particle = _particle(nxt)
+        if (rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS) and particle in TARGET_PARTICLES:
+            name, person = _name(ph)
+            return Target(name, person, particle, SIDE_NOUNS.get(rel), (i, i + 1))
+    particle = _particle(ph)
+    if particle not in TARGET_PARTICLES:
+        return None
+    inner = _inner_side(ph)
+    if inner is not None:
+        return inner
+    name, person = _name(ph)
+    if not name or name in BODY_PARTS or name in NOT_TARGETS or any(t.is_number for t in ph.tokens):
+        return None
+    return Target(name, person, particle, None, (i,))
+
+
+def _inner_side(ph: Phrase) -> Target | None:
+    """花子の前に as one phrase: the noun before の, the side noun after it."""
+    toks = ph.tokens
+    for k, t in enumerate(toks):
+        if t.surface == "の" and t.pos1 == "助詞" and 0 < k < len(toks) - 1:
+            rel = "".join(x.surface for x in toks[k + 1:] if x.pos1 in ("名詞", "接尾辞"))
+            if rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS:
+                head = Phrase(ph.index, toks[:k], ph.sentence, ph.quoted)
+                name, person = _name(head)
+                return Target(name, person, _particle(ph), SIDE_NOUNS.get(rel), (ph.index,)) if name else None
+            return None
+    return None
+
+
+# ---------------------------------------------------------------- roles
+
+
+def _settle(pred: Pred, pending: list[Target], phrases: list[Phrase]) -> None:
+    """The target of ``pred`` from the nouns before it in its clause (the nearest one with a role wins)."""
+    for t in reversed(pending):
+        role = _role(pred, t)
+        if role is None:
+            continue
+        if t.person and t.name == pred.actor:
+            continue
+        pred.target, pred.target_role, pred.target_side, pred.target_person = t.name, role, t.side, t.person
+        if role == "partner" and t.name not in pred.co_actors:
+            pred.co_actors = (*pred.co_actors, t.name)  # 花子と握手する: she shakes hands too
+        return
+
+
+def _role(pred: Pred, t: Target) -> str | None:
+    verb = pred.verb
+    if t.particle == "を":
+        if t.person:
+            return "patient"
+        return "source" if verb in LEAVING_VERBS else None
+    if t.particle == "と":
+        return "partner" if t.person else None
+    if t.particle == "から":
+        return "source"
+    if verb in PLACING_VERBS:
+        return "destination"
+    if verb in TRANSFER_VERBS and pred.object not in BODY_PARTS:
+        return "recipient" if t.person else "destination"
+    if t.particle in ("へ", "まで") or verb in LOCOMOTION_VERBS:
+        return "goal"
+    if verb in SUPPORT_VERBS:
+        return "goal" if t.person else "support"
+    if t.person:
+        return "patient" if verb in CONTACT_VERBS else "addressee"
+    return "at"
+
+
+# ---------------------------------------------------------------- phrases that are no motion
+
+
+def _mark_direction_and_facing(phrases: list[Phrase]) -> None:
+    """花子に向かって走る: 向かって says the way of the next motion; 向かい合って that the actors face."""
+    for i, ph in enumerate(phrases):
+        pred = ph.pred
+        if pred is None or pred.reason or pred.ending not in ("te", "renyou"):
+            continue
+        nxt = next((q for q in phrases[i + 1:] if q.pred), None)
+        if nxt is None or nxt.group != ph.group or not nxt.predicate.motion:
+            continue
+        if pred.verb in FACING_VERBS:
+            pred.reason = "facing"
+        elif pred.verb in DIRECTION_TE and i > 0 and _particle(phrases[i - 1]) in ("に", "へ") \
+                and phrases[i - 1].group == ph.group:
+            pred.reason = "direction"
+
+
+def _facing_partners(phrases: list[Phrase]) -> None:
+    """Co-actors of a motion done to each other (太郎と花子は抱き合う, 〜合う) or after 向かい合って: each
+    one's partner is the other."""
+    preds = [ph.pred for ph in phrases if ph.pred]
+    for a, b in zip([None, *preds], preds):
+        facing = a is not None and a.reason == "facing"
+        mutual = b.verb in RECIPROCAL_VERBS or b.verb.endswith("合う")
+        if (facing or mutual) and b.motion and not b.target and b.co_actors:
+            b.target, b.target_role, b.target_person = b.co_actors[0], "partner", True
+
+
+def _inherit_addressee(phrases: list[Phrase]) -> None:
+    """A gesture right after a motion of the same actor directed at a person is addressed to that person."""
+    last: dict[str | None, Pred] = {}
+    for ph in phrases:
+        pred = ph.pred
+        if pred is None or not pred.motion:
+            continue
+        prev = last.get(pred.actor)
+        if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
+                and pred.verb not in LOCOMOTION_VERBS and pred.verb not in SUPPORT_VERBS):
+            role = "patient" if pred.verb in CONTACT_VERBS else "addressee"
+            pred.target, pred.target_role, pred.target_person = prev.target, role, True
+        last[pred.actor] = pred
+
+
+def _things_named_before(phrases: list[Phrase]) -> None:
+    """それ / これ as an object: the thing last named (花子はそれを投げた: the ball)."""
+    last: str | None = None
+    for ph in phrases:
+        pred = ph.pred
+        if pred is None or not pred.motion or not pred.object:
+            continue
+        if pred.object in THING_ANAPHORS and last is not None:
+            said = f"{pred.object} read as {last}, the thing last named"
+            pred.note = f"{pred.note}; {said}" if pred.note else said
+            pred.object = last
+        elif pred.object not in THING_ANAPHORS and pred.target_role != "patient":
+            last = pred.object
+
+
+# ---------------------------------------------------------------- counterparts
+
+
+def add_counterparts(specs: list[MotionSpec], constraints: list[Constraint]) -> list[str]:
+    """太郎は花子に本を渡す: 花子 receives it (受け取る, directed back at 太郎), starting with the hand-over; and
+    花子は太郎から箱を受け取る: 太郎 hands it over. Added after the text's motions (its span, a parallel link
+    with the cue ``counterpart``) unless the other person already does the counterpart there; a later
+    motion of the other person linked to the hand-over follows the counterpart instead. Returns the notes."""
+    notes: list[str] = []
+    next_id = max((s.id for s in specs), default=0) + 1
+    for spec in list(specs):
+        cp = COUNTERPARTS.get(spec.verb)
+        if cp is None or spec.target is None or spec.target_role != cp[2] or spec.actor is None:
+            continue
+        verb, reading, _ = cp
+        if any(s.actor == spec.target and s.verb == verb for s in specs):
+            continue
+        role = "source" if cp[2] == "recipient" else "recipient"
+        other = replace(spec, id=next_id, actor=spec.target, verb=verb, written=verb, reading=reading,
+                        target=spec.actor, target_role=role, target_side=None, target_person=True, repeat=1,
+                        delay=None)
+        for k, c in enumerate(constraints):
+            if c.first == spec.id and _actor_of(specs, c.second) == spec.target:
+                constraints[k] = replace(c, first=next_id)
+        constraints.append(Constraint(spec.id, next_id, "parallel", None, None, "composition", "counterpart"))
+        specs.append(other)
+        notes.append(f"{spec.target} {verb}: implied by {spec.actor} {spec.written or spec.verb}")
+        next_id += 1
+    return notes
+
+
+def _actor_of(specs: list[MotionSpec], motion_id: int) -> str | None:
+    return next((s.actor for s in specs if s.id == motion_id), None)

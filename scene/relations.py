@@ -1,0 +1,95 @@
+"""Relations between actors from the rows' targets: who should stand where relative to whom, and when.
+
+Each row whose target is another actor of the scene gives one :class:`~scene.types.Relation`: its kind
+from the target's role and side (docs/language.md §8), its distance from the verb (a natural distance for
+that act between two people of the built-in body's size, hips to hips, scaled to the actor's size), its
+time from the row's played times:
+
+=========================== ========== ================================= ==========================
+role (side)                 kind       distance                          time
+=========================== ========== ================================= ==========================
+goal (front, none)          ``face``   the next act's for the same       the row's end (arrival)
+                                       person, else :data:`APPROACH`
+goal (behind)               ``behind`` :data:`BEHIND`                     the row's end
+goal (beside, near, ...)    ``beside`` :data:`BESIDE`                     the row's end
+source                      ``away``   :data:`APPROACH`                   the row's start
+addressee, patient,         ``face``   :data:`DISTANCES` by verb, else   the row's middle
+recipient                              :data:`BY_ROLE`
+partner                     ``face`` for :data:`FACE_TO_FACE` verbs,     the row's middle
+                            else ``beside`` (:data:`BESIDE`, together)
+=========================== ========== ================================= ==========================
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from text2anim.scheduler.types import Element
+
+from .types import Relation
+
+#: m, hips to hips: where an approach ends when nothing closer follows ("about 1 m to talk or hand over").
+APPROACH = 1.0
+BEHIND = 0.8
+BESIDE = 0.8
+#: m, hips to hips, by verb (lemma): the distance a person keeps for that act (a hug closes in, a wave is
+#: from afar).
+DISTANCES = {
+    "握手する": 0.75, "ハイタッチする": 0.8, "抱き合う": 0.4, "抱き締める": 0.4, "抱く": 0.4, "抱き付く": 0.4,
+    "抱きつく": 0.4, "渡す": 0.85, "手渡す": 0.85, "差し出す": 0.85, "受け取る": 0.85, "貰う": 0.85,
+    "話す": 1.1, "話し掛ける": 1.2, "会話する": 1.1, "話し合う": 1.1, "お辞儀する": 1.6, "挨拶する": 1.6,
+    "会釈する": 1.6, "謝る": 1.4, "うなずく": 1.4, "頷く": 1.4, "振る": 3.0, "指さす": 2.5, "指差す": 2.5,
+    "投げる": 4.0, "放る": 4.0, "蹴る": 4.0, "押す": 0.6, "叩く": 0.6, "殴る": 0.7, "触る": 0.6, "撫でる": 0.6,
+    "見る": 2.0, "見つめる": 1.5, "踊る": 1.2, "喧嘩する": 0.8, "戦う": 1.2,
+}
+BY_ROLE = {"addressee": 1.6, "patient": 0.6, "recipient": 1.2, "partner": 1.0}
+#: Partners who face each other for these; any other verb done with a partner is done side by side.
+FACE_TO_FACE = frozenset(
+    """握手する ハイタッチする 抱き合う 話す 会話する 話し合う お辞儀する 挨拶する 喧嘩する 戦う キスする 見つめ合う
+    乾杯する 向かい合う 組み合う 渡す 受け取る""".split()
+)
+#: The built-in body's standing hips height (m): distances are for a person of that size.
+HIPS_HEIGHT = 0.93
+
+
+def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str | None, float]) -> list[Relation]:
+    """The relations of ``rows`` (played times) between actors in ``present``, in time order;
+    ``scale`` is each actor's size against the built-in body (its hips height over :data:`HIPS_HEIGHT`)."""
+    out = []
+    for i, r in enumerate(rows):
+        if r.target is None or r.target == r.actor or r.target not in present or (
+                r.method == "composition" and _is_base_of(rows, r)) or _answers(rows[:i], r):
+            continue
+        kind, dist, time = _shape(r, rows[i + 1:])
+        out.append(Relation(r.id, r.actor, r.target, kind, dist * scale.get(r.actor, 1.0), time, r.verb,
+                            r.target_role or ""))
+    return sorted(out, key=lambda rel: (rel.time, rel.element))
+
+
+def _answers(earlier: Sequence[Element], r: Element) -> bool:
+    """A partner's own row of the motion another row already relates them by (花子's copy of 太郎は花子と踊る)."""
+    return r.target_role == "partner" and any(
+        e.actor == r.target and e.target == r.actor and e.verb == r.verb and e.target_role == "partner"
+        for e in earlier)
+
+
+def _is_base_of(rows: Sequence[Element], r: Element) -> bool:
+    """A composition whose target its base row already states (歩きながら手を振る to one person)."""
+    base = next((b for b in rows if b.id == r.prev), None)
+    return base is not None and base.target == r.target
+
+
+def _shape(r: Element, later: Sequence[Element]) -> tuple[str, float, float]:
+    role, mid = r.target_role, 0.5 * (r.start + r.end)
+    if role == "goal":
+        if r.target_side == "behind":
+            return "behind", BEHIND, r.end
+        if r.target_side in ("beside", "near", "left", "right", "on"):
+            return "beside", BESIDE, r.end
+        nxt = next((x for x in later if x.actor == r.actor and x.method != "composition"), None)
+        close = DISTANCES.get(nxt.verb) if nxt is not None and nxt.target == r.target else None
+        return "face", min(APPROACH, close) if close else APPROACH, r.end
+    if role == "source":
+        return "away", APPROACH, r.start
+    if role == "partner" and r.verb not in FACE_TO_FACE:
+        return "beside", BESIDE, mid
+    return "face", DISTANCES.get(r.verb, BY_ROLE.get(role or "", APPROACH)), mid

@@ -1,0 +1,405 @@
+"""The things of a text over time: where each one is at every frame, from what the actors do to it.
+
+A thing is named by the rows (a row's ``object``, or its target when that is a thing: a seat, a table, a
+place). Its story is read from those rows in time order, each at an instant of the actor's own motion
+(:mod:`scene.bodies`), never at a fixed time:
+
+==================== ====================================================================================
+verb (lemma)         what happens to the thing
+==================== ====================================================================================
+kick (:data:`KICK`)  it rests on the floor where the kicking foot strikes (the foot's fastest frame) and
+                     leaves it then, faster than the foot, on a ballistic path; it lands, bounces, rolls
+throw                it is in the throwing hand until the release (the hand's fastest frame); it flies to
+                     the catcher's hands at their catch (both hands furthest out) when one catches it,
+                     else on with the hand's speed, lands and rolls
+pick (拾う, 持ち上げる) it lies on the floor under the hand at its lowest frame, then is held
+put (置く, 下ろす)     it is held until the hand's lowest frame, then rests there (on the table it is put on)
+give (渡す)           it is in the giver's hand until the hand is furthest out, then in the receiver's
+open (開ける, 閉める)  a door in front of the hand at its furthest reach swings open (or shut) on its hinge
+any other            it is held (one hand or both, :mod:`scene.shapes`) while the row plays
+seat (座る on it)     it stands under the hips where they sit, from the start
+place (駅まで走る)     a marker on the floor where the walk ends
+==================== ====================================================================================
+
+Held things follow the hand: its grip point (:func:`scene.bodies.hand`) and turn; a thing between both
+hands keeps level, turned with the hips. Gravity :data:`G`; bounces lose :data:`RESTITUTION` of their
+vertical speed and roll to a stop with :data:`ROLL_DECELERATION`.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from text2anim.core.fk import matrix_to_quat
+from text2anim.core.motion import Motion
+from text2anim.scheduler.types import Element
+
+from . import bodies
+from .shapes import PLACE, Shape, shape_of
+from .types import Thing
+
+G = 9.81  # m/s²
+RESTITUTION = 0.45
+ROLL_DECELERATION = 1.2  # m/s²
+#: A kicked ball leaves faster than the foot that strikes it (a ball's mass is small against the leg's).
+KICK_GAIN = 1.3
+KICK = frozenset("蹴る キックする シュートする 蹴り上げる 蹴飛ばす".split())
+THROW = frozenset("投げる 放る 放り投げる 投げ渡す パスする".split())
+CATCH = frozenset("取る 捕る キャッチする 受け止める 捕まえる".split())
+PICK = frozenset("拾う 拾い上げる 持ち上げる 抱え上げる".split())
+PUT = frozenset("置く 下ろす 降ろす 落とす 積む 乗せる 載せる".split())
+GIVE = frozenset("渡す 手渡す 差し出す".split())
+RECEIVE = frozenset("受け取る 貰う".split())
+OPEN = frozenset("開ける 開く".split())
+CLOSE = frozenset("閉める 閉じる 締める".split())
+#: A door's swing, degrees.
+DOOR_SWING = 80.0
+
+
+class _Path:
+    """One thing's frames while its story is read: each event writes from its frame to the end."""
+
+    def __init__(self, name: str, shape: Shape, known: bool, n: int, scale: float):
+        self.name, self.shape, self.known, self.scale = name, shape, known, scale
+        w, h, d = shape.size
+        self.size: tuple[float, float, float] = (w * scale, h * scale, d * scale)
+        self.pos = np.full((n, 3), np.nan)
+        self.rot = np.tile([0.0, 0.0, 0.0, 1.0], (n, 1))
+        self.events: list[tuple[float, str]] = []
+        self.holder: tuple[str | None, str] | None = None  # (actor, "right" / "both") while held
+
+    @property
+    def half(self) -> float:
+        return 0.5 * self.size[1]
+
+    def rest(self, f: int, point: np.ndarray, yaw: float = 0.0) -> None:
+        self.pos[f:] = point
+        self.rot[f:] = Rotation.from_euler("y", yaw).as_quat()
+        self.holder = None
+
+    def placed(self) -> bool:
+        return not np.isnan(self.pos[-1, 0])
+
+
+def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: dict[str | None, float],
+           fps: float) -> tuple[tuple[Thing, ...], list[str]]:
+    """The things of ``rows`` (played times) around the placed ``motions``; and what could not be placed or
+    is drawn as a stand-in, one sentence each."""
+    n = max(m.n_frames for m in motions.values())
+    paths: dict[str, _Path] = {}
+    said: list[str] = []
+    for r in sorted(rows, key=lambda r: (r.start, r.verb in RECEIVE, r.id)):  # a hand-over before its taking
+        if r.actor not in motions:
+            continue
+        named = _named(r, motions)
+        if not any(how == "handled" for _, how in named) and r.verb in THROW | PUT | GIVE | KICK:
+            held = next((q for q in paths.values() if q.holder is not None and q.holder[0] == r.actor), None)
+            named += [(held.name, "handled")] if held is not None else []  # 拾って、投げる: what the hand holds
+        for name, how in named:
+            if name not in paths:
+                shape, known = (PLACE, False) if how == "place" else shape_of(name)
+                paths[name] = _Path(name, shape, known, n, scale.get(r.actor, 1.0))
+            _event(paths[name], how, r, rows, motions, fps)
+    out = []
+    for p in paths.values():
+        if not p.placed():
+            said.append(f"{p.name}: the text names it, but no motion says where it is; left out of the scene")
+            continue
+        first = int(np.argmax(~np.isnan(p.pos[:, 0])))
+        p.pos[:first] = p.pos[first]
+        p.rot[:first] = p.rot[first]
+        if not p.known:
+            said.append(f"{p.name}: " + ("a place, shown as a marker where the motion ends" if p.shape is PLACE
+                                         else "no shape of its own, shown as a box"))
+        out.append(Thing(p.name, p.shape.shape, p.size, p.shape.color, p.pos, p.rot, tuple(p.events), p.known))
+    return tuple(out), said
+
+
+def _named(r: Element, motions) -> list[tuple[str, str]]:
+    """The things row ``r`` names and how: ``handled`` (its object), ``seat``, ``table``, ``place``."""
+    out = []
+    if r.target and r.target not in motions:
+        if r.target_role == "support" or (r.target_role == "source" and shape_of(r.target)[0].shape in
+                                          ("chair", "bench")):
+            out.append((r.target, "seat"))
+        elif r.target_role == "destination":
+            out.append((r.target, "table"))
+        elif r.target_role in ("goal", "at", "source") and not shape_of(r.target)[1]:
+            out.append((r.target, "place"))
+        elif r.target_role in ("goal", "at"):
+            out.append((r.target, "table"))
+    if r.object and r.object not in motions:  # after the table it may be put on
+        out.append((r.object, "handled"))
+    return out
+
+
+def _who(actor: str | None) -> str:
+    return actor if actor is not None else "the default character"
+
+
+def _frames(r: Element, fps: float, n: int) -> tuple[int, int]:
+    f0 = int(np.clip(round(r.start * fps), 0, n - 1))
+    return f0, int(np.clip(round(r.end * fps), f0 + 1, n))
+
+
+def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps: float) -> None:
+    m = motions[r.actor]
+    f0, f1 = _frames(r, fps, m.n_frames)
+    t = f0 / fps
+    if how == "seat":
+        _seat(p, m, f0 if r.target_role == "source" else f1 - 1)
+        p.events.append((t, f"{_who(r.actor)} " + ("rises from it" if r.target_role == "source" else "sits on it")))
+    elif how == "table":
+        _table(p, m, f0, f1)
+    elif how == "place":
+        path, heading = bodies.hips_path(m)
+        f = f1 - 1 if r.target_role != "source" else f0
+        p.rest(0, path[f] + 0.6 * bodies.forward(heading[f]) + [0.0, p.half, 0.0])
+        p.events.append((f / fps, f"{_who(r.actor)} " + ("leaves it" if r.target_role == "source" else "reaches it")))
+    elif r.verb in KICK:
+        _kick(p, r, m, motions, f0, f1, fps)
+    elif r.verb in THROW:
+        _throw(p, r, m, rows, motions, f0, f1, fps)
+    elif r.verb in PICK:
+        grab = bodies.lowest(_grip(m, p), f0, f1)
+        if p.holder is None:
+            p.rest(0 if not p.placed() else f0, _on_floor(_grip(m, p)[grab], p))
+        _hold(p, r.actor, m, grab)
+        p.events.append((grab / fps, f"{_who(r.actor)} picks it up"))
+    elif r.verb in PUT:
+        if p.holder is None or p.holder[0] != r.actor:
+            _hold(p, r.actor, m, f0)
+        grip = _grip(m, p)
+        release = bodies.lowest(grip, f0, f1)
+        point = _on_floor(grip[release], p)
+        if r.target_role == "destination":  # on the table :func:`_table` puts under the hand
+            point[1] += _table_top(bodies.hand(m, "right")[bodies.lowest(bodies.hand(m, "right"), f0, f1), 1])
+        p.rest(release, point, float(bodies.hips_path(m)[1][release]))
+        p.events.append((release / fps, f"{_who(r.actor)} puts it down"))
+    elif r.verb in GIVE:
+        _give(p, r, m, motions, f0, f1, fps)
+    elif r.verb in RECEIVE:
+        if p.holder is None or p.holder[0] != r.actor:  # no one handed it over: taken at the reach
+            _hold(p, r.actor, m, bodies.furthest(bodies.hands(m), m, f0, f1))
+            p.events.append((t, f"{_who(r.actor)} takes it"))
+    elif r.verb in OPEN or r.verb in CLOSE:
+        _door(p, r, m, f0, f1, fps)
+    elif p.holder is None or p.holder[0] != r.actor:
+        _hold(p, r.actor, m, 0 if not p.placed() else f0)
+        p.events.append((t, f"{_who(r.actor)} holds it"))
+
+
+# ---------------------------------------------------------------- held
+
+
+def _grip(m: Motion, p: _Path) -> np.ndarray:
+    return bodies.hands(m) if p.shape.grip == "both" else bodies.hand(m, "right")
+
+
+def _hold(p: _Path, actor: str | None, m: Motion, f: int) -> None:
+    """``p`` in ``actor``'s hand(s) from frame ``f``: at the grip, turned with the hand (one hand) or with the
+    hips (both hands, level)."""
+    grip = _grip(m, p)
+    p.pos[f:] = grip[f:]
+    if p.shape.grip == "both":
+        p.rot[f:] = Rotation.from_euler("y", bodies.hips_path(m)[1][f:, None]).as_quat()
+    else:
+        hand_rot = m.pose.rotations[:, _hand_joint(m)]
+        rel = hand_rot[f].T  # the thing keeps the turn it had when taken: level at the grab
+        p.rot[f:] = matrix_to_quat(hand_rot[f:] @ rel)
+    p.holder = (actor, p.shape.grip)
+
+
+def _hand_joint(m: Motion) -> int:
+    from text2anim.core.bodyparts import body_map
+
+    return body_map(m.skeleton).hands["right"]
+
+
+def _on_floor(point: np.ndarray, p: _Path) -> np.ndarray:
+    return np.array([point[0], p.half, point[2]])
+
+
+# ---------------------------------------------------------------- flights
+
+
+def _kick(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float) -> None:
+    side = max(("left", "right"), key=lambda s: float(bodies.speed(bodies.toe(m, s)[f0:f1], fps).max()))
+    toe = bodies.toe(m, side)
+    strike = bodies.fastest(toe, fps, f0, f1)
+    heading = float(bodies.hips_path(m)[1][strike])
+    start = _on_floor(toe[strike] + 0.5 * p.size[0] * bodies.forward(heading), p)
+    if p.holder is None and (not p.placed() or np.hypot(*(p.pos[strike] - start)[[0, 2]]) > 0.5):
+        p.rest(0 if not p.placed() else f0, start)
+        p.events.append((0.0, "on the floor"))
+    v = np.gradient(toe, 1.0 / fps, axis=0)[strike] * KICK_GAIN
+    horizontal = float(np.clip(np.hypot(v[0], v[2]), 4.0, 12.0))
+    aim = _aim(r, motions, p.pos[strike], strike, heading)
+    lift = float(np.clip(v[1], 0.5, 3.0))
+    to = _receiver_at(r, motions, strike)
+    if to is not None:  # a pass: along the ground, rolling to a stop at the receiver's feet
+        d = max(float(np.hypot(*(to - p.pos[strike])[[0, 2]])) - 0.3, 0.5)
+        horizontal, lift = float(np.sqrt(2.0 * ROLL_DECELERATION * d)), 0.3
+    v = np.array([horizontal * np.sin(aim), lift, horizontal * np.cos(aim)])
+    _fly(p, strike, p.pos[strike], v, fps)
+    p.events.append((strike / fps, f"kicked by {_who(r.actor)}"))
+
+
+def _throw(p: _Path, r: Element, m: Motion, rows, motions, f0: int, f1: int, fps: float) -> None:
+    if p.holder is None or p.holder[0] != r.actor:
+        _hold(p, r.actor, m, 0 if not p.placed() else f0)
+    hand = bodies.hand(m, "right")
+    release = bodies.fastest(hand, fps, f0 + (f1 - f0) // 4, f1)
+    start = hand[release]
+    catch = _catcher(p, r, rows, motions, release, fps)
+    if catch is not None:
+        who, fc, point = catch
+        dt = (fc - release) / fps
+        v = (point - start - 0.5 * np.array([0.0, -G, 0.0]) * dt * dt) / dt
+        _fly(p, release, start, v, fps, until=fc)
+        p.events.append((release / fps, f"thrown by {_who(r.actor)}"))
+        _hold(p, who, motions[who], fc)
+        p.events.append((fc / fps, f"caught by {who}"))
+        return
+    v = np.gradient(hand, 1.0 / fps, axis=0)[release]
+    heading = float(bodies.hips_path(m)[1][release])
+    speed = max(float(np.hypot(v[0], v[2])), 5.0)
+    aim = _aim(r, motions, start, release, heading)
+    _fly(p, release, start, np.array([speed * np.sin(aim), float(np.clip(v[1], 1.0, 4.0)), speed * np.cos(aim)]), fps)
+    p.events.append((release / fps, f"thrown by {_who(r.actor)}"))
+
+
+def _catcher(p: _Path, r: Element, rows, motions, release: int, fps: float):
+    """The catch that ends a throw: (who, frame, where the hands meet the thing), or ``None``."""
+    for q in rows:
+        if q.verb in CATCH and q.actor != r.actor and q.actor in motions and q.object in (p.name, None):
+            m = motions[q.actor]
+            f0, f1 = _frames(q, fps, m.n_frames)
+            both = bodies.hands(m)
+            fc = bodies.furthest(both, m, f0, f1)
+            if fc > release + int(0.2 * fps):
+                return q.actor, fc, both[fc]
+    return None
+
+
+def _receiver_at(r: Element, motions, f: int) -> np.ndarray | None:
+    """Where the row's recipient stands at frame ``f`` (their hips over the floor), ``None`` without one."""
+    if r.target in motions and r.target_role in ("recipient", "addressee", "goal"):
+        other = bodies.hips_path(motions[r.target])[0]
+        return other[min(f, len(other) - 1)]
+    return None
+
+
+def _aim(r: Element, motions, start: np.ndarray, f: int, heading: float) -> float:
+    """The heading a thing is sent at: towards the row's recipient when there is one, else ``heading``."""
+    to = _receiver_at(r, motions, f)
+    return bodies.heading_to(start, to) if to is not None else heading
+
+
+def _fly(p: _Path, f: int, start: np.ndarray, v: np.ndarray, fps: float, until: int | None = None) -> None:
+    """A ballistic flight from frame ``f``: lands, bounces, rolls to a stop (or ends at ``until``)."""
+    n = len(p.pos) if until is None else until + 1
+    pos, vel = np.array(start, dtype=float), np.array(v, dtype=float)
+    radius = p.half
+    turn = Rotation.from_quat(p.rot[f])
+    sub = 4
+    h = 1.0 / (fps * sub)
+    for k in range(f, n):
+        p.pos[k] = pos
+        p.rot[k] = turn.as_quat()
+        for _ in range(sub):
+            grounded = pos[1] <= radius + 1e-6 and abs(vel[1]) < 0.5
+            if grounded:
+                pos[1], vel[1] = radius, 0.0
+                flat = float(np.hypot(vel[0], vel[2]))
+                slow = max(0.0, flat - ROLL_DECELERATION * h)
+                vel[[0, 2]] *= slow / flat if flat > 1e-9 else 0.0
+            else:
+                vel[1] -= G * h
+            step = vel * h
+            pos = pos + step
+            if pos[1] < radius and not grounded:
+                pos[1] = radius
+                vel[1] = -vel[1] * RESTITUTION
+                vel[[0, 2]] *= 0.85
+            flat_step = float(np.hypot(step[0], step[2]))
+            if flat_step > 1e-9 and p.shape.shape == "sphere":
+                axis = np.cross([0.0, 1.0, 0.0], step / np.linalg.norm(step))
+                if np.linalg.norm(axis) > 1e-9:
+                    turn = Rotation.from_rotvec(axis / np.linalg.norm(axis) * flat_step / radius) * turn
+    p.holder = None
+
+
+# ---------------------------------------------------------------- hand-over, seats, tables, doors
+
+
+def _give(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float) -> None:
+    if p.holder is None or p.holder[0] != r.actor:
+        _hold(p, r.actor, m, 0 if not p.placed() else f0)
+    hand = bodies.hand(m, "right")
+    contact = bodies.furthest(hand, m, f0 + (f1 - f0) // 5, f1)
+    taker = r.target if r.target in motions else None
+    if taker is None:
+        return
+    _hold(p, taker, motions[taker], contact)
+    p.events.append((contact / fps, f"handed from {_who(r.actor)} to {taker}"))
+
+
+def _seat(p: _Path, m: Motion, f: int) -> None:
+    """A seat under the hips at frame ``f``: its top a hand's breadth below the hip joints, its centre a
+    little behind them (the thighs lie on its front half), turned as the hips face."""
+    hips = m.root_positions[f]
+    heading = float(bodies.hips_path(m)[1][f])
+    top = max(0.2 * p.scale, float(hips[1]) - 0.1 * p.scale)
+    w, h, d = p.size
+    if p.shape.shape == "chair":
+        h = 2.0 * top  # the seat at half the chair's height (docs of output.viewer.types.PROP_SHAPES)
+    else:
+        h = top
+    p.size = (w, h, d)
+    centre = hips - 0.05 * bodies.forward(heading)
+    p.rest(0, np.array([centre[0], 0.5 * h, centre[2]]), heading)
+
+
+def _table(p: _Path, m: Motion, f0: int, f1: int) -> None:
+    """A table whose near edge is under where the hand puts a thing down (its lowest frame)."""
+    grip = bodies.hand(m, "right")
+    f = bodies.lowest(grip, f0, f1)
+    heading = float(bodies.hips_path(m)[1][f])
+    w, h, d = p.size
+    top = _table_top(grip[f, 1])
+    p.size = (w, top, d)
+    centre = grip[f] + (0.5 * d - 0.1) * bodies.forward(heading)
+    p.rest(0, np.array([centre[0], 0.5 * top, centre[2]]), heading)
+
+
+def _table_top(hand_y: float) -> float:
+    """A table's top (m) for a thing put down by a hand at ``hand_y``: just below the hand."""
+    return float(np.clip(hand_y - 0.05, 0.3, 1.1))
+
+
+def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float) -> None:
+    """A door in front of the right hand at its furthest reach; its hinge on the hand's far side, it swings
+    open (or shut) from then to the row's end."""
+    hand = bodies.hand(m, "right")
+    reach = bodies.furthest(hand, m, f0, f1)
+    heading = float(bodies.hips_path(m)[1][reach])
+    fwd, left = bodies.forward(heading), bodies.forward(heading + np.pi / 2)
+    w, h, _ = p.size
+    handle = hand[reach] + 0.05 * fwd
+    hinge = handle + (w - 0.1) * left
+    hinge[1] = 0.0
+    opening = r.verb in OPEN
+    n = len(p.pos)
+    angles = np.zeros(n)
+    ramp = np.clip((np.arange(n) - reach) / max(1, f1 - reach), 0.0, 1.0)
+    angles[:] = np.radians(DOOR_SWING) * ((3 - 2 * ramp) * ramp * ramp if opening else 1 - (3 - 2 * ramp) * ramp * ramp)
+    centre_local = -0.5 * w * left + [0.0, 0.5 * h, 0.0]
+    for k in range(n):
+        turn = Rotation.from_euler("y", heading + angles[k])
+        p.pos[k] = hinge + Rotation.from_euler("y", angles[k]).apply(centre_local)
+        p.rot[k] = turn.as_quat()
+    p.holder = None
+    p.events.append((reach / fps, f"{'opened' if opening else 'shut'} by {_who(r.actor)}"))
