@@ -225,7 +225,12 @@ def top_view(tracks, spans=(), props=()) -> TopView:
 
 # --------------------------------------------------------------------------- picture
 def _darker(color: str, k: float = 0.75) -> tuple[float, float, float]:
-    return tuple(int(color[i:i + 2], 16) / 255 * k for i in (1, 3, 5))  # type: ignore[return-value]
+    """``color`` times ``k``, and dark enough to read on white (luma at most 0.5: a white ball's outline is grey)."""
+    rgb = np.array([int(color[i:i + 2], 16) for i in (1, 3, 5)]) / 255 * k
+    luma = float(rgb @ [0.299, 0.587, 0.114])
+    if luma > 0.5:
+        rgb *= 0.5 / luma
+    return float(rgb[0]), float(rgb[1]), float(rgb[2])
 
 
 def _patch(f: Footprint, color: str, final: bool):
@@ -257,9 +262,12 @@ def _draw(Figure, view: TopView, title: str, size: tuple[int, int], dpi: float):
     ax.set_xlim(cx + w / 2, cx - w / 2)  # +x to the left: seen from above with +z up the page
     ax.set_ylim(cz - h / 2, cz + h / 2)
     ax.set_aspect("equal", adjustable="box")
-    ax.xaxis.set_major_locator(MultipleLocator(1.0))
-    ax.yaxis.set_major_locator(MultipleLocator(1.0))
-    ax.grid(True, color="#dddddd", lw=0.8, zorder=0)
+    label_step = next((m for m in (1, 2, 5, 10, 20, 50) if max(w, h) / m <= 16), 100)  # labelled ticks
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_locator(MultipleLocator(label_step))
+        axis.set_minor_locator(MultipleLocator(1.0))  # the metre grid
+    ax.grid(True, which="both", color="#dddddd", lw=0.8, zorder=0)
+    ax.tick_params(which="minor", length=0)
     ax.set_axisbelow(True)
     ax.set_xlabel("x (m): +x to the left")
     ax.set_ylabel("z (m): +z up the page")

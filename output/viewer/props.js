@@ -5,7 +5,7 @@
   // lit from above) at its depth among the actors' bones (draw); a soft shadow under each thing, its name
   // above it, a round chip in the legend.
   Props = (function () {
-    var list = [], LIGHT = unit([0.35, 0.85, 0.45]), SEGMENTS = 18;
+    var list = [], LIGHT = unit([0.35, 0.85, 0.45]), SEGMENTS = 18, FRAME_NEAR = 3;
     var CORNERS = [[-1, -1], [1, -1], [1, 1], [-1, 1]];
     var FRAMES = [[1, 2, 0], [2, 0, 1], [0, 1, 2]];  // a cylinder's (a, b, axis): a x b = axis
 
@@ -207,10 +207,14 @@
       });
     }
 
-    // the corners of every thing's box at time t, for the camera's framing
+    // for the camera's framing, the corners of the box of every thing within FRAME_NEAR metres of an actor at
+    // time t (the actors sampled there): a kicked ball rolling 30 m away leaves the picture, as a camera that
+    // follows the actors would let it
     function points(t, pts) {
       list.forEach(function (P) {
         sampleOne(P, t);
+        var near = actors.some(function (A) { return Math.hypot(A.cur[0] - P.at[0], A.cur[2] - P.at[2]) < FRAME_NEAR; });
+        if (!near) return;
         var h = P.meta.size;
         for (var k = 0; k < 8; k++) {
           pts.push(world(P, [(k & 1 ? 0.5 : -0.5) * h[0], (k & 2 ? 0.5 : -0.5) * h[1], (k & 4 ? 0.5 : -0.5) * h[2]]));

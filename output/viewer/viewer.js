@@ -244,6 +244,7 @@
 
   function drawGrid(ctx) {
     var step = 0.5, R = Math.max(8, cam.dist * 2.2);
+    while (R / step > 60) step *= 2;  // far out, whole metres and then coarser: a few thousand lines at most
     var cx = Math.round(cam.target[0] / step) * step, cz = Math.round(cam.target[2] / step) * step;
     var n = Math.ceil(R / step);
     var buckets = [];

@@ -27,7 +27,7 @@ from shared_data import library_motion
 from text2anim.core import Motion, Skeleton, concatenate
 from text2anim.core.bodyparts import body_map
 from text2anim.core.atomic import OutputError
-from text2anim.output.viewer import PALETTE, Span, Track, render_html, viewer_data
+from text2anim.output.viewer import PALETTE, Prop, Span, Track, render_html, viewer_data
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -390,3 +390,34 @@ def test_the_things_are_drawn_where_their_projection_says(scene, tmp_path):
         browser.close()
     assert problems == []
     assert "ボール" in legend and "椅子" in legend
+
+
+@requires_chromium
+def test_a_ball_kicked_far_away_leaves_the_picture_and_nothing_hangs(library_db, tmp_path):
+    """A kicked ball that rolls tens of metres (the scene stage's seed sentence sends it 30 m): the home camera frames
+    the actor, not the ball's whole path (it zoomed out to 200 m, and the grid of a camera that far drew millions
+    of lines a frame: the page hung), and zoomed out as far as the wheel goes the page still plays."""
+    import text2anim
+
+    playwright = pytest.importorskip("playwright.sync_api", reason="Playwright is not installed (pip install '.[test]')")
+    anim = text2anim.animate("太郎は走って、ボールを蹴る。", db=library_db)
+    (ball,) = anim.props()  # the scene stage's, at the kicking foot and then away; sent 40 m farther here
+    away = np.clip((np.arange(ball.n_frames) - ball.n_frames // 2) / (ball.n_frames // 2), 0, 1)[:, None]
+    far = Prop(ball.name, ball.shape, ball.size, ball.positions + away * [0.0, 0.0, 40.0], ball.rotations, ball.fps,
+               ball.color)
+    path = tmp_path / "kick.html"
+    render_html(anim.tracks(), anim.spans(), title=anim.text, path=path, props=[far])
+    with playwright.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=["--no-sandbox"])
+        page = browser.new_page(viewport={"width": 1000, "height": 700})
+        page.goto(path.as_uri())
+        page.wait_for_function("document.body.dataset.ready === '1'", timeout=30000)
+        assert page.evaluate("window.__t2a.camera.dist") < 20
+        page.mouse.move(500, 300)
+        for _ in range(40):
+            page.mouse.wheel(0, 400)
+        page.wait_for_function("window.__t2a.camera.dist >= 299", timeout=10000)
+        t0 = page.evaluate("window.__t2a.time")
+        page.wait_for_timeout(700)
+        assert page.evaluate("window.__t2a.time") - t0 > 0.3
+        browser.close()

@@ -1,5 +1,6 @@
 /* text2anim studio: the scene seen from above (the numbers of text2anim.output.topview, as the
- * --top-view picture draws them): +z up the page, +x to the left (a person looking down), a metre grid;
+ * --top-view picture draws them): +z up the page, +x to the left (a person looking down), a grid of 1 m
+ * (coarser when the scene is large);
  * each actor's hips path in its colour, a dot where it starts and arrows where it faces at the start
  * and the end, a dot per time-table element where it starts; each thing's footprint at the start (and,
  * dashed, at the end) and its path. A marker per actor and thing follows the time on screen (the viewer
@@ -41,10 +42,11 @@
     var k = Math.min((W - 2 * PAD) / wx, (H - 2 * PAD) / wz), cx = (b[0] + b[2]) / 2, cz = (b[1] + b[3]) / 2;
     var X = function (x) { return W / 2 - (x - cx) * k; }, Y = function (z) { return H / 2 - (z - cz) * k; };
     var pts = function (list) { return list.map(function (p) { return X(p[0]).toFixed(1) + "," + Y(p[1]).toFixed(1); }).join(" "); };
-    for (var gx = Math.ceil(cx - W / 2 / k); gx <= cx + W / 2 / k; gx++) {
+    var step = [1, 2, 5, 10, 20, 50, 100].filter(function (s) { return s * k >= 20; })[0] || 200;  // metres a line
+    for (var gx = Math.ceil((cx - W / 2 / k) / step) * step; gx <= cx + W / 2 / k; gx += step) {
       svg.appendChild(el("line", { x1: X(gx), x2: X(gx), y1: 0, y2: H, "class": gx === 0 ? "axis" : "grid" }));
     }
-    for (var gz = Math.ceil(cz - H / 2 / k); gz <= cz + H / 2 / k; gz++) {
+    for (var gz = Math.ceil((cz - H / 2 / k) / step) * step; gz <= cz + H / 2 / k; gz += step) {
       svg.appendChild(el("line", { x1: 0, x2: W, y1: Y(gz), y2: Y(gz), "class": gz === 0 ? "axis" : "grid" }));
     }
     top.props.forEach(function (p) {
@@ -87,7 +89,7 @@
       svg.appendChild(m);
       T.markers.push({ el: m, path: it.path, step: it.step, X: X, Y: Y });
     });
-    svg.appendChild(el("text", { x: 8, y: 14, "class": "legend" }, "seen from above: +z ↑, +x ←, 1 m grid"));
+    svg.appendChild(el("text", { x: 8, y: 14, "class": "legend" }, "seen from above: +z ↑, +x ←, " + step + " m grid"));
     T.shown++;
     place(T.time);
   }
