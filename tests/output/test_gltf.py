@@ -400,3 +400,22 @@ def test_a_users_rig_file_gets_the_props_scaled_with_the_character(tmp_path, lib
     path.write_bytes(data)
     report = _node_check(path, [0], "gltf-validator")["validator"]
     assert report["numErrors"] == 0 and report["numWarnings"] == 0, report["messages"]
+    # in place or looped, the body leaves the frames the things move in: the GLB has the body alone
+    assert export_props([ball], anim.motions, ExportOptions(in_place=True)) == []
+    assert export_props([ball], anim.motions, ExportOptions(root_motion=True)) == [ball]
+
+
+def test_a_text_that_names_things_writes_them_into_its_glb(tmp_path, library_db):
+    """Through the API: the scene stage's things (a chair under the sitter, a book in the hand) in the GLB."""
+    import text2anim
+
+    anim = text2anim.animate("太郎は椅子に座って本を読む。", db=library_db)
+    anim.save(glb=tmp_path / "a.glb")
+    g = Glb((tmp_path / "a.glb").read_bytes())
+    nodes = _prop_nodes(g)
+    assert list(nodes) == [p.name for p in anim.props()] == ["椅子", "本"]
+    assert _channels(g, nodes["椅子"]) == {}  # a chair stays put
+    book = next(p for p in anim.props() if p.name == "本")
+    np.testing.assert_allclose(_channels(g, nodes["本"])["translation"], book.positions, atol=1e-5)
+    report = _node_check(tmp_path / "a.glb", [0], "gltf-validator")["validator"]
+    assert report["numErrors"] == 0 and report["numWarnings"] == 0, report["messages"]
