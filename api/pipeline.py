@@ -118,7 +118,7 @@ def _place_stage(work: Work) -> Work:
 
     assert work.planned is not None and work.result is not None and work.staging is not None
     scene = place(work.staging, played_rows(work.planned.table, work.result), work.result.motions, work.request.fps)
-    return replace(work, scene=scene, result=moved_result(work.result, scene.rigids))
+    return replace(work, scene=scene, result=moved_result(work.result, scene.motions, scene.rigids))
 
 
 #: The stages in order: (name, stage). Each takes the :class:`Work` so far and returns it with its part.

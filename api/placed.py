@@ -29,13 +29,13 @@ def played_rows(table: TimeTable, result: Result) -> list[Element]:
     return out
 
 
-def moved_result(result: Result, rigids: dict[str | None, Rigid]) -> Result:
-    """``result`` with each actor's motion, placed paths and element placements moved by its rigid;
-    ``result`` itself when no actor moves."""
+def moved_result(result: Result, motions: dict, rigids: dict[str | None, Rigid]) -> Result:
+    """``result`` with the scene's ``motions`` (each actor's moved by its rigid, a walk steered on its way)
+    and its placed paths and element placements moved by the rigids; ``result`` itself when no actor moves."""
     moving = {a: r for a, r in rigids.items() if (r.yaw, r.offset) != (0.0, (0.0, 0.0)) and a in result.motions}
-    if not moving:
+    if not moving and all(motions[a] is m for a, m in result.motions.items()):
         return result
-    motions = {a: (moving[a].apply(m) if a in moving else m) for a, m in result.motions.items()}
+    motions = {a: motions[a] for a in result.motions}
     paths = {a: (_moved_path(p, moving[a]) if a in moving else p) for a, p in result.placed_paths.items()}
     elements = {k: (_moved_element(v, moving[v.actor]) if v.actor in moving else v) for k, v in result.elements.items()}
     return replace(result, motions=motions, placed_paths=paths, elements=elements)

@@ -29,7 +29,7 @@ reaches     the hand to the door at the row's nearest frame (m)            < 0.1
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -58,8 +58,10 @@ class Figure:
 
 
 def figures(anim, checks: list[dict]) -> list[Figure]:
-    """The figure of each check (the ``scene`` list of a corpus line) on the animation ``anim``."""
-    rows = played_rows(anim.table, anim.result)
+    """The figure of each check (the ``scene`` list of a corpus line) on the animation ``anim``; a check's
+    verb is the row's, or the verb as written where a stand-in plays (``--fallback nearest``)."""
+    asked = {f.id: f.written for f in anim.planned.fallbacks}
+    rows = [replace(r, verb=asked.get(r.id, r.verb)) for r in played_rows(anim.table, anim.result)]
     props = {p.name: p for p in anim.props()}
     return [_one(anim, rows, props, c) for c in checks]
 
@@ -129,11 +131,47 @@ def _faces(anim, rows, props, c):
     other = _motion(anim, c["target"])
     f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
     q = max(1, (f1 - f0) // 4)
-    errs = [_facing_error(m, f, other.root_positions[f]) for f in range(f0 + q, max(f0 + q + 1, f1 - q))]
-    e = float(np.mean(errs))
+    frames = range(f0 + q, max(f0 + q + 1, f1 - q))
+    sent = _launched(anim, props, r, m, f0, f1)
+    if sent is not None:  # a throw or a kick: the body turns in the wind-up; the chest faces them as it leaves
+        e = _chest_error(m, sent, other.root_positions[sent])
+        return Figure("faces", e, "deg", e < FACING_DEG, "the chest, when the thing leaves")
+    e = float(np.mean([_facing_error(m, f, other.root_positions[f]) for f in frames]))
     return Figure("faces", e, "deg", e < FACING_DEG)
 
 
+def _chest_error(m, f: int, point) -> float:
+    """The heading error at frame ``f`` of the chest (the line across the shoulders, its forward normal)."""
+    bm, parents = body_map(m.skeleton), m.skeleton.parents
+    shoulder = {s: parents[parents[bm.hands[s]]] for s in ("left", "right")}  # the upper arm's joint
+    left = m.positions[f, shoulder["left"]] - m.positions[f, shoulder["right"]]
+    heading = np.arctan2(-left[2], left[0])  # forward = left x up
+    hips = m.root_positions[f]
+    want = np.arctan2(point[0] - hips[0], point[2] - hips[2])
+    return float(np.degrees(abs(wrap_angle(heading - want))))
+
+
+def _launched(anim, props, r, m, f0: int, f1: int) -> int | None:
+    """The frame a thing the row sends (a throw, a kick: :data:`SENDING`) leaves the actor: a kicked thing's
+    first fast frame (it lay still), a thrown one's first frame over 0.25 m from both wrists."""
+    if r.verb not in SENDING:
+        return None
+    left, right = _wrists(m)
+    for p in props.values():
+        if r.verb in ("投げる", "放る"):
+            away = np.minimum(np.linalg.norm(p.positions[f0:f1] - left[f0:f1], axis=1),
+                              np.linalg.norm(p.positions[f0:f1] - right[f0:f1], axis=1)) > 0.25
+            near = np.nonzero(~away)[0]
+            gone = np.nonzero(away & (np.arange(f1 - f0) > (near[0] if len(near) else 0)))[0]
+        else:
+            gone = np.nonzero(np.linalg.norm(np.gradient(p.positions, 1.0 / anim.fps, axis=0), axis=1)[f0:f1] > 1.0)[0]
+        if len(gone):
+            return f0 + int(gone[0])
+    return None
+
+
+#: Verbs that send a thing off: the actor faces its recipient when it leaves.
+SENDING = frozenset("投げる 放る 蹴る キックする シュートする".split())
 #: Verbs whose contact is made with both hands (a hug, a taking): their reach is the wrists' midpoint's.
 BOTH_HANDS = frozenset("受け取る 貰う 抱き合う 抱き締める".split())
 

@@ -95,9 +95,12 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float, staging: Staging | 
 
 def contact_instants(planned: Planned, db: MotionDB, fps: float) -> Callable:
     """``instant(row) -> seconds``: when a row's clip makes contact with another person, on the animation's
-    clock (:mod:`scene.timing`): the hand (both hands for a hug or a taking) furthest out in front of the
-    hips within the clip's core (:func:`scene.bodies.furthest`), the clip read as the row plays it."""
+    clock (:mod:`scene.timing`): the hand (both hands for a hug, a taking or a catch) furthest out in front
+    of the hips within the clip's core (:func:`scene.bodies.furthest`); for a throw, its release and the
+    thing's flight; the clip read as the row plays it."""
     from text2anim.scene import bodies
+    from text2anim.scene.things import THROW, release
+    from text2anim.scene.timing import FLIGHT_S
 
     clips = ClipLoader(db, fps)
 
@@ -109,6 +112,8 @@ def contact_instants(planned: Planned, db: MotionDB, fps: float) -> Callable:
         both = row.verb in BOTH_HANDS
         side = "left" if row.id in planned.mirrored else "right"
         point = bodies.hands(m) if both else bodies.hand(m, side)
+        if row.verb in THROW:
+            return row.start + release(m, 0, m.n_frames) / m.fps / row.speed + FLIGHT_S
         lo, hi = (int(round(t * m.fps)) for t in info.core)
         return row.start + bodies.furthest(point, m, lo, hi + 1) / m.fps / row.speed
 
@@ -116,7 +121,7 @@ def contact_instants(planned: Planned, db: MotionDB, fps: float) -> Callable:
 
 
 #: Contact verbs done with both hands (the instant is when both reach furthest).
-BOTH_HANDS = frozenset("受け取る 貰う 抱き合う 抱き締める".split())
+BOTH_HANDS = frozenset("受け取る 貰う 抱き合う 抱き締める 取る キャッチする 受け止める 捕まえる".split())
 
 
 __all__ = ["BOTH_HANDS", "IDLE_VERB", "MIRRORED", "ClipLoader", "build_tracks", "contact_instants"]

@@ -8,7 +8,7 @@ from .constraints import build_constraints
 from .dependency import link_heads
 from .errors import NLPError
 from .motions import annotate
-from .targets import add_counterparts
+from .targets import add_counterparts, time_catches
 from .tokens import OffsetMap, normalize, tokenize
 from .types import Analysis, Bunsetsu, Constraint, MotionSpec
 
@@ -55,6 +55,7 @@ def analyze(text: str) -> Analysis:
     constraints = list(constraints)
     _add_co_actors(specs, constraints, {p.id: p.co_actors for p in motions if p.co_actors})
     notes.extend(add_counterparts(specs, constraints))
+    time_catches(specs, constraints)
     return Analysis(text, tuple(specs), tuple(constraints), _bunsetsu(text, offsets, phrases),
                     tuple(notes))
 

@@ -267,3 +267,8 @@ RECIPROCAL_VERBS = frozenset(
 
 #: Nouns before に / と that are no target (一緒に is "together", not a place).
 NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
+
+#: Verbs that send a thing through the air to someone, and verbs that catch it: a catch of the thing another
+#: person throws is timed by the flight (docs/language.md §8), not after the throw has ended.
+THROWING_VERBS = frozenset("投げる 放る 放り投げる 投げ渡す パスする".split())
+CATCHING_VERBS = frozenset("取る キャッチする 受け止める 捕まえる".split())

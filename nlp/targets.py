@@ -31,9 +31,9 @@ from dataclasses import replace
 from .actors import noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
-    BODY_PARTS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
+    BODY_PARTS, CATCHING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
     PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
-    TRANSFER_VERBS,
+    THROWING_VERBS, TRANSFER_VERBS,
 )
 from .pred import Pred
 from .types import Constraint, MotionSpec
@@ -288,3 +288,16 @@ def add_counterparts(specs: list[MotionSpec], constraints: list[Constraint]) -> 
 
 def _actor_of(specs: list[MotionSpec], motion_id: int) -> str | None:
     return next((s.actor for s in specs if s.id == motion_id), None)
+
+
+def time_catches(specs: list[MotionSpec], constraints: list[Constraint]) -> None:
+    """太郎は花子にボールを投げる。花子はボールを捕る。: the catch of the thing another person throws starts
+    with the throw (a parallel link, cue ``catch``), so the scene can time it by the flight instead of
+    after the throw has ended. A catch joined by て (投げて、花子がキャッチする) already starts as the
+    throw's core ends: its link stays."""
+    by_id = {s.id: s for s in specs}
+    for k, c in enumerate(constraints):
+        a, b = by_id.get(c.first), by_id.get(c.second)
+        if (a is not None and b is not None and c.relation == "serial" and not c.overlap and a.actor != b.actor
+                and a.verb in THROWING_VERBS and b.verb in CATCHING_VERBS and b.object in (a.object, None)):
+            constraints[k] = Constraint(a.id, b.id, "parallel", None, None, "composition", "catch")

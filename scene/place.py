@@ -14,7 +14,7 @@ from text2anim.scheduler.types import Element
 
 from .fit import fit
 from .relations import HIPS_HEIGHT, relations
-from .things import things
+from .things import send_instant, things
 from .types import Met, Scene, Spot, Staging
 
 #: A relation that misses its heading by more than :data:`HEADING_SLACK` degrees, or one that places a body
@@ -30,9 +30,11 @@ def place(staging: Staging, rows: Sequence[Element], motions: dict[str | None, M
     """The placed scene of ``rows`` (time-table rows at their played times) and ``motions`` (each actor's
     motion as synthesised from its spot of ``staging``)."""
     scale = {a: size_of(m) for a, m in motions.items()}
-    rels = relations(rows, set(motions), scale)
-    rigids, met = fit(motions, rels)
-    moved = {a: rigids[a].apply(m) for a, m in motions.items()}
+    sends = {r.id: t for r in rows if r.actor in motions
+             and (t := send_instant(r, motions[r.actor], fps)) is not None}
+    rels = relations(rows, set(motions), scale, sends)
+    steered, rigids, met = fit(motions, rels)
+    moved = {a: rigids[a].apply(m) for a, m in steered.items()}
     spots = tuple(_moved_spot(s, rigids) for s in staging.spots if s.actor in rigids)
     made, said = things(rows, moved, scale, fps)
     said = [*(_missed(m, scale) for m in met if _misses(m, scale)), *_unknown_targets(rows, motions, made), *said]

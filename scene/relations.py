@@ -13,8 +13,8 @@ goal (front, none)          ``face``   the next act's for the same       the row
 goal (behind)               ``behind`` :data:`BEHIND`                     the row's end
 goal (beside, near, ...)    ``beside`` :data:`BESIDE`                     the row's end
 source                      ``away``   :data:`APPROACH`                   the row's start
-addressee, patient,         ``face``   :data:`DISTANCES` by verb, else   the row's middle
-recipient                              :data:`BY_ROLE`
+addressee, patient,         ``face``   :data:`DISTANCES` by verb, else   the row's middle (its
+recipient                              :data:`BY_ROLE`                    middle half for facing)
 partner                     ``face`` for :data:`FACE_TO_FACE` verbs,     the row's middle
                             else ``beside`` (:data:`BESIDE`, together)
 =========================== ========== ================================= ==========================
@@ -51,17 +51,27 @@ FACE_TO_FACE = frozenset(
 HIPS_HEIGHT = 0.93
 
 
-def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str | None, float]) -> list[Relation]:
+def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str | None, float],
+              sends: dict[int, tuple[float, float]] | None = None) -> list[Relation]:
     """The relations of ``rows`` (played times) between actors in ``present``, in time order;
-    ``scale`` is each actor's size against the built-in body (its hips height over :data:`HIPS_HEIGHT`)."""
+    ``scale`` is each actor's size against the built-in body (its hips height over :data:`HIPS_HEIGHT`);
+    ``sends`` the instant (s) a row sends a thing off (a throw's release, a kick's strike) and the heading
+    the hand or foot sends it along: the recipient stands that way then, whatever the wind-up."""
+    sends = sends or {}
     out = []
     for i, r in enumerate(rows):
         if r.target is None or r.target == r.actor or r.target not in present or (
                 r.method == "composition" and _is_base_of(rows, r)) or _answers(rows[:i], r):
             continue
         kind, dist, time = _shape(r, rows[i + 1:])
+        quarter = 0.25 * (r.end - r.start)
+        span = None if r.target_role in ("goal", "source") else (r.start + quarter, r.end - quarter)
+        facing = None
+        if r.id in sends:
+            (time, facing), span = sends[r.id], None
+        start = r.start if r.target_role == "goal" else None
         out.append(Relation(r.id, r.actor, r.target, kind, dist * scale.get(r.actor, 1.0), time, r.verb,
-                            r.target_role or ""))
+                            r.target_role or "", span, facing, start))
     return sorted(out, key=lambda rel: (rel.time, rel.element))
 
 

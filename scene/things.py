@@ -172,12 +172,12 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         if p.holder is None or p.holder[0] != r.actor:
             _hold(p, r.actor, m, f0)
         grip = _grip(m, p)
-        release = bodies.lowest(grip, f0, f1)
-        point = _on_floor(grip[release], p)
+        let_go = bodies.lowest(grip, f0, f1)
+        point = _on_floor(grip[let_go], p)
         if r.target_role == "destination":  # on the table :func:`_table` puts under the hand
             point[1] += _table_top(bodies.hand(m, "right")[bodies.lowest(bodies.hand(m, "right"), f0, f1), 1])
-        p.rest(release, point, float(bodies.hips_path(m)[1][release]))
-        p.events.append((release / fps, f"{_who(r.actor)} puts it down"))
+        p.rest(let_go, point, float(bodies.hips_path(m)[1][let_go]))
+        p.events.append((let_go / fps, f"{_who(r.actor)} puts it down"))
     elif r.verb in GIVE:
         _give(p, r, m, motions, f0, f1, fps)
     elif r.verb in RECEIVE:
@@ -225,53 +225,78 @@ def _on_floor(point: np.ndarray, p: _Path) -> np.ndarray:
 # ---------------------------------------------------------------- flights
 
 
+def strike(m: Motion, f0: int, f1: int) -> tuple[str, int]:
+    """A kick's kicking foot and the frame it strikes (its toe fastest) in ``[f0, f1)``."""
+    side = max(("left", "right"), key=lambda s: float(bodies.speed(bodies.toe(m, s)[f0:f1], m.fps).max()))
+    return side, bodies.fastest(bodies.toe(m, side), m.fps, f0, f1)
+
+
+def release(m: Motion, f0: int, f1: int) -> int:
+    """A throw's release in ``[f0, f1)``: the right hand fastest, after the first quarter (the wind-up)."""
+    return bodies.fastest(bodies.hand(m, "right"), m.fps, f0 + (f1 - f0) // 4, f1)
+
+
+def send_instant(r: Element, m: Motion, fps: float) -> tuple[float, float] | None:
+    """When row ``r`` sends a thing off (a kick's strike, a throw's release), s, and the heading (rad) the
+    foot or hand moves along then; ``None`` for other verbs."""
+    f0, f1 = _frames(r, fps, m.n_frames)
+    if r.verb in KICK:
+        side, f = strike(m, f0, f1)
+        point = bodies.toe(m, side)
+    elif r.verb in THROW:
+        f, point = release(m, f0, f1), bodies.hand(m, "right")
+    else:
+        return None
+    v = np.gradient(point, 1.0 / fps, axis=0)[f]
+    return f / fps, float(np.arctan2(v[0], v[2]))
+
+
 def _kick(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float) -> None:
-    side = max(("left", "right"), key=lambda s: float(bodies.speed(bodies.toe(m, s)[f0:f1], fps).max()))
+    side, hit = strike(m, f0, f1)
     toe = bodies.toe(m, side)
-    strike = bodies.fastest(toe, fps, f0, f1)
-    heading = float(bodies.hips_path(m)[1][strike])
-    start = _on_floor(toe[strike] + 0.5 * p.size[0] * bodies.forward(heading), p)
-    if p.holder is None and (not p.placed() or np.hypot(*(p.pos[strike] - start)[[0, 2]]) > 0.5):
+    heading = float(bodies.hips_path(m)[1][hit])
+    start = _on_floor(toe[hit] + 0.5 * p.size[0] * bodies.forward(heading), p)
+    if p.holder is None and (not p.placed() or np.hypot(*(p.pos[hit] - start)[[0, 2]]) > 0.5):
         p.rest(0 if not p.placed() else f0, start)
         p.events.append((0.0, "on the floor"))
-    v = np.gradient(toe, 1.0 / fps, axis=0)[strike] * KICK_GAIN
+    v = np.gradient(toe, 1.0 / fps, axis=0)[hit] * KICK_GAIN
     horizontal = float(np.clip(np.hypot(v[0], v[2]), 4.0, 12.0))
-    aim = _aim(r, motions, p.pos[strike], strike, heading)
+    aim = _aim(r, motions, p.pos[hit], hit, heading)
     lift = float(np.clip(v[1], 0.5, 3.0))
-    to = _receiver_at(r, motions, strike)
+    to = _receiver_at(r, motions, hit)
     if to is not None:  # a pass: along the ground, rolling to a stop at the receiver's feet
-        d = max(float(np.hypot(*(to - p.pos[strike])[[0, 2]])) - 0.3, 0.5)
+        d = max(float(np.hypot(*(to - p.pos[hit])[[0, 2]])) - 0.3, 0.5)
         horizontal, lift = float(np.sqrt(2.0 * ROLL_DECELERATION * d)), 0.3
     v = np.array([horizontal * np.sin(aim), lift, horizontal * np.cos(aim)])
-    _fly(p, strike, p.pos[strike], v, fps)
-    p.events.append((strike / fps, f"kicked by {_who(r.actor)}"))
+    _fly(p, hit, p.pos[hit], v, fps)
+    p.events.append((hit / fps, f"kicked by {_who(r.actor)}"))
 
 
 def _throw(p: _Path, r: Element, m: Motion, rows, motions, f0: int, f1: int, fps: float) -> None:
     if p.holder is None or p.holder[0] != r.actor:
         _hold(p, r.actor, m, 0 if not p.placed() else f0)
     hand = bodies.hand(m, "right")
-    release = bodies.fastest(hand, fps, f0 + (f1 - f0) // 4, f1)
-    start = hand[release]
-    catch = _catcher(p, r, rows, motions, release, fps)
+    let_go = release(m, f0, f1)
+    start = hand[let_go]
+    catch = _catcher(p, r, rows, motions, let_go, fps)
     if catch is not None:
         who, fc, point = catch
-        dt = (fc - release) / fps
+        dt = (fc - let_go) / fps
         v = (point - start - 0.5 * np.array([0.0, -G, 0.0]) * dt * dt) / dt
-        _fly(p, release, start, v, fps, until=fc)
-        p.events.append((release / fps, f"thrown by {_who(r.actor)}"))
+        _fly(p, let_go, start, v, fps, until=fc)
+        p.events.append((let_go / fps, f"thrown by {_who(r.actor)}"))
         _hold(p, who, motions[who], fc)
         p.events.append((fc / fps, f"caught by {who}"))
         return
-    v = np.gradient(hand, 1.0 / fps, axis=0)[release]
-    heading = float(bodies.hips_path(m)[1][release])
+    v = np.gradient(hand, 1.0 / fps, axis=0)[let_go]
+    heading = float(bodies.hips_path(m)[1][let_go])
     speed = max(float(np.hypot(v[0], v[2])), 5.0)
-    aim = _aim(r, motions, start, release, heading)
-    _fly(p, release, start, np.array([speed * np.sin(aim), float(np.clip(v[1], 1.0, 4.0)), speed * np.cos(aim)]), fps)
-    p.events.append((release / fps, f"thrown by {_who(r.actor)}"))
+    aim = _aim(r, motions, start, let_go, heading)
+    _fly(p, let_go, start, np.array([speed * np.sin(aim), float(np.clip(v[1], 1.0, 4.0)), speed * np.cos(aim)]), fps)
+    p.events.append((let_go / fps, f"thrown by {_who(r.actor)}"))
 
 
-def _catcher(p: _Path, r: Element, rows, motions, release: int, fps: float):
+def _catcher(p: _Path, r: Element, rows, motions, after: int, fps: float):
     """The catch that ends a throw: (who, frame, where the hands meet the thing), or ``None``."""
     for q in rows:
         if q.verb in CATCH and q.actor != r.actor and q.actor in motions and q.object in (p.name, None):
@@ -279,7 +304,7 @@ def _catcher(p: _Path, r: Element, rows, motions, release: int, fps: float):
             f0, f1 = _frames(q, fps, m.n_frames)
             both = bodies.hands(m)
             fc = bodies.furthest(both, m, f0, f1)
-            if fc > release + int(0.2 * fps):
+            if fc > after + int(0.2 * fps):
                 return q.actor, fc, both[fc]
     return None
 

@@ -3,7 +3,8 @@
 When two people shake hands, high-five, hug or hand a thing over, each one's motion has an instant of
 contact (the hand furthest out, read from the clip itself); the time table starts both motions together
 (a parallel link: a partner's copy of the motion, or the counterpart of a hand-over, docs/language.md §8),
-and their clips reach at different times. :func:`sync_shifts` says how much later one of the two must start
+and their clips reach at different times. A throw and its catch meet the same way, the thrower's instant
+being the release plus the thing's flight (:data:`FLIGHT_S`). :func:`sync_shifts` says how much later one of the two must start
 so the instants meet; the pipeline plans the text again with those delays (:mod:`text2anim.edits`).
 """
 from __future__ import annotations
@@ -13,10 +14,13 @@ from collections.abc import Callable, Sequence
 from text2anim.nlp.types import Constraint
 from text2anim.scheduler.types import Element
 
-#: Verbs (lemmas) two people do together with a contact instant.
+#: Verbs (lemmas) two people do together with a contact instant (a throw and a catch: through the air).
 CONTACT_VERBS = frozenset(
-    """握手する ハイタッチする 抱き合う 抱き締める 渡す 手渡す 差し出す 受け取る 貰う 乾杯する キスする""".split()
+    """握手する ハイタッチする 抱き合う 抱き締める 渡す 手渡す 差し出す 受け取る 貰う 乾杯する キスする
+    投げる 放る 放り投げる 投げ渡す パスする 取る キャッチする 受け止める 捕まえる""".split()
 )
+#: s: a thrown thing's flight to the catcher (a 4 m throw at about 7 m/s, rising half a metre).
+FLIGHT_S = 0.6
 #: s: instants closer than this are together (a frame at 30 fps).
 TOLERANCE = 1.0 / 30.0
 

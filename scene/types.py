@@ -76,6 +76,14 @@ class Relation:
     time: float
     verb: str
     role: str
+    #: s: the times over which the actor's facing counts (the middle half of a gesture, whose body may turn
+    #: as it throws or bows); ``None``: at ``time`` only
+    span: tuple[float, float] | None = None
+    #: rad, in the actor's own synthesised frame: where the actor faces at ``time`` when it is not where the
+    #: hips face (a throw or a kick sends the thing where the hand or foot moves at its release)
+    facing: float | None = None
+    #: s: when an approach sets off (its row's start), ``None`` for any other relation
+    start: float | None = None
 
 
 @dataclass(frozen=True)
