@@ -128,6 +128,7 @@ export function seek(t) { if (mixer) mixer.setTime(t); }
 
 function tick() {
   timer.update();
+  if (box.hidden) { requestAnimationFrame(tick); return; }  // the viewer page is shown: nothing to draw here
   const dt = timer.getDelta();
   if (mixer && S.playing) { mixer.update(dt); }
   if (mixer) S.time = action ? action.time : 0;
