@@ -98,6 +98,8 @@ class Animation:
             **({"scene": self.scene.to_dict()} if self.scene is not None and not self.scene.empty else {}),
             "skipped": list(self.planned.skipped),
             **({"fallbacks": [f.to_dict() for f in self.planned.fallbacks]} if self.planned.fallbacks else {}),
+            # what the text was read as where it differs from what is written (typos, 彼女 -> 花子)
+            **({"notes": list(self.planned.analysis.notes)} if self.planned.analysis.notes else {}),
             "warnings": list(self.warnings),
         }
 

@@ -9,8 +9,9 @@ approach    hips to hips (m) at the end of the actor's row; to a place:    0.3-1
             to its marker                                                  :data:`FACING_DEG`
 faces       the actor's heading error towards the target (deg), mean over  < :data:`FACING_DEG`
             the middle half of the row (heading from hips and thighs)
-sync        the two actors' reach instants apart (s: each one's hand       < :data:`SYNC_S`
-            furthest out in front of the hips, in the rows' overlap)
+sync        the two actors' reach instants apart (s: each one's hand       < :data:`SYNC_S`, the wrists
+            furthest out in front of the hips, in the rows' overlap), and  < :data:`HANDS_M` apart
+            how far apart their hands are then (but in a hug)
 holds       the thing's centre to the holding hand's wrist (m, worst       < :data:`HOLD_M`
             frame of the row; the wrists' midpoint for a two-hand thing)
 launch      the thing's first fast frame to the striking foot's or hand's  < :data:`LAUNCH_S`
@@ -41,6 +42,7 @@ from .placed import played_rows
 
 FACING_DEG = 20.0
 SYNC_S = 0.1
+HANDS_M = 0.2  # m between the wrists: two palms that touch hold them about 16 cm apart
 HOLD_M = 0.10
 LAUNCH_S = 0.1
 CATCH_M = 0.15
@@ -197,9 +199,20 @@ def _sync(anim, rows, props, c):
     if hi <= lo:
         return Figure("sync", abs(ra.start - rb.start), "s", False, "the two rows do not overlap")
     f0, f1 = _frame(anim, lo, ma), _frame(anim, hi, ma) + 1
-    ta = _reach(ma, f0, f1, ra.verb in BOTH_HANDS) / anim.fps
-    tb = _reach(mb, f0, f1, rb.verb in BOTH_HANDS) / anim.fps
-    return Figure("sync", abs(ta - tb), "s", abs(ta - tb) < SYNC_S, f"{a} at {ta:.2f} s, {b} at {tb:.2f} s")
+    fa, fb = _reach(ma, f0, f1, ra.verb in BOTH_HANDS), _reach(mb, f0, f1, rb.verb in BOTH_HANDS)
+    ta, tb = fa / anim.fps, fb / anim.fps
+    if c["verb"] in ("抱き合う", "抱き締める"):  # arms around each other: the hands do not meet
+        return Figure("sync", abs(ta - tb), "s", abs(ta - tb) < SYNC_S, f"{a} at {ta:.2f} s, {b} at {tb:.2f} s")
+    f = (fa + fb) // 2
+    apart = float(np.linalg.norm(_hand_point(ma, f, ra.verb in BOTH_HANDS) - _hand_point(mb, f, rb.verb in BOTH_HANDS)))
+    return Figure("sync", abs(ta - tb), "s", abs(ta - tb) < SYNC_S and apart < HANDS_M,
+                  f"{a} at {ta:.2f} s, {b} at {tb:.2f} s, hands {apart:.2f} m apart")
+
+
+def _hand_point(m, f: int, both: bool):
+    """The right wrist (``both``: the wrists' midpoint) at frame ``f``."""
+    left, right = _wrists(m)
+    return 0.5 * (left[f] + right[f]) if both else right[f]
 
 
 def _wrists(m):

@@ -95,11 +95,11 @@ def build_tracks(planned: Planned, db: MotionDB, fps: float, staging: Staging | 
 
 def contact_instants(planned: Planned, db: MotionDB, fps: float) -> Callable:
     """``instant(row) -> seconds``: when a row's clip makes contact with another person, on the animation's
-    clock (:mod:`scene.timing`): the hand (both hands for a hug, a taking or a catch) furthest out in front
-    of the hips within the clip's core (:func:`scene.bodies.furthest`); for a throw, its release and the
-    thing's flight; the clip read as the row plays it."""
-    from text2anim.scene import bodies
-    from text2anim.scene.things import THROW, release
+    clock (:mod:`scene.timing`): the hand's reach (both hands for a hug, a taking or a catch) within the
+    clip's core (:func:`core.contact_instant.contact_instant`); for a throw, its release and the thing's
+    flight; the clip read as the row plays it."""
+    from text2anim.core.contact_instant import contact_instant
+    from text2anim.scene.things import THROW
     from text2anim.scene.timing import FLIGHT_S
 
     clips = ClipLoader(db, fps)
@@ -109,13 +109,11 @@ def contact_instants(planned: Planned, db: MotionDB, fps: float) -> Callable:
         if info is None:
             return None
         m = clips.get(info, row.id in planned.mirrored).motion
-        both = row.verb in BOTH_HANDS
         side = "left" if row.id in planned.mirrored else "right"
-        point = bodies.hands(m) if both else bodies.hand(m, side)
         if row.verb in THROW:
-            return row.start + release(m, 0, m.n_frames) / m.fps / row.speed + FLIGHT_S
-        lo, hi = (int(round(t * m.fps)) for t in info.core)
-        return row.start + bodies.furthest(point, m, lo, hi + 1) / m.fps / row.speed
+            return row.start + contact_instant(m, f"{side}_hand", "release", info.core) / m.fps / row.speed + FLIGHT_S
+        effector = "both_hands" if row.verb in BOTH_HANDS else f"{side}_hand"
+        return row.start + contact_instant(m, effector, "reach", info.core) / m.fps / row.speed
 
     return instant
 

@@ -6,6 +6,9 @@ Prints one table:
   over the project corpus (tests/corpus/nlp_corpus.jsonl), by wall and by CPU time;
 - exact-parse rate per class of the typed corpus (tests/corpus/typed_corpus.jsonl:
   sentences the way users type them, issue 27), checked by ``text2anim batch --check``;
+- end-to-end rate per class of the story corpus (tests/corpus/story_corpus.jsonl: stories with
+  pronouns, keigo, instructions, spoken text, typos, actors together, issue 39): the parse and,
+  where a line names them, the clips its time table plays (the built-in library);
 - cold start: wall time of ``python -m text2anim.cli.main parse TEXT --json`` as a whole
   process (median of several runs), next to a bare ``python -c pass``;
 - GiNZA (only if ``ginza`` and ``ja_ginza`` are importable; install them in
@@ -27,6 +30,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 CORPUS = ROOT / "tests" / "corpus" / "nlp_corpus.jsonl"
 TYPED = ROOT / "tests" / "corpus" / "typed_corpus.jsonl"
+STORY = ROOT / "tests" / "corpus" / "story_corpus.jsonl"
 COLD_TEXT = "太郎は走って、ボールを蹴る。そして喜ぶ。"
 
 sys.path.insert(0, str(ROOT))
@@ -61,8 +65,8 @@ def throughput(fn, sentences: list[str], seconds: float, cpu: list | None = None
     return n / (time.perf_counter() - start)
 
 
-def typed_scores() -> dict[str, tuple[int, int]]:
-    """Category -> (passed, total) of the typed corpus through ``text2anim batch --check``."""
+def typed_scores(corpus: Path = TYPED) -> dict[str, tuple[int, int]]:
+    """Category -> (passed, total) of ``corpus`` through ``text2anim batch --check``."""
     import contextlib
     import io
     import tempfile
@@ -71,7 +75,7 @@ def typed_scores() -> dict[str, tuple[int, int]]:
 
     with tempfile.TemporaryDirectory() as tmp, contextlib.redirect_stdout(io.StringIO()), \
             contextlib.redirect_stderr(io.StringIO()):
-        cli(["batch", str(TYPED), "--check", "--out", tmp, "--parse-only"])
+        cli(["batch", str(corpus), "--check", "--out", tmp, "--parse-only"])
         summary = json.loads((Path(tmp) / "summary.json").read_text())
     return {k: (v["passed"], v["total"]) for k, v in sorted(summary["categories"].items())}
 
@@ -153,6 +157,7 @@ def main(argv=None) -> int:
     cpu: list[float] = []
     ours = throughput(parse_all, sentences, args.seconds, cpu)
     scores = typed_scores()
+    stories = typed_scores(STORY)
     analyses = parse_all(sentences)
     cold, alone, bare = cold_start(args.runs)
     g = ginza_bench(sentences, analyses, args.seconds)
@@ -163,6 +168,9 @@ def main(argv=None) -> int:
         ("parse throughput by CPU time", f"{cpu[0]:,.0f} sentences/s"),
         ("typed corpus, exact parses", f"{sum(p for p, _ in scores.values())}/{sum(t for _, t in scores.values())}"),
         *((f"  {k}", f"{p}/{t}") for k, (p, t) in scores.items()),
+        ("story corpus, end to end (parse and plan)",
+         f"{sum(p for p, _ in stories.values())}/{sum(t for _, t in stories.values())}"),
+        *((f"  {k}", f"{p}/{t}") for k, (p, t) in stories.items()),
         ("cold start `text2anim parse` (median)", f"{cold * 1000:.0f} ms"),
         ("cold start nlp alone (import + analyze)", f"{alone * 1000:.0f} ms"),
         ("bare interpreter", f"{bare * 1000:.0f} ms"),

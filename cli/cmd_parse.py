@@ -84,13 +84,14 @@ def format_listing(analysis) -> str:
 
 
 def format_explain(analysis) -> str:
-    """The bunsetsu, their roles and heads: why each link was made."""
+    """The bunsetsu, their roles and heads: why each link was made; whom a phrase naming persons names."""
     lines = ["bunsetsu (index, text, head, role, why):"]
     texts = {b.index: b.text.strip() for b in analysis.bunsetsu}
     for b in analysis.bunsetsu:
         head = f"-> {b.head} {texts[b.head]}" if b.head is not None else "-> (none)"
         why = f"  [{b.why}]" if b.why else ""
-        lines.append(f"  {b.index:>3} {b.text.strip()}  {head}  {b.role}{why}")
+        who = f"  (names {'、'.join(b.persons)})" if b.persons else ""
+        lines.append(f"  {b.index:>3} {b.text.strip()}  {head}  {b.role}{who}{why}")
     if analysis.notes:
         lines.append("read differently from how it is written:")
         lines.extend(f"  {note}" for note in analysis.notes)

@@ -10,6 +10,8 @@ from __future__ import annotations
 from .bunsetsu import FUNCTION_POS, Phrase
 from .endings import ENDINGS
 from .lexicon import HONORIFICS, PERSON_NOUNS, SCRIPT_HEADINGS
+from .persons import refers, words_of
+from .together import Joined, together
 from .tokens import is_name
 from .types import Token
 
@@ -49,18 +51,28 @@ def speaker_label(ph: Phrase) -> str | None:
 
 
 def person_name(ph: Phrase) -> str | None:
-    """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, お父さん, 子供たち), as written."""
+    """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, お父さん, 子供たち, 店長, 運転手),
+    or refers to persons (二人, みんな: :mod:`reference` says whom), as written."""
     toks = ph.tokens
     if toks[-1].surface == ":":
         return speaker_label(ph)
-    nouns = [t for t in toks if t.pos1 in ("名詞", "代名詞")]
+    nouns: list[Token] = []
+    affixed = honorific = proper = False
+    for t in toks:  # one pass: this runs on most phrases of every text
+        pos1 = t.pos1
+        if pos1 == "名詞" or pos1 == "代名詞":
+            nouns.append(t)
+            proper = proper or t.pos3 == "人名"
+        elif pos1 == "接頭辞":
+            affixed = True
+        elif pos1 == "接尾辞":
+            affixed = True
+            honorific = honorific or t.surface in HONORIFICS
     if not nouns:
         return None
-    name = "".join(t.surface for t in nouns)
-    affixed = any(t.pos1 in ("接頭辞", "接尾辞") for t in toks)
-    honorific = affixed and any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in toks)
-    if not (honorific or name in PERSON_NOUNS or any(t.pos3 == "人名" for t in nouns)
-            or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name))):
+    name = nouns[0].surface if len(nouns) == 1 else "".join(t.surface for t in nouns)
+    if not (honorific or proper or name in PERSON_NOUNS
+            or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name)) or refers(words_of(toks))):
         return None
     return as_written(toks) if affixed else name
 
@@ -92,29 +104,37 @@ def assign_actors(phrases: list[Phrase]) -> None:
     relative, ...); then the topic is back, or, if the text has no topic yet,
     the が-subject carries over as the contract's "nearest preceding" rule.
     Coordinated actors (太郎と花子が) are one group: every one of them performs
-    the motions (the first is ``actor``, the others ``co_actors``).
+    the motions (the first is ``actor``, the others ``co_actors``).  Who a phrase
+    names is its ``persons`` (:func:`reference.resolve_persons`: 彼女 is 花子); the
+    persons who act together with the actor (花子と一緒に, みんなで:
+    :func:`together.together`) join it from the motion they modify to the end of
+    the sentence.
     """
     topic: tuple[str, ...] = ()
     subject: tuple[str, ...] = ()
     group = None
+    joined = together(phrases, partners)
+    companions: Joined | None = None
     for i, ph in enumerate(phrases):
         if ph.group != group:
             if subject:
                 topic, subject = subject, ()
+            if group is None or phrases[i - 1].sentence != ph.sentence:
+                companions = None
             group = ph.group
         if ph.role == "actor":
-            person = person_name(ph)
-            assert person is not None  # the role is given to persons only (motions._noun_role)
-            names = (*partners(phrases, i), person)
+            names = _distinct((*partners(phrases, i), *ph.persons))
             if case_particle(ph) == "が":
                 subject = names
             else:
                 topic, subject = names, ()
+            companions = None
             continue
         pred = ph.pred
         if not pred:
             continue
-        names = subject or topic
+        companions = joined.get(i, companions)
+        names = companions.join(subject or topic) if companions else subject or topic
         pred.actor = names[0] if names else None
         pred.co_actors = names[1:]
         ending = ENDINGS.get(pred.ending)
@@ -125,13 +145,16 @@ def assign_actors(phrases: list[Phrase]) -> None:
 
 
 def partners(phrases: list[Phrase], i: int) -> list[str]:
-    """The persons joined to the actor phrase ``i`` by と just before it (太郎と次郎と花子が)."""
+    """The persons joined to phrase ``i`` by と just before it (太郎と次郎と花子が)."""
     names: list[str] = []
     j = i - 1
     while j >= 0 and phrases[j].group == phrases[i].group and case_particle(phrases[j]) == "と":
-        name = person_name(phrases[j])
-        if not name:
+        if not phrases[j].persons:
             break
-        names.insert(0, name)
+        names[:0] = phrases[j].persons
         j -= 1
     return names
+
+
+def _distinct(names) -> tuple[str, ...]:
+    return tuple(dict.fromkeys(names))

@@ -34,7 +34,7 @@ def analyze(text: str) -> Analysis:
         raise NLPError("the text is empty (only control characters)")
     notes: list[str] = []
     phrases = chunk(split_sentences(tokenize(norm, notes)))
-    preds, cues = annotate(phrases)
+    preds, cues = annotate(phrases, notes)
     notes.extend(p.note for p in preds if p.note)
     motions = [p for p in preds if p.motion]
     if not motions:
@@ -92,7 +92,7 @@ def _bunsetsu(text: str, offsets: OffsetMap, phrases: list[Phrase]) -> tuple[Bun
     out = []
     for ph in phrases:
         a, b = offsets.span(ph.start, ph.end)
-        out.append(Bunsetsu(ph.index, text[a:b], (a, b), ph.sentence, ph.role, ph.head, ph.why))
+        out.append(Bunsetsu(ph.index, text[a:b], (a, b), ph.sentence, ph.role, ph.head, ph.why, ph.persons))
     return tuple(out)
 
 

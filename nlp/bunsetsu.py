@@ -8,8 +8,11 @@ punctuation.  Formal nouns that make temporal connectives (まま, 前, 後, 間
 """
 from __future__ import annotations
 
-from .lexicon import ASPECT_AUX, AUX_AFTER_TE, AUX_KANJI_MAIN, FORMAL_NOUNS, POLITE_AFTER_RENYOU
+from functools import lru_cache
+
+from .lexicon import ASPECT_AUX, AUX_AFTER_TE, AUX_KANJI_MAIN, FORMAL_NOUNS, PERSON_NOUNS, POLITE_AFTER_RENYOU
 from .pred import Pred
+from .tagging import tag
 from .types import Token
 
 FUNCTION_POS = frozenset(["助詞", "助動詞", "接尾辞", "補助記号", "空白"])
@@ -21,7 +24,7 @@ class Phrase:
     """A mutable bunsetsu under analysis (``types.Bunsetsu`` is its frozen view)."""
 
     __slots__ = ("index", "tokens", "sentence", "group", "quoted", "role", "head",
-                 "why", "pred")
+                 "why", "pred", "persons", "key")
 
     def __init__(self, index: int, tokens: list[Token], sentence: int, quoted: bool):
         self.index = index
@@ -33,6 +36,11 @@ class Phrase:
         self.head: int | None = None
         self.why = ""
         self.pred: Pred | None = None  # for predicate phrases
+        #: the persons the phrase names, by their canonical names (彼女 -> ("花子",); 二人 ->
+        #: ("太郎", "花子")): set by reference.resolve_persons for every phrase naming a person
+        self.persons: tuple[str, ...] = ()
+        #: the surface without trailing punctuation (for lexicon look-ups; tokens are fixed once chunked)
+        self.key = _key(tokens)
 
     @property
     def predicate(self) -> Pred:
@@ -54,15 +62,6 @@ class Phrase:
         return "".join(t.surface for t in self.tokens)
 
     @property
-    def key(self) -> str:
-        """The surface without trailing punctuation (for lexicon look-ups)."""
-        toks = self.tokens
-        n = len(toks)
-        while n > 1 and toks[n - 1].pos1 == "補助記号":
-            n -= 1
-        return "".join(t.surface for t in toks[:n])
-
-    @property
     def content(self) -> list[Token]:
         return [t for t in self.tokens if t.pos1 not in FUNCTION_POS]
 
@@ -71,6 +70,13 @@ class Phrase:
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"Phrase({self.index}:{self.surface}/{self.role}->{self.head})"
+
+
+def _key(toks: list[Token]) -> str:
+    n = len(toks)
+    while n > 1 and toks[n - 1].pos1 == "補助記号":
+        n -= 1
+    return "".join(t.surface for t in toks[:n])
 
 
 def split_sentences(tokens: list[Token]) -> list[list[Token]]:
@@ -106,8 +112,9 @@ def chunk(sentences: list[list[Token]]) -> list[Phrase]:
         quoted = False  # the current phrase's content lies inside 「…」
         prev: Token | None = None
         numunit = False  # the current phrase is a number (+ counter)
-        for tok in sent:
-            if cur and _starts_phrase(tok, prev, numunit):
+        for k, tok in enumerate(sent):
+            if cur and (_starts_phrase(tok, prev, numunit) or (
+                    k == 1 and prev is not None and _name_then_thing(prev, tok, sent[2] if len(sent) > 2 else None))):
                 phrases.append(Phrase(len(phrases), cur, s_index, quoted))
                 cur, numunit, quoted = [], False, False
             if tok.surface in _OPEN:
@@ -158,6 +165,22 @@ def _is_formal(tok: Token) -> bool:
     if tok.surface == "間":
         return tok.kana == "アイダ"  # 間 (while), not 秒間 / 間 (ma)
     return tok.surface in FORMAL_NOUNS or tok.lemma in FORMAL_NOUNS
+
+
+def _name_then_thing(prev: Token, tok: Token, after: Token | None) -> bool:
+    """太郎 + ボールを, 花子 + 手を opening a sentence: a person's name and a common noun with its own
+    particle, no person (田中 + 先生 is one), are two phrases, the name's particle left out
+    (docs/language.md §9).  The name must be one: tagged so here or on its own (UniDic tags 太郎 a
+    common noun before ボール; 宇宙 of 宇宙遊泳 is none)."""
+    return (tok.pos1 == "名詞" and tok.pos2 == "普通名詞" and prev.pos1 == "名詞" and tok.surface not in PERSON_NOUNS
+            and after is not None and after.pos1 == "助詞" and (prev.pos3 == "人名" or _name_alone(prev.surface)))
+
+
+@lru_cache(maxsize=1024)
+def _name_alone(surface: str) -> bool:
+    """Does the dictionary tag ``surface``, written on its own, a person's name?"""
+    words = tag(surface, 0)
+    return len(words) == 1 and words[0].pos3 == "人名"
 
 
 def _adverbial(tok: Token) -> bool:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .lexicon import HOMOPHONE_TYPOS
+from .lexicon import ANIMALS, HOMOPHONE_TYPOS
 from .pred import Pred
 from .types import Token
 
@@ -108,7 +108,8 @@ def recover_homophone(pred: Pred) -> None:
         return
     meant, when = typo
     has_object = pred.object is not None or pred.body_part is not None
-    if (when == "object" and not has_object) or (when == "no object" and has_object):
+    if (when == "object" and not has_object) or (when == "no object" and has_object) or (
+            when == "human" and pred.actor in ANIMALS):
         return
     pred.note = f"read {pred.written} as {meant} (a homophone the IME may have chosen: {pred.written} is no motion here)"
     pred.verb = pred.written = meant

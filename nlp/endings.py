@@ -61,6 +61,7 @@ NOT_MOTION = {
     "manner": "manner て-form (says how the next motion is done)",
     "potential": "potential form (an ability, not an action: 泳げる)",
     "desire": "a wish (走りたい: wanting to, not doing it)",
+    "prohibition": "a prohibition (走るな: not to do it)",
     "non-agent": "its subject is not a person (雨が降る, 音楽が流れる)",
     "direction": "says which way the next motion goes (花子に向かって走る)",
     "facing": "says that the actors face each other (向かい合って)",

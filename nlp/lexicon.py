@@ -106,6 +106,16 @@ ASPECT_AUX = frozenset(
     なさる 為さる""".split()
 )
 
+#: Honorific verbs and the plain verb each stands for (docs/language.md §9, :mod:`keigo`).
+#: いらっしゃる is also いる after a て-form; 召し上がる is 飲む with a drink (``DRINKS``).
+HONORIFIC_VERBS = {"いらっしゃる": "来る", "召し上がる": "食べる", "仰る": "言う"}
+
+#: Verbs that are honorific only inside お + 連用形 + になる: お見えになる, お越しになる, おいでになる (来る).
+PREFIXED_HONORIFIC_VERBS = {"見える": "来る", "越す": "来る", "出でる": "来る"}
+
+#: Drinks (by UniDic lemma): 召し上がる with one of them as its object is 飲む.
+DRINKS = frozenset("茶 お茶 コーヒー 紅茶 水 お水 ジュース 牛乳 ミルク 酒 お酒 ビール ワイン スープ 味噌汁 湯".split())
+
 #: Polite request auxiliaries after an お + 連用形 verb (お座りください, お待ち下さい),
 #: by lemma: the request is the verb before it, not a motion of its own.
 POLITE_AFTER_RENYOU = frozenset("下さる 為さる".split())
@@ -117,8 +127,67 @@ PERSON_NOUNS = frozenset(
     ロボット 主人公 犬 猫 王様 騎士 忍者 ダンサー 彼 彼女 私 僕 俺 あなた 彼ら 自分
     わたし ぼく おれ あたし 家族 店員 客 観客 警官 兵士 侍 魔法使い
     子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣 ゾンビ 宇宙人 おじさん おばさん
-    お兄さん お姉さん 兄ちゃん 姉ちゃん 相手""".split()
+    お兄さん お姉さん 兄ちゃん 姉ちゃん
+    店長 社長 部長 課長 会長 校長 院長 駅長 署長 隊長 船長 監督 コーチ 審判 上司 部下 同僚 先輩 後輩
+    社員 会社員 店主 教授 医者 医師 看護師 教師 講師 警察官 消防士 弁護士 運転手 係 係員 案内係 駅員
+    選手 歌手 相手 助手 騎手 投手 捕手 役者 俳優 女優 記者 患者 客 お客 乗客 通行人 住人 隣人 村人 大人
+    息子 娘 夫 妻 奥さん 旦那 旦那さん 祖父 祖母 孫 おじいちゃん おばあちゃん 赤ん坊 幼児 園児 児童
+    小学生 中学生 高校生 大学生 留学生 新入生 転校生 同級生 王子 王女 姫 お姫様 女王 勇者 魔女 泥棒
+    犯人 刑事 探偵 兄弟 姉妹 彼氏 おばちゃん おじちゃん パパ ママ 新人 仲間 恋人 親友 住民 市民 お年寄り
+    人々 親 両親 主婦 美容師 漁師 職人 商人 旅人 料理人""".split()
 )
+
+#: Person nouns by sex, for the pronouns that name one (彼: a man, 彼女: a woman; docs/language.md §9).
+#: Compared with each noun of a mention (お父さん: 父), so spelling variants are listed once each.
+MALE_NOUNS = frozenset(
+    """男 男性 少年 男の子 父 父親 兄 弟 お兄さん 兄ちゃん おじいさん おじいちゃん おじさん おじちゃん
+    祖父 息子 夫 旦那 王様 王子 彼 彼氏 パパ 僧 紳士""".split()
+)
+FEMALE_NOUNS = frozenset(
+    """女 女性 少女 女の子 母 母親 姉 妹 お姉さん 姉ちゃん おばあさん おばあちゃん おばさん おばちゃん
+    祖母 娘 妻 奥さん 王女 姫 お姫様 女王 女優 魔女 彼女 ママ""".split()
+)
+
+#: Endings of given names read as a man's or a woman's (花子, 恵子, 美咲; 太郎, 健一, 健太): the
+#: common patterns, not a dictionary; a name with none of them is either (docs/language.md §9).
+MALE_NAME_ENDINGS = tuple("郎 男 夫 雄 太 介 助 輔 吉 彦 蔵 平 也 哉 樹 斗 翔 一 二 司 治 士 朗 之 人 ろう すけ".split())
+FEMALE_NAME_ENDINGS = tuple("子 美 香 奈 恵 江 代 絵 菜 花 乃 華 咲 衣 莉 里 こ".split())
+
+#: Pronouns and demonstratives that refer back to one person (docs/language.md §9): word -> sex
+#: ("m", "f" or "" for either).  その/あの/この + a person noun (その男, あの子) is read the same way.
+PRONOUNS = {"彼": "m", "彼女": "f", "あいつ": "", "こいつ": "", "そいつ": "", "その人": "", "あの人": "",
+            "この人": "", "その方": "", "あの方": "", "この方": "", "その子": "", "あの子": "", "この子": ""}
+
+#: Words for a group of the persons named so far: word -> how many (0: all of them).  N人 and
+#: N人とも are read from the number (三人 -> 3).
+GROUP_WORDS = {"二人": 2, "ふたり": 2, "みんな": 0, "皆": 0, "みな": 0, "全員": 0, "皆さん": 0, "みなさん": 0,
+               "皆様": 0, "みなさま": 0, "彼ら": 0, "彼女ら": 0, "彼女たち": 0, "あいつら": 0, "一同": 0}
+
+#: First- and second-person words: persons, but never what 彼 / その人 refers back to.
+SPEAKERS = frozenset("私 僕 俺 わたし ぼく おれ あたし 自分 あなた 君 きみ お前 おまえ".split())
+
+#: Suffixes that make a person of the noun before them (運転 + 手, 参加 + 者, 管理 + 人, 受付 + 係,
+#: 警察 + 官), and endings of one-word nouns that name a person (駅員, 記者, 店長) except
+#: ``PERSONLESS_NOUNS``: 〜長 is also a length (身長), 〜員 a count (定員).
+PERSON_SUFFIXES = frozenset("員 長 者 手 係 人 官 士 師".split())
+PERSON_ENDINGS = ("員", "者", "長")
+PERSONLESS_NOUNS = frozenset(
+    """身長 体長 全長 特長 波長 延長 成長 助長 最長 冗長 消長 定員 満員 欠員 人員 動員 増員 減員 前者 後者
+    両者""".split()
+)
+
+#: Heads of a person noun phrase X + の + head (係の人, 隣の人, 近所の子, あちらの方).
+PERSON_HEADS = frozenset("人 方 子".split())
+
+#: Words that make the persons before them (花子と一緒に) or the group (みんなで, 二人で) act together
+#: with the actor: the motion they modify is performed by every one of them, for the same time.
+TOGETHER_WORDS = frozenset(
+    """一緒に いっしょに 一緒になって 揃って そろって 共に ともに 二人で ふたりで みんなで 皆で みなで
+    全員で 一斉に""".split()
+)
+
+#: Animals among the persons: 鳴く is what they do (太郎が鳴く is 泣く, a typo; 犬が鳴く is not).
+ANIMALS = frozenset("犬 猫 子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣".split())
 
 #: Script headings that open a line like a speaker label (ト書き：花子が座る) but name no
 #: one: the line is a stage direction, its actor is found as in any other sentence.
@@ -179,11 +248,13 @@ STEPPING_VERBS = frozenset(
 #: "object" — with a を-noun (降る takes none: 手を降る is 手を振る; 雨が降る is left alone);
 #: "no object" — without one (振り替える needs one: 予定を振り替える);
 #: "motion" — whenever it is still an action of the actor (経つ is said of time only,
-#: and 時間が経つ is already no action: its subject is not a person).
+#: and 時間が経つ is already no action: its subject is not a person);
+#: "human" — when the actor is no animal (``ANIMALS``): 鳴く is what a dog does, 太郎が鳴く is 泣く.
 HOMOPHONE_TYPOS = {
     "降る": ("振る", "object"),
     "経つ": ("立つ", "motion"),
     "振り替える": ("振り返る", "no object"),
+    "鳴く": ("泣く", "human"),
 }
 
 #: Default delay of しばらくして, in seconds.

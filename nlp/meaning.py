@@ -55,7 +55,7 @@ def forms(verb: str) -> list[str]:
     out = [verb]
     if verb.endswith("する") and len(verb) > 2:
         out.append(verb[:-2].removesuffix("を"))
-    from .tokens import tagger  # the analyzer's own tagger (lazy, cached)
+    from .tagging import tagger  # the analyzer's own tagger (lazy, cached)
 
     words = list(tagger()(out[-1]))
     content = [i for i, w in enumerate(words) if w.feature.pos1 in ("動詞", "名詞")]
@@ -78,7 +78,7 @@ def forms(verb: str) -> list[str]:
 @lru_cache(maxsize=4096)
 def _phrase(verb: str) -> bool:
     """Is ``verb`` a phrase with a case particle (手を振る, 後ろに下がる) rather than one word?"""
-    from .tokens import tagger
+    from .tagging import tagger
 
     return any(w.feature.pos2 == "格助詞" for w in tagger()(verb))
 
@@ -123,3 +123,9 @@ def nearest(verb: str, candidates: list[str] | tuple[str, ...], n: int = 3,
                 scored.append((c, round(s, 4)))
     scored.sort(key=lambda x: (-x[1], len(x[0]), x[0]))  # a tie (one vector): the plainest verb
     return scored[:n]
+
+
+def bodily(verb: str, library: frozenset[str]) -> bool:
+    """Is ``verb`` a bodily action: one of the ``library`` verbs, or one whose nearest library verb
+    is near in meaning (at least :data:`MIN_SIMILARITY`)?"""
+    return verb in library or bool(nearest(verb, sorted(library), n=1, floor=MIN_SIMILARITY))

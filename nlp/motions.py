@@ -18,6 +18,7 @@ from .lexicon import (
 )
 from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
+from .reference import resolve_persons
 from .casual import recover_homophone
 from .targets import attach_targets
 from .tokens import is_name
@@ -38,8 +39,9 @@ class TimeCue:
     cue: str
 
 
-def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
-    """Give every phrase its role; return the predicates and the time cues."""
+def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[list[Pred], list[TimeCue]]:
+    """Give every phrase its role; return the predicates and the time cues.  How pronouns were
+    read (:func:`reference.resolve_persons`) is appended to ``notes``."""
     values: dict[int, float] = {}
     for i, ph in enumerate(phrases):
         nxt = phrases[i + 1] if i + 1 < len(phrases) else None
@@ -57,6 +59,9 @@ def annotate(phrases: list[Phrase]) -> tuple[list[Pred], list[TimeCue]]:
     _merge_light_verbs(phrases)
     _mark_non_agents(phrases)
     _mark_embedded(phrases)
+    said = resolve_persons(phrases)
+    if notes is not None:
+        notes.extend(said)
     assign_actors(phrases)
     cues = _attach_modifiers(phrases, values)
     for pred in preds:
@@ -135,7 +140,11 @@ def _bare_objects(phrases: list[Phrase]) -> None:
     """ボール蹴って！ / 手振って / 太郎歩く: casual speech drops を and が; a bare noun right
     before the predicate (no particle, no comma, not a time word (副詞可能) or a
     number) is its actor when it names a person, else its object or body part."""
-    for ph, nxt in zip(phrases, phrases[1:]):
+    for k, (ph, nxt) in enumerate(zip(phrases, phrases[1:])):
+        if (not ph.role and not nxt.pred and nxt.sentence == ph.sentence and _opens_sentence(phrases, k)
+                and not ph.has_comma() and all(t.pos1 != "助詞" for t in ph.tokens) and person_name(ph)):
+            ph.role = "actor"  # 太郎ボールを蹴る: the topic's は left out (docs/language.md §9)
+            continue
         if ph.role or not nxt.pred or nxt.sentence != ph.sentence or ph.has_comma():
             continue
         toks = [t for t in ph.tokens if t.pos1 != "補助記号"]
@@ -148,6 +157,10 @@ def _bare_objects(phrases: list[Phrase]) -> None:
             ph.role = "actor"  # 太郎歩く: が dropped too
         elif not is_name(ph.key):
             ph.role = "body part" if noun_of(ph) in BODY_PARTS else "object"
+
+
+def _opens_sentence(phrases: list[Phrase], k: int) -> bool:
+    return k == 0 or phrases[k - 1].sentence != phrases[k].sentence
 
 
 def _mark_manner(phrases: list[Phrase]) -> None:
@@ -181,11 +194,9 @@ def _mark_manner(phrases: list[Phrase]) -> None:
 
 def _bodily(verb: str) -> bool:
     """A library verb, or one whose nearest library verb is near in meaning."""
-    if verb in LIBRARY_VERBS:
-        return True
     from . import meaning  # loads the vectors on first use only
 
-    return bool(meaning.nearest(verb, sorted(LIBRARY_VERBS), n=1, floor=meaning.MIN_SIMILARITY))
+    return meaning.bodily(verb, LIBRARY_VERBS)
 
 
 def _merge_light_verbs(phrases: list[Phrase]) -> None:

@@ -67,7 +67,7 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
             pred.verb, pred.reason = "する", "light"
         elif first.lemma in NON_ACTION_LEMMAS:
             pred.reason = "state"
-        elif is_potential(first):
+        elif is_potential(first) and not _imperative(toks, v):
             pred.reason = "potential"
     g = _group_end(toks, v)
     pred.end = toks[_verb_end(toks, v)].end
@@ -75,6 +75,8 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
                        for t in toks[v:g + 1]) and not _invitation(toks, g)
     if any(t.lemma == "たい" and t.pos1 == "助動詞" for t in toks[v:g + 1]):
         pred.reason = "desire"  # 走りたい, 踊りたくて: a wish, not the action
+    elif _prohibition(toks, g):
+        pred.reason = "prohibition"
     pred.ending, pred.cue = _ending(toks, g, ph, next_ph)
     settle_reason(pred, ph.quoted)
     return pred
@@ -91,6 +93,20 @@ def is_potential(tok: Token) -> bool:
     lemma = tok.lemma
     return (tok.ctype.startswith("下一段") and lemma != tok.orth and len(lemma) >= 2
             and not (lemma.endswith("る") and lemma[-2] in _E_ROW))
+
+
+def _imperative(toks: list[Token], v: int) -> bool:
+    """しゃがめ！ / 泳げ: UniDic tags a 五段 verb's imperative as the 連用形 of its potential (しゃがめる);
+    with nothing after it but punctuation or a sentence-final particle it is the imperative."""
+    return toks[v].cform.startswith("連用形") and all(
+        t.pos1 == "補助記号" or t.pos2 == "終助詞" for t in toks[v + 1:])
+
+
+def _prohibition(toks: list[Token], g: int) -> bool:
+    """走るな / 座るなよ: the dictionary form + the particle な forbids the action (座りな, a 連用形 + な,
+    asks for it)."""
+    return (g + 1 < len(toks) and toks[g + 1].surface == "な" and toks[g + 1].pos2 == "終助詞"
+            and toks[g].pos1 == "動詞" and toks[g].cform.startswith("終止形"))
 
 
 def _invitation(toks: list[Token], g: int) -> bool:
@@ -113,7 +129,7 @@ def settle_reason(pred: Pred, quoted: bool) -> None:
         pred.reason = pred.ending
     elif pred.negated:
         pred.reason = "negated"
-    elif pred.reason not in ("light", "state", "potential", "non-agent", "desire"):
+    elif pred.reason not in ("light", "state", "potential", "non-agent", "desire", "prohibition"):
         pred.reason = ""
 
 

@@ -90,7 +90,7 @@ MANNER_V2 = frozenset(["寄る", "抜ける", "回る", "締める", "付ける"
 def _words(text: str) -> list[tuple[str, str, str, str]]:
     """``(surface, pos1, cForm, orthBase)`` of each word of ``text`` (copied out: the tagger's
     nodes are only valid until its next call)."""
-    from .tokens import tagger
+    from .tagging import tagger
 
     return [(w.surface, w.feature.pos1 or "", w.feature.cForm or "", w.feature.orthBase or w.surface)
             for w in tagger()(text)]

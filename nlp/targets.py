@@ -98,6 +98,8 @@ def _name(ph: Phrase, strict: bool = False) -> tuple[str, bool]:
     本を渡す) does not take a word for a name only because it can be one (本 is also a surname): the
     word must be tagged a name, be a person noun or carry an honorific."""
     person = person_name(ph)
+    if person and len(ph.persons) == 1:
+        person = ph.persons[0]  # 彼女に -> 花子: whom it refers to (reference.resolve_persons, §9)
     if person and strict and not _surely_person(ph):
         person = None
     return (person, True) if person else (noun_of(ph), False)

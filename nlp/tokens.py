@@ -1,4 +1,4 @@
-"""Tokens: NFKC normalisation with an offset map, the cached fugashi Tagger,
+"""Tokens: NFKC normalisation with an offset map, tagging line by line (:mod:`tagging`),
 re-tagging of list-item 連用形, and number merging.
 """
 from __future__ import annotations
@@ -6,24 +6,15 @@ from __future__ import annotations
 import unicodedata
 from functools import lru_cache
 
-from . import casual
+from . import casual, keigo, spelling, spoken
 from .numbers import merge_numbers
+from .tagging import as_verb, tag, tagger
 from .types import Token
 
-_TAGGER = None
+__all__ = ["OffsetMap", "is_name", "normalize", "tagger", "tokenize", "unwrap_direction", "script_label_end"]
 
 #: Half-width voiced sound marks: NFKC composes them with the kana before.
 _HALFWIDTH_MARKS = {"\uff9e", "\uff9f"}
-
-
-def tagger():
-    """The process-wide fugashi Tagger, created on first use (a few ms)."""
-    global _TAGGER
-    if _TAGGER is None:
-        import fugashi  # imported lazily: `text2anim --help` need not pay for it
-
-        _TAGGER = fugashi.Tagger()
-    return _TAGGER
 
 
 class OffsetMap:
@@ -98,7 +89,7 @@ def tokenize(norm: str, notes: list[str] | None = None) -> list[Token]:
     said = [] if notes is None else notes
     for line in norm.split("\n"):
         if line.strip():
-            tagged = _tag_line(line, pos)
+            tagged = spelling.repair(line, pos, _tag_line(line, pos), said)
             if casual.may_apply(line):
                 tagged = casual.repair(tagged, said)
             tokens.extend(unwrap_direction(tagged) if "(" in line else tagged)
@@ -106,7 +97,10 @@ def tokenize(norm: str, notes: list[str] | None = None) -> list[Token]:
         if end < len(norm):
             tokens.append(Token("\n", "補助記号", "句点", "*", "*", "*", "\n", "\n", "", end, end + 1))
         pos = end + 1
-    return merge_numbers(_join_phrasal_verbs(_retag_list_items(tokens)))
+    tokens = merge_numbers(_join_phrasal_verbs(_retag_list_items(tokens)))
+    if keigo.may_apply(norm, tokens):
+        tokens = keigo.plain(tokens)
+    return spoken.plain(tokens) if spoken.may_apply(norm, tokens) else tokens
 
 
 #: noun + に + なる read as one verb (the library's spelling): 横になる is lying down, not "becoming"
@@ -163,19 +157,7 @@ def script_label_end(tokens: list[Token]) -> int:
 
 def _tag_line(line: str, offset: int) -> list[Token]:
     """Tag one line; repair the two ways kana-only text is mis-tagged (``_repair_kana``)."""
-    return _repair_kana(line, offset, _tag(line, offset))
-
-
-def _tag(line: str, offset: int) -> list[Token]:
-    out = []
-    pos = 0
-    for word in tagger()(line):
-        surface = word.surface
-        found = line.find(surface, pos)
-        start = found if found >= 0 else pos
-        pos = start + len(surface)
-        out.append(_make_token(surface, word.feature, offset + start, offset + pos))
-    return out
+    return _repair_kana(line, offset, tag(line, offset))
 
 
 #: Particles that mark an actor or join actors (a hiragana name is re-split before one of them).
@@ -212,7 +194,7 @@ def _split_name(line: str, offset: int, at: int) -> list[Token] | None:
         name, particle = run[:k], run[k]
         if particle in _ACTOR_PARTICLES and _is_hiragana(name) and is_name(name):
             a = offset + at
-            rest = _repair_kana(line, offset, _tag(line[at + k + 1:], a + k + 1)) if at + k + 1 < len(line) else []
+            rest = _repair_kana(line, offset, tag(line[at + k + 1:], a + k + 1)) if at + k + 1 < len(line) else []
             return [Token(name, "名詞", "固有名詞", "人名", "*", "*", name, name, _katakana(name), a, a + k,
                           None, _katakana(name)),
                     Token(particle, "助詞", _ACTOR_PARTICLES[particle], "*", "*", "*", particle, particle,
@@ -233,15 +215,6 @@ def _katakana(s: str) -> str:
     return "".join(chr(ord(ch) + 0x60) if "\u3041" <= ch <= "\u3096" else ch for ch in s)
 
 
-def _make_token(surface: str, f, start: int, end: int) -> Token:
-    lemma = f.lemma or surface
-    if "-" in lemma and not lemma.startswith("-"):
-        lemma = lemma.split("-", 1)[0]  # ボール-ball, 引く-他動詞
-    return Token(surface, f.pos1 or "", f.pos2 or "", f.pos3 or "", f.cType or "*",
-                 f.cForm or "*", lemma, f.orthBase or surface, f.kanaBase or f.kana or "",
-                 start, end, None, f.kana or "")
-
-
 def _retag_list_items(tokens: list[Token]) -> list[Token]:
     """走り、跳び、転ぶ: UniDic tags 跳び as a noun; ``跳びます`` shows the verb."""
     out = list(tokens)
@@ -249,7 +222,7 @@ def _retag_list_items(tokens: list[Token]) -> list[Token]:
         nxt = tokens[i + 1]
         if (tok.pos1 == "名詞" and tok.pos2 == "普通名詞" and nxt.pos2 == "読点"
                 and _ends_in_hiragana(tok.surface)):
-            verb = _as_verb(tok)
+            verb = as_verb(tok)
             if verb is not None:
                 out[i] = verb
     return out
@@ -257,16 +230,6 @@ def _retag_list_items(tokens: list[Token]) -> list[Token]:
 
 def _ends_in_hiragana(s: str) -> bool:
     return "\u3041" <= s[-1] <= "\u309f"
-
-
-def _as_verb(tok: Token) -> Token | None:
-    words = tagger()(tok.surface + "ます")
-    if len(words) != 2 or words[0].surface != tok.surface:
-        return None
-    f = words[0].feature
-    if f.pos1 != "動詞" or not (f.cForm or "").startswith("連用形"):
-        return None
-    return _make_token(tok.surface, f, tok.start, tok.end)
 
 
 @lru_cache(maxsize=4096)

@@ -11,9 +11,14 @@ from dataclasses import dataclass, field
 CONSTRAINT_METHODS = ("connection", "transition", "composition")
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, eq=False)
 class Token:
-    """One morpheme of the NFKC-normalised text (offsets into that text)."""
+    """One morpheme of the NFKC-normalised text (offsets into that text).
+
+    Never changed once made (a changed token is a new one, ``dataclasses.replace``), but not a
+    frozen dataclass: a text makes and remakes dozens of them, and a frozen dataclass's
+    ``__init__`` costs six times a plain one's (a sixth of the whole analysis).  It stays in the
+    nlp stage."""
 
     surface: str
     pos1: str
@@ -40,7 +45,10 @@ class Bunsetsu:
 
     ``head`` is the index of the bunsetsu this one depends on (``None`` for
     the last one of a sentence); ``role`` says what the analyzer made of it
-    and ``why`` how the head was chosen, for ``parse --explain``.
+    and ``why`` how the head was chosen, for ``parse --explain``.  ``persons``
+    are the persons it names, by the names the actor field uses, pronouns and
+    group words resolved (彼女に -> ("花子",), 二人で -> ("太郎", "花子");
+    docs/language.md §9), whatever its particle.
     """
 
     index: int
@@ -50,6 +58,7 @@ class Bunsetsu:
     role: str = ""
     head: int | None = None
     why: str = ""
+    persons: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True, slots=True)

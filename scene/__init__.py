@@ -9,12 +9,18 @@ faces +Z).
 """
 from __future__ import annotations
 
-from .cast import cast
-from .layout import ACTOR_SPACING, default_spots
-from .place import place
-from .staging import stage
-from .timing import sync_shifts
-from .types import Direction, Met, Relation, Scene, Spot, Staging, Thing
+from text2anim.core.lazy import lazy_attribute
 
-__all__ = ["ACTOR_SPACING", "Direction", "Met", "Relation", "Scene", "Spot", "Staging", "Thing", "cast",
-           "default_spots", "place", "stage", "sync_shifts"]
+#: Each name from its module, imported on first use: a time table (``text2anim plan``) casts its persons
+#: without loading numpy.
+_LAZY = {
+    "cast": "cast", "ACTOR_SPACING": "layout", "default_spots": "layout", "place": "place", "stage": "staging",
+    "sync_shifts": "timing", "Direction": "types", "Met": "types", "Relation": "types", "Scene": "types",
+    "Spot": "types", "Staging": "types", "Thing": "types",
+}
+
+__all__ = list(_LAZY)
+
+
+def __getattr__(name: str):
+    return lazy_attribute(__name__, _LAZY, name)

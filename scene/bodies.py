@@ -1,5 +1,6 @@
 """What the scene reads of an actor's motion: where the body is and faces, where its hands and feet are,
-and the instants a hand or foot meets a thing (the motion's own, never a fixed time).
+and the frame a hand is lowest (picking a thing up, putting it down); the instants of contact are
+:mod:`core.contact_instant`'s.
 
 Every function takes a :class:`core.motion.Motion` (metres, Y up, heading 0 faces +Z) and frame indices
 on its own clock; arrays are ``(T, 3)`` positions unless said otherwise.
@@ -40,6 +41,15 @@ def heading_to(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.arctan2(d[0], d[2]))
 
 
+def chest_heading(motion: Motion, f: int) -> float:
+    """Where the chest faces at frame ``f`` (rad): the forward normal of the line across the shoulders (a
+    throw's hips lag its chest)."""
+    bm, parents = body_map(motion.skeleton), motion.skeleton.parents
+    left, right = (motion.positions[f, parents[parents[bm.hands[s]]]] for s in ("left", "right"))
+    across = left - right
+    return float(np.arctan2(-across[2], across[0]))  # forward = left x up
+
+
 def hand(motion: Motion, side: str) -> np.ndarray:
     """A hand's grip point ``(T, 3)``: the wrist carried 8 cm on along the forearm (the palm)."""
     bm = body_map(motion.skeleton)
@@ -61,35 +71,16 @@ def toe(motion: Motion, side: str) -> np.ndarray:
     return motion.positions[:, body_map(motion.skeleton).feet[side][1]]
 
 
+def lowest(points: np.ndarray, lo: int, hi: int) -> int:
+    """The frame in ``[lo, hi)`` where a point ``(T, 3)`` is lowest (a hand picking a thing up or putting it
+    down)."""
+    lo = int(np.clip(lo, 0, max(len(points) - 1, 0)))
+    hi = int(np.clip(hi, lo + 1, len(points)))
+    return lo + int(np.argmin(points[lo:hi, 1]))
+
+
 def speed(points: np.ndarray, fps: float) -> np.ndarray:
     """Speed of a point ``(T, 3)`` -> ``(T,)`` m/s (central differences)."""
     if len(points) < 2:
         return np.zeros(len(points))
     return np.linalg.norm(np.gradient(points, 1.0 / fps, axis=0), axis=1)
-
-
-def fastest(points: np.ndarray, fps: float, lo: int, hi: int) -> int:
-    """The frame in ``[lo, hi)`` where a point moves fastest (a kick's strike, a throw's release)."""
-    lo, hi = _window(len(points), lo, hi)
-    return lo + int(np.argmax(speed(points, fps)[lo:hi]))
-
-
-def lowest(points: np.ndarray, lo: int, hi: int) -> int:
-    """The frame in ``[lo, hi)`` where a point is lowest (a hand picking a thing up or putting it down)."""
-    lo, hi = _window(len(points), lo, hi)
-    return lo + int(np.argmin(points[lo:hi, 1]))
-
-
-def furthest(points: np.ndarray, motion: Motion, lo: int, hi: int) -> int:
-    """The frame in ``[lo, hi)`` where a point reaches furthest in front of the hips (a hand held out to
-    another person: a handshake, a hand-over, a catch)."""
-    lo, hi = _window(len(points), lo, hi)
-    path, heading = hips_path(motion)
-    rel = points[lo:hi] - motion.root_positions[lo:hi]
-    ahead = rel[:, 0] * np.sin(heading[lo:hi]) + rel[:, 2] * np.cos(heading[lo:hi])
-    return lo + int(np.argmax(ahead))
-
-
-def _window(n: int, lo: int, hi: int) -> tuple[int, int]:
-    lo = int(np.clip(lo, 0, max(n - 1, 0)))
-    return lo, int(np.clip(hi, lo + 1, n))

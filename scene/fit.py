@@ -22,7 +22,7 @@ from text2anim.core.ground import Rigid, match, wrap_angle
 from text2anim.core.motion import Motion
 from text2anim.core.steer import steer
 
-from .bodies import forward, heading_to, hips_path
+from .bodies import forward, hand, hands, heading_to, hips_path
 from .types import Met, Relation
 
 #: m: actors closer than this (hips, any frame) stand inside each other.
@@ -52,9 +52,9 @@ def fit(motions: dict[str | None, Motion], rels: Sequence[Relation]
         if a in rigids:
             if rel.role == "goal" and rel.start is not None:
                 motions[a] = _around(motions, rigids, rel)
-            rigids[b] = _place_other(motions, rigids, rel)
+            rigids[b] = _hand_to_hand(motions, rigids, rel, b, _place_other(motions, rigids, rel))
         else:
-            rigids[a] = _place_actor(motions, rigids, rel)
+            rigids[a] = _hand_to_hand(motions, rigids, rel, a, _place_actor(motions, rigids, rel))
     for name in motions:
         if name not in rigids:
             rigids[name] = _aside(motions, rigids, name)
@@ -131,6 +131,23 @@ def _at(motion: Motion, rigid: Rigid, time: float, span: tuple[float, float] | N
         lo, hi = (int(np.clip(round(t * motion.fps), 0, len(path) - 1)) for t in span)
         h = float(np.arctan2(np.sin(heading[lo:hi + 1]).mean(), np.cos(heading[lo:hi + 1]).mean()))
     return rigid.apply_points(path[f]), h + rigid.yaw
+
+
+def _hand_to_hand(motions, rigids, rel: Relation, free: str | None, rigid: Rigid) -> Rigid:
+    """``rigid`` (the move of the actor ``free`` that the relation placed) slid over the floor so that, at the
+    relation's time, its hand meets the placed one's (:attr:`Relation.hands`); ``rigid`` without hands."""
+    if rel.hands is None:
+        return rigid
+    placed = rel.other if free == rel.actor else rel.actor
+    mine, theirs = (rel.hands[0], rel.hands[1]) if free == rel.actor else (rel.hands[1], rel.hands[0])
+    f = int(np.clip(round(rel.time * motions[free].fps), 0, motions[free].n_frames - 1))
+    here = rigid.apply_points(_effector(motions[free], mine)[f])
+    there = rigids[placed].apply_points(_effector(motions[placed], theirs)[f])
+    return Rigid(rigid.yaw, (rigid.offset[0] + float(there[0] - here[0]), rigid.offset[1] + float(there[2] - here[2])))
+
+
+def _effector(m: Motion, effector: str) -> np.ndarray:
+    return hands(m) if effector == "both_hands" else hand(m, effector.split("_")[0])
 
 
 def _actor_at(motions, rigids, rel: Relation) -> tuple[np.ndarray, float]:

@@ -13,8 +13,8 @@ from text2anim.core.motion import Motion
 from text2anim.scheduler.types import Element
 
 from .fit import fit
-from .relations import HIPS_HEIGHT, relations
-from .things import send_instant, things
+from .relations import HANDS, HIPS_HEIGHT, relations
+from .things import reach_instant, send_instant, things
 from .types import Met, Scene, Spot, Staging
 
 #: A relation that misses its heading by more than :data:`HEADING_SLACK` degrees, or one that places a body
@@ -32,7 +32,9 @@ def place(staging: Staging, rows: Sequence[Element], motions: dict[str | None, M
     scale = {a: size_of(m) for a, m in motions.items()}
     sends = {r.id: t for r in rows if r.actor in motions
              and (t := send_instant(r, motions[r.actor], fps)) is not None}
-    rels = relations(rows, set(motions), scale, sends)
+    reaches = {r.id: reach_instant(r, motions[r.actor], HANDS[r.verb], fps) for r in rows
+               if r.actor in motions and r.verb in HANDS}
+    rels = relations(rows, set(motions), scale, sends, reaches)
     steered, rigids, met = fit(motions, rels)
     moved = {a: rigids[a].apply(m) for a, m in steered.items()}
     spots = tuple(_moved_spot(s, rigids) for s in staging.spots if s.actor in rigids)

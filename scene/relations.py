@@ -35,7 +35,7 @@ BESIDE = 0.8
 #: from afar).
 DISTANCES = {
     "握手する": 0.75, "ハイタッチする": 0.8, "抱き合う": 0.4, "抱き締める": 0.4, "抱く": 0.4, "抱き付く": 0.4,
-    "抱きつく": 0.4, "渡す": 0.85, "手渡す": 0.85, "差し出す": 0.85, "受け取る": 0.85, "貰う": 0.85,
+    "抱きつく": 0.4, "渡す": 0.95, "手渡す": 0.95, "差し出す": 0.95, "受け取る": 0.95, "貰う": 0.95,
     "話す": 1.1, "話し掛ける": 1.2, "会話する": 1.1, "話し合う": 1.1, "お辞儀する": 1.6, "挨拶する": 1.6,
     "会釈する": 1.6, "謝る": 1.4, "うなずく": 1.4, "頷く": 1.4, "振る": 3.0, "指さす": 2.5, "指差す": 2.5,
     "投げる": 4.0, "放る": 4.0, "蹴る": 4.0, "押す": 0.6, "叩く": 0.6, "殴る": 0.7, "触る": 0.6, "撫でる": 0.6,
@@ -47,17 +47,23 @@ FACE_TO_FACE = frozenset(
     """握手する ハイタッチする 抱き合う 話す 会話する 話し合う お辞儀する 挨拶する 喧嘩する 戦う キスする 見つめ合う
     乾杯する 向かい合う 組み合う 渡す 受け取る""".split()
 )
+#: The hand (or hands) each verb of two people's hands meeting makes its contact with: the scene puts the
+#: two so those hands meet at the instant of contact.
+HANDS = {"握手する": "right_hand", "ハイタッチする": "right_hand", "渡す": "right_hand", "手渡す": "right_hand",
+         "差し出す": "right_hand", "受け取る": "both_hands", "貰う": "both_hands"}
 #: The built-in body's standing hips height (m): distances are for a person of that size.
 HIPS_HEIGHT = 0.93
 
 
 def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str | None, float],
-              sends: dict[int, tuple[float, float]] | None = None) -> list[Relation]:
+              sends: dict[int, tuple[float, float]] | None = None,
+              reaches: dict[int, float] | None = None) -> list[Relation]:
     """The relations of ``rows`` (played times) between actors in ``present``, in time order;
     ``scale`` is each actor's size against the built-in body (its hips height over :data:`HIPS_HEIGHT`);
-    ``sends`` the instant (s) a row sends a thing off (a throw's release, a kick's strike) and the heading
-    the hand or foot sends it along: the recipient stands that way then, whatever the wind-up."""
-    sends = sends or {}
+    ``sends`` the instant (s) a row sends a thing off (a throw's release, a kick's strike) and where the
+    chest faces then: the recipient stands that way, whatever the hips do in the wind-up; ``reaches`` the
+    instant (s) a row's hand reaches out to another's (:data:`HANDS`): the two are placed then, hand to hand."""
+    sends, reaches = sends or {}, reaches or {}
     out = []
     for i, r in enumerate(rows):
         if r.target is None or r.target == r.actor or r.target not in present or (
@@ -66,13 +72,23 @@ def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str
         kind, dist, time = _shape(r, rows[i + 1:])
         quarter = 0.25 * (r.end - r.start)
         span = None if r.target_role in ("goal", "source") else (r.start + quarter, r.end - quarter)
-        facing = None
+        facing, hands = None, None
         if r.id in sends:
             (time, facing), span = sends[r.id], None
+        if r.id in reaches:
+            other = _meeting(rows, r)
+            if other is not None:
+                time, hands = reaches[r.id], (HANDS[r.verb], HANDS[other.verb])
         start = r.start if r.target_role == "goal" else None
         out.append(Relation(r.id, r.actor, r.target, kind, dist * scale.get(r.actor, 1.0), time, r.verb,
-                            r.target_role or "", span, facing, start))
+                            r.target_role or "", span, facing, start, hands))
     return sorted(out, key=lambda rel: (rel.time, rel.element))
+
+
+def _meeting(rows: Sequence[Element], r: Element) -> Element | None:
+    """The target's row whose hand meets ``r``'s (its handshake, its taking of what ``r`` hands over)."""
+    return next((e for e in rows if e.actor == r.target and e.verb in HANDS and e.start < r.end and r.start < e.end),
+                None)
 
 
 def _answers(earlier: Sequence[Element], r: Element) -> bool:
@@ -98,7 +114,7 @@ def _shape(r: Element, later: Sequence[Element]) -> tuple[str, float, float]:
         nxt = next((x for x in later if x.actor == r.actor and x.method != "composition"), None)
         close = DISTANCES.get(nxt.verb) if nxt is not None and nxt.target == r.target else None
         return "face", min(APPROACH, close) if close else APPROACH, r.end
-    if role == "source":
+    if role == "source" and r.verb not in HANDS:  # 離れる: where it starts; 受け取る from someone: face them
         return "away", APPROACH, r.start
     if role == "partner" and r.verb not in FACE_TO_FACE:
         return "beside", BESIDE, mid

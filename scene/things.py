@@ -32,6 +32,7 @@ from collections.abc import Sequence
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from text2anim.core.contact_instant import contact_instant
 from text2anim.core.fk import matrix_to_quat
 from text2anim.core.motion import Motion
 from text2anim.scheduler.types import Element
@@ -182,7 +183,7 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         _give(p, r, m, motions, f0, f1, fps)
     elif r.verb in RECEIVE:
         if p.holder is None or p.holder[0] != r.actor:  # no one handed it over: taken at the reach
-            _hold(p, r.actor, m, bodies.furthest(bodies.hands(m), m, f0, f1))
+            _hold(p, r.actor, m, _instant(m, "both_hands", "reach", f0, f1))
             p.events.append((t, f"{_who(r.actor)} takes it"))
     elif r.verb in OPEN or r.verb in CLOSE:
         _door(p, r, m, f0, f1, fps)
@@ -225,30 +226,39 @@ def _on_floor(point: np.ndarray, p: _Path) -> np.ndarray:
 # ---------------------------------------------------------------- flights
 
 
+def _instant(m: Motion, effector: str, kind: str, f0: int, f1: int) -> int:
+    """:func:`core.contact_instant.contact_instant` within frames ``[f0, f1)``."""
+    return contact_instant(m, effector, kind, (f0 / m.fps, (max(f1, f0 + 1) - 1) / m.fps))
+
+
 def strike(m: Motion, f0: int, f1: int) -> tuple[str, int]:
-    """A kick's kicking foot and the frame it strikes (its toe fastest) in ``[f0, f1)``."""
+    """A kick's kicking foot (its toe the faster) and the frame it strikes in ``[f0, f1)``."""
     side = max(("left", "right"), key=lambda s: float(bodies.speed(bodies.toe(m, s)[f0:f1], m.fps).max()))
-    return side, bodies.fastest(bodies.toe(m, side), m.fps, f0, f1)
+    return side, _instant(m, f"{side}_foot", "strike", f0, f1)
 
 
 def release(m: Motion, f0: int, f1: int) -> int:
-    """A throw's release in ``[f0, f1)``: the right hand fastest, after the first quarter (the wind-up)."""
-    return bodies.fastest(bodies.hand(m, "right"), m.fps, f0 + (f1 - f0) // 4, f1)
+    """A throw's release in ``[f0, f1)``: the right hand flying out from the shoulder fastest."""
+    return _instant(m, "right_hand", "release", f0, f1)
+
+
+def reach_instant(r: Element, m: Motion, effector: str, fps: float) -> float:
+    """When row ``r``'s ``effector`` reaches out (:func:`core.contact_instant.contact_instant`), s."""
+    f0, f1 = _frames(r, fps, m.n_frames)
+    return _instant(m, effector, "reach", f0, f1) / fps
 
 
 def send_instant(r: Element, m: Motion, fps: float) -> tuple[float, float] | None:
-    """When row ``r`` sends a thing off (a kick's strike, a throw's release), s, and the heading (rad) the
-    foot or hand moves along then; ``None`` for other verbs."""
+    """When row ``r`` sends a thing off (a kick's strike, a throw's release), s, and where the chest faces
+    then (rad); ``None`` for other verbs."""
     f0, f1 = _frames(r, fps, m.n_frames)
     if r.verb in KICK:
-        side, f = strike(m, f0, f1)
-        point = bodies.toe(m, side)
+        f = strike(m, f0, f1)[1]
     elif r.verb in THROW:
-        f, point = release(m, f0, f1), bodies.hand(m, "right")
+        f = release(m, f0, f1)
     else:
         return None
-    v = np.gradient(point, 1.0 / fps, axis=0)[f]
-    return f / fps, float(np.arctan2(v[0], v[2]))
+    return f / fps, bodies.chest_heading(m, f)
 
 
 def _kick(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float) -> None:
@@ -303,7 +313,7 @@ def _catcher(p: _Path, r: Element, rows, motions, after: int, fps: float):
             m = motions[q.actor]
             f0, f1 = _frames(q, fps, m.n_frames)
             both = bodies.hands(m)
-            fc = bodies.furthest(both, m, f0, f1)
+            fc = _instant(m, "both_hands", "reach", f0, f1)
             if fc > after + int(0.2 * fps):
                 return q.actor, fc, both[fc]
     return None
@@ -364,7 +374,7 @@ def _give(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float
     if p.holder is None or p.holder[0] != r.actor:
         _hold(p, r.actor, m, 0 if not p.placed() else f0)
     hand = bodies.hand(m, "right")
-    contact = bodies.furthest(hand, m, f0 + (f1 - f0) // 5, f1)
+    contact = _instant(m, "right_hand", "reach", f0, f1)
     taker = r.target if r.target in motions else None
     if taker is None:
         return
@@ -409,7 +419,7 @@ def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float) -> None
     """A door in front of the right hand at its furthest reach; its hinge on the hand's far side, it swings
     open (or shut) from then to the row's end."""
     hand = bodies.hand(m, "right")
-    reach = bodies.furthest(hand, m, f0, f1)
+    reach = _instant(m, "right_hand", "reach", f0, f1)
     heading = float(bodies.hips_path(m)[1][reach])
     fwd, left = bodies.forward(heading), bodies.forward(heading + np.pi / 2)
     w, h, _ = p.size

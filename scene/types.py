@@ -80,10 +80,13 @@ class Relation:
     #: as it throws or bows); ``None``: at ``time`` only
     span: tuple[float, float] | None = None
     #: rad, in the actor's own synthesised frame: where the actor faces at ``time`` when it is not where the
-    #: hips face (a throw or a kick sends the thing where the hand or foot moves at its release)
+    #: hips face (a throw's or a kick's chest as it sends the thing off)
     facing: float | None = None
     #: s: when an approach sets off (its row's start), ``None`` for any other relation
     start: float | None = None
+    #: the effectors (``right_hand``, ``both_hands``) of the actor and the other that meet at ``time`` (a
+    #: handshake, a hand-over and its taking): the two are placed hand to hand
+    hands: tuple[str, str] | None = None
 
 
 @dataclass(frozen=True)

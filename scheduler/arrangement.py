@@ -19,7 +19,7 @@ from .fillers import IDLE_VERB
 from .picker import Picker
 from .plan import ClipFinder
 from .postures import bridges, choose, matching
-from .seated import SEATED, seated_motions
+from .seated import seated_motions
 from .types import ClipTiming, Element, TimeTable
 
 
@@ -35,7 +35,7 @@ class Arrangement(Generic[C]):
         bridges: ids of the added motions that change posture, in order.
         changed: anything differs from the first planning pass (another clip
             somewhere, a bridge, a seated idle); when not, the first table stands.
-        seated: ids of the added seated idles a standing clip is composed onto
+        seated: ids of the added seated or kneeling idles a standing clip is composed onto
             (:mod:`seated`), in order.
     """
 
@@ -114,8 +114,8 @@ def _relink(constraints: list[Constraint], incoming: int | None, chain: list[int
 
 
 def _seat(motions: list[MotionSpec], constraints: list[Constraint], b: int, nid: int) -> None:
-    """Play motion ``b`` seated, in place: a seated idle ``nid`` takes its place in the sequence
-    (the link that led to b leads to it; b's opening delay is its) and b is composed onto it."""
+    """Play motion ``b`` seated (or kneeling), in place: that posture's idle ``nid`` takes its place in the
+    sequence (the link that led to b leads to it; b's opening delay is its) and b is composed onto it."""
     k = next(i for i, m in enumerate(motions) if m.id == b)
     spec_b = motions[k]
     motions[k] = replace(spec_b, delay=None)
@@ -138,8 +138,8 @@ def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
 
     Each actor's sequence is its table elements other than compositions, in
     playing order. The motions :func:`seated.seated_motions` says are played
-    seated are composed onto a seated idle that takes their place (verb
-    :data:`fillers.IDLE_VERB`; none in the database: they are left standing).
+    seated or kneeling are composed onto that posture's idle, which takes their place
+    (verb :data:`fillers.IDLE_VERB`; none in the database: they are left standing).
     Where the chosen clips still do not meet, the bridges become
     new motions between the two (verb: the clip's primary verb; an empty span
     where the second motion starts in the text), linked as :func:`_relink` says.
@@ -157,11 +157,11 @@ def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
     idles: list[int] = []
     for seq in _sequences(table).values():
         ids = [e.id for e in seq if e.id in picked]
-        seated = set(seated_motions(ids, picked, composing).composed)
-        for b in [i for i in ids if i in seated]:
-            idle = matching(source, IDLE_VERB, SEATED, character=picked[b].character)
+        kept = dict(seated_motions(ids, picked, composing).composed)  # id -> the posture it plays in
+        for b in [i for i in ids if i in kept]:
+            idle = matching(source, IDLE_VERB, kept[b], character=picked[b].character)
             if idle is None:
-                seated.discard(b)
+                del kept[b]
                 continue
             picked[next_id] = idle
             _seat(motions, constraints, b, next_id)
@@ -169,8 +169,8 @@ def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
             next_id += 1
         for a, b in zip(ids, ids[1:]):
             ca, cb = picked[a], picked[b]
-            end = SEATED if a in seated else ca.end_posture
-            if end == (SEATED if b in seated else cb.start_posture):
+            end = kept.get(a, ca.end_posture)
+            if end == kept.get(b, cb.start_posture):
                 continue
             incoming = next((k for k, c in enumerate(constraints) if c.second == b), None)
             if incoming is not None and constraints[incoming].method == "composition":

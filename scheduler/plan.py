@@ -25,6 +25,7 @@ from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .errors import ScheduleError
 from .lengths import played_length, transition_window
+from .together import together
 from .types import ClipTiming, Element, TimeTable
 
 #: Finds the clip for a motion: ``(motion, preferred character) -> ClipTiming``.
@@ -117,17 +118,23 @@ def _cover(base: _Row, end: float) -> None:
 
 
 class _Planner:
-    def __init__(self, find: ClipFinder):
+    def __init__(self, find: ClipFinder, together: dict[int, tuple[int, ...]]):
         self.find = find
+        self.together = together
         self.rows: dict[int, _Row] = {}
         self.last: dict[str | None, int] = {}  # last whole-body element per actor
+        self.lengths: dict[int, float] = {}  # each motion's played length as placed (s)
 
     def place(self, spec: MotionSpec, link: Constraint | None) -> None:
         prev_id = self.last.get(spec.actor)
         prefer = self.rows[prev_id].clip.character if prev_id is not None else None
         clip = self.find(spec, prefer)
-        length = played_length(clip, spec.speed, spec.repeat, spec.duration,
+        mate = next((m for m in self.together.get(spec.id, ()) if m in self.lengths), None)
+        # co-actors of one motion play it for the same time (together.py): the first placed sets it
+        duration = self.lengths[mate] if mate is not None and spec.duration is None else spec.duration
+        length = played_length(clip, spec.speed, spec.repeat, duration,
                               steps=spec.repeat > 1 and spec.verb in STEPPING_VERBS)
+        self.lengths[spec.id] = length
         first = self.rows.get(link.first) if link else None
         if link is None or first is None:
             self._sequence(spec, clip, length, "connection", start=None, delay=None)
@@ -217,7 +224,7 @@ class _Planner:
 
 def plan(analysis: Analysis, find: ClipFinder, fps: float = 30.0) -> TimeTable:
     """The motion time table of ``analysis``, clips found with ``find``."""
-    planner = _Planner(find)
+    planner = _Planner(find, together(analysis))
     for spec, link in _order(analysis):
         planner.place(spec, link)
     elements = tuple(sorted((r.freeze() for r in planner.rows.values()), key=lambda e: e.id))

@@ -31,6 +31,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any, overload
 
 from .clips import C, ClipMeta, ClipSource
+from .seated import KEPT, plays_in
 
 #: Verbs whose clips take the actor *into* each posture, tried in this order to build bridges.
 #: Only clips that change posture (start elsewhere, end there), whole-body and not looping, are used.
@@ -51,6 +52,14 @@ MAX_BRIDGE = 2
 # ------------------------------------------------------------------- choose
 def _mismatch(prev_end: str | None, start: str) -> int:
     return 0 if prev_end is None or prev_end == start else 1
+
+
+def _step(before: str | None, clip: ClipMeta) -> tuple[int, str | None]:
+    """``(mismatch, posture after)`` of playing ``clip`` in the posture ``before``: a standing action
+    that can be played seated or kneeling (:func:`seated.plays_in`) keeps that posture and meets it."""
+    if before in KEPT and clip.start_posture != before and plays_in(clip, before):
+        return 0, before
+    return _mismatch(before, clip.start_posture), clip.end_posture
 
 
 @overload
@@ -81,11 +90,13 @@ def choose(candidates_by_motion: Sequence[Sequence[C]] | Mapping[Any, Sequence[C
         posture chain passes through (the next clip is matched to the one before).
 
     The choice minimises, in this order: the number of joins where a clip
-    starts in another posture than the previous clip ends in (and than
-    ``initial`` for the first), then the candidates' ranks, the first motion's
-    rank first (so with no mismatch to avoid, every motion gets its best
-    candidate). A dynamic programme over the sequence: O(n k²) for n motions
-    of k candidates.
+    starts in another posture than the actor is in (the previous clip's end, or
+    ``initial`` for the first; a standing action played seated or kneeling keeps
+    the actor there, as :mod:`seated` plays it: 膝をついて、祈って、立ち上がる rises
+    from the knee), then the candidates' ranks, the first motion's rank first (so
+    with no mismatch to avoid, every motion gets its best candidate). A dynamic
+    programme over the sequence and the posture the actor is in: O(n k p) for n
+    motions of k candidates and p postures.
     """
     keys = list(candidates_by_motion) if isinstance(candidates_by_motion, Mapping) else None
     lists = [list(candidates_by_motion[k]) for k in keys] if keys is not None else \
@@ -95,19 +106,20 @@ def choose(candidates_by_motion: Sequence[Sequence[C]] | Mapping[Any, Sequence[C
     present = [i for i, c in enumerate(lists) if c]
     picks: list[C | None] = [None] * len(lists)
     if present:
-        # best[k] = (mismatches, ranks so far) of the best path ending in candidate k of the current
-        # motion; tuples compare as the docstring says (fewer mismatches, then earlier ranks)
-        first = lists[present[0]]
-        best: list[tuple[int, tuple[int, ...]]] = [(_mismatch(initial, c.start_posture), (k,))
-                                                   for k, c in enumerate(first)]
-        prev = first
-        for i in present[1:]:
-            cur = lists[i]
-            best = [min((m + _mismatch(prev[j].end_posture, c.start_posture), ranks + (k,))
-                        for j, (m, ranks) in enumerate(best))
-                    for k, c in enumerate(cur)]
-            prev = cur
-        _, path = min(best)
+        # best[posture] = (mismatches, ranks so far) of the best path that leaves the actor in that
+        # posture after the current motion; tuples compare as the docstring says (fewer mismatches,
+        # then earlier ranks)
+        best: dict[str | None, tuple[int, tuple[int, ...]]] = {initial: (0, ())}
+        for i in present:
+            nxt: dict[str | None, tuple[int, tuple[int, ...]]] = {}
+            for before, (m, ranks) in best.items():
+                for k, c in enumerate(lists[i]):
+                    cost, after = _step(before, c)
+                    cand = (m + cost, ranks + (k,))
+                    if after not in nxt or cand < nxt[after]:
+                        nxt[after] = cand
+            best = nxt
+        _, path = min(best.values())
         for i, k in zip(present, path):
             picks[i] = lists[i][k]
     if keys is not None:
@@ -116,16 +128,17 @@ def choose(candidates_by_motion: Sequence[Sequence[C]] | Mapping[Any, Sequence[C
 
 
 def mismatches(clips: Sequence[ClipMeta | None], *, initial: str | None = None) -> list[int]:
-    """Indices ``i`` where ``clips[i]`` starts in another posture than the clip before it ends in
-    (``None`` entries are passed through; ``initial`` is the posture before the first)."""
+    """Indices ``i`` where ``clips[i]`` starts in another posture than the actor is in: the clip before
+    ends in, or keeps (a standing action played seated or kneeling); ``None`` entries are passed
+    through; ``initial`` is the posture before the first."""
     out = []
-    before = initial
+    before: str | None = initial
     for i, c in enumerate(clips):
         if c is None:
             continue
-        if before is not None and c.start_posture != before:
+        cost, before = _step(before, c)
+        if cost:
             out.append(i)
-        before = c.end_posture
     return out
 
 

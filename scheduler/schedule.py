@@ -20,6 +20,7 @@ from .clips import C, ClipSource
 from .fillers import fill_waits
 from .picker import Picker
 from .plan import plan
+from .together import together
 from .types import TimeTable
 from .variants import Pick
 
@@ -52,11 +53,11 @@ def schedule(analysis: Analysis, source: ClipSource[C], fps: float,
     ``check`` is called with the table before its waits are filled (the API's output
     budget: it raises to refuse the text).
     """
-    picker = Picker(source)
+    picker = Picker(source, together(analysis))
     table = plan(analysis, picker, fps)
     arranged = arrange(analysis, table, picker.chosen, source)
     if arranged.changed:
-        analysis, picker = arranged.analysis, Picker(source)
+        analysis, picker = arranged.analysis, Picker(source, together(arranged.analysis))
         table = plan(analysis, arranged.finder(picker), fps)
     if check is not None:
         check(table)

@@ -5,8 +5,10 @@ A corpus line is either plain text or a JSON object::
     {"text": "...", "category": "te", "expect": {...}}
 
 ``expect`` is a subset of the parse JSON (docs/language.md §5, plus ``hold``,
-``reading`` and ``cue``); ``{"error": "words"}`` expects the line to be
-refused with a message containing the words. Blank lines and lines starting
+``reading`` and ``cue``); a motion may also name the ``clip`` its time-table row
+plays (``"clip": "stand_up"``, met by stand_up or a captured variant such as
+stand_up_14_32; the line is then planned, ``lines.check``); ``{"error": "words"}``
+expects the line to be refused with a message containing the words. Blank lines and lines starting
 with ``#`` are skipped; an item keeps its line number in the file.
 """
 from __future__ import annotations

@@ -16,7 +16,9 @@ died). ``check`` keeps the meaning ``--check`` always had: ``failed`` when the
 line's expectation is not met, ``errored`` when it was refused or failed
 without an expected error; a verb the database lacks is not an error there.
 ``expected_error`` says the line's expectation was an error (so a refusal was
-what it asked for; :func:`summary.outcome`).
+what it asked for; :func:`summary.outcome`). A line whose expectation names clips
+is planned even with ``--parse-only`` (the time table, no synthesis), so ``check``
+can compare each motion's clip.
 """
 from __future__ import annotations
 
@@ -134,13 +136,18 @@ def run_line(item: Item, opts: Options) -> dict:
     rec: dict = {"line": item.line, "text_hash": text_hash(item.text), "options": opts.key,
                  "status": "parsed", "reason": None, "text": item.text, "category": item.category}
     parse, error, refused = None, None, False
+    clips: dict[int, str] | None = None
+    plan_error = None
     try:
         parse = analyze(item.text).to_dict(extra=True)
         if opts.out and opts.parse_only:
             rec["parse"] = parse
         if opts.animating:
-            rec.update(_animate(item, opts))
+            done, clips = _animate(item, opts)
+            rec.update(done)
             rec["status"] = "animated"
+        elif wants_clips(item.expect):
+            clips, plan_error = _planned_clips(item, opts)
     except Exception as exc:  # noqa: BLE001 - one bad line must not stop the batch
         refused = isinstance(exc, _refusals())
         rec.update(status="refused" if refused else "failed", reason=reason_of(exc),
@@ -149,7 +156,7 @@ def run_line(item: Item, opts: Options) -> dict:
         error = None if unknown_verb else rec["error"]
     rec["time"] = round(time.perf_counter() - t0, 4)  # s, wall
     rec["cpu"] = round(time.thread_time() - c0, 4)     # s, CPU of the thread that ran the line
-    mismatches = check(item.expect, parse, error)
+    mismatches = check(item.expect, parse, error, clips, plan_error)
     expected_error = bool(item.expect and "error" in item.expect)
     rec["check"] = "failed" if mismatches else "errored" if error and not expected_error else "passed"
     rec["mismatches"] = mismatches
@@ -175,7 +182,18 @@ def run_chunk(chunk: Iterable[Item], opts: Options, emit: Callable[[dict], None]
     return n
 
 
-def _animate(item: Item, opts: Options) -> dict:
+def _planned_clips(item: Item, opts: Options) -> tuple[dict[int, str] | None, str | None]:
+    """Motion id -> the clip it plays, through the real planner (no synthesis), or why it could not be planned."""
+    from text2anim import plan
+
+    try:
+        table = plan(item.text, db=database(opts.db), fps=opts.fps, max_seconds=opts.max_seconds).table
+    except Exception as exc:  # noqa: BLE001 - a line that cannot be planned misses its clips, the batch goes on
+        return None, f"{type(exc).__name__}: {exc}"
+    return {e.id: e.clip for e in table.elements}, None
+
+
+def _animate(item: Item, opts: Options) -> tuple[dict, dict[int, str]]:
     from text2anim import animate
 
     assert opts.out is not None, "animating needs an output folder"
@@ -190,7 +208,7 @@ def _animate(item: Item, opts: Options) -> dict:
         "skating_ratio": max(a["skating_ratio"] for a in report["actors"].values()),
         "joins": [join_figures(j) for j in report["joins"]],
         "warnings": list(report["warnings"]),
-    }
+    }, {e.id: e.clip for e in anim.table.elements}
 
 
 def join_figures(join: dict) -> dict:
@@ -214,8 +232,29 @@ def join_figures(join: dict) -> dict:
 
 
 # ------------------------------------------------------------------ expectations
-def check(expect: dict | None, parse: dict | None, error: str | None) -> list[str]:
-    """Why the line misses its expectation (empty when it meets it or has none)."""
+#: A clip's captured variants are named after it with the capture's subject and take: stand_up_14_32.
+_VARIANT = re.compile(r"_\d+_\d+")
+
+
+def wants_clips(expect: dict | None) -> bool:
+    """Does the expectation name the clip of some motion (``"clip": "stand_up"``)?"""
+    motions = (expect or {}).get("motions")
+    return isinstance(motions, list) and any(isinstance(m, dict) and "clip" in m for m in motions)
+
+
+def same_clip(expected: str, actual: str | None) -> bool:
+    """``actual`` is the clip ``expected`` or one of its captured variants (stand_up_14_32 for stand_up)."""
+    return actual is not None and (actual == expected or (
+        actual.startswith(expected) and _VARIANT.fullmatch(actual[len(expected):]) is not None))
+
+
+def check(expect: dict | None, parse: dict | None, error: str | None,
+          clips: dict[int, str] | None = None, plan_error: str | None = None) -> list[str]:
+    """Why the line misses its expectation (empty when it meets it or has none).
+
+    ``clips`` (motion id -> the clip its time-table row plays) is checked against the motions'
+    ``clip`` expectations; without it (``plan_error`` says why) those expectations are missed.
+    """
     if not expect:
         return []
     if "error" in expect:
@@ -227,6 +266,10 @@ def check(expect: dict | None, parse: dict | None, error: str | None) -> list[st
         return []
     if parse is None:
         return []  # errored: reported as such
+    if wants_clips(expect):
+        if clips is None:
+            return [f"$.motions: the clips expected, but the line was not planned ({plan_error})"]
+        parse = {**parse, "motions": [{**m, "clip": clips.get(m["id"])} for m in parse["motions"]]}
     return list(compare(expect, parse, "$"))
 
 
@@ -239,6 +282,9 @@ def compare(expected, actual, path: str):
         for key, value in expected.items():
             if key not in actual:
                 yield f"{path}.{key}: missing"
+            elif key == "clip" and isinstance(value, str):
+                if not same_clip(value, actual[key]):
+                    yield f"{path}.clip: expected {value!r} (or a captured variant), got {actual[key]!r}"
             else:
                 yield from compare(value, actual[key], f"{path}.{key}")
     elif isinstance(expected, list):

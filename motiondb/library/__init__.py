@@ -33,10 +33,10 @@ A clip declared for the right side (``body_part="right_arm"``) serves a
 left-side request through :func:`core.mirror.mirror`.
 
 Postures: a clip's data says how it starts and ends (``starts``/``ends``:
-``stand`` by default, ``sit``, ``crouch``, ``floor``, ``hold``); the record
+``stand`` by default, ``sit``, ``crouch``, ``kneel``, ``floor``, ``hold``); the record
 carries them as :data:`motiondb.types.POSTURES` words (:data:`POSTURE_OF`), so
 the pipeline can chain clips whose postures meet (``sit_down`` then
-``stand_up``, ``crouch_down`` then ``stand_from_crouch``, ``fall`` then
+``stand_up``, ``crouch_down`` then ``stand_from_crouch``, ``kneel`` then ``stand_from_kneel``, ``fall`` then
 ``get_up``).
 """
 from __future__ import annotations
@@ -86,7 +86,8 @@ class BuiltClip:
 
     @property
     def ends(self) -> str:
-        """The posture the clip ends in (``stand`` unless the data says ``sit``, ``crouch``, ``floor``, ``hold``)."""
+        """The posture the clip ends in (``stand`` unless the data says ``sit``, ``crouch``, ``kneel``, ``floor``,
+        ``hold``)."""
         return self.data.raw.get("ends", "stand")
 
     @property
@@ -125,7 +126,7 @@ def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> li
         anchor = int(round((p.anchor - t_first) / h))
         heel = None if p.heel_off is None else int(round((p.heel_off - t_first) / h))
         flat = None if p.flat is None else int(round((p.flat - t_first) / h))
-        out.append(FramePlant(p.side, start, stop, anchor, heel, p.toe_off, flat, p.strike, p.keep))
+        out.append(FramePlant(p.side, start, stop, anchor, heel, p.toe_off, flat, p.strike, p.keep, p.pitch))
     return always + out
 
 

@@ -9,7 +9,8 @@ it; spelling variants as further synonyms), ``objects``, ``body_part``,
 ``cyclic``, ``core`` (``[begin, end]`` seconds; cyclic clips: the whole
 clip), ``starts``/``ends`` (the posture at either end: ``stand`` by default,
 else ``sit`` (on a 0.45 m seat), ``crouch`` (squatting on flat feet, the
-``crouch`` pose), ``floor`` (lying face down, as ``fall`` ends), ``hold``
+``crouch`` pose), ``kneel`` (on the right knee, the left foot forward, the
+``kneel`` pose), ``floor`` (lying face down, as ``fall`` ends), ``hold``
 (standing, an object in the hands); stored as the database's postures, see
 :data:`POSTURE_OF`), ``about`` (a note for readers);
 
@@ -59,12 +60,15 @@ a ballistic parabola between those keys), ``reach`` (hand targets, see
 ``plants``: ``"both"`` (both feet planted all along, where they stand at the
 first frame) or ``{"left": [PLANT, ...], "right": [...]}`` with ``PLANT``
 either ``[t0, t1]`` or ``{"t": [t0, t1], "anchor": seconds|"start"|"mid"|
-"end", "strike": deg, "flat": s, "heel_off": s, "toe_off": deg, "keep":
-bool}``: the foot is on the ground from ``t0`` to ``t1`` where the keyed foot
-is at ``anchor`` (default: start; cyclic clips: middle), landing on the heel
-with the toes ``strike`` degrees up (negative: on the ball) until ``flat``,
-rolling onto the ball from ``heel_off`` to ``toe_off`` degrees at ``t1``;
-``keep`` holds the foot as keyed instead of flat. Cyclic plants may reach
+"end", "strike": deg, "flat": s, "heel_off": s, "toe_off": deg, "pitch": deg,
+"keep": bool}``: the foot is on the ground from ``t0`` to ``t1`` where the keyed
+foot is at ``anchor`` (default: start; cyclic clips: middle), landing on the
+heel with the toes ``strike`` degrees up (negative: on the ball) until
+``flat``, rolling onto the ball from ``heel_off`` to ``toe_off`` degrees at
+``t1`` (a ``heel_off`` before ``t0``: it lands with the heel already rising);
+``pitch`` holds it on the ball, the heel that many degrees up, over the plant
+where ``strike`` and ``heel_off`` say nothing (the rear foot of a kneel, toes
+tucked under); ``keep`` holds the foot as keyed instead of flat. Cyclic plants may reach
 outside ``[0, period)``: they repeat every period. See
 :mod:`motiondb.library.plant` for how they are made exact.
 """
@@ -84,9 +88,10 @@ from text2anim.motiondb.types import Posture
 CLIPS_DIR = Path(__file__).with_name("clips")
 
 #: The data's ``starts``/``ends`` words (keyframe clips and the capture cut list) -> the database's
-#: posture (``hold``: standing with an object in the hands; ``floor``: lying face down, as ``fall`` ends).
+#: posture (``hold``: standing with an object in the hands; ``kneel``: on one knee; ``floor``: lying face
+#: down, as ``fall`` ends).
 POSTURE_OF: dict[str, Posture] = {"stand": "standing", "hold": "standing", "sit": "seated", "crouch": "crouched",
-                                  "floor": "lying"}
+                                  "kneel": "kneeling", "floor": "lying"}
 
 
 class ClipDataError(ValueError):
@@ -105,7 +110,8 @@ class Plant(Generic[Unit]):
     ``anchor``: the time whose forward-kinematics foot fixes where (and facing
     where) the foot is planted. ``strike``: the foot lands on its heel with the
     toes that many degrees up and is flat at ``flat``. ``heel_off``: from then
-    on the heel rises (toe pivot) to ``toe_off`` degrees at ``stop``. ``keep``: hold the foot as the keys
+    on the heel rises (toe pivot) to ``toe_off`` degrees at ``stop``. ``pitch``: elsewhere on the plant the
+    heel is held that many degrees up (on the ball of the foot). ``keep``: hold the foot as the keys
     have it at ``anchor`` instead of flat on the ground (a foot resting on its toes).
     """
 
@@ -118,12 +124,13 @@ class Plant(Generic[Unit]):
     flat: Unit | None = None
     strike: float = 0.0
     keep: bool = False
+    pitch: float = 0.0
 
     def shifted(self, dt: Unit) -> "Plant[Unit]":
         """The same plant ``dt`` later."""
         return Plant(self.side, self.start + dt, self.stop + dt, self.anchor + dt,
                      None if self.heel_off is None else self.heel_off + dt, self.toe_off,
-                     None if self.flat is None else self.flat + dt, self.strike, self.keep)
+                     None if self.flat is None else self.flat + dt, self.strike, self.keep, self.pitch)
 
 
 #: A plant in seconds (the keyframe data's) and in frames (the generator's).
@@ -213,7 +220,7 @@ def _plant_list(raw, clip: ClipData) -> list[PlantSpec]:
     out = []
     for side in ("left", "right"):
         for item in raw.get(side, []):
-            flat, strike, keep = None, 0.0, False
+            flat, strike, keep, pitch = None, 0.0, False, 0.0
             if isinstance(item, dict):
                 keep = bool(item.get("keep", False))
                 t0, t1 = item["t"]
@@ -222,6 +229,7 @@ def _plant_list(raw, clip: ClipData) -> list[PlantSpec]:
                 toe_off = float(item.get("toe_off", 0.0))
                 flat = item.get("flat")
                 strike = float(item.get("strike", 0.0))
+                pitch = float(item.get("pitch", 0.0))
             else:
                 t0, t1 = item
                 anchor, heel_off, toe_off = None, None, 0.0
@@ -235,7 +243,7 @@ def _plant_list(raw, clip: ClipData) -> list[PlantSpec]:
                 raise ClipDataError(f"{clip.name}: plant {side} {item!r} is empty")
             out.append(PlantSpec(side, float(t0), float(t1), float(anchor),
                                  None if heel_off is None else float(heel_off), toe_off,
-                                 None if flat is None else float(flat), strike, keep))
+                                 None if flat is None else float(flat), strike, keep, pitch))
     return out
 
 

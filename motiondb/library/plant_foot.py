@@ -80,6 +80,7 @@ class Foot:
             if p.keep:
                 self.keep_y[s:e + 1] = self.F[a, 1]
                 self.keep_rot[s:e + 1] = self.RF[a].as_quat()
+            self.pitch[s:e + 1] = p.pitch
             if p.heel_off is not None and p.toe_off:
                 fr = np.arange(max(s, p.heel_off), e + 1)
                 u = (fr - p.heel_off) / max(1, p.stop - p.heel_off)

@@ -253,3 +253,13 @@ def test_a_fast_run_is_faster_but_no_jerkier_than_a_body_moves(library_db):
     plain = text2anim.animate("太郎は走る。", db=library_db).motions["太郎"]
     assert quality(fast).jerk_p99 <= JERK_ROOM * BUILTIN_LIMITS["jerk_p99"]
     assert hips_speed(fast) > 1.3 * hips_speed(plain)
+
+
+def test_the_report_says_how_the_text_was_read(example, library_db):
+    """A typo repaired and a pronoun read as its person are in the report as on stderr; a text read as
+    written adds no field."""
+    anim = text2anim.animate("花子は歩るいて、止まった。彼女は座った。", db=library_db)
+    assert anim.report["notes"] == ["read 歩るいて as 歩いて (a verb's okurigana)",
+                                    "read 彼女 as 花子 (the last woman named)"]
+    assert list(anim.motions) == ["花子"]
+    assert "notes" not in example.report

@@ -54,10 +54,10 @@ def test_no_stand_in_is_wrong_and_two_thirds_are_right(library_db):
 
 def test_a_refusal_says_what_was_looked_for(library_db):
     with MotionDB.open(library_db) as db, pytest.raises(UnknownVerbError) as exc:
-        text2anim.plan("太郎は泳いで、握手する。", db, fallback="nearest")
+        text2anim.plan("太郎は泳いで、腕相撲する。", db, fallback="nearest")
     msg = str(exc.value)
     assert "泳ぐ" in msg and "no clip does swim" in msg
-    assert "握手する" in msg and "not in the lexicon" in msg
+    assert "腕相撲する" in msg and "not in the lexicon" in msg
 
 
 def test_a_compound_verb_plays_as_its_first_verb_when_the_clip_does_that(library_db):

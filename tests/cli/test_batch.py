@@ -74,6 +74,27 @@ def test_failed_expectation_exits_1_with_check(capsys, tmp_path):
     assert code == 0
 
 
+def test_a_line_may_expect_the_clip_each_motion_plays(capsys, tmp_path):
+    """The line is planned with the built-in library even with --parse-only: sit_down's captured
+    variants count as sit_down, another clip or a text that cannot be planned misses it."""
+    def line(text, motions):
+        return json.dumps({"text": text, "category": "clips", "expect": {"motions": motions}}, ensure_ascii=False)
+
+    corpus = write(tmp_path, "c.jsonl", [
+        line("太郎と花子は座る。", [{"actor": "太郎", "clip": "sit_down"}, {"actor": "花子", "clip": "sit_down"}]),
+        line("太郎は座る。", [{"clip": "stand_up"}]),
+        line("太郎は泳ぐ。", [{"clip": "swim"}]),
+        line("太郎は座る。", [{"clip": "sit"}]),
+    ])
+    code, out, _ = run_cli(capsys, "batch", corpus, "--check", "--out", tmp_path / "o", "--parse-only")
+    assert code == 1
+    records = sorted(manifest.read(str(tmp_path / "o")), key=lambda r: r["line"])
+    assert [r["check"] for r in records] == ["passed", "failed", "failed", "failed"]
+    assert "expected 'stand_up' (or a captured variant), got 'sit_down" in records[1]["mismatches"][0]
+    assert "not planned (UnknownVerbsError" in records[2]["mismatches"][0]
+    assert "expected 'sit'" in records[3]["mismatches"][0]  # a prefix of sit_down is another clip
+
+
 def test_plain_text_lines_and_errors(capsys, tmp_path):
     corpus = write(tmp_path, "c.txt", ["# comment", "太郎は歩く。", "", "これは本です。"])
     code, out, _ = run_cli(capsys, "batch", corpus, "--check")

@@ -31,6 +31,8 @@ SENTENCES = {
     "転んで、起き上がる。": ["fall", "get_up"],
     "座って、歩く。": ["sit_down", "stand_up", "walk"],
     "座って、立ち上がる。": ["sit_down", "stand_up"],
+    "ひざまずいて、立ち上がる。": ["kneel", "stand_from_kneel"],
+    "ひざまずいて、歩く。": ["kneel", "stand_from_kneel", "walk"],
 }
 
 
@@ -68,6 +70,7 @@ def sequence(planned: Planned, actor=None):
 @pytest.mark.parametrize("verb, default", [
     ("しゃがむ", "crouch"), ("かがむ", "crouch"), ("しゃがみ込む", "crouch_down"),
     ("立ち上がる", "stand_up"), ("起き上がる", "get_up"), ("立つ", "stand_from_crouch"), ("座る", "sit_down"),
+    ("ひざまずく", "kneel"), ("膝をつく", "kneel"),
 ])
 def test_what_a_lone_verb_finds_first(db, verb, default):
     """The database's default clip of each posture verb (what a motion gets when nothing is around it)."""
@@ -82,6 +85,10 @@ def test_what_a_lone_verb_finds_first(db, verb, default):
     (("座る", "立つ"), ["sit_down", "stand_up"]),
     (("しゃがむ", "立つ"), ["crouch_down", "stand_from_crouch"]),
     (("しゃがむ", "立つ", "座る", "立ち上がる"), ["crouch_down", "stand_from_crouch", "sit_down", "stand_up"]),
+    (("ひざまずく", "立ち上がる"), ["kneel", "stand_from_kneel"]),
+    # a standing gesture after kneeling or sitting is played there: the actor rises from it afterwards
+    (("ひざまずく", "祈る", "立ち上がる"), ["kneel", "pray", "stand_from_kneel"]),
+    (("座る", "本を読む", "立ち上がる"), ["sit_down", "read", "stand_up"]),
     # nothing to gain: every motion keeps its best clip (the lone しゃがむ goes down and comes back up)
     (("しゃがむ",), ["crouch"]),
     (("しゃがむ", "歩く"), ["crouch", "walk"]),
@@ -125,7 +132,7 @@ def _brute_force(cands):
 
 def test_choose_is_the_optimum_of_an_exhaustive_search(db):
     """Every sequence of up to three of these verbs: the programme finds what trying all combinations finds."""
-    verbs = ("しゃがむ", "立ち上がる", "座る", "転ぶ", "起き上がる", "歩く", "立つ")
+    verbs = ("しゃがむ", "立ち上がる", "座る", "転ぶ", "起き上がる", "歩く", "立つ", "ひざまずく", "祈る")
     cands = {v: db.search(v) for v in verbs}
     for n in (1, 2, 3):
         for seq in itertools.product(verbs, repeat=n):
@@ -145,7 +152,9 @@ def test_choose_is_the_optimum_of_an_exhaustive_search(db):
     ("crouched", "seated", ["stand_from_crouch", "sit_down"]),
     ("standing", "standing", []),
     ("standing", "lying", ["lie_down"]),  # 横になる (issue 14: clips/everyday.json)
-    ("kneeling", "standing", []),  # no kneeling clip in the library
+    ("kneeling", "standing", ["stand_from_kneel"]),
+    ("standing", "kneeling", ["kneel"]),
+    ("kneeling", "seated", ["stand_from_kneel", "sit_down"]),
 ])
 def test_bridges_from_the_library(db, before, after, expected):
     chain = bridges(before, after, DatabaseClips(db))
@@ -195,6 +204,7 @@ def test_matching_finds_a_clip_that_keeps_the_posture(db, db_with_bob):
     db = DatabaseClips(db)
     assert matching(db, "待つ", "standing").name == "wait"
     assert matching(db, "待つ", "seated").name == "wait_seated"  # the captured seated idle (issue 12)
+    assert matching(db, "待つ", "kneeling").name == "wait_kneeling"
     assert matching(db, "待つ", "lying") is None  # none lying: the pose is held
     assert matching(db, "まだない動詞", "standing") is None
     with MotionDB.open(db_with_bob) as opened:
@@ -291,7 +301,7 @@ def test_two_actors_are_arranged_separately(db):
 
 
 # --------------------------------------------------------------- animation
-@pytest.mark.parametrize("text", ["しゃがんで、立ち上がる。", "転んで、起き上がる。", "座って、歩く。"])
+@pytest.mark.parametrize("text", ["しゃがんで、立ち上がる。", "転んで、起き上がる。", "座って、歩く。", "ひざまずいて、歩く。"])
 def test_the_animation_changes_posture_where_the_clips_do(db, text):
     """Synthesised through the real engine: at each element's start the character is in its clip's posture."""
     from text2anim.synthesis.constraint.engine import synthesize

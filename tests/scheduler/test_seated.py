@@ -1,4 +1,4 @@
-"""A posture carries on until the text changes it (issue 27): seated actions, starting seated.
+"""A posture carries on until the text changes it (issue 27): seated actions, starting seated; kneeling ones.
 
 Real analyzer, real built-in library, the scheduler's own entry point; one sentence is
 synthesised to see the actor stay on the chair.
@@ -11,7 +11,7 @@ from text2anim import nlp
 from text2anim.clip_search import DatabaseClips
 from text2anim.motiondb import MotionDB, classify_posture
 from text2anim.scheduler import schedule
-from text2anim.scheduler.seated import keeps_seat
+from text2anim.scheduler.seated import plays_in
 
 
 @pytest.fixture(scope="module")
@@ -30,9 +30,11 @@ def rows(text: str, db: MotionDB):
 
 
 def test_which_library_clips_can_be_played_seated(db):
-    seatable = {c.name for c in db.clips() if keeps_seat(c)}
+    seatable = {c.name for c in db.clips() if plays_in(c, "seated")}
     assert {"read", "drink", "eat", "write", "clap", "wave_hand", "nod", "wait_seated"} <= seatable
     assert not seatable & {"walk", "run", "jump", "crouch", "kick", "dance", "sit_down", "stand_up", "wait"}
+    kneelable = {c.name for c in db.clips() if plays_in(c, "kneeling")}
+    assert {"pray", "read", "clap", "wait_kneeling"} <= kneelable and not kneelable & {"wait_seated", "kneel", "walk"}
 
 
 def test_reading_after_sitting_is_read_seated(db):
@@ -57,6 +59,37 @@ def test_an_action_that_needs_the_legs_stands_up_first(db):
         ("stand_up", "connection"), ("walk", "transition")]
     assert table[3][4] == table[1][5]  # stands up when the reading is done
     assert [r[0] for r in rows("座って、歩く。", db)] == ["sit_down", "stand_up", "walk"]
+
+
+def test_praying_after_kneeling_is_done_on_the_knee_and_the_actor_rises_from_it(db):
+    """膝をついて、祈る。そして立ち上がる (written here ひざまずいて: the phrase is mapped by the analyzer):
+    the prayer's upper body on the kneeling idle, then up from the knee, never a stand and a sit between."""
+    pray = db.info("pray").duration
+    kneel = db.info("kneel").duration
+    table = rows("ひざまずいて、祈る。そして立ち上がる。", db)
+    assert [(r[0], r[1], r[3]) for r in table] == [
+        ("kneel", "initial", None), ("wait_kneeling", "transition", None), ("pray", "composition", "upper"),
+        ("stand_from_kneel", "connection", None)]
+    assert table[2][4:] == (round(kneel, 2), round(kneel + pray, 2)) and table[3][4] == table[1][5]
+
+
+def test_a_gesture_that_needs_the_legs_after_kneeling_rises_first(db):
+    assert [r[0] for r in rows("ひざまずいて、歩く。", db)] == ["kneel", "stand_from_kneel", "walk"]
+
+
+def test_the_praying_actor_stays_on_the_knee(db):
+    """Synthesised: kneeling from the kneel's end until the prayer is over, then standing at the end."""
+    from text2anim.synthesis.constraint.engine import synthesize
+    from text2anim.pipeline import plan_text
+    from text2anim.tracks import build_tracks
+
+    planned = plan_text("ひざまずいて、祈る。そして立ち上がる。", db)
+    result = synthesize(build_tracks(planned, db, 30.0), 30.0)
+    (motion,) = result.motions.values()
+    pray = next(e for e in planned.table.elements if e.clip == "pray")
+    kneeling = {classify_posture(motion, f) for f in range(int(pray.start * 30) + 3, int(pray.end * 30) - 3)}
+    assert kneeling == {"kneeling"}
+    assert classify_posture(motion, motion.n_frames - 1) == "standing"
 
 
 def test_a_later_stand_up_starts_the_actor_seated(db):

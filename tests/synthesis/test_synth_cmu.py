@@ -19,6 +19,7 @@ from text2anim.core.bodyparts import body_map
 from text2anim.core.contacts import detect_contacts, foot_tracks
 from text2anim.synthesis.constraint.engine import hips_frame, synthesize
 from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
+from text2anim.scene import default_spots
 from text2anim.synthesis.tracks import Clip, Element, Track
 from text2anim.synthesis.join.cycles import find_cycle
 from text2anim.synthesis.join.timing import prepare
@@ -262,10 +263,11 @@ def test_repeated_kick_is_two_kicks_joined():
     assert len(np.flatnonzero(np.diff(high.astype(int)) == 1)) == 2
 
 
-def test_two_actors_start_apart_and_output_is_deterministic():
+def test_two_actors_start_on_their_spots_apart_and_output_is_deterministic():
     C = clips()
-    tracks = [Track("太郎", (Element(1, C["walk"], 0.0, 2.0, "initial"),)),
-              Track("花子", (Element(2, C["run"], 0.0, 2.0, "initial"),))]
+    spots = default_spots(["太郎", "花子"])  # the staging's default: side by side
+    tracks = [Track("太郎", (Element(1, C["walk"], 0.0, 2.0, "initial"),), spots[0].origin, spots[0].heading),
+              Track("花子", (Element(2, C["run"], 0.0, 2.0, "initial"),), spots[1].origin, spots[1].heading)]
     res = synthesize(tracks, FPS)
     a, b = res.motions["太郎"], res.motions["花子"]
     assert np.linalg.norm(a.root_positions[0, [0, 2]] - b.root_positions[0, [0, 2]]) >= 1.0

@@ -13,6 +13,7 @@ import pytest
 from text2anim.core.bodyparts import body_map
 from text2anim.synthesis.constraint.engine import synthesize
 from text2anim.core.metrics import SKATING_MARGIN, skating_ratio
+from text2anim.scene import default_spots
 from text2anim.synthesis.tracks import Clip, Element, Track
 
 from text2anim.motiondb import library
@@ -89,7 +90,9 @@ def test_connection_with_delay_and_gap_free_connection():
 
 def test_three_actors_side_by_side():
     C = need("walk")
-    tracks = [Track(n, (Element(i, C["walk"], 0.0, 2.0, "initial"),)) for i, n in enumerate("ABC")]
+    spots = default_spots(list("ABC"))  # the staging's default: side by side
+    tracks = [Track(n, (Element(i, C["walk"], 0.0, 2.0, "initial"),), s.origin, s.heading)
+              for (i, n), s in zip(enumerate("ABC"), spots)]
     res = synthesize(tracks, FPS)
     starts = np.array([res.motions[n].root_positions[0, [0, 2]] for n in "ABC"])
     d = np.linalg.norm(starts[:, None] - starts[None], axis=-1)

@@ -1,0 +1,220 @@
+"""Reference: whom each phrase naming a person refers to, across sentences (docs/language.md §9).
+
+The text is read in order and every person it names (a name, a person noun, a speaker label: 花子,
+店長, 係の人, おまわりさん) is remembered, the most recently named last, whatever the phrase's
+particle (花子に, 花子を and 花子の name her too).  Then:
+
+- a **pronoun or description** refers back to one of them: 彼 to the last man named, 彼女 to the
+  last woman, その人 / あの人 / あいつ to the last person of either sex, その男 / あの子 by the sex
+  of its noun, その店長 to the last 店長 first.  Whether a name is a man's or a woman's is read
+  from its ending (花子: -子, :func:`persons.name_sex`), a guess; a person whose sex the text does
+  not say is taken when no one of the pronoun's sex was named, and a pronoun that has only one
+  candidate takes it, unless a word said that one's sex (父, or 彼 before).  A pronoun that is not the actor of its clause does not refer to
+  that actor (太郎は彼に手を振る: 彼 is someone else).  First- and second-person words (私, 君)
+  are never what 彼 refers to.
+- a **group word** names several: 二人 / ふたり the last two persons named, 三人 the last three,
+  みんな / 彼ら / 全員 every person named so far, in the order they were named; it needs at least
+  two of them.
+- a pronoun or group that refers to no one named keeps its own name as before (彼女, 彼ら: a
+  character of its own; みんな, 二人 then name no one, and the motion is the default character's).
+
+Each phrase gets ``persons``: the canonical names (as the actor field writes them) of whom it
+names; the analysis says every reading of a pronoun or group in ``notes`` (stderr, ``--explain``).
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+from .actors import case_particle, person_name
+from .bunsetsu import Phrase
+from .lexicon import GROUP_WORDS, HONORIFICS, PERSON_HEADS, PRONOUNS, SPEAKERS
+from .persons import DEMONSTRATIVES, group_size, is_person_noun, name_sex, noun_sex, pronoun_sex, words_of
+from .tokens import is_name
+from .types import Token
+
+
+class Mention(NamedTuple):
+    """What one phrase says of a person.
+
+    ``kind``: ``name`` (a name or person noun), ``pronoun`` (彼, その人, その男) or ``group`` (二人,
+    みんな); ``written``: the name as the analysis writes it (花子 for 花子さん) or the pronoun as
+    written; ``sex``: "m", "f" or "" (either); ``size``: a group's size (0: everyone named);
+    ``noun``: a description's own person noun (その店員: 店員), matched before any other;
+    ``guessed``: the sex is read from a name's ending, not said by a word (父, 彼).
+    """
+
+    kind: str
+    written: str
+    sex: str = ""
+    size: int = 0
+    noun: str = ""
+    guessed: bool = False
+
+
+def mention(phrases: list[Phrase], i: int) -> Mention | None:
+    """What phrase ``i`` says of a person, ``None`` when it names none (or is a predicate)."""
+    ph = phrases[i]
+    if ph.pred is not None:
+        return None
+    name = person_name(ph)
+    if name is None:
+        return None
+    words = words_of(ph.tokens)
+    prev = _neighbour(phrases, i, -1)
+    if prev is not None and prev.key in DEMONSTRATIVES:
+        words = [prev.tokens[0], *words]  # あの人: UniDic tags this あの a filler, a phrase of its own
+    if words and (name in PRONOUNS or name in GROUP_WORDS or words[0].surface in DEMONSTRATIVES
+                  or words[0].is_number):
+        bare = words[1:] if words[0].surface in DEMONSTRATIVES else words
+        size = group_size(bare)
+        if size is not None:
+            return Mention("group", name, size=size)
+        sex = pronoun_sex(words)
+        if sex is not None:
+            noun = "".join(t.surface for t in bare) if len(words) > len(bare) else ""
+            return Mention("pronoun", "".join(t.surface for t in words), sex,
+                           noun="" if noun in PERSON_HEADS else noun)
+    if _modifies_person(ph, _neighbour(phrases, i, 1)):
+        return None  # 新入社員の山田さん, 係の人: the phrase after it names the person
+    if prev is not None and _modifier(prev):
+        if name in PERSON_HEADS:
+            return Mention("name", prev.key + name, noun_sex(words))  # 係の人, 隣の人
+        if not (_proper(words) or is_person_noun(words) or _honorific(words)):
+            return None  # たろうのほう: after の, a word that could be a name is a thing (方)
+    if any(t.pos3 == "人名" for t in words) or is_name(name):
+        return Mention("name", name, name_sex(name), guessed=True)
+    return Mention("name", name, noun_sex(words))
+
+
+def resolve_persons(phrases: list[Phrase]) -> list[str]:
+    """Set ``persons`` on every phrase naming a person (module docstring); the notes saying how each
+    pronoun and group word was read (``read 彼女 as 花子 (the last woman named)``)."""
+    seen = _Named()
+    notes: list[str] = []
+    acting: dict[int, list[str]] = {}  # clause group -> the persons its actor phrases named so far
+    for i, ph in enumerate(phrases):
+        if ph.role not in _MAY_NAME:
+            continue
+        m = mention(phrases, i)
+        if m is None:
+            continue
+        actor = ph.role == "actor" or case_particle(ph) in ("は", "が", "も")
+        if m.kind == "name":
+            persons: tuple[str, ...] = (m.written,)
+        else:
+            persons, why = (seen.group(m) if m.kind == "group"
+                            else seen.pronoun(m, () if actor else tuple(acting.get(ph.group, ()))))
+            if not persons:
+                persons = _unresolved(ph, m)
+            elif persons != (m.written,):
+                notes.append(f"read {m.written} as {'、'.join(persons)} ({why})")
+        ph.persons = persons
+        if m.kind != "group":
+            seen.learn(persons, m.sex, m.guessed)
+        seen.add(persons)
+        if actor:
+            acting.setdefault(ph.group, []).extend(persons)
+    return notes
+
+
+#: The roles of a phrase that may name a person (not a predicate, a body part, a time or manner word).
+_MAY_NAME = frozenset(["actor", "object", "", "number"])  # number: 三人で
+
+
+class _Named:
+    """The persons named so far: in the order first named, most recent last, and their sex (``sure``:
+    the persons whose sex a word said, not a name's ending)."""
+
+    def __init__(self) -> None:
+        self.order: list[str] = []
+        self.recent: list[str] = []
+        self.sexes: dict[str, str] = {}
+        self.sure: set[str] = set()
+
+    def learn(self, persons: tuple[str, ...], sex: str, guessed: bool) -> None:
+        """A lone person named by a word of a sex takes it, where it was unknown or only guessed
+        (店長 referred to by 彼 is a man from then on)."""
+        if len(persons) != 1 or not sex or persons[0] in self.sure:
+            return
+        p = persons[0]
+        if guessed and self.sexes.get(p):
+            return
+        self.sexes[p] = sex
+        if not guessed:
+            self.sure.add(p)
+
+    def add(self, persons: tuple[str, ...]) -> None:
+        """``persons`` were named (again): the most recent now."""
+        for p in persons:
+            if p not in self.order:
+                self.order.append(p)
+            if p in self.recent:
+                self.recent.remove(p)
+            self.recent.append(p)
+
+    def pronoun(self, m: Mention, exclude: tuple[str, ...]) -> tuple[tuple[str, ...], str]:
+        """(the person ``m`` refers to, why) or ((), "") when it refers to no one named."""
+        cands = [p for p in reversed(self.recent) if p not in exclude and p not in SPEAKERS]
+        if m.noun:
+            same = [p for p in cands if p == m.noun or p.endswith(m.noun)]
+            if same:
+                return (same[0],), f"the last {m.noun} named"
+        if m.sex:
+            same = [p for p in cands if self.sexes.get(p) == m.sex]
+            if same:
+                return (same[0],), "the last man named" if m.sex == "m" else "the last woman named"
+            lone = cands if len(cands) == 1 and cands[0] not in self.sure else []
+            cands = [p for p in cands if not self.sexes.get(p)] or lone
+        if not cands:
+            return (), ""
+        return (cands[0],), "the only person named" if len(self.order) == 1 else "the last person named"
+
+    def group(self, m: Mention) -> tuple[tuple[str, ...], str]:
+        """(the persons group ``m`` names, in the order they were named, why) or ((), "")."""
+        if len(self.order) < max(2, m.size):
+            return (), ""
+        if not m.size or m.size == len(self.order):
+            return tuple(self.order), "the persons named so far"
+        last = set(self.recent[-m.size:])
+        return tuple(p for p in self.order if p in last), f"the last {m.size} persons named"
+
+
+def _unresolved(ph: Phrase, m: Mention) -> tuple[str, ...]:
+    """A pronoun or group that refers to no one named: 彼女, 彼ら and 皆さん are characters of their
+    own (as written, as before this rule), みんな and 二人 name no one."""
+    if m.kind == "group" and not (any(t.pos1 == "代名詞" for t in ph.tokens) or _honorific(ph.tokens)):
+        return ()
+    name = person_name(ph)
+    return (name,) if name else ()
+
+
+def _neighbour(phrases: list[Phrase], i: int, step: int) -> Phrase | None:
+    """The phrase before (``step`` -1) or after (+1) ``i`` in the same sentence."""
+    j = i + step
+    if 0 <= j < len(phrases) and phrases[j].sentence == phrases[i].sentence:
+        return phrases[j]
+    return None
+
+
+def _modifier(ph: Phrase) -> bool:
+    """係の / 隣の: nouns and の only, modifying the phrase after it."""
+    toks = ph.tokens
+    return (len(toks) >= 2 and toks[-1].surface == "の" and toks[-1].pos1 == "助詞"
+            and all(t.pos1 in ("名詞", "接頭辞", "接尾辞") and not t.is_number for t in toks[:-1]))
+
+
+def _modifies_person(ph: Phrase, nxt: Phrase | None) -> bool:
+    """A person noun + の before the phrase naming that person: 新入社員の + 山田さん (apposition),
+    係の + 人.  花子の友達 is not one: a name + の is whose friend it is."""
+    if nxt is None or not _modifier(ph) or _proper(ph.tokens):
+        return False
+    head = words_of(nxt.tokens)
+    return bool(head) and (_proper(head) or "".join(t.surface for t in head) in PERSON_HEADS)
+
+
+def _proper(words: list[Token]) -> bool:
+    return any(t.pos3 == "人名" for t in words)
+
+
+def _honorific(words: list[Token]) -> bool:
+    return any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in words)

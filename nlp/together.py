@@ -1,0 +1,61 @@
+"""Acting together: 一緒に, 揃って, 二人で, みんなで (docs/language.md §9).
+
+A together word (``lexicon.TOGETHER_WORDS``) makes more persons perform the motion it modifies:
+the persons joined to it by と (太郎は花子と一緒に歩く: 花子 walks too; 友達と二人で), or, with no
+one joined, the group it names itself (みんなで, 二人で, 三人で: its ``persons``, which
+:mod:`reference` resolved to the persons named so far).  They join the actor from that motion to
+the end of the sentence (太郎は花子と一緒に歩いて、座った: both sit), and, as co-actors of
+太郎と花子が do, they perform it for the same time (the scheduler's ``together``).
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from .bunsetsu import Phrase
+from .lexicon import TOGETHER_WORDS
+
+
+@dataclass(frozen=True, slots=True)
+class Joined:
+    """The persons acting together with a motion's actor.
+
+    ``group``: they are a whole group (みんなで), which replaces the actor's own list: its persons in
+    the order they were named, the actor first only when the group does not include them.
+    """
+
+    names: tuple[str, ...]
+    group: bool = False
+
+    def join(self, actors: tuple[str, ...]) -> tuple[str, ...]:
+        """The actors of the motion: ``actors`` (the topic or subject) with these persons."""
+        if self.group:
+            return tuple(dict.fromkeys((*[a for a in actors if a not in self.names][:1], *self.names)))
+        return tuple(dict.fromkeys((*actors, *self.names)))
+
+
+def together(phrases: list[Phrase], partners: Callable[[list[Phrase], int], list[str]]) -> dict[int, Joined]:
+    """Predicate phrase index -> the persons who act together with its actor.
+
+    ``partners(phrases, i)`` are the persons joined to phrase ``i`` by と (:func:`actors.partners`).
+    """
+    out: dict[int, Joined] = {}
+    for i, ph in enumerate(phrases):
+        if ph.key not in TOGETHER_WORDS and (ph.tokens[0].value is None or not _counted_group(ph)):
+            continue
+        target = next((k for k in range(i + 1, len(phrases))
+                       if phrases[k].group == ph.group and phrases[k].pred), None)
+        if target is None:
+            continue
+        names = partners(phrases, i)
+        if names:
+            out[target] = Joined(tuple(names))
+        elif ph.persons:
+            out[target] = Joined(ph.persons, group=True)
+    return out
+
+
+def _counted_group(ph: Phrase) -> bool:
+    """三人で / 3人で: a number of persons doing it together (UniDic may tag this で as だ)."""
+    toks = ph.tokens
+    return len(toks) >= 3 and toks[0].is_number and toks[1].surface == "人" and toks[2].surface == "で"
