@@ -148,13 +148,15 @@ class Animation:
         return {n: path.with_name(f"{path.stem}_{n}{path.suffix or suffix}") for n in names}
 
     def outputs(self, *, bvh=None, html=None, glb=None, report=None, plot=None, export=None,
-                vrma=None) -> dict[Path, Content]:
-        """The files :meth:`save` writes, by path: their bytes (or, for the plot, a function that draws it).
+                vrma=None, top_view=None) -> dict[Path, Content]:
+        """The files :meth:`save` writes, by path: their bytes (or, for the plots, a function that draws them).
 
         ``export`` (:class:`text2anim.export.ExportOptions`) applies to the BVH files (the user's rig,
         root motion or in place, units, loop), to the GLB (all but units; with a glTF/VRM rig, one file
         per actor: the user's character animated) and to the VRM Animation ``vrma`` (one per actor:
-        the rig's proportions when it is a VRM avatar; loop and in place).
+        the rig's proportions when it is a VRM avatar; loop and in place). The scene's :meth:`props` go
+        into the viewer page, the GLB (where ``export`` puts the bodies: :meth:`exported_props`) and the
+        ``top_view`` picture; the BVH and VRM Animation files are the bodies alone.
         """
         from text2anim.output.bvh_write import format_bvh
 
@@ -177,16 +179,16 @@ class Animation:
         if html is not None:
             from text2anim.output.viewer import render_html
 
-            add(html, render_html(self.tracks(), self.spans(), title=self.text).encode())
+            add(html, render_html(self.tracks(), self.spans(), title=self.text, props=self.props()).encode())
         if glb is not None:
             from text2anim.output.gltf import glb_bytes
 
             if moved is None:
-                add(glb, glb_bytes(self.tracks()))
+                add(glb, glb_bytes(self.tracks(), props=self.props()))
             else:
                 from .export import glb_files
 
-                out = glb_files(moved, export)
+                out = glb_files(moved, export, self.exported_props(export))
                 if isinstance(out, bytes):
                     add(glb, out)
                 else:
@@ -205,7 +207,18 @@ class Animation:
             add(report, (json.dumps(self.report, ensure_ascii=False, indent=2) + "\n").encode())
         if plot is not None:
             add(check_plot_path(plot), self._plot_writer(Path(plot).suffix))
+        if top_view is not None:
+            add(check_plot_path(top_view, TOP_VIEW), self._top_view_writer(Path(top_view).suffix))
         return files
+
+    def exported_props(self, export=None) -> list:
+        """The scene's :meth:`props` where ``export`` puts the bodies (:func:`text2anim.export.export_props`: scaled
+        with a rig, none under ``--in-place`` or ``--loop``)."""
+        if export is None:
+            return self.props()
+        from .export import export_props
+
+        return export_props(self.props(), self.motions, export)
 
     def exported_motions(self, export=None, *, units: bool = True) -> dict[str, Motion]:
         """Each actor's motion as ``export`` asks for it (unchanged without one); ``units=False`` keeps metres."""
@@ -224,14 +237,15 @@ class Animation:
             check_loopable(list(self.table.elements),
                            {k: bool(getattr(c, "cyclic", False)) for k, c in self.planned.clips.items()})
 
-    def save(self, *, bvh=None, html=None, glb=None, report=None, plot=None, export=None, vrma=None) -> list[Path]:
+    def save(self, *, bvh=None, html=None, glb=None, report=None, plot=None, export=None, vrma=None,
+             top_view=None) -> list[Path]:
         """Write the chosen outputs all-or-nothing (:func:`core.atomic.write_all`); returns their paths.
 
         Two outputs on one path are refused before anything is written; if one
         file cannot be written, none is, and files that existed are left as they were.
         """
         return write_all(self.outputs(bvh=bvh, html=html, glb=glb, report=report, plot=plot, export=export,
-                                      vrma=vrma))
+                                      vrma=vrma, top_view=top_view))
 
     def save_bvh(self, path: str | os.PathLike, export=None) -> list[Path]:
         """One BVH file per actor (see :meth:`bvh_paths`), all-or-nothing; ``export`` as in :meth:`outputs`."""
@@ -255,35 +269,55 @@ class Animation:
         """Upper/lower-body speed curves (Fig. 5 of paper 000) with the blend intervals shaded."""
         return self.save(plot=path)[0]
 
+    def save_top_view(self, path: str | os.PathLike) -> Path:
+        """The scene seen from above (:mod:`output.topview`): the actors' paths and facings, the elements where they
+        start, the props' footprints."""
+        return self.save(top_view=path)[0]
+
+    def _top_view_writer(self, suffix: str):
+        """A function drawing the top view into the path it is given (format from ``suffix``)."""
+        from text2anim.output.topview import plot_top_view
+
+        tracks, spans, props = self.tracks(), self.spans(), self.props()
+        return _drawn_into(suffix, lambda out: plot_top_view(tracks, out, spans, props, title=self.text))
+
     def _plot_writer(self, suffix: str):
         """A function drawing the speed plot into the path it is given (format from ``suffix``)."""
         from text2anim.output.plots import plot_speeds
 
         spans = self.spans()  # each motion labelled by its row and verb (else its clip), the blends shaded
-
-        def draw(tmp: Path) -> None:
-            # plot_speeds picks the format from the name and writes atomically: draw into a
-            # private folder under that suffix, then move the picture onto the temporary.
-            with tempfile.TemporaryDirectory(dir=tmp.parent, prefix=".t2a-plot.") as d:
-                out = Path(d) / f"plot{suffix}"
-                plot_speeds(self.motions, out, spans, title=self.text)
-                os.replace(out, tmp)
-
-        return draw
+        return _drawn_into(suffix, lambda out: plot_speeds(self.motions, out, spans, title=self.text))
 
 
-def check_plot_path(path: str | os.PathLike) -> Path:
-    """A path for the speed plot: writable (:func:`core.atomic.check_output_path`), its suffix a picture format,
-    and matplotlib installed (:func:`core.extras.require`)."""
+def _drawn_into(suffix: str, draw):
+    """A writer for :func:`core.atomic.write_all` of a figure ``draw(path)`` writes: the plots pick the format from
+    the name and write atomically, so it draws into a private folder under ``suffix``, then moves the picture
+    onto the temporary it is given."""
+    def write(tmp: Path) -> None:
+        with tempfile.TemporaryDirectory(dir=tmp.parent, prefix=".t2a-plot.") as d:
+            out = Path(d) / f"plot{suffix}"
+            draw(out)
+            os.replace(out, tmp)
+
+    return write
+
+
+#: What ``--plot`` and ``--top-view`` draw, as :func:`check_plot_path` names them.
+SPEED_PLOT, TOP_VIEW = "a speed plot (--plot)", "a top view (--top-view)"
+
+
+def check_plot_path(path: str | os.PathLike, what: str = SPEED_PLOT) -> Path:
+    """A path for a figure (``what``: the speed plot, the top view): writable (:func:`core.atomic.check_output_path`),
+    its suffix a picture format, and matplotlib installed (:func:`core.extras.require`)."""
     from text2anim.core import extras
     from text2anim.output.plots import FORMATS, PlotError
 
     path = check_output_path(path)
-    extras.require("matplotlib", "a speed plot (--plot)")
+    extras.require("matplotlib", what)
     if path.suffix.lower().lstrip(".") not in FORMATS:
         raise PlotError(f"{path}: cannot tell the image format from the suffix; use one of "
                         + ", ".join("." + f for f in FORMATS))
     return path
 
 
-__all__ = ["Animation", "check_plot_path"]
+__all__ = ["SPEED_PLOT", "TOP_VIEW", "Animation", "check_plot_path"]

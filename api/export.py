@@ -11,7 +11,8 @@ A rig is a BVH file or a skinned glTF character (``.glb``, ``.vrm``: :mod:`core.
 a VRM's humanoid bone map names its joints). The same options give the GLB
 (:func:`glb_files`: the user's own character file animated, when the rig is glTF)
 and the VRM Animation (:func:`vrma_motion`, :mod:`output.vrma`); glTF is in metres,
-so ``units`` applies to BVH only.
+so ``units`` applies to BVH only. The scene's props go into the GLB where the export puts
+the bodies (:func:`export_props`); the BVH and the VRM Animation are the body alone.
 """
 from __future__ import annotations
 
@@ -154,21 +155,43 @@ def _conventions(motion: Motion, opts: ExportOptions, joint_map: dict[str, str] 
     return motion
 
 
-def glb_files(exported: dict[str, Motion], opts: ExportOptions) -> dict[str, bytes] | bytes:
+def export_props(props: list, motions: dict[str, Motion], opts: ExportOptions) -> list:
+    """The scene's props (:class:`output.viewer.types.Prop`) where ``opts`` puts the actors (``motions``: theirs
+    before export). A rig moves the body by its leg-length ratio ``s`` about the origin (:mod:`core.retarget`),
+    so the props' places and sizes are scaled by ``s`` too (the first actor's ratio: the actors share a skeleton);
+    ``--in-place`` and ``--loop`` take the body off the scene's frames (its travel removed, its frames cut and
+    blended), so no prop can stay where the body meets it: none is kept."""
+    if not props or opts.is_default:
+        return list(props)
+    if opts.in_place or opts.loop:
+        return []
+    if opts.skeleton is None:
+        return list(props)
+    from text2anim.core.retarget import map_skeletons
+
+    first = next(iter(motions.values()))
+    k = map_skeletons(first.skeleton, opts.skeleton, target_map=opts.target_map).scale
+    return [p.scaled(k) for p in props]
+
+
+def glb_files(exported: dict[str, Motion], opts: ExportOptions, props=()) -> dict[str, bytes] | bytes:
     """The GLB output of every actor's motion as ``opts`` asks for it, in metres (``exported``: by
-    :func:`export_motion` with ``units=False``): with a glTF rig, the user's file animated, one per actor
-    (``{actor: bytes}``); else one file with every actor on a skinned box skeleton (:func:`output.gltf.glb_bytes`)."""
-    from text2anim.output.gltf import glb_bytes
+    :func:`export_motion` with ``units=False``), with the scene's ``props`` (placed by :func:`export_props`):
+    with a glTF rig, the user's file animated, one per actor (``{actor: bytes}``; the props in each, so each
+    file shows what its character meets); else one file with every actor on a skinned box skeleton
+    (:func:`output.gltf.glb_bytes`)."""
+    from text2anim.output.gltf import add_props, glb_bytes
     from text2anim.core.gltf_rig import rig_glb_bytes
 
     rig = opts.gltf_rig
     if rig is None:
-        return glb_bytes(exported)
+        return glb_bytes(exported, props=props)
     out = {}
     for name, moved in exported.items():
         if not moved.skeleton.same_hierarchy(rig.skeleton):
             raise _no_root_bone(rig)
-        out[name] = rig_glb_bytes(rig, moved)
+        out[name] = rig_glb_bytes(rig, moved, extra=(lambda b, gl, anim: add_props(b, gl, props, anim)) if props
+                                  else None)
     return out
 
 
@@ -197,5 +220,5 @@ def check_loopable(elements: list, cyclic: dict[int, bool]) -> None:
                           + ("" if len(whole) != 1 else " that does not loop"))
 
 
-__all__ = ["UNITS", "ExportError", "ExportOptions", "check_loopable", "export_motion", "glb_files", "in_units",
-           "vrma_motion"]
+__all__ = ["UNITS", "ExportError", "ExportOptions", "check_loopable", "export_motion", "export_props", "glb_files",
+           "in_units", "vrma_motion"]

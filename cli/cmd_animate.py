@@ -1,4 +1,4 @@
-"""``text2anim TEXT``: text to animation (BVH per actor, and a viewer page, GLB, report, plot)."""
+"""``text2anim TEXT``: text to animation (BVH per actor, and a viewer page, GLB, report, plot, top view)."""
 from __future__ import annotations
 
 import argparse
@@ -28,6 +28,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--vrma", metavar="FILE", help="also write a VRM Animation (.vrma) for VRM avatars")
     p.add_argument("--report", metavar="FILE", help="also write the synthesis report (JSON)")
     p.add_argument("--plot", metavar="FILE", help="also plot upper/lower-body speeds (needs text2anim[plot])")
+    p.add_argument("--top-view", metavar="FILE", help="also draw the scene seen from above: paths, facings, "
+                   "elements, things (.png, .svg or .pdf; needs text2anim[plot])")
     p.add_argument("--fps", type=fps_type, default=30.0, help="output frame rate, 1 to 240 (default 30)")
     p.add_argument("--db", metavar="URL", help="motion database (SQLAlchemy URL or SQLite path; "
                    "default: $TEXT2ANIM_DB or the user's data directory)")
@@ -69,14 +71,16 @@ def check_outputs(args: argparse.Namespace) -> dict:
     from text2anim.core.atomic import check_distinct, check_output_path
 
     outputs = {"bvh": args.output, "html": args.html, "glb": args.glb, "report": args.report, "plot": args.plot,
-               "vrma": args.vrma}
+               "vrma": args.vrma, "top_view": args.top_view}
     outputs = {k: v for k, v in outputs.items() if v is not None} or {"bvh": DEFAULT_BVH}
     files = [check_output_path(v) for k, v in outputs.items() if not (k == "bvh" and v == "-")]
     check_distinct(files)
-    if args.plot:
-        from text2anim.animation import check_plot_path
+    from text2anim.animation import TOP_VIEW, check_plot_path
 
+    if args.plot:
         check_plot_path(args.plot)
+    if args.top_view:
+        check_plot_path(args.top_view, TOP_VIEW)
     return outputs
 
 
@@ -99,6 +103,8 @@ def run(args: argparse.Namespace) -> int:
         _say(f"skipped {verb}: not in the motion database")
     for w in anim.warnings:  # the report (figures at 30 fps) is built only if asked for
         _say(f"warning: {w}")
+    if "glb" in outputs and anim.props() and not anim.exported_props(export):
+        _say("the GLB has the bodies alone: --in-place and --loop take them off the scene its things stand in")
     if to_stdout:
         if len(anim.motions) > 1:
             raise OutputArgumentError(f"the text has {len(anim.motions)} actors and a BVH file holds one: "

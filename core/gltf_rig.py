@@ -30,6 +30,7 @@ import copy
 import json
 import os
 import struct
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -288,8 +289,10 @@ def _as_trs(node: dict) -> None:
     node["scale"] = [s, s, s]
 
 
-def rig_glb_bytes(rig: GltfRig, motion: Motion, name: str = "text2anim") -> bytes:
-    """The rig's file with ``motion`` (on ``rig.skeleton``) as its one animation."""
+def rig_glb_bytes(rig: GltfRig, motion: Motion, name: str = "text2anim",
+                  extra: Callable[[BufferBuilder, dict, dict], None] | None = None) -> bytes:
+    """The rig's file with ``motion`` (on ``rig.skeleton``) as its one animation; ``extra(b, gl, animation)``,
+    when given, adds more to the file before it is packed (the scene's props, :func:`output.gltf.add_props`)."""
     if not motion.skeleton.same_hierarchy(rig.skeleton):
         raise RigError(f"{rig.path}: the motion is not on this rig's skeleton (a root bone was added? "
                        "--root-motion on a glTF rig needs a root bone above the hips)")
@@ -316,4 +319,6 @@ def rig_glb_bytes(rig: GltfRig, motion: Motion, name: str = "text2anim") -> byte
     gl["animations"] = [anim]
     if not gl.get("buffers"):
         gl["buffers"] = [{}]
+    if extra is not None:
+        extra(b, gl, anim)
     return pack_glb(gl, b)

@@ -12,7 +12,14 @@ One file holds every actor:
 - one animation, ``"text2anim"``: per actor a time accessor (seconds), the root
   joint's ``translation`` and every joint's ``rotation`` (unit quaternions,
   signs made continuous so LINEAR sampling takes the short way), plus
-  ``translation`` for every joint when the motion carries local translations.
+  ``translation`` for every joint when the motion carries local translations;
+- per prop (a thing of the scene, :class:`~output.viewer.types.Prop`) a node named
+  as the text writes it (ボール, 椅子) at the top of the scene, ``extras.prop`` its
+  shape, with a mesh of its shape's parts (:mod:`output.shapes`: a sphere, boxes, a
+  chair of seat, legs and back, ...) in a material of its colour; a moving prop gets
+  ``translation`` and ``rotation`` channels in the same animation (on its own
+  time accessor, the same clock), a still one only its node's transform.
+  Without props the file is what it was before props existed, byte for byte.
 
 Units are metres, +Y up, right-handed, as glTF wants; quaternion order
 ``(x, y, z, w)`` is glTF's too. Binary layout: every buffer view starts on
@@ -33,7 +40,7 @@ from text2anim.core.glb import (ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UBYTE
                                  pack_glb)
 from text2anim.core.motion import Motion, unroll_quaternions
 
-__all__ = ["glb_bytes", "write_glb"]
+__all__ = ["add_props", "glb_bytes", "write_glb"]
 
 def _bone_boxes(points: np.ndarray, parents: list[int], radii: np.ndarray):
     """Boxes along bones: positions, normals, joint index per vertex and triangle indices."""
@@ -137,10 +144,8 @@ def _actor(b: BufferBuilder, gl: dict, name: str, motion: Motion, color: str, mu
     weights[:, 0] = 1.0
     joints4 = np.zeros((n_vert, 4), dtype=np.int64)
     joints4[:, 0] = jnt
-    rgb = [int(color[i:i + 2], 16) / 255 for i in (1, 3, 5)]
-    srgb_to_linear = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in rgb]
     gl["materials"].append({"name": f"{name or 'actor'} material", "pbrMetallicRoughness": {
-        "baseColorFactor": [*srgb_to_linear, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
+        "baseColorFactor": [*_linear(color), 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
     prim = {
         "attributes": {
             "POSITION": b.accessor(pos, FLOAT, "VEC3", target=ARRAY_BUFFER, minmax=True),
@@ -185,14 +190,59 @@ def _animate(b: BufferBuilder, anim: dict, first: int, motion: Motion) -> None:
         channel(first + j, "rotation", quats[:, j], "VEC4")
 
 
-def glb_bytes(tracks, animate: bool = True) -> bytes:
+def _linear(color: str) -> list[float]:
+    """``#rrggbb`` (sRGB) as glTF's linear ``baseColorFactor`` RGB."""
+    rgb = [int(color[i:i + 2], 16) / 255 for i in (1, 3, 5)]
+    return [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in rgb]
+
+
+def add_props(b: BufferBuilder, gl: dict, props, anim: dict | None) -> None:
+    """Put each :class:`~output.viewer.types.Prop` into the glTF ``gl`` (its buffer ``b``): a node named as the
+    prop, at the top of the default scene, with the mesh of its shape (:func:`output.shapes.mesh`) in a material
+    of its colour, ``extras.prop`` its shape; its ``translation`` and ``rotation`` channels in ``anim`` (the actors'
+    animation) when it moves, else the node's own first-frame transform only. Works on our files and on a
+    user's rig alike (lists missing from ``gl`` are created)."""
+    from .shapes import mesh
+
+    scene = gl.setdefault("scenes", [{"nodes": []}])[gl.get("scene", 0)].setdefault("nodes", [])
+    times: dict[tuple[int, float], int] = {}  # one time accessor per frame count and rate
+    for prop in props:
+        pos, nrm, idx = mesh(prop.shape, prop.size)
+        gl.setdefault("materials", []).append({"name": f"{prop.name} material", "pbrMetallicRoughness": {
+            "baseColorFactor": [*_linear(prop.color), 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.7}})
+        gl.setdefault("meshes", []).append({"name": prop.name, "primitives": [{
+            "attributes": {"POSITION": b.accessor(pos, FLOAT, "VEC3", target=ARRAY_BUFFER, minmax=True),
+                           "NORMAL": b.accessor(nrm, FLOAT, "VEC3", target=ARRAY_BUFFER)},
+            "indices": b.accessor(idx, USHORT if len(pos) < 65535 else UINT, "SCALAR", target=ELEMENT_ARRAY_BUFFER),
+            "material": len(gl["materials"]) - 1, "mode": 4}]})
+        quats = prop.unit_rotations
+        node: dict[str, Any] = {"name": prop.name, "mesh": len(gl["meshes"]) - 1,
+                                "translation": [float(v) for v in prop.positions[0]],
+                                "rotation": [float(v) for v in quats[0]], "extras": {"prop": prop.shape}}
+        gl["nodes"].append(node)
+        n = len(gl["nodes"]) - 1
+        scene.append(n)
+        if anim is None or prop.is_static:
+            continue
+        key = (prop.n_frames, float(prop.fps))
+        if key not in times:
+            times[key] = b.accessor(np.arange(prop.n_frames) / prop.fps, FLOAT, "SCALAR", minmax=True)
+        for path, values, atype in (("translation", prop.positions, "VEC3"), ("rotation", quats, "VEC4")):
+            anim["samplers"].append({"input": times[key], "output": b.accessor(values, FLOAT, atype),
+                                     "interpolation": "LINEAR"})
+            anim["channels"].append({"sampler": len(anim["samplers"]) - 1, "target": {"node": n, "path": path}})
+
+
+def glb_bytes(tracks, animate: bool = True, props=()) -> bytes:
     """The ``.glb`` file of ``tracks`` (a list of :class:`~output.viewer.types.Track`,
-    a ``{name: Motion}`` dict or one :class:`~core.motion.Motion`); ``animate=False``: the skinned
-    characters in their bind pose, no animation."""
-    from .viewer.types import as_tracks
+    a ``{name: Motion}`` dict or one :class:`~core.motion.Motion`) and the scene's ``props``
+    (:class:`~output.viewer.types.Prop`); ``animate=False``: the skinned characters in their bind pose and
+    the props where they start, no animation."""
+    from .viewer.types import as_props, as_tracks
     from .viewer import PALETTE
 
     tracks = as_tracks(tracks)
+    props = as_props(props)
     for t in tracks:
         for what, arr in (("root positions", t.motion.root_positions), ("rotations", t.motion.rotations)):
             if not np.all(np.isfinite(arr)):
@@ -207,13 +257,14 @@ def glb_bytes(tracks, animate: bool = True) -> bytes:
     }
     for i, t in enumerate(tracks):
         _actor(b, gl, t.name, t.motion, PALETTE[i % len(PALETTE)], len(tracks) > 1, animate)
+    add_props(b, gl, props, gl["animations"][0] if animate else None)
     if not animate:
         del gl["animations"]
     gl["buffers"] = [{}]
     return pack_glb(gl, b)
 
 
-def write_glb(tracks, path: str | os.PathLike) -> None:
-    """Write :func:`glb_bytes` of ``tracks`` to ``path`` atomically
+def write_glb(tracks, path: str | os.PathLike, props=()) -> None:
+    """Write :func:`glb_bytes` of ``tracks`` and ``props`` to ``path`` atomically
     (:class:`~core.atomic.OutputError` if it cannot be written)."""
-    atomic_write_bytes(path, glb_bytes(tracks))
+    atomic_write_bytes(path, glb_bytes(tracks, props=props))

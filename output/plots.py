@@ -36,7 +36,8 @@ from text2anim.core.atomic import OutputError, atomic_write_bytes
 from text2anim.core.motion import Motion
 from .viewer.types import Span, as_spans
 
-__all__ = ["PlotDependencyError", "PlotError", "plot_gantt", "plot_speeds"]
+__all__ = ["PlotDependencyError", "PlotError", "check_figure_path", "figure_style", "figure_tools", "plot_gantt",
+           "plot_speeds", "save_figure"]
 
 CJK_FAMILIES, BASE_FAMILY = fonts.CJK_FAMILIES, fonts.BASE_FAMILY
 UPPER_COLOR = "#d9a400"
@@ -56,8 +57,10 @@ class PlotError(ValueError):
     user_facing = True
 
 
-def _matplotlib():
-    matplotlib = extras.require("matplotlib", "a plot")
+def figure_tools(what: str = "a plot"):
+    """``(matplotlib, Figure, FigureCanvasAgg)``; :class:`PlotDependencyError` without matplotlib, naming ``what``
+    needs it."""
+    matplotlib = extras.require("matplotlib", what)
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -79,8 +82,9 @@ def _label(text: str, alt: str | None = None, fallback: str = "?") -> str:
 
 
 @contextmanager
-def _style():
-    matplotlib, _, _ = _matplotlib()
+def figure_style():
+    """The house style for a figure, with a font that draws Japanese when one is installed, and no glyph warnings."""
+    matplotlib, _, _ = figure_tools()
     cjk, _chars = _fonts()
     families = [BASE_FAMILY] + ([cjk] if cjk else [])
     rc = {"font.family": families, "font.size": 10, "axes.spines.top": False, "axes.spines.right": False,
@@ -99,7 +103,9 @@ def _format_of(path: Path) -> str:
     return fmt
 
 
-def _check_output(path) -> tuple[Path, str]:
+def check_figure_path(path) -> tuple[Path, str]:
+    """``(path, format)`` of a figure to write, its format from the suffix; :class:`PlotError` or
+    :class:`~core.atomic.OutputError` before anything is drawn."""
     path = Path(path)
     fmt = _format_of(path)
     directory = path.parent if str(path.parent) else Path(".")
@@ -108,7 +114,8 @@ def _check_output(path) -> tuple[Path, str]:
     return path, fmt
 
 
-def _save(fig, canvas_cls, path: Path, fmt: str, dpi: float) -> None:
+def save_figure(fig, canvas_cls, path: Path, fmt: str, dpi: float) -> None:
+    """Draw ``fig`` on ``canvas_cls`` and write it to ``path`` in ``fmt``, atomically, on white."""
     canvas_cls(fig)
     buf = io.BytesIO()
     fig.savefig(buf, format=fmt, dpi=dpi, facecolor="white")
@@ -163,13 +170,13 @@ def plot_speeds(motions_by_label, path: str | os.PathLike, spans: Iterable[Span]
     """
     from text2anim.core.metrics import speed_curves
 
-    path, fmt = _check_output(path)
+    path, fmt = check_figure_path(path)
     labelled = _as_labelled(motions_by_label)
     spans = as_spans(spans)
-    _, Figure, Canvas = _matplotlib()
+    _, Figure, Canvas = figure_tools()
     curves = [(label, speed_curves(m)) for label, m in labelled]
     t_end = max([c.times[-1] if len(c.times) else 0.0 for _, c in curves] + [s.end for s in spans])
-    with _style():
+    with figure_style():
         fig = Figure(figsize=(size[0] / dpi, size[1] / dpi), dpi=dpi, layout="constrained")
         ax_u, ax_l = fig.subplots(2, 1, sharex=True)
         for ax, part, name in ((ax_u, "upper", "upper body"), (ax_l, "lower", "lower body")):
@@ -218,7 +225,7 @@ def plot_speeds(motions_by_label, path: str | os.PathLike, spans: Iterable[Span]
         default = "Upper / lower body speed"
         fig.suptitle(_label(title, fallback=default) if title else default, x=0.01, ha="left",
                      fontsize=12, fontweight="bold")
-        _save(fig, Canvas, path, fmt, dpi)
+        save_figure(fig, Canvas, path, fmt, dpi)
 
 
 def plot_gantt(spans: Iterable[Span], path: str | os.PathLike, *, title: str = "",
@@ -228,11 +235,11 @@ def plot_gantt(spans: Iterable[Span], path: str | os.PathLike, *, title: str = "
     (upper-body blends in its top half, lower-body in its bottom half). Height follows the rows."""
     from matplotlib.patches import Patch, Rectangle
 
-    path, fmt = _check_output(path)
+    path, fmt = check_figure_path(path)
     spans = as_spans(spans)
     if not spans:
         raise PlotError("no time-table elements to plot")
-    _, Figure, Canvas = _matplotlib()
+    _, Figure, Canvas = figure_tools()
     actors = list(dict.fromkeys(s.actor for s in spans))
     lane_h, blend_h, gap = 1.0, 0.7, 0.5
     rows = []
@@ -247,7 +254,7 @@ def plot_gantt(spans: Iterable[Span], path: str | os.PathLike, *, title: str = "
     total = y - gap
     t_end = max(s.end for s in spans)
     height_px = 110 + 34 * total
-    with _style():
+    with figure_style():
         fig = Figure(figsize=(width / dpi, height_px / dpi), dpi=dpi, layout="constrained")
         ax = fig.subplots()
         ax.set_ylim(total + 0.15, -0.15)
@@ -289,4 +296,4 @@ def plot_gantt(spans: Iterable[Span], path: str | os.PathLike, *, title: str = "
                        frameon=False, fontsize=9)
         fig.suptitle(_label(title, fallback="Time table") if title else "Time table", x=0.01, ha="left", fontsize=12,
                      fontweight="bold")
-        _save(fig, Canvas, path, fmt, dpi)
+        save_figure(fig, Canvas, path, fmt, dpi)

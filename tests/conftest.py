@@ -17,8 +17,10 @@ from text2anim import reproducible
 
 reproducible.pin()  # before numpy: the goldens and shipped arrays compare bytes across machines
 
+import logging  # noqa: E402
 import os  # noqa: E402
 import uuid  # noqa: E402
+import warnings  # noqa: E402
 
 import pytest
 
@@ -225,3 +227,14 @@ def walk_motion(walk):
     """The one actor's motion of :func:`walk`, as the engines made it."""
     (motion,) = walk.motions.values()
     return motion
+
+
+@pytest.fixture
+def strict(caplog):
+    """No Python warnings and no matplotlib log warnings (missing glyphs, font fallbacks, fixed limits) while a
+    figure is drawn."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with caplog.at_level(logging.WARNING, logger="matplotlib"):
+            yield
+    assert [r.getMessage() for r in caplog.records if r.name.startswith("matplotlib")] == []

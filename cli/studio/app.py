@@ -38,7 +38,7 @@ MAX_BODY = 64 * 1024
 TIMEOUT = 60.0
 #: The page's own files: name -> content type.
 ASSETS = {"studio.js": "text/javascript; charset=utf-8", "studio3d.js": "text/javascript; charset=utf-8",
-          "studio.css": "text/css; charset=utf-8"}
+          "topview.js": "text/javascript; charset=utf-8", "studio.css": "text/css; charset=utf-8"}
 
 
 def _vendored() -> dict[str, Path]:

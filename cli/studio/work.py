@@ -96,10 +96,11 @@ class Studio:
         return {"ok": True, "joints": len(rig.skeleton.names)}
 
     def animate(self, text: str, edits: tuple = ()) -> dict:
-        """``{"ok": True, "html", "table", "blends", "duration", "warnings"}`` for ``text`` with the time-table
+        """``{"ok": True, "html", "top", "table", "blends", "duration", "warnings"}`` for ``text`` with the time-table
         ``edits`` (:class:`text2anim.edits.Edit`), or ``{"ok": False, "error"}`` with the message the command
         line would print (never a traceback). Each table row carries its edit key (verb, nth), or None for
-        what the scheduler added (a stop, an idle, a posture bridge)."""
+        what the scheduler added (a stop, an idle, a posture bridge). ``top`` is the scene seen from above
+        (:meth:`output.topview.TopView.to_dict`), which the page draws beside the animation."""
         text = text.strip()
         if not text:
             return {"ok": False, "error": "type a sentence, e.g. 太郎は走って、ボールを蹴る。"}
@@ -121,6 +122,7 @@ class Studio:
         import text2anim
         from text2anim.cli.terminal import message
         from text2anim.edits import occurrences
+        from text2anim.output.topview import top_view
         from text2anim.output.viewer import render_html
 
         try:
@@ -130,17 +132,19 @@ class Studio:
                 raise
             return {"ok": False, "error": message(str(exc)), "unknown": unknown_verbs(text, exc)}
         keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
-        tracks = anim.tracks()
+        tracks, props = anim.tracks(), anim.props()
         if self.rig is not None:  # the user's character: its own skeleton and proportions
             from text2anim.export import ExportOptions
 
-            tracks = anim.exported_motions(ExportOptions(rig=self.rig), units=False)
+            rig = ExportOptions(rig=self.rig)
+            tracks, props = anim.exported_motions(rig, units=False), anim.exported_props(rig)
         rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
                  "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part,
                  "key": keys.get(e.id)} for e in anim.table.elements]
         blends = [{"actor": s.actor, "start": round(s.start, 3), "end": round(s.end, 3), "part": s.part,
                    "label": s.label} for s in anim.spans() if s.kind == "blend"]
-        return {"ok": True, "text": text, "html": render_html(tracks, anim.spans(), title=text),
+        return {"ok": True, "text": text, "html": render_html(tracks, anim.spans(), title=text, props=props),
+                "top": top_view(tracks, anim.spans(), props).to_dict(),
                 "rig": self.rig is not None,
                 "notes": list(anim.planned.analysis.notes),
                 "table": rows, "blends": blends, "warnings": list(anim.warnings),

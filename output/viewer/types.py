@@ -13,12 +13,13 @@ Times are seconds from the start of the animation, the same clock for every acto
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
 
-from text2anim.core.motion import Motion
+from text2anim.core.motion import Motion, unroll_quaternions
 
 SPAN_KINDS = ("element", "blend")
 
@@ -152,10 +153,45 @@ class Prop:
             raise ValueError(f"prop {self.name!r}: rotations must be ({len(pos)}, 4), got {rot.shape}")
         if not (np.all(np.isfinite(pos)) and np.all(np.isfinite(rot))):
             raise ValueError(f"prop {self.name!r}: non-finite positions or rotations")
+        if np.any(np.linalg.norm(rot, axis=1) < 1e-6):
+            raise ValueError(f"prop {self.name!r}: a rotation is not a quaternion (length 0)")
+        size = tuple(float(v) for v in self.size)
+        if len(size) != 3 or not all(math.isfinite(v) and v > 0 for v in size):
+            raise ValueError(f"prop {self.name!r}: size must be three positive lengths (w, h, d), got {self.size}")
+        if not (math.isfinite(float(self.fps)) and self.fps > 0):
+            raise ValueError(f"prop {self.name!r}: fps must be positive, got {self.fps}")
+        if not re.fullmatch(r"#[0-9a-fA-F]{6}", str(self.color)):
+            raise ValueError(f"prop {self.name!r}: colour must be #rrggbb, got {self.color!r}")
         object.__setattr__(self, "positions", pos)
         object.__setattr__(self, "rotations", rot)
-        object.__setattr__(self, "size", tuple(float(v) for v in self.size))
+        object.__setattr__(self, "size", size)
 
     @property
     def n_frames(self) -> int:
         return len(self.positions)
+
+    @property
+    def unit_rotations(self) -> np.ndarray:
+        """``(T, 4)`` the rotations as unit quaternions, signs made continuous (interpolation takes the short way)."""
+        return unroll_quaternions(self.rotations / np.linalg.norm(self.rotations, axis=1, keepdims=True))
+
+    def scaled(self, k: float) -> "Prop":
+        """The prop in a world scaled by ``k`` about the origin (the scene of a character of another size)."""
+        w, h, d = self.size
+        return Prop(self.name, self.shape, (w * k, h * k, d * k), self.positions * k, self.rotations, self.fps,
+                    self.color)
+
+    @property
+    def is_static(self) -> bool:
+        """True when the prop stays where it is, turned as it is, on every frame."""
+        pos, rot = self.positions, self.unit_rotations
+        return bool(np.all(np.abs(pos - pos[0]) < 1e-9) and np.all(np.abs(rot - rot[0]) < 1e-9))
+
+
+def as_props(props: Iterable[Prop] | None) -> list[Prop]:
+    """A list of :class:`Prop` (``None`` or empty: none)."""
+    out = list(props or ())
+    for p in out:
+        if not isinstance(p, Prop):
+            raise TypeError(f"expected Prop objects, got {type(p).__name__}")
+    return out

@@ -16,6 +16,10 @@
     scrubbing: false, dirty: true, last: 0
   };
   var actors = [];
+  // The things of the scene (balls, chairs): props.js sets this; render_html inlines it here only when
+  // the page has some, so a page without them carries none of its code.
+  var Props = null;
+  /* props.js */
   var cam = { yaw: 0, pitch: 0.3, dist: 5, target: [0, 0.9, 0], home: null };
 
   // ------------------------------------------------------------------ colours
@@ -180,6 +184,7 @@
         var top = A.meta.head >= 0 ? A.meta.head : 0;
         pts.push([A.cur[top * 3], A.cur[top * 3 + 1] + 0.3 * A.meta.height / 1.7, A.cur[top * 3 + 2]]);
       });
+      if (Props) Props.points(t, pts);
       samples.push({ target: follow ? [c[0], h * 0.5, c[1]] : fixed, pts: pts });
     }
     cam.yaw = facing + 0.62; cam.pitch = 0.24;
@@ -200,6 +205,7 @@
     var dist = 1.5;
     while (dist < 200 && !fits(dist)) dist *= 1.06;
     actors.forEach(function (A) { sample(A, 0); });
+    if (Props) Props.sample(0);
     var c0 = centre();
     cam.home = {
       yaw: facing + 0.62, pitch: 0.24, dist: dist,
@@ -238,6 +244,7 @@
 
   function drawGrid(ctx) {
     var step = 0.5, R = Math.max(8, cam.dist * 2.2);
+    while (R / step > 60) step *= 2;  // far out, whole metres and then coarser: a few thousand lines at most
     var cx = Math.round(cam.target[0] / step) * step, cz = Math.round(cam.target[2] / step) * step;
     var n = Math.ceil(R / step);
     var buckets = [];
@@ -332,7 +339,8 @@
     }
   }
 
-  function drawActor(ctx, A, zMin, zMax) {
+  // An actor's bones (capsules) and head (a ball) in camera space, sorted far to near.
+  function actorItems(A) {
     var c = A.cur, meta = A.meta, cams = new Array(A.N);
     for (var i = 0; i < A.N; i++) cams[i] = toCam(c[i * 3], c[i * 3 + 1], c[i * 3 + 2]);
     var items = [];
@@ -352,8 +360,13 @@
       }
     }
     items.sort(function (a, b) { return b.z - a.z; });
+    return { cams: cams, items: items };
+  }
+
+  // Paints items of an actor: their silhouette outline first, then the fills far to near, then the joints' dots.
+  function paintItems(ctx, A, cams, items, zMin, zMax) {
+    var meta = A.meta;
     ctx.lineCap = "round"; ctx.lineJoin = "round";
-    // silhouette outline first, then the fills far to near
     ctx.strokeStyle = css(A.outline, 0.9);
     items.forEach(function (it) {
       if (it.kind === 0) {
@@ -386,25 +399,33 @@
     });
     // joints as dots (not the end sites)
     ctx.fillStyle = css(mix(A.base, WHITE, 0.7), 0.95);
-    for (var jn = 1; jn < meta.joints; jn++) {
-      var q = cams[jn];
-      if (q[2] <= NEAR || jn === meta.headBase) continue;
+    items.forEach(function (it) {
+      var jn = it.j, q = cams[jn];
+      if (it.kind !== 0 || jn >= meta.joints || q[2] <= NEAR || jn === meta.headBase) return;
       var sc = toScreen(q), r = Math.max(1.2, Math.min(4, meta.radius[jn] * 0.45 * F / q[2]));
       ctx.beginPath(); ctx.arc(sc[0], sc[1], r, 0, Math.PI * 2); ctx.fill();
-    }
-    // name above the head
-    if (meta.name) {
-      var top = head >= 0 ? head : 0, tc = toCam(c[top * 3], c[top * 3 + 1] + 0.28 * meta.height / 1.7, c[top * 3 + 2]);
-      if (tc[2] > NEAR) {
-        var ts = toScreen(tc);
-        ctx.font = "600 13px " + getComputedStyle(document.documentElement).fontFamily;
-        ctx.textAlign = "center"; ctx.textBaseline = "bottom";
-        var tw = ctx.measureText(meta.name).width;
-        ctx.fillStyle = "rgba(13,15,19,0.72)";
-        roundRect(ctx, ts[0] - tw / 2 - 7, ts[1] - 20, tw + 14, 19, 5); ctx.fill();
-        ctx.fillStyle = css(A.left); ctx.fillText(meta.name, ts[0], ts[1] - 4);
-      }
-    }
+    });
+  }
+
+  // The actor's name above its head.
+  function drawName(ctx, A) {
+    var c = A.cur, meta = A.meta;
+    if (!meta.name) return;
+    var top = meta.head >= 0 ? meta.head : 0, tc = toCam(c[top * 3], c[top * 3 + 1] + 0.28 * meta.height / 1.7, c[top * 3 + 2]);
+    if (tc[2] <= NEAR) return;
+    var ts = toScreen(tc);
+    ctx.font = "600 13px " + getComputedStyle(document.documentElement).fontFamily;
+    ctx.textAlign = "center"; ctx.textBaseline = "bottom";
+    var tw = ctx.measureText(meta.name).width;
+    ctx.fillStyle = "rgba(13,15,19,0.72)";
+    roundRect(ctx, ts[0] - tw / 2 - 7, ts[1] - 20, tw + 14, 19, 5); ctx.fill();
+    ctx.fillStyle = css(A.left); ctx.fillText(meta.name, ts[0], ts[1] - 4);
+  }
+
+  function drawActor(ctx, A, zMin, zMax) {
+    var got = actorItems(A);
+    paintItems(ctx, A, got.cams, got.items, zMin, zMax);
+    drawName(ctx, A);
   }
 
   function roundRect(ctx, x, y, w, h, r) {
@@ -428,9 +449,11 @@
     });
     order.sort(function (a, b) { return b.z - a.z; });
     var zMin = cam.dist - 1.2, zMax = cam.dist + 1.2;
+    if (Props) Props.shadows(ctx);
     order.forEach(function (o) { drawShadow(ctx, o.A); });
     order.forEach(function (o) { drawContacts(ctx, o.A); });
-    order.forEach(function (o) { drawActor(ctx, o.A, zMin, zMax); });
+    if (Props) Props.draw(ctx, order, zMin, zMax);  // the things' parts sorted in among the actors' bones
+    else order.forEach(function (o) { drawActor(ctx, o.A, zMin, zMax); });
     drawTimeline();
   }
 
@@ -584,6 +607,7 @@
   function updateUi() {
     var t = Math.min(state.t, DATA.duration);
     actors.forEach(function (A) { sample(A, t); });
+    if (Props) Props.sample(t);
     state.frame = actors[0].frame;
     $("time").innerHTML = t.toFixed(2) + " / " + DATA.duration.toFixed(2) + " s<span class=\"frame\">#" + state.frame + "</span>";
     if (!state.scrubbing) $("scrub").value = String(t);
@@ -716,6 +740,7 @@
       var name = document.createElement("span"); name.textContent = A.meta.name;
       row.appendChild(chip); row.appendChild(name); lg.appendChild(row);
     });
+    if (Props) Props.legend(lg);
   }
 
   var api = {
@@ -739,8 +764,8 @@
   };
   window.__t2a = api;
 
-  Promise.all(DATA.actors.map(decodeActor)).then(function (list) {
-    actors = list;
+  Promise.all([Promise.all(DATA.actors.map(decodeActor)), Props ? Props.decode() : null]).then(function (got) {
+    actors = got[0];
     $("message").style.display = "none";
     buildRows();
     buildLegend();

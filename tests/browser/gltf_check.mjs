@@ -6,7 +6,8 @@
 // (tests/browser/node_modules after `npm ci --prefix tests/browser`; either may be missing).
 // Prints JSON: {validator: {errors, warnings, infos, hints, messages} | null,
 //               three: {actors: [{name, bones: [names], frames: [per time: [[x,y,z] per bone]],
-//                        vertex: [per time: world position of vertex 0]}], animations, duration} | null}
+//                        vertex: [per time: world position of vertex 0]}],
+//                       props: [{name, shape, mesh, frames: [per time: [x,y,z]]}], animations, duration} | null}
 import fs from "node:fs";
 import path from "node:path";
 import { createRequire } from "node:module";
@@ -41,9 +42,14 @@ if (fs.existsSync(threeDir)) {
   action.clampWhenFinished = true;
   action.play();
   const actors = meshes.map((m) => ({ name: m.name, bones: m.skeleton.bones.map((b) => b.name), frames: [], vertex: [] }));
+  // the things of the scene: nodes whose extras name a prop shape
+  const things = [];
+  scene.traverse((o) => { if (o.userData && o.userData.prop) things.push(o); });
+  const props = things.map((o) => ({ name: o.name, shape: o.userData.prop, mesh: !!o.isMesh, frames: [] }));
   for (const t of times) {
     mixer.setTime(t);
     scene.updateMatrixWorld(true);
+    things.forEach((o, i) => props[i].frames.push(o.getWorldPosition(new THREE.Vector3()).toArray()));
     meshes.forEach((m, i) => {
       m.skeleton.update();
       actors[i].frames.push(m.skeleton.bones.map((b) => b.getWorldPosition(new THREE.Vector3()).toArray()));
@@ -52,6 +58,6 @@ if (fs.existsSync(threeDir)) {
       actors[i].vertex.push(v.toArray());
     });
   }
-  out.three = { actors, animations: gltf.animations.length, duration: gltf.animations[0].duration };
+  out.three = { actors, props, animations: gltf.animations.length, duration: gltf.animations[0].duration };
 }
 process.stdout.write(JSON.stringify(out));

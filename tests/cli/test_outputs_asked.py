@@ -14,7 +14,7 @@ from text2anim.core.extras import MissingExtraError
 
 #: Every output option of ``text2anim TEXT`` and a file name for it.
 OUTPUTS = {"-o": "walk.bvh", "--html": "walk.html", "--glb": "walk.glb", "--vrma": "walk.vrma",
-           "--report": "walk.json", "--plot": "walk.png"}
+           "--report": "walk.json", "--plot": "walk.png", "--top-view": "top.png"}
 
 
 def _asked(tmp_path, flags) -> set[str]:
@@ -29,7 +29,7 @@ def _asked(tmp_path, flags) -> set[str]:
 def test_every_combination_of_output_options_asks_for_those_files_only(tmp_path, n):
     plots = importlib.util.find_spec("matplotlib") is not None
     for flags in itertools.combinations(OUTPUTS, n):
-        if "--plot" in flags and not plots:  # without the extra, --plot is refused before any work
+        if {"--plot", "--top-view"} & set(flags) and not plots:  # without the extra, refused before any work
             with pytest.raises(MissingExtraError):
                 _asked(tmp_path, flags)
             continue
@@ -42,6 +42,7 @@ def test_every_combination_of_output_options_asks_for_those_files_only(tmp_path,
     (("--vrma", "walk.vrma", "--glb", "walk.glb"), ["walk.glb", "walk.vrma"]),
     (("--html", "walk.html"), ["walk.html"]),
     (("--report", "walk.json", "-o", "walk.bvh"), ["walk.bvh", "walk.json"]),
+    (("--top-view", "top.png"), ["top.png"]),
 ])
 def test_the_command_writes_what_was_asked_for(tmp_path, library_db, args, written):
     proc = text2anim("太郎は歩く。", *args, "--db", library_db, cwd=tmp_path)

@@ -287,3 +287,135 @@ def test_blender_imports_it(tmp_path, walk):
         v = np.array(out["frames"][str(f)])
         y_up = np.c_[v[:, 0], v[:, 2], -v[:, 1]]  # Blender's importer turns glTF's +Y up into +Z up
         np.testing.assert_allclose(y_up, walk.positions[f][idx], atol=1e-3)
+
+
+# ------------------------------------------------------------------------- props
+def _prop_nodes(g: Glb) -> dict[str, int]:
+    return {n["name"]: i for i, n in enumerate(g.json["nodes"]) if "prop" in n.get("extras", {})}
+
+
+def _channels(g: Glb, node: int) -> dict[str, np.ndarray]:
+    anim = g.json["animations"][0]
+    return {c["target"]["path"]: g.read(anim["samplers"][c["sampler"]]["output"]).astype(np.float64)
+            for c in anim["channels"] if c["target"]["node"] == node}
+
+
+def test_props_are_nodes_named_as_written_moved_by_the_actors_animation(library_db):
+    from scene_props import scene
+
+    anim, (ball, chair) = scene(library_db)
+    g = Glb(glb_bytes(anim.tracks(), props=[ball, chair]))
+    gl = g.json
+    nodes = _prop_nodes(g)
+    assert list(nodes) == ["ボール", "椅子"]
+    assert all(n in gl["scenes"][0]["nodes"] for n in nodes.values())  # at the top of the scene
+    (anim_gl,) = gl["animations"]
+    # the ball follows the hand: one key per frame, on the actors' clock
+    ch = _channels(g, nodes["ボール"])
+    np.testing.assert_allclose(ch["translation"], ball.positions, atol=1e-5)
+    np.testing.assert_allclose(np.abs(np.sum(ch["rotation"] * ball.unit_rotations, axis=1)), 1, atol=1e-5)
+    ball_sampler = next(c["sampler"] for c in anim_gl["channels"] if c["target"]["node"] == nodes["ボール"])
+    np.testing.assert_allclose(g.read(anim_gl["samplers"][ball_sampler]["input"])[:, 0],
+                               next(iter(anim.motions.values())).times, atol=1e-6)
+    # the chair stands still: no channel, its node where it stands
+    assert _channels(g, nodes["椅子"]) == {}
+    node = gl["nodes"][nodes["椅子"]]
+    np.testing.assert_allclose(node["translation"], chair.positions[0])
+    assert node["extras"] == {"prop": "chair"}
+    # each mesh is its shape at its size, in a material of its colour
+    for prop in (ball, chair):
+        n = gl["nodes"][nodes[prop.name]]
+        prim = gl["meshes"][n["mesh"]]["primitives"][0]
+        pos = g.read(prim["attributes"]["POSITION"])
+        np.testing.assert_allclose(pos.max(axis=0) - pos.min(axis=0), prop.size, rtol=0.02)
+        rgb = np.array([int(prop.color[i:i + 2], 16) for i in (1, 3, 5)]) / 255
+        linear = np.where(rgb <= 0.04045, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
+        colour = gl["materials"][prim["material"]]["pbrMetallicRoughness"]["baseColorFactor"]
+        np.testing.assert_allclose(colour[:3], linear, atol=1e-6)
+    # the actors are as they were without props
+    plain = Glb(glb_bytes(anim.tracks()))
+    assert gl["nodes"][:len(plain.json["nodes"])] == plain.json["nodes"]
+    assert gl["skins"] == plain.json["skins"]
+
+
+def test_no_props_no_change(walk):
+    assert glb_bytes([Track("a", walk)], props=[]) == glb_bytes([Track("a", walk)])
+
+
+def test_props_pass_the_validator_and_threejs_moves_them(tmp_path, library_db):
+    from scene_props import scene
+
+    anim, (ball, chair) = scene(library_db)
+    path = tmp_path / "scene.glb"
+    write_glb(anim.tracks(), path, props=[ball, chair])
+    frames = [0, ball.n_frames // 2, ball.n_frames - 1]
+    out = _node_check(path, [f / ball.fps for f in frames], "gltf-validator")
+    report = out["validator"]
+    assert report["numErrors"] == 0 and report["numWarnings"] == 0, report["messages"]
+    if out["three"] is None:
+        pytest.skip(f"npm package three not found in {NODE_MODULES}")
+    props = {p["name"]: p for p in out["three"]["props"]}
+    assert sorted(props) == ["ボール", "椅子"] and props["椅子"]["shape"] == "chair" and props["ボール"]["mesh"]
+    for k, f in enumerate(frames):
+        np.testing.assert_allclose(props["ボール"]["frames"][k], ball.positions[f], atol=1e-4)
+        np.testing.assert_allclose(props["椅子"]["frames"][k], chair.positions[0], atol=1e-6)
+    # a loader sees the ball in the hand it follows
+    from text2anim.core.bodyparts import body_map
+
+    name, motion = list(anim.motions.items())[-1]
+    actor = next(a for a in out["three"]["actors"] if a["name"].startswith(name))  # "花子_mesh"
+    hand = body_map(motion.skeleton).hands["right"]  # the skin's joints are the skeleton's, in its order
+    for k in range(len(frames)):
+        np.testing.assert_allclose(props["ボール"]["frames"][k], actor["frames"][k][hand], atol=1e-3)
+
+
+def test_a_users_rig_file_gets_the_props_scaled_with_the_character(tmp_path, library_db):
+    """With --rig CHARACTER.glb the props go into each actor's file, where the retargeted hand is: the retarget
+    scales the travel by the legs' ratio about the origin, so the props are scaled by it too."""
+    from rig_builders import mixamo_glb
+    from scene_props import in_hand
+
+    import text2anim
+    from text2anim.core.bodyparts import body_map
+    from text2anim.export import ExportOptions, export_props, glb_files
+
+    anim = text2anim.animate("太郎は歩いて、手を振る。", db=library_db)
+    (motion,) = anim.motions.values()
+    ball = in_hand(motion)
+    rig = mixamo_glb(tmp_path / "hero.glb", scale=1.3)
+    opts = ExportOptions(rig=rig)
+    (moved,) = anim.exported_motions(opts, units=False).values()
+    (placed,) = export_props([ball], anim.motions, opts)
+    hand = moved.positions[:, body_map(moved.skeleton).hands["right"]]
+    assert placed.size[0] == pytest.approx(ball.size[0] * 1.3, rel=0.05)
+    gap = np.linalg.norm(placed.positions - hand, axis=1)
+    assert np.median(gap) < 0.05 and gap.max() < 0.15, (np.median(gap), gap.max())  # scaled, it stays in the hand
+    data = glb_files({"太郎": moved}, opts, [placed])["太郎"]
+    g = Glb(data)
+    nodes = _prop_nodes(g)
+    assert list(nodes) == ["ボール"]
+    np.testing.assert_allclose(_channels(g, nodes["ボール"])["translation"], placed.positions, atol=1e-5)
+    assert any(n.get("skin") is not None for n in g.json["nodes"])  # the user's character is still there
+    path = tmp_path / "hero_anim.glb"
+    path.write_bytes(data)
+    report = _node_check(path, [0], "gltf-validator")["validator"]
+    assert report["numErrors"] == 0 and report["numWarnings"] == 0, report["messages"]
+    # in place or looped, the body leaves the frames the things move in: the GLB has the body alone
+    assert export_props([ball], anim.motions, ExportOptions(in_place=True)) == []
+    assert export_props([ball], anim.motions, ExportOptions(root_motion=True)) == [ball]
+
+
+def test_a_text_that_names_things_writes_them_into_its_glb(tmp_path, library_db):
+    """Through the API: the scene stage's things (a chair under the sitter, a book in the hand) in the GLB."""
+    import text2anim
+
+    anim = text2anim.animate("太郎は椅子に座って本を読む。", db=library_db)
+    anim.save(glb=tmp_path / "a.glb")
+    g = Glb((tmp_path / "a.glb").read_bytes())
+    nodes = _prop_nodes(g)
+    assert list(nodes) == [p.name for p in anim.props()] == ["椅子", "本"]
+    assert _channels(g, nodes["椅子"]) == {}  # a chair stays put
+    book = next(p for p in anim.props() if p.name == "本")
+    np.testing.assert_allclose(_channels(g, nodes["本"])["translation"], book.positions, atol=1e-5)
+    report = _node_check(tmp_path / "a.glb", [0], "gltf-validator")["validator"]
+    assert report["numErrors"] == 0 and report["numWarnings"] == 0, report["messages"]

@@ -234,3 +234,40 @@ def test_a_dropped_vrm_character_is_drawn_skinned_and_animated(page, tmp_path):
     assert out.read_bytes()[:4] == b"glTF" and out.stat().st_size > avatar.stat().st_size
     page.click("#builtin")  # back to the built-in character, in the viewer
     page.wait_for_function("!document.getElementById('view').hidden && !window.__studio.busy", timeout=30000)
+
+
+def test_the_things_of_a_scene_show_in_the_viewer_the_top_view_and_on_a_dropped_character(page, tmp_path):
+    """The things the text names (the scene stage's: a chair under the sitter, a book in the hand) are drawn in
+    the viewer, in the live top view and, on a dropped character, in the skinned view with their names."""
+    from rig_builders import vrm_file
+
+    page.fill("#text", "太郎は椅子に座って本を読む。")
+    page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
+    view = page.frame_locator("#view")
+    assert "椅子" in view.locator("#legend").inner_text() and "本" in view.locator("#legend").inner_text()
+    names = page.evaluate("JSON.parse(document.getElementById('view').contentDocument"
+                          ".getElementById('t2a-data').textContent).props.map(p => p.name)")
+    assert names == ["椅子", "本"]
+    # the top view: the actor's path, the chair's footprint, the book's at the start and the end and its path
+    top = page.locator("#topview")
+    assert top.locator("polyline.path").count() == 1 and top.locator("polyline.thing-path").count() == 1
+    assert top.locator(".foot").count() == 3
+    marker, api = top.locator("circle.now").first, "document.getElementById('view').contentWindow.__t2a"
+
+    def at(t):  # the actor's marker, the viewer paused at t
+        page.evaluate(f"{api}.pause(); {api}.seek({t})")
+        page.wait_for_function(f"window.__studioTop.time === {api}.time", timeout=5000)
+        return [float(marker.get_attribute(k)) for k in ("cx", "cy")]
+
+    assert at(0) != at(page.evaluate(f"{api}.duration"))  # it follows the time on screen
+    page.evaluate(f"{api}.play()")
+    page.screenshot(path=str(tmp_path / "scene.png"), full_page=True)
+    # a dropped character: the GLB drawn by three.js carries the things, each labelled
+    _drop(page, vrm_file(tmp_path / "avatar.vrm"))
+    page.wait_for_function("window.__studio3d && window.__studio3d.loads >= 1 && !window.__studio.busy", timeout=60000)
+    assert page.evaluate("window.__studio3d.props") == ["椅子", "本"]
+    labels = page.locator("#view3d .label3d")
+    assert labels.all_inner_texts() == ["椅子", "本"] and labels.first.is_visible()
+    page.screenshot(path=str(tmp_path / "skinned scene.png"), full_page=True)
+    page.click("#builtin")
+    page.wait_for_function("document.getElementById('builtin').hidden", timeout=30000)

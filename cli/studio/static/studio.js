@@ -106,6 +106,7 @@
     $("share").href = "/?text=" + encodeURIComponent(text);
     var view = $("view");
     timeline(data);
+    window.__studioTop.show(data.top);
     if (data.rig) { skinned(text, seq, data); return; }
     $("view3d").hidden = true; view.hidden = false;
     view.onload = function () { ready(view, seq, data); };
@@ -137,6 +138,8 @@
                            body: JSON.stringify({ text: text, edits: editList(), format: "glb" }) })
       .then(function (r) { if (!r.ok) throw new Error("cannot draw the character"); return r.arrayBuffer(); })
       .then(function (buffer) {
+        var hidden = $("view").contentWindow && $("view").contentWindow.__t2a;
+        if (hidden && hidden.ready) hidden.pause();  // a hidden viewer drawing every frame slows the skinned one
         $("view").hidden = true; $("view3d").hidden = false;
         return api3d.show(buffer, at);
       })

@@ -1,6 +1,8 @@
 /* text2anim studio: the user's character drawn skinned (three.js, vendored in /static/vendor/three/),
  * playing the GLB the studio exports for it, on a floor with a grid and shadows; orbit and zoom with the
- * mouse. State for tests: window.__studio3d (ready, time, duration, playing). */
+ * mouse. The things of the scene are in the same file (nodes whose extras name a prop shape: meshes moved by
+ * the same animation), each labelled with its name. State for tests: window.__studio3d (ready, time, duration,
+ * playing, props: the things' names). */
 import * as THREE from "three";
 import { GLTFLoader } from "/static/vendor/three/examples/jsm/loaders/GLTFLoader.js";
 import { OrbitControls } from "/static/vendor/three/examples/jsm/controls/OrbitControls.js";
@@ -23,9 +25,9 @@ const floor = new THREE.Mesh(new THREE.PlaneGeometry(1, 1), new THREE.MeshStanda
 floor.rotation.x = -Math.PI / 2;
 floor.receiveShadow = true;
 scene.add(floor);
-let grid = null, model = null, mixer = null, action = null;
+let grid = null, model = null, mixer = null, action = null, things = [];
 const timer = new THREE.Timer();
-const S = { ready: false, time: 0, duration: 0, playing: true, loads: 0 };
+const S = { ready: false, time: 0, duration: 0, playing: true, loads: 0, props: [] };
 window.__studio3d = S;
 
 function resize() {
@@ -72,10 +74,18 @@ export function show(buffer, at) {
       if (model) scene.remove(model);
       model = gltf.scene;
       bones = [];
+      things.forEach((t) => t.label.remove());
+      things = [];
       model.traverse((o) => {
         if (o.isMesh) { o.castShadow = true; o.frustumCulled = false; }
         if (o.isBone) bones.push(o);
+        if (o.userData && o.userData.prop) {
+          const g = o.geometry;
+          if (g) g.computeBoundingSphere();
+          things.push({ node: o, label: label(o.name), up: (g ? g.boundingSphere.radius : 0.2) + 0.05 });
+        }
       });
+      S.props = things.map((t) => t.node.name);
       hips = bones[0] || null;
       scene.add(model);
       mixer = new THREE.AnimationMixer(model);
@@ -92,10 +102,33 @@ export function show(buffer, at) {
   });
 }
 
+function label(text) {
+  const div = document.createElement("div");
+  div.className = "label3d";
+  div.textContent = text;
+  box.appendChild(div);
+  return div;
+}
+
+function placeLabels() {
+  // each thing's name just above it, where the camera sees it
+  const w = box.clientWidth, h = box.clientHeight, p = new THREE.Vector3();
+  things.forEach((t) => {
+    t.node.getWorldPosition(p);
+    p.y += t.up;
+    p.project(camera);
+    const seen = p.z < 1 && Math.abs(p.x) <= 1 && Math.abs(p.y) <= 1;
+    t.label.style.display = seen ? "block" : "none";
+    t.label.style.left = ((p.x + 1) / 2 * w) + "px";
+    t.label.style.top = ((1 - p.y) / 2 * h) + "px";
+  });
+}
+
 export function seek(t) { if (mixer) mixer.setTime(t); }
 
 function tick() {
   timer.update();
+  if (box.hidden) { requestAnimationFrame(tick); return; }  // the viewer page is shown: nothing to draw here
   const dt = timer.getDelta();
   if (mixer && S.playing) { mixer.update(dt); }
   if (mixer) S.time = action ? action.time : 0;
@@ -106,6 +139,7 @@ function tick() {
   }
   controls.update();
   renderer.render(scene, camera);
+  placeLabels();
   requestAnimationFrame(tick);
 }
 window.addEventListener("resize", resize);
