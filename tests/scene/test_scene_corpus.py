@@ -1,0 +1,48 @@
+"""The scene corpus (tests/corpus/scene_corpus.jsonl, issue 45): every text animates, its analysis is what the
+line expects, and every check a reader of it would make holds on the output (text2anim.scene_figures: an
+approach ends facing the person at a natural distance, a gesture faces its addressee, two people's contact
+instants meet hand to hand, a held thing stays in the hand, a kicked or thrown one leaves at the contact, a
+seat is under the hips, ...); and every animation meets the built-in quality limits."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+import text2anim
+from text2anim.cli.batch.lines import check
+from text2anim.core.metrics import against_limits, quality
+from text2anim.motiondb import MotionDB
+from text2anim.nlp import analyze
+from text2anim.scene_figures import CHECKS, figures
+
+LINES = [json.loads(x) for x in (Path(__file__).resolve().parents[1] / "corpus" / "scene_corpus.jsonl")
+         .read_text(encoding="utf-8").splitlines() if x.startswith("{")]
+
+
+def test_the_corpus_has_forty_texts_and_checks_of_every_kind():
+    assert len(LINES) >= 40 and len({x["text"] for x in LINES}) == len(LINES)
+    assert {c["check"] for x in LINES for c in x["scene"]} == set(CHECKS)
+
+
+@pytest.mark.parametrize("line", LINES, ids=[x["text"] for x in LINES])
+def test_the_analysis_names_each_target_and_role(line):
+    assert not check(line["expect"], analyze(line["text"]).to_dict(extra=True), None)
+
+
+@pytest.fixture(scope="module")
+def db(library_db):
+    with MotionDB.open(library_db) as opened:
+        yield opened
+
+
+@pytest.mark.parametrize("line", LINES, ids=[x["text"] for x in LINES])
+def test_the_scene_is_what_a_reader_pictures(db, line):
+    anim = text2anim.animate(line["text"], db=db, fallback="nearest")
+    missed = [f"{c['check']} {c.get('actor') or c.get('actors')}: {f.value:.3f} {f.unit} {f.note}"
+              for c, f in zip(line["scene"], figures(anim, line["scene"])) if not f.passed]
+    assert not missed, missed
+    for actor, motion in anim.motions.items():
+        q = quality(motion)
+        assert all(against_limits(q).values()), (actor, q)
