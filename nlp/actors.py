@@ -52,7 +52,14 @@ def speaker_label(ph: Phrase) -> str | None:
 
 def person_name(ph: Phrase) -> str | None:
     """The actor name if ``ph`` names a person (太郎, 花子さん, 彼, お父さん, 子供たち, 店長, 運転手),
-    or refers to persons (二人, みんな: :mod:`reference` says whom), as written."""
+    or refers to persons (二人, みんな: :mod:`reference` says whom), as written (kept in ``ph.named``)."""
+    named = ph.named
+    if named is False:
+        named = ph.named = _person_name(ph)
+    return named if isinstance(named, str) else None
+
+
+def _person_name(ph: Phrase) -> str | None:
     toks = ph.tokens
     if toks[-1].surface == ":":
         return speaker_label(ph)

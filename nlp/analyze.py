@@ -10,7 +10,7 @@ from .errors import NLPError
 from .motions import annotate
 from .targets import add_counterparts, time_catches
 from .tokens import OffsetMap, normalize, tokenize
-from .types import Analysis, Bunsetsu, Constraint, MotionSpec
+from .types import Analysis, Constraint, MotionSpec
 
 #: Longest text accepted, in characters (a few pages of a script).  Longer
 #: texts are refused rather than producing an unreadable animation.
@@ -56,8 +56,7 @@ def analyze(text: str) -> Analysis:
     _add_co_actors(specs, constraints, {p.id: p.co_actors for p in motions if p.co_actors})
     notes.extend(add_counterparts(specs, constraints))
     time_catches(specs, constraints)
-    return Analysis(text, tuple(specs), tuple(constraints), _bunsetsu(text, offsets, phrases),
-                    tuple(notes))
+    return Analysis(text, tuple(specs), tuple(constraints), _phrases(offsets, phrases), tuple(notes))
 
 
 def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: dict[int, tuple[str, ...]]) -> None:
@@ -88,12 +87,10 @@ def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: d
                 constraints.append(Constraint(orig, copy, "parallel", None, None, "composition", "と"))
 
 
-def _bunsetsu(text: str, offsets: OffsetMap, phrases: list[Phrase]) -> tuple[Bunsetsu, ...]:
-    out = []
-    for ph in phrases:
-        a, b = offsets.span(ph.start, ph.end)
-        out.append(Bunsetsu(ph.index, text[a:b], (a, b), ph.sentence, ph.role, ph.head, ph.why, ph.persons))
-    return tuple(out)
+def _phrases(offsets: OffsetMap, phrases: list[Phrase]) -> tuple[tuple, ...]:
+    """The rows :attr:`Analysis.bunsetsu` is made of (plain tuples: most analyses never read them)."""
+    return tuple((ph.index, offsets.span(ph.start, ph.end), ph.sentence, ph.role, ph.head, ph.why, ph.persons)
+                 for ph in phrases)
 
 
 def _why_not(preds: list, norm: str) -> str:

@@ -24,7 +24,7 @@ class Phrase:
     """A mutable bunsetsu under analysis (``types.Bunsetsu`` is its frozen view)."""
 
     __slots__ = ("index", "tokens", "sentence", "group", "quoted", "role", "head",
-                 "why", "pred", "persons", "key")
+                 "why", "pred", "persons", "key", "named")
 
     def __init__(self, index: int, tokens: list[Token], sentence: int, quoted: bool):
         self.index = index
@@ -41,6 +41,9 @@ class Phrase:
         self.persons: tuple[str, ...] = ()
         #: the surface without trailing punctuation (for lexicon look-ups; tokens are fixed once chunked)
         self.key = _key(tokens)
+        #: :func:`actors.person_name` of the phrase, kept once asked (``False``: not asked yet): several
+        #: passes ask it of most phrases of every text
+        self.named: str | None | bool = False
 
     @property
     def predicate(self) -> Pred:

@@ -60,6 +60,8 @@ def _is_numeral(tok: Token) -> bool:
 
 def merge_numbers(tokens: list[Token]) -> list[Token]:
     """Join ``digits . digits`` and runs of kanji numerals into single tokens."""
+    if not any(t.pos2 == "数詞" or t.surface[:1].isdigit() for t in tokens):
+        return tokens  # most texts count nothing
     out: list[Token] = []
     i, n = 0, len(tokens)
     while i < n:

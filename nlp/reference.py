@@ -93,8 +93,8 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
     notes: list[str] = []
     acting: dict[int, list[str]] = {}  # clause group -> the persons its actor phrases named so far
     for i, ph in enumerate(phrases):
-        if ph.role not in _MAY_NAME:
-            continue
+        if ph.role not in _MAY_NAME or ph.pred is not None or person_name(ph) is None:
+            continue  # (asked of most phrases of every text: what mention() would refuse first, cheaply)
         m = mention(phrases, i)
         if m is None:
             continue

@@ -39,20 +39,22 @@ _O_ROW = frozenset("おこごそぞとどのほぼぽもよろょ")
 
 def repair(line: str, offset: int, tokens: list[Token], notes: list[str]) -> list[Token]:
     """The tokens of ``line`` (starting at ``offset`` in the text) with misspelt verbs read as meant."""
-    singles = [k for k, t in enumerate(tokens) if len(t.surface) == 1]  # the pass reads no other
-    if not singles and _DRAWL.isdisjoint(line):
+    drawn = not _DRAWL.isdisjoint(line)
+    # both passes below read a one-character noun (or suffix) only: most lines have none
+    singles = [k for k, t in enumerate(tokens) if len(t.surface) == 1 and t.pos1 in ("名詞", "接尾辞")]
+    if not singles and not drawn:
         return tokens
     if any(k + 1 < len(tokens) and tokens[k + 1].pos1 == "動詞" for k in singles):
         tokens = _same_sound(tokens, notes)
-    edited = _Line(line, offset)
-    k = 0
+    edited = None
+    k = singles[0] if singles else len(tokens)  # no token before the first one-character noun is suspect
     while k < len(tokens):  # each repair tags the edited line again: read on from its tokens
         if len(tokens[k].surface) == 1 and _suspect(tokens, k):
-            again = _okurigana(edited, tokens[k], notes)
+            again = _okurigana(edited or _Line(line, offset), tokens[k], notes)
             if again is not None:
                 edited, tokens = again
         k += 1
-    return _drawn_out(edited, tokens) if not _DRAWL.isdisjoint(line) else tokens
+    return _drawn_out(edited or _Line(line, offset), tokens) if drawn else tokens
 
 
 class _Line:

@@ -42,6 +42,8 @@ from .types import Constraint, MotionSpec
 TARGET_PARTICLES = frozenset("に へ まで から と".split())
 #: Verbs whose を-place is where the actor leaves from (店を出る).
 LEAVING_VERBS = frozenset("出る 離れる 去る 降りる 立ち去る 出て行く".split())
+#: The て-forms that may say a way or a facing, no motion of their own.
+_WAY_TE = FACING_VERBS | DIRECTION_TE
 #: Roles a person keeps as the addressee of a following gesture (近づいて、お辞儀する).
 DIRECTED = frozenset(("goal", "addressee", "partner", "patient", "recipient"))
 
@@ -75,9 +77,7 @@ def attach_targets(phrases: list[Phrase]) -> None:
         if pred.motion:
             _settle(pred, pending, phrases)
         pending = []
-    _facing_partners(phrases)
-    _inherit_addressee(phrases)
-    _things_named_before(phrases)
+    _follow_on([ph.pred for ph in phrases if ph.pred is not None])
 
 
 # ---------------------------------------------------------------- the nouns
@@ -204,7 +204,7 @@ def _mark_direction_and_facing(phrases: list[Phrase]) -> None:
     """花子に向かって走る: 向かって says the way of the next motion; 向かい合って that the actors face."""
     for i, ph in enumerate(phrases):
         pred = ph.pred
-        if pred is None or pred.reason or pred.ending not in ("te", "renyou"):
+        if pred is None or pred.reason or pred.verb not in _WAY_TE or pred.ending not in ("te", "renyou"):
             continue
         nxt = next((q for q in phrases[i + 1:] if q.pred), None)
         if nxt is None or nxt.group != ph.group or not nxt.predicate.motion:
@@ -216,45 +216,38 @@ def _mark_direction_and_facing(phrases: list[Phrase]) -> None:
             pred.reason = "direction"
 
 
-def _facing_partners(phrases: list[Phrase]) -> None:
-    """Co-actors of a motion done to each other (太郎と花子は抱き合う, 〜合う) or after 向かい合って: each
-    one's partner is the other."""
-    preds = [ph.pred for ph in phrases if ph.pred]
-    for a, b in zip([None, *preds], preds):
-        facing = a is not None and a.reason == "facing"
-        mutual = b.verb in RECIPROCAL_VERBS or b.verb.endswith("合う")
-        if (facing or mutual) and b.motion and not b.target and b.co_actors:
-            b.target, b.target_role, b.target_person = b.co_actors[0], "partner", True
+def _follow_on(preds: list[Pred]) -> None:
+    """What a motion takes from the ones before it, in text order (one pass: it runs on every text):
 
-
-def _inherit_addressee(phrases: list[Phrase]) -> None:
-    """A gesture right after a motion of the same actor directed at a person is addressed to that person."""
+    - co-actors of a motion done to each other (太郎と花子は抱き合う, 〜合う) or after 向かい合って are each
+      other's partners;
+    - a gesture right after a motion of the same actor directed at a person is addressed to that person
+      (花子に近づいて、お辞儀する), a touch of them done to them (駆け寄って、抱きしめる);
+    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note.
+    """
     last: dict[str | None, Pred] = {}
-    for ph in phrases:
-        pred = ph.pred
-        if pred is None or not pred.motion:
+    thing: str | None = None
+    before: Pred | None = None
+    for pred in preds:
+        facing = before is not None and before.reason == "facing"
+        before = pred
+        if not pred.motion:
             continue
+        if (facing or pred.verb in RECIPROCAL_VERBS or pred.verb.endswith("合う")) and not pred.target \
+                and pred.co_actors:
+            pred.target, pred.target_role, pred.target_person = pred.co_actors[0], "partner", True
         prev = last.get(pred.actor)
         if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
                 and pred.verb not in LOCOMOTION_VERBS and pred.verb not in SUPPORT_VERBS):
             role = "patient" if pred.verb in CONTACT_VERBS else "addressee"
             pred.target, pred.target_role, pred.target_person = prev.target, role, True
         last[pred.actor] = pred
-
-
-def _things_named_before(phrases: list[Phrase]) -> None:
-    """それ / これ as an object: the thing last named (花子はそれを投げた: the ball)."""
-    last: str | None = None
-    for ph in phrases:
-        pred = ph.pred
-        if pred is None or not pred.motion or not pred.object:
-            continue
-        if pred.object in THING_ANAPHORS and last is not None:
-            said = f"{pred.object} read as {last}, the thing last named"
+        if pred.object in THING_ANAPHORS and thing is not None:
+            said = f"{pred.object} read as {thing}, the thing last named"
             pred.note = f"{pred.note}; {said}" if pred.note else said
-            pred.object = last
-        elif pred.object not in THING_ANAPHORS and pred.target_role != "patient":
-            last = pred.object
+            pred.object = thing
+        elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
+            thing = pred.object
 
 
 # ---------------------------------------------------------------- counterparts

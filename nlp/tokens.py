@@ -181,6 +181,8 @@ def _repair_kana(line: str, offset: int, tokens: list[Token]) -> list[Token]:
                 out.extend(fixed)
                 break
         out.append(tok)
+    if "てを" not in line:
+        return out  # no て right before を
     for i, tok in enumerate(out[:-1]):
         nxt = out[i + 1]
         if tok.surface == "て" and tok.pos1 in ("助詞", "記号") and nxt.surface == "を" and nxt.pos1 == "助詞":

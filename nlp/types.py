@@ -151,10 +151,18 @@ class Analysis:
     text: str
     motions: tuple[MotionSpec, ...]
     constraints: tuple[Constraint, ...]
-    bunsetsu: tuple[Bunsetsu, ...] = field(default=(), compare=False)
+    #: each phrase as ``(index, (start, end), sentence, role, head, why, persons)``, ``span`` in ``text``:
+    #: the :class:`Bunsetsu` of :attr:`bunsetsu`, made when asked (``parse --explain``; most analyses never are)
+    phrases: tuple[tuple, ...] = field(default=(), compare=False, repr=False)
     #: what was read differently from how it is written (typos: 太郎わ -> 太郎は, 手を降る ->
     #: 手を振る), one sentence each, for stderr and ``parse --explain``
     notes: tuple[str, ...] = field(default=(), compare=False)
+
+    @property
+    def bunsetsu(self) -> tuple[Bunsetsu, ...]:
+        """The phrases of the text with the head each depends on and what the analyzer made of them."""
+        return tuple(Bunsetsu(i, self.text[a:b], (a, b), sentence, role, head, why, persons)
+                     for i, (a, b), sentence, role, head, why, persons in self.phrases)
 
     def to_dict(self, extra: bool = False) -> dict:
         """docs/language.md §5; ``extra`` adds ``hold``, ``reading``, ``written``, ``phrase`` and ``cue``."""
