@@ -43,7 +43,7 @@ from .types import Thing
 
 G = 9.81  # m/s²
 RESTITUTION = 0.45
-ROLL_DECELERATION = 1.2  # m/s²
+ROLL_DECELERATION = 2.0  # m/s²: a ball on grass
 #: A kicked ball leaves faster than the foot that strikes it (a ball's mass is small against the leg's).
 KICK_GAIN = 1.3
 KICK = frozenset("蹴る キックする シュートする 蹴り上げる 蹴飛ばす".split())
@@ -270,7 +270,7 @@ def _kick(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float
         p.rest(0 if not p.placed() else f0, start)
         p.events.append((0.0, "on the floor"))
     v = np.gradient(toe, 1.0 / fps, axis=0)[hit] * KICK_GAIN
-    horizontal = float(np.clip(np.hypot(v[0], v[2]), 4.0, 12.0))
+    horizontal = float(np.clip(np.hypot(v[0], v[2]), 4.0, 7.0))  # a kick about, not a shot at goal
     aim = _aim(r, motions, p.pos[hit], hit, heading)
     lift = float(np.clip(v[1], 0.5, 3.0))
     to = _receiver_at(r, motions, hit)
