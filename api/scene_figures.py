@@ -96,6 +96,13 @@ def _motion(anim, actor):
     return anim.motions[actor]
 
 
+def _thing(props, c: dict):
+    """The check's thing as drawn (:class:`output.viewer.types.Prop`)."""
+    if c["thing"] not in props:
+        raise _Missing(f"{c['thing']} is not in the scene")
+    return props[c["thing"]]
+
+
 def _frame(anim, t: float, m) -> int:
     return int(np.clip(round(t * anim.fps), 0, m.n_frames - 1))
 
@@ -223,9 +230,7 @@ def _wrists(m):
 def _holds(anim, rows, props, c):
     r = _row(rows, c["actor"], c["verb"])
     m = _motion(anim, c["actor"])
-    if c["thing"] not in props:
-        raise _Missing(f"{c['thing']} is not in the scene")
-    p = props[c["thing"]]
+    p = _thing(props, c)
     left, right = _wrists(m)
     f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
     a, b = _HELD_PART.get(r.verb, (1 / 3, 2 / 3))  # taken at the start of a pick, given away in a hand-over, ...
@@ -247,9 +252,7 @@ _HELD_PART = {**dict.fromkeys(("拾う", "持ち上げる", "拾い上げる"), 
 def _launch(anim, rows, props, c):
     r = _row(rows, c["actor"], c["verb"])
     m = _motion(anim, c["actor"])
-    if c["thing"] not in props:
-        raise _Missing(f"{c['thing']} is not in the scene")
-    p = props[c["thing"]]
+    p = _thing(props, c)
     f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
     v = np.linalg.norm(np.gradient(p.positions, 1.0 / anim.fps, axis=0), axis=1)
     bm = body_map(m.skeleton)
@@ -273,9 +276,7 @@ def _launch(anim, rows, props, c):
 def _catch(anim, rows, props, c):
     r = _row(rows, c["actor"], c["verb"])
     m = _motion(anim, c["actor"])
-    p = props.get(c["thing"])
-    if p is None:
-        raise _Missing(f"{c['thing']} is not in the scene")
+    p = _thing(props, c)
     left, right = _wrists(m)
     mid = 0.5 * (left + right)
     f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
@@ -287,9 +288,7 @@ def _catch(anim, rows, props, c):
 def _seat(anim, rows, props, c):
     r = _row(rows, c["actor"], c["verb"])
     m = _motion(anim, c["actor"])
-    p = props.get(c["thing"])
-    if p is None:
-        raise _Missing(f"{c['thing']} is not in the scene")
+    p = _thing(props, c)
     f = _frame(anim, r.start, m) if c["verb"] in ("立ち上がる", "立つ") else min(_frame(anim, r.end, m), m.n_frames - 1)
     hips = m.root_positions[f]
     top = p.positions[f, 1] + (0.0 if p.shape == "chair" else 0.5 * p.size[1])  # a chair's seat: half its height
@@ -334,9 +333,7 @@ def _behind(anim, rows, props, c):
 def _reaches(anim, rows, props, c):
     r = _row(rows, c["actor"], c["verb"])
     m = _motion(anim, c["actor"])
-    p = props.get(c["thing"])
-    if p is None:
-        raise _Missing(f"{c['thing']} is not in the scene")
+    p = _thing(props, c)
     _, right = _wrists(m)
     f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
     half = 0.5 * np.array(p.size)

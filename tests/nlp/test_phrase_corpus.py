@@ -19,6 +19,7 @@ import pytest
 import text2anim
 from text2anim.cli.main import main
 from text2anim.motiondb import MotionDB, UnknownVerbError
+import corpus_lines
 
 CORPUS = Path(__file__).parents[1] / "corpus" / "phrase_corpus.jsonl"
 
@@ -27,16 +28,14 @@ CLASSES = {"idiom": 20, "loanword": 12, "mimetic": 20}
 
 
 def _items() -> list[dict]:
-    return [json.loads(x) for x in CORPUS.read_text(encoding="utf-8").splitlines() if x.startswith("{")]
+    return corpus_lines.items(CORPUS.name)
 
 
 def test_corpus_is_large_new_and_covers_every_class():
     items = _items()
     assert len(items) >= 45
-    counts = {c: sum(it["category"] == c for it in items) for c in CLASSES}
-    assert all(counts[c] >= n for c, n in CLASSES.items()), counts
-    others = "".join(CORPUS.with_name(f).read_text(encoding="utf-8") for f in ("nlp_corpus.jsonl", "typed_corpus.jsonl"))
-    assert not [it["text"] for it in items if f'"text": {json.dumps(it["text"], ensure_ascii=False)}' in others]
+    assert not corpus_lines.short_classes(items, CLASSES)
+    assert not corpus_lines.repeated(items, "nlp_corpus.jsonl", "typed_corpus.jsonl")
 
 
 def test_every_phrase_parses_as_expected(capsys, tmp_path):

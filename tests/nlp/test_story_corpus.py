@@ -10,6 +10,7 @@ import pytest
 
 from text2anim.cli.main import main
 from text2anim.nlp import NLPError, analyze
+import corpus_lines
 
 CORPUS = Path(__file__).parents[1] / "corpus" / "story_corpus.jsonl"
 
@@ -18,16 +19,15 @@ CLASSES = {"story": 15, "keigo": 12, "instruction": 12, "spoken": 12, "typo": 12
 
 
 def _items() -> list[dict]:
-    return [json.loads(x) for x in CORPUS.read_text(encoding="utf-8").splitlines() if x.startswith("{")]
+    return corpus_lines.items(CORPUS.name)
 
 
 def test_corpus_is_large_new_and_covers_every_class():
     items = _items()
     assert len(items) >= 80
-    counts = {c: sum(it["category"] == c for it in items) for c in CLASSES}
-    assert all(counts[c] >= n for c, n in CLASSES.items()), counts
-    others = "".join(p.read_text(encoding="utf-8") for p in CORPUS.parent.glob("*.jsonl") if p != CORPUS)
-    assert not [it["text"] for it in items if f'"text": {json.dumps(it["text"], ensure_ascii=False)}' in others]
+    assert not corpus_lines.short_classes(items, CLASSES)
+    others = [p.name for p in CORPUS.parent.glob("*.jsonl") if p != CORPUS]
+    assert not corpus_lines.repeated(items, *others)
     # most lines also say which clip plays: the text is checked end to end
     assert sum(any("clip" in m for m in it["expect"].get("motions", [])) for it in items) >= 90
 

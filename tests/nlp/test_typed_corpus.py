@@ -13,6 +13,7 @@ import pytest
 
 from text2anim.cli.main import main
 from text2anim.nlp import NLPError, analyze
+import corpus_lines
 
 CORPUS = Path(__file__).parents[1] / "corpus" / "typed_corpus.jsonl"
 
@@ -22,16 +23,14 @@ CLASSES = {"script": 15, "names": 10, "nonaction": 15, "casual": 15, "variants":
 
 
 def _items() -> list[dict]:
-    return [json.loads(x) for x in CORPUS.read_text(encoding="utf-8").splitlines() if x.startswith("{")]
+    return corpus_lines.items(CORPUS.name)
 
 
 def test_corpus_is_large_and_covers_every_class():
     items = _items()
     assert len(items) >= 100
-    counts = {c: sum(it["category"] == c for it in items) for c in CLASSES}
-    assert all(counts[c] >= n for c, n in CLASSES.items()), counts
-    nlp_corpus = CORPUS.with_name("nlp_corpus.jsonl").read_text(encoding="utf-8")
-    assert not [it["text"] for it in items if f'"text": {json.dumps(it["text"], ensure_ascii=False)}' in nlp_corpus]
+    assert not corpus_lines.short_classes(items, CLASSES)
+    assert not corpus_lines.repeated(items, "nlp_corpus.jsonl")
 
 
 def test_every_typed_sentence_parses_as_expected(capsys, tmp_path):

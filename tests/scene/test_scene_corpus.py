@@ -5,10 +5,9 @@ instants meet hand to hand, a held thing stays in the hand, a kicked or thrown o
 seat is under the hips, ...); and every animation meets the built-in quality limits."""
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 import pytest
+
+import corpus_lines
 
 import text2anim
 from text2anim.cli.batch.lines import check
@@ -17,8 +16,7 @@ from text2anim.motiondb import MotionDB
 from text2anim.nlp import analyze
 from text2anim.scene_figures import CHECKS, figures
 
-LINES = [json.loads(x) for x in (Path(__file__).resolve().parents[1] / "corpus" / "scene_corpus.jsonl")
-         .read_text(encoding="utf-8").splitlines() if x.startswith("{")]
+LINES = corpus_lines.items("scene_corpus.jsonl")
 
 
 def test_the_corpus_has_forty_texts_and_checks_of_every_kind():
