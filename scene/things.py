@@ -373,7 +373,6 @@ def _fly(p: _Path, f: int, start: np.ndarray, v: np.ndarray, fps: float, until: 
 def _give(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float) -> None:
     if p.holder is None or p.holder[0] != r.actor:
         _hold(p, r.actor, m, 0 if not p.placed() else f0)
-    hand = bodies.hand(m, "right")
     contact = _instant(m, "right_hand", "reach", f0, f1)
     taker = r.target if r.target in motions else None
     if taker is None:

@@ -53,10 +53,6 @@ class Staging:
                 return s
         raise KeyError(actor)
 
-    def to_dict(self) -> dict:
-        return {"actors": [{"actor": s.actor, "origin": [round(v, 4) for v in s.origin],
-                            "heading": round(s.heading, 4)} for s in self.spots]}
-
 
 @dataclass(frozen=True)
 class Relation:
@@ -124,7 +120,7 @@ class Thing:
     events: tuple[tuple[float, str], ...] = ()
     known: bool = True
 
-    def to_dict(self, fps: float) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         first, last = self.positions[0], self.positions[-1]
         return {"name": self.name, "shape": self.shape, "size": [round(v, 3) for v in self.size],
                 "shape_known": self.known, "start": [round(float(v), 3) for v in first],
@@ -155,5 +151,5 @@ class Scene:
         return {"actors": [{"actor": s.actor, "origin": [round(v, 3) for v in s.origin],
                             "heading_deg": round(float(np.degrees(s.heading)), 1)} for s in self.spots],
                 "relations": [m.to_dict() for m in self.met],
-                "things": [t.to_dict(self.fps) for t in self.things],
+                "things": [t.to_dict() for t in self.things],
                 "unplaced": list(self.unplaced)}
