@@ -6,7 +6,7 @@ A wait longer than :data:`IDLE_GAP` seconds is filled rather than frozen:
 - before a connection that waits, a looping motion (walk, run) first comes to a stop
   (:data:`STOP_VERB`, joined by ``transition``), then the idle clip (:data:`IDLE_VERB`)
   plays until the next motion; so after 走る。3秒後に歩く the runner stops and stands,
-  breathing, before walking;
+  breathing, before walking; a wait (待つ, or the scene's waiting person) plays on instead;
 - an actor who finishes before the last one stops and idles to the end, or, when no idle
   keeps its posture (seated, lying), holds its last pose: that element's ``end`` moves
   to the end.
@@ -92,8 +92,7 @@ def _fill_gap(find: _Finder[C], add: _Adder[C], prev: Element, prev_info: C, sta
               character: str | None, fps: float) -> list[Element]:
     """Elements that fill ``[start, end)`` s after ``prev``: a stop for a looping motion, then idling."""
     out: list[Element] = []
-    stop = find.by_verb(STOP_VERB, character) if prev_info.cyclic and prev.verb != IDLE_VERB else None  # an
-    # idle (a person waiting, the scene's own) loops but goes nowhere: it has nothing to stop
+    stop = find.by_verb(STOP_VERB, character) if prev_info.cyclic else None
     if stop is not None:
         t1 = min(end, start + played_duration(stop, fps))
         if end - t1 <= IDLE_GAP:
@@ -105,6 +104,12 @@ def _fill_gap(find: _Finder[C], add: _Adder[C], prev: Element, prev_info: C, sta
         out.append(add.add(prev.actor, IDLE_VERB, idle, "connection", out[-1].id if out else prev.id, start, end,
                            mirrored))
     return out
+
+
+def _idles(e: Element, info: C) -> bool:
+    """Is ``e`` a wait playing a looping idle (a person waiting, the scene's own): it plays on into a wait
+    after it, with nothing to stop (a walk comes to a stop first) and no second idle joined to it."""
+    return e.verb == IDLE_VERB and info.cyclic
 
 
 def _actor_track(find: _Finder[C], add: _Adder[C], mine: list[Element], clips: dict[int, C],
@@ -122,11 +127,14 @@ def _actor_track(find: _Finder[C], add: _Adder[C], mine: list[Element], clips: d
             prev, method = first.id, "connection"
         before = next((x for x in track if x.id == e.prev), None) if e.method == "connection" else None
         if before is not None and e.start - before.end > IDLE_GAP:
-            fill = _fill_gap(find, add, before, clips.get(before.id) or add.clips[before.id], before.end,
-                             e.start, info.character, fps)
-            track.extend(fill)
-            if fill:
-                prev = fill[-1].id
+            before_info = clips.get(before.id) or add.clips[before.id]
+            if _idles(before, before_info):  # a wait goes on waiting: its loop plays longer
+                track[track.index(before)] = replace(before, end=e.start)
+            else:
+                fill = _fill_gap(find, add, before, before_info, before.end, e.start, info.character, fps)
+                track.extend(fill)
+                if fill:
+                    prev = fill[-1].id
         track.append(replace(e, method=method, prev=prev))
     return track
 
@@ -151,9 +159,11 @@ def fill_waits(table: TimeTable, clips: dict[int, C], source: ClipSource[C], fps
         if end - last.end > IDLE_GAP:
             character = clips[last.id].character if last.id in clips else None
             last_info = clips.get(last.id) or add.clips[last.id]
-            fill = _fill_gap(find, add, last, last_info, last.end, end, character, fps)
-            if not fill and not last_info.cyclic:  # no idle keeps this posture (seated, lying): hold the last pose
-                track[track.index(last)] = replace(last, end=end)
+            fill = [] if _idles(last, last_info) else _fill_gap(find, add, last, last_info, last.end, end,
+                                                                 character, fps)
+            if not fill and (not last_info.cyclic or _idles(last, last_info)):
+                track[track.index(last)] = replace(last, end=end)  # hold the last pose (no idle keeps a seated
+                # or lying posture), or wait on
             track.extend(fill)
         elements.extend(track)
     filled = TimeTable(table.text, table.fps, tuple(sorted(elements, key=lambda e: e.id)))
