@@ -8,7 +8,9 @@ Prints one table:
   sentences the way users type them, issue 27), checked by ``text2anim batch --check``;
 - end-to-end rate per class of the story corpus (tests/corpus/story_corpus.jsonl: stories with
   pronouns, keigo, instructions, spoken text, typos, actors together, issue 39): the parse and,
-  where a line names them, the clips its time table plays (the built-in library);
+  where a line names them, the clips its time table plays (the built-in library); the same for the
+  phrase corpus (tests/corpus/phrase_corpus.jsonl: idioms, loan verbs, mimetics, issue 39) and the
+  scene corpus's analysis (tests/corpus/scene_corpus.jsonl: targets, partners, objects, issue 45);
 - cold start: wall time of ``python -m text2anim.cli.main parse TEXT --json`` as a whole
   process (median of several runs), next to a bare ``python -c pass``;
 - GiNZA (only if ``ginza`` and ``ja_ginza`` are importable; install them in
@@ -31,6 +33,8 @@ ROOT = Path(__file__).resolve().parent.parent
 CORPUS = ROOT / "tests" / "corpus" / "nlp_corpus.jsonl"
 TYPED = ROOT / "tests" / "corpus" / "typed_corpus.jsonl"
 STORY = ROOT / "tests" / "corpus" / "story_corpus.jsonl"
+PHRASE = ROOT / "tests" / "corpus" / "phrase_corpus.jsonl"
+SCENE = ROOT / "tests" / "corpus" / "scene_corpus.jsonl"
 COLD_TEXT = "太郎は走って、ボールを蹴る。そして喜ぶ。"
 
 sys.path.insert(0, str(ROOT))
@@ -158,6 +162,8 @@ def main(argv=None) -> int:
     ours = throughput(parse_all, sentences, args.seconds, cpu)
     scores = typed_scores()
     stories = typed_scores(STORY)
+    phrases = typed_scores(PHRASE)
+    scenes = typed_scores(SCENE)
     analyses = parse_all(sentences)
     cold, alone, bare = cold_start(args.runs)
     g = ginza_bench(sentences, analyses, args.seconds)
@@ -171,6 +177,11 @@ def main(argv=None) -> int:
         ("story corpus, end to end (parse and plan)",
          f"{sum(p for p, _ in stories.values())}/{sum(t for _, t in stories.values())}"),
         *((f"  {k}", f"{p}/{t}") for k, (p, t) in stories.items()),
+        ("phrase corpus, parses", f"{sum(p for p, _ in phrases.values())}/{sum(t for _, t in phrases.values())}"),
+        *((f"  {k}", f"{p}/{t}") for k, (p, t) in phrases.items()),
+        ("scene corpus, parses (targets and roles)",
+         f"{sum(p for p, _ in scenes.values())}/{sum(t for _, t in scenes.values())}"),
+        *((f"  {k}", f"{p}/{t}") for k, (p, t) in scenes.items()),
         ("cold start `text2anim parse` (median)", f"{cold * 1000:.0f} ms"),
         ("cold start nlp alone (import + analyze)", f"{alone * 1000:.0f} ms"),
         ("bare interpreter", f"{bare * 1000:.0f} ms"),
