@@ -186,6 +186,8 @@ def _role(pred: Pred, t: Target) -> str | None:
         return "source"
     if verb in PLACING_VERBS:
         return "destination"
+    if t.side is not None and t.person:  # 花子の隣に並ぶ, 太郎の後ろに隠れる: where the body goes
+        return "goal"
     if verb in TRANSFER_VERBS and pred.object not in BODY_PARTS:
         return "recipient" if t.person else "destination"
     if t.particle in ("へ", "まで") or verb in LOCOMOTION_VERBS:

@@ -44,3 +44,10 @@ def test_the_scene_is_what_a_reader_pictures(db, line):
     for actor, motion in anim.motions.items():
         q = quality(motion)
         assert all(against_limits(q).values()), (actor, q)
+
+
+def test_a_side_of_a_person_is_where_the_body_goes_whatever_the_verb():
+    (m,) = analyze("次郎は太郎の隣に並ぶ。").motions
+    assert (m.target, m.target_role, m.target_side) == ("太郎", "goal", "beside")
+    (m,) = analyze("太郎は本を机の上に置く。").motions  # a thing put somewhere stays its destination
+    assert (m.target, m.target_role) == ("机", "destination")
