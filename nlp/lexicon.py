@@ -77,7 +77,7 @@ SPEED_WORDS = {
 #: て-forms used as manner adverbs: never a motion of their own.
 MANNER_TE = frozenset(
     """急いで 慌てて あわてて 黙って だまって 落ち着いて 頑張って がんばって 思い切って
-    張り切って 揃って そろって 改めて 初めて 続けて 気をつけて 注意して""".split()
+    張り切って 揃って そろって 改めて 初めて 続けて 気をつけて 注意して 並んで ならんで""".split()
 )
 
 #: Verbs that are states or formal verbs, not motions (compared by lemma).
@@ -306,7 +306,7 @@ SIDE_NOUNS = {
 }
 
 #: Nouns after 〜の that only say "where X is" (花子のところへ, 花子の方へ, 花子のもとへ).
-PLACE_OF_NOUNS = frozenset("ところ 所 方 ほう もと 元 側".split())
+PLACE_OF_NOUNS = frozenset("ところ 所 とこ トコ 方 ほう もと 元 側".split())
 
 #: て-forms that say which way the next motion goes, no motion of their own (花子に向かって走る).
 DIRECTION_TE = frozenset("向かう 向ける".split())

@@ -14,8 +14,8 @@ from .actors import assign_actors, case_particle, noun_of, person_name, speaker_
 from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, LIBRARY_VERBS, MANNER_TE, REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS,
-    STEPPING_VERBS,
+    BODY_PARTS, CONNECTIVES, COUNTERS, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX,
+    SPEED_WORDS, STEPPING_VERBS,
 )
 from . import mimetics
 from .phrases import read_phrases
@@ -163,6 +163,8 @@ def _bare_objects(phrases: list[Phrase]) -> None:
         last = toks[-1]
         if last.pos1 != "名詞" or last.pos3 == "副詞可能" or last.pos2 == "数詞" or last.is_number:
             continue
+        if ph.key in PLACE_OF_NOUNS and k and phrases[k - 1].key.endswith("の"):
+            continue  # 花子のとこ行く: where she is, its へ dropped (nlp.targets), not a person
         if person_name(ph):
             ph.role = "actor"  # 太郎歩く: が dropped too
         elif not is_name(ph.key):

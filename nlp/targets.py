@@ -128,6 +128,8 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
     if _before_no(ph) and nxt is not None and nxt.group == ph.group and not nxt.pred and not nxt.role:
         rel = noun_of(nxt)
         particle = _particle(nxt)
+        if not particle and rel in PLACE_OF_NOUNS:
+            particle = "へ"  # 花子のとこ行く: spoken text drops the へ
         if (rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS) and particle in TARGET_PARTICLES:
             name, person = _name(ph)
             return Target(name, person, particle, SIDE_NOUNS.get(rel), (i, i + 1))

@@ -86,7 +86,25 @@ def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str
             time = arrivals[r.id]
         out.append(Relation(r.id, r.actor, r.target, kind, dist * scale.get(r.actor, 1.0), time, r.verb,
                             r.target_role or "", span, facing, start, hands))
+    out.extend(_seat_mates(rows, present, scale))
     return sorted(out, key=lambda rel: (rel.time, rel.element))
+
+
+#: m, hips to hips: two people sitting on one bench.
+SEAT_MATES = 0.6
+
+
+def _seat_mates(rows: Sequence[Element], present: set[str | None], scale) -> list[Relation]:
+    """Two people sitting on one thing at once (太郎と花子はベンチに座った) sit side by side on it."""
+    out = []
+    seats = [r for r in rows if r.target_role == "support" and r.actor in present and r.target not in present]
+    for i, r in enumerate(seats):
+        first = next((q for q in seats[:i] if q.target == r.target and q.actor != r.actor
+                      and q.start < r.end and r.start < q.end), None)
+        if first is not None:
+            out.append(Relation(r.id, r.actor, first.actor, "beside", SEAT_MATES * scale.get(r.actor, 1.0), r.end,
+                                r.verb, "partner"))
+    return out
 
 
 def _meeting(rows: Sequence[Element], r: Element) -> Element | None:

@@ -71,6 +71,7 @@ class _Path:
         self.rot = np.tile([0.0, 0.0, 0.0, 1.0], (n, 1))
         self.events: list[tuple[float, str]] = []
         self.holder: tuple[str | None, str] | None = None  # (actor, "right" / "both") while held
+        self.sitters: list[tuple[np.ndarray, float]] = []  # (hips, heading) of each who sits on it
 
     @property
     def half(self) -> float:
@@ -395,16 +396,16 @@ def _give(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float
 
 def _seat(p: _Path, m: Motion, f: int) -> None:
     """A seat under the hips at frame ``f``: its top a hand's breadth below the hip joints, its centre a
-    little behind them (the thighs lie on its front half), turned as the hips face."""
-    hips = m.root_positions[f]
-    heading = float(bodies.hips_path(m)[1][f])
-    top = max(0.2 * p.scale, float(hips[1]) - 0.1 * p.scale)
+    little behind them (the thighs lie on its front half), turned as the hips face. Several who sit on it
+    (太郎と花子はベンチに座った) share it: it stands under the middle of their hips, as long as their row."""
+    p.sitters.append((np.array(m.root_positions[f]), float(bodies.hips_path(m)[1][f])))
+    hips = np.mean([h for h, _ in p.sitters], axis=0)
+    heading = p.sitters[0][1]
+    top = max(0.2 * p.scale, float(min(h[1] for h, _ in p.sitters)) - 0.1 * p.scale)
     w, h, d = p.size
-    if p.shape.shape == "chair":
-        h = 2.0 * top  # the seat at half the chair's height (docs of output.viewer.types.PROP_SHAPES)
-    else:
-        h = top
-    p.size = (w, h, d)
+    h = 2.0 * top if p.shape.shape == "chair" else top  # a chair's seat at half its height (output.viewer.types)
+    across = max(float(np.hypot(*(a - b)[[0, 2]])) for a, _ in p.sitters for b, _ in p.sitters)
+    p.size = (max(w, across + 0.5 * p.scale), h, d)
     centre = hips - 0.05 * bodies.forward(heading)
     p.rest(0, np.array([centre[0], 0.5 * h, centre[2]]), heading)
 

@@ -5,6 +5,7 @@ instants meet hand to hand, a held thing stays in the hand, a kicked or thrown o
 seat is under the hips, ...); and every animation meets the built-in quality limits."""
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 import corpus_lines
@@ -51,3 +52,21 @@ def test_a_side_of_a_person_is_where_the_body_goes_whatever_the_verb():
     assert (m.target, m.target_role, m.target_side) == ("太郎", "goal", "beside")
     (m,) = analyze("太郎は本を机の上に置く。").motions  # a thing put somewhere stays its destination
     assert (m.target, m.target_role) == ("机", "destination")
+
+
+def test_spoken_text_drops_the_particle_of_where_someone_is():
+    walk, wave = analyze("健太くん、花子ちゃんのとこ行って手ぇ振ってきて！").motions[:2]
+    assert (walk.actor, walk.target, walk.target_role) == ("健太", "花子", "goal")
+    assert (wave.target, wave.target_role) == ("花子", "addressee")
+
+
+def test_two_who_sit_on_one_bench_share_it_side_by_side(db):
+    anim = text2anim.animate("太郎と花子は公園のベンチに並んで座った。", db=db)
+    (bench,) = [p for p in anim.props() if p.name == "ベンチ"]
+    hips = {a: m.root_positions[-1] for a, m in anim.motions.items()}
+    apart = float(np.hypot(*(hips["太郎"] - hips["花子"])[[0, 2]]))
+    assert 0.4 <= apart <= 0.8  # side by side, not a bench each
+    middle = 0.5 * (hips["太郎"] + hips["花子"])
+    assert np.hypot(*(middle - bench.positions[-1])[[0, 2]]) < 0.15 and bench.size[0] >= apart + 0.3
+    for h in hips.values():  # each one's hips over the seat's top
+        assert 0.0 <= h[1] - bench.size[1] <= 0.3
