@@ -167,8 +167,10 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         _throw(p, r, m, rows, motions, f0, f1, fps)
     elif r.verb in PICK:
         grab = bodies.lowest(_grip(m, p), f0, f1)
-        if p.holder is None:
-            p.rest(0 if not p.placed() else f0, _on_floor(_grip(m, p)[grab], p))
+        if not p.placed():  # it lay where the hand finds it
+            p.rest(0, _on_floor(_grip(m, p)[grab], p))
+        else:  # one already on its way (a pass) is met by the hand as it comes
+            _meet(p, _grip(m, p), grab, int(MEET_S * fps))
         _hold(p, r.actor, m, grab)
         p.events.append((grab / fps, f"{_who(r.actor)} picks it up"))
     elif r.verb in PUT:
@@ -195,6 +197,21 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
 
 
 # ---------------------------------------------------------------- held
+
+
+#: s: a hand reaching for a thing that still moves (a rolling ball) closes on it over this long.
+MEET_S = 0.4
+
+
+def _meet(p: _Path, grip: np.ndarray, f: int, n: int) -> None:
+    """The thing's frames before ``f`` eased from its own path into the ``grip`` ``(T, 3)`` over ``n``
+    frames, so a hand takes it where it is, without a jump."""
+    lo = max(0, f - n)
+    if f <= lo:
+        return
+    u = (np.arange(lo, f) - lo + 1) / (f - lo + 1)
+    w = (u * u * (3.0 - 2.0 * u))[:, None]
+    p.pos[lo:f] = (1.0 - w) * p.pos[lo:f] + w * grip[lo:f]
 
 
 def _grip(m: Motion, p: _Path) -> np.ndarray:
