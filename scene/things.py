@@ -199,6 +199,8 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
 # ---------------------------------------------------------------- held
 
 
+#: s: a thing handed over passes from the giver's grip into the taker's over this long.
+HAND_OVER_S = 0.15
 #: s: a hand reaching for a thing that still moves (a rolling ball) closes on it over this long.
 MEET_S = 0.4
 
@@ -407,7 +409,11 @@ def _give(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float
     taker = r.target if r.target in motions else None
     if taker is None:
         return
+    given = p.pos.copy()
     _hold(p, taker, motions[taker], contact)
+    n = min(int(HAND_OVER_S * fps), len(p.pos) - contact)  # from one grip into the other, not a jump
+    w = ((np.arange(n) + 1) / (n + 1))[:, None]
+    p.pos[contact:contact + n] = (1.0 - w) * given[contact:contact + n] + w * p.pos[contact:contact + n]
     p.events.append((contact / fps, f"handed from {_who(r.actor)} to {taker}"))
 
 
