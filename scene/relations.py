@@ -101,7 +101,7 @@ def _seat_mates(rows: Sequence[Element], present: set[str | None], scale) -> lis
     for i, r in enumerate(seats):
         first = next((q for q in seats[:i] if q.target == r.target and q.actor != r.actor
                       and q.start < r.end and r.start < q.end), None)
-        if first is not None:
+        if first is not None and first.actor is not None:
             out.append(Relation(r.id, r.actor, first.actor, "beside", SEAT_MATES * scale.get(r.actor, 1.0), r.end,
                                 r.verb, "partner"))
     return out
