@@ -1,6 +1,8 @@
 """The fugashi Tagger (UniDic) and the :class:`types.Token` it gives, for every module that tags text."""
 from __future__ import annotations
 
+from functools import lru_cache
+
 from .types import Token
 
 _TAGGER = None
@@ -25,8 +27,19 @@ def tag(line: str, offset: int) -> list[Token]:
         found = line.find(surface, pos)
         start = found if found >= 0 else pos
         pos = start + len(surface)
-        out.append(make_token(surface, features(word), offset + start, offset + pos))
+        f = _read(surface, word.feature_raw)
+        out.append(Token(f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], f[8], offset + start, offset + pos, None,
+                         f[9]))
     return out
+
+
+@lru_cache(maxsize=8192)
+def _read(surface: str, raw: str) -> tuple[str, ...]:
+    """A word's :class:`Token` fields but its offsets and value (surface, pos1-3, ctype, cform, lemma, orth,
+    kana, kana_form) from its feature string (:func:`make_token` reads them), kept: most words of a text
+    (particles, the common verbs) recur in every text."""
+    t = make_token(surface, raw.split(",", _KANA_BASE + 1), 0, 0)
+    return t.surface, t.pos1, t.pos2, t.pos3, t.ctype, t.cform, t.lemma, t.orth, t.kana, t.kana_form
 
 
 #: Where UniDic's features sit in a word's feature string (fugashi's UnidicFeatures29 names them).
