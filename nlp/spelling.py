@@ -18,7 +18,7 @@ from __future__ import annotations
 from dataclasses import replace
 from functools import lru_cache
 
-from .lexicon import LIBRARY_BY_READING
+from .lexicon import LIBRARY_BY_READING, LIBRARY_VERBS
 from .tagging import tag
 from .types import Token
 
@@ -39,6 +39,8 @@ _O_ROW = frozenset("おこごそぞとどのほぼぽもよろょ")
 
 def repair(line: str, offset: int, tokens: list[Token], notes: list[str]) -> list[Token]:
     """The tokens of ``line`` (starting at ``offset`` in the text) with misspelt verbs read as meant."""
+    if "は" in line:
+        tokens = _ha_verb(tokens, notes)
     drawn = not _DRAWL.isdisjoint(line)
     # both passes below read a one-character noun (or suffix) only: most lines have none
     singles = [k for k, t in enumerate(tokens) if len(t.surface) == 1 and t.pos1 in ("名詞", "接尾辞")]
@@ -170,6 +172,25 @@ def _drawn_out(line: _Line, tokens: list[Token]) -> list[Token]:
         if any(t.pos1 == "動詞" and t.start <= kana < t.end for t in again):
             return again
     return tokens
+
+
+def _ha_verb(tokens: list[Token], notes: list[str]) -> list[Token]:
+    """まで + はしって: kana after a particle read as the topic は + 知って, where は + the verb is a library
+    verb's sound (ハシル: 走る) and the verb as read is none of the library's: the one verb, said."""
+    out: list[Token] = []
+    for tok in tokens:
+        prev = out[-1] if out else None
+        if (tok.pos1 == "動詞" and prev is not None and prev.surface == "は" and prev.pos1 == "助詞"
+                and prev.end == tok.start and len(out) > 1 and out[-2].pos1 == "助詞"
+                and all("\u3041" <= ch <= "\u309f" for ch in tok.surface) and tok.lemma not in LIBRARY_VERBS):
+            meant = LIBRARY_BY_READING.get("ハ" + tok.kana)
+            if meant is not None:
+                notes.append(f"read は{tok.surface} as {meant} (kana the dictionary split after a particle)")
+                out[-1] = replace(tok, surface="は" + tok.surface, start=prev.start, lemma=meant, orth=meant,
+                                  kana="ハ" + tok.kana, kana_form="ハ" + tok.kana_form)
+                continue
+        out.append(tok)
+    return out
 
 
 def _same_sound(tokens: list[Token], notes: list[str]) -> list[Token]:

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .actors import noun_of, person_name
+from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
     BODY_PARTS, CATCHING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
@@ -102,7 +102,10 @@ def _name(ph: Phrase, strict: bool = False) -> tuple[str, bool]:
         person = ph.persons[0]  # 彼女に -> 花子: whom it refers to (reference.resolve_persons, §9)
     if person and strict and not _surely_person(ph):
         person = None
-    return (person, True) if person else (noun_of(ph), False)
+    if person:
+        return person, True
+    noun, run = noun_of(ph), as_written(ph.tokens)  # a thing or a place keeps its suffix: 会議室, not 会議
+    return (run if noun and noun in run else noun), False
 
 
 def _surely_person(ph: Phrase) -> bool:

@@ -70,3 +70,13 @@ def test_two_who_sit_on_one_bench_share_it_side_by_side(db):
     assert np.hypot(*(middle - bench.positions[-1])[[0, 2]]) < 0.15 and bench.size[0] >= apart + 0.3
     for h in hips.values():  # each one's hips over the seat's top
         assert 0.0 <= h[1] - bench.size[1] <= 0.3
+
+
+def test_a_place_keeps_its_suffix_and_kana_split_after_a_particle_is_one_verb():
+    (m,) = analyze("部長が会議室に入ってきた。").motions
+    assert (m.target, m.target_role) == ("会議室", "goal")  # not 会議
+    a = analyze("花子は太郎のとこまではしって、だきついた")
+    run, hug = a.motions
+    assert (run.verb, run.target, run.target_role) == ("走る", "太郎", "goal")  # not は + 知って
+    assert hug.target == "太郎" and any("走る" in n for n in a.notes)
+    assert [m.verb for m in analyze("花子は歩く。太郎までは知っている。").motions] == ["歩く"]
