@@ -229,7 +229,8 @@ def _follow_on(preds: list[Pred]) -> None:
     - co-actors of a motion done to each other (太郎と花子は抱き合う, 〜合う) or after 向かい合って are each
       other's partners;
     - a gesture right after a motion of the same actor directed at a person is addressed to that person
-      (花子に近づいて、お辞儀する), a touch of them done to them (駆け寄って、抱きしめる);
+      (花子に近づいて、お辞儀する), a touch of them done to them (駆け寄って、抱きしめる), a thing sent goes
+      to them (近づいて、ボールを渡す: she receives it);
     - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note.
     """
     last: dict[str | None, Pred] = {}
@@ -246,7 +247,9 @@ def _follow_on(preds: list[Pred]) -> None:
         prev = last.get(pred.actor)
         if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
                 and pred.verb not in LOCOMOTION_VERBS and pred.verb not in SUPPORT_VERBS):
-            role = "patient" if pred.verb in CONTACT_VERBS else "addressee"
+            role = ("patient" if pred.verb in CONTACT_VERBS
+                    else "recipient" if pred.verb in TRANSFER_VERBS and pred.object and pred.object not in BODY_PARTS
+                    else "addressee")
             pred.target, pred.target_role, pred.target_person = prev.target, role, True
         last[pred.actor] = pred
         if pred.object in THING_ANAPHORS and thing is not None:

@@ -271,3 +271,19 @@ def test_the_things_of_a_scene_show_in_the_viewer_the_top_view_and_on_a_dropped_
     page.screenshot(path=str(tmp_path / "skinned scene.png"), full_page=True)
     page.click("#builtin")
     page.wait_for_function("document.getElementById('builtin').hidden", timeout=30000)
+
+
+def test_a_text_of_two_characters_on_a_dropped_character_plays_as_figures_and_says_so(page, tmp_path):
+    """The skinned view draws one character; a text with two (a partner, a person only spoken to) is drawn as
+    figures, the page saying why, with no error (it showed the zip of the export as a broken GLB)."""
+    from rig_builders import vrm_file
+
+    _drop(page, vrm_file(tmp_path / "avatar.vrm"))
+    page.wait_for_function("document.getElementById('dropped').textContent.includes('this character')",
+                           timeout=30000)
+    page.fill("#text", "太郎は花子に近づいて、お辞儀する。")
+    page.wait_for_function("document.getElementById('status').textContent.includes('2 characters')", timeout=60000)
+    assert page.locator("#view").is_visible() and not page.locator("#view3d").is_visible()
+    assert page.locator("#error").inner_text() == ""
+    page.screenshot(path=str(tmp_path / "two on a character.png"))
+    page.click("#builtin")

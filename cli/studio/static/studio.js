@@ -8,7 +8,7 @@
   "use strict";
   var $ = function (id) { return document.getElementById(id); };
   var DEBOUNCE_MS = 250;
-  var S = { text: null, seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
+  var S = { text: null, note: "", seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
             renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false,
             edits: {}, sent: "" };
   window.__studio = S;
@@ -107,7 +107,12 @@
     var view = $("view");
     timeline(data);
     window.__studioTop.show(data.top);
-    if (data.rig) { skinned(text, seq, data); return; }
+    // the skinned view draws one character; with several (a partner, a person only spoken to) the export
+    // holds one file each, and the page draws them as figures
+    var actors = new Set(data.table.map(function (e) { return e.actor; })).size;
+    if (data.rig && actors === 1) { skinned(text, seq, data); return; }
+    S.note = data.rig ? " (" + actors + " characters: the figures here, each on your character in the export)" : "";
+    if (data.rig) $("builtin").hidden = false;  // the dropped character is still what the export animates
     $("view3d").hidden = true; view.hidden = false;
     view.onload = function () { ready(view, seq, data); };
     view.srcdoc = data.html;
@@ -122,7 +127,8 @@
       w.requestAnimationFrame(function () {  // the first frame of the new animation is on screen
         var ms = performance.now() - S.firedAt;
         S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq; S.busy = false;
-        status(data.duration.toFixed(2) + " s of animation, on screen " + Math.round(ms) + " ms after the pause");
+        status(data.duration.toFixed(2) + " s of animation, on screen " + Math.round(ms) + " ms after the pause"
+               + (S.note || ""));
       });
     })();
   }
