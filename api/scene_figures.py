@@ -33,6 +33,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from text2anim.core.bodyparts import body_map
 from text2anim.core.conventions import path_and_heading
@@ -96,6 +97,13 @@ def _motion(anim, actor):
     return anim.motions[actor]
 
 
+def _played(anim, rows, c: dict):
+    """The check's row (its actor's, of its verb), that actor's motion, and the row's first and last frames."""
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    return r, m, _frame(anim, r.start, m), _frame(anim, r.end, m)
+
+
 def _thing(props, c: dict):
     """The check's thing as drawn (:class:`output.viewer.types.Prop`)."""
     if c["thing"] not in props:
@@ -135,10 +143,8 @@ def _approach(anim, rows, props, c):
 
 
 def _faces(anim, rows, props, c):
-    r = _row(rows, c["actor"], c["verb"])
-    m = _motion(anim, c["actor"])
+    r, m, f0, f1 = _played(anim, rows, c)
     other = _motion(anim, c["target"])
-    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
     q = max(1, (f1 - f0) // 4)
     frames = range(f0 + q, max(f0 + q + 1, f1 - q))
     sent = _launched(anim, props, r, m, f0, f1)
@@ -228,11 +234,9 @@ def _wrists(m):
 
 
 def _holds(anim, rows, props, c):
-    r = _row(rows, c["actor"], c["verb"])
-    m = _motion(anim, c["actor"])
+    r, m, f0, f1 = _played(anim, rows, c)
     p = _thing(props, c)
     left, right = _wrists(m)
-    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
     a, b = _HELD_PART.get(r.verb, (1 / 3, 2 / 3))  # taken at the start of a pick, given away in a hand-over, ...
     lo = f0 + int(a * (f1 - f0))
     hi = max(lo + 1, f0 + int(b * (f1 - f0)))
@@ -250,10 +254,8 @@ _HELD_PART = {**dict.fromkeys(("拾う", "持ち上げる", "拾い上げる"), 
 
 
 def _launch(anim, rows, props, c):
-    r = _row(rows, c["actor"], c["verb"])
-    m = _motion(anim, c["actor"])
+    r, m, f0, f1 = _played(anim, rows, c)
     p = _thing(props, c)
-    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
     v = np.linalg.norm(np.gradient(p.positions, 1.0 / anim.fps, axis=0), axis=1)
     bm = body_map(m.skeleton)
     kick = c["verb"] in ("蹴る", "キックする", "シュートする")
@@ -274,12 +276,10 @@ def _launch(anim, rows, props, c):
 
 
 def _catch(anim, rows, props, c):
-    r = _row(rows, c["actor"], c["verb"])
-    m = _motion(anim, c["actor"])
+    _, m, f0, f1 = _played(anim, rows, c)
     p = _thing(props, c)
     left, right = _wrists(m)
     mid = 0.5 * (left + right)
-    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
     d = np.linalg.norm(p.positions[f0:f1] - mid[f0:f1], axis=1)
     best = float(d.min())
     return Figure("catch", best, "m", best < CATCH_M)
@@ -313,9 +313,8 @@ def _together(anim, rows, props, c):
 
 
 def _leaves(anim, rows, props, c):
-    r = _row(rows, c["actor"], c["verb"])
-    m, o = _motion(anim, c["actor"]), _motion(anim, c["target"])
-    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
+    _, m, f0, f1 = _played(anim, rows, c)
+    o = _motion(anim, c["target"])
     d = [float(np.hypot(*(m.root_positions[f] - o.root_positions[f])[[0, 2]])) for f in (f0, f1)]
     return Figure("leaves", d[1] - d[0], "m", d[1] - d[0] > 0.5)
 
@@ -331,14 +330,10 @@ def _behind(anim, rows, props, c):
 
 
 def _reaches(anim, rows, props, c):
-    r = _row(rows, c["actor"], c["verb"])
-    m = _motion(anim, c["actor"])
+    _, m, f0, f1 = _played(anim, rows, c)
     p = _thing(props, c)
     _, right = _wrists(m)
-    f0, f1 = _frame(anim, r.start, m), _frame(anim, r.end, m)
     half = 0.5 * np.array(p.size)
-    from scipy.spatial.transform import Rotation
-
     local = Rotation.from_quat(p.rotations[f0:f1]).inv().apply(right[f0:f1] - p.positions[f0:f1])
     outside = np.maximum(np.abs(local) - half, 0.0)
     d = float(np.linalg.norm(outside, axis=1).min())
