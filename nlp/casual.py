@@ -3,7 +3,7 @@
 - A trailing laughter mark (w, ww, 笑, 草 right after a predicate, at the end of
   a line or before punctuation) ends the sentence like 。, so ダンスするw keeps
   its verb.
-- わ typed for the topic particle は (太郎わ走る): わ after a noun and before more
+- わ (or the small ゎ of chat) typed for the topic particle は (太郎わ走る): わ after a noun and before more
   of the sentence can only be は (the sentence-final わ ends a predicate; UniDic
   tags it a sentence-final particle, or the counter 把 after 太郎).
 - お typed for を (ボールお蹴る): UniDic tags it the honorific prefix; after a
@@ -28,7 +28,7 @@ LAUGHTER = frozenset(["笑", "草"])
 _POLITE_NEXT = frozenset(["下さる", "為る", "為さる", "頂く", "願う"])
 
 #: Characters without which a line has nothing to repair (a fast test on the line's text).
-_TRIGGERS = frozenset("わお笑草wW")
+_TRIGGERS = frozenset("わゎお笑草wW")
 
 
 def may_apply(line: str) -> bool:
@@ -51,7 +51,7 @@ def repair(tokens: list[Token], notes: list[str]) -> list[Token]:
             continue
         if is_laughter(tok.surface) and _ends_predicate(prev) and (nxt is None or _mark_or_laugh(nxt)):
             out[i] = replace(tok, pos1="補助記号", pos2="句点", pos3="*", lemma=tok.surface, orth=tok.surface)
-        elif (tok.surface == "わ" and tok.pos1 in ("助詞", "接尾辞") and _name_end(out, i - 1) and nxt is not None
+        elif (tok.surface in ("わ", "ゎ") and tok.pos1 in ("助詞", "接尾辞") and _name_end(out, i - 1) and nxt is not None
               and nxt.pos1 not in ("補助記号", "助詞", "助動詞")):
             out[i] = replace(tok, surface="は", pos1="助詞", pos2="係助詞", pos3="*", lemma="は", orth="は")
             if _numeral(prev) and i >= 2 and out[i - 2] is not None and out[i - 2].pos2 == "固有名詞":
@@ -62,7 +62,7 @@ def repair(tokens: list[Token], notes: list[str]) -> list[Token]:
                                      kana_form=name.kana_form + prev.kana_form, end=prev.end)
                 out[i - 2] = None  # type: ignore[call-overload]
                 prev = out[i - 1]
-            notes.append(f"read {prev.surface}わ as {prev.surface}は (topic particle)")
+            notes.append(f"read {prev.surface}{tok.surface} as {prev.surface}は (topic particle)")
         elif (tok.surface == "お" and tok.pos1 == "接頭辞" and _noun(prev) and nxt is not None
               and nxt.pos1 == "動詞" and not _polite(out, i + 1)):
             out[i] = replace(tok, surface="を", pos1="助詞", pos2="格助詞", pos3="*", lemma="を", orth="を")

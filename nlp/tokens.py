@@ -128,21 +128,30 @@ def _join_phrasal_verbs(tokens: list[Token]) -> list[Token]:
 
 
 def unwrap_direction(tokens: list[Token]) -> list[Token]:
-    """A stage direction wholly in brackets ((花子、窓を開ける), 花子:(座る)) is text to
-    analyse, not a quotation: the brackets that wrap the rest of the line (after a
-    speaker label) are dropped."""
-    body = script_label_end(tokens)
-    end = len(tokens)
-    while end > body and tokens[end - 1].pos2 == "句点":
-        end -= 1  # (座る)。
-    if end - body < 3 or tokens[body].surface != "(" or tokens[end - 1].surface != ")":
-        return tokens
+    """A stage direction wholly in brackets ((花子、窓を開ける), 花子:(座る), 行くぞ!(ボールを蹴る))
+    is text to analyse, not a quotation: the brackets that wrap a whole sentence of the
+    line (after a speaker label or a sentence end, up to the line's or the sentence's end)
+    are dropped."""
+    starts = {script_label_end(tokens)} | {k + 1 for k, t in enumerate(tokens) if t.pos2 == "句点"}
+    drop = set()
+    for s in starts:
+        e = _direction_end(tokens, s)
+        if e is not None:
+            drop |= {s, e}
+    return [t for k, t in enumerate(tokens) if k not in drop] if drop else tokens
+
+
+def _direction_end(tokens: list[Token], s: int) -> int | None:
+    """Index of the ``)`` closing a ``(`` at ``s`` when it closes the sentence (``(座る)。``), else None."""
+    if s >= len(tokens) or tokens[s].surface != "(":
+        return None
     depth = 0
-    for k in range(body, end):  # the opening bracket must close at the end, not before
+    for k in range(s, len(tokens)):
         depth += {"(": 1, ")": -1}.get(tokens[k].surface, 0)
-        if depth == 0 and k < end - 1:
-            return tokens
-    return tokens[:body] + tokens[body + 1:end - 1] + tokens[end:]
+        if depth == 0:  # the opening bracket closes here: a direction if the sentence ends with it
+            ends = k + 1 == len(tokens) or tokens[k + 1].pos2 == "句点"
+            return k if ends and k - s >= 2 else None
+    return None
 
 
 def script_label_end(tokens: list[Token]) -> int:
@@ -157,7 +166,21 @@ def script_label_end(tokens: list[Token]) -> int:
 
 def _tag_line(line: str, offset: int) -> list[Token]:
     """Tag one line; repair the two ways kana-only text is mis-tagged (``_repair_kana``)."""
-    return _repair_kana(line, offset, tag(line, offset))
+    return _repair_kana(line, offset, _tag_closed(line, offset))
+
+
+def _tag_closed(line: str, offset: int) -> list[Token]:
+    """Tag ``line`` as a sentence that ends: UniDic reads the last word of a line without a closing
+    mark as it would read a word before more text (ボールけった: the noun けった; ボールけった。: the verb
+    蹴っ + た), so such a line is tagged with 。 after it, and the 。 is left out again."""
+    if line[-1] in _CLOSING:
+        return tag(line, offset)
+    tokens = tag(line + "。", offset)
+    return tokens[:-1] if tokens[-1].surface == "。" and tokens[-1].start == offset + len(line) else tag(line, offset)
+
+
+#: Marks a line that ends a sentence may end with (after NFKC).
+_CLOSING = frozenset("。.!?」』)")
 
 
 #: Particles that mark an actor or join actors (a hiragana name is re-split before one of them).
