@@ -299,10 +299,15 @@ def time_catches(specs: list[MotionSpec], constraints: list[Constraint]) -> None
     """太郎は花子にボールを投げる。花子はボールを捕る。: the catch of the thing another person throws starts
     with the throw (a parallel link, cue ``catch``), so the scene can time it by the flight instead of
     after the throw has ended. A catch joined by て (投げて、花子がキャッチする) already starts as the
-    throw's core ends: its link stays."""
+    throw's core ends: its link stays. A throw that names no one to throw to is thrown to the catcher
+    (投げると、花子がキャッチした: to her)."""
     by_id = {s.id: s for s in specs}
     for k, c in enumerate(constraints):
         a, b = by_id.get(c.first), by_id.get(c.second)
-        if (a is not None and b is not None and c.relation == "serial" and not c.overlap and a.actor != b.actor
+        if not (a is not None and b is not None and c.relation == "serial" and a.actor != b.actor
                 and a.verb in THROWING_VERBS and b.verb in CATCHING_VERBS and b.object in (a.object, None)):
+            continue
+        if not c.overlap:
             constraints[k] = Constraint(a.id, b.id, "parallel", None, None, "composition", "catch")
+        if a.target is None and b.actor is not None:
+            specs[specs.index(a)] = replace(a, target=b.actor, target_role="recipient", target_person=True)
