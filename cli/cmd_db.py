@@ -13,6 +13,7 @@ import unicodedata
 
 from text2anim.core.bodyparts import GROUPS
 from text2anim.core.inputs import printable
+from text2anim.core.styles import STYLES
 
 from .arg_types import core_span, frame_count
 from .bvh_options import add_read_options, read_options
@@ -57,6 +58,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="the posture the clips start in (default: classified from each file's first frame)")
     a.add_argument("--end-posture", choices=_POSTURES,
                    help="the posture the clips end in (default: classified from each file's last frame)")
+    a.add_argument("--style", choices=sorted(STYLES),
+                   help="the style the clips were performed in (docs/language.md §2.1): a text asking for it plays "
+                        "them before changing a neutral clip (default: neutral)")
     a.add_argument("--map", dest="joint_map", metavar="FILE",
                    help="JSON {role: joint name} for joints no known rig names, used when a clip is retargeted "
                         "onto its character's skeleton (roles are VRM humanoid bone names)")
@@ -110,10 +114,10 @@ def _table(rows: list[list[str]], header: list[str]) -> str:
     return "\n".join(lines)
 
 
-def _clip_row(c) -> list[str]:
+def _clip_row(c, styles: bool = False) -> list[str]:
     return [c.name, c.character, "/".join(c.verbs), "/".join(c.objects) or "-", c.body_part or "-",
-            _postures(c), str(c.frames), f"{c.fps:g}", f"{c.duration:.2f}", "yes" if c.cyclic else "",
-            _source(c.source)]
+            _postures(c), *([c.style or "-"] if styles else []), str(c.frames), f"{c.fps:g}", f"{c.duration:.2f}",
+            "yes" if c.cyclic else "", _source(c.source)]
 
 
 def _source(source: str) -> str:
@@ -134,9 +138,10 @@ def _print_clips(clips, as_json: bool) -> None:
     if not clips:
         say("(no clips)")
         return
-    say(_table([_clip_row(c) for c in clips],
-               ["clip", "character", "verbs", "objects", "part", "posture", "frames", "fps", "seconds",
-                "cyclic", "source"]))
+    styles = any(c.style for c in clips)  # the column only when a clip has a style
+    say(_table([_clip_row(c, styles) for c in clips],
+               ["clip", "character", "verbs", "objects", "part", "posture", *(["style"] if styles else []),
+                "frames", "fps", "seconds", "cyclic", "source"]))
 
 
 def _show(c) -> str:
@@ -152,6 +157,7 @@ def _show(c) -> str:
         f"core:       {c.core[0]:.3f} .. {c.core[1]:.3f} s",
         f"body part:  {c.body_part or 'whole body'}",
         f"postures:   starts {c.start_posture}, ends {c.end_posture}",
+        f"style:      {c.style or 'neutral'}",
         f"does:       {_actions(c)}",
         f"body:       {_body(c.description)}",
         f"cyclic:     {'yes' if c.cyclic else 'no'}",
@@ -215,14 +221,14 @@ def _import(db, args) -> int:
                             core=args.core, part=args.part, cyclic=args.cyclic,
                             names=(args.name,) if args.name else None, replace=args.replace,
                             start_posture=args.start_posture, end_posture=args.end_posture, joint_map=joint_map,
-                            **read_options(args))
+                            style=args.style, **read_options(args))
     infos = db.import_bvh(args.files, options, progress=_progress,
                           notify=lambda path, msg: say(f"text2anim db import: {path}: {msg}", file=sys.stderr))
     say(f"imported {len(infos)} clip{'s' if len(infos) != 1 else ''} into {db.url}:")
     for c in infos:
         say(f"  {c.name}: {c.frames} frames at {c.fps:g} fps ({c.duration:.2f} s), "
             f"{len(c.left_contacts)}+{len(c.right_contacts)} foot contacts, verbs {'/'.join(c.verbs)}, "
-            f"posture {_postures(c)}")
+            f"posture {_postures(c)}" + (f", style {c.style}" if c.style else ""))
     return 0
 
 
