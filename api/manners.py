@@ -69,10 +69,11 @@ def restyle_tracks(table: TimeTable, tracks: tuple) -> tuple[tuple, tuple[Styled
                                               note="" if m.by else NO_STYLE))
                 elements.append(el)
                 continue
-            made = restyle(el.clip.motion, m.style, m.intensity, el.clip.cyclic)
+            made = restyle(el.clip.motion, m.style, m.intensity, el.clip.cyclic, el.speed)
             by = None if made.refused else "modifiers"
-            done.setdefault(el.id, Styled(el.id, row.verb, m.word, m.style, m.intensity, by, made.changes,
-                                          made.refused))
+            note = made.refused or (f"intensity lowered to {made.intensity:g} to keep the quality limits"
+                                    if made.intensity != m.intensity else "")
+            done.setdefault(el.id, Styled(el.id, row.verb, m.word, m.style, m.intensity, by, made.changes, note))
             elements.append(replace(el, clip=_clip(el.clip, made.motion, m.style, m.intensity)))
         out.append(replace(track, elements=tuple(elements)))
     return tuple(out), tuple(done[i] for i in sorted(done))

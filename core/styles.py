@@ -50,7 +50,7 @@ STYLES: dict[str, Style] = {s.name: s for s in (
     Style("proud", tempo=0.95, amplitude=1.1, stride=1.1, spine_pitch=-5, head_pitch=-8, shoulders=-8),
     Style("timid", tempo=0.9, amplitude=0.6, stride=0.8, spine_pitch=6, head_pitch=10, shoulders=8, bounce=0.8),
     Style("sneaky", tempo=0.75, amplitude=0.7, stride=0.85, spine_pitch=12, head_pitch=-4, shoulders=5, bounce=0.6),
-    Style("light", tempo=1.1, amplitude=1.1, stride=1.05, spine_pitch=-2, bounce=1.4),
+    Style("light", amplitude=1.1, stride=1.05, spine_pitch=-2, bounce=1.4),
     Style("heavy", tempo=0.85, amplitude=0.9, stride=0.95, spine_pitch=4, head_pitch=4, shoulders=4, bounce=1.3),
     Style("big", amplitude=1.4, stride=1.2, bounce=1.2),
     Style("small", amplitude=0.55, stride=0.75, bounce=0.8),
