@@ -23,6 +23,8 @@ NAME = "db"
 HELP = "the motion database: import BVH clips, list, show, export, remove, verbs, preview"
 
 _PARTS = GROUPS
+#: motiondb.style_pack.PACKS (repeated here so that building the parser imports no database code).
+_PACKS = ("bandai-namco",)
 #: motiondb.types.POSTURES (repeated here so that building the parser imports no database code).
 _POSTURES = ("standing", "seated", "crouched", "kneeling", "lying")
 
@@ -65,6 +67,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="JSON {role: joint name} for joints no known rig names, used when a clip is retargeted "
                         "onto its character's skeleton (roles are VRM humanoid bone names)")
     add_read_options(a)
+
+    a = action("import-pack", "import a style pack you downloaded (the Bandai Namco Research Motion Dataset), "
+                              "its styles mapped to ours")
+    a.add_argument("pack", choices=_PACKS, help="the pack: bandai-namco")
+    a.add_argument("folder", metavar="DIR", help="the folder of its BVH files (searched recursively)")
+    a.add_argument("--character", default="bandai-namco", help="the character its clips belong to (default: bandai-namco)")
+    a.add_argument("--replace", action="store_true", help="replace clips of the same names")
 
     a = action("list", "list clips (ranked as a search when --verb is given)")
     a.add_argument("--verb", help="only clips retrieved by this verb, best first")
@@ -232,6 +241,26 @@ def _import(db, args) -> int:
     return 0
 
 
+def _import_pack(db, args) -> int:
+    from text2anim.motiondb.style_pack import NOTICE, import_pack
+
+    say(f"text2anim db import-pack: {NOTICE}", file=sys.stderr)
+    clips, plan = import_pack(db, args.pack, args.folder, character=args.character, replace=args.replace,
+                              progress=_progress,
+                              notify=lambda path, msg: say(f"text2anim db import-pack: {path}: {msg}", file=sys.stderr))
+    reasons: dict[str, int] = {}
+    for _, why in plan.left_out:
+        reasons[why] = reasons.get(why, 0) + 1
+    for why, n in sorted(reasons.items()):
+        say(f"text2anim db import-pack: left out {n} file{'s' if n != 1 else ''}: {why}", file=sys.stderr)
+    styles: dict[str, int] = {}
+    for c in clips:
+        styles[c.style or "neutral"] = styles.get(c.style or "neutral", 0) + 1
+    say(f"imported {len(clips)} clip{'s' if len(clips) != 1 else ''} of {args.pack} into {db.url} "
+        f"(character {args.character}): " + ", ".join(f"{k} {v}" for k, v in sorted(styles.items())))
+    return 0
+
+
 def _list(db, args) -> int:
     if args.verb:
         clips = db.search(args.verb, object=args.object, character=args.character, body_part=args.part,
@@ -333,5 +362,5 @@ def _preview_file(args) -> int:
     return 0
 
 
-_ACTIONS = {"import": _import, "list": _list, "show": _show_action, "export": _export, "remove": _remove,
+_ACTIONS = {"import": _import, "import-pack": _import_pack, "list": _list, "show": _show_action, "export": _export, "remove": _remove,
             "verbs": _verbs, "preview": _preview}
