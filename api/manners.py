@@ -1,8 +1,8 @@
 """The pipeline's ``manner`` stage: each row's manner made from its clip where no clip of it was found.
 
 A row whose manner the scheduler gave to the modifiers (``Manner.by == "modifiers"``, :mod:`scheduler.manner`)
-gets its clip restyled (:func:`synthesis.manner.restyle`) before the synthesis joins the clips (the feet are
-planted by its foot locking, after); a row played by a clip of the style keeps it. What was done to each row
+gets its clip restyled (:func:`synthesis.manner.restyle`: its contacts held, its quality kept) before the
+synthesis joins the clips (whose foot locking plants the feet at the joins); a row played by a clip of the style keeps it. What was done to each row
 is a :class:`Styled` record: in the report (``manners``), and, for a manner that is not shown (a word of no
 style, or a skeleton the modifiers cannot work on), a warning on stderr, in the report and in the studio.
 """

@@ -37,7 +37,7 @@ def format_table(table: TimeTable) -> str:
 
 
 def _manner(e: Element) -> str:
-    """疲れて: tired 1.4 (modifiers, speed 0.63); にこにこ: no style (not shown)."""
+    """疲れて: tired 1.4 (modifiers, speed 0.732); にこにこ: no style (not shown)."""
     m = e.manner
     assert m is not None
     if m.style is None:
