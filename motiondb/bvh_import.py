@@ -32,9 +32,10 @@ import numpy as np
 
 from text2anim.core.bodyparts import BodyMapError, BodyPart
 from text2anim.core.bvh import BVHError, read_bvh
+from text2anim.core.clearance import keep_clearance
 from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
-from text2anim.core.retarget import map_skeletons, retarget
+from text2anim.core.retarget import SAME_SIZE, map_skeletons, retarget
 from text2anim.core.rigs import RigError
 from text2anim.core.skeleton import Skeleton
 
@@ -135,10 +136,12 @@ def conform(motion: Motion, target: Skeleton | None, where: str, character: str,
     target_map = joint_map if joint_map and set(joint_map.values()) <= set(target.names) else None
     try:
         mapping = map_skeletons(motion.skeleton, target, joint_map, target_map)
-        motion = retarget(motion, target, source_map=joint_map, target_map=target_map)
+        captured, motion = motion, retarget(motion, target, source_map=joint_map, target_map=target_map)
     except RigError as exc:
         raise ClipValidationError(f"{where}: cannot be retargeted onto the skeleton of character "
                                   f"{character!r}: {exc}") from None
+    if 1.0 / SAME_SIZE <= mapping.scale <= SAME_SIZE:  # a body of about the capture's size: its clearance holds
+        motion = keep_clearance(motion, captured)
     rigs = mapping.rigs[0] if mapping.rigs[0] == mapping.rigs[1] else " to ".join(mapping.rigs)
     notes.append(f"retargeted onto the skeleton of character {character!r} ({rigs} rig, legs x{mapping.scale:.3f})")
     return motion, notes
