@@ -764,7 +764,10 @@
   };
   window.__t2a = api;
 
-  Promise.all([Promise.all(DATA.actors.map(decodeActor)), Props ? Props.decode() : null]).then(function (got) {
+  // the page's own Japanese font (a subset embedded by render_html), loaded before the canvas draws names
+  var fontLoaded = document.fonts && document.fonts.load ?
+    document.fonts.load('13px "t2a-jp"').catch(function () { return null; }) : null;
+  Promise.all([Promise.all(DATA.actors.map(decodeActor)), Props ? Props.decode() : null, fontLoaded]).then(function (got) {
     actors = got[0];
     $("message").style.display = "none";
     buildRows();
