@@ -13,6 +13,7 @@ matplotlib is imported only when :func:`available` is first called (figures need
 """
 from __future__ import annotations
 
+import dataclasses
 import re
 from functools import lru_cache
 
@@ -73,8 +74,6 @@ def _load_shipped(font_manager, by_name: dict[str, str]) -> str | None:
     """The family of the package's own Japanese font, now known to ``font_manager``; ``None`` if it
     cannot be loaded (a damaged install)."""
     from . import embedded_font
-
-    import dataclasses
 
     path = embedded_font.font_path()
     try:

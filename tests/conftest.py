@@ -90,9 +90,7 @@ def pytest_runtest_makereport(item, call):
         counts = _COUNTS[backend]
         if report.skipped:
             counts["skipped"] += 1
-            longrepr = report.longrepr
-            if isinstance(longrepr, tuple) and len(longrepr) == 3:
-                _SKIP_REASONS[backend].add(str(longrepr[2]).removeprefix("Skipped: "))
+            _SKIP_REASONS[backend].add(_skip_reason(report))
         elif report.failed:
             counts["failed"] += 1
         elif report.when == "call":
