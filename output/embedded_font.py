@@ -5,7 +5,7 @@ licence beside it) cut down to JIS X 0208 (every kana, the 6,355 kanji of levels
 forms) and ASCII: 1.5 MB (1.3 MB zipped in the wheel) instead of the 19 MB collection; made by
 ``tools/build_jp_font.py``. A machine without a Japanese font showed the viewer page's names, verbs and
 time table as boxes: :func:`font_face_css` embeds, in each page, a WOFF subset of it for the
-characters that page shows (a few KB for a sentence: 5.9 KB for ``太郎は走って、ボールを蹴る。``), and
+characters that page shows (a few KB for a sentence: 5.3 KB for ``太郎は走って、ボールを蹴る。``), and
 contact sheets draw Japanese with the file itself when the machine has no CJK font (:mod:`.fonts`).
 A character outside JIS X 0208 (a rare kanji) is left to the browser's own fonts.
 

@@ -11,13 +11,13 @@ from ..join.align import align_through_foot
 from ..join.gait import foot_points, steps
 from ..join.placed import Placed
 from .adaptation import adapt
-from .blend_ranges import after, ranges
+from .blend_ranges import Bounds, after, ranges
 from .blend_search import Weights, best
 from .curves import interval_weights
 from .geometry import geometry
 from .method_select import phase_for
 from .placement import alignment
-from .records import Plan, Skip
+from .records import Interval, Plan, Skip
 from .search import Features, grid, runners_up, search
 
 MIN_BLEND = 0.2  # s: the shortest blend interval (shorter pose changes read as pops)
@@ -131,7 +131,7 @@ def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weight
     return Plan(inc, choice, intervals, rigid, support, placed, adapted, shift, phase, warnings, info, alternatives)
 
 
-def into_cores(iv, bounds) -> int:
+def into_cores(iv: Interval, bounds: Bounds) -> int:
     """Frames of blend interval ``iv`` inside the two cores of ``bounds`` (0 when it keeps out of them)."""
     return max(0, bounds.c0_end - iv.t0) + max(0, iv.t1 - bounds.c1[0])
 
