@@ -746,6 +746,8 @@
   var api = {
     get frame() { return actors.length ? Math.round(Math.min(state.t, actors[0].duration) * actors[0].fps) : 0; },
     get time() { return state.t; },
+    // the page's clock (performance.now(), ms) at the step that set `time`: rates of play are measured on it
+    get clock() { return state.last; },
     get playing() { return state.playing; },
     get ready() { return state.ready; },
     get duration() { return DATA.duration; },

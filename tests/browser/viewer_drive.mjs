@@ -69,9 +69,9 @@ try {
     await sleep(50);
     ready = await js("document.body && document.body.dataset.ready");
   }
-  // now: the page's own clock (ms), read with its time: how fast it plays is measured on it, not on this script's
-// sleeps, which a loaded machine stretches (a CDP round trip alone can take longer than a sleep)
-const snap = () => js("(() => { const a = window.__t2a; return { frame: a.frame, time: a.time, playing: a.playing, speed: a.speed, follow: a.follow, camera: a.camera, duration: a.duration, now: performance.now() }; })()");
+  // now: the page's own clock (ms) at the step that set its time: how fast it plays is measured on it, not on
+// this script's sleeps, which a loaded machine stretches (a CDP round trip alone can take longer than a sleep)
+const snap = () => js("(() => { const a = window.__t2a; return { frame: a.frame, time: a.time, playing: a.playing, speed: a.speed, follow: a.follow, camera: a.camera, duration: a.duration, now: a.clock }; })()");
   const result = { ready };
   result.start = await snap();
   await sleep(1000);

@@ -234,7 +234,9 @@ def test_screenshot_shows_the_characters(page, tmp_path):
 
 
 def _rate(a: dict, b: dict) -> float:
-    """Seconds of animation played per second of the page's own clock (``now``, ms) between two snapshots.
+    """Seconds of animation played per second of the page's own clock between two snapshots (``now``: the
+    viewer's ``clock``, ms, read at the step that set ``time``; read apart from it, with steps 0.1-0.25 s apart
+    on a slowed CPU, the rate came out 1.11 at 1x).
 
     A slow machine plays slower than real time (the page steps a late frame by 0.25 s at most; with the CPU
     slowed 20 times a second of the page's clock played 0.66 s), and the driver's sleeps stretch: speeds are
@@ -243,8 +245,8 @@ def _rate(a: dict, b: dict) -> float:
 
 
 PLAY_RATE = """(seconds) => new Promise((done) => {
-  const a = {time: window.__t2a.time, now: performance.now()};
-  setTimeout(() => done([a, {time: window.__t2a.time, now: performance.now()}]), seconds * 1000);
+  const a = {time: window.__t2a.time, now: window.__t2a.clock};
+  setTimeout(() => done([a, {time: window.__t2a.time, now: window.__t2a.clock}]), seconds * 1000);
 })"""
 
 
@@ -273,7 +275,7 @@ def test_a_person_can_drive_it(page, tmp_path, slowdown):
     assert r["ready"] == "1"
     assert r["console"] == [] and r["pageErrors"] == []
     one = _rate(r["start"], r["afterPlaying"])
-    assert 0 < one < 1.05 and r["afterPlaying"]["playing"]  # plays, never ahead of real time
+    assert 0 < one <= 1.001 and r["afterPlaying"]["playing"]  # plays, never ahead of real time
     assert not r["paused"]["playing"] and r["stillPaused"]["time"] == r["paused"]["time"]
     fps = 30
     assert r["stepped"]["time"] == pytest.approx((round(r["paused"]["time"] * fps) + 1) / fps)
@@ -285,7 +287,9 @@ def test_a_person_can_drive_it(page, tmp_path, slowdown):
     assert r["reset"]["camera"]["dist"] == pytest.approx(r["start"]["camera"]["dist"])
     ds = r["doubleSpeed"]
     assert ds["speed"] == 2 and ds["playing"]
-    assert 1.7 < _rate({"time": ds["from"], "now": ds["fromNow"]}, ds) / one < 2.3  # twice as fast as at 1x
+    # faster than 1x can ever play, never faster than 2x (a late frame's step is clamped: 1x read 0.55 on a
+    # slowed CPU in the second after loading while 2x read 2.0 later, so the two are not compared to each other)
+    assert 1.001 < _rate({"time": ds["from"], "now": ds["fromNow"]}, ds) <= 2.002
     assert shot.stat().st_size > 10_000
 
 
