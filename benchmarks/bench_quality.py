@@ -294,7 +294,7 @@ def gmd_line(rows: list[dict], methods) -> None:
             ok = [r["quality"]["skating_gmd"] <= CAPTURE_GMD_LIMIT
                   and r["quality"]["skating_gmd"] <= max([q["skating_gmd"] for q in r.get("sources", [])] or [1.0])
                   + SKATING_MARGIN for r in mine]
-            cells.append(f"{m} {100 * sum(ok) / len(ok):.0f}%")
+            cells.append(f"{m} {sum(ok)}/{len(ok)}")
     print(f"  GMD's skating (its floor) <= {CAPTURE_GMD_LIMIT} (capture) and, for a join, <= its sources' + "
           f"{SKATING_MARGIN}: " + ", ".join(cells))
 

@@ -68,6 +68,7 @@ class ImportOptions:
         replace: overwrite clips of the same names instead of refusing.
         start_posture, end_posture: every clip's postures (:data:`motiondb.types.POSTURES`);
             ``None`` classifies each file's first/last frame.
+        style: the style the clips were performed in (:data:`core.styles.STYLES`), ``None`` neutral.
         joint_map: ``{role: joint name}`` (or its items) for the files' joints no known rig names
             (:func:`core.rigs.load_joint_map`), used when a clip is retargeted; it applies to the
             character's skeleton too when that has every joint it names.
@@ -87,6 +88,7 @@ class ImportOptions:
     start_posture: Posture | None = None
     end_posture: Posture | None = None
     joint_map: tuple[tuple[str, str], ...] | None = None
+    style: str | None = None
 
     def __post_init__(self) -> None:
         if isinstance(self.joint_map, dict):
@@ -185,7 +187,8 @@ def read_clips(paths: Sequence[str | os.PathLike], options: ImportOptions,
         rec = ClipRecord(name=name, motion=motion, verbs=options.verbs, objects=options.objects,
                          character=options.character, core=options.core, body_part=options.part,
                          cyclic=options.cyclic, source=str(path.resolve()),
-                         start_posture=options.start_posture, end_posture=options.end_posture)
+                         start_posture=options.start_posture, end_posture=options.end_posture,
+                         style=options.style)
         try:
             out.append((prepare_record(rec, where=str(path)), path))
         except ClipValidationError as exc:

@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 
 from limb_checks import limb_errors
-from shared_data import cmu, requires_cmu
+from shared_data import EVERYDAY_DIR, cmu, requires_cmu, requires_everyday
 from text2anim.core import read_bvh
 from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.floor import FOOT_CLEARANCE, find_floor, lowest_foot_heights, place_on_floor, shifted
-from text2anim.core.metrics import skating_ratio
+from text2anim.core.metrics import lowest_points, skating_ratio
 from text2anim.core.retarget import map_skeletons
 from text2anim.motiondb import ClipValidationError, ImportOptions
 
@@ -35,6 +35,18 @@ def test_the_floor_of_a_capture_is_found_wherever_the_capture_put_it():
         low = lowest_foot_heights(moved)
         both = np.concatenate([low[planted.left, 0], low[planted.right, 1]])
         assert np.median(both) == pytest.approx(FOOT_CLEARANCE, abs=0.01)  # planted feet on y = 0 (1 cm)
+
+
+@requires_everyday
+@pytest.mark.parametrize("take", ["13_35", "14_21"])  # climbing three steps: feet that end at the ankle
+def test_a_capture_whose_feet_end_at_the_ankle_stands_on_its_floor_not_in_it(take):
+    """Issue 46: these skeletons have no toe joint (the toes are an end site), and their ankle was taken for
+    the ball of the foot: imported, the climbs stood 3.9 cm too low, toe tips 3.3 and 4.7 cm under the floor."""
+    climb = read_bvh(EVERYDAY_DIR / f"{take}.bvh", scale="auto", drop_first=True)
+    placed, floor = place_on_floor(climb)
+    assert floor.method == "contacts"
+    assert abs(floor.height) < 0.015  # the capture's calibrated floor, within its spread
+    assert lowest_points(placed).min() > -0.01  # toe tips (end sites) on the floor, not in it
 
 
 def test_a_clip_with_too_few_contacts_is_floored_by_its_lowest_foot_reach():

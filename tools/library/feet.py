@@ -31,6 +31,7 @@ from text2anim.core.clearance import lift
 from text2anim.core.contacts import FootContacts, detect_contacts, horizontal_speed
 from text2anim.core.easing import smoothstep
 from text2anim.core.floor import lowest_foot_heights
+from text2anim.core.metrics import SKATE_SPEED
 from text2anim.core.ik import leg_ik, set_world_rotation
 from text2anim.core.motion import Motion
 
@@ -82,16 +83,20 @@ def lock_feet(motion: Motion, contacts: FootContacts | None = None) -> Motion:
 
 
 def keep_clearance(motion: Motion, capture: Motion) -> Motion:
-    """``motion`` (the capture retargeted, frame for frame) with each foot not in contact lifted where its
-    ball is lower above the motion's lowest foot point than the capture's ball was above the capture's
-    (the heights GMD's figure reads; leg IK, eased, the foot's world rotation kept:
-    :func:`core.clearance.lift`); planted feet and everything above the knees are left as they are."""
+    """``motion`` (the capture retargeted, frame for frame) with each swinging foot (not in contact, faster
+    than GMD's 0.5 m/s, the other foot planted) lifted where its ball is lower above the motion's lowest
+    foot point than the capture's ball was above the capture's (the heights GMD's figure reads; leg IK,
+    eased, the foot's world rotation kept: :func:`core.clearance.lift`); planted feet, a run's flight
+    (lifting the lower foot there would lengthen it) and everything above the knees are left as they are."""
     contacts = detect_contacts(motion)
     mine, theirs = body_map(motion.skeleton).feet, body_map(capture.skeleton).feet
     rise = lowest_foot_heights(motion).min() - lowest_foot_heights(capture).min()  # m: the floors GMD reads
+    pos = motion.positions
     limbs, deficits = [], []
     for side, (ankle, toe) in mine.items():
-        deficit = capture.positions[:, theirs[side][1], 1] + rise - motion.positions[:, toe, 1]  # (T,) m
+        other = contacts.of("right" if side == "left" else "left")
+        swinging = ~contacts.of(side) & other & (horizontal_speed(pos[:, [toe]], motion.fps)[:, 0] > SKATE_SPEED)
+        deficit = capture.positions[:, theirs[side][1], 1] + rise - pos[:, toe, 1]  # (T,) m
         limbs.append((leg_ik, side, ankle))
-        deficits.append(np.where(contacts.of(side), 0.0, np.maximum(0.0, deficit)))
+        deficits.append(np.where(swinging, np.maximum(0.0, deficit), 0.0))
     return lift(motion, limbs, deficits)
