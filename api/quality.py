@@ -61,7 +61,7 @@ def transition_frames(motion30) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def rounded(q: Quality) -> dict:
     """A :class:`Quality` as JSON-ready numbers, rounded so reports are stable and readable."""
     d = q.to_dict()
-    for k in ("skating_ratio", "frozen_fraction"):
+    for k in ("skating_ratio", "frozen_fraction", "skating_gmd"):
         d[k] = round(d[k], 4)
     for k in ("root_pop", "jerk_p99", "floor_penetration_cm", "floating_cm"):
         d[k] = round(d[k], 2)

@@ -278,6 +278,25 @@ def share_table(rows: list[dict], methods, title: str, four: bool = False) -> No
         ok = 100 * sum(all(r["meets"].values()) for r in mine) / n
         ok4 = 100 * sum(all(v for c, v in r["meets"].items() if c != "frozen") for r in mine) / n
         print(f"{m:11} {n:4d} " + " ".join(cells) + f" {ok:8.0f}%" + (f" {ok4:14.0f}%" if four else ""))
+    gmd_line(rows, methods)
+
+
+def gmd_line(rows: list[dict], methods) -> None:
+    """Per method, the share of rows whose skating as GMD measures it (above the motion's lowest foot point)
+    is within what the shared capture reaches (:data:`core.metrics.CAPTURE_GMD_LIMIT`); a join also within
+    its sources' larger + 0.01."""
+    from text2anim.core.metrics import CAPTURE_GMD_LIMIT, SKATING_MARGIN
+
+    cells = []
+    for m in methods:
+        mine = [r for r in rows if r["method"] == m]
+        if mine:
+            ok = [r["quality"]["skating_gmd"] <= CAPTURE_GMD_LIMIT
+                  and r["quality"]["skating_gmd"] <= max([q["skating_gmd"] for q in r.get("sources", [])] or [1.0])
+                  + SKATING_MARGIN for r in mine]
+            cells.append(f"{m} {sum(ok)}/{len(ok)}")
+    print(f"  GMD's skating (its floor) <= {CAPTURE_GMD_LIMIT} (capture) and, for a join, <= its sources' + "
+          f"{SKATING_MARGIN}: " + ", ".join(cells))
 
 
 def transition_table(rows: list[dict], methods, what: str) -> None:
@@ -302,8 +321,9 @@ def transition_table(rows: list[dict], methods, what: str) -> None:
 
 
 def median_table(rows: list[dict], methods) -> None:
-    keys = ("skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction", "floating_cm")
-    print(f"{'method':11} " + " ".join(f"{k:>21}" for k in ("skating", "root pop m/s2", "jerk p99 m/s3",
+    keys = ("skating_ratio", "skating_gmd", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction",
+            "floating_cm")
+    print(f"{'method':11} " + " ".join(f"{k:>21}" for k in ("skating", "GMD's skating", "root pop m/s2", "jerk p99 m/s3",
                                                             "penetration cm", "frozen", "floating cm")) + "   (median / max)")
     for m in methods:
         mine = [r["quality"] for r in rows if r["method"] == m]

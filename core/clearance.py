@@ -1,10 +1,13 @@
 """Limbs kept above the floor, and swinging feet clear of it, by IK.
 
-:func:`clear_floor` lifts a foot whose ankle or ball dips below ``y = 0``
-(marker noise at a hard landing) by as much, eased over :data:`RAMP` frames
-either side (two-bone leg IK, :func:`core.ik.leg_ik`, the foot's world rotation
-kept), and a hand whose wrist or finger joints do (picking up from the floor:
-the finger joint 1.4 cm under it) by arm IK, the hand's world rotation kept.
+:func:`clear_floor` lifts a foot whose ankle, ball or toe tip dips below ``y = 0``
+(marker noise at a hard landing, a dancer's pointed toe) by as much, eased over
+:data:`RAMP` frames either side (two-bone leg IK, :func:`core.ik.leg_ik`, the
+foot's world rotation kept), and a hand whose wrist, finger joints or fingertips
+do (picking up from the floor: the finger joint 1.4 cm under it; a fall landing
+on the hands: the fingertips 4-5 cm into it) by arm IK, the hand's world
+rotation kept. The ends of the chains are the skeleton's end sites (BVH
+``End Site``): a tip under the floor is as visible as a joint.
 
 :func:`lift_swings` keeps a swinging foot off the floor: on frames where a
 foot is not in contact and its ball moves faster than the contact detector's
@@ -22,6 +25,7 @@ Shapes: positions ``(T, J, 3)`` metres; deficits and lifts ``(T,)`` metres.
 from __future__ import annotations
 
 import numpy as np
+from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
 from .bodyparts import body_map
 from .contacts import SPEED_THRESHOLD, detect_contacts, horizontal_speed
@@ -35,30 +39,35 @@ RAMP = 3
 #: How far a swinging foot's ball stays above its planted height (m): the minimum toe clearance
 #: of human gait, 1-2 cm between the shoe's tip and the floor (Winter 1992: 1.29 +- 0.45 cm).
 SWING_CLEARANCE = 0.015
+#: Seconds over which :func:`clear_floor` eases a lift in and out (:func:`envelope`): a hand that lands
+#: on the floor is lifted by up to 5 cm (its fingertips), which over :data:`RAMP` frames would stop it
+#: dead (the fall's forearm: joint jerk 9,200 m/s³).
+FLOOR_RAMP_SECONDS = 0.2
 
 
-def lift_offsets(deficit: np.ndarray) -> np.ndarray:
-    """``deficit`` ``(T,)`` (metres below the floor, 0 where above) spread over :data:`RAMP` frames
+def lift_offsets(deficit: np.ndarray, ramp: int = RAMP) -> np.ndarray:
+    """``deficit`` ``(T,)`` (metres below the floor, 0 where above) spread over ``ramp`` frames
     either side: the largest of the neighbours' deficits, each scaled by a smoothstep of its distance."""
     T = len(deficit)
     out = deficit.copy()
-    for k in range(1, RAMP + 1):
-        w = smoothstep(np.array(1.0 - k / (RAMP + 1)))
+    for k in range(1, ramp + 1):
+        w = smoothstep(np.array(1.0 - k / (ramp + 1)))
         out[k:] = np.maximum(out[k:], w * deficit[:T - k])
         out[:T - k] = np.maximum(out[:T - k], w * deficit[k:])
     return out
 
 
-def lift(motion: Motion, limbs: list, deficits: list[np.ndarray]) -> Motion:
-    """``motion`` with each limb's end joint raised by its ``(T,)`` deficit (m), eased (:func:`lift_offsets`)
-    and solved by the limb's IK (``limbs``: ``(ik, side, end joint)``), the end's world rotation kept."""
+def lift(motion: Motion, limbs: list, deficits: list[np.ndarray], ramp: int = RAMP) -> Motion:
+    """``motion`` with each limb's end joint raised by its ``(T,)`` deficit (m), eased over ``ramp`` frames
+    (:func:`lift_offsets`) and solved by the limb's IK (``limbs``: ``(ik, side, end joint)``), the end's
+    world rotation kept."""
     pos = motion.positions
     world = motion.pose.quaternions()
     out = motion
     for (ik, side, end), deficit in zip(limbs, deficits):
         if not deficit.any():
             continue
-        lift = lift_offsets(deficit)
+        lift = lift_offsets(deficit, ramp)
         target = pos[:, end].copy()
         target[:, 1] += lift
         mask = lift > 0
@@ -68,13 +77,33 @@ def lift(motion: Motion, limbs: list, deficits: list[np.ndarray]) -> Motion:
 
 
 def clear_floor(motion: Motion) -> Motion:
-    """``motion`` with no ankle, toe, wrist or finger joint below ``y = 0`` (see the module docstring)."""
+    """``motion`` with no ankle, toe, wrist or finger joint, nor a tip of one, below ``y = 0`` (docstring)."""
     bm = body_map(motion.skeleton)
-    y = motion.positions[..., 1]
-    limbs = [(leg_ik, side, ankle, [ankle, toe]) for side, (ankle, toe) in bm.feet.items()]
-    limbs += [(arm_ik, side, wrist, [int(j) for j in motion.skeleton.subtree(wrist)]) for side, wrist in bm.hands.items()]
-    deficits = [np.maximum(0.0, -y[:, joints].min(axis=1)) for *_, joints in limbs]
-    return lift(motion, [limb[:3] for limb in limbs], deficits)
+    limbs = [(leg_ik, side, ankle) for side, (ankle, _) in bm.feet.items()]
+    limbs += [(arm_ik, side, wrist) for side, wrist in bm.hands.items()]
+    n = max(RAMP, int(round(FLOOR_RAMP_SECONDS * motion.fps)))
+    return lift(motion, limbs, [envelope(np.maximum(0.0, -chain_lowest(motion, end)), n) for *_, end in limbs], 0)
+
+
+def envelope(deficit: np.ndarray, n: int) -> np.ndarray:
+    """A smooth ``(T,)`` lift never below ``deficit``: its maximum over ``n`` frames either side, then a
+    Gaussian of the same support, so a limb coming down to the floor slows before it instead of
+    stopping on it."""
+    if not deficit.any():
+        return deficit
+    return gaussian_filter1d(maximum_filter1d(deficit, 2 * n + 1, mode="nearest"), n / 2.0, mode="nearest",
+                             truncate=2.0)
+
+
+def chain_lowest(motion: Motion, joint: int) -> np.ndarray:
+    """Height (m) of the lowest point of ``joint``'s subtree per frame, ``(T,)``: its joints and the end
+    sites hanging from them (a foot: ankle, ball, toe tip; a hand: wrist, fingers, fingertips)."""
+    below = [int(j) for j in motion.skeleton.subtree(joint)]
+    y = motion.positions[:, below, 1].min(axis=1)
+    sites = [k for k, (j, _) in enumerate(motion.skeleton.end_sites) if j in below]
+    if sites:
+        y = np.minimum(y, motion.end_site_positions()[:, sites, 1].min(axis=1))
+    return y
 
 
 def lift_swings(motion: Motion) -> Motion:

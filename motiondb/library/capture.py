@@ -7,7 +7,8 @@ format is described at its top). ``capture.npz`` holds what
 ``(T, 3)`` float32 metres and the local joint rotations ``<name>.rot``
 ``(T, J, 4)`` float32 quaternions ``(x, y, z, w)`` on
 :func:`.skeleton.canonical_skeleton`, at :data:`FPS`, feet on ``y = 0``,
-facing +Z at the first frame (or travelling along +Z).
+facing +Z at the first frame (or travelling along +Z), and ``<name>.source_gmd`` ``(1,)``
+GMD's skating ratio of the cut as captured (:func:`source_skating`).
 
 Loading is a ``numpy.load`` and a renormalisation: no generation at first use.
 The data is CMU's (http://mocap.cs.cmu.edu); see the package README.
@@ -152,6 +153,15 @@ def captured_clip(name: str, fps: float = FPS) -> Motion:
             raise ClipDataError(f"capture.npz has no clip {name!r}: rebuild it "
                                 "(python tools/library/build_capture.py)")
         return _motion(data[f"{name}.root"], data[f"{name}.rot"], float(fps))
+
+
+@lru_cache(maxsize=1)
+def source_skating() -> dict[str, float]:
+    """``{clip: GMD's skating ratio of its cut as captured}`` (30 fps, above the cut's own lowest foot
+    point), as the build measured it: what a captured clip is held to when the capture itself is over
+    :data:`core.metrics.CAPTURE_GMD_LIMIT` (a walking turn of subject 16 on feet that barely lift)."""
+    with np.load(ARRAYS) as data:
+        return {k.removesuffix(".source_gmd"): float(data[k][0]) for k in data.files if k.endswith(".source_gmd")}
 
 
 @lru_cache(maxsize=8)

@@ -46,7 +46,10 @@ def test_every_size_moves_as_the_human_sized_one(outputs):
     for h in (0.2, 20.0):
         rel, leg = _relative(outputs[h])
         assert leg == pytest.approx(ref_leg * h / 1.7, rel=1e-6)
-        assert np.abs(rel - ref).max() < 5e-3, h  # the same pose, frame by frame (up to the BVH text's digits)
+        # the same pose, frame by frame: up to the BVH text's digits, and toe heights within the ground band
+        # kept unscaled on a body of about the source's size, scaled on the others (core.retarget.foot_height):
+        # a swinging foot's knee then differs by up to 0.6 % of the leg
+        assert np.abs(rel - ref).max() < 7e-3, h
 
 
 def test_the_small_character_stands_on_the_floor_and_does_not_squat(outputs):

@@ -11,7 +11,7 @@ from text2anim.core.metrics import CRITERIA, quality
 
 EXAMPLE = "太郎は走って、ボールを蹴る。そして喜ぶ。"
 FIGURES = {"fps", "frames", "skating_ratio", "root_pop", "jerk_p99", "floor_penetration_cm", "frozen_fraction",
-           "floating_cm"}
+           "floating_cm", "skating_gmd"}
 
 
 @pytest.fixture(scope="module")

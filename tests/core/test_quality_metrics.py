@@ -107,9 +107,21 @@ def test_figures_compare_at_30_fps_whatever_the_file_rate():
     assert quality(fast, fps=None).root_pop == pytest.approx(2.0 * 120 / 3, rel=1e-3)  # at its own rate: 4x
 
 
-def test_floor_penetration_is_the_lowest_joint_below_y0_in_cm():
-    assert quality(_held(30, _slide(0.0), height=-0.03)).floor_penetration_cm == pytest.approx(3.0, abs=1e-6)
-    assert quality(_held(30, _slide(0.0), height=0.01)).floor_penetration_cm == 0.0
+def test_floor_penetration_is_the_lowest_joint_or_end_site_below_y0_in_cm():
+    sunk = _held(30, _slide(0.0), height=-0.03)
+    tip = float(sunk.end_site_positions()[..., 1].min())
+    assert tip < -0.035  # the toe's tip lies under its joint: joints alone would say 3 cm
+    assert quality(sunk).floor_penetration_cm == pytest.approx(-tip * 100, abs=1e-6)
+    assert quality(_held(30, _slide(0.0), height=0.01 + (-0.03 - tip))).floor_penetration_cm == 0.0
+
+
+def test_gmd_skating_reads_heights_above_the_motions_own_lowest_foot_point():
+    # toes 6 cm up: above the floor-true 5 cm, but on GMD's floor (the lowest foot point) they are at 0
+    sliding = _held(30, _slide(1.0), height=0.06)
+    q = quality(sliding)
+    assert q.skating_ratio == 0.0
+    assert q.skating_gmd == pytest.approx(1.0)
+    assert quality(_held(30, _slide(0.2), height=0.06)).skating_gmd == 0.0  # slow: no skating either way
 
 
 def test_frozen_frames_are_those_where_every_joint_is_still():

@@ -66,7 +66,7 @@ def test_captured_clips_stand_in_for_the_keyframed_drink_and_wipe(library_db):
 def test_rebuilding_an_everyday_clip_gives_the_shipped_arrays():
     """The Daz-friendly take is read by name (no joint map), cut, retargeted and floored bit for bit again."""
     c = CUTS["drink"]
-    m = build.cut_clip(build.load_take(EVERYDAY_DIR / c.file), c)
+    m = build.cut_clip(*build.load_take(EVERYDAY_DIR / c.file), c)
     with np.load(capture.ARRAYS) as shipped:
         assert np.array_equal(m.rotations.astype(np.float32), shipped["drink.rot"])
         assert np.array_equal(m.root_positions.astype(np.float32), shipped["drink.root"])

@@ -100,7 +100,7 @@ def test_rebuilding_from_the_capture_gives_the_shipped_arrays(tmp_path):
     with np.load(capture.ARRAYS) as shipped:
         for name in ("wait", "jump", "dance", "wave_hand"):  # a plain cut, a blended loop, a spot loop, a repeated cycle
             c = cuts[name]
-            m = build.cut_clip(build.load_take(CMU_DIR / c.file), c)
+            m = build.cut_clip(*build.load_take(CMU_DIR / c.file), c)
             assert np.array_equal(m.rotations.astype(np.float32), shipped[f"{name}.rot"])
             assert np.array_equal(m.root_positions.astype(np.float32), shipped[f"{name}.root"])
             arrays = {f"{name}.rot": shipped[f"{name}.rot"]}

@@ -11,12 +11,13 @@ For every take named in the cut list (each file read once), then every clip cut 
    take's foot contacts), retarget it onto the built-in character
    (:func:`core.retarget.retarget`: world rotations carried over, hips scaled by leg length;
    without its IK re-placing of ankles and wrists, which flips a nearly straight leg's twist)
-   and put that on the floor again;
+   and put that on the floor again (the floored take is kept beside it);
 3. low-pass the take where the cut list asks (``lowpass = Hz``: takes with capture glitches,
    :mod:`smooth`), cut the clip's seconds (with ``blend`` seconds before them for a blended loop);
-4. resample to 30 fps (slerp), hold planted feet still, keep swinging feet clear of the floor
-   and feet and hands above it (:func:`feet.lock_feet`, :func:`core.clearance.lift_swings`,
-   :func:`core.clearance.clear_floor`);
+4. resample to 30 fps (slerp), give swinging feet back the capture's own clearance
+   (:func:`feet.keep_clearance`: the character's longer foot points lower), hold planted feet
+   still, keep swinging feet clear of the floor and feet, hands and their tips above it
+   (:func:`feet.lock_feet`, :func:`core.clearance.lift_swings`, :func:`core.clearance.clear_floor`);
 5. turn it about +Y and move it so it starts at the origin facing +Z (``face = "travel"``:
    its travel points +Z);
 6. a looping clip has its last ``blend`` seconds blended into the frames before the cut, so
@@ -52,13 +53,14 @@ from text2anim.core.clearance import clear_floor, lift_swings
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.easing import smoothstep
 from text2anim.core.floor import place_on_floor
+from text2anim.core.metrics import skating_ratio_gmd
 from text2anim.core.motion import Motion
 from text2anim.core.retarget import retarget
 
 from text2anim.motiondb.library.capture import ARRAYS, FPS, Cut, cut_list
 from text2anim.motiondb.library.skeleton import canonical_skeleton
 
-from feet import lock_feet  # this folder's modules: run as a script, the folder is on sys.path
+from feet import keep_clearance, lock_feet  # this folder's modules: run as a script, the folder is on sys.path
 from smooth import lowpass
 
 #: Rate of the CMU files (their Frame Time).
@@ -68,14 +70,14 @@ FACING_WINDOW = 0.3
 DEFAULT_CMU = Path(__file__).resolve().parents[2] / ".." / "shared" / "mocap" / "cmu"
 
 
-def load_take(path: Path) -> Motion:
-    """A CMU take on the built-in skeleton, floor at ``y = 0``, at its own 120 fps."""
+def load_take(path: Path) -> tuple[Motion, Motion]:
+    """A CMU take on the built-in skeleton, and as captured, each with its floor at ``y = 0``, at 120 fps."""
     m = read_bvh(path, scale="auto").frames(1)
     m, _ = place_on_floor(m)
     # replant=False: the retarget's ankle re-placing flips the thigh's twist by 1.5-2.7 rad for a frame
     # or two where a leg is nearly straight (walk: 10 flips in 4 s); the contacts are cleaned below instead
-    m, _ = place_on_floor(retarget(m, canonical_skeleton(), replant=False))
-    return m
+    on, _ = place_on_floor(retarget(m, canonical_skeleton(), replant=False))
+    return on, m
 
 
 def _frames(t: float, fps: float) -> int:
@@ -212,8 +214,9 @@ def mime_in_place(m: Motion) -> Motion:
     return m.replace(root_positions=root)
 
 
-def cut_clip(take: Motion, cut: Cut) -> Motion:
-    """One clip of the cut list from its (retargeted, floored) take, at :data:`FPS`, facing +Z."""
+def cut_clip(take: Motion, captured: Motion, cut: Cut) -> Motion:
+    """One clip of the cut list from its (retargeted, floored) take, at :data:`FPS`, facing +Z;
+    ``captured``: the take as captured (floored), whose feet's clearance the clip keeps."""
     t0, t1 = cut.cut
     pre = _frames(cut.blend, FPS) if cut.loop else 0  # lead-in frames at FPS, a whole number of take frames each
     i0 = _frames(t0, take.fps) - _frames(pre / FPS, take.fps)
@@ -222,8 +225,8 @@ def cut_clip(take: Motion, cut: Cut) -> Motion:
         raise ValueError(f"{cut.name}: a {cut.blend} s blend needs {cut.blend} s before the cut at {t0}")
     if i1 > take.n_frames - (cut.loop in ("stride", "spot")):
         raise ValueError(f"{cut.name}: the cut ends at {t1} s, after the take's {take.duration:.2f} s")
-    src = lowpass(take, cut.lowpass) if cut.lowpass else take
-    m = src.frames(i0, i1).resample(FPS)
+    src, ref = (lowpass(take, cut.lowpass), lowpass(captured, cut.lowpass)) if cut.lowpass else (take, captured)
+    m = keep_clearance(src.frames(i0, i1).resample(FPS), ref.frames(i0, i1).resample(FPS))
     if cut.mime:
         m = mime_in_place(m)
     m = clear_floor(lift_swings(lock_feet(m)))
@@ -238,6 +241,12 @@ def cut_clip(take: Motion, cut: Cut) -> Motion:
             travel = root[i1, [0, 2]] - root[_frames(t0, take.fps), [0, 2]]
         m = lift_swings(lock_feet(blend_loop(m, pre, travel)))  # the blend moved a planted foot by the frames' difference
     return face(m, cut.face)
+
+
+def source_gmd(captured: Motion, cut: Cut) -> float:
+    """GMD's skating ratio of the cut as captured (floored take, :data:`FPS`, its own lowest foot point)."""
+    i0, i1 = _frames(cut.cut[0], captured.fps), _frames(cut.cut[1], captured.fps)
+    return skating_ratio_gmd(captured.frames(i0, i1).resample(FPS))
 
 
 def start_from(m: Motion, before: Motion, n: int) -> Motion:
@@ -286,7 +295,7 @@ def write_arrays(path: Path, arrays: dict[str, np.ndarray]) -> int:
 def build(cmu: Path, out: Path = ARRAYS, log=print) -> int:
     """Cut, retarget and write every clip of the cut list; returns the file's size in bytes."""
     cuts = cut_list()
-    takes: dict[tuple[str, str], Motion] = {}
+    takes: dict[tuple[str, str], tuple[Motion, Motion]] = {}
     arrays: dict[str, np.ndarray] = {}
     built: dict[str, Motion] = {}
     for c in cuts:
@@ -295,12 +304,13 @@ def build(cmu: Path, out: Path = ARRAYS, log=print) -> int:
             if not path.is_file():
                 raise FileNotFoundError(f"{path}: not found (pass --cmu DIR)")
             takes[c.folder, c.file] = load_take(path)
-        m = cut_clip(takes[c.folder, c.file], c)
+        m = cut_clip(*takes[c.folder, c.file], c)
         if c.starts_from:
             m = lock_feet(start_from(m, built[c.starts_from], _frames(c.ease, FPS)))
         built[c.name] = m
         arrays[f"{c.name}.root"] = m.root_positions.astype(np.float32)
         arrays[f"{c.name}.rot"] = m.rotations.astype(np.float32)
+        arrays[f"{c.name}.source_gmd"] = np.array([source_gmd(takes[c.folder, c.file][1], c)], np.float32)
         log(f"  {c.name:16s} {c.trial:7s} {c.cut[0]:6.2f}-{c.cut[1]:6.2f} s  {m.n_frames:4d} frames")
     size = write_arrays(out, arrays)
     log(f"wrote {out}: {len(cuts)} clips, {size / 1e6:.2f} MB")
