@@ -206,10 +206,11 @@ def parse_motion_header(text: str, start: int, source: str) -> tuple[int, float,
     i = start
     found: dict[str, tuple[str, int]] = {}
     for regex, key in ((_FRAMES_RE, "frames"), (_FRAME_TIME_RE, "frame time")):
-        i = _BLANKS_RE.match(text, i).end()
+        blanks = _BLANKS_RE.match(text, i)  # always matches (perhaps nothing)
+        i = blanks.end() if blanks else i
         lineno = _line_at(text, i)
         if i >= len(text):
-            raise BVHError(f"{source}:{lineno - 1}: unexpected end of file, expected '{key.title()}:'")
+            raise BVHError(f"{source}:{lineno}: unexpected end of file, expected '{key.title()}:'")
         end = text.find("\n", i)
         end = len(text) if end < 0 else end
         m = regex.match(text[i:end]) if end - i <= MAX_HEADER_LINE else None
