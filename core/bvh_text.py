@@ -248,26 +248,37 @@ def _data_lines(text: str, first: int):
 
 def _locate_bad_value(text: str, first: int, n_channels: int, source: str) -> BVHError:
     """Slow path, only on error: find the first data line that is not n_channels finite numbers,
-    reading no line longer than a frame line can be."""
+    reading no line longer than a frame line can be (its number counted only for the message)."""
     width = n_channels * MAX_CHARS_PER_VALUE
     for a, b in _data_lines(text, first):
-        lineno = _line_at(text, a)
+        where = f"{source}:{{}}"
         if b - a > width:
-            return BVHError(f"{source}:{lineno}: a frame line of {b - a:,} characters, over {width:,} for "
-                            f"{n_channels} channels (it starts {quoted(text[a:a + QUOTE_WIDTH], length=b - a)})")
+            return BVHError(f"{where.format(_line_at(text, a))}: a frame line of {b - a:,} characters, over {width:,} "
+                            f"for {n_channels} channels (it starts {quoted(text[a:a + QUOTE_WIDTH], length=b - a)})")
         toks = text[a:b].split()
         if len(toks) != n_channels:
-            return BVHError(f"{source}:{lineno}: {len(toks)} values on a frame line, the hierarchy declares {n_channels} channels")
+            return BVHError(f"{where.format(_line_at(text, a))}: {len(toks)} values on a frame line, the hierarchy "
+                            f"declares {n_channels} channels")
         for t in toks:
             try:
                 if not t.isascii() or "_" in t:  # float() takes '1_000' and '１２'; numpy's reader takes neither
                     raise ValueError(t)
                 v = float(t)
             except ValueError:
-                return BVHError(f"{source}:{lineno}: {quoted(t)} is not a number")
+                return BVHError(f"{where.format(_line_at(text, a))}: {quoted(t)} is not a number")
             if not np.isfinite(v):
-                return BVHError(f"{source}:{lineno}: {quoted(t)} is not a finite number")
+                return BVHError(f"{where.format(_line_at(text, a))}: {quoted(t)} is not a finite number")
     return BVHError(f"{source}: malformed frame data")  # numpy refused what float() reads: not seen
+
+
+def _count_error(text: str, first: int, frames: int, source: str) -> BVHError | None:
+    """The error of a file whose frame lines (counted to a bound) are not the ``frames`` it declares, else None."""
+    rows = sum(1 for _ in itertools.islice(_data_lines(text, first), frames + _EXTRA_LINES_COUNTED + 1))
+    if rows == frames:
+        return None
+    found = f"more than {frames + _EXTRA_LINES_COUNTED}" if rows > frames + _EXTRA_LINES_COUNTED else str(rows)
+    return BVHError(f"{source}:{_line_at(text, len(text))}: the file declares {frames} frames but has {found} "
+                    "frame lines" + (" (truncated?)" if rows < frames else ""))
 
 
 def parse_frames(text: str, first: int, frames: int, channels, source: str) -> np.ndarray:
@@ -283,15 +294,12 @@ def parse_frames(text: str, first: int, frames: int, channels, source: str) -> n
                 warnings.simplefilter("ignore", UserWarning)
                 values = np.loadtxt(io.StringIO(text[first:]), dtype=np.float64, comments=None, ndmin=2,
                                     max_rows=frames + 1)
-        except ValueError:
-            raise _locate_bad_value(text, first, n_channels, source) from None
+        except ValueError:  # a truncated file is told so first (its cut last line is not the news)
+            raise _count_error(text, first, frames, source) or _locate_bad_value(text, first, n_channels, source) \
+                from None
         rows = len(values)
-    if rows != frames:
-        if rows > frames:  # counted on to a bound: millions of one-character lines are not each looked at
-            rows = sum(1 for _ in itertools.islice(_data_lines(text, first), frames + _EXTRA_LINES_COUNTED + 1))
-        found = f"more than {frames + _EXTRA_LINES_COUNTED}" if rows > frames + _EXTRA_LINES_COUNTED else str(rows)
-        raise BVHError(f"{source}:{_line_at(text, len(text))}: the file declares {frames} frames but has {found} "
-                       "frame lines" + (" (truncated?)" if rows < frames else ""))
+    if rows != frames:  # counted on to a bound: millions of one-character lines are not each looked at
+        raise _count_error(text, first, frames, source) or BVHError(f"{source}: malformed frame data")
     if values.shape != (frames, n_channels):
         raise _locate_bad_value(text, first, n_channels, source)
     _check_values(values, channels, first, text, source)
