@@ -39,6 +39,7 @@ class Animation:
     synthesis_tracks: tuple = ()  # the synthesis input (source clips per element), for the report's join figures
     staging: Staging | None = None  # where the actors started (the staging stage)
     scene: Scene | None = None  # the actors placed where the text wants them, and the things (the scene stage)
+    manners: tuple = ()  # manners.Styled per row with a manner: clip, modifiers or not shown (the manner stage)
 
     @property
     def text(self) -> str:
@@ -59,9 +60,11 @@ class Animation:
 
     @property
     def warnings(self) -> tuple[str, ...]:
-        """What the synthesizer could not honour, in the user's terms (:meth:`Terms.reword`)."""
+        """What the synthesizer could not honour, in the user's terms (:meth:`Terms.reword`), after the
+        manners that are not shown (:mod:`text2anim.manners`)."""
         terms = self.terms
-        return tuple(terms.reword(w) for w in self.result.warnings)
+        unshown = tuple(w for w in (s.warning() for s in self.manners) if w)
+        return unshown + tuple(terms.reword(w) for w in self.result.warnings)
 
     @property
     def report(self) -> dict[str, Any]:
@@ -96,6 +99,7 @@ class Animation:
             "elements": {str(k): v.to_dict() for k, v in self.result.elements.items()},
             "actors": whole,
             **({"scene": self.scene.to_dict()} if self.scene is not None and not self.scene.empty else {}),
+            **({"manners": [s.to_dict() for s in self.manners]} if self.manners else {}),
             "skipped": list(self.planned.skipped),
             **({"fallbacks": [f.to_dict() for f in self.planned.fallbacks]} if self.planned.fallbacks else {}),
             # what the text was read as where it differs from what is written (typos, 彼女 -> 花子)

@@ -18,6 +18,12 @@ from text2anim.nlp.types import Analysis, MotionSpec
 from .phrase_sense import asked, same_sense
 
 
+def _style_rank(spec: MotionSpec, clip: ClipInfo) -> int:
+    """0 for a clip of the style the motion asks for (a neutral one when it asks none), 1 for a neutral clip
+    the modifiers can style, 2 for a clip of another style: a sad walk plays 歩く only when nothing else does."""
+    return 0 if clip.style == spec.style else 1 if clip.style is None else 2
+
+
 def _kana_only(word: str) -> bool:
     """Whether ``word`` is written in hiragana/katakana only (``とぶ``, ``ジャンプする``)."""
     return all("\u3041" <= ch <= "\u30ff" for ch in word)
@@ -48,7 +54,7 @@ class DatabaseClips:
                 return declared
             raise
         hits = sorted(hits, key=lambda h: spec.phrase not in h.verbs)  # stable: the database's order otherwise
-        same = [h for h in hits if same_sense(spec, h)]
+        same = sorted((h for h in hits if same_sense(spec, h)), key=lambda h: _style_rank(spec, h))
         if hits and not same:
             declared = self._by_phrase(spec, part, prefer)
             if declared:

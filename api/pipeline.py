@@ -8,6 +8,7 @@ part filled in; :func:`text2anim.animate` runs them all, :func:`text2anim.plan` 
 ``plan``      analyse, settle the verbs the database lacks, schedule (:func:`plan_text`)
 ``staging``   where each actor starts, what each row is directed at (:func:`scene.stage`)
 ``tracks``    each row's clip loaded from the database (:func:`text2anim.tracks.build_tracks`)
+``manner``    each row's manner made from its clip where no clip of it exists (:mod:`text2anim.manners`)
 ``synthesis`` the motions, by the asked joiner (:func:`synthesis.registry.synthesize_with`)
 ``scene``     the actors moved where the text wants them, the things placed (:func:`scene.place`)
 ============= =============================================================================
@@ -60,6 +61,7 @@ class Work:
     planned: Planned | None = None
     staging: Staging | None = None
     tracks: tuple = ()
+    manners: tuple = ()  # manners.Styled per row with a manner: what the manner stage did
     result: Result | None = None
     scene: Scene | None = None
 
@@ -104,6 +106,14 @@ def _tracks_stage(work: Work) -> Work:
     return replace(work, tracks=tuple(build_tracks(work.planned, work.db, work.request.fps, work.staging)))
 
 
+def _manner_stage(work: Work) -> Work:
+    from .manners import restyle_tracks
+
+    assert work.planned is not None
+    tracks, styled = restyle_tracks(work.planned.table, work.tracks)
+    return replace(work, tracks=tracks, manners=styled)
+
+
 def _synthesis_stage(work: Work) -> Work:
     from text2anim.synthesis.registry import synthesize_with
 
@@ -124,7 +134,7 @@ def _place_stage(work: Work) -> Work:
 
 #: The stages in order: (name, stage). Each takes the :class:`Work` so far and returns it with its part.
 STAGES: tuple[tuple[str, Callable[[Work], Work]], ...] = (
-    ("plan", _plan_stage), ("staging", _staging_stage), ("tracks", _tracks_stage),
+    ("plan", _plan_stage), ("staging", _staging_stage), ("tracks", _tracks_stage), ("manner", _manner_stage),
     ("synthesis", _synthesis_stage), ("scene", _place_stage),
 )
 NAMES = tuple(name for name, _ in STAGES)
@@ -146,7 +156,8 @@ def animation(work: Work) -> Any:
 
     r = work.request
     assert work.planned is not None and work.result is not None
-    return Animation(work.planned, work.result, r.fps, r.blend, r.smoothness, work.tracks, work.staging, work.scene)
+    return Animation(work.planned, work.result, r.fps, r.blend, r.smoothness, work.tracks, work.staging, work.scene,
+                     work.manners)
 
 
 __all__ = ["NAMES", "STAGES", "Planned", "Request", "Work", "animation", "plan_text", "run"]

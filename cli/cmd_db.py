@@ -13,6 +13,7 @@ import unicodedata
 
 from text2anim.core.bodyparts import GROUPS
 from text2anim.core.inputs import printable
+from text2anim.core.styles import STYLES
 
 from .arg_types import core_span, frame_count
 from .bvh_options import add_read_options, read_options
@@ -22,6 +23,8 @@ NAME = "db"
 HELP = "the motion database: import BVH clips, list, show, export, remove, verbs, preview"
 
 _PARTS = GROUPS
+#: motiondb.style_pack.PACKS (repeated here so that building the parser imports no database code).
+_PACKS = ("bandai-namco",)
 #: motiondb.types.POSTURES (repeated here so that building the parser imports no database code).
 _POSTURES = ("standing", "seated", "crouched", "kneeling", "lying")
 
@@ -57,10 +60,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="the posture the clips start in (default: classified from each file's first frame)")
     a.add_argument("--end-posture", choices=_POSTURES,
                    help="the posture the clips end in (default: classified from each file's last frame)")
+    a.add_argument("--style", choices=sorted(STYLES),
+                   help="the style the clips were performed in (docs/language.md §2.1): a text asking for it plays "
+                        "them before changing a neutral clip (default: neutral)")
     a.add_argument("--map", dest="joint_map", metavar="FILE",
                    help="JSON {role: joint name} for joints no known rig names, used when a clip is retargeted "
                         "onto its character's skeleton (roles are VRM humanoid bone names)")
     add_read_options(a)
+
+    a = action("import-pack", "import a style pack you downloaded (the Bandai Namco Research Motion Dataset), "
+                              "its styles mapped to ours")
+    a.add_argument("pack", choices=_PACKS, help="the pack: bandai-namco")
+    a.add_argument("folder", metavar="DIR", help="the folder of its BVH files (searched recursively)")
+    a.add_argument("--character", default="bandai-namco", help="the character its clips belong to (default: bandai-namco)")
+    a.add_argument("--replace", action="store_true", help="replace clips of the same names")
 
     a = action("list", "list clips (ranked as a search when --verb is given)")
     a.add_argument("--verb", help="only clips retrieved by this verb, best first")
@@ -110,10 +123,10 @@ def _table(rows: list[list[str]], header: list[str]) -> str:
     return "\n".join(lines)
 
 
-def _clip_row(c) -> list[str]:
+def _clip_row(c, styles: bool = False) -> list[str]:
     return [c.name, c.character, "/".join(c.verbs), "/".join(c.objects) or "-", c.body_part or "-",
-            _postures(c), str(c.frames), f"{c.fps:g}", f"{c.duration:.2f}", "yes" if c.cyclic else "",
-            _source(c.source)]
+            _postures(c), *([c.style or "-"] if styles else []), str(c.frames), f"{c.fps:g}", f"{c.duration:.2f}",
+            "yes" if c.cyclic else "", _source(c.source)]
 
 
 def _source(source: str) -> str:
@@ -134,9 +147,10 @@ def _print_clips(clips, as_json: bool) -> None:
     if not clips:
         say("(no clips)")
         return
-    say(_table([_clip_row(c) for c in clips],
-               ["clip", "character", "verbs", "objects", "part", "posture", "frames", "fps", "seconds",
-                "cyclic", "source"]))
+    styles = any(c.style for c in clips)  # the column only when a clip has a style
+    say(_table([_clip_row(c, styles) for c in clips],
+               ["clip", "character", "verbs", "objects", "part", "posture", *(["style"] if styles else []),
+                "frames", "fps", "seconds", "cyclic", "source"]))
 
 
 def _show(c) -> str:
@@ -152,6 +166,7 @@ def _show(c) -> str:
         f"core:       {c.core[0]:.3f} .. {c.core[1]:.3f} s",
         f"body part:  {c.body_part or 'whole body'}",
         f"postures:   starts {c.start_posture}, ends {c.end_posture}",
+        f"style:      {c.style or 'neutral'}",
         f"does:       {_actions(c)}",
         f"body:       {_body(c.description)}",
         f"cyclic:     {'yes' if c.cyclic else 'no'}",
@@ -215,14 +230,34 @@ def _import(db, args) -> int:
                             core=args.core, part=args.part, cyclic=args.cyclic,
                             names=(args.name,) if args.name else None, replace=args.replace,
                             start_posture=args.start_posture, end_posture=args.end_posture, joint_map=joint_map,
-                            **read_options(args))
+                            style=args.style, **read_options(args))
     infos = db.import_bvh(args.files, options, progress=_progress,
                           notify=lambda path, msg: say(f"text2anim db import: {path}: {msg}", file=sys.stderr))
     say(f"imported {len(infos)} clip{'s' if len(infos) != 1 else ''} into {db.url}:")
     for c in infos:
         say(f"  {c.name}: {c.frames} frames at {c.fps:g} fps ({c.duration:.2f} s), "
             f"{len(c.left_contacts)}+{len(c.right_contacts)} foot contacts, verbs {'/'.join(c.verbs)}, "
-            f"posture {_postures(c)}")
+            f"posture {_postures(c)}" + (f", style {c.style}" if c.style else ""))
+    return 0
+
+
+def _import_pack(db, args) -> int:
+    from text2anim.motiondb.style_pack import NOTICE, import_pack
+
+    say(f"text2anim db import-pack: {NOTICE}", file=sys.stderr)
+    clips, plan = import_pack(db, args.pack, args.folder, character=args.character, replace=args.replace,
+                              progress=_progress,
+                              notify=lambda path, msg: say(f"text2anim db import-pack: {path}: {msg}", file=sys.stderr))
+    reasons: dict[str, int] = {}
+    for _, why in plan.left_out:
+        reasons[why] = reasons.get(why, 0) + 1
+    for why, n in sorted(reasons.items()):
+        say(f"text2anim db import-pack: left out {n} file{'s' if n != 1 else ''}: {why}", file=sys.stderr)
+    styles: dict[str, int] = {}
+    for c in clips:
+        styles[c.style or "neutral"] = styles.get(c.style or "neutral", 0) + 1
+    say(f"imported {len(clips)} clip{'s' if len(clips) != 1 else ''} of {args.pack} into {db.url} "
+        f"(character {args.character}): " + ", ".join(f"{k} {v}" for k, v in sorted(styles.items())))
     return 0
 
 
@@ -327,5 +362,5 @@ def _preview_file(args) -> int:
     return 0
 
 
-_ACTIONS = {"import": _import, "list": _list, "show": _show_action, "export": _export, "remove": _remove,
+_ACTIONS = {"import": _import, "import-pack": _import_pack, "list": _list, "show": _show_action, "export": _export, "remove": _remove,
             "verbs": _verbs, "preview": _preview}

@@ -20,18 +20,26 @@ carry a swinging foot that low (a root offset decaying into the next clip
 while a foot lock is released): a foot sliding on the floor, i.e. skating.
 The built-in library's build and every engine's last step apply it.
 
+:func:`keep_clearance` gives a retargeted capture's swinging feet back the height the capture gave
+them. The built-in character's foot is longer than a CMU subject's (its ball 13 cm in front of the
+ankle and 5.5 cm under it, against 11 and 2.5), so the world rotations carried over put a pointed
+foot's ball lower than the capture did (the kick's stepping foot 0.4-3.7 cm up at 2-3 m/s where the
+capture's was 2.4-3.8): GMD's figure counts that as skating (kick 0.15 -> 0.25, walk 0.21 -> 0.30).
+The library's build and ``db import`` apply it after retargeting.
+
 Shapes: positions ``(T, J, 3)`` metres; deficits and lifts ``(T,)`` metres.
 """
 from __future__ import annotations
 
 import numpy as np
-from scipy.ndimage import gaussian_filter1d, maximum_filter1d
+from scipy.ndimage import distance_transform_edt, gaussian_filter1d, maximum_filter1d
 
 from .bodyparts import body_map
 from .contacts import SPEED_THRESHOLD, detect_contacts, horizontal_speed
 from .easing import smoothstep
-from .floor import FOOT_CLEARANCE
+from .floor import FOOT_CLEARANCE, lowest_foot_heights
 from .ik import arm_ik, leg_ik, set_world_rotation
+from .metrics import SKATE_SPEED
 from .motion import Motion
 
 #: Frames over which a lift eases in before the frames that need it and out after them.
@@ -43,6 +51,9 @@ SWING_CLEARANCE = 0.015
 #: on the floor is lifted by up to 5 cm (its fingertips), which over :data:`RAMP` frames would stop it
 #: dead (the fall's forearm: joint jerk 9,200 m/s³).
 FLOOR_RAMP_SECONDS = 0.2
+#: Seconds over which :func:`keep_clearance` eases a lift in after a foot leaves the floor and out before
+#: it lands: the frames of a contact are never lifted.
+CLEARANCE_EASE_SECONDS = 0.1
 
 
 def lift_offsets(deficit: np.ndarray, ramp: int = RAMP) -> np.ndarray:
@@ -119,3 +130,28 @@ def lift_swings(motion: Motion) -> Motion:
         limbs.append((leg_ik, side, ankle))
         deficits.append(np.where(swinging, low, 0.0))
     return lift(motion, limbs, deficits)
+
+
+def keep_clearance(motion: Motion, capture: Motion) -> Motion:
+    """``motion`` (the capture retargeted, frame for frame) with each swinging foot (not in contact, faster
+    than GMD's 0.5 m/s, the other foot planted) lifted where its ball is lower above the motion's lowest
+    foot point than the capture's ball was above the capture's (the heights GMD's figure reads; leg IK,
+    the foot's world rotation kept: :func:`lift`), eased in and out over :data:`CLEARANCE_EASE_SECONDS`
+    off the floor; planted feet, a run's flight (lifting the lower foot there would lengthen it) and
+    everything above the knees are left as they are."""
+    mine_on, theirs_on = detect_contacts(motion), detect_contacts(capture)  # where either plants a foot: no lift
+    mine, theirs = body_map(motion.skeleton).feet, body_map(capture.skeleton).feet
+    rise = lowest_foot_heights(motion).min() - lowest_foot_heights(capture).min()  # m: the floors GMD reads
+    pos = motion.positions
+    n = max(1.0, CLEARANCE_EASE_SECONDS * motion.fps)
+    limbs, deficits = [], []
+    for side, (ankle, toe) in mine.items():
+        free = ~mine_on.of(side) & ~theirs_on.of(side)
+        other = mine_on.of("right" if side == "left" else "left")
+        swinging = free & other & (horizontal_speed(pos[:, toe], motion.fps) > SKATE_SPEED)
+        deficit = capture.positions[:, theirs[side][1], 1] + rise - pos[:, toe, 1]  # (T,) m
+        away = distance_transform_edt(free) if not free.all() else np.full(len(free), n)  # frames off the floor
+        ease = smoothstep(np.minimum(away / n, 1.0))  # 0 on a contact
+        limbs.append((leg_ik, side, ankle))
+        deficits.append(lift_offsets(np.where(swinging, np.maximum(0.0, deficit), 0.0)) * ease)
+    return lift(motion, limbs, deficits, 0)

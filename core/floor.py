@@ -17,6 +17,9 @@ up, 0.14. So
 
     floor = median height of the lowest foot joint on contact frames - FOOT_CLEARANCE
 
+(for a foot that ends at the ankle, its toes an end site, the lowest of the ankle and the tip:
+:func:`sole_heights`)
+
 and :func:`place_on_floor` moves the whole clip down by ``floor`` (the root's
 ``y`` only; nothing else changes).
 
@@ -84,6 +87,22 @@ def lowest_foot_heights(motion: Motion) -> np.ndarray:
     return np.stack([y[:, list(bm.feet[side])].min(axis=1) for side in ("left", "right")], axis=1)
 
 
+def sole_heights(motion: Motion) -> np.ndarray:
+    """Height of each foot's ball per frame, ``(T, 2)`` metres (left, right): its lowest joint, or for a
+    foot that ends at the ankle (no toe joint, the toes an end site: the cmu_everyday takes) the lowest of
+    the ankle and its end sites. The ankle of such a foot stands 7.7 cm up where a ball stands 3.8
+    (``benchmarks/bench_floor.py``): taken for a ball, it put those takes 3.9 cm under their floor."""
+    low = lowest_foot_heights(motion)
+    bm = body_map(motion.skeleton)
+    ends = motion.skeleton.end_sites
+    for k, side in enumerate(("left", "right")):
+        ankle, toe = bm.feet[side]
+        tips = [i for i, (j, _) in enumerate(ends) if j == ankle]
+        if ankle == toe and tips:
+            low[:, k] = np.minimum(low[:, k], motion.end_site_positions()[:, tips, 1].min(axis=1))
+    return low
+
+
 def shifted(motion: Motion, dy: float) -> Motion:
     """The clip moved up by ``dy`` metres (root ``y`` only)."""
     if dy == 0.0:
@@ -100,7 +119,7 @@ def find_floor(motion: Motion) -> Floor:
     """
     if motion.n_frames == 0:
         return Floor(0.0, "lowest", 0)
-    low = lowest_foot_heights(motion)
+    low = sole_heights(motion)
     coarse = float(np.percentile(low, COARSE_PERCENTILE)) - FOOT_CLEARANCE
     moved = shifted(motion, -coarse)
     fc = detect_contacts(moved)

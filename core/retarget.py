@@ -114,8 +114,16 @@ class Mapping:
         return tuple(r for r in ROLES if r in self.source and r in self.target)
 
 
-def _lowest_foot(rest: np.ndarray, roles: dict[str, int]) -> float:
-    return float(rest[[roles[r] for r in ("leftFoot", "rightFoot", "leftToes", "rightToes") if r in roles], 1].min())
+def _lowest_foot(skel: Skeleton, roles: dict[str, int]) -> float:
+    """Rest height (m) of the lowest foot point: the ankle and toe joints, and on a foot without a toe joint
+    the end sites hanging from its ankle (its toes), as :func:`core.floor.sole_heights` reads a sole."""
+    rest = skel.rest_positions()
+    low = float(rest[[roles[r] for r in ("leftFoot", "rightFoot", "leftToes", "rightToes") if r in roles], 1].min())
+    for side in ("left", "right"):
+        if f"{side}Toes" not in roles and f"{side}Foot" in roles:
+            tips = [rest[j, 1] + o[1] for j, o in skel.end_sites if j == roles[f"{side}Foot"]]
+            low = min([low] + tips)
+    return low
 
 
 def leg_length(skel: Skeleton, roles: dict[str, int]) -> float:
@@ -134,9 +142,9 @@ def leg_length(skel: Skeleton, roles: dict[str, int]) -> float:
 
 
 def ankle_height(skel: Skeleton, roles: dict[str, int]) -> float:
-    """Rest height of the ankles (mean of both) above the lowest foot joint, metres."""
+    """Rest height of the ankles (mean of both) above the lowest foot point (:func:`_lowest_foot`), metres."""
     rest = skel.rest_positions()
-    return float(rest[[roles["leftFoot"], roles["rightFoot"]], 1].mean()) - _lowest_foot(rest, roles)
+    return float(rest[[roles["leftFoot"], roles["rightFoot"]], 1].mean()) - _lowest_foot(skel, roles)
 
 
 def map_skeletons(source: Skeleton, target: Skeleton, source_map: dict[str, str] | None = None,

@@ -32,9 +32,10 @@ import numpy as np
 
 from text2anim.core.bodyparts import BodyMapError, BodyPart
 from text2anim.core.bvh import BVHError, read_bvh
+from text2anim.core.clearance import keep_clearance
 from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
-from text2anim.core.retarget import map_skeletons, retarget
+from text2anim.core.retarget import SAME_SIZE, map_skeletons, retarget
 from text2anim.core.rigs import RigError
 from text2anim.core.skeleton import Skeleton
 
@@ -68,6 +69,7 @@ class ImportOptions:
         replace: overwrite clips of the same names instead of refusing.
         start_posture, end_posture: every clip's postures (:data:`motiondb.types.POSTURES`);
             ``None`` classifies each file's first/last frame.
+        style: the style the clips were performed in (:data:`core.styles.STYLES`), ``None`` neutral.
         joint_map: ``{role: joint name}`` (or its items) for the files' joints no known rig names
             (:func:`core.rigs.load_joint_map`), used when a clip is retargeted; it applies to the
             character's skeleton too when that has every joint it names.
@@ -87,6 +89,7 @@ class ImportOptions:
     start_posture: Posture | None = None
     end_posture: Posture | None = None
     joint_map: tuple[tuple[str, str], ...] | None = None
+    style: str | None = None
 
     def __post_init__(self) -> None:
         if isinstance(self.joint_map, dict):
@@ -133,10 +136,12 @@ def conform(motion: Motion, target: Skeleton | None, where: str, character: str,
     target_map = joint_map if joint_map and set(joint_map.values()) <= set(target.names) else None
     try:
         mapping = map_skeletons(motion.skeleton, target, joint_map, target_map)
-        motion = retarget(motion, target, source_map=joint_map, target_map=target_map)
+        captured, motion = motion, retarget(motion, target, source_map=joint_map, target_map=target_map)
     except RigError as exc:
         raise ClipValidationError(f"{where}: cannot be retargeted onto the skeleton of character "
                                   f"{character!r}: {exc}") from None
+    if 1.0 / SAME_SIZE <= mapping.scale <= SAME_SIZE:  # a body of about the capture's size: its clearance holds
+        motion = keep_clearance(motion, captured)
     rigs = mapping.rigs[0] if mapping.rigs[0] == mapping.rigs[1] else " to ".join(mapping.rigs)
     notes.append(f"retargeted onto the skeleton of character {character!r} ({rigs} rig, legs x{mapping.scale:.3f})")
     return motion, notes
@@ -185,7 +190,8 @@ def read_clips(paths: Sequence[str | os.PathLike], options: ImportOptions,
         rec = ClipRecord(name=name, motion=motion, verbs=options.verbs, objects=options.objects,
                          character=options.character, core=options.core, body_part=options.part,
                          cyclic=options.cyclic, source=str(path.resolve()),
-                         start_posture=options.start_posture, end_posture=options.end_posture)
+                         start_posture=options.start_posture, end_posture=options.end_posture,
+                         style=options.style)
         try:
             out.append((prepare_record(rec, where=str(path)), path))
         except ClipValidationError as exc:

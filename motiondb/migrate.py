@@ -93,6 +93,8 @@ def migrate(s: Connection, version: int, skeletons: SkeletonCache) -> None:
         fill(s)
     if version < 4:
         _add_descriptions(s, skeletons)
+    if version < 5:  # 4 -> 5: clips.style; every stored clip is neutral (NULL)
+        s.execute(text("ALTER TABLE clips ADD COLUMN style VARCHAR(16)"))
     set_version(s, version=SCHEMA_VERSION)
 
 

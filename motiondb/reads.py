@@ -54,7 +54,7 @@ _OB, _CO, _CT = tb.objects.c, tb.clip_objects.c, tb.contacts.c
 _INFO_CLIPS = (
     select(_CL.id, _CL.name, _CH.name.label("character"), _CL.fps, _CL.frames, _CL.duration,
            _CL.core_begin, _CL.core_end, _CL.body_part, _CL.cyclic, _CL.source, _CL.created,
-           _CL.start_posture, _CL.end_posture, _CL.description, _SK.n_joints)
+           _CL.start_posture, _CL.end_posture, _CL.description, _CL.style, _SK.n_joints)
     .join(tb.characters, _CH.id == _CL.character_id)
     .join(tb.skeletons, _SK.id == _CL.skeleton_id)
     .where(_CL.id.in_(_IDS))
@@ -110,5 +110,6 @@ def clip_infos(s: Connection, ids: list[int]) -> list[ClipInfo]:
             created=created, joints=int(r.n_joints),
             left_contacts=tuple(sides["left"]), right_contacts=tuple(sides["right"]),
             start_posture=r.start_posture, end_posture=r.end_posture, description=description(r.description),
+            style=r.style,
         ))
     return out

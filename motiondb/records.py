@@ -13,6 +13,7 @@ from text2anim.core.contacts import detect_contacts
 from text2anim.core.inputs import control_in, printable
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
+from text2anim.core.styles import STYLES
 
 from .blobs import encode_frames, skeleton_json
 from .description import describe
@@ -50,6 +51,7 @@ class PreparedClip:
     end_posture: Posture = DEFAULT_POSTURE
     contacts: list[tuple[str, int, int]] = field(default_factory=list)
     description: ClipDescription = ClipDescription()
+    style: str | None = None
 
 
 def _words(values, what: str, where: str, *, required: bool) -> tuple[str, ...]:
@@ -162,6 +164,8 @@ def prepare_record(rec: ClipRecord, where: str | None = None, *,
         else:
             postures.append(declared)
     actions = _actions(rec.actions, where)
+    if rec.style is not None and rec.style not in STYLES:
+        raise ClipValidationError(f"{where}: unknown style {printable(str(rec.style)[:20])!r}; known: {', '.join(STYLES)}")
     definition = skeleton_json(m.skeleton)
     return PreparedClip(
         name=name, verbs=verbs, objects=objects, character=character, skeleton=m.skeleton,
@@ -170,4 +174,5 @@ def prepare_record(rec: ClipRecord, where: str | None = None, *,
         body_part=rec.body_part, cyclic=bool(rec.cyclic), source=str(rec.source or ""),
         blob=encode_frames(m), start_posture=postures[0], end_posture=postures[1], contacts=contacts,
         description=(describe(m, core, actions) if measured is None else replace(measured, actions=actions)),
+        style=rec.style,
     )

@@ -7,7 +7,7 @@ Tables (schema version :data:`SCHEMA_VERSION`)::
     characters      id, name (unique), skeleton_id -> skeletons
     clips           id, name (unique), character_id -> characters, skeleton_id -> skeletons,
                     fps, frames, duration, core_begin, core_end, body_part, cyclic,
-                    source, created, start_posture, end_posture, description
+                    source, created, start_posture, end_posture, description, style
     clip_frames     clip_id (PK) -> clips, encoding, data (compressed .npy bytes)
     verbs           id, lemma (unique), reading (indexed)
     clip_verbs      clip_id -> clips, verb_id -> verbs, position, is_primary
@@ -37,7 +37,8 @@ Meaning and units:
   ``crouched``, ``kneeling``, ``lying``; checked when stored, not by the
   database, so the vocabulary can grow without a migration); ``description`` JSON
   ``{"actions", "locomotion", "moving", "energy"}``, what the body does
-  (:class:`motiondb.types.ClipDescription`).
+  (:class:`motiondb.types.ClipDescription`); ``style`` the style it was performed in (one of
+  :data:`core.styles.STYLES`: ``sad``, ``tired``, ...), NULL for a neutral clip (checked when stored).
 - ``clip_frames``: the frame data in its own table, so listing and searching
   clips never reads it (see :mod:`motiondb.blobs` for the layout).
 - ``verbs``: lemmas (NFKC) and their katakana readings (see
@@ -64,6 +65,7 @@ older database in place, in one transaction, under the writers' lock):
 - 4: ``clips.description`` (``TEXT NOT NULL DEFAULT '{}'``). Migrating from 3 adds it and
   measures every stored clip from its frames (:func:`motiondb.description.describe`; no
   actions: an imported clip's actions are read from its primary verb when a stand-in is sought).
+- 5: ``clips.style`` (``VARCHAR(16)``, NULL). Migrating from 4 adds it: every stored clip is neutral.
 
 Deleting a clip deletes its frames, verb/object links and contacts (ON DELETE
 CASCADE); verbs, objects, characters and skeletons no clip uses any more are
@@ -99,7 +101,7 @@ from .types import DEFAULT_POSTURE
 
 #: Bumped whenever a table or column changes meaning; see :data:`schema_version` and the
 #: migrations in the module docstring.
-SCHEMA_VERSION = 4
+SCHEMA_VERSION = 5
 #: The oldest schema version :meth:`motiondb.store.MotionDB.open` can migrate from.
 OLDEST_MIGRATABLE = 1
 
@@ -161,6 +163,8 @@ clips = Table(
     Column("end_posture", String(16), nullable=False, default=DEFAULT_POSTURE, server_default=DEFAULT_POSTURE),
     # schema version 4
     Column("description", Text, nullable=False, default="{}", server_default="{}"),
+    # schema version 5
+    Column("style", String(16), nullable=True),
     CheckConstraint("fps > 0", name="ck_clips_fps"),
     CheckConstraint("frames > 0", name="ck_clips_frames"),
     CheckConstraint("core_begin >= 0 AND core_begin < core_end", name="ck_clips_core"),

@@ -185,7 +185,8 @@ def _search_statement(body_part: str | None, character: bool, limit: bool, postg
     cyclic = _CL.c.cyclic if postgres else type_coerce(_CL.c.cyclic, Integer)
     return (select(_CL.c.name, _CH.c.name.label("character"), _CL.c.fps, _CL.c.frames, _CL.c.duration,
                    _CL.c.core_begin, _CL.c.core_end, _CL.c.body_part, cyclic.label("cyclic"), _CL.c.source,
-                   created.label("created"), _CL.c.start_posture, _CL.c.end_posture, _CL.c.description, _SK.c.n_joints,
+                   created.label("created"), _CL.c.start_posture, _CL.c.end_posture, _CL.c.description, _CL.c.style,
+                   _SK.c.n_joints,
                    lists.label("lists"))
             .select_from(hits)
             .join(_CL, _CL.c.id == hits.c.id)
@@ -208,7 +209,7 @@ _CONTACT_ORDER = itemgetter(1, 2, 0)  # start, stop, side
 def _info(r) -> ClipInfo:
     """A result row of :func:`_search_statement` as a :class:`ClipInfo`."""
     (name, character, fps, frames, duration, core_begin, core_end, body_part, cyclic, source, created,
-     start_posture, end_posture, desc, n_joints, lists) = r  # unpacked: a Row's attributes cost ~1 us each
+     start_posture, end_posture, desc, style, n_joints, lists) = r  # unpacked: a Row's attributes cost ~1 us each
     verbs, objects, contacts = _lists(lists)
     verbs.sort(key=_BY_POSITION)
     objects.sort(key=_BY_POSITION)
@@ -222,7 +223,7 @@ def _info(r) -> ClipInfo:
         created=created if created.tzinfo else created.replace(tzinfo=timezone.utc), joints=int(n_joints),
         left_contacts=tuple([(int(a), int(b)) for side, a, b in contacts if side == "left"]),
         right_contacts=tuple([(int(a), int(b)) for side, a, b in contacts if side != "left"]),
-        start_posture=start_posture, end_posture=end_posture, description=description(desc),
+        start_posture=start_posture, end_posture=end_posture, description=description(desc), style=style,
     )
 
 

@@ -386,7 +386,7 @@ class MotionDB(AbstractContextManager):
         return ClipRecord(name=info.name, motion=self.load(info.name), verbs=info.verbs, objects=info.objects,
                           character=info.character, core=info.core, body_part=info.body_part,
                           cyclic=info.cyclic, source=info.source, start_posture=info.start_posture,
-                          end_posture=info.end_posture)
+                          end_posture=info.end_posture, style=info.style)
 
     # --------------------------------------------------------------- helpers
     def _clip_id(self, s: Connection, name: str) -> int:

@@ -78,6 +78,7 @@ class ClipRecord:
             when the clip is stored (:func:`motiondb.postures.classify_posture`).
         actions: what the body does, as WordNet verb synsets (:class:`ClipDescription`); the
             rest of the clip's description is measured from its frames when it is stored.
+        style: the style it was performed in (:data:`core.styles.STYLES`: ``sad``), ``None`` for neutral.
     """
 
     name: str
@@ -92,6 +93,7 @@ class ClipRecord:
     start_posture: Posture | None = None
     end_posture: Posture | None = None
     actions: tuple[str, ...] = ()
+    style: str | None = None
 
 
 @dataclass(frozen=True)
@@ -117,6 +119,7 @@ class ClipInfo:
             (:data:`motiondb.types.POSTURES`: ``standing``, ``seated``, ``crouched``,
             ``kneeling``, ``lying``).
         description: what the body does (:class:`ClipDescription`).
+        style: the style it was performed in (:data:`core.styles.STYLES`), ``None`` for a neutral clip.
     """
 
     name: str
@@ -137,6 +140,7 @@ class ClipInfo:
     start_posture: Posture = DEFAULT_POSTURE
     end_posture: Posture = DEFAULT_POSTURE
     description: ClipDescription = ClipDescription()
+    style: str | None = None
 
     @property
     def verb(self) -> str:
@@ -157,7 +161,7 @@ class ClipInfo:
             "duration": self.duration, "core": list(self.core), "body_part": self.body_part,
             "cyclic": self.cyclic, "source": self.source, "created": self.created.isoformat(),
             "joints": self.joints, "start_posture": self.start_posture, "end_posture": self.end_posture,
-            "description": self.description.to_dict(),
+            "description": self.description.to_dict(), "style": self.style,
             "contacts": {"left": [list(c) for c in self.left_contacts],
                          "right": [list(c) for c in self.right_contacts]},
         }

@@ -64,7 +64,7 @@ def store_clips(s: Connection, prepared: list[PreparedClip], cache: SkeletonCach
              frames=p.frames, duration=p.duration, core_begin=p.core[0], core_end=p.core[1],
              body_part=p.body_part, cyclic=p.cyclic, source=p.source, created=created,
              start_posture=p.start_posture, end_posture=p.end_posture,
-             description=json.dumps(p.description.to_dict(), sort_keys=True)) for p in kept])
+             description=json.dumps(p.description.to_dict(), sort_keys=True), style=p.style) for p in kept])
     ids: dict[str, int] = {}
     for chunk in chunks([p.name for p in kept]):
         ids.update((n, i) for i, n in s.execute(select(tb.clips.c.id, tb.clips.c.name)

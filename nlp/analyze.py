@@ -48,7 +48,8 @@ def analyze(text: str) -> Analysis:
         MotionSpec(p.id, p.actor, p.verb, p.object, p.body_part, p.repeat, p.speed,
                    p.duration, offsets.span(p.start, p.end),
                    hold=p.ending == "mama", reading=p.reading, delay=p.delay,
-                   written=p.written or p.verb, phrase=p.verb_phrase, manner=p.manner, target=p.target,
+                   written=p.written or p.verb, phrase=p.verb_phrase, manner=p.manner, style=p.style,
+                   intensity=p.intensity, target=p.target,
                    target_role=p.target_role, target_side=p.target_side, target_person=p.target_person)
         for p in motions
     ]

@@ -17,7 +17,7 @@ from .lexicon import (
     BODY_PARTS, CONNECTIVES, COUNTERS, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX,
     SPEED_WORDS, STEPPING_VERBS,
 )
-from . import mimetics
+from . import manners, mimetics
 from .phrases import read_phrases
 from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
@@ -47,9 +47,10 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     read (:func:`reference.resolve_persons`) is appended to ``notes``."""
     values: dict[int, float] = {}
     mimetic: list[Phrase] = []
+    styled = manners.find(phrases)
     for i, ph in enumerate(phrases):
         nxt = phrases[i + 1] if i + 1 < len(phrases) else None
-        role = _modifier_role(ph, values)
+        role = _modifier_role(ph, values) or ("manner" if i in styled else "")
         if role:
             ph.role = role
             if role == "mimetic":
@@ -69,11 +70,12 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     if notes is not None:
         notes.extend(said)
     assign_actors(phrases)
-    cues = _attach_modifiers(phrases, values)
+    cues = _attach_modifiers(phrases, values, styled)
     for pred in preds:
         recover_homophone(pred)
     read_phrases(preds, phrases)  # before the targets: their roles read the action (腰を下ろす: 座る on a support)
     mimetics.apply(mimetic, phrases)
+    _pass_postures(phrases)
     attach_targets(phrases)
     for ph in phrases:
         if ph.pred:
@@ -262,7 +264,8 @@ def _mark_embedded(phrases: list[Phrase]) -> None:
 # ---------------------------------------------------------------- modifiers
 
 
-def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[TimeCue]:
+def _attach_modifiers(phrases: list[Phrase], values: dict[int, float],
+                      styled: dict[int, manners.Manner | None]) -> list[TimeCue]:
     cues: list[TimeCue] = []
     for i, ph in enumerate(phrases):
         if ph.pred:
@@ -273,6 +276,9 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         ph.head = target.index
         pred = target.predicate
         role = ph.role
+        found = styled.get(i)
+        if found is not None and pred.motion:  # the word nearest the verb is the last one set
+            pred.manner, pred.style, pred.intensity = found.word, found.style, found.intensity
         if role in ("connective", "delay"):
             cue = _time_cue(phrases, i, values)
             if cue:
@@ -297,6 +303,21 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float]) -> list[T
         elif role in ("speed", "manner"):
             pred.speed = SPEED_WORDS.get(ph.key, pred.speed)
     return cues
+
+
+def _pass_postures(phrases: list[Phrase]) -> None:
+    """胸を張って歩く: a posture idiom in て-form right before a motion gives it its style
+    (:func:`manners.passed_on`) unless a manner word of its own gives one."""
+    for i, ph in enumerate(phrases):
+        pred = ph.pred
+        if pred is None or not pred.motion or pred.ending != "te" or ph.has_comma():
+            continue
+        found = manners.passed_on(pred.written)
+        target = _next_pred(phrases, i)
+        if found is None or target is None or not target.predicate.motion or target.predicate.style:
+            continue
+        target.predicate.manner = pred.written
+        target.predicate.style, target.predicate.intensity = found.style, found.intensity
 
 
 def _next_pred(phrases: list[Phrase], i: int, motion_level: int = 0) -> Phrase | None:

@@ -29,7 +29,9 @@ class Pred:
     written: str = ""  # the verb in the user's spelling, dictionary form (登る where verb is 上る)
     noun: str = ""  # the を-noun (object or body part) as written: 足 of 足を止める
     verb_phrase: str = ""  # noun + を + written: 足を止める (MotionSpec.phrase)
-    manner: str | None = None  # a mimetic manner word: よろよろ (MotionSpec.manner)
+    manner: str | None = None  # a manner word: よろよろ, 大股で (MotionSpec.manner)
+    style: str | None = None  # the style it gives (nlp.manners): tired
+    intensity: float = 1.0
     note: str = ""  # how the verb was read differently from how it is written (手を降る -> 振る)
     head: int | None = None  # phrase index of the head motion
     target: str | None = None  # whom or what it is directed at (nlp.targets)

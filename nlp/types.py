@@ -84,8 +84,11 @@ class MotionSpec:
     #: the verb with its を-noun as written, dictionary form (足を止める), when it has one: a clip
     #: that declares the phrase plays it (docs/language.md §2)
     phrase: str = ""
-    #: a manner word the text gives the motion (よろよろ, とぼとぼ: §7.9), as written in hiragana
+    #: a manner word the text gives the motion (大股で, 嬉しそうに; a mimetic in hiragana: よろよろ, §7.9)
     manner: str | None = None
+    #: the style the manner word gives (§2.1: one of ``core.styles.STYLES``) and its intensity (1: plain)
+    style: str | None = None
+    intensity: float = 1.0
     #: whom or what the motion is directed at, as written (a person by the actor's name: 花子), its role
     #: (goal, source, addressee, patient, recipient, partner, support, destination, at) and the side of it
     #: (front, behind, beside, near, on, left, right): docs/language.md §8
@@ -105,6 +108,8 @@ class MotionSpec:
             d["delay"] = self.delay  # the §5 object gains it only when the text opens with one
         if extra or self.manner is not None:
             d["manner"] = self.manner  # likewise only when the text gives one
+        if extra or self.style is not None:
+            d.update(style=self.style, intensity=self.intensity)
         if extra or self.target is not None:  # §8: only when the motion is directed at someone or something
             d.update(target=self.target, target_role=self.target_role, target_side=self.target_side,
                      target_person=self.target_person)

@@ -53,6 +53,8 @@ class ClipMeta(Protocol):
     def start_posture(self) -> str: ...
     @property
     def end_posture(self) -> str: ...
+    @property
+    def style(self) -> str | None: ...
 
 
 #: A clip record of the database the rules hand back as they got it (``motiondb.ClipInfo``).
@@ -114,7 +116,7 @@ def timing(info: ClipMeta) -> ClipTiming:
     """What :func:`plan.plan` needs to know of a clip (durations in seconds)."""
     begin, end = info.core
     return ClipTiming(info.name, info.duration, (begin, end), info.cyclic, info.body_part, foot_moving(info),
-                      info.character, cycle_steps(info))
+                      info.character, cycle_steps(info), info.style)
 
 
 def played_duration(info: ClipMeta, fps: float) -> float:

@@ -25,6 +25,7 @@ from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .errors import ScheduleError
 from .lengths import played_length, transition_window
+from .manner import manner_of, played_spec
 from .together import together
 from .types import ClipTiming, Element, TimeTable
 
@@ -54,7 +55,7 @@ class _Row:
         s = self.spec
         return Element(s.id, s.actor, s.verb, self.clip.name, self.method, self.prev, self.start, self.end,
                        self.body_part, s.speed, self.repeats, s.hold, self.delay, s.object, s.target, s.target_role,
-                       s.target_side)
+                       s.target_side, manner_of(s, self.clip))
 
     @property
     def repeats(self) -> int:
@@ -129,6 +130,7 @@ class _Planner:
         prev_id = self.last.get(spec.actor)
         prefer = self.rows[prev_id].clip.character if prev_id is not None else None
         clip = self.find(spec, prefer)
+        spec = played_spec(spec, clip)  # a style's tempo (scheduler.manner)
         mate = next((m for m in self.together.get(spec.id, ()) if m in self.lengths), None)
         # co-actors of one motion play it for the same time (together.py): the first placed sets it
         duration = self.lengths[mate] if mate is not None and spec.duration is None else spec.duration

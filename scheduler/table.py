@@ -1,7 +1,7 @@
 """The time table as the paper prints it (section 5.2), plus start and end times."""
 from __future__ import annotations
 
-from .types import TimeTable
+from .types import Element, TimeTable
 
 _METHOD_NAMES = {"initial": "初期動作", "connection": "Connection", "transition": "Transition",
                  "composition": "Composition"}
@@ -25,6 +25,8 @@ def format_table(table: TimeTable) -> str:
         if e.target:
             side = f" ({_SIDES.get(e.target_side, e.target_side)})" if e.target_side else ""
             out.append(f"  相手/場所 {e.target}{side} [{_ROLES.get(e.target_role or '', e.target_role)}]")
+        if e.manner:
+            out.append(f"  様態      {_manner(e)}")
         out.append(f"  接続形式  {_METHOD_NAMES[e.method]}")
         if e.prev is not None:
             out.append(f"  前要素    要素 {e.prev}")
@@ -32,3 +34,13 @@ def format_table(table: TimeTable) -> str:
         out.append(f"  終了      {e.end:.2f} s")
         out.append("")
     return "\n".join(out).rstrip() + "\n"
+
+
+def _manner(e: Element) -> str:
+    """疲れて: tired 1.4 (modifiers, speed 0.732); にこにこ: no style (not shown)."""
+    m = e.manner
+    assert m is not None
+    if m.style is None:
+        return f"{m.word}: no style (not shown)"
+    by = "a clip of the style" if m.by == "clip" else "modifiers"
+    return f"{m.word}: {m.style} {m.intensity:g} ({by}, speed {e.speed:g})"

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from text2anim.core.bodyparts import BodyPart
 from text2anim.core.methods import ELEMENT_METHODS, Method
 
-__all__ = ["ELEMENT_METHODS", "ClipTiming", "Element", "Method", "TimeTable"]
+__all__ = ["ELEMENT_METHODS", "ClipTiming", "Element", "Manner", "Method", "TimeTable"]
 
 
 
@@ -24,6 +24,7 @@ class ClipTiming:
         foot_moving: ``((begin, end), ...)`` intervals where one foot is off the ground, sorted.
         character: the character (skeleton) the clip belongs to.
         cycle_steps: steps in one cycle of a looping clip (a walk's cycle: 2); 0 for any other.
+        style: the style the clip was performed in (``core.styles.STYLES``), ``None`` for a neutral one.
     """
 
     name: str
@@ -34,6 +35,22 @@ class ClipTiming:
     foot_moving: tuple[tuple[float, float], ...] = ()
     character: str = "default"
     cycle_steps: int = 0
+    style: str | None = None
+
+
+@dataclass(frozen=True)
+class Manner:
+    """How a row is done (docs/language.md §2.1): the text's ``word``, its ``style`` (``None``: a word of no
+    style, such as にこにこ) and ``intensity``, and ``by`` what it is played: ``"clip"`` (a clip of that
+    style), ``"modifiers"`` (the synthesis changes a neutral clip) or ``None`` (not shown)."""
+
+    word: str
+    style: str | None
+    intensity: float
+    by: str | None
+
+    def to_dict(self) -> dict:
+        return {"word": self.word, "style": self.style, "intensity": self.intensity, "by": self.by}
 
 
 @dataclass(frozen=True)
@@ -63,9 +80,10 @@ class Element:
     target: str | None = None
     target_role: str | None = None
     target_side: str | None = None
+    manner: Manner | None = None
 
     def to_dict(self) -> dict:
-        """The row's JSON; ``object`` and the target fields only where the text gives them."""
+        """The row's JSON; ``object``, the target fields and ``manner`` only where the text gives them."""
         d = {
             "id": self.id, "actor": self.actor, "verb": self.verb, "clip": self.clip,
             "method": self.method, "prev": self.prev,
@@ -76,6 +94,8 @@ class Element:
             d["object"] = self.object
         if self.target is not None:
             d.update(target=self.target, target_role=self.target_role, target_side=self.target_side)
+        if self.manner is not None:
+            d["manner"] = self.manner.to_dict()
         return d
 
 

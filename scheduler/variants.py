@@ -20,7 +20,7 @@ from .clips import C, ClipMeta
 
 
 def _kind(c: ClipMeta) -> tuple:
-    return (c.character, c.verb, tuple(c.objects), c.body_part, c.cyclic, c.start_posture, c.end_posture)
+    return (c.character, c.verb, tuple(c.objects), c.body_part, c.cyclic, c.start_posture, c.end_posture, c.style)
 
 
 def group(hits: Sequence[C]) -> list[C]:

@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 
 from limb_checks import limb_errors
-from shared_data import cmu, requires_cmu
+from shared_data import EVERYDAY_DIR, cmu, requires_cmu, requires_everyday
 from text2anim.core import read_bvh
 from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.floor import FOOT_CLEARANCE, find_floor, lowest_foot_heights, place_on_floor, shifted
-from text2anim.core.metrics import skating_ratio
+from text2anim.core.metrics import lowest_points, skating_ratio, toe_joints
 from text2anim.core.retarget import map_skeletons
 from text2anim.motiondb import ClipValidationError, ImportOptions
 
@@ -35,6 +35,41 @@ def test_the_floor_of_a_capture_is_found_wherever_the_capture_put_it():
         low = lowest_foot_heights(moved)
         both = np.concatenate([low[planted.left, 0], low[planted.right, 1]])
         assert np.median(both) == pytest.approx(FOOT_CLEARANCE, abs=0.01)  # planted feet on y = 0 (1 cm)
+
+
+@requires_everyday
+@pytest.mark.parametrize("take", ["13_35", "14_21"])  # climbing three steps: feet that end at the ankle
+def test_a_capture_whose_feet_end_at_the_ankle_stands_on_its_floor_not_in_it(take):
+    """Issue 46: these skeletons have no toe joint (the toes are an end site), and their ankle was taken for
+    the ball of the foot: imported, the climbs stood 3.9 cm too low, toe tips 3.3 and 4.7 cm under the floor."""
+    climb = read_bvh(EVERYDAY_DIR / f"{take}.bvh", scale="auto", drop_first=True)
+    placed, floor = place_on_floor(climb)
+    assert floor.method == "contacts"
+    assert abs(floor.height) < 0.015  # the capture's calibrated floor, within its spread
+    assert lowest_points(placed).min() > -0.01  # toe tips (end sites) on the floor, not in it
+
+
+def test_an_import_onto_the_built_in_character_keeps_the_captures_foot_clearance():
+    """Issue 46: the built-in character's foot is longer than subject 16's, so the retarget carried the walk's
+    swinging feet lower than captured (GMD's figure 0.162 as captured, 0.231 retargeted); db import gives the
+    swinging feet their captured height back, and leaves the planted ones where they were."""
+    from text2anim.core.metrics import at_rate, skating_ratio_gmd
+    from text2anim.core.retarget import retarget
+    from text2anim.motiondb.bvh_import import conform
+    from text2anim.motiondb.library.skeleton import canonical_skeleton
+
+    walk = read_bvh(cmu("16_15_walk"), scale="auto", drop_first=True)
+    source, _ = place_on_floor(walk)
+    plain = retarget(source, canonical_skeleton())
+    imported, _ = conform(walk, canonical_skeleton(), "16_15_walk", "test")
+    captured = skating_ratio_gmd(at_rate(source))
+    assert skating_ratio_gmd(at_rate(plain)) > captured + 0.05  # what the retarget alone does
+    assert skating_ratio_gmd(at_rate(imported)) <= captured + 0.01
+    planted = detect_contacts(source)
+    toe = toe_joints(imported)
+    for k, side in enumerate(("left", "right")):
+        on = planted.of(side)
+        assert np.abs(imported.positions[on, toe[k]] - plain.positions[on, toe[k]]).max() < 1e-9
 
 
 def test_a_clip_with_too_few_contacts_is_floored_by_its_lowest_foot_reach():

@@ -183,7 +183,8 @@ class Studio:
             return {"ok": False, "error": message(str(exc)), "unknown": unknown_verbs(text, exc)}
         rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
                  "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part,
-                 "key": keys.get(e.id)} for e in anim.table.elements]
+                 "key": keys.get(e.id), "manner": e.manner.to_dict() if e.manner else None}
+                for e in anim.table.elements]
         blends = [{"actor": s.actor, "start": round(s.start, 3), "end": round(s.end, 3), "part": s.part,
                    "label": s.label} for s in anim.spans() if s.kind == "blend"]
         return {"ok": True, "text": text, "html": render_html(tracks, anim.spans(), title=text, props=props),

@@ -45,6 +45,7 @@ def test_an_older_database_gets_its_clips_described_when_migrated(tmp_path, libr
     engine = create_engine(url)
     try:
         with engine.begin() as conn:  # what schema version 3 wrote: no descriptions
+            conn.execute(text("ALTER TABLE clips DROP COLUMN style"))  # schema 5
             conn.execute(text("ALTER TABLE clips DROP COLUMN description"))
             conn.execute(text("UPDATE schema_version SET version = 3"))
     finally:

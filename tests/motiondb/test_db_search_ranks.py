@@ -70,6 +70,7 @@ def test_a_version_2_database_gets_its_ranking_table_and_keeps_every_clip(db_url
     try:
         with engine.begin() as conn:  # what schema version 2 wrote: no ranking table
             conn.execute(text("DROP TABLE search_ranks"))
+            conn.execute(text("ALTER TABLE clips DROP COLUMN style"))  # schema 5
             conn.execute(text("ALTER TABLE clips DROP COLUMN description"))
             conn.execute(text("UPDATE schema_version SET version = 2"))
     finally:

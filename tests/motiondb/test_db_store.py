@@ -287,6 +287,7 @@ def _make_version_2(url: str) -> None:
     try:
         with engine.begin() as conn:
             conn.execute(text("DROP TABLE search_ranks"))
+            conn.execute(text("ALTER TABLE clips DROP COLUMN style"))  # schema 5
             conn.execute(text("ALTER TABLE clips DROP COLUMN description"))
             conn.execute(text("UPDATE schema_version SET version = 2"))
     finally:
@@ -332,7 +333,7 @@ def test_a_version_1_database_is_migrated_in_place(db_url, record):
     engine = create_engine(db_url)
     try:
         with engine.connect() as conn:
-            assert conn.execute(text("SELECT version FROM schema_version")).scalar() == SCHEMA_VERSION == 4
+            assert conn.execute(text("SELECT version FROM schema_version")).scalar() == SCHEMA_VERSION == 5
             # the columns were added with their default, for rows written by other tools
             conn.execute(text("SELECT start_posture, end_posture FROM clips")).all()
     finally:

@@ -89,6 +89,13 @@ def test_an_unknown_verb_is_shown_under_the_text_and_the_last_animation_stays(pa
     assert page.evaluate("window.__studio.table.length") == 3  # the seed sentence still plays
 
 
+def test_a_manner_not_shown_is_said_under_the_text_and_a_styled_bar_names_its_manner(page):
+    page.fill("#text", "花子はしょんぼり歩いて、にこにこ座った。")
+    page.wait_for_function("document.querySelectorAll('#marks .warning').length === 1", timeout=30000)
+    assert "にこにこ is not shown" in page.inner_text("#marks .warning")
+    assert "しょんぼり (sad)" in page.evaluate("document.getElementById('timeline').textContent")
+
+
 def test_adding_a_sentence_while_it_plays_goes_on_from_the_frame_on_screen(page):
     view = page.frame_locator("#view")
     page.wait_for_function("document.getElementById('view').contentWindow.__t2a.time > 1.5", timeout=30000)

@@ -47,6 +47,14 @@ def test_a_text_becomes_the_viewer_page_and_its_time_table(client):
     assert "__t2a" in data["html"] and data["duration"] > 1.0 and data["blends"]
 
 
+def test_a_manner_is_on_its_row_and_one_not_shown_is_a_warning(client):
+    data = client.post("/api/animate", json={"text": "花子はしょんぼり歩いて、にこにこ座った。"}).json()
+    assert data["ok"]
+    assert [(e["verb"], (e["manner"] or {}).get("by")) for e in data["table"]] == [("歩く", "modifiers"),
+                                                                                    ("座る", None)]
+    assert any("にこにこ is not shown" in w for w in data["warnings"])
+
+
 def test_what_cannot_be_animated_says_why_in_the_users_terms(client):
     r = client.post("/api/animate", json={"text": "太郎は泳ぐ。"})
     assert r.status_code == 422 and "泳ぐ" in r.json()["error"] and "Traceback" not in r.text

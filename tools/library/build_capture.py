@@ -15,7 +15,7 @@ For every take named in the cut list (each file read once), then every clip cut 
 3. low-pass the take where the cut list asks (``lowpass = Hz``: takes with capture glitches,
    :mod:`smooth`), cut the clip's seconds (with ``blend`` seconds before them for a blended loop);
 4. resample to 30 fps (slerp), give swinging feet back the capture's own clearance
-   (:func:`feet.keep_clearance`: the character's longer foot points lower), hold planted feet
+   (:func:`core.clearance.keep_clearance`: the character's longer foot points lower), hold planted feet
    still, keep swinging feet clear of the floor and feet, hands and their tips above it
    (:func:`feet.lock_feet`, :func:`core.clearance.lift_swings`, :func:`core.clearance.clear_floor`);
 5. turn it about +Y and move it so it starts at the origin facing +Z (``face = "travel"``:
@@ -49,7 +49,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from text2anim.core.bvh import read_bvh
-from text2anim.core.clearance import clear_floor, lift_swings
+from text2anim.core.clearance import clear_floor, keep_clearance, lift_swings
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.easing import smoothstep
 from text2anim.core.floor import place_on_floor
@@ -60,7 +60,7 @@ from text2anim.core.retarget import retarget
 from text2anim.motiondb.library.capture import ARRAYS, FPS, Cut, cut_list
 from text2anim.motiondb.library.skeleton import canonical_skeleton
 
-from feet import keep_clearance, lock_feet  # this folder's modules: run as a script, the folder is on sys.path
+from feet import lock_feet  # this folder's modules: run as a script, the folder is on sys.path
 from smooth import lowpass
 
 #: Rate of the CMU files (their Frame Time).

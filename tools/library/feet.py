@@ -10,13 +10,6 @@ back, so heel and toe roll as captured while the foot does not slide. The
 offset eases in and out over :data:`RAMP` frames on either side (smoothstep),
 so a foot lifting off is not jerked. Nothing else changes.
 
-:func:`keep_clearance` gives a swinging foot back the height the capture gave it:
-the built-in character's foot is longer than a CMU subject's (its ball 13 cm in
-front of the ankle and 5.5 cm under it, against 11 and 2.5), so the world rotations
-carried over put a pointed foot's ball lower than the capture did (the kick's
-stepping foot 0.4-3.7 cm up at 2-3 m/s where the capture's was 2.4-3.8): GMD's
-figure counts that as skating (kick 0.15 -> 0.25, walk 0.21 -> 0.30).
-
 Feet and hands kept above the floor and swinging feet clear of it are
 :mod:`core.clearance` (the engines apply the swing rule to joined motion too).
 
@@ -27,11 +20,8 @@ from __future__ import annotations
 import numpy as np
 
 from text2anim.core.bodyparts import body_map
-from text2anim.core.clearance import lift
 from text2anim.core.contacts import FootContacts, detect_contacts, horizontal_speed
 from text2anim.core.easing import smoothstep
-from text2anim.core.floor import lowest_foot_heights
-from text2anim.core.metrics import SKATE_SPEED
 from text2anim.core.ik import leg_ik, set_world_rotation
 from text2anim.core.motion import Motion
 
@@ -80,23 +70,3 @@ def lock_feet(motion: Motion, contacts: FootContacts | None = None) -> Motion:
         out = leg_ik(out, side, target, mask=mask)
         out = set_world_rotation(out, ankle, world[:, ankle], mask=mask)
     return out
-
-
-def keep_clearance(motion: Motion, capture: Motion) -> Motion:
-    """``motion`` (the capture retargeted, frame for frame) with each swinging foot (not in contact, faster
-    than GMD's 0.5 m/s, the other foot planted) lifted where its ball is lower above the motion's lowest
-    foot point than the capture's ball was above the capture's (the heights GMD's figure reads; leg IK,
-    eased, the foot's world rotation kept: :func:`core.clearance.lift`); planted feet, a run's flight
-    (lifting the lower foot there would lengthen it) and everything above the knees are left as they are."""
-    contacts = detect_contacts(motion)
-    mine, theirs = body_map(motion.skeleton).feet, body_map(capture.skeleton).feet
-    rise = lowest_foot_heights(motion).min() - lowest_foot_heights(capture).min()  # m: the floors GMD reads
-    pos = motion.positions
-    limbs, deficits = [], []
-    for side, (ankle, toe) in mine.items():
-        other = contacts.of("right" if side == "left" else "left")
-        swinging = ~contacts.of(side) & other & (horizontal_speed(pos[:, [toe]], motion.fps)[:, 0] > SKATE_SPEED)
-        deficit = capture.positions[:, theirs[side][1], 1] + rise - pos[:, toe, 1]  # (T,) m
-        limbs.append((leg_ik, side, ankle))
-        deficits.append(np.where(swinging, np.maximum(0.0, deficit), 0.0))
-    return lift(motion, limbs, deficits)

@@ -55,11 +55,13 @@
 
   function marks(text, data) {
     // unknown verbs underlined where they are written, with what may stand in (each previewable);
-    // the analyser's notes (a typo read as meant) on hover
+    // the analyser's notes (a typo read as meant) on hover; what the animation could not show (a manner
+    // no modifier does, an element that did not fit) in words
     var box = $("marks"), unknown = (data && data.unknown) || [], notes = (data && data.notes) || [];
+    var warnings = (data && data.warnings) || [];
     while (box.firstChild) box.removeChild(box.firstChild);
     S.unknown = unknown;
-    if (!unknown.length && !notes.length) return;
+    if (!unknown.length && !notes.length && !warnings.length) return;
     var spans = unknown.filter(function (u) { return u.span; }).sort(function (a, b) { return a.span[0] - b.span[0]; });
     var at = 0;
     spans.forEach(function (u) {
@@ -89,6 +91,11 @@
       n.className = "note"; n.textContent = "read differently from how it is written"; n.title = notes.join("\n");
       box.appendChild(n);
     }
+    warnings.forEach(function (w) {
+      var row = document.createElement("div");
+      row.className = "warning"; row.textContent = w;
+      box.appendChild(row);
+    });
   }
 
   function preview(verb) {
@@ -200,10 +207,11 @@
                                 rx: 4, "class": "bar " + e.method + (e.key ? " editable" : ""), "data-id": e.id,
                                 "data-verb": e.verb });
         if (e.key) draggable(bar, e, (W - LEFT - 10) / T);
+        var how = e.manner ? " · " + e.manner.word + (e.manner.style ? " (" + e.manner.style + ")" : "") : "";
         bar.appendChild(svg("title", {}, e.id + " " + e.verb + " (" + e.clip + ", " + e.method + ") " +
-                            e.start.toFixed(2) + "–" + e.end.toFixed(2) + " s"));
+                            e.start.toFixed(2) + "–" + e.end.toFixed(2) + " s" + how));
         g.appendChild(bar);
-        g.appendChild(svg("text", { x: x(e.start) + 6, y: top + 18 }, e.id + " " + e.verb + " · " + e.method));
+        g.appendChild(svg("text", { x: x(e.start) + 6, y: top + 18 }, e.id + " " + e.verb + how + " · " + e.method));
       });
       y += n * ROW;
       data.blends.filter(function (b) { return b.actor === a; }).forEach(function (b) {
