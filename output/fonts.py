@@ -3,7 +3,8 @@
 matplotlib's default font (DejaVu Sans) has no CJK glyphs: Japanese drawn with it comes out as
 boxes. :func:`available` finds a CJK font that matplotlib knows (Noto Sans CJK JP from Debian's
 ``fonts-noto-cjk``, IPAexGothic, Hiragino, Yu Gothic, ...; none is ever installed at run time), or one
-installed after matplotlib cached its font list, by file name (:mod:`.fontfiles`), and
+installed after matplotlib cached its font list, by file name (:mod:`.fontfiles`), else the subset of
+Noto Sans CJK JP the package ships (:mod:`.embedded_font`: kana and the JIS X 0208 kanji), and
 the code points the base font and it can draw, read from the font files' character maps.
 :func:`label` then picks what to draw: the text when every character can be drawn, else an
 alternative (a clip name, a romanised reading), else the text without what cannot be drawn.
@@ -12,6 +13,7 @@ matplotlib is imported only when :func:`available` is first called (figures need
 """
 from __future__ import annotations
 
+import dataclasses
 import re
 from functools import lru_cache
 
@@ -38,6 +40,8 @@ def available() -> tuple[str | None, frozenset[int]]:
     cjk = next((fam for fam in CJK_FAMILIES if fam in by_name), None)
     if cjk is None:  # installed after matplotlib cached its font list? found by file name (:mod:`.fontfiles`)
         cjk = _load_cjk_file(font_manager, by_name)
+    if cjk is None:  # none on this machine: the one the package ships (:mod:`.embedded_font`)
+        cjk = _load_shipped(font_manager, by_name)
     for fam in (BASE_FAMILY, cjk):
         if fam is None:
             continue
@@ -64,6 +68,23 @@ def _load_cjk_file(font_manager, by_name: dict[str, str]) -> str | None:
         by_name.setdefault(name, str(path))
         return name
     return None
+
+
+def _load_shipped(font_manager, by_name: dict[str, str]) -> str | None:
+    """The family of the package's own Japanese font, now known to ``font_manager``; ``None`` if it
+    cannot be loaded (a damaged install)."""
+    from . import embedded_font
+
+    path = embedded_font.font_path()
+    try:
+        font_manager.fontManager.addfont(str(path))
+    except Exception:
+        return None
+    regular = next(f for f in reversed(font_manager.fontManager.ttflist) if f.fname == str(path))
+    # one weight only: bold titles take the regular glyphs rather than warning that bold is missing
+    font_manager.fontManager.ttflist.append(dataclasses.replace(regular, weight=700))
+    by_name.setdefault(embedded_font.FAMILY, str(path))
+    return embedded_font.FAMILY
 
 
 def families() -> list[str]:

@@ -79,8 +79,18 @@ def contact_sheet(motion: Motion, path: str | os.PathLike, title: str = "", n: i
     with matplotlib.rc_context({"font.family": fonts.families()}), warnings.catch_warnings():
         warnings.filterwarnings("ignore", message="Glyph .* missing from")
         shown = fonts.label(title, alt_title, fallback="") if title else ""
-        data = _draw(Figure, FigureCanvasAgg, motion, shown, n, core, dpi)
-    atomic_write_bytes(path, data)
+        fig = _figure(Figure, FigureCanvasAgg, motion, shown, n, core, dpi)
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
+    atomic_write_bytes(path, buf.getvalue())
+
+
+def _strip_label(motion: Motion) -> str:
+    """The label under the height strip of ``motion``'s sheet: what the bars are, and the factor the
+    character is drawn at when it is far from a person's size (:func:`core.size.at_human_size`)."""
+    k = at_human_size(motion)[1]
+    return ("seconds (bars: contacts, left above right)"
+            + (f"; drawn at a person's size, {k:.3g} times the character's" if k != 1.0 else ""))
 
 
 #: frames: a longer motion is drawn from its frames at :data:`LONG_FPS` (the sheet shows a dozen poses and a
@@ -89,10 +99,11 @@ LONG_FRAMES = 10_000
 LONG_FPS = 30.0
 
 
-def _draw(Figure, FigureCanvasAgg, motion: Motion, title: str, n: int, core, dpi: int) -> bytes:
+def _figure(Figure, FigureCanvasAgg, motion: Motion, title: str, n: int, core, dpi: int):
     if motion.n_frames > LONG_FRAMES and motion.fps > LONG_FPS:
         motion = motion.resample(LONG_FPS)
-    motion, k = at_human_size(motion)
+    label = _strip_label(motion)
+    motion = at_human_size(motion)[0]
     T = motion.n_frames
     if T == 0:
         raise ValueError("cannot draw a contact sheet of an empty motion")
@@ -172,12 +183,9 @@ def _draw(Figure, FigureCanvasAgg, motion: Motion, title: str, n: int, core, dpi
         ax.axvline(f / fps, color="#cccccc", lw=0.6, zorder=0)
     ax.set_xlim(0, max(times[-1], 1e-3))
     ax.set_ylim(-0.16, max(1.2, float(root[:, 1].max()) + 0.1))
-    ax.set_xlabel("seconds (bars: contacts, left above right)"
-                  + (f"; drawn at a person's size, {k:.3g} times the character's" if k != 1.0 else ""), fontsize=8)
+    ax.set_xlabel(label, fontsize=8)
     ax.tick_params(labelsize=7)
     ax.legend(fontsize=7, loc="upper right", ncol=4)
     if title:
         fig.suptitle(title, fontsize=12)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
-    return buf.getvalue()
+    return fig

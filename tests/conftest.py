@@ -9,7 +9,8 @@
   variable these runs are skipped, saying why.
 
 At the end pytest prints how many database tests ran on each backend
-("database tests: N on sqlite, M on postgresql").
+("database tests: N on sqlite, M on postgresql"), and why tests skipped, grouped by what is missing
+and how to get it (:mod:`skip_groups`).
 """
 from __future__ import annotations
 
@@ -28,6 +29,7 @@ PG_ENV = "TEXT2ANIM_TEST_PG_URL"
 BACKENDS = ("sqlite", "postgresql")
 _COUNTS = {b: {"passed": 0, "failed": 0, "skipped": 0} for b in BACKENDS}
 _SKIP_REASONS: dict[str, set[str]] = {b: set() for b in BACKENDS}
+_ALL_SKIPS: list[str] = []  # every skip's reason, for the grouped summary at the end
 
 
 @pytest.fixture(params=BACKENDS)
@@ -66,17 +68,29 @@ def _backend(item) -> str | None:
     return value if value in BACKENDS else None
 
 
+def _skip_reason(report) -> str:
+    longrepr = report.longrepr
+    if isinstance(longrepr, tuple) and len(longrepr) == 3:
+        return str(longrepr[2]).removeprefix("Skipped: ")
+    return str(longrepr)
+
+
+def pytest_collectreport(report):
+    if report.skipped:  # a module skipped as a whole (importorskip at its top)
+        _ALL_SKIPS.append(_skip_reason(report))
+
+
 @pytest.hookimpl(wrapper=True)
 def pytest_runtest_makereport(item, call):
     report = yield
+    if report.skipped:
+        _ALL_SKIPS.append(_skip_reason(report))
     backend = _backend(item)
     if backend is not None:
         counts = _COUNTS[backend]
         if report.skipped:
             counts["skipped"] += 1
-            longrepr = report.longrepr
-            if isinstance(longrepr, tuple) and len(longrepr) == 3:
-                _SKIP_REASONS[backend].add(str(longrepr[2]).removeprefix("Skipped: "))
+            _SKIP_REASONS[backend].add(_skip_reason(report))
         elif report.failed:
             counts["failed"] += 1
         elif report.when == "call":
@@ -85,6 +99,14 @@ def pytest_runtest_makereport(item, call):
 
 
 def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    _database_summary(terminalreporter)
+    from skip_groups import summary
+
+    for line in summary(_ALL_SKIPS):
+        terminalreporter.write_line(line)
+
+
+def _database_summary(terminalreporter):
     ran = {b: _COUNTS[b]["passed"] + _COUNTS[b]["failed"] for b in BACKENDS}
     if not any(ran.values()) and not any(_COUNTS[b]["skipped"] for b in BACKENDS):
         return

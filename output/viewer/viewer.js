@@ -746,6 +746,8 @@
   var api = {
     get frame() { return actors.length ? Math.round(Math.min(state.t, actors[0].duration) * actors[0].fps) : 0; },
     get time() { return state.t; },
+    // the page's clock (performance.now(), ms) at the step that set `time`: rates of play are measured on it
+    get clock() { return state.last; },
     get playing() { return state.playing; },
     get ready() { return state.ready; },
     get duration() { return DATA.duration; },
@@ -764,7 +766,10 @@
   };
   window.__t2a = api;
 
-  Promise.all([Promise.all(DATA.actors.map(decodeActor)), Props ? Props.decode() : null]).then(function (got) {
+  // the page's own Japanese font (a subset embedded by render_html), loaded before the canvas draws names
+  var fontLoaded = document.fonts && document.fonts.load ?
+    document.fonts.load('13px "t2a-jp"').catch(function () { return null; }) : null;
+  Promise.all([Promise.all(DATA.actors.map(decodeActor)), Props ? Props.decode() : null, fontLoaded]).then(function (got) {
     actors = got[0];
     $("message").style.display = "none";
     buildRows();

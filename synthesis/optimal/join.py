@@ -60,7 +60,7 @@ def join_next(state: TrackState, inc: Placed, fps: float, weights: Weights, lock
     plan, out, locks, window = carry_out(tr, plan, lock, own, own_pop)
     region_end = max([window[1]] + [lk.release_end for lk in locks])
     shown = replace(e, start=inc.first / fps, end=inc.end / fps) if (plan.shift or plan.phase or carry) else e
-    state.warnings.extend(plan.warnings)
+    state.warnings.extend(w for w in plan.warnings if w not in state.warnings)  # a repeated motion's joins say it once
     rep = report_of(prev, inc, plan, fps, locks)
     ivs = plan.intervals
     # S0/S1 blend the two motions: their jerk and skating are the join's; the return to the next motion's own

@@ -11,13 +11,13 @@ from ..join.align import align_through_foot
 from ..join.gait import foot_points, steps
 from ..join.placed import Placed
 from .adaptation import adapt
-from .blend_ranges import after, ranges
+from .blend_ranges import Bounds, after, ranges
 from .blend_search import Weights, best
 from .curves import interval_weights
 from .geometry import geometry
 from .method_select import phase_for
 from .placement import alignment
-from .records import Plan, Skip
+from .records import Interval, Plan, Skip
 from .search import Features, grid, runners_up, search
 
 MIN_BLEND = 0.2  # s: the shortest blend interval (shorter pose changes read as pops)
@@ -70,8 +70,6 @@ def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weight
     for k, r in enumerate(rs):
         if not r.feasible(L):
             rs[k] = r.relax(L)
-            warnings.append(f"join {prev.element.id}→{inc.element.id}: the cores leave no room for the "
-                            f"{r.part}-body blend; it overlaps a core")
     byname = {r.name: r for r in rs}
     feats = Features(tr, inc)
     grid0 = grid(byname["S0"], feats, fps, weights, L)  # evaluated once: its minimum, and its runners-up below
@@ -102,6 +100,15 @@ def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weight
                 byname["S3"] = byname["S3"].relax(L)
             found["S3"] = search(byname["S3"], feats, fps, weights, L)
     intervals = {n: interval_weights(n, byname[n], f, feats, fps, L) for n, f in found.items()}
+    into = {n: into_cores(iv, bounds) / fps for n, iv in intervals.items() if n != "S3" and iv.range.relaxed}
+    if into:
+        info["into_core_s"] = {intervals[n].part: round(s, 3) for n, s in into.items()}
+    if max(into.values(), default=0.0) > CORE_TOLERANCE:
+        parts = " and ".join(sorted({intervals[n].part for n, s in into.items() if s > CORE_TOLERANCE}))
+        warnings.append(f"element {inc.element.id} ({inc.element.clip.name}) follows element {prev.element.id} "
+                        f"too closely for the {parts} body to change between them: it shows the end of one and "
+                        f"the start of the other at once, softer than recorded; give the second more time "
+                        f"after the first to keep both whole")
     alternatives = []
     if adapted is None:  # the next-best lower-body intervals, tried in turn if the best one's join skates
         alternatives = [interval_weights("S0", byname["S0"], f, feats, fps, L)
@@ -122,6 +129,11 @@ def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weight
         s2_end = intervals["S3"].t0 if "S3" in intervals else inc.end
         info["adapted_s"] = [intervals["S0"].t1 / fps, s2_end / fps]  # eq. (7) / (9): S2
     return Plan(inc, choice, intervals, rigid, support, placed, adapted, shift, phase, warnings, info, alternatives)
+
+
+def into_cores(iv: Interval, bounds: Bounds) -> int:
+    """Frames of blend interval ``iv`` inside the two cores of ``bounds`` (0 when it keeps out of them)."""
+    return max(0, bounds.c0_end - iv.t0) + max(0, iv.t1 - bounds.c1[0])
 
 
 def public_info(info: dict) -> dict:

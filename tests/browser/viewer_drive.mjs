@@ -9,7 +9,7 @@
 import { spawn } from "node:child_process";
 import fs from "node:fs";
 
-const [chromium, url, profile, shot] = process.argv.slice(2);
+const [chromium, url, profile, shot, throttle] = process.argv.slice(2);  // throttle: CPU slowdown factor (a slow machine)
 const proc = spawn(chromium, [
   "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
   "--disable-background-networking", "--disable-component-update", "--disable-sync", "--hide-scrollbars",
@@ -62,16 +62,19 @@ try {
   };
   await cmd("Runtime.enable"); await cmd("Log.enable"); await cmd("Page.enable");
   await cmd("Emulation.setDeviceMetricsOverride", { width: 1200, height: 800, deviceScaleFactor: 1, mobile: false });
+  if (Number(throttle) > 1) await cmd("Emulation.setCPUThrottlingRate", { rate: Number(throttle) });
   await cmd("Page.navigate", { url });
   let ready = null;
   for (let i = 0; i < 100 && ready !== "1" && ready !== "error"; i++) {
     await sleep(50);
     ready = await js("document.body && document.body.dataset.ready");
   }
-  const snap = () => js("(() => { const a = window.__t2a; return { frame: a.frame, time: a.time, playing: a.playing, speed: a.speed, follow: a.follow, camera: a.camera, duration: a.duration }; })()");
+  // now: the page's own clock (ms) at the step that set its time: how fast it plays is measured on it, not on
+// this script's sleeps, which a loaded machine stretches (a CDP round trip alone can take longer than a sleep)
+const snap = () => js("(() => { const a = window.__t2a; return { frame: a.frame, time: a.time, playing: a.playing, speed: a.speed, follow: a.follow, camera: a.camera, duration: a.duration, now: a.clock }; })()");
   const result = { ready };
   result.start = await snap();
-  await sleep(600);
+  await sleep(1000);
   result.afterPlaying = await snap();
 
   const key = async (k, code, vk) => {
@@ -113,10 +116,11 @@ try {
   result.reset = await snap();
 
   await js(`(() => { const s = document.getElementById("speed"); s.value = "2"; s.dispatchEvent(new Event("change")); })()`);
+  await js("window.__t2a.seek(0)");  // from the start: a second at 2x must not loop back
   await key(" ", "Space", 32);
-  const t0 = (await snap()).time;
-  await sleep(500);
-  result.doubleSpeed = { ...(await snap()), from: t0 };
+  const before = await snap();
+  await sleep(1000);
+  result.doubleSpeed = { ...(await snap()), from: before.time, fromNow: before.now };
 
   const png = await cmd("Page.captureScreenshot", { format: "png" });
   fs.writeFileSync(shot, Buffer.from(png.data, "base64"));

@@ -60,3 +60,39 @@ def test_every_form_of_the_synthesizers_messages_is_reworded(library_db):
             "row 1 跳ぶ (3 of 3) → row 2 歩く at 3.00 s; rendered with the constraint engine instead",
     }
     assert {m: terms.reword(m) for m in said} == said
+
+
+def _run(tmp_path, library_db, text: str) -> tuple[list[str], list[dict]]:
+    report = tmp_path / "r.json"
+    proc = text2anim(text, "-o", tmp_path / "a.bvh", "--report", report, "--db", library_db)
+    assert proc.returncode == 0, proc.stderr
+    warnings = [ln.split("warning: ", 1)[1] for ln in proc.stderr.splitlines() if "warning: " in ln]
+    return warnings, json.loads(report.read_text(encoding="utf-8"))["joins"]
+
+
+def _into_cores(joins: list[dict]) -> list[float]:
+    """Seconds each join's blend runs into the motions' cores (the report's ``into_core_s``)."""
+    return [max(j.get("metrics", {}).get("into_core_s", {"": 0.0}).values()) for j in joins]
+
+
+def test_blends_running_into_the_motions_are_said_once_and_only_when_they_show(tmp_path, library_db):
+    """ジャンプしながら手を叩いた repeats the jump under the clap: each join between two jumps blends the upper
+    body 2 frames into the next jump (less than the 0.1 s that counts as touching), which once printed
+    "the cores leave no room for the upper-body blend; it overlaps a core" three times."""
+    from text2anim.synthesis.optimal.planner import CORE_TOLERANCE
+
+    warnings, joins = _run(tmp_path, library_db, "ジャンプしながら手を叩いた")
+    into = _into_cores(joins)
+    assert 0 < max(into) <= CORE_TOLERANCE
+    assert warnings == []
+
+
+def test_a_blend_that_shows_is_one_warning_in_the_users_words(tmp_path, library_db):
+    from text2anim.synthesis.optimal.planner import CORE_TOLERANCE
+
+    warnings, joins = _run(tmp_path, library_db, "太郎は3回跳んで、歩く。")
+    rows = [w for w in warnings if "softer than recorded" in w]
+    assert sum(s > CORE_TOLERANCE for s in _into_cores(joins)) == len(rows) == 1
+    assert len(warnings) == len(set(warnings))
+    assert re.search(r"^row 1 跳ぶ \(\d of 3\) follows row 1 跳ぶ \(\d of 3\) too closely for the upper body", rows[0])
+    assert "more time" in rows[0] and not re.search(r"\bcores?\b|\bblend", rows[0])

@@ -1,6 +1,7 @@
 """A CJK font installed after matplotlib cached its font list is found by file name: contact-sheet and
-plot titles are Japanese at once, not romaji until the cache is rebuilt. Asserted both ways: on a machine
-with a CJK font file (``apt install fonts-noto-cjk``) and, always, in folders without one."""
+plot titles are Japanese at once, with that font, not the one the package ships. Asserted both ways: on a
+machine with a CJK font file (``apt install fonts-noto-cjk``) and, always, in folders without one (the
+package's own font draws them)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -41,19 +42,26 @@ def _titles_differ(tmp_path) -> bool:
     return (tmp_path / "ja.png").read_bytes() != (tmp_path / "romaji.png").read_bytes()
 
 
-def test_without_a_cjk_font_file_titles_are_romanised(tmp_path, monkeypatch, stale_cache):
+def test_without_a_cjk_font_file_titles_are_drawn_with_the_shipped_font(tmp_path, monkeypatch, stale_cache):
+    """No CJK font on the machine: the package's own (a subset of Noto Sans CJK JP) draws the title; a character
+    outside it is still never a box."""
+    from text2anim.output import embedded_font
+
     monkeypatch.setattr(fontfiles, "FONT_DIRS", (str(tmp_path / "fonts"),))
     (tmp_path / "fonts").mkdir()
     (tmp_path / "fonts" / "DejaVuSans.ttf").write_bytes(b"")  # not a CJK font's name: not looked at
     assert fontfiles.cjk_font_files() == []
     cjk, chars = fonts.available()
-    assert cjk is None and ord("踊") not in chars
-    assert not _titles_differ(tmp_path)
+    assert cjk == embedded_font.FAMILY and {ord(c) for c in "踊る太郎"} <= chars
+    assert _titles_differ(tmp_path)
+    assert fonts.label("dance: 踊る/𠮷", "dance: odoru") == "dance: odoru"  # 𠮷 is outside JIS X 0208
 
 
 def test_a_cjk_font_installed_after_the_cache_is_found_by_its_file(tmp_path, monkeypatch, stale_cache, caplog):
-    if not ON_THIS_MACHINE:  # nothing installed: the machine's folders give the romanised titles
-        assert fonts.available()[0] is None and not _titles_differ(tmp_path)
+    if not ON_THIS_MACHINE:  # nothing installed: the machine's folders give the shipped font
+        from text2anim.output import embedded_font
+
+        assert fonts.available()[0] == embedded_font.FAMILY and _titles_differ(tmp_path)
         return
     folder = tmp_path / "fonts" / "opentype"
     folder.mkdir(parents=True)
