@@ -137,11 +137,20 @@ def check_analysis(analysis, max_seconds: float = MAX_SECONDS) -> None:
         if not (isinstance(m.repeat, int) and 1 <= m.repeat <= MAX_REPEAT):
             raise LimitError(f"{m.verb} is asked {_number(m.repeat)} times; at most {MAX_REPEAT} repetitions "
                              "are accepted")
-        if m.duration is not None and not (math.isfinite(m.duration) and 0 <= m.duration <= max_seconds):
+        if m.delay is not None and not (math.isfinite(m.delay) and abs(m.delay) <= MAX_SECONDS_CEILING):
+            raise LimitError(f"a delay of {_number(m.delay)} s is asked before {m.verb}, more than a day "
+                             f"({MAX_SECONDS_CEILING:,.0f} s): no budget allows it")
+        if m.duration is not None and not (math.isfinite(m.duration) and m.duration <= MAX_SECONDS_CEILING):
+            raise LimitError(f"{m.verb} is asked to last {_number(m.duration)} s, more than a day "
+                             f"({MAX_SECONDS_CEILING:,.0f} s): no budget allows it")
+        if m.duration is not None and not 0 <= m.duration <= max_seconds:
             raise LimitError(f"{m.verb} is asked to last {_number(m.duration)} s; at most {max_seconds:g} s "
                              "of output are accepted (the budget; --max-seconds raises it)")
     for c in analysis.constraints:
-        if c.delay is not None and not (math.isfinite(c.delay) and 0 <= abs(c.delay) <= max_seconds):
+        if c.delay is not None and not (math.isfinite(c.delay) and abs(c.delay) <= MAX_SECONDS_CEILING):
+            raise LimitError(f"a delay of {_number(c.delay)} s is asked, more than a day "
+                             f"({MAX_SECONDS_CEILING:,.0f} s): no budget allows it")
+        if c.delay is not None and not abs(c.delay) <= max_seconds:
             raise LimitError(f"a delay of {_number(c.delay)} s is asked; at most {max_seconds:g} s of output "
                              "are accepted (the budget; --max-seconds raises it)")
 
@@ -157,12 +166,12 @@ def check_table(table, fps: float, max_seconds: float = MAX_SECONDS) -> None:
     length = max(e.end for e in table.elements)
     actors = len(table.actors())
     seconds = length * actors
-    frames = math.ceil(seconds * fps)
     budget_frames = math.floor(max_seconds * BUDGET_FPS)
     who = f" for {actors} actors" if actors > 1 else ""
     if not math.isfinite(seconds) or seconds > max_seconds:
-        raise LimitError(f"the animation would last {length:.1f} s{who}: {seconds:.1f} s of output, over the "
-                         f"budget of {max_seconds:g} s (--max-seconds raises it)")
+        raise LimitError(f"the animation would last {_number(length)} s{who}: {_number(seconds)} s of output, over "
+                         f"the budget of {max_seconds:g} s (--max-seconds raises it)")
+    frames = math.ceil(seconds * fps)  # finite now
     if frames > budget_frames:
         raise LimitError(f"the animation would have {frames} frames ({seconds:.1f} s at {fps:g} fps{who}), over "
                          f"the budget of {budget_frames} frames ({max_seconds:g} s at {BUDGET_FPS:g} fps; "
@@ -189,6 +198,8 @@ def check_options(text, db, fps, max_seconds, smoothness: float = 0.5, fallback:
 
 def _number(x) -> str:
     """A number for a message, short even when it has 400 digits."""
+    if isinstance(x, float) and math.isinf(x):
+        return "more than 10³⁰⁸"  # a numeral beyond a float (309 digits of 九)
     try:
         text = f"{x:g}" if isinstance(x, float) else str(x)
     except (ValueError, OverflowError):

@@ -22,6 +22,12 @@ non-finite and absurd channel values):
 - ``deep``: a chain of 1,000-3,000 nested joints (no channels) inserted under the root;
 - ``wide``: 20,000-100,000 sibling joints inserted under the root;
 - ``names``: a duplicate joint name or a second ROOT.
+
+Then (unless ``--no-sizes``) the files at the limits (issue 41), each through the real CLI (``info``,
+``metrics``, ``convert``, ``db import``) in a child process, held to the bounds of
+``bounded_runs.py`` (no traceback, 10 s, 1 GB peak resident, no raw control character printed): one
+63 MB token of ESC bytes, 63 MB of one letter, 60 MB of newlines, exactly 5,000,000 joint-frames of six
+channels each (60 MB), a 9,990-joint chain.
 """
 from __future__ import annotations
 
@@ -35,6 +41,7 @@ import tracemalloc
 from collections import defaultdict
 from pathlib import Path
 
+from bounded_runs import table, text2anim
 from text2anim.core import BVHError, parse_bvh
 
 REPO = Path(__file__).resolve().parents[1]
@@ -158,6 +165,46 @@ KINDS = {"truncate": m_truncate, "token": m_token, "value": m_value, "frame_time
          "names": m_names}
 
 
+# ------------------------------------------------------------------------------- at the limits
+def _chain(n: int) -> str:
+    s = ["HIERARCHY", "ROOT j0", "{", "OFFSET 0 0 0", "CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation"]
+    for k in range(1, n):
+        s += [f"JOINT j{k}", "{", "OFFSET 0 0.1 0", "CHANNELS 3 Zrotation Xrotation Yrotation"]
+    s += ["End Site", "{", "OFFSET 0 0.1 0", "}"] + ["}"] * n + ["MOTION", "Frames: 1", "Frame Time: 0.0333333"]
+    return "\n".join(s + [" ".join(["0"] * (6 + 3 * (n - 1)))]) + "\n"
+
+
+def _six_channels(joint_frames: int, joints: int = 31) -> str:
+    chans = "CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation"
+    s = ["HIERARCHY", "ROOT Hips", "{", "OFFSET 0 0 0", chans]
+    for k in range(1, joints):
+        s += [f"JOINT j{k}", "{", "OFFSET 0 -2 0", chans]
+    frames = joint_frames // joints
+    s += ["End Site", "{", "OFFSET 0 0.1 0", "}"] + ["}"] * joints
+    s += ["MOTION", f"Frames: {frames}", "Frame Time: 0.0083333"]
+    return "\n".join(s) + "\n" + (" ".join(["0"] * (6 * joints)) + "\n") * frames
+
+
+def size_runs(tmp: Path) -> list:
+    """The files at the limits through the CLI, each command a child process measured by ``bounded_runs``."""
+    files = {"63 MB token of ESC": b"\x1b" * 63_000_000, "63 MB of one letter": b"a" * 63_000_000,
+             "60 MB of newlines": b"\n" * 60_000_000, "5,000,000 joint-frames": _six_channels(5_000_000).encode(),
+             "9,990-joint chain": _chain(9990).encode()}
+    runs = []
+    for k, (name, data) in enumerate(files.items()):
+        path = tmp / f"limit{k}.bvh"
+        path.write_bytes(data)
+        del data
+        runs.append(text2anim(f"{name}: info", "info", path))
+        runs.append(text2anim(f"{name}: metrics", "metrics", path))
+        runs.append(text2anim(f"{name}: convert", "convert", path, "-o", tmp / "out.bvh"))
+        runs.append(text2anim(f"{name}: db import", "db", "import", path, "--verb", "歩く",
+                              "--db", f"sqlite:///{tmp / 'm.sqlite'}"))
+        path.unlink()
+        (tmp / "out.bvh").unlink(missing_ok=True)
+    return runs
+
+
 # ----------------------------------------------------------------------------------- running
 def run_case(text: str) -> tuple[str, float, float, float]:
     """Parse once: (outcome, wall s, CPU s, peak MB); outcome is ``ok``, ``BVHError`` or an exception name."""
@@ -196,6 +243,7 @@ def main(argv=None) -> int:
     ap.add_argument("--cases", type=int, default=3060)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--cmu", type=Path, default=DEFAULT_CMU)
+    ap.add_argument("--no-sizes", action="store_true", help="skip the files at the limits")
     args = ap.parse_args(argv)
     files = sorted(args.cmu.glob("*.bvh"))
     if not files:
@@ -252,6 +300,14 @@ def main(argv=None) -> int:
     print(f"run: {time.perf_counter() - t_start:.0f} s wall; process peak RSS {rss:.0f} MB")
     for f in failures[:20]:
         print("FAIL", f)
+    if not args.no_sizes:
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as tmp:
+            runs = size_runs(Path(tmp))
+        print("\nFiles at the limits, through the CLI:")
+        print(table(runs))
+        failures += [f"{r.case}: {'; '.join(r.failures)}" for r in runs if r.failures]
     return 1 if failures else 0
 
 

@@ -17,6 +17,8 @@ import sys
 import time
 from typing import Any
 
+from text2anim.core.inputs import printable
+
 from .arg_types import fps_type
 from .batch import DEFAULT_CHUNK, Options, run_corpus
 from .bvh_options import add_budget_option
@@ -93,7 +95,7 @@ def run(args: argparse.Namespace) -> int:
                              on_start=progress.start, on_record=progress.update, wait=args.wait)
     finally:
         progress.close()
-    sys.stdout.write(outcome.summary.format())
+    sys.stdout.write(printable(outcome.summary.format(), keep="\n"))  # corpus lines: ESC shown as \x1b
     if args.check and not outcome.summary.ok:
         return EXIT_FAILED
     return 0

@@ -29,7 +29,7 @@ def run(args) -> int:
     from text2anim.core.atomic import check_output_path
     from text2anim.core.floor import place_on_floor
     from text2anim.export import export_motion
-    from text2anim.output.bvh_write import format_bvh, write_bvh
+    from text2anim.output.bvh_write import bvh_chunks, write_bvh
 
     if args.output != "-":
         check_output_path(args.output)
@@ -44,7 +44,8 @@ def run(args) -> int:
               f"(from its {'foot contacts' if floor.method == 'contacts' else 'lowest foot reach'})", file=notes)
     m = export_motion(m, export)
     if args.output == "-":
-        sys.stdout.write(format_bvh(m))
+        for piece in bvh_chunks(m):
+            sys.stdout.write(piece)
         sys.stdout.flush()
         say(f"wrote standard output: {m.n_frames} frames at {m.fps:g} fps, {m.duration:.3f} s", file=sys.stderr)
         return 0

@@ -6,6 +6,7 @@ anyone who reaches that address can run the studio. Ctrl+C stops it.
 """
 from __future__ import annotations
 
+import signal
 import socket
 import sys
 
@@ -35,12 +36,13 @@ def run(args) -> int:
     import uvicorn
 
     from .studio.app import create_app
+    from .studio.guard import LOOPBACK
 
     if not 0 <= args.port <= 65535:
         say(f"text2anim studio: error: --port must be 0..65535, not {args.port}", file=sys.stderr)
         return 2
     port = args.port or free_port(args.host)
-    if args.host not in ("127.0.0.1", "localhost", "::1"):
+    if args.host not in LOOPBACK:
         say(f"text2anim studio: warning: listening on {args.host}: anyone who can reach it can use the studio",
             file=sys.stderr)
     app = create_app(args.db, args.host, port)
@@ -50,5 +52,16 @@ def run(args) -> int:
         import webbrowser
 
         webbrowser.open(url)
-    uvicorn.run(app, host=args.host, port=port, log_level="warning")
+    # uvicorn stops on SIGTERM, then raises it again with the handler it found: this one, so the process
+    # ends through the ``finally`` below (with the default one it died there, the dropped character left behind)
+    previous = signal.signal(signal.SIGTERM, _terminated)
+    try:
+        uvicorn.run(app, host=args.host, port=port, log_level="warning")
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        app.state.studio.close()
     return 0
+
+
+def _terminated(signum, frame) -> None:
+    raise SystemExit(128 + signum)

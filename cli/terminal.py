@@ -22,13 +22,15 @@ MESSAGE_WIDTH = 1000
 
 
 def message(text: str, width: int = MESSAGE_WIDTH) -> str:
-    """``text`` escaped (:func:`printable`) and cut in its middle to at most about ``width`` characters,
-    saying how much was left out, so one bad file never floods the terminal."""
-    text = printable(text)
+    """``text`` cut in its middle to at most ``width`` characters, saying how much was left out, then
+    escaped (:func:`printable`), so one bad file never floods the terminal."""
     if len(text) <= width:
-        return text
-    left = len(text) - width
-    return f"{text[:width * 3 // 4]} … ({left:,} characters left out) … {text[-width // 4:]}"
+        text = printable(text)  # escapes lengthen it: cut again below if so
+        if len(text) <= width:
+            return text
+    left = len(text) - width  # cut before escaping: escaping 63 MB to cut it took seconds and gigabytes
+    head, tail = printable(text[:width * 3 // 4])[:width * 3 // 4], printable(text[-width // 4:])[-width // 4:]
+    return f"{head} … ({left:,} characters left out) … {tail}"
 
 
 def say(*parts, sep: str = " ", file=None, flush: bool = False) -> None:

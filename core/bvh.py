@@ -189,6 +189,7 @@ def read_bvh(path: str | os.PathLike, **options) -> Motion:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
         text = raw.decode("latin-1")
+    del raw  # up to 64 MB no longer needed while the text is parsed
     if "\x00" in text:
         raise BVHError(f"{path}:1: binary data, not a BVH text file")
     return parse_bvh(text, source=str(path), **options)

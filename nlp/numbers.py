@@ -6,6 +6,7 @@ before sentences are split, so a decimal point never ends a sentence.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 from .types import Token
@@ -40,14 +41,20 @@ def kanji_to_int(text: str) -> int | None:
 
 
 def number_value(surface: str) -> float | None:
-    """Value of an Arabic (after NFKC) or kanji numeral, else ``None``."""
+    """Value of an Arabic (after NFKC) or kanji numeral, else ``None``; a numeral beyond a float's range
+    (309 digits of 九) is infinity, which the limits refuse with a reason (it raised OverflowError)."""
     if surface.isascii():
         try:
             return float(surface)
         except ValueError:
             return None
     value = kanji_to_int(surface)
-    return None if value is None else float(value)
+    if value is None:
+        return None
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf
 
 
 def _is_digits(tok: Token) -> bool:

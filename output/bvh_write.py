@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Iterator
+from pathlib import Path
 
 import numpy as np
 
@@ -20,8 +22,9 @@ def _channel_values(m: Motion) -> np.ndarray:
 
     skel = m.skeleton
     T = m.n_frames
-    cols = []
+    out = np.empty((T, sum(len(c) for c in skel.channels)))  # filled in place: no per-joint blocks to join
     local_t = m.local_translations()
+    col = 0
     for j, chans in enumerate(skel.channels):
         if not chans:
             continue
@@ -30,22 +33,31 @@ def _channel_values(m: Motion) -> np.ndarray:
         if T and order:
             euler = Rotation.from_quat(m.rotations[:, j]).as_euler(_full_order(order), degrees=True)
         pos = local_t[:, j] - skel.offsets[j]
-        block = np.empty((T, len(chans)))
         for k, c in enumerate(chans):
             if c in ROTATION_CHANNELS:
-                block[:, k] = euler[:, order.index(c[0])]
+                out[:, col + k] = euler[:, order.index(c[0])]
             else:
-                block[:, k] = pos[:, "XYZ".index(c[0])]
-        cols.append(block)
-    return np.concatenate(cols, axis=1) if cols else np.zeros((T, 0))
+                out[:, col + k] = pos[:, "XYZ".index(c[0])]
+        col += len(chans)
+    return out
 
 
 def _fmt(v) -> str:
     return f"{float(v):.8f}"
 
 
+#: Frames formatted at a time: a 5,000,000 joint-frame motion as one list of Python floats took 2 GB.
+CHUNK_FRAMES = 2048
+
+
 def format_bvh(m: Motion) -> str:
     """The motion as BVH text (metres, degrees, the skeleton's own channel layout)."""
+    return "".join(bvh_chunks(m))
+
+
+def bvh_chunks(m: Motion) -> Iterator[str]:
+    """:func:`format_bvh`'s text in pieces: the hierarchy, then up to :data:`CHUNK_FRAMES` frame lines at a
+    time, so a long motion is written in memory bounded by a chunk, not by its text."""
     skel = m.skeleton
     ends: dict[int, list[np.ndarray]] = {}
     for j, o in skel.end_sites:
@@ -75,13 +87,19 @@ def format_bvh(m: Motion) -> str:
         stack.extend(("open", c, depth + 1) for c in reversed(children.get(j, [])))
     values = _channel_values(m)
     out += ["MOTION", f"Frames: {m.n_frames}", f"Frame Time: {1.0 / m.fps:.8g}"]
+    yield "\n".join(out) + "\n"
     row = " ".join(["%.7f"] * values.shape[1])
-    out += [row % tuple(r) for r in values.tolist()]  # Python floats: the same text, formatted faster
-    return "\n".join(out) + "\n"
+    for start in range(0, len(values), CHUNK_FRAMES):  # Python floats: the same text, formatted faster
+        yield "".join([row % tuple(r) + "\n" for r in values[start:start + CHUNK_FRAMES].tolist()])
 
 
 def write_bvh(m: Motion, path: str | os.PathLike) -> None:
     """Write ``m`` as BVH, atomically: the file appears whole or not at all."""
-    from text2anim.core.atomic import atomic_write_text
+    from text2anim.core.atomic import write_all
 
-    atomic_write_text(path, format_bvh(m))
+    def write(tmp: Path) -> None:
+        with open(tmp, "w", encoding="utf-8") as f:
+            for piece in bvh_chunks(m):
+                f.write(piece)
+
+    write_all({path: write})

@@ -114,9 +114,10 @@ def _refusals() -> tuple[type, ...]:
     from text2anim.core.bodyparts import BodyMapError
     from text2anim.motiondb import UnknownVerbError
     from text2anim.nlp import NLPError
+    from text2anim.limits import InputError
     from text2anim.scheduler.errors import ScheduleError
 
-    return NLPError, ScheduleError, UnknownVerbError, BodyMapError
+    return NLPError, ScheduleError, UnknownVerbError, BodyMapError, InputError
 
 
 def reason_of(exc: BaseException) -> str:
@@ -130,6 +131,7 @@ def reason_of(exc: BaseException) -> str:
 
 def run_line(item: Item, opts: Options) -> dict:
     """Parse (and with ``opts.out`` animate) one line; never raises for a bad line."""
+    from text2anim.limits import check_text
     from text2anim.nlp import analyze
 
     t0, c0 = time.perf_counter(), time.thread_time()
@@ -139,7 +141,7 @@ def run_line(item: Item, opts: Options) -> dict:
     clips: dict[int, str] | None = None
     plan_error = None
     try:
-        parse = analyze(item.text).to_dict(extra=True)
+        parse = analyze(check_text(item.text)).to_dict(extra=True)  # a control character: refused, --out or not
         if opts.out and opts.parse_only:
             rec["parse"] = parse
         if opts.animating:

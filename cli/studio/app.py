@@ -11,9 +11,12 @@
   ``X-Verb`` the verb it shows) stored as ``db import`` stores it; ``POST /api/rig`` a dropped ``.glb``/``.vrm``
   character the animation is shown and exported on, as ``--rig`` does.
 
-Requests are bounded: a body of at most :data:`MAX_BODY` bytes (a dropped file :data:`MAX_UPLOAD`), a text of at most
-``work.MAX_TEXT`` characters, the API's own limits on what a text may ask for, and
-:data:`TIMEOUT` seconds of work. :class:`.guard.SameOrigin` refuses other hosts and origins.
+Requests are bounded: a body of at most :data:`MAX_BODY` bytes (a dropped file :data:`MAX_UPLOAD`, at most
+:data:`MAX_UPLOADS` at once) received within :data:`BODY_TIMEOUT` seconds, a text of at most
+``work.MAX_TEXT`` characters, the API's own limits on what a text may ask for, and :data:`TIMEOUT` seconds
+of work. Every malformed request is a 4xx with one line (``{"ok": false, "error"}``), never a 500.
+:class:`.guard.SameOrigin` refuses other hosts and origins, state-changing requests without the session's
+token, and framing by other pages.
 """
 from __future__ import annotations
 
@@ -29,13 +32,20 @@ from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response
 from starlette.routing import Route
 
-from .guard import SameOrigin, own_hosts
+from .guard import SameOrigin, new_token, own_hosts
 from .work import FORMATS, Studio
 
 #: Largest request body (bytes).
 MAX_BODY = 64 * 1024
 #: Seconds a request may work before the page is told to try a shorter text.
 TIMEOUT = 60.0
+#: Seconds a request's body may take to arrive (a client that sends it a byte at a time is cut off).
+BODY_TIMEOUT = 30.0
+#: Dropped files received at once (each up to :data:`MAX_UPLOAD` bytes held in memory).
+MAX_UPLOADS = 2
+#: Texts waiting for or in the one animation at a time; more are told the studio is busy (429) rather than
+#: queued for minutes (the page itself has one request in flight: a newer text aborts the older one).
+MAX_PENDING = 4
 #: The page's own files: name -> content type.
 ASSETS = {"studio.js": "text/javascript; charset=utf-8", "studio3d.js": "text/javascript; charset=utf-8",
           "topview.js": "text/javascript; charset=utf-8", "studio.css": "text/css; charset=utf-8"}
@@ -57,52 +67,84 @@ MAX_UPLOAD = 30 * 1024 * 1024
 MAX_EDITS = 200
 
 
+def _refused(status: int, error: str) -> JSONResponse:
+    return JSONResponse({"ok": False, "error": error}, status_code=status)
+
+
+async def _body(request: Request, limit: int, what: str) -> bytes | Response:
+    """The request's body, at most ``limit`` bytes within :data:`BODY_TIMEOUT` seconds, or the refusal."""
+    async def read() -> bytes | Response:
+        parts, size = [], 0
+        async for chunk in request.stream():
+            size += len(chunk)
+            if size > limit:
+                return _refused(413, f"{what} is over {limit // 1024 if limit < 2**20 else limit // 2**20} "
+                                     f"{'KB' if limit < 2**20 else 'MB'}")
+            parts.append(chunk)
+        return b"".join(parts)
+    try:
+        return await asyncio.wait_for(read(), BODY_TIMEOUT)
+    except asyncio.TimeoutError:
+        return _refused(408, f"{what} did not arrive within {BODY_TIMEOUT:g} s")
+
+
 async def _text_of(request: Request) -> tuple[str, tuple, str] | Response:
     """``(text, edits, format)`` of a JSON request body ``{"text", "edits": [...], "format"}``, or the
-    response refusing it."""
-    from text2anim.edits import Edit, EditError
+    response refusing it (every malformed body a 4xx: a list for a format, 20,000 nested brackets)."""
+    from text2anim.edits import Edit
 
-    body = b""
-    async for chunk in request.stream():
-        body += chunk
-        if len(body) > MAX_BODY:
-            return JSONResponse({"ok": False, "error": f"the request is over {MAX_BODY // 1024} KB"}, status_code=413)
+    if request.headers.get("content-type", "").split(";")[0].strip().lower() != "application/json":
+        return _refused(415, "the request must be sent as application/json")
+    body = await _body(request, MAX_BODY, "the request")
+    if isinstance(body, Response):
+        return body
     try:
         data = json.loads(body or b"{}")
-        text, raw = data.get("text", ""), data.get("edits") or []
-        fmt = data.get("format", "bvh")
-    except (ValueError, AttributeError):
-        return JSONResponse({"ok": False, "error": "the request must be JSON: {\"text\": \"...\"}"}, status_code=400)
-    if fmt not in FORMATS:
-        return JSONResponse({"ok": False, "error": f"format must be one of {', '.join(FORMATS)}"}, status_code=400)
-    if not isinstance(text, str) or not isinstance(raw, list) or len(raw) > MAX_EDITS:
-        return JSONResponse({"ok": False, "error": f"text must be a string and edits a list of at most {MAX_EDITS}"},
-                            status_code=400)
+    except (ValueError, RecursionError):  # RecursionError: nesting deeper than the parser's stack
+        return _refused(400, "the request must be JSON: {\"text\": \"...\"}")
+    if not isinstance(data, dict):
+        return _refused(400, "the request must be a JSON object: {\"text\": \"...\"}")
+    text, raw, fmt = data.get("text", ""), data.get("edits") or [], data.get("format", "bvh")
+    if not isinstance(fmt, str) or fmt not in FORMATS:
+        return _refused(400, f"format must be one of {', '.join(FORMATS)}")
+    if not isinstance(text, str) or not isinstance(raw, list) or len(raw) > MAX_EDITS \
+            or not all(isinstance(e, dict) for e in raw):
+        return _refused(400, f"text must be a string and edits a list of at most {MAX_EDITS} objects")
     try:
-        edits = tuple(Edit.from_dict(e) for e in raw if isinstance(e, dict))
-    except EditError as exc:
-        return JSONResponse({"ok": False, "error": str(exc)}, status_code=400)
+        edits = tuple(Edit.from_dict(e) for e in raw)
+    except (ValueError, TypeError, KeyError, AttributeError) as exc:  # EditError is a ValueError
+        return _refused(400, f"edits: {_short(exc)}")
     return text, edits, fmt
 
 
-async def _upload(request: Request) -> bytes | Response:
-    """A dropped file's bytes (at most :data:`MAX_UPLOAD`), or the response refusing it."""
-    data = b""
-    async for chunk in request.stream():
-        data += chunk
-        if len(data) > MAX_UPLOAD:
-            return JSONResponse({"ok": False, "error": f"the file is over {MAX_UPLOAD // 2**20} MB"}, status_code=413)
-    if not data:
-        return JSONResponse({"ok": False, "error": "the file is empty"}, status_code=400)
-    return data
+def _short(exc: BaseException) -> str:
+    from text2anim.cli.terminal import message
+
+    return message(str(exc).splitlines()[0] if str(exc) else type(exc).__name__, 200)
 
 
 def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) -> Starlette:
     """The studio answering on ``host``:``port`` (the ``Host`` its requests must carry) over ``db_url``."""
     studio = Studio.open(db_url)
+    token = new_token()
+    uploading = [0]  # dropped files being received now
 
     async def page(request: Request) -> Response:
-        return HTMLResponse(_asset("studio.html"), headers={"Cache-Control": "no-store"})
+        html = _asset("studio.html").replace("</head>", f'<meta name="t2a-token" content="{token}">\n</head>', 1)
+        return HTMLResponse(html, headers={"Cache-Control": "no-store"})
+
+    async def upload(request: Request) -> bytes | Response:
+        """A dropped file's bytes (at most :data:`MAX_UPLOAD`, :data:`MAX_UPLOADS` at once), or the refusal."""
+        if uploading[0] >= MAX_UPLOADS:
+            return _refused(429, f"{MAX_UPLOADS} files are being received; drop this one again in a moment")
+        uploading[0] += 1
+        try:
+            data = await _body(request, MAX_UPLOAD, "the file")
+        finally:
+            uploading[0] -= 1
+        if isinstance(data, bytes) and not data:
+            return _refused(400, "the file is empty")
+        return data
 
     async def asset(request: Request) -> Response:
         name = request.path_params["name"]
@@ -119,16 +161,23 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
         return Response(path.read_bytes(), media_type="text/javascript; charset=utf-8",
                         headers={"Cache-Control": "max-age=86400"})
 
+    pending = [0]  # texts waiting for or in the animation
+
     async def work(request: Request, fn: Callable[[str, tuple, str], Response]) -> Response:
         got = await _text_of(request)
         if isinstance(got, Response):
             return got
         text, edits, fmt = got
+        if pending[0] >= MAX_PENDING:
+            return _refused(429, f"the studio is busy with {MAX_PENDING} texts; try again in a moment")
+        pending[0] += 1
         try:
             return await asyncio.wait_for(run_in_threadpool(fn, text, edits, fmt), TIMEOUT)
         except asyncio.TimeoutError:
             return JSONResponse({"ok": False, "error": f"this text took over {TIMEOUT:g} s; try a shorter one"},
                                 status_code=503)
+        finally:
+            pending[0] -= 1
 
     async def animate(request: Request) -> Response:
         def run(text, edits, fmt):
@@ -159,7 +208,7 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
         name = unquote(request.headers.get("x-filename", "dropped.bvh"))[:200]
         if not verb:
             return JSONResponse({"ok": False, "error": "name the verb the clip shows (X-Verb)"}, status_code=400)
-        data = await _upload(request)
+        data = await upload(request)
         if isinstance(data, Response):
             return data
         cyclic = request.headers.get("x-cyclic", "") == "1"
@@ -175,7 +224,7 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
         suffix = Path(unquote(request.headers.get("x-filename", ""))).suffix.lower()
         if suffix not in (".glb", ".vrm"):
             return JSONResponse({"ok": False, "error": "drop a .glb or .vrm character"}, status_code=400)
-        data = await _upload(request)
+        data = await upload(request)
         if isinstance(data, Response):
             return data
         done = await run_in_threadpool(studio.set_rig, data, suffix)
@@ -189,5 +238,6 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
                             Route("/api/animate", animate, methods=["POST"]),
                             Route("/api/export", export, methods=["POST"]), Route("/api/verbs", verbs),
                             Route("/api/import", import_bvh, methods=["POST"]), Route("/api/rig", rig, methods=["POST", "DELETE"])])
-    app.add_middleware(SameOrigin, hosts=own_hosts(host, port))
+    app.add_middleware(SameOrigin, hosts=own_hosts(host, port), token=token)
+    app.state.studio = studio
     return app

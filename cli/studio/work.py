@@ -1,8 +1,10 @@
 """A text into what the studio shows: the viewer page, the time table and the messages.
 
 One animation at a time (the synthesis is CPU-bound; a newer text makes the page abort the older
-request). The same text with the same database gives the same bytes, so the last few results are
-kept: going back to a text, or appending to it, costs nothing for what was already made.
+request). The same text with the same database gives the same bytes, so recent results are kept, within
+:data:`CACHE_BYTES` (what the page is sent: the viewer page, the top view, the table): going back to a
+text costs nothing. Only the latest :class:`Animation` itself is kept (for its export; a long text's
+is ~40 MB); exporting another text animates it again.
 """
 from __future__ import annotations
 
@@ -15,8 +17,10 @@ from pathlib import Path
 
 #: Longest text the studio animates (characters); the API's own limits apply too.
 MAX_TEXT = 2000
-#: Results kept (text -> payload).
+#: Results kept (text -> payload), at most this many ...
 CACHE = 32
+#: ... and at most this many bytes of them (200 requests of long texts took the studio to 1.65 GB).
+CACHE_BYTES = 64 * 2**20
 #: What the page may download: format -> file suffix (``Animation.outputs``' keywords).
 FORMATS = {"bvh": "bvh", "glb": "glb", "vrma": "vrma", "report": "json"}
 
@@ -31,6 +35,7 @@ class Studio:
     cache: "OrderedDict[str, dict]"
     folder: "tempfile.TemporaryDirectory[str]"
     rig: Path | None = None
+    latest: tuple[str, object] | None = None  # (cache key, Animation) of the latest text animated
 
     @classmethod
     def open(cls, db_url: str | None) -> "Studio":
@@ -63,7 +68,7 @@ class Studio:
                 return {"ok": False, "error": message(str(exc).replace(str(path), filename))}
             finally:
                 path.unlink(missing_ok=True)
-            self.cache.clear()  # the database changed: what was made may play other clips now
+            self._forget()  # the database changed: what was made may play other clips now
         return {"ok": True, "clip": info.name, "verbs": list(info.verbs), "frames": info.frames,
                 "seconds": round(info.duration, 3)}
 
@@ -73,7 +78,7 @@ class Studio:
             if self.rig is not None:
                 self.rig.unlink(missing_ok=True)
             self.rig = None
-            self.cache.clear()
+            self._forget()
 
     def set_rig(self, data: bytes, suffix: str) -> dict:
         """Keep a dropped ``.glb``/``.vrm`` character for what follows (read as ``--rig`` reads it: refused
@@ -81,19 +86,34 @@ class Studio:
         from text2anim.cli.terminal import message
         from text2anim.core.gltf_rig import read_gltf_rig
 
-        path = Path(self.folder.name) / f"character{suffix}"
+        from text2anim.export import ExportOptions
+
+        path = Path(self.folder.name) / f"checking{suffix}"
         with self.lock:
             path.write_bytes(data)
-            try:
+            try:  # the whole --rig check (its joints placed as a human's), before it is kept
                 rig = read_gltf_rig(path)
+                ExportOptions(rig=path).check(glb=True)
             except Exception as exc:
                 if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                     raise
                 path.unlink(missing_ok=True)
                 return {"ok": False, "error": message(str(exc).replace(str(path), f"the dropped {suffix} file"))}
-            self.rig = path
-            self.cache.clear()
+            kept = path.with_name(f"character{suffix}")
+            if self.rig is not None:
+                self.rig.unlink(missing_ok=True)
+            self.rig = path.replace(kept)
+            self._forget()
         return {"ok": True, "joints": len(rig.skeleton.names)}
+
+    def _forget(self) -> None:
+        """Drop every result (the database or the character changed)."""
+        self.cache.clear()
+        self.latest = None
+
+    def close(self) -> None:
+        """Remove the private folder (a dropped character, an upload being read)."""
+        self.folder.cleanup()
 
     def animate(self, text: str, edits: tuple = ()) -> dict:
         """``{"ok": True, "html", "top", "table", "blends", "duration", "warnings"}`` for ``text`` with the time-table
@@ -106,17 +126,40 @@ class Studio:
             return {"ok": False, "error": "type a sentence, e.g. 太郎は走って、ボールを蹴る。"}
         if len(text) > MAX_TEXT:
             return {"ok": False, "error": f"the text is {len(text)} characters long; the studio takes at most {MAX_TEXT}"}
-        key = text + "\0" + repr(edits) + "\0" + str(self.rig)
+        key = self._key(text, edits)
         with self.lock:
             hit = self.cache.get(key)
             if hit is not None:
                 self.cache.move_to_end(key)
                 return hit
             payload = self._make(text, edits)
+            anim = payload.pop("_anim", None)
+            if anim is not None:
+                self.latest = (key, anim)
+            payload["_bytes"] = _size(payload)
             self.cache[key] = payload
-            while len(self.cache) > CACHE:
+            while len(self.cache) > 1 and (len(self.cache) > CACHE  # the newest is kept whatever its size
+                                           or sum(p["_bytes"] for p in self.cache.values()) > CACHE_BYTES):
                 self.cache.popitem(last=False)
             return payload
+
+    def _key(self, text: str, edits: tuple) -> str:
+        return text.strip() + "\0" + repr(edits) + "\0" + str(self.rig)
+
+    def animation(self, text: str, edits: tuple = ()):
+        """The :class:`Animation` of ``text`` (the latest one kept, else made again), or None when it
+        cannot be animated."""
+        payload = self.animate(text, edits)
+        if not payload["ok"]:
+            return None
+        key = self._key(text, edits)
+        with self.lock:
+            if self.latest is not None and self.latest[0] == key:
+                return self.latest[1]
+            self.cache.pop(key, None)  # made again: the same bytes, and kept as the latest
+        self.animate(text, edits)
+        with self.lock:
+            return self.latest[1] if self.latest is not None and self.latest[0] == key else None
 
     def _make(self, text: str, edits: tuple) -> dict:
         import text2anim
@@ -127,17 +170,17 @@ class Studio:
 
         try:
             anim = text2anim.animate(text, db=self.db, edits=edits)
+            keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
+            tracks, props = anim.tracks(), anim.props()
+            if self.rig is not None:  # the user's character: its own skeleton and proportions
+                from text2anim.export import ExportOptions
+
+                rig = ExportOptions(rig=self.rig)
+                tracks, props = anim.exported_motions(rig, units=False), anim.exported_props(rig)
         except Exception as exc:  # the stages' user errors carry user_facing; anything else is a bug to show
             if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                 raise
             return {"ok": False, "error": message(str(exc)), "unknown": unknown_verbs(text, exc)}
-        keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
-        tracks, props = anim.tracks(), anim.props()
-        if self.rig is not None:  # the user's character: its own skeleton and proportions
-            from text2anim.export import ExportOptions
-
-            rig = ExportOptions(rig=self.rig)
-            tracks, props = anim.exported_motions(rig, units=False), anim.exported_props(rig)
         rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
                  "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part,
                  "key": keys.get(e.id), "manner": e.manner.to_dict() if e.manner else None}
@@ -158,8 +201,8 @@ class Studio:
         import io
         import zipfile
 
-        payload = self.animate(text, edits)
-        if not payload["ok"]:
+        anim = self.animation(text, edits)
+        if anim is None:
             return None
         export = None
         if self.rig is not None and fmt in ("bvh", "glb", "vrma"):
@@ -167,7 +210,7 @@ class Studio:
 
             export = ExportOptions(rig=self.rig)
         with tempfile.TemporaryDirectory() as tmp:  # names only: nothing is written there
-            files = payload["_anim"].outputs(**{fmt: Path(tmp) / f"animation.{FORMATS[fmt]}"}, export=export)
+            files = anim.outputs(**{fmt: Path(tmp) / f"animation.{FORMATS[fmt]}"}, export=export)
         if len(files) == 1:
             ((path, data),) = files.items()
             return path.name, bytes(data)
@@ -176,6 +219,12 @@ class Studio:
             for path, data in sorted(files.items()):
                 z.writestr(path.name, bytes(data))
         return "animation.zip", buf.getvalue()
+
+
+def _size(payload: dict) -> int:
+    """Bytes a result holds, about: its strings (the viewer page is most of it) and 100 bytes a row."""
+    return sum(len(v) for v in payload.values() if isinstance(v, str)) + 100 * (
+        len(payload.get("table", ())) + len(payload.get("blends", ())) + len(str(payload.get("top", ""))) // 100)
 
 
 def unknown_verbs(text: str, exc: Exception) -> list[dict]:

@@ -26,8 +26,11 @@ UNBOUNDED = [
     ("太郎は1000000回跳ぶ。", f"at most {MAX_REPEAT} repetitions"),
     (f"太郎は{HUGE}回跳ぶ。", f"at most {MAX_REPEAT} repetitions"),
     ("太郎は歩く。999999999秒後に花子は走る。", "a delay of 1e+09 s"),
-    (f"太郎は歩く。{HUGE}秒後に花子は走る。", "at most 300 s of output"),
-    (f"太郎は{HUGE}秒歩く。", "at most 300 s of output"),
+    (f"太郎は歩く。{HUGE}秒後に花子は走る。", "more than a day"),
+    (f"太郎は{HUGE}秒歩く。", "more than a day"),
+    (f"太郎は{'九' * 309}秒走る。", "asked to last more than 10³⁰⁸ s, more than a day"),  # OverflowError (issue 41)
+    (f"{'九' * 309}秒後に走る。", "a delay of more than 10³⁰⁸ s is asked before 走る"),
+    ("太郎は走ってから一〇〇〇〇〇〇秒後に歩く。", "a delay of 1e+06 s is asked, more than a day"),
     ("太郎は9999秒歩く。", "asked to last 9999 s"),
     ("太郎は299秒歩く。花子は走る。", "for 2 actors"),  # each alone fits; the two together do not
     ("歩く。" * (MAX_MOTIONS + 1), f"at most {MAX_MOTIONS} per text"),
@@ -41,7 +44,7 @@ def test_unbounded_texts_are_refused_before_any_work(library_db, text, fragment)
         text2anim.plan(text, library_db)
 
 
-@pytest.mark.parametrize("text, fragment", UNBOUNDED[6:7])
+@pytest.mark.parametrize("text, fragment", UNBOUNDED[9:10] + UNBOUNDED[5:6])
 def test_unbounded_texts_are_one_line_and_exit_2(tmp_path, library_db, text, fragment):
     proc = run(text, "-o", tmp_path / "a.bvh", "--db", library_db)
     assert_clean_error(proc, fragment)
@@ -161,3 +164,10 @@ def test_undecodable_text_is_one_line():
                               capture_output=True, timeout=120)
         err = proc.stderr.decode()
         assert proc.returncode == 2 and "Traceback" not in err and "UTF-8" in err, err
+
+
+def test_a_duration_over_a_day_is_refused_whatever_the_budget(library_db):
+    """--max-seconds raises the budget up to a day; a duration beyond it is refused for that reason."""
+    with pytest.raises(LimitError, match="more than a day"):
+        text2anim.plan("太郎は100000秒歩く。", library_db, max_seconds=86_400)
+    assert text2anim.plan("太郎は400秒歩く。", library_db, max_seconds=86_400)

@@ -103,6 +103,19 @@ def test_plain_text_lines_and_errors(capsys, tmp_path):
     assert "no motion" in out
 
 
+@pytest.mark.parametrize("out", [False, True])
+def test_a_line_with_escape_codes_is_refused_and_printed_escaped(capsys, tmp_path, library_db, out):
+    """A corpus line that retitles and clears the terminal (issue 41): refused the same with or without
+    --out (it was parsed without), and the summary shows it escaped."""
+    corpus = write(tmp_path, "c.txt", ["\x1b]0;pwned\x07太郎は歩く。\x1b[2J", "太郎は走る。"])
+    extra = ["--out", tmp_path / "o", "--db", library_db] if out else []
+    code, printed, _ = run_cli(capsys, "batch", corpus, *extra)
+    assert code == 0
+    assert "\x1b" not in printed and "\x07" not in printed
+    assert "\\x1b]0;pwned\\x07太郎は歩く。\\x1b[2J" in printed
+    assert "the text contains a control character" in printed and "refused                                1" in printed
+
+
 def test_expected_error_passes(capsys, tmp_path):
     corpus = write(tmp_path, "c.jsonl", ['{"text": "Hello", "expect": {"error": "no motion"}}',
                                          '{"text": "歩く", "expect": {"error": "no motion"}}'])

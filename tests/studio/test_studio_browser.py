@@ -129,6 +129,36 @@ def test_a_shared_link_opens_with_its_text(browser, studio):
     pg.close()
 
 
+def test_another_site_can_neither_frame_the_studio_nor_post_to_it(browser, studio, tmp_path):
+    """Another page (here a file:// page, another origin) frames the studio: the browser shows nothing of it
+    (X-Frame-Options, frame-ancestors). Its form posts JSON-looking text/plain to the studio: refused, nothing
+    animated (issue 41: such a "simple" request was served when the browser sent no Origin)."""
+    evil = tmp_path / "evil.html"
+    evil.write_text(f'<iframe id="f" src="{studio}"></iframe>'
+                    f'<form id="x" method="POST" action="{studio}api/animate" enctype="text/plain">'
+                    '<input name=\'{"text": "太郎は歩く。", "x": "\' value=\'"}\'></form>', encoding="utf-8")
+    pg = browser.new_page()
+    pg.goto(evil.as_uri())
+    pg.wait_for_timeout(1500)
+    framed = [f for f in pg.frames if f != pg.main_frame]
+    assert framed and all(f.evaluate("document.getElementById('text')") is None for f in framed
+                          if not f.url.startswith("chrome-error"))
+    with pg.expect_navigation() as nav:
+        pg.evaluate("document.getElementById('x').submit()")
+    answer = nav.value
+    assert answer is not None and answer.status in (403, 415) and "__t2a" not in pg.content()
+    pg.close()
+
+
+def test_the_page_sends_its_session_token(page):
+    """The page's own requests carry the token it was served (every one above would be refused without it)."""
+    token = page.evaluate("document.querySelector('meta[name=\"t2a-token\"]').content")
+    with page.expect_request(lambda r: r.url.endswith("/api/animate")) as req:
+        page.fill("#text", "太郎は跳ぶ。")
+    assert len(token) > 30 and req.value.headers.get("x-studio-token") == token
+    assert page.get_attribute("#view", "sandbox") == "allow-scripts allow-same-origin"
+
+
 def _row(page, verb):
     return page.evaluate(f"window.__studio.table.find(e => e.verb === '{verb}')")
 

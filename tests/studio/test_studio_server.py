@@ -4,6 +4,8 @@ The browser side is tests/studio/test_studio_browser.py; these check the HTTP co
 """
 from __future__ import annotations
 
+import re
+
 import pytest
 from starlette.testclient import TestClient
 
@@ -14,9 +16,16 @@ PORT = 8123
 BASE = f"http://127.0.0.1:{PORT}"
 
 
+def _token(client: TestClient) -> str:
+    """The session's token, as the page gets it: from the HTML the studio serves."""
+    return re.search(r'<meta name="t2a-token" content="([^"]+)">', client.get("/").text).group(1)
+
+
 @pytest.fixture(scope="module")
 def client(library_db):
-    return TestClient(create_app(library_db, "127.0.0.1", PORT), base_url=BASE)
+    c = TestClient(create_app(library_db, "127.0.0.1", PORT), base_url=BASE)
+    c.headers["X-Studio-Token"] = _token(c)
+    return c
 
 
 def test_the_page_and_its_own_files_are_served(client):
@@ -118,3 +127,122 @@ def test_dropped_files_are_bounded_and_checked_before_anything_is_stored(client)
     big = client.post("/api/import", content=b"x" * (MAX_UPLOAD + 1), headers={"x-filename": "a.bvh",
                                                                                "x-verb": quote("歩く")})
     assert big.status_code == 413 and "MB" in big.json()["error"]
+
+
+# ------------------------------------------------------------------ issue 41: every request bounded
+@pytest.mark.parametrize("body", [b'{"text": "\xe8\xb5\xb0\xe3\x82\x8b", "format": []}', b"[" * 20_000, b'["text"]',
+                                  b'{"text": 7}', b'{"text": "x", "edits": [1, 2]}', b'{"text": "x", "edits": [{"nth": []}]}',
+                                  b'{"text": "x", "format": {"a": 1}}', b'\xff\xfe', b'{"text": "x", "edits": {"a": 1}}'])
+@pytest.mark.parametrize("endpoint", ["/api/animate", "/api/export"])
+def test_a_malformed_request_is_one_line_and_a_4xx(client, endpoint, body):
+    """A list for a format and 20,000 nested brackets were 500s with a traceback."""
+    r = client.post(endpoint, content=body, headers={"content-type": "application/json"})
+    assert 400 <= r.status_code < 500, (r.status_code, r.text[:200])
+    error = r.json()["error"]
+    assert "\n" not in error and len(error) < 300 and "Traceback" not in r.text
+
+
+def test_json_only_as_json_and_only_with_the_sessions_token(client):
+    """A cross-site "simple" request (a form posting text/plain) and a request without the token are refused:
+    neither is served, whatever its Origin says (a browser may omit it)."""
+    simple = client.post("/api/animate", content='{"text": "太郎は歩く。"}'.encode(), headers={"content-type": "text/plain"})
+    assert simple.status_code == 415
+    for token in ("", "wrong", client.headers["X-Studio-Token"][:-1]):
+        r = client.post("/api/animate", json={"text": "太郎は歩く。"}, headers={"X-Studio-Token": token})
+        assert r.status_code == 403 and "token" in r.text
+        assert client.delete("/api/rig", headers={"X-Studio-Token": token}).status_code == 403
+    assert client.get("/api/verbs").status_code == 200  # reading needs no token
+
+
+def test_no_page_may_frame_the_studio_and_its_viewer_is_sandboxed(client):
+    for r in (client.get("/"), client.get("/static/studio.js"), client.post("/api/animate", json={"text": "歩く。"}),
+              client.get("/", headers={"host": "evil.example"})):
+        assert r.headers["x-frame-options"] == "DENY"
+        assert r.headers["content-security-policy"] == "frame-ancestors 'none'"
+    assert re.search(r'<iframe id="view"[^>]* sandbox="allow-scripts allow-same-origin"', client.get("/").text)
+
+
+def test_a_rig_is_checked_whole_before_it_is_kept(client, tmp_path):
+    """A GLB that reads but is no human (a chain of 40 nodes) was kept, and every later request was a 500."""
+    import json
+    import struct
+
+    nodes = [{"name": f"j{i}", "children": [i + 1] if i < 39 else [], "translation": [0, 0.05, 0]} for i in range(40)]
+    gl = json.dumps({"asset": {"version": "2.0"}, "nodes": nodes, "skins": [{"joints": list(range(40))}]}).encode()
+    gl += b" " * (-len(gl) % 4)
+    body = struct.pack("<II", len(gl), 0x4E4F534A) + gl
+    chain = b"glTF" + struct.pack("<II", 2, 12 + len(body)) + body
+    r = client.post("/api/rig", content=chain, headers={"x-filename": "chain.glb"})
+    assert r.status_code == 422 and "hips" in r.json()["error"]
+    after = client.post("/api/animate", json={"text": "太郎は歩く。"})
+    assert after.status_code == 200 and after.json()["rig"] is False
+
+
+def test_the_result_cache_is_held_to_its_byte_budget(library_db, monkeypatch):
+    """Results are kept within CACHE_BYTES (the page's payloads, not whole animations); a text whose result
+    was let go is exported all the same (animated again: the same bytes)."""
+    from text2anim.cli.studio import work
+
+    studio = work.Studio.open(library_db)
+    one = studio.animate("太郎は歩く。")
+    monkeypatch.setattr(work, "CACHE_BYTES", one["_bytes"] + 10)
+    before = studio.export("太郎は歩く。")
+    studio.animate("太郎は走る。")
+    assert list(studio.cache) == [studio._key("太郎は走る。", ())]
+    assert all("_anim" not in p for p in studio.cache.values())
+    assert studio.export("太郎は歩く。") == before
+    studio.close()
+
+
+def test_a_studio_on_every_interface_answers_to_the_names_that_reach_it():
+    import socket
+
+    from text2anim.cli.studio.guard import own_hosts
+
+    hosts = own_hosts("0.0.0.0", 8000)
+    assert {"localhost:8000", "127.0.0.1:8000", f"{socket.gethostname()}:8000"} <= hosts
+    assert "0.0.0.0:8000" not in hosts and "[::1]:8000" in own_hosts("::1", 8000)
+    assert own_hosts("192.0.2.7", 80) == {"192.0.2.7:80"}
+
+
+def test_sigterm_removes_the_dropped_character(tmp_path, library_db):
+    """The studio's private folder (a dropped character) was left behind when the studio was stopped by SIGTERM."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    import urllib.request
+
+    from cli_run import REPO
+    from rig_builders import vrm_file
+    from text2anim.cli.cmd_studio import free_port
+
+    port, tmp = free_port("127.0.0.1"), tmp_path / "tmp"
+    tmp.mkdir()
+    env = {**os.environ, "TMPDIR": str(tmp), "PYTHONPATH": str(REPO)}
+    proc = subprocess.Popen([sys.executable, "-m", "text2anim.cli.main", "studio", "--no-browser", "--port", str(port),
+                             "--db", library_db], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    try:
+        base = f"http://127.0.0.1:{port}"
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                html = urllib.request.urlopen(base + "/", timeout=5).read().decode()
+                break
+            except OSError:
+                assert time.monotonic() < deadline and proc.poll() is None, "the studio did not start"
+                time.sleep(0.2)
+        token = re.search(r'<meta name="t2a-token" content="([^"]+)">', html).group(1)
+        rig = vrm_file(tmp_path / "a.vrm").read_bytes()
+        request = urllib.request.Request(base + "/api/rig", data=rig, method="POST",
+                                         headers={"X-Filename": "a.vrm", "X-Studio-Token": token})
+        assert b'"ok":true' in urllib.request.urlopen(request, timeout=60).read()
+        (folder,) = tmp.glob("t2a-studio-*")
+        assert list(folder.glob("character.vrm"))
+        proc.send_signal(signal.SIGTERM)
+        assert proc.wait(30) == 128 + signal.SIGTERM
+        assert not folder.exists()
+    finally:
+        proc.kill()
+        proc.wait()

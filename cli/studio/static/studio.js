@@ -15,6 +15,14 @@
 
   function status(msg) { $("status").textContent = msg; }
 
+  // the session's token, from the page the studio served: every state-changing request carries it
+  var TOKEN = (document.querySelector('meta[name="t2a-token"]') || {}).content || "";
+  function sends(headers) {
+    var out = { "X-Studio-Token": TOKEN };
+    Object.keys(headers).forEach(function (k) { out[k] = headers[k]; });
+    return out;
+  }
+
   function schedule() {
     clearTimeout(S.timer);
     S.timer = setTimeout(animate, DEBOUNCE_MS);
@@ -32,7 +40,7 @@
     var ctl = new AbortController(), seq = ++S.seq;
     S.controller = ctl; S.firedAt = performance.now(); S.busy = true;
     status("animating…");
-    fetch("/api/animate", { method: "POST", headers: { "Content-Type": "application/json" },
+    fetch("/api/animate", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
                             body: JSON.stringify({ text: text, edits: edits }), signal: ctl.signal })
       .then(function (r) { return r.json(); })
       .then(function (data) { if (seq === S.seq) show(data, text, seq); })
@@ -92,7 +100,7 @@
 
   function preview(verb) {
     // the verb's clip in the view, the text left as it is
-    fetch("/api/animate", { method: "POST", headers: { "Content-Type": "application/json" },
+    fetch("/api/animate", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
                             body: JSON.stringify({ text: verb + "。" }) })
       .then(function (r) { return r.json(); })
       .then(function (data) {
@@ -147,7 +155,7 @@
     var at = S.resumeAt !== null ? S.resumeAt : (s3 && s3.ready ? s3.time : 0);
     $("builtin").hidden = false;
     S.resumeAt = null;
-    fetch("/api/export", { method: "POST", headers: { "Content-Type": "application/json" },
+    fetch("/api/export", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
                            body: JSON.stringify({ text: text, edits: editList(), format: "glb" }) })
       .then(function (r) { if (!r.ok) throw new Error("cannot draw the character"); return r.arrayBuffer(); })
       .then(function (buffer) {
@@ -275,7 +283,7 @@
 
   function exportBvh() {
     var text = $("text").value;
-    fetch("/api/export", { method: "POST", headers: { "Content-Type": "application/json" },
+    fetch("/api/export", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
                            body: JSON.stringify({ text: text, edits: editList(), format: $("format").value }) })
       .then(function (r) {
         if (!r.ok) return r.json().then(function (d) { fail(d.error || "cannot export"); });
@@ -305,7 +313,7 @@
   }
 
   function dropped(file) {
-    var name = file.name || "", lower = name.toLowerCase(), headers = { "X-Filename": encodeURIComponent(name) };
+    var name = file.name || "", lower = name.toLowerCase(), headers = sends({ "X-Filename": encodeURIComponent(name) });
     var url;
     if (/\.bvh$/.test(lower)) {
       var verb = window.prompt("Which verb does " + name + " show? (e.g. 歩く)", "");
@@ -337,7 +345,7 @@
   window.__studio.drop = dropped;  // tests hand it a File, as a drop does
   $("search").addEventListener("input", search);
   $("builtin").addEventListener("click", function () {
-    fetch("/api/rig", { method: "DELETE" }).then(function () {
+    fetch("/api/rig", { method: "DELETE", headers: sends({}) }).then(function () {
       $("builtin").hidden = true; $("dropped").textContent = ""; S.sent = ""; animate();
     });
   });
