@@ -1,9 +1,9 @@
 """Limbs kept above the floor, and swinging feet clear of it, by IK.
 
 :func:`clear_floor` lifts a foot whose ankle, ball or toe tip dips below ``y = 0``
-(marker noise at a hard landing, a dancer's pointed toe) by as much, eased over
-:data:`RAMP` frames either side (two-bone leg IK, :func:`core.ik.leg_ik`, the
-foot's world rotation kept), and a hand whose wrist, finger joints or fingertips
+(marker noise at a hard landing, a dancer's pointed toe) by as much, eased in and
+out over :data:`FLOOR_RAMP_SECONDS` (:func:`envelope`; two-bone leg IK,
+:func:`core.ik.leg_ik`, the foot's world rotation kept), and a hand whose wrist, finger joints or fingertips
 do (picking up from the floor: the finger joint 1.4 cm under it; a fall landing
 on the hands: the fingertips 4-5 cm into it) by arm IK, the hand's world
 rotation kept. The ends of the chains are the skeleton's end sites (BVH
