@@ -46,8 +46,8 @@ def style_figures(motion: Motion, window: tuple[float, float] | None = None, han
     speed = float(np.linalg.norm(np.diff(root[:, [0, 2]], axis=0), axis=1).sum()) / seconds
     contacts = detect_contacts(motion)
     landings = sorted(s for side in ("left", "right") for s, _ in contacts.intervals(side) if a <= s < b)
-    gaps = np.diff(landings)
-    gaps = gaps[gaps > 0] / motion.fps  # both feet landing at once (a jump) is one landing
+    frames = np.diff(landings)
+    gaps = frames[frames > 0] / motion.fps  # s; both feet landing at once (a jump) is one landing
     cadence = 60.0 / float(np.median(gaps)) if len(gaps) else 0.0
     step = speed / (cadence / 60.0) if cadence > 0 else 0.0
     head = _head_top(motion, bm.head)[a:b]

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
+from typing import Any
 
 from text2anim.core.bodyparts import BodyPart
 from text2anim.core.methods import ELEMENT_METHODS, Method
@@ -84,7 +85,7 @@ class Element:
 
     def to_dict(self) -> dict:
         """The row's JSON; ``object``, the target fields and ``manner`` only where the text gives them."""
-        d = {
+        d: dict[str, Any] = {
             "id": self.id, "actor": self.actor, "verb": self.verb, "clip": self.clip,
             "method": self.method, "prev": self.prev,
             "start": round(self.start, 3), "end": round(self.end, 3), "body_part": self.body_part,
