@@ -37,7 +37,7 @@ from scipy.ndimage import distance_transform_edt, gaussian_filter1d, maximum_fil
 from .bodyparts import body_map
 from .contacts import SPEED_THRESHOLD, detect_contacts, horizontal_speed
 from .easing import smoothstep
-from .floor import FOOT_CLEARANCE, lowest_foot_heights
+from .floor import FOOT_CLEARANCE, chain_lowest, lowest_foot_heights
 from .ik import arm_ik, leg_ik, set_world_rotation
 from .metrics import SKATE_SPEED
 from .motion import Motion
@@ -104,17 +104,6 @@ def envelope(deficit: np.ndarray, n: int) -> np.ndarray:
         return deficit
     return gaussian_filter1d(maximum_filter1d(deficit, 2 * n + 1, mode="nearest"), n / 2.0, mode="nearest",
                              truncate=2.0)
-
-
-def chain_lowest(motion: Motion, joint: int) -> np.ndarray:
-    """Height (m) of the lowest point of ``joint``'s subtree per frame, ``(T,)``: its joints and the end
-    sites hanging from them (a foot: ankle, ball, toe tip; a hand: wrist, fingers, fingertips)."""
-    below = [int(j) for j in motion.skeleton.subtree(joint)]
-    y = motion.positions[:, below, 1].min(axis=1)
-    sites = [k for k, (j, _) in enumerate(motion.skeleton.end_sites) if j in below]
-    if sites:
-        y = np.minimum(y, motion.end_site_positions()[:, sites, 1].min(axis=1))
-    return y
 
 
 def lift_swings(motion: Motion) -> Motion:

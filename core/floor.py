@@ -94,13 +94,27 @@ def sole_heights(motion: Motion) -> np.ndarray:
     (``benchmarks/bench_floor.py``): taken for a ball, it put those takes 3.9 cm under their floor."""
     low = lowest_foot_heights(motion)
     bm = body_map(motion.skeleton)
-    ends = motion.skeleton.end_sites
     for k, side in enumerate(("left", "right")):
         ankle, toe = bm.feet[side]
-        tips = [i for i, (j, _) in enumerate(ends) if j == ankle]
-        if ankle == toe and tips:
-            low[:, k] = np.minimum(low[:, k], motion.end_site_positions()[:, tips, 1].min(axis=1))
+        if ankle == toe:
+            low[:, k] = chain_lowest(motion, ankle)
     return low
+
+
+def chain_lowest(motion: Motion, joint: int) -> np.ndarray:
+    """Height (m) of the lowest point of ``joint``'s subtree per frame, ``(T,)``: its joints and the end
+    sites hanging from them (a foot: ankle, ball, toe tip; a hand: wrist, fingers, fingertips)."""
+    below = [int(j) for j in motion.skeleton.subtree(joint)]
+    y = motion.positions[:, below, 1].min(axis=1)
+    sites = [k for k, (j, _) in enumerate(motion.skeleton.end_sites) if j in below]
+    if sites:
+        y = np.minimum(y, motion.end_site_positions()[:, sites, 1].min(axis=1))
+    return y
+
+
+def lowest_points(motion: Motion) -> np.ndarray:
+    """Height (m) of the lowest joint or end site (a toe tip, a fingertip) on each frame, ``(T,)``."""
+    return chain_lowest(motion, 0)
 
 
 def shifted(motion: Motion, dy: float) -> Motion:

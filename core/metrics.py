@@ -52,7 +52,7 @@ from scipy.ndimage import uniform_filter1d
 from .bodyparts import body_map
 from .contacts import detect_contacts, foot_tracks
 from .floating import floating_heights
-from .floor import lowest_foot_heights
+from .floor import lowest_foot_heights, lowest_points
 from .motion import Motion
 
 # --------------------------------------------------------------------------- the literature's figures
@@ -243,13 +243,6 @@ def series(motion: Motion, floor: float = 0.0) -> Series:
                   _padded(root_acceleration(motion), (ROOT_POP_WINDOW - 1) // 2 + 1, n),
                   _padded(jerk_tj, 1, n), lowest_points(motion) - floor if n else np.zeros(0),
                   floating_heights(motion, floor), _padded(gmd.astype(float), 0, n))
-
-
-def lowest_points(motion: Motion) -> np.ndarray:
-    """Height (m) of the lowest joint or end site (a toe tip, a fingertip) on each frame, ``(T,)``."""
-    y = motion.positions[..., 1].min(axis=1)
-    ends = motion.end_site_positions()
-    return np.minimum(y, ends[..., 1].min(axis=1)) if ends.size else y
 
 
 @dataclass(frozen=True)

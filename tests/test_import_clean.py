@@ -8,8 +8,9 @@ from limb_checks import limb_errors
 from shared_data import EVERYDAY_DIR, cmu, requires_cmu, requires_everyday
 from text2anim.core import read_bvh
 from text2anim.core.contacts import detect_contacts, runs
-from text2anim.core.floor import FOOT_CLEARANCE, find_floor, lowest_foot_heights, place_on_floor, shifted
-from text2anim.core.metrics import lowest_points, skating_ratio, toe_joints
+from text2anim.core.floor import (FOOT_CLEARANCE, find_floor, lowest_foot_heights, lowest_points, place_on_floor,
+                                  shifted)
+from text2anim.core.metrics import skating_ratio, toe_joints
 from text2anim.core.retarget import map_skeletons
 from text2anim.motiondb import ClipValidationError, ImportOptions
 
