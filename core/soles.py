@@ -24,7 +24,7 @@ from .gltf_rig import GltfRig
 from .ik import leg_ik
 from .motion import Motion
 
-__all__ = ["Sole", "sole_lines", "clear_soles", "HEEL", "BALL", "MIN_VERTICES", "MAX_PITCH"]
+__all__ = ["Sole", "sole_lines", "clear_soles", "underside_heights", "sole_pitch", "HEEL", "BALL", "MIN_VERTICES", "MAX_PITCH"]
 
 #: The back share of a foot's length where its heel is looked for ...
 HEEL = 0.25
@@ -106,15 +106,25 @@ def sole_lines(rig: GltfRig, feet: dict[str, tuple[int, int]]) -> dict[str, Sole
     return out
 
 
+def underside_heights(motion: Motion, sole: Sole) -> np.ndarray:
+    """``(T, P)`` heights (m) of the sole's underside points as ``motion`` (on the sole's rig) moves them."""
+    rot = motion.pose.rotations[:, sole.carriers, 1]  # (T, P, 3): the rows giving y
+    return np.einsum("tpb,pb->tp", rot, sole.points) + motion.positions[:, sole.carriers, 1]
+
+
+def sole_pitch(motion: Motion, sole: Sole) -> np.ndarray:
+    """``(T,)`` degrees the sole line rises from heel to ball as ``motion`` turns the foot (+: heel down)."""
+    d = np.einsum("tab,b->ta", motion.pose.rotations[:, sole.ankle], sole.line)
+    return np.degrees(np.arctan2(d[:, 1], np.hypot(d[:, 0], d[:, 2])))
+
+
 def clear_soles(motion: Motion, soles: dict[str, Sole]) -> Motion:
     """``motion`` (on the rig the soles were read from; ``soles`` keyed ``"leftFoot"``/``"rightFoot"``) with
     each foot lifted where its underside (``Sole.points``) would go below ``y = 0``, as
     :func:`core.clearance.clear_floor` lifts a joint or an end site."""
-    pos, rot = motion.positions, motion.pose.rotations
     limbs, deficits = [], []
     for role, sole in soles.items():
-        y = np.einsum("tpb,pb->tp", rot[:, sole.carriers, 1], sole.points) + pos[:, sole.carriers, 1]  # (T, P)
         limbs.append((leg_ik, role[:-len("Foot")], sole.ankle))
-        deficits.append(np.maximum(0.0, -y.min(axis=1)))
+        deficits.append(np.maximum(0.0, -underside_heights(motion, sole).min(axis=1)))
     n = max(RAMP, int(round(FLOOR_RAMP_SECONDS * motion.fps)))
     return lift(motion, limbs, [envelope(d, n) for d in deficits], 0)
