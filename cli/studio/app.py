@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import threading
 from collections.abc import Callable
 from pathlib import Path
 from importlib import resources
@@ -52,6 +53,8 @@ MAX_UPLOADS = 2
 #: Texts waiting for or in the one animation at a time; more are told the studio is busy (429) rather than
 #: queued for minutes (the page itself has one request in flight: a newer text aborts the older one).
 MAX_PENDING = 4
+#: Seconds between two looks at whether a request's client is still there (its work stops when it is not).
+CANCEL_POLL = 0.02
 #: The page's own files: name -> content type.
 ASSETS = {"studio.js": "text/javascript; charset=utf-8", "studio3d.js": "text/javascript; charset=utf-8",
           "topview.js": "text/javascript; charset=utf-8", "studio.css": "text/css; charset=utf-8"}
@@ -195,7 +198,9 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
 
     pending = [0]  # texts waiting for or in the animation
 
-    async def work(request: Request, fn: Callable[[str, tuple, str, str], Response]) -> Response:
+    async def work(request: Request, fn: Callable[..., Response]) -> Response:
+        """``fn(text, edits, format, fallback, cancelled)`` in a worker thread; ``cancelled()`` is true once the
+        client went away (the page aborted the request for a newer text), so that the work stops there."""
         got = await _text_of(request)
         if isinstance(got, Response):
             return got
@@ -203,23 +208,33 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
         if pending[0] >= MAX_PENDING:
             return _refused(429, f"the studio is busy with {MAX_PENDING} texts; try again in a moment")
         pending[0] += 1
+        gone = threading.Event()
+
+        async def watch() -> None:
+            while not gone.is_set():
+                if await request.is_disconnected():
+                    gone.set()
+                await asyncio.sleep(CANCEL_POLL)
+        watcher = asyncio.create_task(watch())
         try:
-            return await asyncio.wait_for(run_in_threadpool(fn, text, edits, fmt, fallback), TIMEOUT)
+            return await asyncio.wait_for(run_in_threadpool(fn, text, edits, fmt, fallback, gone.is_set), TIMEOUT)
         except asyncio.TimeoutError:
             return JSONResponse({"ok": False, "code": "slow",
                                  "error": f"this text took over {TIMEOUT:g} s; try a shorter one"}, status_code=503)
         finally:
             pending[0] -= 1
+            gone.set()
+            watcher.cancel()
 
     async def animate(request: Request) -> Response:
-        def run(text, edits, fmt, fallback):
-            payload = studio.animate(text, edits, fallback)
+        def run(text, edits, fmt, fallback, cancelled):
+            payload = studio.animate(text, edits, fallback, cancelled)
             return JSONResponse({k: v for k, v in payload.items() if not k.startswith("_")},
                                 status_code=200 if payload["ok"] else 422)
         return await work(request, run)
 
     async def export(request: Request) -> Response:
-        def run(text, edits, fmt, fallback):
+        def run(text, edits, fmt, fallback, cancelled):
             made = studio.export(text, edits, fmt, fallback)
             if made is None:
                 failed = studio.animate(text, edits, fallback)

@@ -12,7 +12,8 @@ import re
 import tempfile
 import threading
 from collections import OrderedDict
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path
 
 #: Longest text the studio animates (characters); the API's own limits apply too.
@@ -23,6 +24,10 @@ CACHE = 32
 CACHE_BYTES = 64 * 2**20
 #: What the page may download: format -> file suffix (``Animation.outputs``' keywords).
 FORMATS = {"bvh": "bvh", "glb": "glb", "vrma": "vrma", "report": "json"}
+
+
+class Cancelled(Exception):
+    """The request went away (the page aborted it for a newer text): its work stops."""
 
 
 @dataclass
@@ -39,6 +44,7 @@ class Studio:
     rig: Path | None = None
     latest: tuple[str, object] | None = None  # (cache key, Animation) of the latest text animated
     session: object | None = None  # the library's copy with the dropped clips, once there are any
+    dropped: set[str] = field(default_factory=set)  # the clips dropped in this session
 
     @classmethod
     def open(cls, db_url: str | None) -> "Studio":
@@ -59,7 +65,7 @@ class Studio:
     def keep(self, clip: str) -> dict:
         """Add the session's dropped ``clip`` to the user's library (the explicit step after a drop)."""
         with self.lock:
-            if self.session is None or clip not in {c.name for c in self.session.clips()}:  # type: ignore[attr-defined]
+            if self.session is None or clip not in self.dropped:
                 return {"ok": False, "error": f"no clip {clip[:60]!r} was dropped in this session"}
             if clip in {c.name for c in self.library.clips()}:  # type: ignore[attr-defined]
                 return {"ok": False, "error": f"your library already has a clip named {clip[:60]!r}"}
@@ -142,6 +148,7 @@ class Studio:
                 name = next(n for n in (name if k == 1 else f"{name}_{k}" for k in range(1, len(taken) + 2))
                             if n not in taken)  # a dropped walk.bvh never replaces the built-in walk
                 (info,) = session.import_bvh([path], ImportOptions((verb,), cyclic=cyclic, names=(name,)))
+                self.dropped.add(info.name)
             except Exception as exc:
                 if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                     raise
@@ -197,12 +204,15 @@ class Studio:
             self.session.close()  # type: ignore[attr-defined]
         self.folder.cleanup()
 
-    def animate(self, text: str, edits: tuple = (), fallback: str = "strict") -> dict:
+    def animate(self, text: str, edits: tuple = (), fallback: str = "strict",
+                cancelled: Callable[[], bool] = lambda: False) -> dict:
         """``{"ok": True, "html", "top", "table", "blends", "duration", "warnings", "fallbacks"}`` for ``text`` with
         the time-table ``edits`` (:class:`text2anim.edits.Edit`) and ``fallback`` (``strict``, or ``nearest``: a
         verb no clip has played by its stand-in), or ``{"ok": False, "error", "code"}`` with the message the
         command line would print (never a traceback) and its kind (:func:`error_code`), which the page words
-        in its own language. Each table row carries its edit key (verb, nth), or None for
+        in its own language. ``cancelled()`` true (the page went away: a newer text) stops the work between the
+        pipeline's stages, or before it starts once the animation before it is done: ``{"ok": False, "code":
+        "cancelled"}``, nothing kept. Each table row carries its edit key (verb, nth), or None for
         what the scheduler added (a stop, an idle, a posture bridge). ``top`` is the scene seen from above
         (:meth:`output.topview.TopView.to_dict`), which the page draws beside the animation."""
         text = text.strip()
@@ -217,7 +227,10 @@ class Studio:
             if hit is not None:
                 self.cache.move_to_end(key)
                 return hit
-            payload = self._make(text, edits, fallback)
+            try:
+                payload = self._make(text, edits, fallback, cancelled)
+            except Cancelled:
+                return {"ok": False, "code": "cancelled", "error": "the page asked for another text"}
             anim = payload.pop("_anim", None)
             if anim is not None:
                 self.latest = (key, anim)
@@ -246,7 +259,7 @@ class Studio:
         with self.lock:
             return self.latest[1] if self.latest is not None and self.latest[0] == key else None
 
-    def _make(self, text: str, edits: tuple, fallback: str) -> dict:
+    def _make(self, text: str, edits: tuple, fallback: str, cancelled: Callable[[], bool] = lambda: False) -> dict:
         import text2anim
         from text2anim.cli.terminal import message
         from text2anim.edits import occurrences
@@ -254,7 +267,7 @@ class Studio:
         from text2anim.output.viewer import render_html
 
         try:
-            anim = text2anim.animate(text, db=self.db, edits=edits, fallback=fallback)
+            anim = self._animation(text, edits, fallback, cancelled)
             keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
             tracks, props = anim.tracks(), anim.props()
             if self.rig is not None:  # the user's character: its own skeleton and proportions
@@ -281,6 +294,21 @@ class Studio:
                 "fallbacks": [{"written": f.written, "used": f.used} for f in anim.planned.fallbacks],
                 "duration": round(max((m.duration for m in anim.motions.values()), default=0.0), 3),
                 "_anim": anim}
+
+    def _animation(self, text: str, edits: tuple, fallback: str, cancelled: Callable[[], bool]):
+        """``text2anim.animate(text, edits=edits, fallback=fallback)`` on the studio's database, stage by stage
+        (:mod:`text2anim.pipeline`, as ``text2anim compare`` runs it), raising :class:`Cancelled` between two
+        stages when ``cancelled()``: an abandoned text stops there instead of delaying the next one."""
+        from text2anim import limits
+        from text2anim.pipeline import NAMES, Request, Work, animation, run
+
+        limits.check_options(text, self.db, 30.0, limits.MAX_SECONDS, fallback=fallback)
+        work, done = Work(Request(text, fallback=fallback, edits=tuple(edits)), self.db), None
+        for name in NAMES:
+            if cancelled():
+                raise Cancelled
+            work, done = run(work, after=done, until=name), name
+        return animation(work)
 
     def export(self, text: str, edits: tuple = (), fmt: str = "bvh", fallback: str = "strict") -> tuple[str, bytes] | None:
         """``(file name, bytes)`` of ``text``'s animation as ``fmt`` (:data:`FORMATS`: one file per actor
