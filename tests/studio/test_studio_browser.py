@@ -38,11 +38,11 @@ def studio(studio_db):
     import uvicorn
 
     from text2anim.cli.studio.app import create_app
+    from text2anim.cli.studio.slow import server_config
 
     db = studio_db
     port = free_port("127.0.0.1")
-    server = uvicorn.Server(uvicorn.Config(create_app(db, "127.0.0.1", port), host="127.0.0.1", port=port,
-                                           log_level="warning"))
+    server = uvicorn.Server(server_config(create_app(db, "127.0.0.1", port), "127.0.0.1", port, log_level="warning"))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
     deadline = time.monotonic() + 20

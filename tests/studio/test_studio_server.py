@@ -362,3 +362,48 @@ def test_a_request_the_page_abandoned_is_not_worked_on(library_db):
         assert abandoned not in kept and "次郎は歩く。" in kept
     finally:
         server.should_exit = True
+
+
+def test_headers_sent_a_byte_at_a_time_are_cut_off(library_db, monkeypatch):
+    """A client trickling its headers is disconnected HEADER_TIMEOUT after its first byte (every byte restarted
+    uvicorn's keep-alive clock: it held the connection for ever); a request in time is answered as before."""
+    import socket
+    import threading
+    import time
+
+    import uvicorn
+
+    from text2anim.cli.cmd_studio import free_port
+    from text2anim.cli.studio import slow
+
+    monkeypatch.setattr(slow, "HEADER_TIMEOUT", 1.0)
+    monkeypatch.setattr(slow, "CHECK_EVERY", 0.2)
+    port = free_port("127.0.0.1")
+    server = uvicorn.Server(slow.server_config(create_app(library_db, "127.0.0.1", port), "127.0.0.1", port,
+                                               log_level="warning"))
+    threading.Thread(target=server.run, daemon=True).start()
+    while not server.started:
+        time.sleep(0.05)
+    try:
+        with socket.create_connection(("127.0.0.1", port)) as s:
+            s.sendall(f"GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n".encode())
+            assert s.recv(100).startswith(b"HTTP/1.1 200")
+        with socket.create_connection(("127.0.0.1", port)) as s:
+            start, closed = time.monotonic(), False
+            for byte in f"GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nX-Slow: {'a' * 40}".encode():
+                try:
+                    s.sendall(bytes([byte]))
+                except OSError:
+                    closed = True
+                    break
+                time.sleep(0.1)
+                if time.monotonic() - start > 4:
+                    break
+            s.settimeout(2)
+            try:
+                closed = closed or s.recv(100) == b""
+            except OSError:
+                closed = True
+            assert closed and time.monotonic() - start < 4
+    finally:
+        server.should_exit = True
