@@ -45,6 +45,7 @@ class Studio:
     latest: tuple[str, object] | None = None  # (cache key, Animation) of the latest text animated
     session: object | None = None  # the library's copy with the dropped clips, once there are any
     dropped: set[str] = field(default_factory=set)  # the clips dropped in this session
+    shelf: threading.Lock = field(default_factory=threading.Lock)  # the cache's own (``lock`` is the work's)
 
     @classmethod
     def open(cls, db_url: str | None) -> "Studio":
@@ -195,7 +196,8 @@ class Studio:
 
     def _forget(self) -> None:
         """Drop every result (the database or the character changed)."""
-        self.cache.clear()
+        with self.shelf:
+            self.cache.clear()
         self.latest = None
 
     def close(self) -> None:
@@ -222,10 +224,12 @@ class Studio:
             return {"ok": False, "code": "too_long", "max": MAX_TEXT,
                     "error": f"the text is {len(text)} characters long; the studio takes at most {MAX_TEXT}"}
         key = self._key(text, edits, fallback)
+        hit = self._cached(key)  # a text seen before is answered at once, even while another one is being made
+        if hit is not None:
+            return hit
         with self.lock:
-            hit = self.cache.get(key)
+            hit = self._cached(key)  # made while this request waited
             if hit is not None:
-                self.cache.move_to_end(key)
                 return hit
             try:
                 payload = self._make(text, edits, fallback, cancelled)
@@ -235,11 +239,19 @@ class Studio:
             if anim is not None:
                 self.latest = (key, anim)
             payload["_bytes"] = _size(payload)
-            self.cache[key] = payload
-            while len(self.cache) > 1 and (len(self.cache) > CACHE  # the newest is kept whatever its size
-                                           or sum(p["_bytes"] for p in self.cache.values()) > CACHE_BYTES):
-                self.cache.popitem(last=False)
+            with self.shelf:
+                self.cache[key] = payload
+                while len(self.cache) > 1 and (len(self.cache) > CACHE  # the newest is kept whatever its size
+                                               or sum(p["_bytes"] for p in self.cache.values()) > CACHE_BYTES):
+                    self.cache.popitem(last=False)
             return payload
+
+    def _cached(self, key: str) -> dict | None:
+        with self.shelf:
+            hit = self.cache.get(key)
+            if hit is not None:
+                self.cache.move_to_end(key)
+            return hit
 
     def _key(self, text: str, edits: tuple, fallback: str = "strict") -> str:
         return text.strip() + "\0" + repr(edits) + "\0" + fallback + "\0" + str(self.rig)
@@ -254,7 +266,8 @@ class Studio:
         with self.lock:
             if self.latest is not None and self.latest[0] == key:
                 return self.latest[1]
-            self.cache.pop(key, None)  # made again: the same bytes, and kept as the latest
+            with self.shelf:
+                self.cache.pop(key, None)  # made again: the same bytes, and kept as the latest
         self.animate(text, edits, fallback)
         with self.lock:
             return self.latest[1] if self.latest is not None and self.latest[0] == key else None

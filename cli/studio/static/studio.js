@@ -16,7 +16,7 @@
   var S = { text: null, note: "", seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
             renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false,
             edits: {}, sent: "", fallback: "strict", composing: false, requests: 0,
-            history: [], at: -1, session: [], lang: "ja" };
+            history: [], at: -1, session: [], lang: "ja", keyAt: 0, keyLatencies: [] };
   window.__studio = S;
 
   // ---- words: one catalogue, the page's language
@@ -92,11 +92,13 @@
     if (S.controller) S.controller.abort();  // the server drops it too (it checks between stages)
     var ctl = new AbortController(), seq = ++S.seq;
     S.controller = ctl; S.firedAt = performance.now(); S.busy = true; S.requests++;
+    var keyAt = S.keyAt;  // the last keystroke of the text sent (the benchmark's keystroke-to-frame); 0: no typing
+    S.keyAt = 0;
     status(t("animating"));
     fetch("/api/animate", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
                             body: JSON.stringify({ text: text, edits: edits, fallback: S.fallback }), signal: ctl.signal })
       .then(answer)
-      .then(function (data) { if (seq === S.seq) show(data, text, seq); })
+      .then(function (data) { if (seq === S.seq) { S.sentKeyAt = keyAt; show(data, text, seq); } })
       .catch(function (e) { if (e.name !== "AbortError" && seq === S.seq) fail({ code: "network", error: String(e) }); });
   }
 
@@ -237,6 +239,7 @@
       w.requestAnimationFrame(function () {  // the first frame of the new animation is on screen
         var ms = performance.now() - S.firedAt;
         S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq; S.busy = false;
+        if (S.sentKeyAt) S.keyLatencies.push(performance.now() - S.sentKeyAt);
         status(t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) }) + (S.note || ""));
       });
     })();
@@ -262,6 +265,7 @@
         if (seq !== S.seq) return;
         var ms = performance.now() - S.firedAt;
         S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq; S.busy = false;
+        if (S.sentKeyAt) S.keyLatencies.push(performance.now() - S.sentKeyAt);
         status(t("shown_skinned", { s: data.duration.toFixed(2), ms: Math.round(ms) }));
       })
       .catch(function (e) { fail({ code: "other", message: t("err_character"), error: String(e) }); });
@@ -585,8 +589,11 @@
   // the input method: nothing is sent while a composition is open; the pause counts from its end
   var box = $("text");
   box.addEventListener("compositionstart", function () { S.composing = true; clearTimeout(S.timer); });
-  box.addEventListener("compositionend", function () { S.composing = false; schedule(); });
-  box.addEventListener("input", function (e) { if (!e.isComposing && !S.composing) schedule(); });
+  box.addEventListener("compositionend", function () { S.composing = false; S.keyAt = performance.now(); schedule(); });
+  box.addEventListener("input", function (e) {
+    S.keyAt = performance.now();
+    if (!e.isComposing && !S.composing) schedule();
+  });
   $("add-btn").addEventListener("click", append);
   $("add").addEventListener("keydown", function (e) { if (e.key === "Enter" && !e.isComposing) append(); });
   $("export").addEventListener("click", exportBvh);
