@@ -507,3 +507,17 @@ def test_a_project_of_another_version_is_refused_in_the_page_and_on_the_command_
     assert main([str(newer)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert err[-1].startswith("text2anim: error: newer.t2a.json: project version 2") and "Traceback" not in err[-1]
+
+
+def test_the_character_has_a_body_and_the_stick_figure_is_one_switch_away(page):
+    api = "document.getElementById('view').contentWindow.__t2a"
+    assert page.evaluate(f"{api}.body") is True and page.input_value("#character") == "body"
+    page.evaluate(f"{api}.pause(); {api}.seek(1.0)")
+    page.wait_for_timeout(100)
+    body = _canvas(page)
+    page.select_option("#character", "figure")
+    page.wait_for_timeout(100)
+    assert page.evaluate(f"{api}.body") is False and _canvas(page) != body
+    assert page.evaluate("window.__studio.project().character") == "figure"  # kept with the work
+    page.keyboard.press("Control+z")  # a step of the history too
+    assert page.input_value("#character") == "body" and page.evaluate(f"{api}.body") is True

@@ -16,7 +16,7 @@
   var S = { text: null, note: "", seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
             renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false,
             edits: {}, sent: "", fallback: "strict", composing: false, requests: 0,
-            history: [], at: -1, session: [], lang: "ja", keyAt: 0, keyLatencies: [] };
+            history: [], at: -1, session: [], lang: "ja", keyAt: 0, keyLatencies: [], character: "body" };
   window.__studio = S;
 
   // ---- words: one catalogue, the page's language
@@ -54,6 +54,15 @@
       var node = c[2] ? label.firstChild : label.lastChild;
       if (node && node.nodeType === 3) node.textContent = c[2] ? t(c[1]) + " " : " " + t(c[1]);
     });
+  }
+
+  function dressed(w) {
+    // a preview's viewer: in the page's words, with the chosen character, once it is ready
+    var tries = 0;
+    (function wait() {
+      if (!w.__t2a || !w.__t2a.ready) { if (tries++ < 500) setTimeout(wait, 5); return; }
+      viewerWords(w); w.__t2a.body = S.character === "body";
+    })();
   }
 
   function language() {
@@ -201,7 +210,7 @@
       .then(function (data) {
         if (!data.ok) { fail(data); return; }
         S.previewing = verb;
-        $("view").onload = function () { viewerWords(this.contentWindow); };  // a preview is no render of the text
+        $("view").onload = function () { dressed(this.contentWindow); };  // a preview is no render of the text
         $("view3d").hidden = true; $("view").hidden = false;
         $("view").srcdoc = data.html;
         status(t("preview_of", { v: verb, clips: data.table.map(function (e) { return e.clip; }).join(", ") }));
@@ -234,7 +243,7 @@
     (function wait() {
       var api = w.__t2a;
       if (!api || !api.ready) { if (tries++ < 500) setTimeout(wait, 2); return; }
-      viewerWords(w);
+      viewerWords(w); api.body = S.character === "body";
       if (S.resumeAt !== null) { api.seek(Math.min(S.resumeAt, api.duration)); api.play(); S.resumeAt = null; }
       w.requestAnimationFrame(function () {  // the first frame of the new animation is on screen
         var ms = performance.now() - S.firedAt;
@@ -414,7 +423,7 @@
   // ---- the project: what is kept, saved, opened, undone
   function project() {
     return { format: "text2anim-project", version: PROJECT_VERSION, text: $("text").value, edits: editList(),
-             fallback: S.fallback };
+             fallback: S.fallback, character: S.character };
   }
 
   function restore(p) {
@@ -422,6 +431,15 @@
     S.edits = {};
     (p.edits || []).forEach(function (e) { S.edits[e.verb + "#" + (e.nth || 0)] = JSON.parse(JSON.stringify(e)); });
     S.fallback = p.fallback === "nearest" ? "nearest" : "strict";
+    S.character = p.character === "figure" ? "figure" : "body";
+    figure();
+  }
+
+  function figure() {
+    // the character drawn: a body (the default) or the stick figure, in the viewer on screen
+    $("character").value = S.character;
+    var w = $("view").contentWindow, api = w && w.__t2a;
+    if (api && api.ready) api.body = S.character === "body";
   }
 
   function commit() {
@@ -566,7 +584,7 @@
     post("/api/clip", { clip: name }).then(function (data) {
       if (!data.ok) { fail({ message: t("err_other"), error: data.error }); return; }
       S.previewing = name;
-      $("view").onload = function () { viewerWords(this.contentWindow); };
+      $("view").onload = function () { dressed(this.contentWindow); };
       $("view3d").hidden = true; $("view").hidden = false;
       $("view").srcdoc = data.html;
       status(t("preview_of", { v: name, clips: data.verbs.join("/") }));
@@ -602,6 +620,7 @@
   $("redo").addEventListener("click", function () { step(1); });
   $("save").addEventListener("click", saveProject);
   $("open").addEventListener("change", function () { if (this.files.length) openProject(this.files[0]); this.value = ""; });
+  $("character").addEventListener("change", function () { S.character = this.value; figure(); commit(); });
   $("lang").addEventListener("change", function () {
     S.lang = this.value;
     try { localStorage.setItem("t2a-studio-lang", S.lang); } catch (e) { /* the switch holds for this page */ }
