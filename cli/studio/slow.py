@@ -30,10 +30,11 @@ def guarded(protocol: type) -> type:
     """A subclass of the server's HTTP ``protocol`` (an :class:`asyncio.Protocol`) that closes a connection whose
     request headers take over :data:`HEADER_TIMEOUT` seconds."""
 
-    class Guarded(protocol):  # type: ignore[misc, valid-type]
+    class Guarded(protocol):
         def connection_made(self, transport) -> None:
             super().connection_made(transport)
-            self._t2a_transport, self._t2a_since, self._t2a_answering = transport, None, False
+            self._t2a_transport, self._t2a_answering = transport, False
+            self._t2a_since: float | None = None
             self._t2a_peer = _peer(transport.get_extra_info("peername"))
             _OPEN[self._t2a_peer] = self
             self._t2a_timer = asyncio.get_running_loop().call_later(CHECK_EVERY, self._t2a_check)

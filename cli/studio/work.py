@@ -128,7 +128,7 @@ class Studio:
     def verbs(self, query: str, limit: int = 50) -> list[dict]:
         """The database's verbs whose spelling or reading holds ``query`` (all when empty), with their clip counts."""
         q = query.strip()
-        return [{"verb": v.lemma, "reading": v.reading, "clips": v.clips} for v in self.db.verbs()  # type: ignore[attr-defined]
+        return [{"verb": v.lemma, "reading": v.reading, "clips": v.clips} for v in self.db.verbs()
                 if not q or q in v.lemma or q in v.reading][:limit]
 
     def import_bvh(self, data: bytes, filename: str, verb: str, cyclic: bool) -> dict:
