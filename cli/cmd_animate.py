@@ -7,6 +7,7 @@ import sys
 from .arg_types import fps_type, unit_float
 from .bvh_options import add_budget_option
 from .cmd_parse import read_text
+from .project import is_project, read_project
 from .export_options import add_export_arguments, export_options
 from .terminal import say
 
@@ -18,7 +19,8 @@ HELP = "turn a text into animation (the default command: text2anim TEXT ...)"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("text", metavar="TEXT", help="the text, or - to read it from standard input")
+    p.add_argument("text", metavar="TEXT", help="the text, - to read it from standard input, or a studio project "
+                   "(FILE.t2a.json: its text, time-table edits and stand-ins)")
     p.add_argument("-o", "--output",
                    help=f"BVH file to write, or - for standard output (default {DEFAULT_BVH} when no other output "
                         "is asked for; with several actors, one file each: animation_太郎.bvh, ...)")
@@ -86,15 +88,21 @@ def check_outputs(args: argparse.Namespace) -> dict:
 
 def run(args: argparse.Namespace) -> int:
     import text2anim
+    from text2anim.limits import check_text
 
     outputs = check_outputs(args)
     to_stdout = outputs.get("bvh") == "-"
-    text = read_text(args.text)
+    text, edits, fallback = read_text(args.text), (), args.fallback
+    if is_project(args.text):  # the studio's work: its text, edits and stand-ins, animated as the page did
+        project = read_project(args.text)
+        text, edits = check_text(project.text), project.edits
+        fallback = project.fallback if args.fallback == "strict" else args.fallback
     export = export_options(args)
     _say("analysing, retrieving clips and synthesising ...")
     anim = text2anim.animate(text, db=args.db, fps=args.fps, skip_unknown=args.skip_unknown,
                              lock_feet=not args.no_foot_lock, sway=not args.no_sway, blend=args.blend,
-                             smoothness=args.smoothness, fallback=args.fallback, max_seconds=args.max_seconds)
+                             smoothness=args.smoothness, fallback=fallback, max_seconds=args.max_seconds,
+                             edits=edits)
     for note in anim.planned.analysis.notes:
         _say(note)
     for sub in anim.planned.fallbacks:

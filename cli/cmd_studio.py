@@ -37,6 +37,7 @@ def run(args) -> int:
 
     from .studio.app import create_app
     from .studio.guard import LOOPBACK
+    from .studio.slow import server_config
 
     if not 0 <= args.port <= 65535:
         say(f"text2anim studio: error: --port must be 0..65535, not {args.port}", file=sys.stderr)
@@ -56,7 +57,7 @@ def run(args) -> int:
     # ends through the ``finally`` below (with the default one it died there, the dropped character left behind)
     previous = signal.signal(signal.SIGTERM, _terminated)
     try:
-        uvicorn.run(app, host=args.host, port=port, log_level="warning")
+        uvicorn.Server(server_config(app, args.host, port, log_level="warning")).run()
     finally:
         signal.signal(signal.SIGTERM, previous)
         app.state.studio.close()

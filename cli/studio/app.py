@@ -8,8 +8,12 @@
 - ``POST /api/export`` ``{"text", "edits", "format"}`` -> the animation as ``bvh`` (default), ``glb``, ``vrma``
   or the ``report`` (a zip of one file per actor when there are several);
 - ``GET /api/verbs?q=`` the library's verbs holding ``q``; ``POST /api/import`` a dropped BVH (its bytes,
-  ``X-Verb`` the verb it shows) stored as ``db import`` stores it; ``POST /api/rig`` a dropped ``.glb``/``.vrm``
-  character the animation is shown and exported on, as ``--rig`` does.
+  ``X-Verb`` the verb it shows) read as ``db import`` reads it, for this session only; ``POST /api/rig`` a
+  dropped ``.glb``/``.vrm`` character the animation is shown and exported on, as ``--rig`` does;
+- the user's own clips: ``GET /api/library`` lists them, ``POST /api/library/keep`` ``{"clip"}`` adds a clip
+  dropped in this session, ``/rename`` ``{"clip", "name"}`` and ``/remove`` ``{"clip"}`` change them, ``POST
+  /api/clip`` ``{"clip"}`` is one's viewer page (a preview);
+- ``GET /static/font/jp.woff`` the Japanese font for what the user types (:mod:`.page`).
 
 Requests are bounded: a body of at most :data:`MAX_BODY` bytes (a dropped file :data:`MAX_UPLOAD`, at most
 :data:`MAX_UPLOADS` at once) received within :data:`BODY_TIMEOUT` seconds, a text of at most
@@ -22,6 +26,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import threading
 from collections.abc import Callable
 from pathlib import Path
 from importlib import resources
@@ -33,6 +38,8 @@ from starlette.responses import HTMLResponse, JSONResponse, Response
 from starlette.routing import Route
 
 from .guard import SameOrigin, new_token, own_hosts
+from .page import FONT_URL, full_font
+from .page import html as served_page
 from .work import FORMATS, Studio
 
 #: Largest request body (bytes).
@@ -46,6 +53,8 @@ MAX_UPLOADS = 2
 #: Texts waiting for or in the one animation at a time; more are told the studio is busy (429) rather than
 #: queued for minutes (the page itself has one request in flight: a newer text aborts the older one).
 MAX_PENDING = 4
+#: Seconds between two looks at whether a request's client is still there (its work stops when it is not).
+CANCEL_POLL = 0.02
 #: The page's own files: name -> content type.
 ASSETS = {"studio.js": "text/javascript; charset=utf-8", "studio3d.js": "text/javascript; charset=utf-8",
           "topview.js": "text/javascript; charset=utf-8", "studio.css": "text/css; charset=utf-8"}
@@ -88,11 +97,33 @@ async def _body(request: Request, limit: int, what: str) -> bytes | Response:
         return _refused(408, f"{what} did not arrive within {BODY_TIMEOUT:g} s")
 
 
-async def _text_of(request: Request) -> tuple[str, tuple, str] | Response:
-    """``(text, edits, format)`` of a JSON request body ``{"text", "edits": [...], "format"}``, or the
-    response refusing it (every malformed body a 4xx: a list for a format, 20,000 nested brackets)."""
+async def _text_of(request: Request) -> tuple[str, tuple, str, str] | Response:
+    """``(text, edits, format, fallback)`` of a JSON request body ``{"text", "edits": [...], "format",
+    "fallback"}``, or the response refusing it (every malformed body a 4xx: a list for a format, 20,000 nested
+    brackets)."""
     from text2anim.edits import Edit
 
+    data = await _json_of(request, '{"text": "..."}')
+    if isinstance(data, Response):
+        return data
+    text, raw, fmt = data.get("text", ""), data.get("edits") or [], data.get("format", "bvh")
+    if not isinstance(fmt, str) or fmt not in FORMATS:
+        return _refused(400, f"format must be one of {', '.join(FORMATS)}")
+    fallback = data.get("fallback", "strict")
+    if fallback not in ("strict", "nearest"):
+        return _refused(400, "fallback must be strict or nearest")
+    if not isinstance(text, str) or not isinstance(raw, list) or len(raw) > MAX_EDITS \
+            or not all(isinstance(e, dict) for e in raw):
+        return _refused(400, f"text must be a string and edits a list of at most {MAX_EDITS} objects")
+    try:
+        edits = tuple(Edit.from_dict(e) for e in raw)
+    except (ValueError, TypeError, KeyError, AttributeError) as exc:  # EditError is a ValueError
+        return _refused(400, f"edits: {_short(exc)}")
+    return text, edits, fmt, fallback
+
+
+async def _json_of(request: Request, example: str) -> dict | Response:
+    """The JSON object a request sends (as ``application/json``, within :data:`MAX_BODY`), or the refusal."""
     if request.headers.get("content-type", "").split(";")[0].strip().lower() != "application/json":
         return _refused(415, "the request must be sent as application/json")
     body = await _body(request, MAX_BODY, "the request")
@@ -101,20 +132,21 @@ async def _text_of(request: Request) -> tuple[str, tuple, str] | Response:
     try:
         data = json.loads(body or b"{}")
     except (ValueError, RecursionError):  # RecursionError: nesting deeper than the parser's stack
-        return _refused(400, "the request must be JSON: {\"text\": \"...\"}")
+        return _refused(400, f"the request must be JSON: {example}")
     if not isinstance(data, dict):
-        return _refused(400, "the request must be a JSON object: {\"text\": \"...\"}")
-    text, raw, fmt = data.get("text", ""), data.get("edits") or [], data.get("format", "bvh")
-    if not isinstance(fmt, str) or fmt not in FORMATS:
-        return _refused(400, f"format must be one of {', '.join(FORMATS)}")
-    if not isinstance(text, str) or not isinstance(raw, list) or len(raw) > MAX_EDITS \
-            or not all(isinstance(e, dict) for e in raw):
-        return _refused(400, f"text must be a string and edits a list of at most {MAX_EDITS} objects")
-    try:
-        edits = tuple(Edit.from_dict(e) for e in raw)
-    except (ValueError, TypeError, KeyError, AttributeError) as exc:  # EditError is a ValueError
-        return _refused(400, f"edits: {_short(exc)}")
-    return text, edits, fmt
+        return _refused(400, f"the request must be a JSON object: {example}")
+    return data
+
+
+async def _clip_of(request: Request) -> tuple[str, str] | Response:
+    """``(clip, name)`` of a library request ``{"clip", "name"}`` (``name`` only for a rename), or the refusal."""
+    data = await _json_of(request, '{"clip": "..."}')
+    if isinstance(data, Response):
+        return data
+    clip, name = data.get("clip"), data.get("name", "")
+    if not isinstance(clip, str) or not clip or len(clip) > 200 or not isinstance(name, str) or len(name) > 200:
+        return _refused(400, "clip (and name) must be strings of at most 200 characters")
+    return clip, name
 
 
 def _short(exc: BaseException) -> str:
@@ -130,8 +162,11 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
     uploading = [0]  # dropped files being received now
 
     async def page(request: Request) -> Response:
-        html = _asset("studio.html").replace("</head>", f'<meta name="t2a-token" content="{token}">\n</head>', 1)
-        return HTMLResponse(html, headers={"Cache-Control": "no-store"})
+        return HTMLResponse(await run_in_threadpool(served_page, token), headers={"Cache-Control": "no-store"})
+
+    async def font(request: Request) -> Response:
+        return Response(await run_in_threadpool(full_font), media_type="font/woff",
+                        headers={"Cache-Control": "max-age=86400"})
 
     async def upload(request: Request) -> bytes | Response:
         """A dropped file's bytes (at most :data:`MAX_UPLOAD`, :data:`MAX_UPLOADS` at once), or the refusal."""
@@ -163,34 +198,47 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
 
     pending = [0]  # texts waiting for or in the animation
 
-    async def work(request: Request, fn: Callable[[str, tuple, str], Response]) -> Response:
+    async def work(request: Request, fn: Callable[..., Response]) -> Response:
+        """``fn(text, edits, format, fallback, cancelled)`` in a worker thread; ``cancelled()`` is true once the
+        client went away (the page aborted the request for a newer text), so that the work stops there."""
         got = await _text_of(request)
         if isinstance(got, Response):
             return got
-        text, edits, fmt = got
+        text, edits, fmt, fallback = got
         if pending[0] >= MAX_PENDING:
             return _refused(429, f"the studio is busy with {MAX_PENDING} texts; try again in a moment")
         pending[0] += 1
+        gone = threading.Event()
+
+        async def watch() -> None:
+            while not gone.is_set():
+                if await request.is_disconnected():
+                    gone.set()
+                await asyncio.sleep(CANCEL_POLL)
+        watcher = asyncio.create_task(watch())
         try:
-            return await asyncio.wait_for(run_in_threadpool(fn, text, edits, fmt), TIMEOUT)
+            return await asyncio.wait_for(run_in_threadpool(fn, text, edits, fmt, fallback, gone.is_set), TIMEOUT)
         except asyncio.TimeoutError:
-            return JSONResponse({"ok": False, "error": f"this text took over {TIMEOUT:g} s; try a shorter one"},
-                                status_code=503)
+            return JSONResponse({"ok": False, "code": "slow",
+                                 "error": f"this text took over {TIMEOUT:g} s; try a shorter one"}, status_code=503)
         finally:
             pending[0] -= 1
+            gone.set()
+            watcher.cancel()
 
     async def animate(request: Request) -> Response:
-        def run(text, edits, fmt):
-            payload = studio.animate(text, edits)
+        def run(text, edits, fmt, fallback, cancelled):
+            payload = studio.animate(text, edits, fallback, cancelled)
             return JSONResponse({k: v for k, v in payload.items() if not k.startswith("_")},
                                 status_code=200 if payload["ok"] else 422)
         return await work(request, run)
 
     async def export(request: Request) -> Response:
-        def run(text, edits, fmt):
-            made = studio.export(text, edits, fmt)
+        def run(text, edits, fmt, fallback, cancelled):
+            made = studio.export(text, edits, fmt, fallback)
             if made is None:
-                return JSONResponse({"ok": False, "error": studio.animate(text, edits)["error"]}, status_code=422)
+                failed = studio.animate(text, edits, fallback)
+                return JSONResponse({"ok": False, "error": failed["error"], "code": failed["code"]}, status_code=422)
             name, data = made
             kind = {"zip": "application/zip", "bvh": "text/plain; charset=utf-8", "json": "application/json",
                     "glb": "model/gltf-binary", "vrma": "model/gltf-binary"}[name.rsplit(".", 1)[1]]
@@ -230,14 +278,31 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
         done = await run_in_threadpool(studio.set_rig, data, suffix)
         return JSONResponse(done, status_code=200 if done["ok"] else 422)
 
+    async def mine(request: Request) -> Response:
+        return JSONResponse({"ok": True, "clips": await run_in_threadpool(studio.mine)})
+
+    def on_clip(action: Callable[[str, str], dict]) -> Callable:
+        async def endpoint(request: Request) -> Response:
+            got = await _clip_of(request)
+            if isinstance(got, Response):
+                return got
+            done = await run_in_threadpool(action, *got)
+            return JSONResponse(done, status_code=200 if done["ok"] else 422)
+        return endpoint
+
     async def favicon(request: Request) -> Response:
         return Response(status_code=204)
 
-    app = Starlette(routes=[Route("/", page), Route("/static/vendor/{path:path}", vendor),
+    app = Starlette(routes=[Route("/", page), Route(FONT_URL, font), Route("/static/vendor/{path:path}", vendor),
                             Route("/static/{name}", asset), Route("/favicon.ico", favicon),
                             Route("/api/animate", animate, methods=["POST"]),
                             Route("/api/export", export, methods=["POST"]), Route("/api/verbs", verbs),
-                            Route("/api/import", import_bvh, methods=["POST"]), Route("/api/rig", rig, methods=["POST", "DELETE"])])
+                            Route("/api/import", import_bvh, methods=["POST"]), Route("/api/rig", rig, methods=["POST", "DELETE"]),
+                            Route("/api/library", mine),
+                            Route("/api/library/keep", on_clip(lambda c, n: studio.keep(c)), methods=["POST"]),
+                            Route("/api/library/rename", on_clip(studio.rename), methods=["POST"]),
+                            Route("/api/library/remove", on_clip(lambda c, n: studio.remove(c)), methods=["POST"]),
+                            Route("/api/clip", on_clip(lambda c, n: studio.clip_page(c)), methods=["POST"])])
     app.add_middleware(SameOrigin, hosts=own_hosts(host, port), token=token)
     app.state.studio = studio
     return app

@@ -12,7 +12,8 @@ import re
 import tempfile
 import threading
 from collections import OrderedDict
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path
 
 #: Longest text the studio animates (characters); the API's own limits apply too.
@@ -25,17 +26,26 @@ CACHE_BYTES = 64 * 2**20
 FORMATS = {"bvh": "bvh", "glb": "glb", "vrma": "vrma", "report": "json"}
 
 
+class Cancelled(Exception):
+    """The request went away (the page aborted it for a newer text): its work stops."""
+
+
 @dataclass
 class Studio:
-    """The studio's state: its database (a :class:`motiondb.MotionDB`), recent results, and the user's
-    character when one was dropped (a ``.glb``/``.vrm`` kept in ``folder``, a private temporary folder)."""
+    """The studio's state: the user's library (a :class:`motiondb.MotionDB`), the database the animations are
+    made from (``db``: the library, or once a BVH was dropped a private copy of it holding the session's clips
+    too), recent results, and the user's character when one was dropped (a ``.glb``/``.vrm``); the copy and the
+    character are kept in ``folder``, a private temporary folder."""
 
-    db: object
+    library: object
     lock: threading.Lock
     cache: "OrderedDict[str, dict]"
     folder: "tempfile.TemporaryDirectory[str]"
     rig: Path | None = None
     latest: tuple[str, object] | None = None  # (cache key, Animation) of the latest text animated
+    session: object | None = None  # the library's copy with the dropped clips, once there are any
+    dropped: set[str] = field(default_factory=set)  # the clips dropped in this session
+    shelf: threading.Lock = field(default_factory=threading.Lock)  # the cache's own (``lock`` is the work's)
 
     @classmethod
     def open(cls, db_url: str | None) -> "Studio":
@@ -43,16 +53,89 @@ class Studio:
 
         return cls(MotionDB.open(db_url), threading.Lock(), OrderedDict(), tempfile.TemporaryDirectory(prefix="t2a-studio-"))
 
+    @property
+    def db(self):
+        """The database animations are made from: the session's when a clip was dropped, else the library."""
+        return self.session if self.session is not None else self.library
+
+    def mine(self) -> list[dict]:
+        """The user's own clips in the library (every clip not built in): name, verbs, seconds."""
+        return [{"name": c.name, "verbs": list(c.verbs), "seconds": round(c.duration, 2)}
+                for c in self.library.clips() if not c.source.startswith("builtin")]  # type: ignore[attr-defined]
+
+    def keep(self, clip: str) -> dict:
+        """Add the session's dropped ``clip`` to the user's library (the explicit step after a drop)."""
+        with self.lock:
+            if self.session is None or clip not in self.dropped:
+                return {"ok": False, "error": f"no clip {clip[:60]!r} was dropped in this session"}
+            if clip in {c.name for c in self.library.clips()}:  # type: ignore[attr-defined]
+                return {"ok": False, "error": f"your library already has a clip named {clip[:60]!r}"}
+            self.library.add([self.session.record(clip)])  # type: ignore[attr-defined]
+        return {"ok": True, "clip": clip}
+
+    def rename(self, clip: str, name: str) -> dict:
+        """Give the user's ``clip`` another name (letters, digits, ``_`` and ``-``), in the library and the session."""
+        from dataclasses import replace
+
+        new = re.sub(r"[^\w-]+", "_", name)[:60].strip("_")
+        if not new:
+            return {"ok": False, "error": "a clip's name needs a letter or a digit"}
+        with self.lock:
+            if clip not in {c["name"] for c in self.mine()}:
+                return {"ok": False, "error": f"{clip[:60]!r} is not one of your clips"}
+            if new in {c.name for c in self.library.clips()}:  # type: ignore[attr-defined]
+                return {"ok": False, "error": f"a clip is already named {new!r}"}
+            for db in self._databases():
+                if clip in {c.name for c in db.clips()}:
+                    db.add([replace(db.record(clip), name=new)])
+                    db.remove(clip)
+            self._forget()
+        return {"ok": True, "clip": new}
+
+    def remove(self, clip: str) -> dict:
+        """Remove the user's ``clip`` from the library (and the session): built-in clips cannot be removed."""
+        with self.lock:
+            if clip not in {c["name"] for c in self.mine()}:
+                return {"ok": False, "error": f"{clip[:60]!r} is not one of your clips"}
+            for db in self._databases():
+                if clip in {c.name for c in db.clips()}:
+                    db.remove(clip)
+            self._forget()
+        return {"ok": True}
+
+    def clip_page(self, clip: str) -> dict:
+        """The viewer page of one of the user's clips (a preview), or the refusal."""
+        from text2anim.output.viewer import render_html
+
+        with self.lock:
+            if clip not in {c["name"] for c in self.mine()}:
+                return {"ok": False, "error": f"{clip[:60]!r} is not one of your clips"}
+            info, motion = self.library.info(clip), self.library.load(clip)  # type: ignore[attr-defined]
+        return {"ok": True, "html": framed(render_html(motion, title=clip)), "verbs": list(info.verbs)}
+
+    def _databases(self) -> list:
+        return [self.library] + ([self.session] if self.session is not None else [])
+
+    def _session_db(self):
+        """The session's database, made on the first drop: a copy of the library (1.4 s for 151 clips)."""
+        if self.session is None:
+            from text2anim.motiondb import MotionDB
+
+            records = [self.library.record(c.name) for c in self.library.clips()]  # type: ignore[attr-defined]
+            self.session = MotionDB.open(Path(self.folder.name) / "session.sqlite", seed=lambda: records)
+        return self.session
+
     def verbs(self, query: str, limit: int = 50) -> list[dict]:
         """The database's verbs whose spelling or reading holds ``query`` (all when empty), with their clip counts."""
         q = query.strip()
-        return [{"verb": v.lemma, "reading": v.reading, "clips": v.clips} for v in self.db.verbs()  # type: ignore[attr-defined]
+        return [{"verb": v.lemma, "reading": v.reading, "clips": v.clips} for v in self.db.verbs()
                 if not q or q in v.lemma or q in v.reading][:limit]
 
     def import_bvh(self, data: bytes, filename: str, verb: str, cyclic: bool) -> dict:
-        """Store a dropped BVH file as a clip of ``verb`` through ``db import``'s own reader and checks (the
-        same limits); ``{"ok", "clip"}`` or ``{"ok": False, "error"}``. The name comes from ``filename``'s
-        letters and digits only; nothing the client sends becomes a path."""
+        """Store a dropped BVH file as a clip of ``verb`` for this session (the user's library gets it only
+        through :meth:`keep`), through ``db import``'s own reader and checks (the same limits); ``{"ok",
+        "clip"}`` or ``{"ok": False, "error"}``. The name comes from ``filename``'s letters and digits only;
+        nothing the client sends becomes a path."""
         from text2anim.cli.terminal import message
         from text2anim.motiondb import ImportOptions
 
@@ -61,7 +144,12 @@ class Studio:
         with self.lock:
             path.write_bytes(data)
             try:
-                (info,) = self.db.import_bvh([path], ImportOptions((verb,), cyclic=cyclic, names=(name,)))  # type: ignore[attr-defined]
+                session = self._session_db()
+                taken = {c.name for c in session.clips()}
+                name = next(n for n in (name if k == 1 else f"{name}_{k}" for k in range(1, len(taken) + 2))
+                            if n not in taken)  # a dropped walk.bvh never replaces the built-in walk
+                (info,) = session.import_bvh([path], ImportOptions((verb,), cyclic=cyclic, names=(name,)))
+                self.dropped.add(info.name)
             except Exception as exc:
                 if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                     raise
@@ -108,60 +196,83 @@ class Studio:
 
     def _forget(self) -> None:
         """Drop every result (the database or the character changed)."""
-        self.cache.clear()
+        with self.shelf:
+            self.cache.clear()
         self.latest = None
 
     def close(self) -> None:
-        """Remove the private folder (a dropped character, an upload being read)."""
+        """Close the session's database and remove the private folder (it, a dropped character, an upload)."""
+        if self.session is not None:
+            self.session.close()  # type: ignore[attr-defined]
         self.folder.cleanup()
 
-    def animate(self, text: str, edits: tuple = ()) -> dict:
-        """``{"ok": True, "html", "top", "table", "blends", "duration", "warnings"}`` for ``text`` with the time-table
-        ``edits`` (:class:`text2anim.edits.Edit`), or ``{"ok": False, "error"}`` with the message the command
-        line would print (never a traceback). Each table row carries its edit key (verb, nth), or None for
+    def animate(self, text: str, edits: tuple = (), fallback: str = "strict",
+                cancelled: Callable[[], bool] = lambda: False) -> dict:
+        """``{"ok": True, "html", "top", "table", "blends", "duration", "warnings", "fallbacks"}`` for ``text`` with
+        the time-table ``edits`` (:class:`text2anim.edits.Edit`) and ``fallback`` (``strict``, or ``nearest``: a
+        verb no clip has played by its stand-in), or ``{"ok": False, "error", "code"}`` with the message the
+        command line would print (never a traceback) and its kind (:func:`error_code`), which the page words
+        in its own language. ``cancelled()`` true (the page went away: a newer text) stops the work between the
+        pipeline's stages, or before it starts once the animation before it is done: ``{"ok": False, "code":
+        "cancelled"}``, nothing kept. Each table row carries its edit key (verb, nth), or None for
         what the scheduler added (a stop, an idle, a posture bridge). ``top`` is the scene seen from above
         (:meth:`output.topview.TopView.to_dict`), which the page draws beside the animation."""
         text = text.strip()
         if not text:
-            return {"ok": False, "error": "type a sentence, e.g. 太郎は走って、ボールを蹴る。"}
+            return {"ok": False, "code": "empty", "error": "type a sentence, e.g. 太郎は走って、ボールを蹴る。"}
         if len(text) > MAX_TEXT:
-            return {"ok": False, "error": f"the text is {len(text)} characters long; the studio takes at most {MAX_TEXT}"}
-        key = self._key(text, edits)
+            return {"ok": False, "code": "too_long", "max": MAX_TEXT,
+                    "error": f"the text is {len(text)} characters long; the studio takes at most {MAX_TEXT}"}
+        key = self._key(text, edits, fallback)
+        hit = self._cached(key)  # a text seen before is answered at once, even while another one is being made
+        if hit is not None:
+            return hit
         with self.lock:
-            hit = self.cache.get(key)
+            hit = self._cached(key)  # made while this request waited
             if hit is not None:
-                self.cache.move_to_end(key)
                 return hit
-            payload = self._make(text, edits)
+            try:
+                payload = self._make(text, edits, fallback, cancelled)
+            except Cancelled:
+                return {"ok": False, "code": "cancelled", "error": "the page asked for another text"}
             anim = payload.pop("_anim", None)
             if anim is not None:
                 self.latest = (key, anim)
             payload["_bytes"] = _size(payload)
-            self.cache[key] = payload
-            while len(self.cache) > 1 and (len(self.cache) > CACHE  # the newest is kept whatever its size
-                                           or sum(p["_bytes"] for p in self.cache.values()) > CACHE_BYTES):
-                self.cache.popitem(last=False)
+            with self.shelf:
+                self.cache[key] = payload
+                while len(self.cache) > 1 and (len(self.cache) > CACHE  # the newest is kept whatever its size
+                                               or sum(p["_bytes"] for p in self.cache.values()) > CACHE_BYTES):
+                    self.cache.popitem(last=False)
             return payload
 
-    def _key(self, text: str, edits: tuple) -> str:
-        return text.strip() + "\0" + repr(edits) + "\0" + str(self.rig)
+    def _cached(self, key: str) -> dict | None:
+        with self.shelf:
+            hit = self.cache.get(key)
+            if hit is not None:
+                self.cache.move_to_end(key)
+            return hit
 
-    def animation(self, text: str, edits: tuple = ()):
+    def _key(self, text: str, edits: tuple, fallback: str = "strict") -> str:
+        return text.strip() + "\0" + repr(edits) + "\0" + fallback + "\0" + str(self.rig)
+
+    def animation(self, text: str, edits: tuple = (), fallback: str = "strict"):
         """The :class:`Animation` of ``text`` (the latest one kept, else made again), or None when it
         cannot be animated."""
-        payload = self.animate(text, edits)
+        payload = self.animate(text, edits, fallback)
         if not payload["ok"]:
             return None
-        key = self._key(text, edits)
+        key = self._key(text, edits, fallback)
         with self.lock:
             if self.latest is not None and self.latest[0] == key:
                 return self.latest[1]
-            self.cache.pop(key, None)  # made again: the same bytes, and kept as the latest
-        self.animate(text, edits)
+            with self.shelf:
+                self.cache.pop(key, None)  # made again: the same bytes, and kept as the latest
+        self.animate(text, edits, fallback)
         with self.lock:
             return self.latest[1] if self.latest is not None and self.latest[0] == key else None
 
-    def _make(self, text: str, edits: tuple) -> dict:
+    def _make(self, text: str, edits: tuple, fallback: str, cancelled: Callable[[], bool] = lambda: False) -> dict:
         import text2anim
         from text2anim.cli.terminal import message
         from text2anim.edits import occurrences
@@ -169,7 +280,7 @@ class Studio:
         from text2anim.output.viewer import render_html
 
         try:
-            anim = text2anim.animate(text, db=self.db, edits=edits)
+            anim = self._animation(text, edits, fallback, cancelled)
             keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
             tracks, props = anim.tracks(), anim.props()
             if self.rig is not None:  # the user's character: its own skeleton and proportions
@@ -180,28 +291,45 @@ class Studio:
         except Exception as exc:  # the stages' user errors carry user_facing; anything else is a bug to show
             if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                 raise
-            return {"ok": False, "error": message(str(exc)), "unknown": unknown_verbs(text, exc)}
+            return {"ok": False, "error": message(str(exc)), "code": error_code(exc),
+                    "unknown": unknown_verbs(text, exc)}
         rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
                  "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part,
                  "key": keys.get(e.id), "manner": e.manner.to_dict() if e.manner else None}
                 for e in anim.table.elements]
         blends = [{"actor": s.actor, "start": round(s.start, 3), "end": round(s.end, 3), "part": s.part,
                    "label": s.label} for s in anim.spans() if s.kind == "blend"]
-        return {"ok": True, "text": text, "html": render_html(tracks, anim.spans(), title=text, props=props),
+        return {"ok": True, "text": text, "html": framed(render_html(tracks, anim.spans(), title=text, props=props)),
                 "top": top_view(tracks, anim.spans(), props).to_dict(),
                 "rig": self.rig is not None,
                 "notes": list(anim.planned.analysis.notes),
                 "table": rows, "blends": blends, "warnings": list(anim.warnings),
+                "fallbacks": [{"written": f.written, "used": f.used} for f in anim.planned.fallbacks],
                 "duration": round(max((m.duration for m in anim.motions.values()), default=0.0), 3),
                 "_anim": anim}
 
-    def export(self, text: str, edits: tuple = (), fmt: str = "bvh") -> tuple[str, bytes] | None:
+    def _animation(self, text: str, edits: tuple, fallback: str, cancelled: Callable[[], bool]):
+        """``text2anim.animate(text, edits=edits, fallback=fallback)`` on the studio's database, stage by stage
+        (:mod:`text2anim.pipeline`, as ``text2anim compare`` runs it), raising :class:`Cancelled` between two
+        stages when ``cancelled()``: an abandoned text stops there instead of delaying the next one."""
+        from text2anim import limits
+        from text2anim.pipeline import NAMES, Request, Work, animation, run
+
+        limits.check_options(text, self.db, 30.0, limits.MAX_SECONDS, fallback=fallback)
+        work, done = Work(Request(text, fallback=fallback, edits=tuple(edits)), self.db), None
+        for name in NAMES:
+            if cancelled():
+                raise Cancelled
+            work, done = run(work, after=done, until=name), name
+        return animation(work)
+
+    def export(self, text: str, edits: tuple = (), fmt: str = "bvh", fallback: str = "strict") -> tuple[str, bytes] | None:
         """``(file name, bytes)`` of ``text``'s animation as ``fmt`` (:data:`FORMATS`: one file per actor
         for BVH, GLB and VRMA, zipped when there are several); None when it cannot be animated."""
         import io
         import zipfile
 
-        anim = self.animation(text, edits)
+        anim = self.animation(text, edits, fallback)
         if anim is None:
             return None
         export = None
@@ -221,10 +349,40 @@ class Studio:
         return "animation.zip", buf.getvalue()
 
 
+#: What the studio changes in the viewer page it frames: the page draws the one (editable) time table itself,
+#: and words the viewer's controls in its own language (studio.js), with the studio's font for their glyphs
+#: (the viewer embeds only those of its own page).
+FRAMED_CSS = ("<style>#timeline-wrap { display: none; }\n"
+              '@font-face { font-family: "t2a-studio"; font-display: block; unicode-range: U+2E80-FFFF; '
+              'src: url(/static/font/jp.woff) format("woff"); }\n'
+              '#help, #controls label { font-family: "t2a-jp", "t2a-studio", system-ui, sans-serif; }</style>')
+
+
+def framed(page: str) -> str:
+    """The viewer page as the studio frames it (:data:`FRAMED_CSS`)."""
+    return page.replace("</head>", FRAMED_CSS + "</head>", 1)
+
+
 def _size(payload: dict) -> int:
     """Bytes a result holds, about: its strings (the viewer page is most of it) and 100 bytes a row."""
     return sum(len(v) for v in payload.values() if isinstance(v, str)) + 100 * (
         len(payload.get("table", ())) + len(payload.get("blends", ())) + len(str(payload.get("top", ""))) // 100)
+
+
+def error_code(exc: Exception) -> str:
+    """What kind of error ``exc`` is, for the page to say in its own words: ``unknown`` (a verb no clip has),
+    ``no_motion`` (the analyser read no action), ``limit`` (a duration or count over the limits), ``edit`` (a
+    time-table edit that cannot apply) or ``other``."""
+    from text2anim.edits import EditError
+    from text2anim.limits import LimitError
+    from text2anim.nlp.errors import NLPError
+
+    if getattr(exc, "missing", None):
+        return "unknown"
+    for kind, code in ((EditError, "edit"), (LimitError, "limit"), (NLPError, "no_motion")):
+        if isinstance(exc, kind):
+            return code
+    return "other"
 
 
 def unknown_verbs(text: str, exc: Exception) -> list[dict]:

@@ -99,6 +99,38 @@ def _encode(arr: np.ndarray, compress: bool) -> str:
     return base64.b64encode(data).decode("ascii")
 
 
+#: The body's capsule radii (m, for a 1.7 m person) by body part, from the part's first bone outwards: a
+#: drawn character with a body (shoulders, hips, limbs thinning to the hands and feet) instead of a stick figure.
+BODY_RADII = {"torso": (0.12,), "hips": (0.11,), "head": (0.05,), "left_leg": (0.085, 0.075, 0.055, 0.04),
+              "right_leg": (0.085, 0.075, 0.055, 0.04), "left_arm": (0.05, 0.045, 0.036, 0.03),
+              "right_arm": (0.05, 0.045, 0.036, 0.03)}
+
+
+def _body_radii(bm, parents: list[int], n_points: int, stick: np.ndarray, height: float) -> list[float]:
+    """Per point, the radius (m) of the body's capsule for the bone ending there (:data:`BODY_RADII` by the part
+    of the bone's parent joint and its depth in that part; at least the stick figure's; fingers as they are)."""
+    part = {j: g for g in BODY_RADII for j in bm.groups.get(g, ())}
+    hands = set(bm.hands.values())
+    out = []
+    for i in range(n_points):
+        p = parents[i]
+        depth, q = 0, parents[p] if p >= 0 else -1
+        while q >= 0 and part.get(q) == part.get(p):
+            depth, q = depth + 1, parents[q]
+        radii = BODY_RADII.get(part.get(p, ""), ())
+        below_hand = p in hands or any(a in hands for a in _ancestors(parents, p))
+        r = stick[i] if p < 0 or not radii or below_hand else max(stick[i], radii[min(depth, len(radii) - 1)] * height / 1.7)
+        out.append(round(float(r), 4))
+    return out
+
+
+def _ancestors(parents: list[int], j: int):
+    while j >= 0:
+        j = parents[j]
+        if j >= 0:
+            yield j
+
+
 def _bone_info(motion: Motion, n_points: int, parents: list[int]) -> dict:
     """Per-point drawing hints: capsule radius (m) of the bone ending at each point, head point, feet."""
     skel = motion.skeleton
@@ -132,6 +164,7 @@ def _bone_info(motion: Motion, n_points: int, parents: list[int]) -> dict:
         for i in below - {hand}:
             radius[i] = min(radius[i], 0.014 * height / 1.7)
     info["radius"] = [round(float(r), 4) for r in radius]
+    info["body"] = _body_radii(bm, parents, n_points, radius, height)
     head = bm.head
     kids = [i for i in range(n_points) if parents[i] == head]
     info["head"] = int(kids[0]) if kids else int(head)  # the head's end site: the sphere goes between

@@ -339,6 +339,9 @@
     }
   }
 
+  // The figure drawn: a body (capsules as thick as a person's: meta.body) or the stick figure (meta.radius).
+  var BODY = { on: false };
+
   // An actor's bones (capsules) and head (a ball) in camera space, sorted far to near.
   function actorItems(A) {
     var c = A.cur, meta = A.meta, cams = new Array(A.N);
@@ -349,14 +352,15 @@
       var s = clipSeg(cams[p], cams[j]);
       if (!s) continue;
       var z = (s[0][2] + s[1][2]) / 2;
-      items.push({ kind: 0, j: j, s: s, z: z, w: Math.max(1.5, 2 * meta.radius[j] * F / z) });
+      var rad = BODY.on && meta.body ? meta.body[j] : meta.radius[j];
+      items.push({ kind: 0, j: j, s: s, z: z, w: Math.max(1.5, 2 * rad * F / z) });
     }
     var head = meta.head >= 0 ? meta.head : -1, hb = meta.headBase;
     if (head >= 0) {
       var hc = hb !== head ? [(cams[hb][0] + cams[head][0]) / 2, (cams[hb][1] + cams[head][1]) / 2, (cams[hb][2] + cams[head][2]) / 2] : cams[head];
       if (hc[2] > NEAR) {
         var hs = toScreen(hc);
-        items.push({ kind: 1, s: hs, z: hc[2], r: meta.headRadius * F / hc[2] });
+        items.push({ kind: 1, s: hs, z: hc[2], r: meta.headRadius * (BODY.on ? 1.25 : 1) * F / hc[2] });
       }
     }
     items.sort(function (a, b) { return b.z - a.z; });
@@ -397,7 +401,8 @@
         ctx.beginPath(); ctx.arc(it.s[0], it.s[1], it.r, 0, Math.PI * 2); ctx.fillStyle = g; ctx.fill();
       }
     });
-    // joints as dots (not the end sites)
+    // joints as dots (not the end sites), on the stick figure
+    if (BODY.on) return;
     ctx.fillStyle = css(mix(A.base, WHITE, 0.7), 0.95);
     items.forEach(function (it) {
       var jn = it.j, q = cams[jn];
@@ -762,6 +767,9 @@
     play: function () { state.playing = true; state.dirty = true; },
     pause: function () { state.playing = false; state.dirty = true; },
     seek: setTime,
+    // draw a body (true) or the stick figure (false, the default)
+    get body() { return BODY.on; },
+    set body(on) { BODY.on = !!on; state.dirty = true; },
     errors: window.__t2aErrors || []
   };
   window.__t2a = api;

@@ -1,7 +1,9 @@
 """The studio in a real browser: Debian's Chromium driven by Playwright, against the real server on a free port.
 
 Type and watch, add a sentence while it plays (playback goes on from the frame on screen), export a BVH and
-read it back, open a shared link. Skipped, saying why, without /usr/bin/chromium or Playwright.
+read it back, open a shared link; the page in Japanese (English by the browser's language), an input method's
+composition sent only when it ends, a project saved, restored and animated by the command line, undo and redo.
+The page is 1280×1000 as the README's picture. Skipped, saying why, without /usr/bin/chromium or Playwright.
 """
 from __future__ import annotations
 
@@ -25,17 +27,22 @@ pytestmark = pytest.mark.skipif(not Path(CHROMIUM).exists(),
 
 
 @pytest.fixture(scope="module")
-def studio(tmp_path_factory):
-    """The studio's URL, served by uvicorn in a thread for the module's tests, on a database of its own
-    (the drop tests import clips into it)."""
+def studio_db(tmp_path_factory):
+    """The URL of the studio's own database (the user's library: the drop tests add clips to it)."""
+    return f"sqlite:///{tmp_path_factory.mktemp('studio-db') / 'motions.sqlite'}"
+
+
+@pytest.fixture(scope="module")
+def studio(studio_db):
+    """The studio's URL, served by uvicorn in a thread for the module's tests, on :func:`studio_db`."""
     import uvicorn
 
     from text2anim.cli.studio.app import create_app
+    from text2anim.cli.studio.slow import server_config
 
-    db = f"sqlite:///{tmp_path_factory.mktemp('studio-db') / 'motions.sqlite'}"
+    db = studio_db
     port = free_port("127.0.0.1")
-    server = uvicorn.Server(uvicorn.Config(create_app(db, "127.0.0.1", port), host="127.0.0.1", port=port,
-                                           log_level="warning"))
+    server = uvicorn.Server(server_config(create_app(db, "127.0.0.1", port), "127.0.0.1", port, log_level="warning"))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
     deadline = time.monotonic() + 20
@@ -56,7 +63,7 @@ def browser():
 
 @pytest.fixture
 def page(browser, studio, tmp_path):
-    context = browser.new_context(viewport={"width": 1100, "height": 900}, accept_downloads=True)
+    context = browser.new_context(viewport={"width": 1280, "height": 1000}, accept_downloads=True, locale="ja-JP")
     pg = context.new_page()
     errors: list[str] = []
     pg.on("pageerror", lambda e: errors.append(str(e)))
@@ -84,8 +91,10 @@ def test_typing_a_sentence_changes_the_animation_and_the_time_table(page, tmp_pa
 
 def test_an_unknown_verb_is_shown_under_the_text_and_the_last_animation_stays(page):
     page.fill("#text", "太郎は泳ぐ。")
-    page.wait_for_function("document.getElementById('error').textContent.includes('泳ぐ')", timeout=30000)
-    assert "no stand-in" in page.inner_text("#error")
+    page.wait_for_function("document.querySelector('#marks .missing') !== null", timeout=30000)
+    said = page.inner_text("#marks .missing")
+    assert "「泳ぐ」の動きはライブラリにありません" in said and "代わりになる動きもありません" in said
+    assert "--" not in page.inner_text("body") and "fallback" not in page.inner_text("body")  # no flag quoted
     assert page.evaluate("window.__studio.table.length") == 3  # the seed sentence still plays
 
 
@@ -197,12 +206,20 @@ def test_an_unknown_verb_is_underlined_with_what_may_stand_in_each_previewable(p
     page.wait_for_function("document.querySelectorAll('#marks u.unknown').length === 2", timeout=30000)
     assert page.locator("#marks u.unknown").all_inner_texts() == ["ぶらつい", "泳ぐ"]
     standin = page.locator("#marks button.standin")
-    assert standin.count() == 1 and standin.inner_text() == "stand-in 歩く"  # ぶらつく has one, 泳ぐ none
+    assert standin.count() == 1 and standin.inner_text() == "代わりに「歩く」で再生"  # ぶらつく has one, 泳ぐ none
     n = page.evaluate("window.__studio.renders")
-    standin.click()
+    page.locator("#marks button.nearest").first.click()  # a similar verb, previewed: the text stays as it is
     page.wait_for_function("window.__studio.previewing === '歩く'", timeout=30000)
-    assert page.input_value("#text") == "太郎は公園をぶらついて、泳ぐ。"  # the text stays as written
+    assert page.input_value("#text") == "太郎は公園をぶらついて、泳ぐ。"
     assert page.evaluate("window.__studio.renders") == n
+    # the stand-in button plays the whole text with it (what --fallback nearest does, in the page's terms)
+    page.fill("#text", "太郎は公園をぶらついて、走る。")
+    page.wait_for_function("document.querySelectorAll('#marks button.standin').length === 1", timeout=30000)
+    page.click("#marks button.standin")
+    page.wait_for_function(f"window.__studio.renders > {n} && !window.__studio.busy", timeout=30000)
+    assert page.evaluate("window.__studio.table.map(e => e.verb)")[:2] == ["歩く", "走る"]
+    assert "「ぶらつく」の代わりに「歩く」を再生しています" in page.inner_text("#marks")
+    assert page.input_value("#text") == "太郎は公園をぶらついて、走る。"
 
 
 def test_the_library_is_searched_and_a_verb_previewed(page):
@@ -223,9 +240,12 @@ def _drop(page, path: Path, verb: str | None = None):
                   [path.name, data])
 
 
-def test_a_dropped_bvh_is_imported_and_plays(page, tmp_path, library_db):
-    """Into the studio's own database (the shared library is only where the test's clip comes from)."""
+def test_a_dropped_bvh_plays_in_the_session_and_reaches_the_library_only_when_asked(page, tmp_path, library_db,
+                                                                                     studio_db):
+    """A dropped clip plays at once but stays out of the user's library (the studio's own database here) until
+    "add to my library"; there it is listed, previewed, renamed and removed."""
     import text2anim
+    from text2anim.motiondb import MotionDB
     from text2anim.output.bvh_write import format_bvh
 
     wave = text2anim.animate("太郎は手を振る。", db=library_db)
@@ -233,11 +253,28 @@ def test_a_dropped_bvh_is_imported_and_plays(page, tmp_path, library_db):
     path = tmp_path / "my wave.bvh"
     path.write_text(format_bvh(motion))
     _drop(page, path, "手招きする")
-    page.wait_for_function("document.getElementById('dropped').textContent.includes('stored as clip')", timeout=30000)
-    assert "my_wave" in page.inner_text("#dropped")
+    page.wait_for_function("document.querySelector('#session .clip button.keep') !== null", timeout=30000)
+    assert "このセッションで「手招きする」として使います" in page.inner_text("#session")
     page.fill("#text", "花子は手招きする。")
     page.wait_for_function("window.__studio.table.length === 1 && window.__studio.table[0].clip === 'my_wave'",
                            timeout=30000)
+    mine = MotionDB.open(studio_db)
+    clips = {c.name for c in mine.clips()}
+    assert "my_wave" not in clips  # the session's only
+    assert page.locator("#mine .clip").count() == 0
+    page.click("#session button.keep")
+    page.wait_for_function("document.querySelectorAll('#mine .clip').length === 1", timeout=30000)
+    assert {c.name for c in mine.clips()} == clips | {"my_wave"}
+    page.click("#mine .clip button.preview")
+    page.wait_for_function("window.__studio.previewing === 'my_wave'", timeout=30000)
+    page.once("dialog", lambda d: d.accept("beckon"))
+    page.click("#mine .clip button.rename")
+    page.wait_for_function("document.querySelector('#mine .clip').dataset.clip === 'beckon'", timeout=30000)
+    page.once("dialog", lambda d: d.accept())
+    page.click("#mine .clip button.remove")
+    page.wait_for_function("document.querySelectorAll('#mine .clip').length === 0", timeout=30000)
+    assert {c.name for c in mine.clips()} == clips  # the built-in clips stay
+    mine.close()
 
 
 def test_a_broken_file_dropped_says_why_and_changes_nothing(page, tmp_path):
@@ -253,7 +290,7 @@ def test_a_dropped_vrm_character_is_drawn_skinned_and_animated(page, tmp_path):
 
     avatar = vrm_file(tmp_path / "avatar.vrm")
     _drop(page, avatar)
-    page.wait_for_function("document.getElementById('dropped').textContent.includes('this character')",
+    page.wait_for_function("document.getElementById('dropped').textContent.includes('このキャラクター')",
                            timeout=30000)
     page.wait_for_function("window.__studio3d && window.__studio3d.loads >= 1 && !window.__studio.busy", timeout=60000)
     assert page.locator("#view3d").is_visible() and not page.locator("#view").is_visible()
@@ -315,11 +352,172 @@ def test_a_text_of_two_characters_on_a_dropped_character_plays_as_figures_and_sa
     from rig_builders import vrm_file
 
     _drop(page, vrm_file(tmp_path / "avatar.vrm"))
-    page.wait_for_function("document.getElementById('dropped').textContent.includes('this character')",
+    page.wait_for_function("document.getElementById('dropped').textContent.includes('このキャラクター')",
                            timeout=30000)
     page.fill("#text", "太郎は花子に近づいて、お辞儀する。")
-    page.wait_for_function("document.getElementById('status').textContent.includes('2 characters')", timeout=60000)
+    page.wait_for_function("document.getElementById('status').textContent.includes('登場人物が 2 人')", timeout=60000)
     assert page.locator("#view").is_visible() and not page.locator("#view3d").is_visible()
     assert page.locator("#error").inner_text() == ""
     page.screenshot(path=str(tmp_path / "two on a character.png"))
     page.click("#builtin")
+
+
+ENGLISH_LABELS = ("save project", "export", "undo", "time table", "add")
+
+
+def test_the_page_is_in_japanese_drawn_with_its_own_font_and_in_english_by_the_browser_or_the_switch(page, browser,
+                                                                                                      studio):
+    """Japanese by default (the machine has no Japanese font: the page's own faces draw it), English for an
+    English browser, and the switch turns one into the other."""
+    assert page.evaluate("document.documentElement.lang") == "ja"
+    assert page.inner_text("#save") == "プロジェクトを保存" and page.inner_text("#export") == "書き出す"
+    assert "タイムテーブル" in page.inner_text("#table h2")
+    body = page.inner_text("body")
+    assert not any(label in body for label in ENGLISH_LABELS)
+    # the catalogue's face is in the page; what the user types (a JIS level 2 kanji) comes from the served one
+    assert page.evaluate("document.fonts.check('16px t2a-ui', 'プロジェクトを保存')")
+    faces = page.evaluate("document.fonts.load('16px t2a-jp', '鬱').then(f => f.map(x => x.status))")
+    assert faces == ["loaded"]
+    assert page.frame_locator("#view").locator("#help").inner_text().startswith("ドラッグ")
+    english = browser.new_context(viewport={"width": 1280, "height": 1000}, locale="en-US").new_page()
+    english.goto(studio)
+    english.wait_for_function("window.__studio && window.__studio.renders >= 1", timeout=30000)
+    assert english.inner_text("#save") == "save project" and english.evaluate("document.documentElement.lang") == "en"
+    english.select_option("#lang", "ja")
+    assert english.inner_text("#save") == "プロジェクトを保存" and english.inner_text("#export") == "書き出す"
+    english.context.close()
+
+
+def test_an_input_method_composition_sends_nothing_until_it_ends(page):
+    """While the IME converts (かな typed, not yet committed) no request goes out; the pause counts from its end."""
+    sent: list[str] = []
+    page.on("request", lambda r: sent.append(r.post_data_json["text"]) if r.url.endswith("/api/animate") else None)
+    page.fill("#text", "")
+    page.wait_for_function("window.__studio.error !== '' && !window.__studio.busy", timeout=30000)
+    page.focus("#text")
+    sent.clear()
+    cdp = page.context.new_cdp_session(page)
+    for typed in ("は", "はな", "はなこ", "花子"):  # the IME's composition string as it grows, then converted
+        cdp.send("Input.imeSetComposition", {"text": typed, "selectionStart": len(typed), "selectionEnd": len(typed)})
+        page.wait_for_timeout(400)  # longer than the typing pause: an uncomposed page would send each one
+    assert page.evaluate("window.__studio.composing") and sent == []
+    cdp.send("Input.insertText", {"text": "花子は歩く。"})  # the composition is committed: compositionend
+    page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
+    assert sent == ["花子は歩く。"]
+    assert page.evaluate("window.__studio.table.map(e => e.verb)") == ["歩く"]
+
+
+def test_one_time_table_the_editable_one_in_view_with_the_player(page):
+    view = page.frame_locator("#view")
+    assert view.locator("#timeline-wrap").is_hidden()  # the viewer's read-only table is not shown
+    for box in (page.locator("#view").bounding_box(), page.locator("#timeline").bounding_box()):
+        assert box["y"] >= 0 and box["y"] + box["height"] <= 1000  # both inside the 1280×1000 window
+
+
+def _drag(page, verb: str, dx: float):
+    bar = page.locator(f'#timeline rect.bar[data-verb="{verb}"]').bounding_box()
+    n = page.evaluate("window.__studio.renders")
+    page.mouse.move(bar["x"] + 20, bar["y"] + bar["height"] / 2)
+    page.mouse.down()
+    page.mouse.move(bar["x"] + 20 + dx, bar["y"] + bar["height"] / 2, steps=4)
+    page.mouse.up()
+    page.wait_for_function(f"window.__studio.renders > {n} && !window.__studio.busy", timeout=30000)
+
+
+def _starts(page) -> list[float]:
+    return page.evaluate("window.__studio.table.map(e => e.start)")
+
+
+def _wait_starts(page, starts):
+    page.wait_for_function(f"JSON.stringify(window.__studio.table.map(e => e.start)) === '{starts}'.replace(/ /g, '')"
+                           " && !window.__studio.busy", timeout=30000)
+
+
+def test_undo_and_redo_step_through_three_edits(page):
+    import json
+
+    states = [json.dumps(_starts(page))]
+    for verb, dx in (("喜ぶ", 80), ("喜ぶ", 60), ("蹴る", 50)):
+        _drag(page, verb, dx)
+        states.append(json.dumps(_starts(page)))
+    assert len(set(states)) == 4
+    for back in (2, 1, 0):  # Ctrl+Z, the button, Ctrl+Z
+        if back == 1:
+            page.click("#undo")
+        else:
+            page.keyboard.press("Control+z")
+        _wait_starts(page, states[back])
+    assert page.is_disabled("#undo")
+    for forward in (1, 2, 3):
+        page.keyboard.press("Control+Shift+z") if forward != 2 else page.click("#redo")
+        _wait_starts(page, states[forward])
+    assert page.is_disabled("#redo")
+
+
+def test_a_project_is_saved_restored_after_a_reload_and_opened_by_the_command_line_with_the_same_bytes(
+        page, tmp_path, studio_db):
+    from text2anim.cli.main import main
+
+    page.fill("#text", "太郎は走って、ボールを蹴る。")
+    page.wait_for_function("window.__studio.table.length === 2 && !window.__studio.busy", timeout=30000)
+    page.locator('#timeline rect.bar[data-verb="蹴る"]').click()
+    page.select_option("#method", "connection")
+    page.wait_for_function("window.__studio.table[1].method === 'connection' && !window.__studio.busy",
+                           timeout=30000)
+    _drag(page, "蹴る", 70)
+    table = page.evaluate("window.__studio.table")
+    with page.expect_download() as saved:
+        page.click("#save")
+    project = tmp_path / saved.value.suggested_filename
+    saved.value.save_as(project)
+    with page.expect_download() as exported:
+        page.click("#export")
+    page_bvh = tmp_path / "page.bvh"
+    exported.value.save_as(page_bvh)
+    assert project.name == "project.t2a.json"
+    # a reload keeps the work (localStorage)
+    page.reload()
+    page.wait_for_function("window.__studio && window.__studio.renders >= 1 && !window.__studio.busy", timeout=30000)
+    assert page.evaluate("window.__studio.table") == table
+    # opened in a fresh page (the picker), the same animation
+    fresh = page.context.browser.new_context(viewport={"width": 1280, "height": 1000}, locale="ja-JP").new_page()
+    fresh.goto(page.url)
+    fresh.wait_for_function("window.__studio && window.__studio.renders >= 1 && !window.__studio.busy", timeout=30000)
+    fresh.set_input_files("#open", str(project))
+    fresh.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
+    assert fresh.evaluate("window.__studio.table") == table
+    fresh.context.close()
+    # the command line: the same bytes as the page's export
+    cli_bvh = tmp_path / "cli.bvh"
+    assert main([str(project), "-o", str(cli_bvh), "--db", studio_db]) == 0
+    assert cli_bvh.read_bytes() == page_bvh.read_bytes()
+
+
+def test_a_project_of_another_version_is_refused_in_the_page_and_on_the_command_line(page, tmp_path, capsys):
+    import json
+
+    from text2anim.cli.main import main
+
+    newer = tmp_path / "newer.t2a.json"
+    newer.write_text(json.dumps({"format": "text2anim-project", "version": 2, "text": "太郎は歩く。"}), encoding="utf-8")
+    page.set_input_files("#open", str(newer))
+    page.wait_for_function("document.getElementById('error').textContent.length > 0", timeout=30000)
+    assert "新しい版" in page.inner_text("#error")
+    assert page.input_value("#text") == "太郎は走って、ボールを蹴る。そして喜ぶ。"  # nothing changed
+    assert main([str(newer)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[-1].startswith("text2anim: error: newer.t2a.json: project version 2") and "Traceback" not in err[-1]
+
+
+def test_the_character_has_a_body_and_the_stick_figure_is_one_switch_away(page):
+    api = "document.getElementById('view').contentWindow.__t2a"
+    assert page.evaluate(f"{api}.body") is True and page.input_value("#character") == "body"
+    page.evaluate(f"{api}.pause(); {api}.seek(1.0)")
+    page.wait_for_timeout(100)
+    body = _canvas(page)
+    page.select_option("#character", "figure")
+    page.wait_for_timeout(100)
+    assert page.evaluate(f"{api}.body") is False and _canvas(page) != body
+    assert page.evaluate("window.__studio.project().character") == "figure"  # kept with the work
+    page.keyboard.press("Control+z")  # a step of the history too
+    assert page.input_value("#character") == "body" and page.evaluate(f"{api}.body") is True

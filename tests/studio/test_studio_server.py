@@ -56,11 +56,39 @@ def test_a_manner_is_on_its_row_and_one_not_shown_is_a_warning(client):
 
 
 def test_what_cannot_be_animated_says_why_in_the_users_terms(client):
+    """Each error has its kind (``code``), which the page words in its own language."""
     r = client.post("/api/animate", json={"text": "太郎は泳ぐ。"})
     assert r.status_code == 422 and "泳ぐ" in r.json()["error"] and "Traceback" not in r.text
+    assert r.json()["code"] == "unknown"
     r = client.post("/api/animate", json={"text": "雨が降る。"})
-    assert r.status_code == 422 and "no motion" in r.json()["error"]
-    assert client.post("/api/animate", json={"text": "  "}).json()["ok"] is False
+    assert r.status_code == 422 and "no motion" in r.json()["error"] and r.json()["code"] == "no_motion"
+    assert client.post("/api/animate", json={"text": "  "}).json()["code"] == "empty"
+    r = client.post("/api/animate", json={"text": "太郎は" + "九" * 30 + "秒歩く。"})
+    assert r.status_code == 422 and r.json()["code"] == "limit"
+
+
+def test_a_verb_no_clip_has_plays_its_stand_in_when_the_page_asks(client):
+    """The page's stand-in button: the same text with ``fallback: nearest`` (what --fallback nearest does)."""
+    assert client.post("/api/animate", json={"text": "太郎は公園をぶらつく。"}).status_code == 422
+    r = client.post("/api/animate", json={"text": "太郎は公園をぶらつく。", "fallback": "nearest"})
+    assert r.status_code == 200 and r.json()["fallbacks"] == [{"written": "ぶらつく", "used": "歩く"}]
+    assert client.post("/api/animate", json={"text": "x", "fallback": "loose"}).status_code == 400
+
+
+def test_the_page_carries_its_words_and_fonts(client):
+    """The catalogue (Japanese and English for every key) and the two faces: the catalogue's embedded, the whole
+    JIS X 0208 set served (under 2 MB) for what the user types."""
+    import json
+
+    from text2anim.cli.studio.page import messages
+
+    page = client.get("/").text
+    words = json.loads(re.search(r'<script type="application/json" id="t2a-messages">(.*?)</script>', page).group(1))
+    assert words == messages() and all(set(m) == {"ja", "en"} and m["ja"] and m["en"] for m in words.values())
+    assert not any("--" in m["ja"] + m["en"] for m in words.values())  # no command-line flag in the page's words
+    assert 'font-family: "t2a-ui"' in page and "url(/static/font/jp.woff)" in page
+    font = client.get("/static/font/jp.woff")
+    assert font.status_code == 200 and font.content[:4] == b"wOFF" and 1_000_000 < len(font.content) < 2 * 2**20
 
 
 def test_a_phrase_no_clip_does_is_marked_where_it_is_written(client):
@@ -178,6 +206,50 @@ def test_a_rig_is_checked_whole_before_it_is_kept(client, tmp_path):
     assert after.status_code == 200 and after.json()["rig"] is False
 
 
+def test_a_text_the_page_went_away_from_stops_between_stages(library_db):
+    """The work of a request whose page went away stops at the next stage, and nothing of it is kept."""
+    import time
+
+    from text2anim.cli.studio import work
+
+    studio = work.Studio.open(library_db)
+    looks: list[float] = []
+
+    def gone() -> bool:
+        looks.append(time.perf_counter())
+        return len(looks) > 2  # the page goes away after the second stage
+
+    text = "太郎は走って、ボールを蹴る。そして喜ぶ。"
+    assert studio.animate(text, cancelled=gone) == {"ok": False, "code": "cancelled",
+                                                    "error": "the page asked for another text"}
+    assert len(looks) == 3 and not studio.cache
+    assert studio.animate(text)["ok"]
+
+
+def test_a_dropped_clip_is_the_sessions_until_kept_then_listed_renamed_and_removed(library_db, tmp_path):
+    import text2anim
+    from text2anim.cli.studio import work
+    from text2anim.output.bvh_write import format_bvh
+
+    (motion,) = text2anim.animate("太郎は手を振る。", db=library_db).motions.values()
+    library = tmp_path / "mine.sqlite"
+    studio = work.Studio.open(str(library))
+    try:
+        done = studio.import_bvh(format_bvh(motion).encode(), "walk.bvh", "手招きする", False)
+        assert done["ok"] and done["clip"] == "walk_2"  # a dropped walk.bvh never replaces the built-in walk
+        assert studio.animate("花子は手招きする。")["table"][0]["clip"] == "walk_2"
+        assert studio.mine() == [] and studio.keep("walk") == {"ok": False, "error": "no clip 'walk' was dropped in "
+                                                                                      "this session"}
+        assert studio.keep("walk_2")["ok"] and [c["name"] for c in studio.mine()] == ["walk_2"]
+        assert studio.rename("walk_2", "手招き")["ok"] and [c["name"] for c in studio.mine()] == ["手招き"]
+        assert studio.animate("花子は手招きする。")["table"][0]["clip"] == "手招き"
+        assert studio.remove("walk")["ok"] is False  # a built-in clip is not the user's to remove
+        assert studio.remove("手招き")["ok"] and studio.mine() == []
+        assert studio.animate("花子は手招きする。")["code"] == "unknown"
+    finally:
+        studio.close()
+
+
 def test_the_result_cache_is_held_to_its_byte_budget(library_db, monkeypatch):
     """Results are kept within CACHE_BYTES (the page's payloads, not whole animations); a text whose result
     was let go is exported all the same (animated again: the same bytes)."""
@@ -246,3 +318,92 @@ def test_sigterm_removes_the_dropped_character(tmp_path, library_db):
     finally:
         proc.kill()
         proc.wait()
+
+
+def test_a_request_the_page_abandoned_is_not_worked_on(library_db):
+    """A text queued behind another whose page went away (a newer text aborted it) is dropped when its turn comes:
+    the next text waits for the one in work only (issue 41: aborted requests ran on and delayed the next by 8.5 s)."""
+    import json
+    import socket
+    import threading
+    import time
+
+    import uvicorn
+
+    from text2anim.cli.cmd_studio import free_port
+
+    port = free_port("127.0.0.1")
+    app = create_app(library_db, "127.0.0.1", port)
+    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning"))
+    threading.Thread(target=server.run, daemon=True).start()
+    while not server.started:
+        time.sleep(0.05)
+    token = app.user_middleware[0].kwargs["token"]
+
+    def post(text: str, leave_after: float | None = None) -> bytes:
+        body = json.dumps({"text": text}).encode()
+        with socket.create_connection(("127.0.0.1", port)) as s:
+            s.sendall(f"POST /api/animate HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nContent-Type: application/json\r\n"
+                      f"X-Studio-Token: {token}\r\nContent-Length: {len(body)}\r\n\r\n".encode() + body)
+            if leave_after is not None:
+                time.sleep(leave_after)
+                return b""
+            return s.recv(100).split(b"\r\n")[0]
+
+    try:
+        first = threading.Thread(target=post, args=("太郎は走る。" + "3秒後に歩く。" * 3,))
+        first.start()
+        time.sleep(0.3)
+        abandoned = "花子は" + "3秒後に走る。" * 3
+        post(abandoned, leave_after=0.2)
+        assert post("次郎は歩く。") == b"HTTP/1.1 200 OK"
+        first.join()
+        kept = [key.split("\0")[0] for key in app.state.studio.cache]
+        assert abandoned not in kept and "次郎は歩く。" in kept
+    finally:
+        server.should_exit = True
+
+
+def test_headers_sent_a_byte_at_a_time_are_cut_off(library_db, monkeypatch):
+    """A client trickling its headers is disconnected HEADER_TIMEOUT after its first byte (every byte restarted
+    uvicorn's keep-alive clock: it held the connection for ever); a request in time is answered as before."""
+    import socket
+    import threading
+    import time
+
+    import uvicorn
+
+    from text2anim.cli.cmd_studio import free_port
+    from text2anim.cli.studio import slow
+
+    monkeypatch.setattr(slow, "HEADER_TIMEOUT", 1.0)
+    monkeypatch.setattr(slow, "CHECK_EVERY", 0.2)
+    port = free_port("127.0.0.1")
+    server = uvicorn.Server(slow.server_config(create_app(library_db, "127.0.0.1", port), "127.0.0.1", port,
+                                               log_level="warning"))
+    threading.Thread(target=server.run, daemon=True).start()
+    while not server.started:
+        time.sleep(0.05)
+    try:
+        with socket.create_connection(("127.0.0.1", port)) as s:
+            s.sendall(f"GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n".encode())
+            assert s.recv(100).startswith(b"HTTP/1.1 200")
+        with socket.create_connection(("127.0.0.1", port)) as s:
+            start, closed = time.monotonic(), False
+            for byte in f"GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nX-Slow: {'a' * 40}".encode():
+                try:
+                    s.sendall(bytes([byte]))
+                except OSError:
+                    closed = True
+                    break
+                time.sleep(0.1)
+                if time.monotonic() - start > 4:
+                    break
+            s.settimeout(2)
+            try:
+                closed = closed or s.recv(100) == b""
+            except OSError:
+                closed = True
+            assert closed and time.monotonic() - start < 4
+    finally:
+        server.should_exit = True

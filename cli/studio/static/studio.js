@@ -1,17 +1,76 @@
-/* text2anim studio: the text box drives /api/animate (after a pause in typing; the latest text wins,
- * a stale request is aborted); the answer's viewer page plays in the iframe and its time table is
- * drawn below. Dragging a bar moves the motion, dragging its right end stretches it, clicking it picks
- * how it joins the one before; the edits are kept by verb and occurrence (text2anim.edits) and sent with
- * every text, so editing the text keeps those that still apply. "add" appends a sentence and resumes
- * playback at the time on screen. State for tests and the benchmark: window.__studio. */
+/* text2anim studio: the text box drives /api/animate (after a pause in typing, counted from the end of an
+ * input method's composition: nothing is sent while one is open; the latest text wins, a stale request is
+ * aborted); the answer's viewer page plays in the iframe and its time table is drawn below it. Dragging a
+ * bar moves the motion, dragging its right end stretches it, clicking it picks how it joins the one before;
+ * the edits are kept by verb and occurrence (text2anim.edits) and sent with every text, so editing the text
+ * keeps those that still apply. "add" appends a sentence and resumes playback at the time on screen.
+ *
+ * The work is a project (text, edits, stand-ins: project() / restore()), kept in localStorage, saved and
+ * opened as a .t2a.json file (docs/project.md), with an undo history step by step. The page's words come
+ * from one catalogue (messages.json, in the page): Japanese, or English by the browser's language or the
+ * switch. State for tests and the benchmark: window.__studio. */
 (function () {
   "use strict";
   var $ = function (id) { return document.getElementById(id); };
-  var DEBOUNCE_MS = 250;
+  var DEBOUNCE_MS = 250, PROJECT_VERSION = 1, STORE = "t2a-studio-project";
   var S = { text: null, note: "", seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
             renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false,
-            edits: {}, sent: "" };
+            edits: {}, sent: "", fallback: "strict", composing: false, requests: 0,
+            history: [], at: -1, session: [], lang: "ja", keyAt: 0, keyLatencies: [], character: "body" };
   window.__studio = S;
+
+  // ---- words: one catalogue, the page's language
+  var M = JSON.parse(($("t2a-messages") || {}).textContent || "{}");
+  function t(key, args) {
+    var m = M[key], s = m ? (m[S.lang] || m.ja) : key.replace(/^m_/, "");
+    return s.replace(/\{(\w+)\}/g, function (_, k) { return args && args[k] !== undefined ? String(args[k]) : ""; });
+  }
+  function words() {
+    document.documentElement.lang = S.lang;
+    document.querySelectorAll("[data-t]").forEach(function (el) { el.textContent = t(el.getAttribute("data-t")); });
+    document.querySelectorAll("[data-title]").forEach(function (el) { el.title = t(el.getAttribute("data-title")); });
+    document.querySelectorAll("[data-placeholder]").forEach(function (el) {
+      el.placeholder = t(el.getAttribute("data-placeholder")); });
+    document.querySelectorAll("[data-label]").forEach(function (el) {
+      el.setAttribute("aria-label", t(el.getAttribute("data-label"))); });
+    $("lang").value = S.lang;
+    if (S.last) {
+      marks(S.last.text, S.last.data);
+      if (S.last.data.ok) { timeline(S.last.data); window.__studioTop.show(S.last.data.top); } else fail(S.last.data);
+    }
+    var w = $("view").contentWindow;
+    if (w && w.document && w.document.getElementById("help")) viewerWords(w);
+    library();
+  }
+  window.__t2aWord = t;  // topview.js words its legend with it
+
+  function viewerWords(w) {
+    // the framed viewer's controls in the page's language (the studio's font draws them: work.FRAMED_CSS)
+    var d = w.document, help = d.getElementById("help");
+    if (help) help.textContent = t("viewer_help");
+    [["speed", "viewer_speed", true], ["follow", "viewer_follow", false], ["loop", "viewer_loop", false]].forEach(function (c) {
+      var input = d.getElementById(c[0]), label = input && input.parentNode;
+      if (!label || label.tagName !== "LABEL") return;
+      var node = c[2] ? label.firstChild : label.lastChild;
+      if (node && node.nodeType === 3) node.textContent = c[2] ? t(c[1]) + " " : " " + t(c[1]);
+    });
+  }
+
+  function dressed(w) {
+    // a preview's viewer: in the page's words, with the chosen character, once it is ready
+    var tries = 0;
+    (function wait() {
+      if (!w.__t2a || !w.__t2a.ready) { if (tries++ < 500) setTimeout(wait, 5); return; }
+      viewerWords(w); w.__t2a.body = S.character === "body";
+    })();
+  }
+
+  function language() {
+    var chosen = null;
+    try { chosen = localStorage.getItem("t2a-studio-lang"); } catch (e) { /* storage off: the browser's */ }
+    if (chosen === "ja" || chosen === "en") return chosen;
+    return /^ja\b/i.test(navigator.language || "ja") ? "ja" : (/^en\b/i.test(navigator.language) ? "en" : "ja");
+  }
 
   function status(msg) { $("status").textContent = msg; }
 
@@ -25,7 +84,8 @@
 
   function schedule() {
     clearTimeout(S.timer);
-    S.timer = setTimeout(animate, DEBOUNCE_MS);
+    if (S.composing) return;  // the pause counts from compositionend
+    S.timer = setTimeout(function () { commit(); animate(); }, DEBOUNCE_MS);
   }
 
   function editList() {
@@ -33,62 +93,106 @@
   }
 
   function animate() {
-    var text = $("text").value, edits = editList(), sent = text + "\u0000" + JSON.stringify(edits);
+    if (S.composing) return;  // a half-converted text is never sent
+    var text = $("text").value, edits = editList();
+    var sent = text + "\u0000" + JSON.stringify(edits) + "\u0000" + S.fallback;
     if (sent === S.sent && !S.error) return;
     S.sent = sent;
-    if (S.controller) S.controller.abort();
+    if (S.controller) S.controller.abort();  // the server drops it too (it checks between stages)
     var ctl = new AbortController(), seq = ++S.seq;
-    S.controller = ctl; S.firedAt = performance.now(); S.busy = true;
-    status("animating…");
+    S.controller = ctl; S.firedAt = performance.now(); S.busy = true; S.requests++;
+    var keyAt = S.keyAt;  // the last keystroke of the text sent (the benchmark's keystroke-to-frame); 0: no typing
+    S.keyAt = 0;
+    status(t("animating"));
     fetch("/api/animate", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
-                            body: JSON.stringify({ text: text, edits: edits }), signal: ctl.signal })
-      .then(function (r) { return r.json(); })
-      .then(function (data) { if (seq === S.seq) show(data, text, seq); })
-      .catch(function (e) { if (e.name !== "AbortError" && seq === S.seq) fail(String(e)); });
+                            body: JSON.stringify({ text: text, edits: edits, fallback: S.fallback }), signal: ctl.signal })
+      .then(answer)
+      .then(function (data) { if (seq === S.seq) { S.sentKeyAt = keyAt; show(data, text, seq); } })
+      .catch(function (e) { if (e.name !== "AbortError" && seq === S.seq) fail({ code: "network", error: String(e) }); });
   }
 
-  function fail(msg) {
-    S.error = msg; S.busy = false;
-    $("error").textContent = msg;
+  function answer(r) {
+    // the JSON of a response; a refusal without one (a proxy, a crash) as the page's own error
+    return r.json().catch(function () { return { ok: false, code: "other", error: "HTTP " + r.status }; })
+      .then(function (data) {
+        if (r.status === 429) data.code = "busy";
+        return data;
+      });
+  }
+
+  var CODES = { empty: "err_empty", too_long: "err_too_long", no_motion: "err_no_motion", limit: "err_limit",
+                edit: "err_edit", busy: "err_busy", slow: "err_slow", network: "err_network" };
+
+  function fail(data) {
+    // an error in the page's words; what the server said (in the command's English) under "details"
+    var box = $("error");
+    S.error = data.error || data.code || "error"; S.busy = false;
+    while (box.firstChild) box.removeChild(box.firstChild);
     status("");
+    if (data.code === "unknown") return;  // said by marks(): the verb, its stand-in button, similar ones
+    var line = document.createElement("div");
+    line.textContent = data.message || t(CODES[data.code] || "err_other", { n: data.max });
+    box.appendChild(line);
+    if (data.error && !data.message && data.code !== "empty" && data.code !== "busy" && data.code !== "network") {
+      var more = document.createElement("details"), sum = document.createElement("summary"), pre = document.createElement("div");
+      sum.textContent = t("details"); pre.textContent = data.error;
+      more.appendChild(sum); more.appendChild(pre); box.appendChild(more);
+    }
+  }
+
+  function button(label, title, onclick, cls) {
+    var b = document.createElement("button");
+    b.type = "button"; b.textContent = label; if (title) b.title = title; if (cls) b.className = cls;
+    b.addEventListener("click", onclick);
+    return b;
   }
 
   function marks(text, data) {
-    // unknown verbs underlined where they are written, with what may stand in (each previewable);
-    // the analyser's notes (a typo read as meant) on hover; what the animation could not show (a manner
-    // no modifier does, an element that did not fit) in words
+    // unknown verbs underlined where they are written, each with a button playing the text with its stand-in
+    // and the similar verbs to preview; the analyser's notes (a typo read as meant) on hover; what the
+    // animation could not show (a manner no modifier does, an element that did not fit) in words
     var box = $("marks"), unknown = (data && data.unknown) || [], notes = (data && data.notes) || [];
-    var warnings = (data && data.warnings) || [];
+    var warnings = (data && data.warnings) || [], used = (data && data.fallbacks) || [];
     while (box.firstChild) box.removeChild(box.firstChild);
     S.unknown = unknown;
-    if (!unknown.length && !notes.length && !warnings.length) return;
     var spans = unknown.filter(function (u) { return u.span; }).sort(function (a, b) { return a.span[0] - b.span[0]; });
     var at = 0;
     spans.forEach(function (u) {
       if (u.span[0] < at) return;
       box.appendChild(document.createTextNode(text.slice(at, u.span[0])));
       var mark = document.createElement("u");
-      mark.className = "unknown"; mark.title = u.why; mark.textContent = text.slice(u.span[0], u.span[1]);
+      mark.className = "unknown"; mark.textContent = text.slice(u.span[0], u.span[1]);
       box.appendChild(mark);
       at = u.span[1];
     });
     if (spans.length) box.appendChild(document.createTextNode(text.slice(at)));
     unknown.forEach(function (u) {
       var row = document.createElement("div");
-      row.appendChild(document.createTextNode(u.written + ": "));
-      (u.standin ? [u.standin] : []).concat(u.nearest).forEach(function (v, i) {
-        var b = document.createElement("button");
-        b.type = "button"; b.className = i === 0 && u.standin ? "standin" : "nearest";
-        b.textContent = (i === 0 && u.standin ? "stand-in " : "preview ") + v;
-        b.title = i === 0 && u.standin ? u.why : "the database's " + v + ", nearest by meaning (not a stand-in)";
-        b.addEventListener("click", function () { preview(v); });
-        row.appendChild(b);
+      row.className = "missing";
+      row.appendChild(document.createTextNode(t("unknown", { v: u.written }) + " "));
+      if (u.standin) {
+        row.appendChild(button(t("unknown_standin", { v: u.standin }), "", function () {
+          S.fallback = "nearest"; commit(); animate(); }, "standin"));
+      } else row.appendChild(document.createTextNode(t("unknown_none") + " "));
+      u.nearest.forEach(function (v) {
+        row.appendChild(button(t("unknown_nearest", { v: v }), t("unknown_nearest_title"), function () { preview(v); },
+                               "nearest"));
       });
+      row.appendChild(button(t("unknown_library"), "", function () {
+        $("search").value = u.written.slice(0, 1); search(); $("search").focus(); }, "open-library"));
       box.appendChild(row);
     });
+    if (used.length) {
+      var row = document.createElement("div");
+      row.className = "standing-in";
+      row.appendChild(document.createTextNode(used.map(function (f) {
+        return t("standing_in", { w: f.written, v: f.used }); }).join("、") + " "));
+      row.appendChild(button(t("strict_again"), "", function () { S.fallback = "strict"; commit(); animate(); }));
+      box.appendChild(row);
+    }
     if (notes.length) {
       var n = document.createElement("span");
-      n.className = "note"; n.textContent = "read differently from how it is written"; n.title = notes.join("\n");
+      n.className = "note"; n.textContent = t("read_as"); n.title = notes.join("\n");
       box.appendChild(n);
     }
     warnings.forEach(function (w) {
@@ -102,20 +206,21 @@
     // the verb's clip in the view, the text left as it is
     fetch("/api/animate", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
                             body: JSON.stringify({ text: verb + "。" }) })
-      .then(function (r) { return r.json(); })
+      .then(answer)
       .then(function (data) {
-        if (!data.ok) { fail(data.error); return; }
+        if (!data.ok) { fail(data); return; }
         S.previewing = verb;
-        $("view").onload = null;  // a preview is no render of the text
+        $("view").onload = function () { dressed(this.contentWindow); };  // a preview is no render of the text
         $("view3d").hidden = true; $("view").hidden = false;
         $("view").srcdoc = data.html;
-        status("preview: " + verb + " (" + data.table.map(function (e) { return e.clip; }).join(", ") + ")");
+        status(t("preview_of", { v: verb, clips: data.table.map(function (e) { return e.clip; }).join(", ") }));
       });
   }
 
   function show(data, text, seq) {
+    S.last = { text: text, data: data };
     marks(text, data);
-    if (!data.ok) { S.text = text; fail(data.error); return; }
+    if (!data.ok) { S.text = text; fail(data); return; }
     S.error = ""; S.text = text; S.table = data.table;
     $("error").textContent = "";
     $("share").href = "/?text=" + encodeURIComponent(text);
@@ -126,7 +231,7 @@
     // holds one file each, and the page draws them as figures
     var actors = new Set(data.table.map(function (e) { return e.actor; })).size;
     if (data.rig && actors === 1) { skinned(text, seq, data); return; }
-    S.note = data.rig ? " (" + actors + " characters: the figures here, each on your character in the export)" : "";
+    S.note = data.rig ? t("many_actors", { n: actors }) : "";
     if (data.rig) $("builtin").hidden = false;  // the dropped character is still what the export animates
     $("view3d").hidden = true; view.hidden = false;
     view.onload = function () { ready(view, seq, data); };
@@ -138,12 +243,13 @@
     (function wait() {
       var api = w.__t2a;
       if (!api || !api.ready) { if (tries++ < 500) setTimeout(wait, 2); return; }
+      viewerWords(w); api.body = S.character === "body";
       if (S.resumeAt !== null) { api.seek(Math.min(S.resumeAt, api.duration)); api.play(); S.resumeAt = null; }
       w.requestAnimationFrame(function () {  // the first frame of the new animation is on screen
         var ms = performance.now() - S.firedAt;
         S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq; S.busy = false;
-        status(data.duration.toFixed(2) + " s of animation, on screen " + Math.round(ms) + " ms after the pause"
-               + (S.note || ""));
+        if (S.sentKeyAt) S.keyLatencies.push(performance.now() - S.sentKeyAt);
+        status(t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) }) + (S.note || ""));
       });
     })();
   }
@@ -156,8 +262,8 @@
     $("builtin").hidden = false;
     S.resumeAt = null;
     fetch("/api/export", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
-                           body: JSON.stringify({ text: text, edits: editList(), format: "glb" }) })
-      .then(function (r) { if (!r.ok) throw new Error("cannot draw the character"); return r.arrayBuffer(); })
+                           body: JSON.stringify({ text: text, edits: editList(), format: "glb", fallback: S.fallback }) })
+      .then(function (r) { if (!r.ok) throw new Error(t("err_character")); return r.arrayBuffer(); })
       .then(function (buffer) {
         var hidden = $("view").contentWindow && $("view").contentWindow.__t2a;
         if (hidden && hidden.ready) hidden.pause();  // a hidden viewer drawing every frame slows the skinned one
@@ -168,9 +274,10 @@
         if (seq !== S.seq) return;
         var ms = performance.now() - S.firedAt;
         S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq; S.busy = false;
-        status(data.duration.toFixed(2) + " s of animation on your character, on screen " + Math.round(ms) + " ms after the pause");
+        if (S.sentKeyAt) S.keyLatencies.push(performance.now() - S.sentKeyAt);
+        status(t("shown_skinned", { s: data.duration.toFixed(2), ms: Math.round(ms) }));
       })
-      .catch(function (e) { fail(String(e)); });
+      .catch(function (e) { fail({ code: "other", message: t("err_character"), error: String(e) }); });
   }
 
   function svg(tag, attrs, text) {
@@ -208,10 +315,10 @@
                                 "data-verb": e.verb });
         if (e.key) draggable(bar, e, (W - LEFT - 10) / T);
         var how = e.manner ? " · " + e.manner.word + (e.manner.style ? " (" + e.manner.style + ")" : "") : "";
-        bar.appendChild(svg("title", {}, e.id + " " + e.verb + " (" + e.clip + ", " + e.method + ") " +
+        bar.appendChild(svg("title", {}, e.id + " " + e.verb + " (" + e.clip + ", " + t("m_" + e.method) + ") " +
                             e.start.toFixed(2) + "–" + e.end.toFixed(2) + " s" + how));
         g.appendChild(bar);
-        g.appendChild(svg("text", { x: x(e.start) + 6, y: top + 18 }, e.id + " " + e.verb + how + " · " + e.method));
+        g.appendChild(svg("text", { x: x(e.start) + 6, y: top + 18 }, e.id + " " + e.verb + how + " · " + t("m_" + e.method)));
       });
       y += n * ROW;
       data.blends.filter(function (b) { return b.actor === a; }).forEach(function (b) {
@@ -223,8 +330,8 @@
       });
       y += BLEND + 10;
     });
-    g.appendChild(svg("text", { x: LEFT, y: y + 12, "class": "actor" }, "0 s"));
-    g.appendChild(svg("text", { x: W - 60, y: y + 12, "class": "actor" }, T.toFixed(2) + " s"));
+    g.appendChild(svg("text", { x: LEFT, y: y + 12, "class": "actor" }, "0 " + t("seconds")));
+    g.appendChild(svg("text", { x: W - 60, y: y + 12, "class": "actor" }, T.toFixed(2) + " " + t("seconds")));
     g.setAttribute("height", String(y + 20));
   }
 
@@ -252,7 +359,7 @@
         var ed = edit(e);
         if (stretch) ed.duration = Math.max(0.2, Math.round((e.end - e.start + dt) * 100) / 100);
         else ed.shift = Math.round(((ed.shift || 0) + dt) * 100) / 100;
-        animate();
+        commit(); animate();
       }
       bar.addEventListener("pointermove", move);
       bar.addEventListener("pointerup", up);
@@ -263,7 +370,7 @@
     var m = $("method");
     m.value = e.method === "composition" || e.method === "transition" ? e.method : "connection";
     m.style.left = ev.pageX + "px"; m.style.top = ev.pageY + "px"; m.style.display = "block";
-    m.onchange = function () { edit(e).method = m.value; m.style.display = "none"; animate(); };
+    m.onchange = function () { edit(e).method = m.value; m.style.display = "none"; commit(); animate(); };
     m.onblur = function () { m.style.display = "none"; };
     m.focus();
   }
@@ -278,15 +385,16 @@
     $("text").value = text + (/[。！？!?]$/.test(text) || !text ? "" : "。") + more;
     $("add").value = "";
     clearTimeout(S.timer);
-    animate();
+    commit(); animate();
   }
 
   function exportBvh() {
     var text = $("text").value;
     fetch("/api/export", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
-                           body: JSON.stringify({ text: text, edits: editList(), format: $("format").value }) })
+                           body: JSON.stringify({ text: text, edits: editList(), format: $("format").value,
+                                                  fallback: S.fallback }) })
       .then(function (r) {
-        if (!r.ok) return r.json().then(function (d) { fail(d.error || "cannot export"); });
+        if (!r.ok) return answer(r).then(function (d) { fail(d.code === "other" ? { message: t("err_export"), error: d.error } : d); });
         var name = /filename="([^"]+)"/.exec(r.headers.get("Content-Disposition") || "");
         return r.blob().then(function (blob) {
           var a = document.createElement("a");
@@ -294,7 +402,7 @@
           document.body.appendChild(a); a.click(); a.remove();
         });
       })
-      .catch(function (e) { fail(String(e)); });
+      .catch(function (e) { fail({ code: "network", error: String(e) }); });
   }
 
   function search() {
@@ -312,28 +420,175 @@
       });
   }
 
+  // ---- the project: what is kept, saved, opened, undone
+  function project() {
+    return { format: "text2anim-project", version: PROJECT_VERSION, text: $("text").value, edits: editList(),
+             fallback: S.fallback, character: S.character };
+  }
+
+  function restore(p) {
+    $("text").value = p.text || "";
+    S.edits = {};
+    (p.edits || []).forEach(function (e) { S.edits[e.verb + "#" + (e.nth || 0)] = JSON.parse(JSON.stringify(e)); });
+    S.fallback = p.fallback === "nearest" ? "nearest" : "strict";
+    S.character = p.character === "figure" ? "figure" : "body";
+    figure();
+  }
+
+  function figure() {
+    // the character drawn: a body (the default) or the stick figure, in the viewer on screen
+    $("character").value = S.character;
+    var w = $("view").contentWindow, api = w && w.__t2a;
+    if (api && api.ready) api.body = S.character === "body";
+  }
+
+  function commit() {
+    // one step of the history (a pause in typing, a bar moved, a join chosen, a stand-in taken), kept in storage
+    var now = JSON.stringify(project());
+    if (S.history[S.at] === now) return;
+    S.history = S.history.slice(0, S.at + 1);
+    S.history.push(now); S.at = S.history.length - 1;
+    keep(now); buttons();
+  }
+
+  function keep(json) {
+    try { localStorage.setItem(STORE, json); } catch (e) { /* storage off or full: the page still works */ }
+  }
+
+  function buttons() {
+    $("undo").disabled = S.at <= 0;
+    $("redo").disabled = S.at >= S.history.length - 1;
+  }
+
+  function step(by) {
+    var to = S.at + by;
+    if (to < 0 || to >= S.history.length) return;
+    S.at = to; clearTimeout(S.timer);
+    restore(JSON.parse(S.history[to]));
+    keep(S.history[to]); buttons(); animate();
+  }
+
+  function checked(p, name) {
+    // a parsed .t2a.json, or the page's message saying why it is none (the command line refuses it alike)
+    if (!p || typeof p !== "object" || p.format !== "text2anim-project" || typeof p.text !== "string")
+      return t("project_bad", { name: name });
+    if (p.version !== PROJECT_VERSION) return t("project_version", { name: name, v: String(p.version) });
+    if (!Array.isArray(p.edits || [])) return t("project_bad", { name: name });
+    return "";
+  }
+
+  function openProject(file) {
+    file.text().then(function (body) {
+      var p = null;
+      try { p = JSON.parse(body); } catch (e) { p = null; }
+      var why = checked(p, file.name);
+      if (why) { fail({ message: why }); return; }
+      restore(p); commit(); animate();
+      status(t("project_opened", { name: file.name }));
+    });
+  }
+
+  function saveProject() {
+    var blob = new Blob([JSON.stringify(project(), null, 2) + "\n"], { type: "application/json" });
+    var a = document.createElement("a");
+    a.href = URL.createObjectURL(blob); a.download = "project.t2a.json";
+    document.body.appendChild(a); a.click(); a.remove();
+  }
+
+  // ---- dropped files: a BVH for this session (the library only when asked), a character
   function dropped(file) {
     var name = file.name || "", lower = name.toLowerCase(), headers = sends({ "X-Filename": encodeURIComponent(name) });
     var url;
+    if (/\.t2a\.json$|\.json$/.test(lower)) { openProject(file); return; }
     if (/\.bvh$/.test(lower)) {
-      var verb = window.prompt("Which verb does " + name + " show? (e.g. 歩く)", "");
+      var verb = window.prompt(t("drop_verb", { name: name }), "");
       if (!verb) return;
       headers["X-Verb"] = encodeURIComponent(verb);
       url = "/api/import";
     } else if (/\.(glb|vrm)$/.test(lower)) {
       url = "/api/rig";
-    } else { fail(name + ": drop a .bvh clip or a .glb/.vrm character"); return; }
-    $("dropped").textContent = name + ": reading…";
+    } else { fail({ message: t("drop_kind", { name: name }) }); return; }
+    $("dropped").textContent = t("drop_reading", { name: name });
     fetch(url, { method: "POST", headers: headers, body: file })
-      .then(function (r) { return r.json(); })
+      .then(answer)
       .then(function (d) {
-        if (!d.ok) { $("dropped").textContent = ""; fail(d.error); return; }
-        $("dropped").textContent = url === "/api/import"
-          ? name + ": stored as clip " + d.clip + " (" + d.verbs.join("/") + ", " + d.seconds + " s)"
-          : name + ": the animation is shown and exported on this character (" + d.joints + " joints)";
+        $("dropped").textContent = t("drop_hint");
+        if (!d.ok) { fail({ message: t("drop_bad", { name: name }), error: d.error }); return; }
+        if (url === "/api/import") { S.session.push({ file: name, clip: d.clip, verbs: d.verbs, seconds: d.seconds }); session(); }
+        else $("dropped").textContent = t("drop_rig", { name: name, n: d.joints });
         S.sent = ""; animate();  // what plays may have changed
       })
-      .catch(function (e) { fail(String(e)); });
+      .catch(function (e) { fail({ code: "network", error: String(e) }); });
+  }
+
+  function session() {
+    // the clips dropped in this session, each with the explicit step into the user's library
+    var box = $("session");
+    while (box.firstChild) box.removeChild(box.firstChild);
+    S.session.forEach(function (c) {
+      var row = document.createElement("div"), label = document.createElement("span");
+      row.className = "clip"; label.className = "name";
+      label.textContent = c.kept ? t("drop_kept", { name: c.file })
+        : t("drop_session", { name: c.file, verbs: c.verbs.join("/"), s: c.seconds });
+      row.appendChild(label);
+      if (!c.kept) row.appendChild(button(t("drop_keep"), "", function () { keepClip(c); }, "keep"));
+      box.appendChild(row);
+    });
+  }
+
+  function post(url, body) {
+    return fetch(url, { method: "POST", headers: sends({ "Content-Type": "application/json" }), body: JSON.stringify(body) })
+      .then(answer);
+  }
+
+  function keepClip(c) {
+    post("/api/library/keep", { clip: c.clip }).then(function (d) {
+      if (!d.ok) { fail({ message: t("err_other"), error: d.error }); return; }
+      c.kept = true; session(); library();
+    });
+  }
+
+  function library() {
+    // the user's own clips (not the built-in ones): preview, rename, remove
+    fetch("/api/library").then(answer).then(function (d) {
+      var box = $("mine");
+      while (box.firstChild) box.removeChild(box.firstChild);
+      S.mine = (d.clips || []).map(function (c) { return c.name; });
+      if (!d.clips || !d.clips.length) {
+        var p = document.createElement("p"); p.className = "empty"; p.textContent = t("library_empty"); box.appendChild(p);
+        return;
+      }
+      d.clips.forEach(function (c) {
+        var row = document.createElement("div"), label = document.createElement("span");
+        row.className = "clip"; row.setAttribute("data-clip", c.name); label.className = "name";
+        label.textContent = c.name + " — " + c.verbs.join("/") + " (" + c.seconds + " " + t("seconds") + ")";
+        row.appendChild(label);
+        row.appendChild(button(t("lib_preview"), "", function () { previewClip(c.name); }, "preview"));
+        row.appendChild(button(t("lib_rename"), "", function () {
+          var to = window.prompt(t("lib_rename_ask", { name: c.name }), c.name);
+          if (to && to !== c.name) post("/api/library/rename", { clip: c.name, name: to }).then(done);
+        }, "rename"));
+        row.appendChild(button(t("lib_remove"), "", function () {
+          if (window.confirm(t("lib_remove_ask", { name: c.name }))) post("/api/library/remove", { clip: c.name }).then(done);
+        }, "remove"));
+        box.appendChild(row);
+      });
+    });
+    function done(d) {
+      if (!d.ok) fail({ message: t("err_other"), error: d.error });
+      library(); S.sent = ""; animate();
+    }
+  }
+
+  function previewClip(name) {
+    post("/api/clip", { clip: name }).then(function (data) {
+      if (!data.ok) { fail({ message: t("err_other"), error: data.error }); return; }
+      S.previewing = name;
+      $("view").onload = function () { dressed(this.contentWindow); };
+      $("view3d").hidden = true; $("view").hidden = false;
+      $("view").srcdoc = data.html;
+      status(t("preview_of", { v: name, clips: data.verbs.join("/") }));
+    });
   }
 
   document.addEventListener("dragover", function (e) { e.preventDefault(); document.body.classList.add("dragging"); });
@@ -346,15 +601,45 @@
   $("search").addEventListener("input", search);
   $("builtin").addEventListener("click", function () {
     fetch("/api/rig", { method: "DELETE", headers: sends({}) }).then(function () {
-      $("builtin").hidden = true; $("dropped").textContent = ""; S.sent = ""; animate();
+      $("builtin").hidden = true; $("dropped").textContent = t("drop_hint"); S.sent = ""; animate();
     });
   });
-  $("text").addEventListener("input", schedule);
+  // the input method: nothing is sent while a composition is open; the pause counts from its end
+  var box = $("text");
+  box.addEventListener("compositionstart", function () { S.composing = true; clearTimeout(S.timer); });
+  box.addEventListener("compositionend", function () { S.composing = false; S.keyAt = performance.now(); schedule(); });
+  box.addEventListener("input", function (e) {
+    S.keyAt = performance.now();
+    if (!e.isComposing && !S.composing) schedule();
+  });
   $("add-btn").addEventListener("click", append);
-  $("add").addEventListener("keydown", function (e) { if (e.key === "Enter") append(); });
+  $("add").addEventListener("keydown", function (e) { if (e.key === "Enter" && !e.isComposing) append(); });
   $("export").addEventListener("click", exportBvh);
-  $("reset-edits").addEventListener("click", function () { S.edits = {}; animate(); });
-  var start = new URLSearchParams(location.search).get("text");
-  $("text").value = start !== null ? start : "太郎は走って、ボールを蹴る。そして喜ぶ。";
+  $("reset-edits").addEventListener("click", function () { S.edits = {}; commit(); animate(); });
+  $("undo").addEventListener("click", function () { step(-1); });
+  $("redo").addEventListener("click", function () { step(1); });
+  $("save").addEventListener("click", saveProject);
+  $("open").addEventListener("change", function () { if (this.files.length) openProject(this.files[0]); this.value = ""; });
+  $("character").addEventListener("change", function () { S.character = this.value; figure(); commit(); });
+  $("lang").addEventListener("change", function () {
+    S.lang = this.value;
+    try { localStorage.setItem("t2a-studio-lang", S.lang); } catch (e) { /* the switch holds for this page */ }
+    words();
+  });
+  document.addEventListener("keydown", function (e) {
+    if (!(e.ctrlKey || e.metaKey) || e.isComposing || (e.key !== "z" && e.key !== "Z" && e.key !== "y")) return;
+    if (e.target && (e.target.id === "search" || e.target.id === "add")) return;  // their own undo
+    e.preventDefault();
+    step(e.key === "y" || e.shiftKey ? 1 : -1);
+  });
+  window.__studio.project = project;
+  S.lang = language();
+  words();
+  var start = new URLSearchParams(location.search).get("text"), kept = null;
+  try { kept = JSON.parse(localStorage.getItem(STORE) || "null"); } catch (e) { kept = null; }
+  if (start !== null) $("text").value = start;
+  else if (kept && !checked(kept, "")) { restore(kept); status(t("restored")); }
+  else $("text").value = "太郎は走って、ボールを蹴る。そして喜ぶ。";
+  commit();
   animate();
 })();

@@ -89,7 +89,7 @@
       svg.appendChild(m);
       T.markers.push({ el: m, path: it.path, step: it.step, X: X, Y: Y });
     });
-    svg.appendChild(el("text", { x: 8, y: 14, "class": "legend" }, "seen from above: +z ↑, +x ←, " + step + " m grid"));
+    svg.appendChild(el("text", { x: 8, y: 14, "class": "legend" }, window.__t2aWord ? window.__t2aWord("topview", { m: step }) : "seen from above: +z ↑, +x ←, " + step + " m grid"));
     T.shown++;
     place(T.time);
   }
