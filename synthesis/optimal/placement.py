@@ -66,10 +66,6 @@ def alignment(choice: Choice, s0: Found, tr: Motion, tr_contacts: FootContacts, 
 
 #: m: a support foot the locks leave further than this from the next motion's own is re-placed (settle)
 SETTLE = 0.005
-#: m: the most settle lifts or lowers the next motion. Two captures' floors differ by centimetres; a
-#: locked foot left higher than this was not held on the floor (its IK target out of reach, the foot
-#: hanging in the air) and must not carry the next motion up with it (a run into a walk lifted the walk 47 cm).
-MAX_LIFT = 0.05
 
 
 def settle(out: Motion, locks, window: tuple[int, int], plan: Plan) -> Plan | None:
@@ -78,13 +74,13 @@ def settle(out: Motion, locks, window: tuple[int, int], plan: Plan) -> Plan | No
     A foot locked through the blend follows the planted sources' weighted movement (a heel rolling
     off in the first motion, a landing in the next), so where the lock lets it go, after the blend, can
     differ by a few centimetres from where the next motion itself has that foot — and the release would
-    then bend the next motion's leg inside its core. Moving the next motion by that difference lets its own
-    foot take over exactly: a slide on the ground, and a lift or drop where the two clips stand on
-    different floors (captures of two people played on one skeleton: the next clip's feet may float or
-    sink by centimetres, the locked foot stands on the first clip's floor). Connections and transitions only (an adaptation's
-    feet are the first motion's by construction). ``None`` when nothing needs to move, and when the lock
-    left the foot more than :data:`MAX_LIFT` above or below the next motion's own (a foot the lock could not
-    hold on the floor says nothing about where the next motion stands).
+    then bend the next motion's leg inside its core. Moving the next motion by that difference *on the
+    ground* lets its own foot take over: a slide, never a lift or a drop. Every clip stands on one floor
+    (y = 0: the built-in library's and every import's, found from its own contacts), so a locked foot left
+    above or below the next motion's own says how far the lock held it off the floor, not where the next
+    motion stands: lifting the next motion to it floated a walk after a run 2-2.5 cm (CMU pairs, issue 46;
+    47 cm when a lock could not hold a foot down at all). Connections and transitions only (an adaptation's
+    feet are the first motion's by construction). ``None`` when nothing needs to move.
     """
     if plan.adapted is not None or not locks:
         return None
@@ -99,16 +95,13 @@ def settle(out: Motion, locks, window: tuple[int, int], plan: Plan) -> Plan | No
     own = f - plan.inc.offset
     if not 0 <= own < plan.placed.n_frames:
         return None
-    ankle, toe = body_map(out.skeleton).feet[lk.side]
+    ankle = body_map(out.skeleton).feet[lk.side][0]
     at = out[f:f + 1].positions[0]  # the kinematics of that frame alone
     d = at[ankle] - plan.placed.positions[own, ankle]
-    # the height from the foot's lowest point: a locked flat foot against the next clip's raised heel
-    # (a dancer on the ball of the foot) is the same floor, not a sinking clip
-    d[1] = at[[ankle, toe], 1].min() - plan.placed.positions[own, [ankle, toe], 1].min()
-    if np.linalg.norm(d) < SETTLE or abs(d[1]) > MAX_LIFT:
+    d[1] = 0.0  # on the ground (above)
+    if np.linalg.norm(d) < SETTLE:
         return None
     rigid = plan.rigid.then(Rigid(0.0, (float(d[0]), float(d[2]))))
     placed = rigid.apply(plan.inc.motion)
-    placed = placed.replace(root_positions=placed.root_positions + np.array([0.0, d[1], 0.0]))
     info = dict(plan.info, settled_cm=[round(100 * float(x), 2) for x in d])
     return replace(plan, rigid=rigid, placed=placed, info=info)
