@@ -21,6 +21,7 @@ from collections import OrderedDict
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -39,6 +40,15 @@ class _Kept:
 
 _KEPT: OrderedDict[str, _Kept] = OrderedDict()
 _LOCK = threading.Lock()
+
+
+@lru_cache(maxsize=64)
+def _url(db: str | None, env: str | None, data: str | None, home: str | None, cwd: str) -> str:
+    """:func:`motiondb.location.resolve_url` of ``db``, once per argument, environment and working folder (a path
+    resolved on every call was a tenth of a warm plan)."""
+    from text2anim.motiondb.location import resolve_url
+
+    return resolve_url(db)[0]
 
 
 def _file_of(url: str) -> str | None:
@@ -76,12 +86,12 @@ def database(db: MotionDB | str | os.PathLike | None) -> Iterator[MotionDB]:
         motiondb.DBError: the database cannot be opened (nothing is kept then).
     """
     from text2anim.motiondb import MotionDB
-    from text2anim.motiondb.location import resolve_url
 
     if isinstance(db, MotionDB):
         yield db
         return
-    url = resolve_url(db)[0]
+    url = _url(None if db is None else os.fspath(db), os.environ.get("TEXT2ANIM_DB"), os.environ.get("XDG_DATA_HOME"),
+               os.environ.get("HOME"), os.getcwd())
     path = _file_of(url)
     with _LOCK:
         kept = _KEPT.get(url)
