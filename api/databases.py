@@ -34,7 +34,7 @@ KEPT = 4
 @dataclass
 class _Kept:
     db: MotionDB
-    turn: threading.Lock  # one thread at a time uses the database
+    turn: threading.RLock  # one thread at a time uses the database
     file: tuple[int, int] | None  # (device, inode) of an SQLite file when it was opened
 
 
@@ -100,7 +100,7 @@ def database(db: MotionDB | str | os.PathLike | None) -> Iterator[MotionDB]:
             kept = None
         if kept is None:
             opened = MotionDB.open(db)
-            kept = _KEPT[url] = _Kept(opened, threading.Lock(), _identity(path))
+            kept = _KEPT[url] = _Kept(opened, threading.RLock(), _identity(path))
             while len(_KEPT) > KEPT:
                 _close(_KEPT.popitem(last=False)[1])
         _KEPT.move_to_end(url)
