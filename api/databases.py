@@ -19,10 +19,10 @@ import os
 import threading
 from collections import OrderedDict
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from text2anim.motiondb import MotionDB
@@ -34,7 +34,7 @@ KEPT = 4
 @dataclass
 class _Kept:
     db: MotionDB
-    turn: threading.RLock  # one thread at a time uses the database
+    turn: AbstractContextManager[Any]  # an RLock: one thread at a time uses the database
     file: tuple[int, int] | None  # (device, inode) of an SQLite file when it was opened
 
 
