@@ -29,6 +29,7 @@ from text2anim.core.skeleton import Skeleton
 
 if TYPE_CHECKING:
     from text2anim.core.gltf_rig import GltfRig
+    from text2anim.core.soles import Sole
 
 #: ``--units``: metres per file unit.
 UNITS = {"m": 1.0, "cm": 100.0}
@@ -103,6 +104,19 @@ class ExportOptions:
             raise ExportError(f"{path}: --rig reads BVH (.bvh), glTF binary (.glb) and VRM (.vrm) files")
         return read_bvh(path).skeleton
 
+    @cached_property
+    def soles(self) -> dict[str, Sole] | None:
+        """A glTF rig's feet as its mesh has them: ``{"leftFoot"/"rightFoot": Sole}``
+        (:func:`core.soles.sole_lines`), for the retarget to stand them on their soles; ``None`` for a BVH
+        rig or a mesh that does not show its feet."""
+        if self.gltf_rig is None:
+            return None
+        from text2anim.core.soles import sole_lines
+
+        _, roles = rig_roles(self.gltf_rig.skeleton, self.target_map)
+        feet = {f"{s}Foot": (roles[f"{s}Foot"], roles.get(f"{s}Toes", roles[f"{s}Foot"])) for s in ("left", "right")}
+        return sole_lines(self.gltf_rig, feet) or None
+
     def check(self, glb: bool = False) -> "ExportOptions":
         """Read the rig and the map now and place the rig's joints, so a bad rig fails before any work;
         ``glb``: a GLB output is asked for too (``--root-motion`` then needs a glTF rig's own root bone)."""
@@ -126,7 +140,7 @@ def export_motion(motion: Motion, opts: ExportOptions, *, units: bool = True) ->
     from text2anim.core.retarget import retarget
 
     if opts.skeleton is not None:
-        motion = retarget(motion, opts.skeleton, target_map=opts.target_map)
+        motion = retarget(motion, opts.skeleton, target_map=opts.target_map, soles=opts.soles)
     motion = _conventions(motion, opts, opts.target_map if opts.skeleton is not None else None)
     return in_units(motion, opts) if units else motion
 

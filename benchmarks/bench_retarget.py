@@ -29,7 +29,9 @@ A third table retargets the built-in library's animation of a few sentences
 (a temporary database) onto the test rigs of ``tests/rig_builders.py``
 (Mixamo names with an A-pose rest, SMPL, Unreal mannequin, VRM names, and the glTF
 characters: a Mixamo GLB as Blender exports it and a VRM 1.0 avatar), with the
-same error and skating columns (``--no-rigs`` skips it).
+same error and skating columns (``--no-rigs`` skips it). A fourth puts that animation on a Mixamo foot
+with a mesh (its toe bone 40° down), the feet aligned by their bones and by the mesh's soles
+(``core.soles``): the sole's pitch and height on the planted frames.
 """
 from __future__ import annotations
 
@@ -136,6 +138,56 @@ def rig_rows(tmp: Path) -> list[list[str]]:
     return rows
 
 
+def source_pitch(src) -> list[str]:
+    """The built-in body's own feet, for comparison: the toe bone's median pitch on the planted frames above
+    its rest pitch (its rest pose stands flat; + heel down), and the lowest foot point (joints and tips)."""
+    from text2anim.core.bodyparts import body_map
+    from text2anim.core.contacts import detect_contacts
+    from text2anim.core.floor import chain_lowest
+
+    planted, rest, cells = detect_contacts(src), src.skeleton.rest_positions(), []
+    for side, (ankle, toe) in body_map(src.skeleton).feet.items():
+        def pitch(d):
+            return np.degrees(np.arctan2(-d[..., 1], np.hypot(d[..., 0], d[..., 2])))
+        rise = pitch(rest[toe] - rest[ankle]) - pitch(src.positions[:, toe] - src.positions[:, ankle])
+        low = chain_lowest(src, ankle)
+        on = planted.of(side)
+        cells += [f"{np.median(rise[on]):+.1f}", f"{100 * np.median(low[on]):.1f}/{100 * low.min():.1f}"]
+    return cells
+
+
+def sole_rows(tmp: Path) -> list[list[str]]:
+    """The built-in animation on a Mixamo foot whose toe bone points 40° down (ours: 23°), the feet aligned
+    by their bones (as before issue 46's soles) and by the mesh's soles (``core.soles``)."""
+    import text2anim
+    from text2anim.core.contacts import detect_contacts
+    from text2anim.core.retarget import retarget
+    from text2anim.core.soles import sole_pitch, underside_heights
+    from text2anim.export import ExportOptions
+
+    sys.path.insert(0, str(REPO / "tests"))
+    from rig_builders import mixamo_feet_glb
+
+    opts = ExportOptions(rig=mixamo_feet_glb(tmp / "feet.glb"))
+    rows = []
+    for text in SENTENCES:
+        (src,) = text2anim.animate(text, db=str(tmp / "db.sqlite")).motions.values()
+        rows.append([text, "source", *source_pitch(src), ""])
+        for how, soles in (("bone", None), ("sole", opts.soles)):
+            c0 = time.process_time()
+            out = retarget(src, opts.skeleton, soles=soles)
+            cpu = time.process_time() - c0
+            planted = detect_contacts(out)
+            cells = []
+            for role, sole in opts.soles.items():
+                on = planted.of(role[:-len("Foot")])
+                low = underside_heights(out, sole).min(axis=1)
+                cells += [f"{np.median(sole_pitch(out, sole)[on]):+.1f}",
+                          f"{100 * np.median(low[on]):.1f}/{100 * low.min():.1f}"]
+            rows.append([text, how, *cells, f"{1000 * cpu:.0f}"])
+    return rows
+
+
 def table(rows: list[list[str]], head: list[str]) -> str:
     w = [max(len(r[k]) for r in [head, *rows]) for k in range(len(head))]
     return "\n".join(" ".join(c.ljust(w[k]) for k, c in enumerate(r)) for r in [head, *rows])
@@ -165,6 +217,12 @@ def main() -> None:
         with tempfile.TemporaryDirectory() as tmp:
             print(table(rig_rows(Path(tmp)), ["text", "rig", "legs s", "hands cm max/p95", "toes max/p95",
                                               "ankles max/p95", "skate core", "skate gmd", "twist", "cpu ms"]))
+            print("\n## a Mixamo foot on its mesh's soles (tests/rig_builders.mixamo_feet_glb), planted frames\n")
+            print(table(sole_rows(Path(tmp)), ["text", "feet by", "left pitch °", "left sole cm med/min",
+                                               "right pitch °", "right sole cm med/min", "cpu ms"]))
+            print("(pitch: the heel-to-ball line's median rise on the planted frames, + heel down; sole: the "
+                  "underside's lowest point, median on the planted frames / lowest over the motion; source: the "
+                  "built-in body's toe bone against its rest pitch, and its lowest foot joint or tip)")
 
 
 if __name__ == "__main__":

@@ -9,7 +9,7 @@ on the hands: the fingertips 4-5 cm into it) by arm IK, the hand's world
 rotation kept. The ends of the chains are the skeleton's end sites (BVH
 ``End Site``): a tip under the floor is as visible as a joint.
 
-:func:`lift_swings` keeps a swinging foot off the floor: on frames where a
+:func:`clear_swings` keeps a swinging foot off the floor: on frames where a
 foot is not in contact and its ball moves faster than the contact detector's
 speed (:data:`core.contacts.SPEED_THRESHOLD`), the ball is kept at least
 :data:`SWING_CLEARANCE` above its planted height (:data:`core.floor.FOOT_CLEARANCE`),
@@ -106,7 +106,7 @@ def envelope(deficit: np.ndarray, n: int) -> np.ndarray:
                              truncate=2.0)
 
 
-def lift_swings(motion: Motion) -> Motion:
+def clear_swings(motion: Motion) -> Motion:
     """``motion`` with no swinging foot's ball under its planted height + :data:`SWING_CLEARANCE` (docstring)."""
     contacts = detect_contacts(motion)
     bm = body_map(motion.skeleton)

@@ -68,6 +68,7 @@ class GltfRig:
         scale: each joint's world scale (uniform), ``(J,)``.
         humanoid: ``{role: joint name}`` from the VRM humanoid extension (empty for a plain glTF).
         vrm: ``"1.0"``, ``"0.x"`` or ``None``.
+        node_world: every node's rest world matrix, ``(N, 4, 4)`` (the mesh's bind pose: :mod:`core.gltf_mesh`).
     """
 
     path: Path
@@ -80,6 +81,7 @@ class GltfRig:
     scale: np.ndarray
     humanoid: dict[str, str]
     vrm: str | None
+    node_world: np.ndarray
 
 
 def _bad(path: Path, why: str) -> RigError:
@@ -249,7 +251,7 @@ def read_gltf_rig(path: str | os.PathLike) -> GltfRig:
     if blob == b"" and gl.get("buffers"):
         raise _bad(path, "keeps its data in external files; export it as a self-contained .glb")
     return GltfRig(path, gl, blob, skel, tuple(order), np.array(rw), world[root_parent] if root_parent >= 0
-                   else np.eye(4), np.array(sc), humanoid, vrm)
+                   else np.eye(4), np.array(sc), humanoid, vrm, world)
 
 
 def _node_rotations(rig: GltfRig, motion: Motion) -> np.ndarray:

@@ -14,6 +14,13 @@ Steps, each vectorised over frames (one numpy step per joint):
    drives an A-pose target, and a target whose bones point other ways at rest
    is handled the same way. Hips: up (hips to head) and left (right hip to
    left hip). A leaf role (hand, head, toes) takes its parent role's ``A``.
+   A glTF character's foot whose mesh shows its sole (:mod:`core.soles`) is
+   turned by the sole instead: the sole's heel-to-ball line onto the source
+   foot's level forward, so a foot the source plants flat stands flat on the
+   target's own shoes, whatever the angle of its toe bone (a Mixamo foot,
+   whose toe joint is 40° below the ankle's forward, stood 16-20° heel-down
+   by its bone); its toe joint is planted at the mesh's own height above the
+   sole, and the sole is kept out of the floor (:func:`core.soles.clear_soles`).
 2. **World rotations.** BVH rest rotations are the identity, so the source
    joint's world rotation ``G_s`` is its rotation relative to its rest pose;
    the target joint gets ``G_t = G_s A_r`` and its local rotation follows from
@@ -60,6 +67,7 @@ Units: metres, Y up; rotations ``(T, J, 4)`` scipy quaternions ``(x, y, z, w)``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.ndimage import maximum_filter1d, uniform_filter1d
@@ -68,8 +76,14 @@ from scipy.spatial.transform import Rotation
 from .fk import matrix_to_quat
 from .ik import set_world_rotation, two_bone_ik
 from .motion import Motion
+from .floor import FOOT_CLEARANCE
 from .rigs import ROLE_PARENT, ROLES, RigError, rig_roles
 from .skeleton import Skeleton
+
+from .soles import clear_soles
+
+if TYPE_CHECKING:
+    from .soles import Sole
 
 #: The role a role's bone points at, in order of preference (the first placed in both rigs).
 AIM = {
@@ -184,8 +198,12 @@ def _align(dst: list[np.ndarray], src: list[np.ndarray]) -> Rotation:
     return rot
 
 
-def rest_alignment(source: Skeleton, target: Skeleton, mapping: Mapping) -> dict[str, np.ndarray]:
-    """``{role: A_r (3, 3)}`` turning the target's rest bone onto the source's (step 1)."""
+def rest_alignment(source: Skeleton, target: Skeleton, mapping: Mapping,
+                   soles: dict[str, Sole] | None = None) -> dict[str, np.ndarray]:
+    """``{role: A_r (3, 3)}`` turning the target's rest bone onto the source's (step 1); a foot whose sole
+    ``soles[role]`` (:func:`core.soles.sole_lines`) is known is turned by its sole instead
+    (:func:`_sole_alignment`)."""
+    soles = soles or {}
     ps, pt = source.rest_positions(), target.rest_positions()
     up_s, left_s, fwd_s = _body_axes(source, mapping.source)
     up_t, left_t, fwd_t = _body_axes(target, mapping.target)
@@ -196,6 +214,10 @@ def rest_alignment(source: Skeleton, target: Skeleton, mapping: Mapping) -> dict
         parent = ROLE_PARENT[role]
         while parent not in out:
             parent = ROLE_PARENT[parent]
+        if role in soles:
+            ahead = fwd_s if aim is None else ps[mapping.source[aim]] - ps[mapping.source[role]]
+            out[role] = _sole_alignment(ahead, soles[role].line)
+            continue
         if aim is None:
             out[role] = out[parent]
             continue
@@ -206,6 +228,16 @@ def rest_alignment(source: Skeleton, target: Skeleton, mapping: Mapping) -> dict
             continue
         out[role] = _align([_unit(ds), fwd_s], [_unit(dt), fwd_t]).as_matrix()
     return out
+
+
+def _sole_alignment(ahead: np.ndarray, sole: np.ndarray) -> np.ndarray:
+    """A foot's ``A_r`` ``(3, 3)`` that lays the target's sole line ``sole`` (heel to ball, rest pose) level
+    along ``ahead``'s horizontal (the source foot's forward at rest, where a BVH body stands flat: the
+    built-in body's planted feet keep its rest pitch, 23°), its normal up: a foot the source plants flat
+    stands flat on the target's own soles, whatever the angle of its toe bone."""
+    up = np.array([0.0, 1.0, 0.0])
+    level = _unit(ahead - up * (ahead @ up))
+    return _align([level, up], [sole, _unit(up - sole * (sole @ up))]).as_matrix()
 
 
 def _world_to_local(target: Skeleton, world: dict[int, np.ndarray], T: int) -> np.ndarray:
@@ -235,7 +267,8 @@ def _hinge(target: Skeleton, chain: tuple[int, int, int], forward: np.ndarray, l
 
 
 def retarget(motion: Motion, target: Skeleton, *, source_map: dict[str, str] | None = None,
-             target_map: dict[str, str] | None = None, replant: bool = True) -> Motion:
+             target_map: dict[str, str] | None = None, replant: bool = True,
+             soles: dict[str, Sole] | None = None) -> Motion:
     """``motion`` played on ``target`` (see the module docstring for the method).
 
     Args:
@@ -243,11 +276,14 @@ def retarget(motion: Motion, target: Skeleton, *, source_map: dict[str, str] | N
         target: the skeleton to carry it onto (its rest pose in any of T- or A-pose).
         source_map, target_map: ``{role: joint name}`` over the known rigs (``--map``).
         replant: re-place ankles and wrists on the scaled source's by IK (step 4).
+        soles: ``{"leftFoot"/"rightFoot": Sole}`` the target's soles from its mesh
+            (:func:`core.soles.sole_lines`): those feet are aligned by their soles (step 1) and planted
+            with their soles on the floor (step 4).
 
     Raises :class:`core.rigs.RigError` when a skeleton's roles cannot be placed.
     """
     mapping = map_skeletons(motion.skeleton, target, source_map, target_map)
-    A = rest_alignment(motion.skeleton, target, mapping)
+    A = rest_alignment(motion.skeleton, target, mapping, soles)
     T = motion.n_frames
     Gs = motion.pose.rotations
     world = {mapping.target[r]: Gs[:, mapping.source[r]] @ A[r] for r in mapping.roles}
@@ -268,7 +304,9 @@ def retarget(motion: Motion, target: Skeleton, *, source_map: dict[str, str] | N
         trans[:, hips] = hips_pos - root  # every joint above the hips sits at rest, unrotated
     out = Motion(target, motion.fps, root, rots, trans)
     if replant and T:
-        out = _replant(out, motion, mapping, A)
+        out = _replant(out, motion, mapping, A, soles or {})
+    if soles and T:
+        out = clear_soles(out, soles)
     return out
 
 
@@ -337,8 +375,12 @@ def foot_height(y: np.ndarray, s: float) -> np.ndarray:
     return w * kept + (1.0 - w) * s * y
 
 
-def _limb_goals(out: Motion, source: Motion, mapping: Mapping, world: dict[str, np.ndarray]):
-    """``[(limb, chain (3,), end-joint goal (T, 3), end world rotation (T, 3, 3))]`` of step 4."""
+def _limb_goals(out: Motion, source: Motion, mapping: Mapping, world: dict[str, np.ndarray],
+                soles: dict[str, Sole]):
+    """``[(limb, chain (3,), end-joint goal (T, 3), end world rotation (T, 3, 3))]`` of step 4; a foot with a
+    known sole has its toe joint raised or lowered by how far the mesh's toe joint stands above its sole
+    (``Sole.toe_height``) rather than :data:`core.floor.FOOT_CLEARANCE`, so that sole, not an assumed
+    one, stands on the floor."""
     src_pos = source.positions
     rest_t = out.skeleton.rest_positions()
     lift = ankle_height(out.skeleton, mapping.target) - mapping.scale * ankle_height(source.skeleton, mapping.source)
@@ -358,9 +400,12 @@ def _limb_goals(out: Motion, source: Motion, mapping: Mapping, world: dict[str, 
             foot = rest_t[mapping.target[toes]] - rest_t[chain[2]]
             toe = mapping.scale * src_pos[:, mapping.source[toes]]
             toe[:, 1] = foot_height(src_pos[:, mapping.source[toes], 1], mapping.scale)
+            if roles[2] in soles:
+                toe[:, 1] += soles[roles[2]].toe_height - foot_height(np.array([FOOT_CLEARANCE]), mapping.scale)[0]
             goal = toe - end_world @ foot
         elif name.endswith("leg"):  # no toes: the target's own ankle height above its sole
-            goal[:, 1] += lift
+            goal[:, 1] += lift if roles[2] not in soles else soles[roles[2]].toe_height - mapping.scale * (
+                ankle_height(source.skeleton, mapping.source) + FOOT_CLEARANCE)
         goals.append((name, chain, goal, end_world))
     return goals
 
@@ -416,13 +461,14 @@ def soft_reach(root: np.ndarray, goal: np.ndarray, length: float) -> np.ndarray:
     return root + v * (soft / np.maximum(d, 1e-12))[:, None]
 
 
-def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndarray]) -> Motion:
+def _replant(out: Motion, source: Motion, mapping: Mapping, A: dict[str, np.ndarray],
+             soles: dict[str, Sole]) -> Motion:
     """Step 4: hips lowered where a leg cannot reach, chest and shoulders aimed, ankles and wrists onto the
     scaled source's by IK, their world rotations restored."""
     _, _, fwd_t = _body_axes(out.skeleton, mapping.target)
     Gs = source.pose.rotations
     world = {r: Gs[:, mapping.source[r]] @ A[r] for r in mapping.roles}
-    goals = _limb_goals(out, source, mapping, world)
+    goals = _limb_goals(out, source, mapping, world, soles)
     out = _drop_hips(out, [g for g in goals if g[0].endswith("leg")], mapping.target["hips"])
     out = _aim_torso(out, source, mapping, world)
     for name, chain, goal, end_world in goals:

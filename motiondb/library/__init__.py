@@ -27,7 +27,7 @@ first run generates nothing. Generating (:func:`build_all`) goes:
    stands. Knees and hands keyed onto the floor (kneeling, lying) then rest
    with their joint centres 1.8 cm higher too, 5-7 cm up: a knee's or wrist's
    own thickness. Swinging feet keep the clearance every output keeps
-   (:func:`core.clearance.lift_swings`), and no joint or end site (a toe
+   (:func:`core.clearance.clear_swings`), and no joint or end site (a toe
    tip, a fingertip) goes under the floor (:func:`core.clearance.clear_floor`).
 
 A clip declared for the right side (``body_part="right_arm"``) serves a
@@ -133,7 +133,7 @@ def _frame_plants(clip: ClipData, t_first: float, h: float, t_last: float) -> li
 
 def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantReport | None]:
     """Generate one clip's motion at ``fps`` (cyclic clips: an exact whole number of frames per cycle)."""
-    from text2anim.core.clearance import clear_floor, lift_swings
+    from text2anim.core.clearance import clear_floor, clear_swings
     from text2anim.core.floor import shifted
 
     from .keyframe_curves import curves_to_motion, sample_curves
@@ -162,7 +162,7 @@ def build_clip(clip: ClipData, poses: dict, fps: float) -> tuple[Motion, PlantRe
     motion = apply_reach(motion, clip.raw.get("reach", {}), times, clip.name)
     if margin:
         motion = motion.frames(margin, margin + n)
-    return clear_floor(lift_swings(shifted(motion, SHOE_SOLE))), report
+    return clear_floor(clear_swings(shifted(motion, SHOE_SOLE))), report
 
 
 @lru_cache(maxsize=8)

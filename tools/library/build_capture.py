@@ -17,7 +17,7 @@ For every take named in the cut list (each file read once), then every clip cut 
 4. resample to 30 fps (slerp), give swinging feet back the capture's own clearance
    (:func:`core.clearance.keep_clearance`: the character's longer foot points lower), hold planted feet
    still, keep swinging feet clear of the floor and feet, hands and their tips above it
-   (:func:`feet.lock_feet`, :func:`core.clearance.lift_swings`, :func:`core.clearance.clear_floor`);
+   (:func:`feet.lock_feet`, :func:`core.clearance.clear_swings`, :func:`core.clearance.clear_floor`);
 5. turn it about +Y and move it so it starts at the origin facing +Z (``face = "travel"``:
    its travel points +Z);
 6. a looping clip has its last ``blend`` seconds blended into the frames before the cut, so
@@ -49,7 +49,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from text2anim.core.bvh import read_bvh
-from text2anim.core.clearance import clear_floor, keep_clearance, lift_swings
+from text2anim.core.clearance import clear_floor, keep_clearance, clear_swings
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.easing import smoothstep
 from text2anim.core.floor import place_on_floor
@@ -175,7 +175,7 @@ def spot_loop(take: Motion, m: Motion, pre: int, j0: int, j1: int) -> Motion:
     lead = lead.replace(root_positions=lead.root_positions + start)  # turned about the cycle's start, left in place
     m = m.replace(root_positions=np.concatenate([lead.root_positions, m.root_positions[pre:]]),
                   rotations=np.concatenate([lead.rotations, m.rotations[pre:]]))
-    return lift_swings(lock_feet(blend_loop(m, pre, None)))
+    return clear_swings(lock_feet(blend_loop(m, pre, None)))
 
 
 def repeat_cycle(m: Motion, cut: Cut) -> Motion:
@@ -229,9 +229,9 @@ def cut_clip(take: Motion, captured: Motion, cut: Cut) -> Motion:
     m = keep_clearance(src.frames(i0, i1).resample(FPS), ref.frames(i0, i1).resample(FPS))
     if cut.mime:
         m = mime_in_place(m)
-    m = clear_floor(lift_swings(lock_feet(m)))
+    m = clear_floor(clear_swings(lock_feet(m)))
     if cut.cycle is not None:
-        m = lift_swings(lock_feet(repeat_cycle(m, cut)))
+        m = clear_swings(lock_feet(repeat_cycle(m, cut)))
     if cut.loop == "spot":
         m = spot_loop(take, m, pre, _frames(t0, take.fps), i1)
     elif cut.loop:
@@ -239,7 +239,7 @@ def cut_clip(take: Motion, captured: Motion, cut: Cut) -> Motion:
         if cut.loop == "stride":  # one cycle's travel: from the cycle's first frame to the frame after it
             root = take.root_positions
             travel = root[i1, [0, 2]] - root[_frames(t0, take.fps), [0, 2]]
-        m = lift_swings(lock_feet(blend_loop(m, pre, travel)))  # the blend moved a planted foot by the frames' difference
+        m = clear_swings(lock_feet(blend_loop(m, pre, travel)))  # the blend moved a planted foot by the frames' difference
     return face(m, cut.face)
 
 
