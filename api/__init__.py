@@ -31,17 +31,15 @@ def plan(text: str, db: MotionDB | str | os.PathLike | None = None, *, fps: floa
     """Analyse ``text`` and build its motion time table with clips from ``db``.
 
     ``db`` is a :class:`motiondb.MotionDB`, a database URL or path, or ``None``
-    for the default database (created with the built-in library on first use).
+    for the default database (created with the built-in library on first use); a URL,
+    path or the default is opened once and kept open for later calls (:mod:`text2anim.databases`).
     The arguments are checked as :func:`animate` checks them (:mod:`text2anim.limits`).
     """
-    from text2anim.motiondb import MotionDB
-
+    from .databases import database
     from .planning import plan_text
 
     fps, max_seconds, _ = limits.check_options(text, db, fps, max_seconds, skip_unknown=skip_unknown, fallback=fallback)
-    if isinstance(db, MotionDB):
-        return plan_text(text, db, fps=fps, skip_unknown=skip_unknown, fallback=fallback, max_seconds=max_seconds)
-    with MotionDB.open(db) as opened:
+    with database(db) as opened:
         return plan_text(text, opened, fps=fps, skip_unknown=skip_unknown, fallback=fallback,
                          max_seconds=max_seconds)
 
@@ -54,7 +52,8 @@ def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: f
 
     Args:
         db: a :class:`motiondb.MotionDB`, a database URL or SQLite path, or
-            ``None`` for the default database (the built-in library on first use).
+            ``None`` for the default database (the built-in library on first use); a URL,
+            path or the default is opened once and kept open for later calls (:mod:`text2anim.databases`).
         fps: output frame rate, 1 to 240 frames per second.
         skip_unknown: drop motions whose verb the database lacks instead of failing.
         fallback: ``nearest`` animates such a motion with the database verb nearest in
@@ -76,9 +75,9 @@ def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: f
             more than the limits allow (``ValueError``), checked before any work starts; and
             the stages' own errors (``ValueError`` too) for a text they cannot serve.
     """
-    from text2anim.motiondb import MotionDB
     from text2anim.synthesis.registry import check_method
 
+    from .databases import database
     from .pipeline import Request, Work, animation, run
 
     fps, max_seconds, smoothness = limits.check_options(text, db, fps, max_seconds, smoothness, fallback,
@@ -87,12 +86,8 @@ def animate(text: str, *, db: MotionDB | str | os.PathLike | None = None, fps: f
         raise limits.InputTypeError(f"blend must be a str, not {type(blend).__name__}")
     check_method(blend)
     request = Request(text, fps, skip_unknown, fallback, max_seconds, tuple(edits), blend, smoothness, lock_feet, sway)
-    opened = db if isinstance(db, MotionDB) else MotionDB.open(db)
-    try:
+    with database(db) as opened:  # kept open for the next call with the same URL (text2anim.databases)
         work = run(Work(request, opened), until="tracks")
-    finally:
-        if opened is not db:
-            opened.close()
     return animation(run(replace(work, db=None), after="tracks"))
 
 

@@ -104,6 +104,20 @@ class UnknownVerbsError(UnknownVerbError):
             msg += "; nothing was animated in place of a verb no clip does"
         Exception.__init__(self, msg)
 
+    def __str__(self) -> str:
+        return self.args[0]
+
+    def __reduce__(self):  # pickled as its message and fields (its own constructor takes the missing verbs)
+        return _restored, (type(self), self.args, self.__dict__)
+
+
+def _restored(cls: type[UnknownVerbsError], args: tuple, fields: dict) -> UnknownVerbsError:
+    """An :class:`UnknownVerbsError` unpickled: its message and fields as they were."""
+    err = cls.__new__(cls)
+    Exception.__init__(err, *args)
+    err.__dict__.update(fields)
+    return err
+
 
 def _written(spec: MotionSpec) -> str:
     return phrase_sense.asked(spec)

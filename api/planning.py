@@ -51,21 +51,26 @@ def plan_text(text: str, db: MotionDB, *, fps: float = 30.0, skip_unknown: bool 
 
 def _plan(text: str, db: MotionDB, fps: float, skip_unknown: bool, fallback: str, max_seconds: float,
           edits: tuple = ()) -> Planned:
-    from . import fallback as _fallback
-    from .edits import apply_edits
+    analysis = nlp.analyze(text)
+    if edits:  # the studio's timeline; a command plans the text as written, without loading the edits
+        from .edits import apply_edits
 
-    analysis = apply_edits(nlp.analyze(text), edits)
+        analysis = apply_edits(analysis, edits)
     limits.check_analysis(analysis, max_seconds)
     analysis = _cast(analysis, db)
     unknown = unknown_motions(analysis, db)
     skipped: tuple[str, ...] = ()
     subs: tuple = ()
     if unknown and fallback == "nearest":
-        analysis, subs = _fallback.substitute(analysis, unknown, db)
+        from .fallback import substitute
+
+        analysis, subs = substitute(analysis, unknown, db)
         unknown = {}
     if unknown:
         if not skip_unknown:
-            raise _fallback.unknown_error(analysis, unknown, db)
+            from .fallback import unknown_error
+
+            raise unknown_error(analysis, unknown, db)
         skipped = tuple(m.verb for m in analysis.motions if m.id in unknown)
         analysis = without(analysis, set(unknown))
         if not analysis.motions:

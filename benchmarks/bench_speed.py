@@ -9,9 +9,14 @@ and vary with the load (the load average is printed at start and end).
 
 Rows (goal in brackets, from the issue):
 
-- text -> BVH, 3 motions, warm API (``animate`` + ``format_bvh``), optimal and constraint [<= 30 ms];
+- text -> BVH, 3 motions, warm API (``animate`` + ``format_bvh``): the database given by URL as the README shows
+  it, then an open ``MotionDB``, optimal and constraint [<= 30 ms];
+- planning: sentences per CPU second, ``text2anim.plan(text, url)``, refusals included [>= 1,000];
 - ``text2anim TEXT -o x.bvh``, whole process, seeded database [<= 0.5 s];
 - ``text2anim plan TEXT``, whole process [<= 0.3 s];
+- peak resident memory of a fresh process animating the seed sentence [<= 100 MB];
+- issue 41's long texts (a run, then 3秒後に歩く。 n - 1 times; ``--long 8 16 32``), each in a fresh process: CPU,
+  wall, peak memory [a few seconds, well under 1 GB, linear in motions];
 - first run on an empty database: a new process opening a new file (create + seed) [<= 1 s];
   whole processes run with their bytecode cached (as installed); the CPU of the first two is split into
   interpreter start-up, the imports of numpy, SQLAlchemy, scipy, fugashi, then the rest (our modules and
@@ -103,6 +108,11 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
     from text2anim.output.bvh_write import format_bvh
 
     url = f"sqlite:///{tmp}/motions.sqlite"
+    # as the README shows the API: the database named by its URL (kept open between calls since issue 43)
+    animate(TEXT3, db=url)
+    cpu, wall = median_timed(lambda: [format_bvh(m) for m in animate(TEXT3, db=url).motions.values()], repeat)
+    row("text -> BVH, 3 motions, warm API, db=URL (optimal)", ms(cpu), ms(wall), "<= 30 ms")
+    planning_rate_row(url, repeat)
     db = MotionDB.open(url)
     animate(TEXT3, db=db)  # warm: analyser, caches
     for blend in ("optimal", "constraint"):
@@ -178,6 +188,61 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
         row(f"synthesis real-time factor ({method}, {len(tracks)} sentences)", f"{seconds / cpu:.0f}x",
             f"{seconds / wall:.0f}x", ">= 500x")
     db.close()
+
+
+def planning_rate_row(url: str, repeat: int) -> None:
+    """Sentences planned per CPU second, ``text2anim.plan(text, url)`` as the README shows it, over the first
+    200 lines of the analysis corpus (refusals included: a refused line costs what it cost to refuse)."""
+    import json
+
+    import text2anim
+
+    corpus = REPO / "tests" / "corpus" / "nlp_corpus.jsonl"
+    lines = [json.loads(x)["text"] for x in corpus.read_text(encoding="utf-8").splitlines() if x.startswith("{")][:200]
+    refused = [0]
+
+    def run():
+        refused[0] = 0
+        for text in lines:
+            try:
+                text2anim.plan(text, url)
+            except ValueError:
+                refused[0] += 1
+    run()
+    cpu, wall = median_timed(run, max(3, repeat // 2))
+    row(f"planning, {len(lines)} corpus lines ({refused[0]} refused), db=URL", f"{len(lines) / cpu:,.0f} /CPU s",
+        f"{len(lines) / wall:,.0f} /s", ">= 1,000 /CPU s")
+
+
+#: prints the process's peak resident memory, KiB: ``VmHWM``, which ``exec`` starts afresh (``ru_maxrss`` keeps
+#: the peak of the process that forked it, here the benchmark's own)
+PEAK_KIB = "print(next(int(x.split()[1]) for x in open('/proc/self/status') if x.startswith('VmHWM')))"
+
+
+def peak_row(tmp: Path, env: dict) -> None:
+    """Peak resident memory of a fresh process animating the seed sentence to BVH (:data:`PEAK_KIB`)."""
+    code = f"import sys, text2anim\nanim = text2anim.animate(sys.argv[1])\nanim.save_bvh(sys.argv[2])\n{PEAK_KIB}"
+    peaks = [int(subprocess.run([sys.executable, "-c", code, TEXT3, str(tmp / "peak.bvh")], env=env, cwd=str(tmp),
+                                capture_output=True, text=True, check=True).stdout.split()[-1]) for _ in range(3)]
+    row("peak memory, seed sentence, fresh process", f"{statistics.median(peaks) / 1024:.0f} MB", "-", "<= 100 MB")
+
+
+#: issue 41's long text: a run, then (n - 1) times 3秒後に歩く。
+def long_text(n: int) -> str:
+    return "太郎は走る。" + "3秒後に歩く。" * (n - 1)
+
+
+def long_rows(tmp: Path, env: dict, sizes: list[int]) -> None:
+    """Issue 41's long texts, each animated in a fresh process: CPU, wall and peak resident memory."""
+    code = ("import sys, time, text2anim\nc = time.process_time()\nanim = text2anim.animate(sys.argv[1])\n"
+            f"print(time.process_time() - c)\n{PEAK_KIB}")
+    for n in sizes:
+        w = time.perf_counter()
+        out = subprocess.run([sys.executable, "-c", code, long_text(n)], env=env, cwd=str(tmp), capture_output=True,
+                             text=True, check=True).stdout.split()
+        wall = time.perf_counter() - w
+        row(f"long text, {n} motions ({len(long_text(n))} chars), fresh process",
+            f"{float(out[-2]):.2f} s; {int(out[-1]) / 1024:.0f} MB", f"{wall:.2f} s", "a few s, << 1 GB, linear")
 
 
 def bytecode_env(tmp: Path) -> dict:
@@ -258,6 +323,7 @@ def process_rows(tmp: Path, repeat: int) -> None:
     for key, argv in (("animate", [TEXT3, "-o", str(tmp / "x.bvh")]), ("plan", ["plan", TEXT3])):
         split = cpu_split(loaded_modules(timed_exe + argv, env, str(tmp)), med(key)[0], env, str(tmp), runs)
         row(f"  split of `{key}` (CPU s)", ", ".join(f"{n} {c:.2f}" for n, c in split), "-", "")
+    peak_row(tmp, env)
 
 
 # ----------------------------------------------------------------- DB search
@@ -387,14 +453,15 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--db-sizes", type=int, nargs="+", default=[1000, 100000])
     ap.add_argument("--queries", type=int, default=300)
-    ap.add_argument("--only", nargs="+", choices=["pipeline", "process", "search", "bvh", "nlp"])
+    ap.add_argument("--long", type=int, nargs="+", default=[8, 16, 32], help="motions of the long texts")
+    ap.add_argument("--only", nargs="+", choices=["pipeline", "process", "long", "search", "bvh", "nlp"])
     args = ap.parse_args(argv)
-    only = set(args.only or ["pipeline", "process", "search", "bvh", "nlp"])
+    only = set(args.only or ["pipeline", "process", "long", "search", "bvh", "nlp"])
     load0 = os.getloadavg()
     print(f"load average at start: {load0[0]:.1f} ({os.cpu_count()} cores)")
     print(f"  {'figure':52} {'CPU':>22} {'wall':>22}  goal")
     with tempfile.TemporaryDirectory(prefix="t2a-speed-") as tmp:
-        if "pipeline" in only or "process" in only:
+        if only & {"pipeline", "process", "long"}:
             from text2anim.motiondb import MotionDB
 
             MotionDB.open(f"sqlite:///{tmp}/motions.sqlite").close()
@@ -402,6 +469,9 @@ def main(argv=None) -> int:
             pipeline_rows(Path(tmp), args.repeat)
         if "process" in only:
             process_rows(Path(tmp), args.repeat)
+        if "long" in only:
+            long_rows(Path(tmp), {**bytecode_env(Path(tmp)), "TEXT2ANIM_DB": f"sqlite:///{tmp}/motions.sqlite"},
+                      args.long)
     if "search" in only:
         search_rows(args.db_sizes, args.queries)
     if "bvh" in only:

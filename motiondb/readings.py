@@ -103,14 +103,26 @@ def nearest(word: str, candidates: dict[str, str], n: int = 5, cutoff: float = 0
     r = reading(word)
     w = normalize(word)
     scored = []
+    by_reading = difflib.SequenceMatcher(None, r)  # the word on the first side, each candidate on the second
+    by_word = difflib.SequenceMatcher(None, w)
     for cand, cand_reading in candidates.items():
-        sm = difflib.SequenceMatcher(None, r, cand_reading)
-        score = sm.ratio() if r and cand_reading else 0.0
-        score = max(score, difflib.SequenceMatcher(None, w, cand).ratio())
+        # a ratio whose upper bound (quick_ratio) is under the cutoff cannot be the score of a kept word: the
+        # score is the larger ratio, and a kept one's is at least the cutoff (the same words and scores)
+        score = _ratio(by_reading, cand_reading, cutoff) if r and cand_reading else 0.0
+        score = max(score, _ratio(by_word, cand, cutoff))
         if score >= cutoff:
             scored.append((-score, cand_reading, cand))
     scored.sort()
     return [c for _, _, c in scored[:n]]
+
+
+def _ratio(sm: difflib.SequenceMatcher, b: str, cutoff: float) -> float:
+    """``sm``'s ratio of its first string against ``b``, or 0 when even its upper bounds are under ``cutoff``
+    (as :func:`difflib.get_close_matches` skips them)."""
+    sm.set_seq2(b)
+    if sm.real_quick_ratio() < cutoff or sm.quick_ratio() < cutoff:
+        return 0.0
+    return sm.ratio()
 
 
 _GOJUON = ("a i u e o ka ki ku ke ko sa shi su se so ta chi tsu te to na ni nu ne no "

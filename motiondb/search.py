@@ -273,8 +273,8 @@ def unknown_verb_error(s: Connection, verb: str) -> UnknownVerbError:
     rows = s.execute(select(verbs.lemma, verbs.reading)
                      .order_by(binary_order(s, verbs.reading), binary_order(s, verbs.lemma))).all()
     cands = {lemma: r for lemma, r in rows}
-    near = nearest(verb, cands, n=5)
-    return UnknownVerbError(verb, [(lemma, cands[lemma]) for lemma in near], n_verbs=len(cands))
+    return UnknownVerbError(verb, lambda: [(lemma, cands[lemma]) for lemma in nearest(verb, cands, n=5)],
+                            n_verbs=len(cands))
 
 
 def near_clip_names(s: Connection, name: str) -> list[str]:

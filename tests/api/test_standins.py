@@ -98,3 +98,16 @@ def test_every_built_in_action_is_a_known_wordnet_verb_sense(library_db):
         actions = {c.name: c.description.actions for c in db.clips()}
     assert all(senses.known(a) for acts in actions.values() for a in acts)
     assert sum(1 for acts in actions.values() if acts) >= 100  # most clips stand in for their actions
+
+
+def test_a_refused_text_pickles_with_its_message(library_db):
+    """A batch worker's refusal reaches the runner pickled, message and missing verbs as they were."""
+    import pickle
+
+    from text2anim.fallback import UnknownVerbsError
+
+    with pytest.raises(UnknownVerbsError) as err:
+        text2anim.plan("花子は腰を回す。", library_db)
+    back = pickle.loads(pickle.dumps(err.value))
+    assert type(back) is UnknownVerbsError and str(back) == str(err.value) and "腰を回す" in str(back)
+    assert back.missing == err.value.missing and back.verb == err.value.verb

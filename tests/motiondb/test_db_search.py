@@ -93,6 +93,20 @@ def test_an_unknown_verb_lists_the_nearest_verbs_by_reading(empty_db, record):
         empty_db.search("  ")
 
 
+def test_an_unknown_verb_error_crosses_processes_whole(empty_db, record):
+    """A batch worker's refusal reaches the runner pickled: its verb, suggestions and message as they were
+    (the suggestions are found when first read, not when the error is made)."""
+    import pickle
+
+    empty_db.add([record("fall", ("転ぶ", "倒れる"))])
+    with pytest.raises(UnknownVerbError) as err:
+        empty_db.search("ころがる")
+    back = pickle.loads(pickle.dumps(err.value))
+    assert type(back) is UnknownVerbError and back.verb == "ころがる"
+    assert back.suggestions == err.value.suggestions and back.suggestions[0] == ("転ぶ", "コロブ")
+    assert str(back) == str(err.value)
+
+
 def test_body_part_requests_take_the_part_then_its_mirror_then_whole_body(empty_db, record):
     empty_db.add([
         record("wave_right", ("振る", "手を振る"), body_part="right_arm"),
