@@ -16,6 +16,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from text2anim.core.cancel import Cancelled, cancellable, checkpoint
+
 #: Longest text the studio animates (characters); the API's own limits apply too.
 MAX_TEXT = 2000
 #: Results kept (text -> payload), at most this many ...
@@ -24,10 +26,6 @@ CACHE = 32
 CACHE_BYTES = 64 * 2**20
 #: What the page may download: format -> file suffix (``Animation.outputs``' keywords).
 FORMATS = {"bvh": "bvh", "glb": "glb", "vrma": "vrma", "report": "json"}
-
-
-class Cancelled(Exception):
-    """The request went away (the page aborted it for a newer text): its work stops."""
 
 
 @dataclass
@@ -311,16 +309,16 @@ class Studio:
     def _animation(self, text: str, edits: tuple, fallback: str, cancelled: Callable[[], bool]):
         """``text2anim.animate(text, edits=edits, fallback=fallback)`` on the studio's database, stage by stage
         (:mod:`text2anim.pipeline`, as ``text2anim compare`` runs it), raising :class:`Cancelled` between two
-        stages when ``cancelled()``: an abandoned text stops there instead of delaying the next one."""
+        stages or two joins when ``cancelled()``: an abandoned text stops there instead of delaying the next one."""
         from text2anim import limits
         from text2anim.pipeline import NAMES, Request, Work, animation, run
 
         limits.check_options(text, self.db, 30.0, limits.MAX_SECONDS, fallback=fallback)
         work, done = Work(Request(text, fallback=fallback, edits=tuple(edits)), self.db), None
-        for name in NAMES:
-            if cancelled():
-                raise Cancelled
-            work, done = run(work, after=done, until=name), name
+        with cancellable(cancelled):  # and inside synthesis, between two joins (core.cancel)
+            for name in NAMES:
+                checkpoint()
+                work, done = run(work, after=done, until=name), name
         return animation(work)
 
     def export(self, text: str, edits: tuple = (), fmt: str = "bvh", fallback: str = "strict") -> tuple[str, bytes] | None:

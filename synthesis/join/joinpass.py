@@ -72,6 +72,7 @@ from scipy.ndimage import gaussian_filter1d, maximum_filter1d, uniform_filter1d
 
 from text2anim.core.balance import balance_heights
 from text2anim.core.bodyparts import body_map
+from text2anim.core.cancel import checkpoint
 from text2anim.core.contacts import detect_contacts, runs
 from text2anim.core.easing import smootherstep_area
 from text2anim.core.hang import slowed_into_hanging
@@ -412,6 +413,7 @@ def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[di
             r = Region(r.w0 + added, r.w1 + added, r.r1 + added, r.sources, (r.keep[0] + added, r.keep[1] + added),
                        None if r.brake_from is None else r.brake_from + added, tuple(x + added for x in r.seams),
                        r.into_core, r.near)
+        checkpoint()  # an abandoned animation stops before its next region
         out, info, warp = finish_region(out, r, detect_contacts(out))
         infos.append(info)
         warps.append(warp)

@@ -13,6 +13,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
+from text2anim.core.cancel import checkpoint
 from text2anim.core.contacts import FootContacts, detect_contacts
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
@@ -86,6 +87,7 @@ def lay_elements(track: Track, whole: Sequence[Element], fps: float,
     ``join(state, incoming)`` (which updates ``state``)."""
     state = TrackState()
     for e, rep in repetitions(whole):
+        checkpoint()  # an abandoned animation stops before its next join
         inc = incoming(e, rep, fps, state)
         if state.motion is None:
             place_first(state, inc, track.origin, track.heading)
