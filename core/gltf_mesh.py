@@ -83,7 +83,10 @@ def bind_vertices(gl: dict, blob: bytes, world: np.ndarray, of: np.ndarray) -> S
         ibm = _accessor(gl, blob, skins[skin_i].get("inverseBindMatrices"), "MAT4", (5126,))
         if joints.size == 0 or (ibm is not None and len(ibm) < len(joints)):
             continue
-        ibm = np.tile(np.eye(4), (len(joints), 1, 1)) if ibm is None else ibm[:len(joints)].reshape(-1, 4, 4).transpose(0, 2, 1)
+        if ibm is None:
+            ibm = np.tile(np.eye(4), (len(joints), 1, 1))
+        else:  # column-major in the file
+            ibm = ibm[:len(joints)].reshape(-1, 4, 4).transpose(0, 2, 1)
         skinning = world[joints] @ ibm  # (J, 4, 4): bind space to the rest pose's world
         prims = meshes[mesh_i].get("primitives")
         for prim in prims if isinstance(prims, list) else []:

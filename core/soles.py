@@ -24,7 +24,8 @@ from .gltf_rig import GltfRig
 from .ik import leg_ik
 from .motion import Motion
 
-__all__ = ["Sole", "sole_lines", "clear_soles", "underside_heights", "sole_pitch", "HEEL", "BALL", "MIN_VERTICES", "MAX_PITCH"]
+__all__ = ["Sole", "sole_lines", "clear_soles", "underside_heights", "sole_pitch", "HEEL", "BALL", "MIN_VERTICES",
+           "MAX_PITCH", "TOE_SHARE", "UNDERSIDE", "MAX_POINTS"]
 
 #: The back share of a foot's length where its heel is looked for ...
 HEEL = 0.25

@@ -178,7 +178,8 @@ def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray
         if lk.at is None:
             _settle_into_next(d, e, w, lk.begin - first, lk.end - first, max(1, int(round(SETTLE_S * fps))))
     if toe is not None and not np.array_equal(held, e):  # turned about the ball, not the ankle: the ball stays
-        ball = [rk.apply(rk.compose(r[at], rk.from_rotvec(x[at])), np.broadcast_to(toe, (len(at), 3))) for x in (held, e)]
+        ball = [rk.apply(rk.compose(r[at], rk.from_rotvec(x[at])), np.broadcast_to(toe, (len(at), 3)))
+                for x in (held, e)]
         d[at, 0] += ball[0][:, 0] - ball[1][:, 0]
         d[at, 2] += ball[0][:, 2] - ball[1][:, 2]
     prev_end, prev_d, prev_e = 0, np.zeros(3), np.zeros(3)
