@@ -1,8 +1,9 @@
 """Fuzz the glTF/VRM rig reader: ``python benchmarks/fuzz_rig.py [CASES] [SEED]``.
 
-Real rigs (a Mixamo-style GLB, a VRM 1.0 and a VRM 0.x avatar from ``tests/rig_builders.py``)
-with one to three JSON fields replaced by junk or removed (and, one case in five, a damaged byte),
-read by ``core.gltf_rig.read_gltf_rig``. Prints the outcomes: accepted, refused with the reader's
+Real rigs (a Mixamo-style GLB, a VRM 1.0 and a VRM 0.x avatar, and a Mixamo GLB with shoes from
+``tests/rig_builders.py``) with one to three JSON fields replaced by junk or removed (and, one case in
+five, a damaged byte), read by ``core.gltf_rig.read_gltf_rig``, their joints placed and their feet's
+mesh read as ``--rig`` does (``ExportOptions.soles``: ``core.skeleton_shape``, ``core.gltf_mesh``). Prints the outcomes: accepted, refused with the reader's
 one-line error, or traceback (any other exception; each printed), with the slowest case in CPU
 time and the peak memory traced. Then (issue 41) the rigs at the limits through the real CLI
 (``text2anim 走る --rig …`` in a child process, ``bounded_runs.py``: no traceback, 10 s of CPU, 1 GB): an
@@ -20,8 +21,9 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from fuzz_mutations import damaged  # noqa: E402
-from rig_builders import mixamo_glb, vrm_file  # noqa: E402
+from rig_builders import mixamo_feet_glb, mixamo_glb, vrm_file  # noqa: E402
 from text2anim.core.gltf_rig import read_gltf_rig  # noqa: E402
+from text2anim.export import ExportOptions  # noqa: E402
 from bounded_runs import table, text2anim  # noqa: E402
 
 
@@ -46,7 +48,8 @@ def main(n):
     rng = random.Random(int(sys.argv[2]) if len(sys.argv) > 2 else 7)
     out = {"accepted": 0, "refused": 0, "traceback": 0}; slow = 0.0; kinds = {}
     with tempfile.TemporaryDirectory() as tmp:
-        srcs = [mixamo_glb(Path(tmp) / "m.glb"), vrm_file(Path(tmp) / "a.vrm"), vrm_file(Path(tmp) / "b.vrm", version="0.x")]
+        srcs = [mixamo_glb(Path(tmp) / "m.glb"), vrm_file(Path(tmp) / "a.vrm"), vrm_file(Path(tmp) / "b.vrm", version="0.x"),
+                mixamo_feet_glb(Path(tmp) / "feet.glb")]
         bases = [(s.suffix, s.read_bytes()) for s in srcs]
         tracemalloc.start()
         for i in range(n):
@@ -55,7 +58,7 @@ def main(n):
             p = Path(tmp) / f"f{i}{suf}"; p.write_bytes(data)
             t = time.process_time()
             try:
-                read_gltf_rig(p); out["accepted"] += 1
+                read_gltf_rig(p); ExportOptions(rig=p).soles; out["accepted"] += 1  # its joints' roles, its soles
             except Exception as e:
                 if getattr(e, "user_facing", False): out["refused"] += 1
                 else:
@@ -63,7 +66,7 @@ def main(n):
             slow = max(slow, time.process_time() - t)
             p.unlink()
         peak = tracemalloc.get_traced_memory()[1]
-    print(f"{n} mutated rigs (GLB, VRM 1.0, VRM 0.x): {out}; tracebacks by type {kinds}; "
+    print(f"{n} mutated rigs (GLB, VRM 1.0, VRM 0.x, GLB with shoes): {out}; tracebacks by type {kinds}; "
           f"slowest {slow*1000:.0f} ms CPU; peak traced {peak/2**20:.1f} MB; maxrss {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss/1024:.0f} MB")
     with tempfile.TemporaryDirectory() as tmp:
         runs = chain_runs(Path(tmp))

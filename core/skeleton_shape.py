@@ -170,7 +170,8 @@ def infer_roles(skel: Skeleton) -> dict[str, int]:
     neck = max(neck_start, key=lambda k: shape.high[k, 1])
     top = shape.high[neck, 1]
     head_chain = shape.chain(neck, key=lambda k: -shape.high[k, 1])
-    head = [j for j in head_chain if shape.pos[j, 1] < top - 0.05 * H][-1] if head_chain else neck
+    below_top = [j for j in head_chain if shape.pos[j, 1] < top - 0.05 * H]  # none: a head as tall as a point
+    head = below_top[-1] if below_top else neck
 
     roles: dict[str, int] = {"hips": hips, "spine": spine_start, "head": head}
     if chest != spine_start:  # the arms' branch is the upper chest (VRM's naming), the joint below it the chest
