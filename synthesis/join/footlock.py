@@ -198,13 +198,19 @@ def _lock_goal(side: str, p: np.ndarray, r: np.ndarray, sources: list[np.ndarray
 #: s: the least time over which a lock hands its foot's height and turn to the next motion (a weight
 #: that shifts in 0.1 s turned the foot as fast: joint jerk 1,162 against the sources' 902)
 SETTLE_S = 0.3
+#: m: a lock hands the foot over only where it holds the ankle this much below where the next motion has
+#: it (the next motion stands on the ball and cannot reach a flat foot's ankle). Handed over everywhere,
+#: a bow into a dance put the dancer's foot on its ball with the body still over the bow's stance: its
+#: centre of mass 3 cm outside the feet (6.5 cm on a 20 m character), against 0.15 held.
+HAND_OVER_BELOW = 0.01
 
 
 def _settle_into_next(d: np.ndarray, e: np.ndarray, w: np.ndarray, i0: int, i1: int, n: int = 1) -> None:
     """Fade a lock's height and turn offsets (``d[:, 1]``, ``e``, in place over ``[i0, i1)``) as the next
     motion, the last of the sources ``w`` ``(S, T)``, takes over the planted weight, over ``n`` frames at
     least (a smootherstep), when the lock ends with that motion alone holding the foot (a lock a blend
-    lets go of keeps its offsets: a shot into a run slid the turning ball for 0.6 s, GMD 0.06 -> 0.20):
+    lets go of keeps its offsets: a shot into a run slid the turning ball for 0.6 s, GMD 0.06 -> 0.20)
+    and holds the ankle :data:`HAND_OVER_BELOW` or more below that motion's own:
     the foot ends the lock as that motion stands on it (a punch's heel raised, its
     weight on the ball), still where the lock holds it on the ground. Held at the first motion's height and
     turn, the foot stood flat or toes-up where the next one is on its ball: its leg straight and its sole
@@ -212,6 +218,8 @@ def _settle_into_next(d: np.ndarray, e: np.ndarray, w: np.ndarray, i0: int, i1: 
     tot = w[:, i0:i1].sum(axis=0)
     share = np.divide(w[-1, i0:i1], tot, out=np.zeros(i1 - i0), where=tot > 1e-9)
     if share[0] >= 1.0 - 1e-9 or share[-1] < 1.0 - 1e-9:  # only a lock the next motion alone ends
+        return
+    if d[i1 - 1, 1] > -HAND_OVER_BELOW:  # a foot its own leg reaches down to stays as the lock holds it
         return
     g = np.clip((share - share[0]) / (1.0 - share[0]), 0.0, 1.0)
     g = np.maximum.accumulate(g)  # once the next motion holds the foot, it keeps it
