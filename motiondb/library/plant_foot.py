@@ -22,8 +22,10 @@ SWING_SMOOTH = 1.2
 V_RAMP_FRAMES = 1.5
 #: A stepping foot's ball rises this high above its planted height (less on a short swing, see
 #: :func:`~text2anim.motiondb.library.plant_gaps.swing_heights`), so it clears the contact detector's
-#: "low" band instead of shuffling.
-SWING_CLEARANCE = 0.06
+#: "low" band instead of shuffling, and GMD's 5 cm above the motion's lowest foot point for more than the
+#: top of its arc (at 6 cm, three turns on the spot read 0.263 by GMD's skating, over the capture's 0.26;
+#: at 7.5 cm, 0.238).
+SWING_CLEARANCE = 0.075
 #: A swing's ball leaves and reaches its locks at least this fast (m/s, horizontally, on the gap's first and
 #: last frame, when its step is long enough). The contact detector's speed is a central difference
 #: (limit 0.4 m/s): at 0.75 m/s the first swing frame, whose difference spans two moving frames, is not
