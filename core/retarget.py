@@ -74,12 +74,11 @@ from scipy.ndimage import maximum_filter1d, uniform_filter1d
 from scipy.spatial.transform import Rotation
 
 from .fk import matrix_to_quat
+from .floor import FOOT_CLEARANCE
 from .ik import set_world_rotation, two_bone_ik
 from .motion import Motion
-from .floor import FOOT_CLEARANCE
 from .rigs import ROLE_PARENT, ROLES, RigError, rig_roles
 from .skeleton import Skeleton
-
 from .soles import clear_soles
 
 if TYPE_CHECKING:
