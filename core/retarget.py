@@ -67,7 +67,6 @@ Units: metres, Y up; rotations ``(T, J, 4)`` scipy quaternions ``(x, y, z, w)``.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.ndimage import maximum_filter1d, uniform_filter1d
@@ -79,10 +78,7 @@ from .ik import set_world_rotation, two_bone_ik
 from .motion import Motion
 from .rigs import ROLE_PARENT, ROLES, RigError, rig_roles
 from .skeleton import Skeleton
-from .soles import clear_soles
-
-if TYPE_CHECKING:
-    from .soles import Sole
+from .soles import Sole, clear_soles
 
 #: The role a role's bone points at, in order of preference (the first placed in both rigs).
 AIM = {
