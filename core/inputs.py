@@ -12,6 +12,7 @@ BVH         64 MB         ``core.bvh.read_bvh``
 rig         64 MB         ``core.gltf_rig.read_glb``
 joint map   1 MB          ``core.rigs.load_joint_map``
 corpus      16 MB         ``cli.batch.corpus.load_corpus``
+project     1 MB          ``cli.project.read_project``
 ==========  ============  =====================================
 
 Names that come from a file or the database (verbs, objects, clip, character and
@@ -27,7 +28,7 @@ import unicodedata
 
 MB = 1 << 20
 #: The most bytes read of each kind of file.
-LIMITS = {"BVH": 64 * MB, "rig": 64 * MB, "joint map": 1 * MB, "corpus": 16 * MB}
+LIMITS = {"BVH": 64 * MB, "rig": 64 * MB, "joint map": 1 * MB, "corpus": 16 * MB, "project": 1 * MB}
 
 #: Characters of a user's data (a token, a line, a name) a message quotes.
 QUOTE_WIDTH = 40

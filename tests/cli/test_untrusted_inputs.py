@@ -55,7 +55,7 @@ def test_a_special_file_given_as_a_bvh_is_one_line(tmp_path, specials, command, 
 
 
 @pytest.mark.parametrize("kind", ["fifo", "loop"])
-def test_a_special_file_given_as_a_rig_joint_map_or_corpus_is_one_line(tmp_path, specials, kind):
+def test_a_special_file_given_as_a_rig_joint_map_corpus_or_project_is_one_line(tmp_path, specials, kind):
     rig = specials(".glb")[kind]
     assert_clean_error(text2anim("太郎は歩く。", "--rig", rig, "-o", tmp_path / "x.bvh"), str(rig), WHY[kind])
     joint_map = specials(".json")[kind]
@@ -63,6 +63,8 @@ def test_a_special_file_given_as_a_rig_joint_map_or_corpus_is_one_line(tmp_path,
                        str(joint_map), WHY[kind])
     corpus = specials(".txt")[kind]
     assert_clean_error(text2anim("batch", corpus, "--check"), str(corpus), WHY[kind])
+    project = specials(".t2a.json")[kind]  # a studio project (text2anim FILE.t2a.json): a FIFO hung the command
+    assert_clean_error(text2anim(project, "-o", tmp_path / "x.bvh"), str(project), WHY[kind])
     assert not (tmp_path / "x.bvh").exists()
 
 
