@@ -51,13 +51,19 @@ def _url(db: str | None, env: str | None, data: str | None, home: str | None, cw
     return resolve_url(db)[0]
 
 
+@lru_cache(maxsize=64)
 def _file_of(url: str) -> str | None:
-    """The path of the SQLite file ``url`` names, None for another database or an in-memory one."""
-    if not url.startswith("sqlite"):
+    """The path of the SQLite file ``url`` names (SQLAlchemy's reading of it, as ``motiondb.connect`` opens it),
+    None for another database, an in-memory one or a URL that is none."""
+    from sqlalchemy.engine import make_url
+    from sqlalchemy.exc import ArgumentError
+
+    try:
+        parsed = make_url(url)
+    except (ArgumentError, ValueError):
         return None
-    path = url.split(":///", 1)[1] if ":///" in url else ""
-    path = path.split("?", 1)[0]
-    if not path or path == ":memory:" or path.startswith("file:"):
+    path = parsed.database or ""
+    if parsed.get_backend_name() != "sqlite" or not path or path == ":memory:" or path.startswith("file:"):
         return None
     return path
 
