@@ -15,8 +15,12 @@ from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from text2anim.core.cancel import Cancelled, cancellable, checkpoint
+
+if TYPE_CHECKING:
+    from text2anim.export import ExportOptions
 
 #: Longest text the studio animates (characters); the API's own limits apply too.
 MAX_TEXT = 2000
@@ -40,6 +44,7 @@ class Studio:
     cache: "OrderedDict[str, dict]"
     folder: "tempfile.TemporaryDirectory[str]"
     rig: Path | None = None
+    character: ExportOptions | None = None  # the rig's options: the file read, its joints placed and soles found once
     latest: tuple[str, object] | None = None  # (cache key, Animation) of the latest text animated
     session: object | None = None  # the library's copy with the dropped clips, once there are any
     dropped: set[str] = field(default_factory=set)  # the clips dropped in this session
@@ -163,23 +168,21 @@ class Studio:
         with self.lock:
             if self.rig is not None:
                 self.rig.unlink(missing_ok=True)
-            self.rig = None
+            self.rig = self.character = None
             self._forget()
 
     def set_rig(self, data: bytes, suffix: str) -> dict:
         """Keep a dropped ``.glb``/``.vrm`` character for what follows (read as ``--rig`` reads it: refused
         with the reader's message when it is no human rig); ``{"ok", "joints"}`` or ``{"ok": False, "error"}``."""
         from text2anim.cli.terminal import message
-        from text2anim.core.gltf_rig import read_gltf_rig
-
         from text2anim.export import ExportOptions
 
         path = Path(self.folder.name) / f"checking{suffix}"
         with self.lock:
             path.write_bytes(data)
             try:  # the whole --rig check (its joints placed as a human's), before it is kept
-                rig = read_gltf_rig(path)
-                ExportOptions(rig=path).check(glb=True)
+                checked = ExportOptions(rig=path).check(glb=True).skeleton
+                joints = len(checked.names) if checked is not None else 0
             except Exception as exc:
                 if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                     raise
@@ -189,8 +192,9 @@ class Studio:
             if self.rig is not None:
                 self.rig.unlink(missing_ok=True)
             self.rig = path.replace(kept)
+            self.character = ExportOptions(rig=self.rig)
             self._forget()
-        return {"ok": True, "joints": len(rig.skeleton.names)}
+        return {"ok": True, "joints": joints}
 
     def _forget(self) -> None:
         """Drop every result (the database or the character changed)."""
@@ -281,10 +285,8 @@ class Studio:
             anim = self._animation(text, edits, fallback, cancelled)
             keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
             tracks, props = anim.tracks(), anim.props()
-            if self.rig is not None:  # the user's character: its own skeleton and proportions
-                from text2anim.export import ExportOptions
-
-                rig = ExportOptions(rig=self.rig)
+            if self.character is not None:  # the user's character: its own skeleton and proportions
+                rig = self.character
                 tracks, props = anim.exported_motions(rig, units=False), anim.exported_props(rig)
         except Exception as exc:  # the stages' user errors carry user_facing; anything else is a bug to show
             if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
@@ -330,11 +332,7 @@ class Studio:
         anim = self.animation(text, edits, fallback)
         if anim is None:
             return None
-        export = None
-        if self.rig is not None and fmt in ("bvh", "glb", "vrma"):
-            from text2anim.export import ExportOptions
-
-            export = ExportOptions(rig=self.rig)
+        export = self.character if fmt in ("bvh", "glb", "vrma") else None
         with tempfile.TemporaryDirectory() as tmp:  # names only: nothing is written there
             files = anim.outputs(**{fmt: Path(tmp) / f"animation.{FORMATS[fmt]}"}, export=export)
         if len(files) == 1:
