@@ -84,8 +84,8 @@ class Studio:
         if not new:
             return {"ok": False, "error": "a clip's name needs a letter or a digit"}
         with self.lock:
-            if clip not in {c["name"] for c in self.mine()}:
-                return {"ok": False, "error": f"{clip[:60]!r} is not one of your clips"}
+            if (refused := self._not_mine(clip)) is not None:
+                return refused
             if new in {c.name for c in self.library.clips()}:  # type: ignore[attr-defined]
                 return {"ok": False, "error": f"a clip is already named {new!r}"}
             for db in self._databases():
@@ -98,8 +98,8 @@ class Studio:
     def remove(self, clip: str) -> dict:
         """Remove the user's ``clip`` from the library (and the session): built-in clips cannot be removed."""
         with self.lock:
-            if clip not in {c["name"] for c in self.mine()}:
-                return {"ok": False, "error": f"{clip[:60]!r} is not one of your clips"}
+            if (refused := self._not_mine(clip)) is not None:
+                return refused
             for db in self._databases():
                 if clip in {c.name for c in db.clips()}:
                     db.remove(clip)
@@ -111,10 +111,16 @@ class Studio:
         from text2anim.output.viewer import render_html
 
         with self.lock:
-            if clip not in {c["name"] for c in self.mine()}:
-                return {"ok": False, "error": f"{clip[:60]!r} is not one of your clips"}
+            if (refused := self._not_mine(clip)) is not None:
+                return refused
             info, motion = self.library.info(clip), self.library.load(clip)  # type: ignore[attr-defined]
         return {"ok": True, "html": framed(render_html(motion, title=clip)), "verbs": list(info.verbs)}
+
+    def _not_mine(self, clip: str) -> dict | None:
+        """The refusal of a ``clip`` that is not one of the user's own (:meth:`mine`), else None."""
+        if clip not in {c["name"] for c in self.mine()}:
+            return {"ok": False, "error": f"{clip[:60]!r} is not one of your clips"}
+        return None
 
     def _databases(self) -> list:
         return [self.library] + ([self.session] if self.session is not None else [])
