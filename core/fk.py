@@ -111,14 +111,18 @@ def root_moved(skeleton: Skeleton, local_t: np.ndarray, known: Pose) -> Pose:
 
 
 def below(skeleton: Skeleton, rotations: np.ndarray, translations: np.ndarray | None, known: Pose,
-          tops: Sequence[int]) -> Pose:
+          tops: Sequence[int], rows: tuple[int, int] | None = None) -> Pose:
     """The pose of frames that differ from ``known``'s only in the local ``rotations`` ``(T, J, 4)`` of the
-    joints ``tops`` and their descendants (no top below another, the root not among them): their
-    kinematics is redone, the other joints' world transforms are kept. ``translations``: the motion's
-    own non-root translations ``(T, J, 3)``, or ``None`` (the skeleton's offsets)."""
+    joints ``tops`` and their descendants (no top below another, the root not among them), and only on the
+    frames ``rows`` ``[a, b)`` when given: their kinematics is redone, the other joints' (and frames') world
+    transforms are kept. ``translations``: the motion's own non-root translations ``(T, J, 3)``, or ``None``
+    (the skeleton's offsets)."""
     world_rot, world_pos = known.rotations.copy(), known.positions.copy()
+    sl = slice(None) if rows is None else slice(*rows)
+    part = known if rows is None else known.frames(sl)
     for top in tops:
-        _subtree(skeleton, rotations, translations, known, top, world_rot, world_pos)
+        _subtree(skeleton, rotations[sl], None if translations is None else translations[sl], part, top,
+                 world_rot[sl], world_pos[sl])
     return _frozen_pose(world_pos, world_rot)
 
 
@@ -156,8 +160,17 @@ def with_rows(skeleton: Skeleton, rotations: np.ndarray, local_t: np.ndarray, kn
     new = rows < 0
     n, J = len(rows), skeleton.n_joints
     positions, world_r = np.empty((n, J, 3)), np.empty((n, J, 3, 3))
-    positions[~new] = known.positions[rows[~new]]
-    world_r[~new] = known.rotations[rows[~new]]
+    kept = np.flatnonzero(~new)
+    src = rows[kept]
+    cuts = np.flatnonzero((np.diff(kept) != 1) | (np.diff(src) != 1)) + 1
+    if len(cuts) <= 8 and len(kept):  # a few runs of consecutive frames (a window replaced in a long track): copied as slices
+        for s, e in zip(np.r_[0, cuts], np.r_[cuts, len(kept)]):
+            i, r, k = int(kept[s]), int(src[s]), int(e - s)
+            positions[i:i + k] = known.positions[r:r + k]
+            world_r[i:i + k] = known.rotations[r:r + k]
+    elif len(kept):
+        positions[kept] = known.positions[src]
+        world_r[kept] = known.rotations[src]
     if new.any():
         part = forward(skeleton, rotations[new], local_t[new])
         positions[new] = part.positions

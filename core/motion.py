@@ -159,6 +159,18 @@ class Motion:
             object.__setattr__(out, "_cache", self._cache.of_root_moved())
         return out
 
+    def with_rotations(self, lo: int, rotations: np.ndarray) -> "Motion":
+        """A new motion whose local rotations of the frames ``[lo, lo + n)`` are ``rotations`` ``(n, J, 4)``,
+        the rest this one's: what :meth:`replace` with the whole array so edited gives, bit for bit, but only
+        those frames are compared with this motion's and, when its pose is asked, have their kinematics
+        redone (an edit of a join's window on a long track costs the window's work, plus one copy)."""
+        rots = self.rotations.copy()
+        hi = lo + len(rotations)
+        rots[lo:hi] = rotations
+        out = replace(self, rotations=rots)
+        object.__setattr__(out, "_cache", self._cache.of_window(self, out.rotations, lo, hi))
+        return out
+
     def frames(self, start: int, stop: int | None = None) -> "Motion":
         """Frames ``start`` .. ``stop - 1`` (Python slice semantics); views of this motion's arrays."""
         sl = slice(start, stop)

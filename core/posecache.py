@@ -52,13 +52,25 @@ class Frames(Protocol):
 # ------------------------------------------------------------------ recipes
 @dataclass(frozen=True)
 class _Below:
-    """Only the local rotations of ``tops`` and their descendants differ from ``known``'s frames."""
+    """Only the local rotations of ``tops`` and their descendants differ from ``known``'s frames, and only on
+    the frames ``rows`` ``[a, b)`` when given (an edit of a window of a long track: its kinematics is the
+    window's)."""
 
     known: Pose
     tops: tuple[int, ...]
+    rows: tuple[int, int] | None = None
 
     def pose(self, m: Frames) -> Pose:
-        return fk.below(m.skeleton, m.rotations, m.translations, self.known, self.tops)
+        return fk.below(m.skeleton, m.rotations, m.translations, self.known, self.tops, self.rows)
+
+    def frames(self, sl: slice) -> "PoseCache":
+        """A cache for the frames ``sl`` of the motion: the known pose's where the slice misses ``rows``."""
+        known = self.known.frames(sl)
+        if self.rows is None:
+            return PoseCache(recipe=_Below(known, self.tops))
+        start, stop, _ = sl.indices(len(self.known.positions))
+        a, b = max(self.rows[0], start) - start, min(self.rows[1], stop) - start
+        return PoseCache(known) if b <= a else PoseCache(recipe=_Below(known, self.tops, (a, b)))
 
 
 @dataclass(frozen=True)
@@ -124,7 +136,7 @@ class PoseCache(Memo):
         if self._pose is not None:
             return PoseCache(self._pose.frames(sl))
         if isinstance(self._recipe, _Below):
-            return PoseCache(recipe=_Below(self._recipe.known.frames(sl), self._recipe.tops))
+            return self._recipe.frames(sl)
         if isinstance(self._recipe, _Rows):
             return PoseCache(recipe=_Rows(self._recipe.known, self._recipe.rows[sl]))
         return PoseCache()
@@ -150,6 +162,27 @@ class PoseCache(Memo):
             known = below.known
         minimal = _highest(m.skeleton.parents, tops)
         return PoseCache(recipe=None if 0 in minimal else _Below(known, tuple(minimal)))
+
+    def of_window(self, m: Frames, rotations: np.ndarray, lo: int, hi: int) -> "PoseCache":
+        """A cache for ``m`` (this cache's motion) with the local ``rotations`` ``(T, J, 4)`` instead, which
+        differ from ``m``'s on the frames ``[lo, hi)`` only (the caller says so: nothing outside is compared):
+        :meth:`of_rotations`' answer, with the kinematics redone over those frames only, when asked."""
+        known, below = self._pose, self._recipe if isinstance(self._recipe, _Below) else None
+        if known is None and below is None:
+            return PoseCache()
+        new, old = rotations[lo:hi], m.rotations[lo:hi]
+        changed = np.flatnonzero((new.view(np.int64) != old.view(np.int64)).any(axis=(0, 2)))
+        if len(changed) == 0:
+            return PoseCache(known, None if known is not None else below)
+        tops = {int(j) for j in changed}
+        rows: tuple[int, int] | None = (lo, hi)
+        if known is None:
+            assert below is not None
+            tops |= set(below.tops)
+            known = below.known
+            rows = None if below.rows is None else (min(lo, below.rows[0]), max(hi, below.rows[1]))
+        minimal = _highest(m.skeleton.parents, tops)
+        return PoseCache(recipe=None if 0 in minimal else _Below(known, tuple(minimal), rows))
 
     @staticmethod
     def of_parts(parts: Sequence[Frames]) -> "PoseCache":

@@ -352,9 +352,7 @@ def lock_feet(motion: Motion, feet: dict[str, FootLocks], first: int, profile: s
         w = [np.repeat(ease(ratio(e - b), profile), len(j)) for (_, b, e), j in zip(releases, legs)]  # eq. (4), eased
         fr_all, jt_all = np.concatenate(fr), np.concatenate(jt)
         rots[fr_all, jt_all] = slerp(rots[fr_all, jt_all], span.rotations[fr_all, jt_all], np.concatenate(w))
-    out = motion.rotations.copy()
-    out[first:hi] = rots
-    return motion.replace(rotations=out)
+    return motion.with_rotations(first, rots)
 
 
 CLEARANCE_SLOPE = 0.3  # m of height per m of horizontal distance from the nearer end of a swing
@@ -424,9 +422,7 @@ def lift_swings(motion: Motion, swings: list[tuple[str, int, int]],
         return motion
     own = quaternions([pose.rotations[g.begin - lo:g.end - lo, bm.feet[g.side][0]] for g in goals])
     goals = [LegGoal(g.side, g.begin, g.end, g.targets, rk.as_quat(q)) for g, q in zip(goals, own)]
-    out = motion.rotations.copy()
-    out[lo:hi] = solve_goals(span, lo, goals)
-    return motion.replace(rotations=out)
+    return motion.with_rotations(lo, solve_goals(span, lo, goals))
 
 
 def plan_locks(planted: dict[str, np.ndarray], window: tuple[int, int], limit: int) -> list[Lock]:

@@ -135,11 +135,13 @@ def lift_off_floor(motion: Motion, lo: int, hi: int, floor: float = FLOOR) -> Mo
     the deficit (widened by 2 frames each side and smoothed, so the lift eases in and out)."""
     feet = body_map(motion.skeleton).feet
     out = motion
+    a, b = max(0, lo), min(motion.n_frames, hi)
+    if b <= a:
+        return motion
     for side, joints in feet.items():
-        p = out.positions
-        deficit = np.maximum(0.0, floor - p[:, list(joints), 1].min(axis=1))
-        deficit[:lo] = 0.0
-        deficit[hi:] = 0.0
+        p = out[a:b].positions  # kinematics is per frame: the window's only, not the whole track's
+        deficit = np.zeros(out.n_frames)
+        deficit[a:b] = np.maximum(0.0, floor - p[:, list(joints), 1].min(axis=1))
         if not (deficit > 5e-4).any():
             continue
         out = _raise_ankle(out, side, joints[0], deficit)
@@ -158,9 +160,7 @@ def _raise_ankle(motion: Motion, side: str, ankle: int, short: np.ndarray) -> Mo
         pose = sub.pose
         target = pose.positions[:, ankle] + np.stack([np.zeros(b - a), d[a:b], np.zeros(b - a)], 1)
         solved = solve_leg(sub, side, target, ankle=pose.quaternions(ankle))  # its world rotation kept
-        rots = out.rotations.copy()
-        rots[a:b] = solved.rotations
-        out = out.replace(rotations=rots)
+        out = out.with_rotations(a, solved.rotations)
     return out
 
 

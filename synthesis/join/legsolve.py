@@ -110,9 +110,7 @@ def solve_legs(motion: Motion, goals: list[LegGoal]) -> Motion:
     if not goals:
         return motion
     lo, hi = min(g.begin for g in goals), max(g.end for g in goals)
-    out = motion.rotations.copy()
-    out[lo:hi] = solve_goals(motion[lo:hi], lo, goals)
-    return motion.replace(rotations=out)
+    return motion.with_rotations(lo, solve_goals(motion[lo:hi], lo, goals))
 
 
 def quaternions(blocks: list[np.ndarray]) -> list[np.ndarray]:
@@ -129,4 +127,5 @@ def feet_kept(before: Motion, after: Motion, a: int, b: int) -> Motion:
     pose = before[a:b].pose
     goals = [LegGoal(side, a, b, pose.positions[:, ankle], rk.as_quat(rk.from_matrix(pose.rotations[:, ankle])))
              for side, (ankle, _toe) in body_map(before.skeleton).feet.items()]
-    return solve_legs(after, goals)
+    # outside [a, b) the frames are ``before``'s (where bit for bit so): their kinematics is known
+    return solve_legs(after, goals).share_pose(before, np.arange(before.n_frames))
