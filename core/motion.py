@@ -156,7 +156,7 @@ class Motion:
         if changes.keys() == {"rotations"} and out.rotations.shape == self.rotations.shape:
             object.__setattr__(out, "_cache", self._cache.of_rotations(self, out.rotations))
         elif changes.keys() == {"root_positions"} and out.root_positions.shape == self.root_positions.shape:
-            object.__setattr__(out, "_cache", self._cache.of_root_moved())
+            object.__setattr__(out, "_cache", self._cache.of_root_moved(self, out.root_positions))
         return out
 
     def with_rotations(self, lo: int, rotations: np.ndarray) -> "Motion":

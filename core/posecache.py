@@ -93,6 +93,12 @@ class _Rows:
     def pose(self, m: Frames) -> Pose:
         return fk.with_rows(m.skeleton, m.rotations, m.local_translations(), self.known, self.rows)
 
+    def redone(self, frames: np.ndarray | slice) -> "PoseCache":
+        """A cache for the motion with ``frames`` (a bool mask or a slice) edited: their kinematics computed."""
+        rows = self.rows.copy()
+        rows[frames] = -1
+        return PoseCache(recipe=_Rows(self.known, rows) if (rows >= 0).any() else None)
+
 
 @dataclass(frozen=True)
 class _Parts:
@@ -141,8 +147,11 @@ class PoseCache(Memo):
             return PoseCache(recipe=_Rows(self._recipe.known, self._recipe.rows[sl]))
         return PoseCache()
 
-    def of_root_moved(self) -> "PoseCache":
-        """A cache for this motion with other root positions: the world rotations stay."""
+    def of_root_moved(self, m: Frames, root_positions: np.ndarray) -> "PoseCache":
+        """A cache for ``m`` (this cache's motion) with the root positions ``root_positions`` ``(T, 3)``
+        instead: the world rotations stay (frames shared with another pose and not moved still are)."""
+        if self._pose is None and isinstance(self._recipe, _Rows):
+            return self._recipe.redone((root_positions.view(np.int64) != m.root_positions.view(np.int64)).any(axis=1))
         return PoseCache(recipe=None if self._pose is None else _RootMoved(self._pose))
 
     def of_rotations(self, m: Frames, rotations: np.ndarray) -> "PoseCache":
@@ -150,6 +159,8 @@ class PoseCache(Memo):
         subtrees holding the joints whose rotations differ are redone from this pose (or from the pose this
         one's recipe starts from: edits on edits), when asked."""
         known, below = self._pose, self._recipe if isinstance(self._recipe, _Below) else None
+        if isinstance(self._recipe, _Rows):  # frames shared with another pose: those not edited still are
+            return self._recipe.redone((rotations.view(np.int64) != m.rotations.view(np.int64)).any(axis=(1, 2)))
         if known is None and below is None:
             return PoseCache()
         changed = np.flatnonzero((rotations.view(np.int64) != m.rotations.view(np.int64)).any(axis=(0, 2)))
@@ -168,6 +179,8 @@ class PoseCache(Memo):
         differ from ``m``'s on the frames ``[lo, hi)`` only (the caller says so: nothing outside is compared):
         :meth:`of_rotations`' answer, with the kinematics redone over those frames only, when asked."""
         known, below = self._pose, self._recipe if isinstance(self._recipe, _Below) else None
+        if isinstance(self._recipe, _Rows):
+            return self._recipe.redone(slice(lo, hi))
         if known is None and below is None:
             return PoseCache()
         new, old = rotations[lo:hi], m.rotations[lo:hi]
@@ -197,7 +210,9 @@ class PoseCache(Memo):
         says which frame of ``other`` each frame may be (``-1``: none); where the two frames' root position
         and local rotations (and translations) are bit for bit equal and ``other``'s pose is known, the
         frame's pose is ``other``'s."""
-        known = other.cache.known_pose()
+        known, through = other.cache.known_pose(), None
+        if known is None and isinstance(other.cache._recipe, _Rows):  # other's frames shared with a third pose
+            known, through = other.cache._recipe.known, other.cache._recipe.rows
         rows = np.asarray(rows, dtype=np.int64)
         if known is None or len(rows) != len(m.rotations) or self._pose is not None or \
                 self._recipe is not None and not isinstance(self._recipe, _Rows):
@@ -213,6 +228,8 @@ class PoseCache(Memo):
             same &= (m.local_translations()[have].view(np.int64)
                      == other.local_translations()[src].view(np.int64)).all(axis=(1, 2))
         rows[have[~same]] = -1
+        if through is not None:
+            rows = np.where(rows >= 0, through[np.maximum(rows, 0)], -1)
         if (rows >= 0).any():
             self._recipe = _Rows(known, rows)
 
