@@ -154,6 +154,18 @@ def _subtree(skeleton: Skeleton, rotations: np.ndarray, translations: np.ndarray
     world_pos[:, sub] = world_p.transpose(1, 0, 2)
 
 
+def row_runs(at: np.ndarray, src: np.ndarray, most: int = 8) -> list[tuple[int, int, int]] | None:
+    """Frames ``at`` ``(n,)`` taking rows ``src`` ``(n,)`` of another array, as runs ``(at, src, length)`` of
+    consecutive frames (a window replaced in a long track: two runs, copied or compared as slices, no
+    gather); ``None`` when there are more than ``most``."""
+    if not len(at):
+        return []
+    cuts = np.flatnonzero((np.diff(at) != 1) | (np.diff(src) != 1)) + 1
+    if len(cuts) >= most:
+        return None
+    return [(int(at[s]), int(src[s]), int(e - s)) for s, e in zip(np.r_[0, cuts], np.r_[cuts, len(at)])]
+
+
 def with_rows(skeleton: Skeleton, rotations: np.ndarray, local_t: np.ndarray, known: Pose, rows: np.ndarray) -> Pose:
     """The pose of ``T`` frames whose frames ``rows >= 0`` ``(T,)`` are ``known``'s frames ``rows``; the others'
     kinematics is computed (:func:`forward` of those frames alone)."""
@@ -162,15 +174,13 @@ def with_rows(skeleton: Skeleton, rotations: np.ndarray, local_t: np.ndarray, kn
     positions, world_r = np.empty((n, J, 3)), np.empty((n, J, 3, 3))
     kept = np.flatnonzero(~new)
     src = rows[kept]
-    cuts = np.flatnonzero((np.diff(kept) != 1) | (np.diff(src) != 1)) + 1
-    if len(cuts) <= 8 and len(kept):  # a few runs of consecutive frames (a window replaced in a long track): copied as slices
-        for s, e in zip(np.r_[0, cuts], np.r_[cuts, len(kept)]):
-            i, r, k = int(kept[s]), int(src[s]), int(e - s)
-            positions[i:i + k] = known.positions[r:r + k]
-            world_r[i:i + k] = known.rotations[r:r + k]
-    elif len(kept):
+    spans = row_runs(kept, src)
+    if spans is None:
         positions[kept] = known.positions[src]
         world_r[kept] = known.rotations[src]
+    for i, r, k in spans or ():
+        positions[i:i + k] = known.positions[r:r + k]
+        world_r[i:i + k] = known.rotations[r:r + k]
     if new.any():
         part = forward(skeleton, rotations[new], local_t[new])
         positions[new] = part.positions

@@ -222,8 +222,7 @@ class PoseCache(Memo):
         rows = np.where((rows >= 0) & (rows < len(other.rotations)), rows, -1)
         have = np.flatnonzero(rows >= 0)
         src = rows[have]
-        same = (m.root_positions[have].view(np.int64) == other.root_positions[src].view(np.int64)).all(axis=1)
-        same &= (m.rotations[have].view(np.int64) == other.rotations[src].view(np.int64)).all(axis=(1, 2))
+        same = _same_frames(m, other, have, src)
         if m.translations is not None or other.translations is not None:
             same &= (m.local_translations()[have].view(np.int64)
                      == other.local_translations()[src].view(np.int64)).all(axis=(1, 2))
@@ -232,6 +231,20 @@ class PoseCache(Memo):
             rows = np.where(rows >= 0, through[np.maximum(rows, 0)], -1)
         if (rows >= 0).any():
             self._recipe = _Rows(known, rows)
+
+
+def _same_frames(m: Frames, other: Frames, have: np.ndarray, src: np.ndarray) -> np.ndarray:
+    """``(n,)`` bool: ``m``'s frames ``have`` have bit for bit ``other``'s frames ``src``' root position and
+    local rotations (runs of consecutive frames compared as slices)."""
+    spans = fk.row_runs(have, src)
+    if spans is None:
+        same = (m.root_positions[have].view(np.int64) == other.root_positions[src].view(np.int64)).all(axis=1)
+        return same & (m.rotations[have].view(np.int64) == other.rotations[src].view(np.int64)).all(axis=(1, 2))
+    out = []
+    for i, r, k in spans:
+        same = (m.root_positions[i:i + k].view(np.int64) == other.root_positions[r:r + k].view(np.int64)).all(axis=1)
+        out.append(same & (m.rotations[i:i + k].view(np.int64) == other.rotations[r:r + k].view(np.int64)).all(axis=(1, 2)))
+    return np.concatenate(out) if out else np.zeros(0, dtype=bool)
 
 
 def _highest(parents: np.ndarray, joints: set[int]) -> list[int]:
