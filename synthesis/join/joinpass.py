@@ -335,6 +335,7 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     kept: Tried | None = None  # within the limits, nearest
     whi = max(min(hi, region.keep[1]), region.w0 + 2)  # retimed: [lo, whi), never the next core
     seam = _hardest(seamed, lo, whi)
+    stretches: list[Stretch] = []
     played: dict[float, np.ndarray] = {}  # per stretch, the warp of [lo, whi) (flights kept at their time)
     span = seamed[lo:whi]  # one slice: its kinematics are computed once for every stretch's flights
     for stretch in STRETCHES:
@@ -352,6 +353,7 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
         # accelerates lags the original, and a shorter fade would return it with a pop of its own
         widths = Stretch(base, ref, lo, h2, mask, [
             (sigma * scale, pad, max(pad, min(int(np.ceil(2.5 * sigma * scale)), (h2 - lo) // 3))) for sigma in SIGMAS])
+        stretches.append(widths)
         for i, sigma in enumerate(SIGMAS):
             cand = widths[i]
             tried.append((sigma, stretch, cand, h2))
@@ -376,7 +378,10 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     _score, sigma, stretch, chosen, jk, pop, h2 = kept or least(tried, lims)
     # outside [lo, h2) the frames are the input's (those the seams left alone): their kinematics is known
     rows = np.concatenate([np.arange(lo), np.full(h2 - lo, -1), np.arange(hi, T)])
-    done = lift_off_floor(clear_swings(chosen.motion().share_pose(motion, rows), lo, h2), lo, h2)
+    candidate = chosen.motion()
+    for st in stretches:
+        st.release()
+    done = lift_off_floor(clear_swings(candidate.share_pose(motion, rows), lo, h2), lo, h2)
     # the feet a connection released after its blend may land inside the next core (the engine's frames, not
     # the clip's): where the body stands beside them there, the hips' path is bent over them too
     he = _landing_end(done, h2, region.r1 + h2 - hi)

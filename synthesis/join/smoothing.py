@@ -155,6 +155,11 @@ class Stretch:
             self._made[i] = self.smoothed(*self.widths[i])
         return self._made[i]
 
+    def release(self) -> None:
+        """Forget the widths made: each refers back to this stretch, a cycle that only the cyclic collector
+        frees, late (a long track's post-pass held a dozen copies of the track so)."""
+        self._made.clear()
+
     def smoothed(self, sigma: float, pad: int, root_pad: int) -> Smoothed:
         """The region low-passed (:func:`low_pass`): its pop at once, the rest when asked."""
         return Smoothed(self, sigma, pad, root_pad)
