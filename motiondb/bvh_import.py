@@ -38,6 +38,7 @@ from text2anim.core.motion import Motion
 from text2anim.core.retarget import SAME_SIZE, map_skeletons, retarget
 from text2anim.core.rigs import RigError
 from text2anim.core.skeleton import Skeleton
+from text2anim.core.tpose_blend import BLEND_START, held_blend
 
 from .errors import ClipValidationError
 from .records import PreparedClip, prepare_record
@@ -65,7 +66,8 @@ class ImportOptions:
         names: one clip name per file; ``None`` names each clip after its file (``02_01_walk``).
         scale: metres per file unit, or ``"auto"`` (:func:`core.bvh.read_bvh`).
         up: the files' up axis, ``"y"`` or ``"z"`` (:func:`core.bvh.read_bvh`).
-        drop_first: drop frame 0 (the T-pose of CMU/cgspeed files).
+        drop_first: drop frame 0 (the T-pose of CMU/cgspeed files), and hold the exporter's blend out of it
+            still (:func:`core.tpose_blend.held_blend`).
         replace: overwrite clips of the same names instead of refusing.
         start_posture, end_posture: every clip's postures (:data:`motiondb.types.POSTURES`);
             ``None`` classifies each file's first/last frame.
@@ -178,11 +180,17 @@ def read_clips(paths: Sequence[str | os.PathLike], options: ImportOptions,
                 f"{path}: {motion.n_frames:,} frames of {motion.skeleton.n_joints} joints is too long for one clip "
                 f"(at most {MAX_CLIP_SAMPLES:,} joint-frames, e.g. {MAX_CLIP_SAMPLES // 31:,} frames of a 31-joint "
                 "CMU skeleton: 2 min 47 s at 120 fps); cut the take into shorter files (nothing was imported)")
+        held = 0
+        if options.drop_first:  # the T-pose dropped: the exporter's blend out of it is held still too
+            motion, held = held_blend(motion)
         try:
             motion, notes = conform(motion, skeleton, str(path), options.character,
                                     dict(options.joint_map) if options.joint_map else None)
         except ClipValidationError as exc:
             raise ClipValidationError(f"{exc} (nothing was imported)") from None
+        if held:
+            notes.insert(0, f"first {held} frames (the exporter's blend out of the dropped T-pose, joints at "
+                            f"{BLEND_START:g}+ m/s) hold frame {held}'s pose")
         skeleton = motion.skeleton
         if notify:
             for note in notes:
