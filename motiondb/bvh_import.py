@@ -32,7 +32,7 @@ import numpy as np
 
 from text2anim.core.bodyparts import BodyMapError, BodyPart
 from text2anim.core.bvh import BVHError, read_bvh
-from text2anim.core.clearance import keep_clearance
+from text2anim.core.clearance import bend_toes, keep_clearance
 from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
 from text2anim.core.retarget import SAME_SIZE, map_skeletons, retarget
@@ -134,7 +134,7 @@ def conform(motion: Motion, target: Skeleton | None, where: str, character: str,
         notes.append(f"floor moved {'down' if floor.height > 0 else 'up'} {100 * abs(floor.height):.1f} cm "
                      f"(found from its {how})")
     if target is None or _same_skeleton(motion.skeleton, target):
-        return (motion if target is None else motion.replace(skeleton=target)), notes
+        return bend_toes(motion if target is None else motion.replace(skeleton=target)), notes
     target_map = joint_map if joint_map and set(joint_map.values()) <= set(target.names) else None
     try:
         mapping = map_skeletons(motion.skeleton, target, joint_map, target_map)
@@ -144,6 +144,7 @@ def conform(motion: Motion, target: Skeleton | None, where: str, character: str,
                                   f"{character!r}: {exc}") from None
     if 1.0 / SAME_SIZE <= mapping.scale <= SAME_SIZE:  # a body of about the capture's size: its clearance holds
         motion = keep_clearance(motion, captured)
+    motion = bend_toes(motion)  # tips out of the floor, planted feet where they stand
     rigs = mapping.rigs[0] if mapping.rigs[0] == mapping.rigs[1] else " to ".join(mapping.rigs)
     notes.append(f"retargeted onto the skeleton of character {character!r} ({rigs} rig, legs x{mapping.scale:.3f})")
     return motion, notes
