@@ -1,7 +1,9 @@
 """Limbs kept above the floor, and swinging feet clear of it, by IK.
 
-:func:`clear_floor` lifts a foot whose ankle, ball or toe tip dips below ``y = 0``
-(marker noise at a hard landing, a dancer's pointed toe) by as much, eased in and
+:func:`clear_floor` first bends the toes of a foot whose tip dips below ``y = 0`` while its ball is
+about still (slower than GMD's 0.5 m/s: planted, pivoting, a dancer's pointed toe set down;
+:func:`bend_toes`), then lifts a foot whose ankle, ball or toe tip still dips below it (marker noise at a
+hard landing, a swinging foot's tip: lifted, it clears the floor as a swing does) by as much, eased in and
 out over :data:`FLOOR_RAMP_SECONDS` (:func:`envelope`; two-bone leg IK,
 :func:`core.ik.leg_ik`, the foot's world rotation kept), and a hand whose wrist, finger joints or fingertips
 do (picking up from the floor: the finger joint 1.4 cm under it; a fall landing
@@ -97,6 +99,7 @@ def lift(motion: Motion, limbs: list, deficits: list[np.ndarray], ramp: int = RA
 
 def clear_floor(motion: Motion) -> Motion:
     """``motion`` with no ankle, toe, wrist or finger joint, nor a tip of one, below ``y = 0`` (docstring)."""
+    motion = bend_toes(motion, SKATE_SPEED)  # a ball on or about the floor bends its toes; a swing is lifted
     bm = body_map(motion.skeleton)
     limbs = [(leg_ik, side, ankle) for side, (ankle, _) in bm.feet.items()]
     limbs += [(arm_ik, side, wrist) for side, wrist in bm.hands.items()]
@@ -104,9 +107,10 @@ def clear_floor(motion: Motion) -> Motion:
     return lift(motion, limbs, [envelope(np.maximum(0.0, -chain_lowest(motion, end)), n) for *_, end in limbs], 0)
 
 
-def bend_toes(motion: Motion) -> Motion:
+def bend_toes(motion: Motion, slower_than: float | None = None) -> Motion:
     """``motion`` with each foot's toe tips (end sites of its toe joint) kept above ``y = 0`` by bending the toe
-    joint up about the horizontal axis across its tip, eased as :func:`clear_floor` eases a lift (docstring)."""
+    joint up about the horizontal axis across its tip, eased as :func:`clear_floor` eases a lift (docstring);
+    with ``slower_than`` (m/s), only on frames where the ball moves slower than that."""
     sites = motion.skeleton.end_sites
     tips = motion.end_site_positions()  # (T, E, 3)
     pos, world = motion.positions, motion.pose.quaternions()
@@ -118,7 +122,10 @@ def bend_toes(motion: Motion) -> Motion:
             continue
         ends = tips[:, mine]  # (T, S, 3)
         low = ends[np.arange(len(ends)), ends[..., 1].argmin(axis=1)]  # (T, 3) each frame's lowest tip
-        rise = envelope(np.maximum(0.0, -low[:, 1]), n)  # (T,) m
+        dip = np.maximum(0.0, -low[:, 1])
+        if slower_than is not None:
+            dip[horizontal_speed(pos[:, toe], motion.fps) >= slower_than] = 0.0
+        rise = envelope(dip, n)  # (T,) m
         v = low - pos[:, toe]  # (T, 3) ball to tip
         length, flat = np.linalg.norm(v, axis=1), np.linalg.norm(v[:, [0, 2]], axis=1)
         bend = (rise > 0) & (flat > 1e-6)
