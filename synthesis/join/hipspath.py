@@ -5,8 +5,8 @@ blends and its adaptation's return (eq. (8): the hips follow the mean of the fee
 step) can concentrate that travel into a fraction of a second — a 40-90 cm change of stance returned over
 a 0.3-0.5 s step is a jolt of 6-11 m/s², where a crossfade's long slide reads 1-3. Step 6 of the join
 post-pass (:mod:`synthesis.join.joinpass`) replaces the hips' horizontal path ``h`` ``(n, 2)`` over a
-finished join region by the path ``x`` found by two linear programmes (:func:`scipy.optimize.linprog`,
-HiGHS; deterministic), over the accelerations ``a[t] = (x[t-1] - 2 x[t] + x[t+1]) fps²``, the two frames
+finished join region by the path ``x`` found by two linear programmes (HiGHS's dual simplex through
+``highspy``; deterministic), over the accelerations ``a[t] = (x[t-1] - 2 x[t] + x[t+1]) fps²``, the two frames
 either side of the region fixed so that position and velocity carry on:
 
 1. the least peak ``A``: minimise ``A`` subject to ``|u_k · a[t]| <= A`` (four directions ``u_k``: an
@@ -38,8 +38,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from highspy import HighsLp, HighsModelStatus, MatrixFormat, kHighsInf
+from highspy._core import _Highs  # the public Highs wraps it with callbacks that print HiGHS's banner on stdout
 from scipy import sparse
-from scipy.optimize import linprog
 from scipy.spatial import ConvexHull, QhullError
 
 from text2anim.core.balance import SLOW, Stance, stance
@@ -148,17 +149,38 @@ def _octagon(h: np.ndarray, band: np.ndarray) -> tuple[sparse.csr_matrix, np.nda
     return sparse.vstack(rows).tocsr(), np.concatenate([band + sign * (h @ u) for u in _DIRS[1::2] for sign in (1.0, -1.0)])
 
 
-def _least_peak(acc: tuple, limits: tuple, box: list) -> float | None:
+def _minimum(cost: np.ndarray, rows: sparse.spmatrix, rhs: np.ndarray, lower: np.ndarray,
+             upper: np.ndarray) -> np.ndarray | None:
+    """The ``x`` that minimises ``cost · x`` subject to ``rows @ x <= rhs`` and ``lower <= x <= upper``
+    (``np.inf`` for no bound), HiGHS's choice among equal optima (the model as :func:`scipy.optimize.linprog`
+    passes it, without its import); None when there is none."""
+    a = sparse.csc_matrix(rows)
+    lp = HighsLp()
+    lp.num_col_, lp.num_row_ = a.shape[1], a.shape[0]
+    lp.col_cost_, lp.col_lower_, lp.col_upper_ = cost, lower, upper
+    lp.row_lower_, lp.row_upper_ = np.full(a.shape[0], -kHighsInf), rhs
+    lp.a_matrix_.format_ = MatrixFormat.kColwise
+    lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = a.indptr, a.indices, a.data
+    solver = _Highs()
+    solver.setOptionValue("output_flag", False)
+    solver.passModel(lp)
+    solver.run()
+    if solver.getModelStatus() != HighsModelStatus.kOptimal:
+        return None
+    return np.asarray(solver.getSolution().col_value)
+
+
+def _least_peak(acc: tuple, limits: tuple, box: tuple[np.ndarray, np.ndarray]) -> float | None:
     """Programme 1 of the module docstring: the least peak acceleration (m/s²) over the paths within ``box``
-    (the variables' bounds) and ``limits`` (``rows @ [x, z] <= bounds``); None when there is none."""
+    (the variables' lower and upper bounds) and ``limits`` (``rows @ [x, z] <= bounds``); None when there is
+    none."""
     rows, const = acc
     A, b = limits
     ones = sparse.csr_matrix(np.ones((rows.shape[0], 1)))
-    res = linprog(np.r_[np.zeros(rows.shape[1]), 1.0], method="highs", bounds=box + [(0.0, None)],
-                  A_ub=sparse.vstack([sparse.hstack([rows, -ones]),
-                                      sparse.hstack([A, sparse.csr_matrix((A.shape[0], 1))])]).tocsr(),
-                  b_ub=np.concatenate([-const, b]))
-    return float(res.x[-1]) if res.status == 0 else None
+    x = _minimum(np.r_[np.zeros(rows.shape[1]), 1.0],
+                 sparse.vstack([sparse.hstack([rows, -ones]), sparse.hstack([A, sparse.csr_matrix((A.shape[0], 1))])]),
+                 np.concatenate([-const, b]), np.r_[box[0], 0.0], np.r_[box[1], np.inf])
+    return None if x is None else float(x[-1])
 
 
 def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray, fps: float, band: np.ndarray,
@@ -181,7 +203,7 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     octa, octa_rhs = _octagon(h, band)
     limits = (sparse.vstack([S, octa]).tocsr(), np.concatenate([np.maximum(0.0, room - sup.gap) + S @ flat, octa_rhs]))
     wide = np.concatenate([band, band])
-    box = list(zip(flat - wide, flat + wide))
+    box = (flat - wide, flat + wide)
     acc, const = _acceleration_rows(n, fps, before, after)
     least = _least_peak((acc, const), limits, box)
     if least is None:
@@ -200,11 +222,10 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
               sparse.hstack([S, Z((R, width - 3 * n)), -pick])]  # gap + move <= o
     rhs = [-const, np.repeat(levels, m), flat, -flat, limits[1], S @ flat - sup.gap]
     cost = np.concatenate([np.zeros(2 * n + m), np.ones(K * m), np.full(2 * n, NEAR), np.full(n, OUTSIDE)])
-    bounds = box + [(0.0, peak)] * m + [(0.0, None)] * (K * m + 2 * n + n)
-    res = linprog(cost, A_ub=sparse.vstack(blocks).tocsr(), b_ub=np.concatenate(rhs), bounds=bounds, method="highs")
-    if res.status != 0:
-        return None
-    return np.stack([res.x[:n], res.x[n:2 * n]], axis=1)
+    lower = np.concatenate([box[0], np.zeros(width - 2 * n)])
+    upper = np.concatenate([box[1], np.full(m, peak), np.full(width - 2 * n - m, np.inf)])
+    x = _minimum(cost, sparse.vstack(blocks), np.concatenate(rhs), lower, upper)
+    return None if x is None else np.stack([x[:n], x[n:2 * n]], axis=1)
 
 
 def least_acceleration(motion: Motion, lo: int, hi: int) -> tuple[Motion, float]:
