@@ -168,9 +168,25 @@ def _reach(band: np.ndarray, sup: Support) -> np.ndarray:
     return norm * band[sup.frame] / np.cos(np.pi / 8) * (1.0 + 1e-9) + 1e-12
 
 
-def _split(rows: sparse.spmatrix) -> sparse.spmatrix:
-    """``rows`` over the moves ``d`` as rows over ``[d+, d-]`` (``d = d+ - d-``)."""
-    return sparse.hstack([rows, -rows])
+Entries = tuple[np.ndarray, np.ndarray, np.ndarray]  # (rows, columns, values) of a sparse matrix's entries
+
+
+def _at(M: sparse.spmatrix, row: int, col: int, sign: float = 1.0) -> Entries:
+    """The entries of ``M`` placed with its corner at ``(row, col)``, times ``sign``."""
+    c = sparse.coo_matrix(M)
+    return c.row + row, c.col + col, sign * c.data
+
+
+def _ones(rows: np.ndarray, cols: np.ndarray | int, value: float) -> Entries:
+    """Entries ``value`` at ``(rows, cols)``."""
+    return rows, np.broadcast_to(cols, rows.shape), np.full(len(rows), value)
+
+
+def _matrix(entries: list[Entries], shape: tuple[int, int]) -> sparse.csc_matrix:
+    """The matrix of ``shape`` with these entries (assembled once: stacking blocks costs more than HiGHS's
+    smaller solves)."""
+    r, c, v = (np.concatenate(x) for x in zip(*entries))
+    return sparse.csc_matrix((v, (r, c)), shape=shape)
 
 
 def _minimum(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: np.ndarray, col_lower: np.ndarray,
@@ -180,6 +196,7 @@ def _minimum(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: 
     reach are left out already) and with Devex pricing, both measured faster on these programmes; its choice
     among equal optima. None when there is none."""
     a = sparse.csc_matrix(rows)
+    a.sort_indices()
     lp = HighsLp()
     lp.num_col_, lp.num_row_ = a.shape[1], a.shape[0]
     lp.col_cost_, lp.col_lower_, lp.col_upper_ = cost, col_lower, col_upper
@@ -202,12 +219,12 @@ def _least_peak(U: sparse.csr_matrix, a0: np.ndarray, limits: tuple, band: np.nd
     within ``band`` and ``limits`` (:func:`_limits`), ``U @ d + a0`` the accelerations (:func:`_acceleration`);
     None when HiGHS finds none. Its variables are ``[d (2 n), A]``."""
     rows, lower, upper = limits
-    ones = np.ones((U.shape[0], 1))
+    (q, w), r = U.shape, np.arange(U.shape[0])
     wide = np.concatenate([band, band])
-    x = _minimum(np.r_[np.zeros(U.shape[1]), 1.0],
-                 sparse.vstack([sparse.hstack([U, -ones]), sparse.hstack([-U, -ones]),
-                                sparse.hstack([rows, sparse.csr_matrix((rows.shape[0], 1))])]),
-                 np.concatenate([np.full(2 * len(a0), -np.inf), lower]), np.concatenate([-a0, a0, upper]),
+    x = _minimum(np.r_[np.zeros(w), 1.0],
+                 _matrix([_at(U, 0, 0), _ones(r, w, -1.0), _at(U, q, 0, -1.0), _ones(q + r, w, -1.0),
+                          _at(rows, 2 * q, 0)], (2 * q + rows.shape[0], w + 1)),
+                 np.concatenate([np.full(2 * q, -np.inf), lower]), np.concatenate([-a0, a0, upper]),
                  np.r_[-wide, 0.0], np.r_[wide, np.inf])
     return None if x is None else float(x[-1])
 
@@ -245,23 +262,23 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     out = sup.gap + _reach(band, sup) > 0.0  # the edges a move may take the centre of mass outside of
     frames, at = np.unique(sup.frame[out], return_inverse=True)
     F = len(frames)
-    Z = sparse.csr_matrix
     width = 4 * n + m + K * m + F
-    eye_m = sparse.identity(m, format="csr")
-    rows, lims = limits[0], len(limits[1])
-    blocks = [sparse.hstack([_split(U), -sparse.vstack([eye_m] * 4), Z((4 * m, K * m + F))]),  # u·a <= p
-              sparse.hstack([_split(-U), -sparse.vstack([eye_m] * 4), Z((4 * m, K * m + F))]),  # -u·a <= p
-              sparse.hstack([Z((m, 4 * n)), eye_m, -sparse.hstack([eye_m] * K), Z((m, F))]),  # p - sum s <= level_0
-              sparse.hstack([_split(rows), Z((lims, width - 4 * n))]),  # the octagon, the balance
-              sparse.hstack([_split(sup.rows[out]), Z((len(at), m + K * m)),
-                             -Z((np.ones(len(at)), (np.arange(len(at)), at)), shape=(len(at), F))])]  # gap + move <= o
+    rows, lims, q, t = limits[0], len(limits[1]), 4 * m, np.arange(4 * m)
+    p, s = 4 * n, 4 * n + m  # the first columns of p and s
+    edges, e = sup.rows[out], 9 * m + lims  # the first row of gap + move <= o
+    A = _matrix([_at(U, 0, 0), _at(U, 0, 2 * n, -1.0), _ones(t, p + t % m, -1.0),  # u·a <= p
+                 _at(U, q, 0, -1.0), _at(U, q, 2 * n), _ones(q + t, p + t % m, -1.0),  # -u·a <= p
+                 _ones(2 * q + t[:m], p + t[:m], 1.0), _ones(2 * q + np.tile(t[:m], K), s + np.arange(K * m), -1.0),
+                 _at(rows, 9 * m, 0), _at(rows, 9 * m, 2 * n, -1.0),  # p - sum s <= level_0; octagon, balance
+                 _at(edges, e, 0), _at(edges, e, 2 * n, -1.0), _ones(e + np.arange(len(at)), s + K * m + at, -1.0)],
+                (e + len(at), width))
     lower = np.concatenate([np.full(9 * m, -np.inf), limits[1], np.full(len(at), -np.inf)])
     upper = np.concatenate([-a0, a0, np.full(m, levels[0]), limits[2], -sup.gap[out]])
     cost = np.concatenate([np.full(4 * n, NEAR), np.zeros(m), np.repeat(np.arange(1.0, K + 1.0), m),
                            np.full(F, OUTSIDE)])
     wide = np.concatenate([band, band])
     col_upper = np.concatenate([wide, wide, np.full(m, peak), np.repeat(np.diff(levels), m), np.full(m + F, np.inf)])
-    x = _minimum(cost, sparse.vstack(blocks), lower, upper, np.zeros(width), col_upper)
+    x = _minimum(cost, A, lower, upper, np.zeros(width), col_upper)
     if x is None:
         return None
     d = x[:2 * n] - x[2 * n:4 * n]
