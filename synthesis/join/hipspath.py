@@ -237,16 +237,16 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     the body standing over its feet; ``before``/``after`` ``(2, 2)``: the two fixed frames either side. None
     when the programme finds none.
 
-    Programme 2's variables are ``[d+ (2 n), d- (2 n), p (n + 2), s (K (n + 2)), o (F)]``: the path is ``h + d+ -
-    d-`` (each part within ``band``, priced :data:`NEAR` per m: their sum is the distance from ``h``), ``p``
-    bounds each frame's acceleration (octagon, at most the cap), ``s`` splits it over the levels (``p <=
-    levels[0] + sum_k s_k``, ``s_k`` at most the step to the next level and priced ``k``: the price of the module
-    docstring, each frame's k-th level exceeded costing k per m/s²), ``o`` how far the centre of mass is outside
-    the support on each of the ``F`` frames where a move can take it out (``support``: no edge's distance may
-    grow beyond ``max(gap, room)``; each metre outside costs :data:`OUTSIDE`). When the given path already
-    accelerates under ``levels[0]`` and stands inside its feet it costs nothing, every other path costs its
-    distance: it is returned as it is, without a programme."""
-    n, K = len(h), len(levels)
+    Programme 2's variables are ``[d+ (2 n), d- (2 n), s (K' (n + 2)), o (F)]``: the path is ``h + d+ - d-``
+    (each part within ``band``, priced :data:`NEAR` per m: their sum is the distance from ``h``); ``levels[0] +
+    sum_k s_k[t]`` bounds frame ``t``'s acceleration along each direction, ``s_k`` at most the step to the next
+    level (the last: to the cap) and priced ``k`` per m/s², so a jolt pays each level it exceeds (the price of
+    the module docstring; the ``K'`` levels under the cap: those at or over it are never exceeded); ``o`` how far
+    the centre of mass is outside the support on each of the ``F`` frames where a move can take it out
+    (``support``: no edge's distance may grow beyond ``max(gap, room)``; each metre outside costs
+    :data:`OUTSIDE`). When the given path already accelerates under ``levels[0]`` and stands inside its feet it
+    costs nothing, every other path costs its distance: it is returned as it is, without a programme."""
+    n = len(h)
     m = n + 2  # accelerations at frames -1 .. n
     sup = support if support is not None else Support(sparse.csr_matrix((0, 2 * n)), np.zeros(0), np.zeros(0, int))
     U, a0 = _acceleration(h, before, after, fps)
@@ -259,25 +259,26 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     if least is None:
         return None
     peak = max(least * (1.0 + SLACK) + 1e-6, levels[0])
+    levels = levels[:1 + int(np.sum(levels[1:] < peak))]  # a level at or over the cap is never exceeded: no price
+    K = len(levels)
     out = sup.gap + _reach(band, sup) > 0.0  # the edges a move may take the centre of mass outside of
     frames, at = np.unique(sup.frame[out], return_inverse=True)
     F = len(frames)
-    width = 4 * n + m + K * m + F
+    width = 4 * n + K * m + F
     rows, lims, q, t = limits[0], len(limits[1]), 4 * m, np.arange(4 * m)
-    p, s = 4 * n, 4 * n + m  # the first columns of p and s
-    edges, e = sup.rows[out], 9 * m + lims  # the first row of gap + move <= o
-    A = _matrix([_at(U, 0, 0), _at(U, 0, 2 * n, -1.0), _ones(t, p + t % m, -1.0),  # u·a <= p
-                 _at(U, q, 0, -1.0), _at(U, q, 2 * n), _ones(q + t, p + t % m, -1.0),  # -u·a <= p
-                 _ones(2 * q + t[:m], p + t[:m], 1.0), _ones(2 * q + np.tile(t[:m], K), s + np.arange(K * m), -1.0),
-                 _at(rows, 9 * m, 0), _at(rows, 9 * m, 2 * n, -1.0),  # p - sum s <= level_0; octagon, balance
+    s = 4 * n  # the first column of s
+    seg_r, seg_c = np.tile(t, K), s + (np.arange(K)[:, None] * m + t % m).ravel()
+    edges, e = sup.rows[out], 8 * m + lims  # the first row of gap + move <= o
+    A = _matrix([_at(U, 0, 0), _at(U, 0, 2 * n, -1.0), _ones(seg_r, seg_c, -1.0),  # u·a <= levels[0] + sum s
+                 _at(U, q, 0, -1.0), _at(U, q, 2 * n), _ones(q + seg_r, seg_c, -1.0),  # -u·a <= the same
+                 _at(rows, 8 * m, 0), _at(rows, 8 * m, 2 * n, -1.0),  # octagon, balance
                  _at(edges, e, 0), _at(edges, e, 2 * n, -1.0), _ones(e + np.arange(len(at)), s + K * m + at, -1.0)],
                 (e + len(at), width))
-    lower = np.concatenate([np.full(9 * m, -np.inf), limits[1], np.full(len(at), -np.inf)])
-    upper = np.concatenate([-a0, a0, np.full(m, levels[0]), limits[2], -sup.gap[out]])
-    cost = np.concatenate([np.full(4 * n, NEAR), np.zeros(m), np.repeat(np.arange(1.0, K + 1.0), m),
-                           np.full(F, OUTSIDE)])
+    lower = np.concatenate([np.full(8 * m, -np.inf), limits[1], np.full(len(at), -np.inf)])
+    upper = np.concatenate([levels[0] - a0, levels[0] + a0, limits[2], -sup.gap[out]])
+    cost = np.concatenate([np.full(4 * n, NEAR), np.repeat(np.arange(1.0, K + 1.0), m), np.full(F, OUTSIDE)])
     wide = np.concatenate([band, band])
-    col_upper = np.concatenate([wide, wide, np.full(m, peak), np.repeat(np.diff(levels), m), np.full(m + F, np.inf)])
+    col_upper = np.concatenate([wide, wide, np.repeat(np.diff(np.r_[levels, peak]), m), np.full(F, np.inf)])
     x = _minimum(cost, A, lower, upper, np.zeros(width), col_upper)
     if x is None:
         return None
