@@ -5,9 +5,12 @@ arrays are read-only), so a value computed once from a motion's frames holds for
 lives, and goes with it: the cache is an attribute of the motion, not a table keyed by motions.
 
 - ``cache.pose(motion)``: forward kinematics (:mod:`core.fk`), computed once. A motion made from another
-  whose pose is known (a slice, a limb edited, the root moved, parts joined, frames shared with it) is
-  given a *recipe* instead: the other's pose and what differs, so that its own pose, when asked, costs
-  that difference only (bit for bit the full computation). The recipe is dropped once used.
+  whose pose is known (a slice, a limb edited, on every frame or on a window of frames, the root moved, parts
+  joined, frames shared with it) is given a *recipe* instead: the other's pose and what differs, so that its
+  own pose, when asked, costs that difference only (bit for bit the full computation). The recipe is dropped
+  once used. Frames shared with another pose stay shared through a later edit (only the edited frames are
+  redone), so a long track whose joins are finished one after another never runs the kinematics of all its
+  frames again.
 - ``cache.get(key, make)``: any other quantity derived from the motion's frames (foot contacts, headings,
   pose features), by a key that names it and its parameters by value (``("headings", 0.3)``).
 
