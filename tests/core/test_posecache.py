@@ -40,13 +40,41 @@ def test_each_quantity_is_computed_once(walk):
     assert walk.cache.get(("test", 2), lambda: "other parameter") == "other parameter"  # keyed by value
 
 
+def window_edit(m: Motion, lo: int = 4, hi: int = 9, joint: int = 5) -> Motion:
+    """``m`` with ``joint``'s rotations over frames ``[lo, hi)`` played backwards (a leg solved on a window)."""
+    rots = m.rotations[lo:hi].copy()
+    rots[:, joint] = rots[::-1, joint]
+    return m.with_rotations(lo, rots)
+
+
+def shared(m: Motion) -> Motion:
+    """The same frames in arrays of their own, their pose shared with ``m``'s (a finished join's track)."""
+    return fresh(m).share_pose(m, np.arange(m.n_frames))
+
+
+def root_moved_at(m: Motion, lo: int, hi: int) -> Motion:
+    root = m.root_positions.copy()
+    root[lo:hi] += [0.1, 0.0, -0.2]
+    return m.replace(root_positions=root)
+
+
 @pytest.mark.parametrize("derive", [
     lambda m: m[3:11],
     lambda m: m.replace(rotations=np.where(np.arange(m.skeleton.n_joints)[None, :, None] == 5, m.rotations[::-1],
                                            m.rotations)),
     lambda m: m.replace(root_positions=m.root_positions + [0.5, 0.0, -0.25]),
     lambda m: concatenate([m[:6], m[2:9], m]),
-], ids=["slice", "limb edit", "root moved", "concatenation"])
+    window_edit,
+    lambda m: window_edit(m)[2:7],
+    lambda m: window_edit(m)[10:],
+    lambda m: window_edit(window_edit(m), 7, 12, 2),
+    lambda m: window_edit(shared(m)),
+    lambda m: root_moved_at(shared(m), 2, 6),
+    lambda m: shared(shared(m)),
+    lambda m: fresh(window_edit(shared(m))).share_pose(window_edit(shared(m)), np.arange(m.n_frames)),
+], ids=["slice", "limb edit", "root moved", "concatenation", "window edit", "window edit sliced", "slice past the window",
+        "window edit of a window edit", "window edit of shared frames", "root moved on shared frames",
+        "shared through a share", "shared with an edited share"])
 def test_a_motion_made_from_one_whose_pose_is_known_has_the_pose_computed_fresh_bit_for_bit(walk, derive):
     walk.pose  # known: what is derived from it reuses it
     made = derive(walk)
