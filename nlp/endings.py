@@ -65,4 +65,5 @@ NOT_MOTION = {
     "non-agent": "its subject is not a person (雨が降る, 音楽が流れる)",
     "direction": "says which way the next motion goes (花子に向かって走る)",
     "facing": "says that the actors face each other (向かい合って)",
+    "greeting": "a set greeting (いらっしゃいませ, おかえりなさい: said to someone, not done)",
 }

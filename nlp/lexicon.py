@@ -86,6 +86,13 @@ NON_ACTION_LEMMAS = frozenset(
     為る 御座る 居す""".split()
 )
 
+#: Set greetings built on a motion verb (いらっしゃる, 行く, 帰る, 休む), as the phrase is written without its
+#: punctuation: said to someone, not done by the one who says them (a shop's いらっしゃいませ is no 来る).
+GREETINGS = frozenset(
+    """いらっしゃいませ いらっしゃい いってらっしゃい 行ってらっしゃい いってらっしゃいませ 行ってらっしゃいませ
+    おかえりなさい お帰りなさい おかえりなさいませ お帰りなさいませ おやすみなさい お休みなさい""".split()
+)
+
 #: Auxiliary verbs after a て-form, by UniDic lemma (every spelling of one
 #: auxiliary meets on its lemma: ください / 下さい -> 下さる, くれる / 呉れる ->
 #: 呉れる, もらう / 貰う -> 貰う, しまう / 仕舞う -> 仕舞う, おく -> 置く, みる -> 見る,

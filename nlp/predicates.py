@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from .bunsetsu import Phrase
 from .lexicon import (
-    BODY_PARTS, LIBRARY_BY_READING, LIBRARY_VERBS, NON_ACTION_LEMMAS, VERB_ALIASES,
+    BODY_PARTS, GREETINGS, LIBRARY_BY_READING, LIBRARY_VERBS, NON_ACTION_LEMMAS, VERB_ALIASES,
 )
 from .mimetics import REPEATS, as_verb, repeats
 from .pred import Pred
@@ -76,7 +76,9 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
     pred.end = toks[_verb_end(toks, v)].end
     pred.negated = any(t.lemma in _NEGATIONS and t.pos1 in ("助動詞", "形容詞")
                        for t in toks[v:g + 1]) and not _invitation(toks, g)
-    if any(t.lemma == "たい" and t.pos1 == "助動詞" for t in toks[v:g + 1]):
+    if "".join(t.surface for t in toks if t.pos1 != "補助記号") in GREETINGS:
+        pred.reason = "greeting"  # いらっしゃいませ: the shop's welcome, no one comes
+    elif any(t.lemma == "たい" and t.pos1 == "助動詞" for t in toks[v:g + 1]):
         pred.reason = "desire"  # 走りたい, 踊りたくて: a wish, not the action
     elif _prohibition(toks, g):
         pred.reason = "prohibition"
@@ -144,7 +146,7 @@ def settle_reason(pred: Pred, quoted: bool) -> None:
         pred.reason = pred.ending
     elif pred.negated:
         pred.reason = "negated"
-    elif pred.reason not in ("light", "state", "potential", "non-agent", "desire", "prohibition"):
+    elif pred.reason not in ("light", "state", "potential", "non-agent", "desire", "prohibition", "greeting"):
         pred.reason = ""
 
 
