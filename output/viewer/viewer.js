@@ -13,7 +13,8 @@
 
   var state = {
     t: 0, playing: true, speed: 1, loop: true, follow: true, frame: 0, ready: false,
-    scrubbing: false, dirty: true, last: 0
+    scrubbing: false, dirty: true, last: 0,
+    every: 0, drawn: 0  // ms at least between two drawings (0: every animation frame), the last one's clock
   };
   var actors = [];
   // The things of the scene (balls, chairs): props.js sets this; render_html inlines it here only when
@@ -642,10 +643,11 @@
       }
       state.dirty = true;
     }
-    if (state.dirty) {
+    if (state.dirty && now - state.drawn >= state.every) {
       updateUi();
-      followStep(dt);
+      followStep(state.drawn ? Math.min(0.25, (now - state.drawn) / 1000) : dt);
       render();
+      state.drawn = now;
       state.dirty = state.follow && state.playing;
     }
   }
@@ -769,6 +771,12 @@
     pause: function () { state.playing = false; state.dirty = true; },
     seek: setTime,
     load: load,
+    // the document playing (viewer_data()'s: the page's own, or the latest load()ed)
+    get data() { return DATA; },
+    // draw at most this many frames a second while playing (0: at every animation frame, the default): a page
+    // that shares the machine with the work it shows (the studio) draws at the motion's own rate
+    get maxFps() { return state.every ? Math.round(1000 / (state.every + 2)) : 0; },
+    set maxFps(fps) { state.every = fps > 0 ? 1000 / fps - 2 : 0; },
     // whether load() may be handed things (props.js is in the page)
     get things() { return !!Props; },
     // draw a body (true) or the stick figure (false, the default)

@@ -89,6 +89,43 @@ def test_typing_a_sentence_changes_the_animation_and_the_time_table(page, tmp_pa
     page.screenshot(path=str(tmp_path / "typed.png"))
 
 
+def test_a_new_text_shows_a_draft_at_once_then_the_finished_animation_in_its_place(page):
+    """A new text plays first as a draft (marked 下書き), then as the finished animation, swapped into the same
+    viewer at the same playing time; the finished answer is held back here until the draft has been looked at."""
+    import json
+
+    text, held = "美咲は走って、止まる。", []
+
+    def hold(route):
+        if json.loads(route.request.post_data or "{}").get("draft") is False:
+            held.append(route)  # the finished animation: answered when the test lets it go
+        else:
+            route.continue_()
+    page.route("**/api/animate", hold)
+    viewer = "document.getElementById('view').contentWindow"
+    page.evaluate(f"window.__first = {viewer}.__t2a")
+    page.fill("#text", text)
+    page.wait_for_function("([text]) => window.__studio.text === text && window.__studio.draft", arg=[text])
+    page.wait_for_function(f"{viewer}.__t2a.time > 0.3", timeout=10000)  # the draft plays
+    assert page.locator("#draft").is_visible() and page.locator("#draft").inner_text() == "下書き"
+    assert "下書き" in page.locator("#status").inner_text() and page.evaluate("window.__studio.busy")
+    draft = page.evaluate(f"{viewer}.__t2a.data.actors[0].rel")
+    for _ in range(100):  # the finished request, asked for once the draft was on screen
+        if held:
+            break
+        page.wait_for_timeout(50)
+    page.evaluate(f"{viewer}.__t2a.pause()")  # held where it is: the swap must leave it there
+    held[0].continue_()
+    page.wait_for_function("!window.__studio.busy")
+    assert not page.locator("#draft").is_visible() and not page.evaluate("window.__studio.draft")
+    assert page.evaluate(f"{viewer}.__t2a.data.actors[0].rel") != draft  # the finished frames, not the draft's
+    assert page.evaluate(f"{viewer}.__t2a === window.__first")  # the same viewer, never reloaded
+    swap = page.evaluate("window.__studio.swap")
+    assert swap["before"] > 0.3 and swap["after"] == swap["before"]  # no jump in the playing time
+    assert page.evaluate(f"{viewer}.__t2a.time") == swap["before"] and not page.evaluate(f"{viewer}.__t2a.playing")
+    page.unroute("**/api/animate")
+
+
 def test_an_unknown_verb_is_shown_under_the_text_and_the_last_animation_stays(page):
     page.fill("#text", "太郎は泳ぐ。")
     page.wait_for_function("document.querySelector('#marks .missing') !== null", timeout=30000)
@@ -318,8 +355,7 @@ def test_the_things_of_a_scene_show_in_the_viewer_the_top_view_and_on_a_dropped_
     page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
     view = page.frame_locator("#view")
     assert "椅子" in view.locator("#legend").inner_text() and "本" in view.locator("#legend").inner_text()
-    names = page.evaluate("JSON.parse(document.getElementById('view').contentDocument"
-                          ".getElementById('t2a-data').textContent).props.map(p => p.name)")
+    names = page.evaluate("document.getElementById('view').contentWindow.__t2a.data.props.map(p => p.name)")
     assert names == ["椅子", "本"]
     # the top view: the actor's path, the chair's footprint, the book's at the start and the end and its path
     top = page.locator("#topview")

@@ -10,6 +10,7 @@ import pytest
 from starlette.testclient import TestClient
 
 from text2anim.cli.studio.app import MAX_BODY, create_app
+from text2anim.cli.studio.work import Studio
 from text2anim.core.bvh import parse_bvh
 
 PORT = 8123
@@ -39,12 +40,34 @@ def test_the_page_and_its_own_files_are_served(client):
     assert client.get("/static/vendor/../app.py").status_code == 404
 
 
-def test_a_text_becomes_the_viewer_page_and_its_time_table(client):
-    r = client.post("/api/animate", json={"text": "太郎は走って、ボールを蹴る。"})
+def test_a_text_becomes_the_viewers_data_and_its_time_table(client):
+    r = client.post("/api/animate", json={"text": "太郎は走って、ボールを蹴る。", "page": True})
     data = r.json()
-    assert r.status_code == 200 and data["ok"]
+    assert r.status_code == 200 and data["ok"] and not data["draft"]
     assert [(e["verb"], e["method"]) for e in data["table"]] == [("走る", "initial"), ("蹴る", "transition")]
-    assert "__t2a" in data["html"] and data["duration"] > 1.0 and data["blends"]
+    assert data["view"]["actors"] and data["duration"] > 1.0 and data["blends"]
+    assert "__t2a" in data["html"] and "Props = (function" in data["html"]  # the page, asked for: it can show things
+    assert "html" not in client.post("/api/animate", json={"text": "太郎は走って、ボールを蹴る。"}).json()
+
+
+def test_a_new_text_is_answered_with_a_draft_then_the_finished_animation(client, library_db):
+    """A draft (crossfaded joins) first, marked; the finished animation when asked without ``draft``, which then
+    answers the text even when a draft is asked; it has the same bytes as one made without a draft before it."""
+    text = "花子は歩いて、座る。"
+    draft = client.post("/api/animate", json={"text": text, "draft": True}).json()
+    assert draft["ok"] and draft["draft"]
+    finished = client.post("/api/animate", json={"text": text}).json()
+    assert finished["ok"] and not finished["draft"]
+    assert [e["verb"] for e in draft["table"]] == [e["verb"] for e in finished["table"]] == ["歩く", "座る"]
+    assert draft["view"]["actors"][0]["rel"] != finished["view"]["actors"][0]["rel"]  # another blend, other frames
+    assert client.post("/api/animate", json={"text": text, "draft": True}).json() == finished
+    fresh = Studio.open(library_db)
+    try:
+        alone = fresh.animate(text)
+        assert alone["view"] == finished["view"] and alone["table"] == finished["table"]
+    finally:
+        fresh.close()
+    assert client.post("/api/animate", json={"text": text, "draft": "yes"}).status_code == 400
 
 
 def test_a_manner_is_on_its_row_and_one_not_shown_is_a_warning(client):

@@ -17,12 +17,15 @@
   var $ = function (id) { return document.getElementById(id); };
   // the pause after the last keystroke (or the end of a composition) before a text is sent: longer than the
   // gap between two keys of continuous typing; a text sent too early is only a draft, aborted by the next key
-  var DEBOUNCE_MS = 150, PROJECT_VERSION = 1, STORE = "t2a-studio-project";
+  // the viewer draws at the motion's own 30 fps: at every animation frame (60 a second) headless Chromium took
+  // 63% of a core, which the studio's server, on the same machine, needs for the next text
+  var DRAW_FPS = 30;
+  var DEBOUNCE_MS = 120, PROJECT_VERSION = 1, STORE = "t2a-studio-project";
   var S = { text: null, note: "", seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
             renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false,
             edits: {}, sent: "", fallback: "strict", composing: false, requests: 0,
             history: [], at: -1, session: [], lang: "ja", keyAt: 0, keyLatencies: [], character: "body",
-            draft: false, drafts: 0, finishLatencies: [] };
+            draft: false, drafts: 0, finishLatencies: [], phases: [] };
   window.__studio = S;
 
   // ---- words: one catalogue, the page's language
@@ -67,7 +70,7 @@
     var tries = 0;
     (function wait() {
       if (!w.__t2a || !w.__t2a.ready) { if (tries++ < 500) setTimeout(wait, 5); return; }
-      viewerWords(w); w.__t2a.body = S.character === "body";
+      viewerWords(w); w.__t2a.body = S.character === "body"; w.__t2a.maxFps = DRAW_FPS;
     })();
   }
 
@@ -128,6 +131,7 @@
       .then(answer)
       .then(function (data) {
         if (seq !== S.seq) return;
+        S.answeredAt = performance.now();
         if (data.ok && !data.html && !viewer()) { request(text, edits, fallback, draft, keyAt, true); return; }
         S.sentKeyAt = keyAt; show(data, text, seq, { text: text, edits: edits, fallback: fallback });
       })
@@ -270,7 +274,9 @@
       return;
     }
     S.previewing = null;
+    var before = api.time;
     api.load(data.view, !finishing).then(function () {
+      if (finishing) S.swap = { before: before, after: api.time };  // the playing time across the replacement
       if (!finishing) { api.seek(0); api.play(); }  // a new animation plays from its start, as a new page did
       ready(seq, data, asked);
     }).catch(function (e) { if (seq === S.seq) request(asked.text, asked.edits, asked.fallback, data.draft, 0, true); });
@@ -281,13 +287,17 @@
     (function wait() {
       var api = w.__t2a;
       if (!api || !api.ready) { if (tries++ < 500) setTimeout(wait, 2); return; }
-      viewerWords(w); api.body = S.character === "body";
+      viewerWords(w); api.body = S.character === "body"; api.maxFps = DRAW_FPS;
       if (S.resumeAt !== null) { api.seek(Math.min(S.resumeAt, api.duration)); api.play(); S.resumeAt = null; }
       w.requestAnimationFrame(function () {  // the first frame of the new animation is on screen
         if (seq !== S.seq) return;
         var now = performance.now(), ms = now - S.firedAt;
         S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq;
-        if (S.sentKeyAt) S.keyLatencies.push(now - S.sentKeyAt);
+        if (S.sentKeyAt) {
+          S.keyLatencies.push(now - S.sentKeyAt);
+          // where the time went: the pause, the request (the server's work), the viewer's load and first frame
+          S.phases.push({ pause: S.firedAt - S.sentKeyAt, request: S.answeredAt - S.firedAt, shown: now - S.answeredAt });
+        }
         if (data.draft) {
           S.drafts++; S.draftKeyAt = S.sentKeyAt; drafted(true);
           status(t("shown_draft", { s: data.duration.toFixed(2), ms: Math.round(ms) }));
@@ -662,7 +672,7 @@
   box.addEventListener("compositionend", function () { S.composing = false; S.keyAt = performance.now(); schedule(); });
   box.addEventListener("input", function (e) {
     S.keyAt = performance.now();
-    stop(); S.busy = false; S.sent = "";  // the text changed: the animation in flight no longer matters
+    stop(); S.busy = true; S.sent = "";  // the text changed: the animation in flight no longer matters, a new one is due
     if (!e.isComposing && !S.composing) schedule();
   });
   $("add-btn").addEventListener("click", append);
