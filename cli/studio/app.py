@@ -79,8 +79,10 @@ MAX_UPLOAD = 30 * 1024 * 1024
 MAX_EDITS = 200
 
 
-def _refused(status: int, error: str) -> JSONResponse:
-    return JSONResponse({"ok": False, "error": error}, status_code=status)
+def _refused(status: int, error: str, notice: dict | None = None) -> JSONResponse:
+    """``{"ok": false, "error"}``, with the ``notice`` (:class:`core.notice.Notice` as JSON) the page words when
+    there is one."""
+    return JSONResponse({"ok": False, "error": error, **({"notice": notice} if notice else {})}, status_code=status)
 
 
 async def _body(request: Request, limit: int, what: str) -> bytes | Response:
@@ -136,7 +138,8 @@ async def _text_of(request: Request) -> Asked | Response:
     try:
         edits = tuple(Edit.from_dict(e) for e in raw)
     except (ValueError, TypeError, KeyError, AttributeError) as exc:  # EditError is a ValueError
-        return _refused(400, f"edits: {_short(exc)}")
+        notice = getattr(exc, "notice", None)
+        return _refused(400, f"edits: {_short(exc)}", notice.to_dict() if notice is not None else None)
     return Asked(text, edits, fmt, fallback, draft, page)
 
 

@@ -229,11 +229,13 @@ class Studio:
 
     def animate(self, text: str, edits: tuple = (), fallback: str = "strict",
                 cancelled: Callable[[], bool] = lambda: False, draft: bool = False) -> dict:
-        """``{"ok": True, "draft", "view", "top", "table", "blends", "duration", "warnings", "fallbacks"}`` for ``text`` with
+        """``{"ok": True, "draft", "view", "top", "table", "blends", "duration", "warnings", "notices", "fallbacks"}`` for
+        ``text`` with
         the time-table ``edits`` (:class:`text2anim.edits.Edit`) and ``fallback`` (``strict``, or ``nearest``: a
-        verb no clip has played by its stand-in), or ``{"ok": False, "error", "code"}`` with the message the
-        command line would print (never a traceback) and its kind (:func:`error_code`), which the page words
-        in its own language. ``cancelled()`` true (the page went away: a newer text) stops the work between the
+        verb no clip has played by its stand-in), or ``{"ok": False, "error", "code", "notice"}`` with the message
+        the command line would print (never a traceback), its kind (:func:`error_code`) and, when the error has
+        one, its :class:`core.notice.Notice`, which the page words in its own language (as ``notices``, the
+        ``warnings``' own). ``cancelled()`` true (the page went away: a newer text) stops the work between the
         pipeline's stages, or before it starts once the animation before it is done: ``{"ok": False, "code":
         "cancelled"}``, nothing kept. Each table row carries its edit key (verb, nth), or None for
         what the scheduler added (a stop, an idle, a posture bridge). ``view`` is the viewer's document
@@ -318,8 +320,9 @@ class Studio:
         except Exception as exc:  # the stages' user errors carry user_facing; anything else is a bug to show
             if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                 raise
+            notice = getattr(exc, "notice", None)  # a LimitError's, an EditError's: what the page words
             return {"ok": False, "error": message(str(exc)), "code": error_code(exc),
-                    "unknown": unknown_verbs(text, exc)}
+                    "unknown": unknown_verbs(text, exc), **({"notice": notice.to_dict()} if notice is not None else {})}
         rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
                  "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part,
                  "key": keys.get(e.id), "manner": e.manner.to_dict() if e.manner else None}
@@ -331,6 +334,7 @@ class Studio:
                 "rig": self.rig is not None,
                 "notes": list(anim.planned.analysis.notes),
                 "table": rows, "blends": blends, "warnings": list(anim.warnings),
+                "notices": [n.to_dict() for n in anim.notices],
                 "fallbacks": [{"written": f.written, "used": f.used} for f in anim.planned.fallbacks],
                 "duration": round(max((m.duration for m in anim.motions.values()), default=0.0), 3),
                 "_anim": anim}

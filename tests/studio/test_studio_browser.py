@@ -135,11 +135,24 @@ def test_an_unknown_verb_is_shown_under_the_text_and_the_last_animation_stays(pa
     assert page.evaluate("window.__studio.table.length") == 3  # the seed sentence still plays
 
 
-def test_a_manner_not_shown_is_said_under_the_text_and_a_styled_bar_names_its_manner(page):
+def test_a_manner_not_shown_and_a_refused_duration_are_said_in_japanese_and_a_styled_bar_names_its_manner(page):
+    """The API's warnings and refusals reach the page as kinds and figures (core.notice), worded from the
+    page's catalogue: Japanese, English by the switch; never the command line's sentence or one of its flags."""
     page.fill("#text", "花子はしょんぼり歩いて、にこにこ座った。")
-    page.wait_for_function("document.querySelectorAll('#marks .warning').length === 1", timeout=30000)
-    assert "にこにこ is not shown" in page.inner_text("#marks .warning")
+    page.wait_for_function("document.querySelectorAll('#marks .warning').length === 1 && !window.__studio.busy",
+                           timeout=30000)
+    said = page.inner_text("#marks .warning")
+    assert "2 行目「座る」: 「にこにこ」の様子はまだ表せない" in said and "is not shown" not in said
+    assert page.locator("#marks .warning button.open-library").inner_text() == "ライブラリを開く"
     assert "しょんぼり (sad)" in page.evaluate("document.getElementById('timeline').textContent")
+    page.select_option("#lang", "en")
+    assert "the manner 「にこにこ」 cannot be shown yet" in page.inner_text("#marks .warning")
+    page.select_option("#lang", "ja")
+    page.fill("#text", "太郎は400秒走る。")
+    page.wait_for_function("window.__studio.error && !window.__studio.busy", timeout=30000)
+    said = page.inner_text("#error")
+    assert "「走る」の長さ 400 秒は長すぎます（300 秒まで）" in said
+    assert "--" not in page.inner_text("body") and "budget" not in page.inner_text("body")
 
 
 def test_adding_a_sentence_while_it_plays_goes_on_from_the_frame_on_screen(page):

@@ -76,6 +76,8 @@ def test_a_manner_is_on_its_row_and_one_not_shown_is_a_warning(client):
     assert [(e["verb"], (e["manner"] or {}).get("by")) for e in data["table"]] == [("歩く", "modifiers"),
                                                                                     ("座る", None)]
     assert any("にこにこ is not shown" in w for w in data["warnings"])
+    assert data["notices"] == [{"kind": "manner_not_shown", "text": data["warnings"][0],  # for the page to word
+                                "params": {"row": 2, "verb": "座る", "word": "にこにこ", "why": "no_style"}}]
 
 
 def test_what_cannot_be_animated_says_why_in_the_users_terms(client):
@@ -88,6 +90,13 @@ def test_what_cannot_be_animated_says_why_in_the_users_terms(client):
     assert client.post("/api/animate", json={"text": "  "}).json()["code"] == "empty"
     r = client.post("/api/animate", json={"text": "太郎は" + "九" * 30 + "秒歩く。"})
     assert r.status_code == 422 and r.json()["code"] == "limit"
+    r = client.post("/api/animate", json={"text": "太郎は400秒走る。"})
+    assert r.json()["code"] == "limit" and "--max-seconds" in r.json()["error"]  # the command line's sentence
+    assert r.json()["notice"]["kind"] == "limit_duration"  # and what the page words instead
+    assert r.json()["notice"]["params"] == {"verb": "走る", "s": "400", "max": 300.0}
+    r = client.post("/api/animate", json={"text": "太郎は走る。", "edits": [{"verb": "走る", "duration": 90}]})
+    assert r.status_code == 400 and r.json()["notice"]["kind"] == "edit_duration"
+    assert r.json()["notice"]["params"] == {"verb": "走る", "s": 90.0, "min": 0.1, "max": 60.0}
 
 
 def test_a_verb_no_clip_has_plays_its_stand_in_when_the_page_asks(client):

@@ -162,6 +162,13 @@
     while (box.firstChild) box.removeChild(box.firstChild);
     status("");
     if (data.code === "unknown") return;  // said by marks(): the verb, its stand-in button, similar ones
+    if (data.notice && noticeKey(data.notice)) {  // a refusal the page words itself (a limit, an edit)
+      var row = document.createElement("div");
+      said(row, data.notice);
+      if (/^edit_/.test(data.notice.kind) && S.at > 0) row.appendChild(button(t("undo_edit"), "", function () { step(-1); }, "undo-edit"));
+      box.appendChild(row);
+      return;
+    }
     var line = document.createElement("div");
     line.textContent = data.message || t(CODES[data.code] || "err_other", { n: data.max });
     box.appendChild(line);
@@ -184,7 +191,7 @@
     // and the similar verbs to preview; the analyser's notes (a typo read as meant) on hover; what the
     // animation could not show (a manner no modifier does, an element that did not fit) in words
     var box = $("marks"), unknown = (data && data.unknown) || [], notes = (data && data.notes) || [];
-    var warnings = (data && data.warnings) || [], used = (data && data.fallbacks) || [];
+    var notices = (data && data.notices) || [], used = (data && data.fallbacks) || [];
     while (box.firstChild) box.removeChild(box.firstChild);
     S.unknown = unknown;
     var spans = unknown.filter(function (u) { return u.span; }).sort(function (a, b) { return a.span[0] - b.span[0]; });
@@ -227,11 +234,35 @@
       n.className = "note"; n.textContent = t("read_as"); n.title = notes.join("\n");
       box.appendChild(n);
     }
-    warnings.forEach(function (w) {
+    notices.forEach(function (n) {
       var row = document.createElement("div");
-      row.className = "warning"; row.textContent = w;
+      row.className = "warning"; row.setAttribute("data-kind", n.kind);
+      said(row, n);
+      if (n.kind === "manner_not_shown") row.appendChild(button(t("unknown_library"), "", function () {
+        $("search").value = n.params.verb.slice(0, 1); search(); $("search").focus(); }, "open-library"));
       box.appendChild(row);
     });
+  }
+
+  function noticeKey(n) {
+    // the catalogue's words for a notice (core/notice.py): n_<kind>, n_<kind>_<why> when it says why, or
+    // n_<kind>_any when it names no row; null when the catalogue has none
+    var p = n.params || {}, keys = ["n_" + n.kind + "_" + (p.why || ""), p.row === undefined ? "n_" + n.kind + "_any" : "",
+                                    "n_" + n.kind];
+    for (var i = 0; i < keys.length; i++) if (keys[i] && M[keys[i]]) return keys[i];
+    return null;
+  }
+
+  function said(box, n) {
+    // a notice in the page's words; one the catalogue lacks is a general line with its English under "details"
+    var key = noticeKey(n), line = document.createElement("span");
+    line.textContent = t(key || "n_other", n.params) + " ";
+    box.appendChild(line);
+    if (!key) {
+      var more = document.createElement("details"), sum = document.createElement("summary"), pre = document.createElement("div");
+      sum.textContent = t("details"); pre.textContent = n.text;
+      more.appendChild(sum); more.appendChild(pre); box.appendChild(more);
+    }
   }
 
   function preview(verb) {
