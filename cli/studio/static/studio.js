@@ -330,14 +330,15 @@
           S.phases.push({ pause: S.firedAt - S.sentKeyAt, request: S.answeredAt - S.firedAt, shown: now - S.answeredAt });
         }
         if (data.draft) {
-          S.drafts++; S.draftKeyAt = S.sentKeyAt; drafted(true);
+          S.drafts++; S.draftKeyAt = S.sentKeyAt; S.draftMs = ms; drafted(true);
           status(t("shown_draft", { s: data.duration.toFixed(2), ms: Math.round(ms) }));
           request(asked.text, asked.edits, asked.fallback, false, 0);  // the finished one, in place when ready
           return;
         }
         if (S.draft && S.draftKeyAt) S.finishLatencies.push(now - S.draftKeyAt);
+        status((S.draft ? t("shown_finished", { s: data.duration.toFixed(2), first: Math.round(S.draftMs), ms: Math.round(ms) })
+                        : t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) })) + (S.note || ""));
         S.draftKeyAt = 0; S.busy = false; drafted(false);
-        status(t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) }) + (S.note || ""));
       });
     })();
   }
