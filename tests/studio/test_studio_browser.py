@@ -439,8 +439,9 @@ def test_the_page_is_in_japanese_drawn_with_its_own_font_and_in_english_by_the_b
 
 def test_an_input_method_composition_sends_nothing_until_it_ends(page):
     """While the IME converts (かな typed, not yet committed) no request goes out; the pause counts from its end."""
-    sent: list[str] = []
-    page.on("request", lambda r: sent.append(r.post_data_json["text"]) if r.url.endswith("/api/animate") else None)
+    sent: list[tuple[str, bool]] = []
+    page.on("request", lambda r: sent.append((r.post_data_json["text"], r.post_data_json["draft"]))
+            if r.url.endswith("/api/animate") else None)
     page.fill("#text", "")
     page.wait_for_function("window.__studio.error !== '' && !window.__studio.busy", timeout=30000)
     page.focus("#text")
@@ -452,7 +453,7 @@ def test_an_input_method_composition_sends_nothing_until_it_ends(page):
     assert page.evaluate("window.__studio.composing") and sent == []
     cdp.send("Input.insertText", {"text": "花子は歩く。"})  # the composition is committed: compositionend
     page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
-    assert sent == ["花子は歩く。"]
+    assert {text for text, _ in sent} == {"花子は歩く。"} and sent[0][1]  # the committed text only: a draft first
     assert page.evaluate("window.__studio.table.map(e => e.verb)") == ["歩く"]
 
 
