@@ -1,7 +1,9 @@
 """Limbs kept above the floor, and swinging feet clear of it, by IK.
 
-:func:`clear_floor` lifts a foot whose ankle, ball or toe tip dips below ``y = 0``
-(marker noise at a hard landing, a dancer's pointed toe) by as much, eased in and
+:func:`clear_floor` first bends the toes of a foot whose tip dips below ``y = 0`` while its ball is
+about still (slower than GMD's 0.5 m/s: planted, pivoting, a dancer's pointed toe set down;
+:func:`bend_toes`), then lifts a foot whose ankle, ball or toe tip still dips below it (marker noise at a
+hard landing, a swinging foot's tip: lifted, it clears the floor as a swing does) by as much, eased in and
 out over :data:`FLOOR_RAMP_SECONDS` (:func:`envelope`; two-bone leg IK,
 :func:`core.ik.leg_ik`, the foot's world rotation kept), and a hand whose wrist, finger joints or fingertips
 do (picking up from the floor: the finger joint 1.4 cm under it; a fall landing
@@ -19,6 +21,12 @@ above the floor, under its own planted height, at 0.5-1.2 m/s), and a join can
 carry a swinging foot that low (a root offset decaying into the next clip
 while a foot lock is released): a foot sliding on the floor, i.e. skating.
 The built-in library's build and every engine's last step apply it.
+
+:func:`bend_toes` brings a toe tip that dips under the floor, its ball above it, up to the floor by
+bending the toe joint, as a shoe's toe bends at the ball: the ball and the rest of the body stay where
+they are, so a planted foot's contacts and the heights GMD's figure reads (joints) do not move. Capture
+retargeted onto a longer foot puts the tips 1-5 cm under the floor its feet stand on (08_02_walk 4.1 cm
+at toe-off, 14_29's stance 4.0); ``db import`` applies it.
 
 :func:`keep_clearance` gives a retargeted capture's swinging feet back the height the capture gave
 them. The built-in character's foot is longer than a CMU subject's (its ball 13 cm in front of the
@@ -41,6 +49,8 @@ from .floor import FOOT_CLEARANCE, chain_lowest, lowest_foot_heights
 from .ik import arm_ik, leg_ik, set_world_rotation
 from .metrics import SKATE_SPEED
 from .motion import Motion
+from .quat import multiply
+from .rotkernels import from_rotvec
 
 #: Frames over which a lift eases in before the frames that need it and out after them.
 RAMP = 3
@@ -89,11 +99,47 @@ def lift(motion: Motion, limbs: list, deficits: list[np.ndarray], ramp: int = RA
 
 def clear_floor(motion: Motion) -> Motion:
     """``motion`` with no ankle, toe, wrist or finger joint, nor a tip of one, below ``y = 0`` (docstring)."""
+    motion = bend_toes(motion, SKATE_SPEED)  # a ball on or about the floor bends its toes; a swing is lifted
     bm = body_map(motion.skeleton)
     limbs = [(leg_ik, side, ankle) for side, (ankle, _) in bm.feet.items()]
     limbs += [(arm_ik, side, wrist) for side, wrist in bm.hands.items()]
     n = max(RAMP, int(round(FLOOR_RAMP_SECONDS * motion.fps)))
     return lift(motion, limbs, [envelope(np.maximum(0.0, -chain_lowest(motion, end)), n) for *_, end in limbs], 0)
+
+
+def bend_toes(motion: Motion, slower_than: float | None = None) -> Motion:
+    """``motion`` with each foot's toe tips (end sites of its toe joint) kept above ``y = 0`` by bending the toe
+    joint up about the horizontal axis across its tip, eased as :func:`clear_floor` eases a lift (docstring);
+    with ``slower_than`` (m/s), only on frames where the ball moves slower than that."""
+    sites = motion.skeleton.end_sites
+    tips = motion.end_site_positions()  # (T, E, 3)
+    pos, world = motion.positions, motion.pose.quaternions()
+    n = max(RAMP, int(round(FLOOR_RAMP_SECONDS * motion.fps)))
+    out = motion
+    for ankle, toe in body_map(motion.skeleton).feet.values():
+        mine = [k for k, (j, _) in enumerate(sites) if j == toe != ankle]
+        if not mine:
+            continue
+        ends = tips[:, mine]  # (T, S, 3)
+        low = ends[np.arange(len(ends)), ends[..., 1].argmin(axis=1)]  # (T, 3) each frame's lowest tip
+        dip = np.maximum(0.0, -low[:, 1])
+        if slower_than is not None:
+            dip[horizontal_speed(pos[:, toe], motion.fps) >= slower_than] = 0.0
+        rise = envelope(dip, n)  # (T,) m
+        v = low - pos[:, toe]  # (T, 3) ball to tip
+        length, flat = np.linalg.norm(v, axis=1), np.linalg.norm(v[:, [0, 2]], axis=1)
+        bend = (rise > 0) & (flat > 1e-6)
+        if not bend.any():
+            continue
+        up = np.minimum(v[:, 1] + rise, length)  # the tip's new height above the ball
+        bent = v[:, [0, 2]] * (np.sqrt(np.maximum(length ** 2 - up ** 2, 0.0)) / np.maximum(flat, 1e-12))[:, None]
+        new = np.column_stack([bent[:, 0], up, bent[:, 1]])
+        axis = np.cross(v, new)
+        sin = np.linalg.norm(axis, axis=1)
+        angle = np.arctan2(sin, np.einsum("ij,ij->i", v, new))
+        turn = from_rotvec(axis * (angle / np.maximum(sin, 1e-12))[:, None])  # (T, 4) in world axes
+        out = set_world_rotation(out, toe, multiply(turn, world[:, toe]), mask=bend)
+    return out
 
 
 def envelope(deficit: np.ndarray, n: int) -> np.ndarray:

@@ -32,12 +32,13 @@ import numpy as np
 
 from text2anim.core.bodyparts import BodyMapError, BodyPart
 from text2anim.core.bvh import BVHError, read_bvh
-from text2anim.core.clearance import keep_clearance
+from text2anim.core.clearance import bend_toes, keep_clearance
 from text2anim.core.floor import place_on_floor
 from text2anim.core.motion import Motion
 from text2anim.core.retarget import SAME_SIZE, map_skeletons, retarget
 from text2anim.core.rigs import RigError
 from text2anim.core.skeleton import Skeleton
+from text2anim.core.tpose_blend import BLEND_START, held_blend
 
 from .errors import ClipValidationError
 from .records import PreparedClip, prepare_record
@@ -65,7 +66,8 @@ class ImportOptions:
         names: one clip name per file; ``None`` names each clip after its file (``02_01_walk``).
         scale: metres per file unit, or ``"auto"`` (:func:`core.bvh.read_bvh`).
         up: the files' up axis, ``"y"`` or ``"z"`` (:func:`core.bvh.read_bvh`).
-        drop_first: drop frame 0 (the T-pose of CMU/cgspeed files).
+        drop_first: drop frame 0 (the T-pose of CMU/cgspeed files), and hold the exporter's blend out of it
+            still (:func:`core.tpose_blend.held_blend`).
         replace: overwrite clips of the same names instead of refusing.
         start_posture, end_posture: every clip's postures (:data:`motiondb.types.POSTURES`);
             ``None`` classifies each file's first/last frame.
@@ -132,7 +134,7 @@ def conform(motion: Motion, target: Skeleton | None, where: str, character: str,
         notes.append(f"floor moved {'down' if floor.height > 0 else 'up'} {100 * abs(floor.height):.1f} cm "
                      f"(found from its {how})")
     if target is None or _same_skeleton(motion.skeleton, target):
-        return (motion if target is None else motion.replace(skeleton=target)), notes
+        return bend_toes(motion if target is None else motion.replace(skeleton=target)), notes
     target_map = joint_map if joint_map and set(joint_map.values()) <= set(target.names) else None
     try:
         mapping = map_skeletons(motion.skeleton, target, joint_map, target_map)
@@ -142,6 +144,7 @@ def conform(motion: Motion, target: Skeleton | None, where: str, character: str,
                                   f"{character!r}: {exc}") from None
     if 1.0 / SAME_SIZE <= mapping.scale <= SAME_SIZE:  # a body of about the capture's size: its clearance holds
         motion = keep_clearance(motion, captured)
+    motion = bend_toes(motion)  # tips out of the floor, planted feet where they stand
     rigs = mapping.rigs[0] if mapping.rigs[0] == mapping.rigs[1] else " to ".join(mapping.rigs)
     notes.append(f"retargeted onto the skeleton of character {character!r} ({rigs} rig, legs x{mapping.scale:.3f})")
     return motion, notes
@@ -178,11 +181,17 @@ def read_clips(paths: Sequence[str | os.PathLike], options: ImportOptions,
                 f"{path}: {motion.n_frames:,} frames of {motion.skeleton.n_joints} joints is too long for one clip "
                 f"(at most {MAX_CLIP_SAMPLES:,} joint-frames, e.g. {MAX_CLIP_SAMPLES // 31:,} frames of a 31-joint "
                 "CMU skeleton: 2 min 47 s at 120 fps); cut the take into shorter files (nothing was imported)")
+        held = 0
+        if options.drop_first:  # the T-pose dropped: the exporter's blend out of it is held still too
+            motion, held = held_blend(motion)
         try:
             motion, notes = conform(motion, skeleton, str(path), options.character,
                                     dict(options.joint_map) if options.joint_map else None)
         except ClipValidationError as exc:
             raise ClipValidationError(f"{exc} (nothing was imported)") from None
+        if held:
+            notes.insert(0, f"first {held} frames (the exporter's blend out of the dropped T-pose, joints at "
+                            f"{BLEND_START:g}+ m/s) hold frame {held}'s pose")
         skeleton = motion.skeleton
         if notify:
             for note in notes:

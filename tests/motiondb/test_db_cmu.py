@@ -8,7 +8,8 @@ from text2anim.motiondb import ClipValidationError, ImportOptions
 from shared_data import cmu, requires_cmu
 from text2anim.core import read_bvh
 from text2anim.core.contacts import detect_contacts
-from text2anim.core.floor import place_on_floor
+from text2anim.core.bodyparts import body_map
+from text2anim.core.floor import lowest_points, place_on_floor
 
 pytestmark = requires_cmu
 
@@ -44,7 +45,14 @@ def test_imported_captures_are_found_by_verb_and_load_unchanged(empty_db):
     assert walk.right_contacts == tuple(contacts.intervals("right"))
     assert len(walk.left_contacts) >= 2 and len(walk.right_contacts) >= 2  # steps of a walk
     loaded = empty_db.load(walk)
-    assert np.array_equal(loaded.rotations, original.rotations)
+    toes = [toe for _, toe in body_map(original.skeleton).feet.values()]
+    kept = np.setdiff1d(np.arange(original.skeleton.n_joints), toes)
+    assert np.array_equal(loaded.rotations[:, kept], original.rotations[:, kept])
+    # only a toe tip that dipped under the floor is bent up onto it (issue 46), and only about it
+    dipped = lowest_points(floored) < 0.0
+    bent = (loaded.rotations[:, toes] != original.rotations[:, toes]).any(axis=(1, 2))
+    assert dipped.any() and bent[dipped].all() and lowest_points(loaded).min() > -1e-9
+    assert bent.mean() < 0.5
     assert np.array_equal(loaded.root_positions[:, [0, 2]], original.root_positions[:, [0, 2]])
     assert np.allclose(loaded.root_positions[:, 1], original.root_positions[:, 1] - floor.height, atol=1e-12)
     assert np.array_equal(loaded.skeleton.offsets, original.skeleton.offsets)
