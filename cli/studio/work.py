@@ -230,8 +230,7 @@ class Studio:
     def animate(self, text: str, edits: tuple = (), fallback: str = "strict",
                 cancelled: Callable[[], bool] = lambda: False, draft: bool = False) -> dict:
         """``{"ok": True, "draft", "view", "top", "table", "blends", "duration", "warnings", "notices", "fallbacks"}`` for
-        ``text`` with
-        the time-table ``edits`` (:class:`text2anim.edits.Edit`) and ``fallback`` (``strict``, or ``nearest``: a
+        ``text`` with the time-table ``edits`` (:class:`text2anim.edits.Edit`) and ``fallback`` (``strict``, or ``nearest``: a
         verb no clip has played by its stand-in), or ``{"ok": False, "error", "code", "notice"}`` with the message
         the command line would print (never a traceback), its kind (:func:`error_code`) and, when the error has
         one, its :class:`core.notice.Notice`, which the page words in its own language (as ``notices``, the

@@ -777,8 +777,6 @@
     // that shares the machine with the work it shows (the studio) draws at the motion's own rate
     get maxFps() { return state.every ? Math.round(1000 / (state.every + 2)) : 0; },
     set maxFps(fps) { state.every = fps > 0 ? 1000 / fps - 2 : 0; },
-    // whether load() may be handed things (props.js is in the page)
-    get things() { return !!Props; },
     // draw a body (true) or the stick figure (false, the default)
     get body() { return BODY.on; },
     set body(on) { BODY.on = !!on; state.dirty = true; },
@@ -789,11 +787,14 @@
   // Another animation in place of the one playing (a front end that updates its view, the studio): ``data`` is
   // viewer_data()'s document; it is decoded first, then swapped in at once, the playing time kept (within the
   // new length), the camera too unless ``home`` (then framed as a new page frames it). A promise, resolved once
-  // the new animation is drawn.
+  // the new animation is drawn. Of two loads in flight the later one wins, whichever is decoded first.
+  var loads = 0;
   function load(data, home) {
     if (data.props && !Props) return Promise.reject(new Error("this page was written without things (props.js)"));
+    var mine = ++loads;
     return Promise.all([Promise.all(data.actors.map(function (a) { return decodeActor(a, data.encoding); })),
                         Props ? Props.decode(data.props || [], data.encoding) : null]).then(function (got) {
+      if (mine !== loads) return;
       DATA = data; actors = got[0];
       if (Props) Props.use(got[1]);
       state.t = Math.min(state.t, DATA.duration);

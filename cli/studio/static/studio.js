@@ -15,11 +15,11 @@
 (function () {
   "use strict";
   var $ = function (id) { return document.getElementById(id); };
-  // the pause after the last keystroke (or the end of a composition) before a text is sent: longer than the
-  // gap between two keys of continuous typing; a text sent too early is only a draft, aborted by the next key
   // the viewer draws at the motion's own 30 fps: at every animation frame (60 a second) headless Chromium took
   // 63% of a core, which the studio's server, on the same machine, needs for the next text
   var DRAW_FPS = 30;
+  // the pause after the last keystroke (or the end of a composition) before a text is sent: longer than the
+  // gap between two keys of continuous typing; a text sent too early is only a draft, aborted by the next key
   var DEBOUNCE_MS = 120, PROJECT_VERSION = 1, STORE = "t2a-studio-project";
   var S = { text: null, note: "", seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
             renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false,
@@ -704,7 +704,8 @@
   box.addEventListener("compositionend", function () { S.composing = false; S.keyAt = performance.now(); schedule(); });
   box.addEventListener("input", function (e) {
     S.keyAt = performance.now();
-    stop(); S.busy = true; S.sent = "";  // the text changed: the animation in flight no longer matters, a new one is due
+    // the text changed: the animation in flight (and an answer not yet on screen) no longer matters, a new one is due
+    stop(); S.seq++; S.busy = true; S.sent = "";
     if (!e.isComposing && !S.composing) schedule();
   });
   $("add-btn").addEventListener("click", append);
