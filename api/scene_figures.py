@@ -26,6 +26,8 @@ together    the two actors' rows start apart (s)                           < :da
 leaves      the distance grows over the row (m)                            > 0.5 m
 behind      the angle of the actor around the target from where it faces   > 120°
 reaches     the hand to the door at the row's nearest frame (m)            < 0.15 m
+apart       a thing lying still on the floor to the hips of someone who    > :data:`APART_M`
+            does not handle it, over the floor (m, nearest frame)
 =========== ============================================================== =========================
 """
 from __future__ import annotations
@@ -47,6 +49,7 @@ HANDS_M = 0.2  # m between the wrists: two palms that touch hold them about 16 c
 HOLD_M = 0.10
 LAUNCH_S = 0.1
 CATCH_M = 0.15
+APART_M = 0.5  # m: a ball within half a metre of someone's hips lies at their feet
 
 
 @dataclass(frozen=True)
@@ -340,7 +343,20 @@ def _reaches(anim, rows, props, c):
     return Figure("reaches", d, "m", d < 0.15)
 
 
+def _apart(anim, rows, props, c):
+    p = _thing(props, c)
+    m = _motion(anim, c["actor"])
+    n = min(len(p.positions), m.n_frames)
+    still = np.linalg.norm(np.gradient(p.positions[:n], 1.0 / anim.fps, axis=0), axis=1) < 0.05
+    still &= p.positions[:n, 1] < max(p.size)  # lying on the floor
+    if not still.any():
+        return Figure("apart", float("nan"), "m", False, "the thing never lies still on the floor")
+    d = float(np.hypot(*(p.positions[:n] - m.root_positions[:n])[still][:, [0, 2]].T).min())
+    return Figure("apart", d, "m", d > APART_M)
+
+
 _MEASURES = {"approach": _approach, "faces": _faces, "sync": _sync, "holds": _holds, "launch": _launch,
              "catch": _catch, "seat": _seat, "present": _present, "together": _together, "leaves": _leaves,
-             "behind": _behind, "reaches": _reaches}
+             "behind": _behind, "reaches": _reaches,
+             "apart": _apart}
 CHECKS = tuple(_MEASURES)

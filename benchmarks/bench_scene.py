@@ -55,7 +55,7 @@ def table(results) -> list[str]:
     limits = {"approach": "0.3-1.6 m", "faces": f"< {FACING_DEG:g} deg", "sync": f"< {SYNC_S:g} s",
               "holds": f"< {HOLD_M:g} m", "launch": f"<= {LAUNCH_S:g} s", "catch": f"< {CATCH_M:g} m",
               "seat": "< 0.2 m", "present": "yes", "together": f"< {SYNC_S:g} s", "leaves": "> 0.5 m",
-              "behind": "> 120 deg", "reaches": "< 0.15 m"}
+              "behind": "> 120 deg", "reaches": "< 0.15 m", "apart": "> 0.5 m"}
     by: dict[str, list] = {}
     for item, figs, err in results:
         for c in item.get("scene", []):

@@ -22,8 +22,8 @@ from text2anim.core.ground import Rigid, match, wrap_angle
 from text2anim.core.motion import Motion
 from text2anim.core.steer import steer
 
-from .bodies import forward, hand, hands, heading_to, hips_path
-from .types import Met, Relation
+from .bodies import forward, hand, hands, heading_to, hips_path, toe
+from .types import Kick, Met, Relation
 
 #: m: actors closer than this (hips, any frame) stand inside each other.
 CLEARANCE = 0.55
@@ -35,10 +35,11 @@ ASIDE = 1.5
 STEER_MIN_DEG = 8.0
 
 
-def fit(motions: dict[str | None, Motion], rels: Sequence[Relation]
+def fit(motions: dict[str | None, Motion], rels: Sequence[Relation], kicks: Sequence[Kick] = ()
         ) -> tuple[dict[str | None, Motion], dict[str | None, Rigid], list[Met]]:
-    """Each actor's motion (steered where an approach turns on its way), one :class:`Rigid` per actor
-    (identity for those no relation moves) and how well each relation holds after all moves."""
+    """Each actor's motion (steered where an approach turns on its way, or a kick would strike where
+    someone else stands: :func:`_clear_kick`), one :class:`Rigid` per actor (identity for those no relation
+    moves) and how well each relation holds after all moves."""
     motions = dict(motions)
     rigids: dict[str | None, Rigid] = {}
     for rel in sorted(rels, key=lambda r: (r.role == "addressee", r.time, r.element)):
@@ -58,7 +59,37 @@ def fit(motions: dict[str | None, Motion], rels: Sequence[Relation]
     for name in motions:
         if name not in rigids:
             rigids[name] = _aside(motions, rigids, name)
+    for kick in kicks:
+        if kick.actor in motions:
+            motions[kick.actor] = _clear_kick(motions, rigids, kick)
     return motions, rigids, [measure(motions, rigids, rel) for rel in rels]
+
+
+def _clear_kick(motions, rigids, kick: Kick) -> Motion:
+    """The kicker's motion with its kick steered (:data:`DETOURS`, from the frame it sets off) so that the
+    thing it kicks lies no closer than :data:`CLEARANCE` to anyone else's hips while it waits to be kicked,
+    and the kicker passes no one closer than that; unchanged when it is clear or no turn clears it. Placed
+    facing someone who has just walked up to her, a kick with a run-up struck the ball at his feet."""
+    m, rigid = motions[kick.actor], rigids[kick.actor]
+    others = [o for o in motions if o != kick.actor]
+    if not others or not 0 <= kick.hit < m.n_frames:
+        return m
+    paths = {o: rigids[o].apply_points(hips_path(motions[o])[0]) for o in others}
+    f0 = setting_off(m, kick.start)
+
+    def clear(motion: Motion) -> bool:
+        ball = rigid.apply_points(toe(motion, kick.side)[kick.hit])
+        mine = rigid.apply_points(hips_path(motion)[0])
+        return all(_min_distance(path[:kick.hit + 1], np.broadcast_to(ball, (kick.hit + 1, 3))) >= CLEARANCE
+                   and _min_distance(path[f0:], mine[f0:]) >= CLEARANCE for path in paths.values())
+
+    if clear(m):
+        return m
+    for deg in DETOURS:
+        turned = steer(m, f0, f0 + int(0.6 * m.fps), np.radians(deg))
+        if clear(turned):
+            return turned
+    return m
 
 
 #: deg: the turns tried, in order, to lead an approach around the people in its way.

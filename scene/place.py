@@ -14,7 +14,7 @@ from text2anim.scheduler.types import Element
 
 from .fit import arrival, fit
 from .relations import HANDS, HIPS_HEIGHT, relations
-from .things import reach_instant, send_instant, things
+from .things import kicks, reach_instant, send_instant, things
 from .types import Met, Scene, Spot, Staging
 
 #: A relation that misses its heading by more than :data:`HEADING_SLACK` degrees, or one that places a body
@@ -37,7 +37,7 @@ def place(staging: Staging, rows: Sequence[Element], motions: dict[str | None, M
     arrivals = {r.id: arrival(motions[r.actor], r.end) for r in rows
                 if r.actor in motions and r.target_role == "goal"}
     rels = relations(rows, set(motions), scale, sends, reaches, arrivals)
-    steered, rigids, met = fit(motions, rels)
+    steered, rigids, met = fit(motions, rels, kicks(rows, motions, fps))
     moved = {a: rigids[a].apply(m) for a, m in steered.items()}
     spots = tuple(_moved_spot(s, rigids) for s in staging.spots if s.actor in rigids)
     made, said = things(rows, moved, scale, fps)

@@ -40,7 +40,7 @@ from text2anim.scheduler.types import Element
 
 from . import bodies
 from .shapes import PLACE, Shape, shape_of
-from .types import Thing
+from .types import Kick, Thing
 
 G = 9.81  # m/s²
 RESTITUTION = 0.45
@@ -250,6 +250,19 @@ def _on_floor(point: np.ndarray, p: _Path) -> np.ndarray:
 def _instant(m: Motion, effector: str, kind: str, f0: int, f1: int) -> int:
     """:func:`core.contact_instant.contact_instant` within frames ``[f0, f1)``."""
     return contact_instant(m, effector, kind, (f0 / m.fps, (max(f1, f0 + 1) - 1) / m.fps))
+
+
+def kicks(rows: Sequence[Element], motions: dict[str | None, Motion], fps: float) -> list[Kick]:
+    """The kicks of things on the floor among ``rows`` (played times): who, with which foot, from which frame,
+    striking at which (:func:`strike`)."""
+    out = []
+    for r in rows:
+        if r.verb in KICK and r.object is not None and r.actor in motions:
+            m = motions[r.actor]
+            f0, f1 = _frames(r, fps, m.n_frames)
+            side, hit = strike(m, f0, f1)
+            out.append(Kick(r.actor, side, f0, hit))
+    return out
 
 
 def strike(m: Motion, f0: int, f1: int) -> tuple[str, int]:

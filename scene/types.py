@@ -55,6 +55,17 @@ class Staging:
 
 
 @dataclass(frozen=True)
+class Kick:
+    """A kick of a thing lying on the floor: the kicker, the kicking foot (``left``/``right``), the frame its
+    row starts and the frame the foot strikes (the thing lies under it until then), on the kicker's clock."""
+
+    actor: str | None
+    side: str
+    start: int
+    hit: int
+
+
+@dataclass(frozen=True)
 class Relation:
     """Where one actor should be relative to another at one time, from one element.
 

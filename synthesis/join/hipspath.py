@@ -5,8 +5,8 @@ blends and its adaptation's return (eq. (8): the hips follow the mean of the fee
 step) can concentrate that travel into a fraction of a second — a 40-90 cm change of stance returned over
 a 0.3-0.5 s step is a jolt of 6-11 m/s², where a crossfade's long slide reads 1-3. Step 6 of the join
 post-pass (:mod:`synthesis.join.joinpass`) replaces the hips' horizontal path ``h`` ``(n, 2)`` over a
-finished join region by the path ``x`` found by two linear programmes (:func:`scipy.optimize.linprog`,
-HiGHS; deterministic), over the accelerations ``a[t] = (x[t-1] - 2 x[t] + x[t+1]) fps²``, the two frames
+finished join region by the path ``x`` found by two linear programmes (HiGHS's dual simplex through
+``highspy``; deterministic), over the accelerations ``a[t] = (x[t-1] - 2 x[t] + x[t+1]) fps²``, the two frames
 either side of the region fixed so that position and velocity carry on:
 
 1. the least peak ``A``: minimise ``A`` subject to ``|u_k · a[t]| <= A`` (four directions ``u_k``: an
@@ -38,8 +38,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from highspy import HighsLp, HighsModelStatus, MatrixFormat
+from highspy._core import _Highs  # the public Highs wraps it with callbacks that print HiGHS's banner on stdout
 from scipy import sparse
-from scipy.optimize import linprog
 from scipy.spatial import ConvexHull, QhullError
 
 from text2anim.core.balance import SLOW, Stance, stance
@@ -76,6 +77,7 @@ BALANCE_ROOM = 0.03
 #: the region's frames solved at most (a bound on the programme's size; longer regions are left as they are)
 MAX_FRAMES = 900
 _DIRS = np.array([[np.cos(a), np.sin(a)] for a in np.arange(4) * np.pi / 4])  # (4, 2) unit directions
+_DIRS[np.abs(_DIRS) < 1e-12] = 0.0  # exact zeros along the axes
 
 
 def _second_difference(n: int) -> sparse.csr_matrix:
@@ -131,34 +133,102 @@ def support_of(st: Stance) -> Support:
     return Support(rows, np.concatenate(gaps), frame)
 
 
-def _acceleration_rows(n: int, fps: float, before: np.ndarray, after: np.ndarray) -> tuple[sparse.csr_matrix, np.ndarray]:
-    """``(rows, const)``: ``rows @ [x, z] + const`` are the accelerations (m/s²) of ``n`` free frames along each
-    direction and sign (``±u_k · a[t]`` for ``t`` in ``-1 .. n``): ``(8 (n + 2), 2 n)`` and ``(8 (n + 2),)``."""
+def _acceleration(h: np.ndarray, before: np.ndarray, after: np.ndarray,
+                  fps: float) -> tuple[sparse.csr_matrix, np.ndarray]:
+    """``(U, a0)``: ``U @ d + a0`` are the accelerations (m/s²) along each direction ``u_k`` (``u_k · a[t]``, row
+    ``k (n + 2) + t`` for ``t`` in ``-1 .. n``) of the path ``h + d`` (``h`` ``(n, 2)``, its moves ``d`` stacked
+    ``[x (n), z (n)]``): ``(4 (n + 2), 2 n)`` and ``(4 (n + 2),)``, ``a0`` the given path's own."""
+    n = len(h)
     D = _second_difference(n) * fps ** 2
-    c = _fixed_part(before, after, n) * fps ** 2  # (n + 2, 2)
-    rows = [sign * sparse.hstack([D * u[0], D * u[1]]) for u in _DIRS for sign in (1.0, -1.0)]
-    return sparse.vstack(rows).tocsr(), np.concatenate([sign * (c @ u) for u in _DIRS for sign in (1.0, -1.0)])
+    a = D @ h + _fixed_part(before, after, n) * fps ** 2  # (n + 2, 2)
+    U = sparse.vstack([sparse.hstack([D * u[0], D * u[1]]) for u in _DIRS]).tocsr()
+    U.eliminate_zeros()  # the axes' zero components
+    return U, (a @ _DIRS.T).T.ravel()
 
 
-def _octagon(h: np.ndarray, band: np.ndarray) -> tuple[sparse.csr_matrix, np.ndarray]:
-    """``(rows, bounds)``: ``rows @ [x, z] <= bounds`` holds the move from ``h`` ``(n, 2)`` within the octagon's
-    diagonals (its sides along the axes are the variables' bounds)."""
-    eye = sparse.identity(len(h), format="csr")
-    rows = [sign * sparse.hstack([u[0] * eye, u[1] * eye]) for u in _DIRS[1::2] for sign in (1.0, -1.0)]
-    return sparse.vstack(rows).tocsr(), np.concatenate([band + sign * (h @ u) for u in _DIRS[1::2] for sign in (1.0, -1.0)])
+def _limits(band: np.ndarray, sup: Support, room: float) -> tuple[sparse.csr_matrix, np.ndarray, np.ndarray]:
+    """``(rows, lower, upper)``: ``lower <= rows @ d <= upper`` holds the moves ``d`` within the octagon's
+    diagonals (its sides along the axes are the moves' bounds) and the balance (no edge's distance grows
+    beyond ``max(gap, room)``): only the edges a move within the octagon can take that far, the rest hold
+    anyway."""
+    n = len(band)
+    eye = sparse.identity(n, format="csr")
+    diagonals = sparse.vstack([sparse.hstack([u[0] * eye, u[1] * eye]) for u in _DIRS[1::2]])
+    wide = np.concatenate([band, band])
+    room_left = np.maximum(0.0, room - sup.gap)
+    held = _reach(band, sup) > room_left
+    return (sparse.vstack([diagonals, sup.rows[held]]).tocsr(), np.concatenate([-wide, np.full(held.sum(), -np.inf)]),
+            np.concatenate([wide, room_left[held]]))
 
 
-def _least_peak(acc: tuple, limits: tuple, box: list) -> float | None:
-    """Programme 1 of the module docstring: the least peak acceleration (m/s²) over the paths within ``box``
-    (the variables' bounds) and ``limits`` (``rows @ [x, z] <= bounds``); None when there is none."""
-    rows, const = acc
-    A, b = limits
-    ones = sparse.csr_matrix(np.ones((rows.shape[0], 1)))
-    res = linprog(np.r_[np.zeros(rows.shape[1]), 1.0], method="highs", bounds=box + [(0.0, None)],
-                  A_ub=sparse.vstack([sparse.hstack([rows, -ones]),
-                                      sparse.hstack([A, sparse.csr_matrix((A.shape[0], 1))])]).tocsr(),
-                  b_ub=np.concatenate([-const, b]))
-    return float(res.x[-1]) if res.status == 0 else None
+def _reach(band: np.ndarray, sup: Support) -> np.ndarray:
+    """``(R,)`` m: the furthest a move within the octagon of inradius ``band`` (its corners 1 / cos 22.5° out)
+    takes the centre of mass across each edge of the support (with a hair's margin)."""
+    norm = np.sqrt(np.asarray(sup.rows.multiply(sup.rows).sum(axis=1)).ravel())
+    return norm * band[sup.frame] / np.cos(np.pi / 8) * (1.0 + 1e-9) + 1e-12
+
+
+_Entries = tuple[np.ndarray, np.ndarray, np.ndarray]  # (rows, columns, values) of a sparse matrix's entries
+
+
+def _at(M: sparse.spmatrix, row: int, col: int, sign: float = 1.0) -> _Entries:
+    """The entries of ``M`` placed with its corner at ``(row, col)``, times ``sign``."""
+    c = sparse.coo_matrix(M)
+    return c.row + row, c.col + col, sign * c.data
+
+
+def _ones(rows: np.ndarray, cols: np.ndarray | int, value: float) -> _Entries:
+    """Entries ``value`` at ``(rows, cols)``."""
+    return rows, np.broadcast_to(cols, rows.shape), np.full(len(rows), value)
+
+
+def _matrix(entries: list[_Entries], shape: tuple[int, int]) -> sparse.csc_matrix:
+    """The matrix of ``shape`` with these entries (assembled at once: stacking sparse blocks cost a tenth of a
+    region's time)."""
+    r, c, v = (np.concatenate(x) for x in zip(*entries))
+    return sparse.csc_matrix((v, (r, c)), shape=shape)
+
+
+def _minimum(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: np.ndarray, col_lower: np.ndarray,
+             col_upper: np.ndarray) -> np.ndarray | None:
+    """The ``x`` that minimises ``cost · x`` subject to ``lower <= rows @ x <= upper`` and ``col_lower <= x <=
+    col_upper`` (``np.inf`` for no bound): HiGHS's dual simplex without its presolve (the rows no move can
+    reach are left out already), with Devex pricing and unscaled (the coefficients span 0.07-2,000 at 30 fps):
+    measured the fastest on these programmes; with HiGHS's own scaling again where that finds no optimum.
+    HiGHS's choice among equal optima; None when there is none."""
+    a = sparse.csc_matrix(rows)
+    a.sort_indices()
+    lp = HighsLp()
+    lp.num_col_, lp.num_row_ = a.shape[1], a.shape[0]
+    lp.col_cost_, lp.col_lower_, lp.col_upper_ = cost, col_lower, col_upper
+    lp.row_lower_, lp.row_upper_ = lower, upper
+    lp.a_matrix_.format_ = MatrixFormat.kColwise
+    lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = a.indptr, a.indices, a.data
+    for scale in (0, 2):  # HiGHS's simplex_scale_strategy: none, then its default
+        solver = _Highs()
+        for option, value in (("output_flag", False), ("presolve", "off"), ("simplex_scale_strategy", scale),
+                              ("simplex_dual_edge_weight_strategy", 1)):  # 1: Devex
+            solver.setOptionValue(option, value)
+        solver.passModel(lp)
+        solver.run()
+        if solver.getModelStatus() == HighsModelStatus.kOptimal:
+            return np.asarray(solver.getSolution().col_value)
+    return None
+
+
+def _least_peak(U: sparse.csr_matrix, a0: np.ndarray, limits: tuple, band: np.ndarray) -> float | None:
+    """Programme 1 of the module docstring: the least peak acceleration (m/s²) over the moves ``d`` ``(2 n,)``
+    within ``band`` and ``limits`` (:func:`_limits`), ``U @ d + a0`` the accelerations (:func:`_acceleration`);
+    None when HiGHS finds none. Its variables are ``[d (2 n), A]``."""
+    rows, lower, upper = limits
+    (q, w), r = U.shape, np.arange(U.shape[0])
+    wide = np.concatenate([band, band])
+    x = _minimum(np.r_[np.zeros(w), 1.0],
+                 _matrix([_at(U, 0, 0), _ones(r, w, -1.0), _at(U, q, 0, -1.0), _ones(q + r, w, -1.0),
+                          _at(rows, 2 * q, 0)], (2 * q + rows.shape[0], w + 1)),
+                 np.concatenate([np.full(2 * q, -np.inf), lower]), np.concatenate([-a0, a0, upper]),
+                 np.r_[-wide, 0.0], np.r_[wide, np.inf])
+    return None if x is None else float(x[-1])
 
 
 def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray, fps: float, band: np.ndarray,
@@ -169,42 +239,53 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     the body standing over its feet; ``before``/``after`` ``(2, 2)``: the two fixed frames either side. None
     when the programme finds none.
 
-    Programme 2's variables are ``[x (n), z (n), p (n + 2), e (K (n + 2)), v (2 n), o (n)]``: ``p`` bounds each
-    frame's acceleration (octagon), ``e`` its excess over each level, ``v`` the distance from ``h``, ``o`` how far
-    the centre of mass is outside the support (``support``: no edge's distance may grow beyond
-    ``max(gap, room)``; each metre outside costs :data:`OUTSIDE`)."""
-    n, K = len(h), len(levels)
+    Programme 2's variables are ``[d+ (2 n), d- (2 n), s (K' (n + 2)), o (F)]``: the path is ``h + d+ - d-``
+    (each part within ``band``, priced :data:`NEAR` per m: their sum is the distance from ``h``); ``levels[0] +
+    sum_k s_k[t]`` bounds frame ``t``'s acceleration along each direction, ``s_k`` at most the step to the next
+    level (the last: to the cap) and priced ``k`` per m/s², so a jolt pays each level it exceeds (the price of
+    the module docstring; the ``K'`` levels under the cap: those at or over it are never exceeded); ``o`` how far
+    the centre of mass is outside the support on each of the ``F`` frames where a move can take it out
+    (``support``: no edge's distance may grow beyond ``max(gap, room)``; each metre outside costs
+    :data:`OUTSIDE`). When the given path already accelerates under ``levels[0]`` and stands inside its feet it
+    costs nothing, every other path costs its distance: it is returned as it is, without a programme."""
+    n = len(h)
     m = n + 2  # accelerations at frames -1 .. n
-    flat = np.concatenate([h[:, 0], h[:, 1]])
     sup = support if support is not None else Support(sparse.csr_matrix((0, 2 * n)), np.zeros(0), np.zeros(0, int))
-    S, R = sup.rows, len(sup.gap)
-    octa, octa_rhs = _octagon(h, band)
-    limits = (sparse.vstack([S, octa]).tocsr(), np.concatenate([np.maximum(0.0, room - sup.gap) + S @ flat, octa_rhs]))
-    wide = np.concatenate([band, band])
-    box = list(zip(flat - wide, flat + wide))
-    acc, const = _acceleration_rows(n, fps, before, after)
-    least = _least_peak((acc, const), limits, box)
+    U, a0 = _acceleration(h, before, after, fps)
+    given_peak = float(np.abs(a0).max())
+    if given_peak <= levels[0] and not (sup.gap > 0.0).any():
+        return h.copy()
+    limits = _limits(band, sup, room)
+    # the given path is within every limit: its peak bounds the least, and under the floor the cap is the floor
+    least = 0.0 if given_peak * (1.0 + SLACK) + 1e-6 <= levels[0] else _least_peak(U, a0, limits, band)
     if least is None:
         return None
     peak = max(least * (1.0 + SLACK) + 1e-6, levels[0])
-    Z = sparse.csr_matrix
-    width = 2 * n + m + K * m + 2 * n + n
-    eye_m, eye_x = sparse.identity(m, format="csr"), sparse.identity(2 * n, format="csr")
-    pick = Z((np.ones(R), (np.arange(R), sup.frame)), shape=(R, n))
-    blocks = [sparse.hstack([acc, -sparse.vstack([eye_m] * 8), Z((8 * m, width - 2 * n - m))]),  # ±u·a <= p
-              sparse.hstack([Z((K * m, 2 * n)), sparse.vstack([eye_m] * K), -sparse.identity(K * m),
-                             Z((K * m, 3 * n))]),  # p - e_k <= level_k
-              sparse.hstack([eye_x, Z((2 * n, m + K * m)), -eye_x, Z((2 * n, n))]),  # ±(x - h) <= v
-              sparse.hstack([-eye_x, Z((2 * n, m + K * m)), -eye_x, Z((2 * n, n))]),
-              sparse.hstack([limits[0], Z((limits[0].shape[0], width - 2 * n))]),  # the balance, the octagon
-              sparse.hstack([S, Z((R, width - 3 * n)), -pick])]  # gap + move <= o
-    rhs = [-const, np.repeat(levels, m), flat, -flat, limits[1], S @ flat - sup.gap]
-    cost = np.concatenate([np.zeros(2 * n + m), np.ones(K * m), np.full(2 * n, NEAR), np.full(n, OUTSIDE)])
-    bounds = box + [(0.0, peak)] * m + [(0.0, None)] * (K * m + 2 * n + n)
-    res = linprog(cost, A_ub=sparse.vstack(blocks).tocsr(), b_ub=np.concatenate(rhs), bounds=bounds, method="highs")
-    if res.status != 0:
+    levels = levels[:1 + int(np.sum(levels[1:] < peak))]  # a level at or over the cap is never exceeded: no price
+    K = len(levels)
+    out = sup.gap + _reach(band, sup) > 0.0  # the edges a move may take the centre of mass outside of
+    frames, at = np.unique(sup.frame[out], return_inverse=True)
+    F = len(frames)
+    width = 4 * n + K * m + F
+    rows, lims, q, t = limits[0], len(limits[1]), 4 * m, np.arange(4 * m)
+    s = 4 * n  # the first column of s
+    seg_r, seg_c = np.tile(t, K), s + (np.arange(K)[:, None] * m + t % m).ravel()
+    edges, e = sup.rows[out], 8 * m + lims  # the first row of gap + move <= o
+    A = _matrix([_at(U, 0, 0), _at(U, 0, 2 * n, -1.0), _ones(seg_r, seg_c, -1.0),  # u·a <= levels[0] + sum s
+                 _at(U, q, 0, -1.0), _at(U, q, 2 * n), _ones(q + seg_r, seg_c, -1.0),  # -u·a <= the same
+                 _at(rows, 8 * m, 0), _at(rows, 8 * m, 2 * n, -1.0),  # octagon, balance
+                 _at(edges, e, 0), _at(edges, e, 2 * n, -1.0), _ones(e + np.arange(len(at)), s + K * m + at, -1.0)],
+                (e + len(at), width))
+    lower = np.concatenate([np.full(8 * m, -np.inf), limits[1], np.full(len(at), -np.inf)])
+    upper = np.concatenate([levels[0] - a0, levels[0] + a0, limits[2], -sup.gap[out]])
+    cost = np.concatenate([np.full(4 * n, NEAR), np.repeat(np.arange(1.0, K + 1.0), m), np.full(F, OUTSIDE)])
+    wide = np.concatenate([band, band])
+    col_upper = np.concatenate([wide, wide, np.repeat(np.diff(np.r_[levels, peak]), m), np.full(F, np.inf)])
+    x = _minimum(cost, A, lower, upper, np.zeros(width), col_upper)
+    if x is None:
         return None
-    return np.stack([res.x[:n], res.x[n:2 * n]], axis=1)
+    d = x[:2 * n] - x[2 * n:4 * n]
+    return h + np.stack([d[:n], d[n:]], axis=1)
 
 
 def least_acceleration(motion: Motion, lo: int, hi: int) -> tuple[Motion, float]:
