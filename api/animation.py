@@ -10,6 +10,8 @@ from typing import TYPE_CHECKING, Any
 
 from text2anim.core.atomic import Content, check_distinct, check_output_path, write_all
 
+from text2anim.core.notice import Notice
+
 from .wording import Terms
 
 if TYPE_CHECKING:  # synthesis loads when a motion is made: text2anim.plan never imports it
@@ -61,10 +63,17 @@ class Animation:
     @property
     def warnings(self) -> tuple[str, ...]:
         """What the synthesizer could not honour, in the user's terms (:meth:`Terms.reword`), after the
-        manners that are not shown (:mod:`text2anim.manners`)."""
+        manners that are not shown (:mod:`text2anim.manners`): :attr:`notices`' sentences."""
+        return tuple(n.text for n in self.notices)
+
+    @property
+    def notices(self) -> tuple[Notice, ...]:
+        """:attr:`warnings` as :class:`core.notice.Notice` (a kind and its figures, for a front end to word): a
+        manner not shown (``manner_not_shown``), then what the synthesizer could not honour (``synthesis``,
+        ``row`` and ``verb`` of the first element it names when it names one)."""
         terms = self.terms
-        unshown = tuple(w for w in (s.warning() for s in self.manners) if w)
-        return unshown + tuple(terms.reword(w) for w in self.result.warnings)
+        unshown = tuple(n for n in (s.notice() for s in self.manners) if n is not None)
+        return unshown + tuple(terms.notice(w) for w in self.result.warnings)
 
     @property
     def report(self) -> dict[str, Any]:

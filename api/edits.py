@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from text2anim.core.notice import Notice
 from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 METHODS = {"connection": ("serial", False), "transition": ("serial", True), "composition": ("parallel", None)}
@@ -24,9 +25,15 @@ MAX_SECONDS = 60.0
 
 
 class EditError(ValueError):
-    """An edit that cannot be applied (a bad value); the message says which and why."""
+    """An edit that cannot be applied (a bad value); the message says which and why, ``notice`` the same for a
+    front end to word (:class:`core.notice.Notice`, kinds ``edit_method``, ``edit_shift``, ``edit_duration``,
+    ``edit_nth`` and ``edit_bad``)."""
 
     user_facing = True
+
+    def __init__(self, notice: Notice):
+        self.notice = notice
+        super().__init__(notice)
 
 
 @dataclass(frozen=True)
@@ -41,13 +48,16 @@ class Edit:
 
     def __post_init__(self):
         if self.method is not None and self.method not in METHODS:
-            raise EditError(f"unknown join method {self.method!r}; known: {', '.join(METHODS)}")
+            raise EditError(Notice.of("edit_method", f"unknown join method {self.method!r}; known: {', '.join(METHODS)}",
+                                      verb=self.verb, method=str(self.method)))
         if not abs(self.shift) <= MAX_SECONDS:
-            raise EditError(f"a shift of {self.shift} s is out of range (at most {MAX_SECONDS:g} s either way)")
+            raise EditError(Notice.of("edit_shift", f"a shift of {self.shift} s is out of range (at most "
+                                      f"{MAX_SECONDS:g} s either way)", verb=self.verb, s=self.shift, max=MAX_SECONDS))
         if self.duration is not None and not 0.1 <= self.duration <= MAX_SECONDS:
-            raise EditError(f"a duration of {self.duration} s is out of range (0.1 to {MAX_SECONDS:g} s)")
+            raise EditError(Notice.of("edit_duration", f"a duration of {self.duration} s is out of range (0.1 to "
+                                      f"{MAX_SECONDS:g} s)", verb=self.verb, s=self.duration, min=0.1, max=MAX_SECONDS))
         if self.nth < 0:
-            raise EditError("nth counts occurrences from 0")
+            raise EditError(Notice.of("edit_nth", "nth counts occurrences from 0", verb=self.verb, nth=self.nth))
 
     @classmethod
     def from_dict(cls, d: dict) -> "Edit":
@@ -57,7 +67,7 @@ class Edit:
         except (KeyError, TypeError, ValueError) as exc:
             if isinstance(exc, EditError):
                 raise
-            raise EditError(f"an edit needs a verb and numbers: {d!r}") from None
+            raise EditError(Notice.of("edit_bad", f"an edit needs a verb and numbers: {d!r}")) from None
 
 
 def occurrences(analysis: Analysis) -> dict[tuple[str, int], int]:

@@ -28,6 +28,7 @@ import os
 import unicodedata
 
 from text2anim.core.inputs import BIDI_CONTROLS, is_control
+from text2anim.core.notice import Notice
 from text2anim.core.inputs import printable as printable  # the one escaping for a terminal, re-exported
 
 FPS_MIN = 1.0
@@ -59,7 +60,14 @@ class InputTypeError(TypeError):
 
 
 class LimitError(InputError):
-    """A text or option that asks for more work than the limits allow."""
+    """A text or option that asks for more work than the limits allow; ``notice`` says what, for a front end
+    to word (:class:`core.notice.Notice`; kinds ``limit_fps``, ``limit_budget``, ``limit_text``,
+    ``limit_motions``, ``limit_repeat``, ``limit_delay``, ``limit_duration``, ``limit_length``, ``limit_frames``,
+    or ``limit`` for one given as a sentence only). ``str()`` is the English sentence."""
+
+    def __init__(self, notice: Notice | str):
+        self.notice = notice if isinstance(notice, Notice) else Notice("limit", notice)
+        super().__init__(self.notice)
 
 
 #: What ``fallback`` may be: ``strict`` refuses a verb the database lacks, ``nearest`` plays the
@@ -92,7 +100,8 @@ def check_fps(fps) -> float:
     """The frame rate as a float in [:data:`FPS_MIN`, :data:`FPS_MAX`] frames per second."""
     value = real("fps", fps)
     if not FPS_MIN <= value <= FPS_MAX:
-        raise LimitError(f"fps must be between {FPS_MIN:g} and {FPS_MAX:g} frames per second, not {fps!r}")
+        raise LimitError(Notice.of("limit_fps", f"fps must be between {FPS_MIN:g} and {FPS_MAX:g} frames per second, "
+                                                f"not {fps!r}", fps=value, min=FPS_MIN, max=FPS_MAX))
     return value
 
 
@@ -100,7 +109,8 @@ def check_budget(max_seconds) -> float:
     """The output budget in seconds: positive, at most :data:`MAX_SECONDS_CEILING`."""
     value = real("max_seconds", max_seconds)
     if not 0 < value <= MAX_SECONDS_CEILING:
-        raise LimitError(f"max_seconds must be above 0 and at most {MAX_SECONDS_CEILING:g} s, not {max_seconds!r}")
+        raise LimitError(Notice.of("limit_budget", f"max_seconds must be above 0 and at most {MAX_SECONDS_CEILING:g} s, "
+                                                   f"not {max_seconds!r}", s=value, max=MAX_SECONDS_CEILING))
     return value
 
 
@@ -109,8 +119,8 @@ def check_text(text) -> str:
     if not isinstance(text, str):
         raise InputTypeError(f"text must be a str, not {type(text).__name__}")
     if len(text) > MAX_TEXT_CHARS:
-        raise LimitError(f"the text has {len(text)} characters; at most {MAX_TEXT_CHARS} are accepted "
-                         "(split it into several texts)")
+        raise LimitError(Notice.of("limit_text", f"the text has {len(text)} characters; at most {MAX_TEXT_CHARS} are "
+                                                 "accepted (split it into several texts)", n=len(text), max=MAX_TEXT_CHARS))
     for i, ch in enumerate(text):
         if ch in _ALLOWED_CONTROLS:
             continue
@@ -131,28 +141,35 @@ def check_analysis(analysis, max_seconds: float = MAX_SECONDS) -> None:
     and durations and its constraints' delays (seconds) are checked.
     """
     if len(analysis.motions) > MAX_MOTIONS:
-        raise LimitError(f"the text asks for {len(analysis.motions)} motions; at most {MAX_MOTIONS} "
-                         "per text are accepted (split it into several texts)")
+        raise LimitError(Notice.of("limit_motions", f"the text asks for {len(analysis.motions)} motions; at most "
+                                   f"{MAX_MOTIONS} per text are accepted (split it into several texts)",
+                                   n=len(analysis.motions), max=MAX_MOTIONS))
     for m in analysis.motions:
         if not (isinstance(m.repeat, int) and 1 <= m.repeat <= MAX_REPEAT):
-            raise LimitError(f"{m.verb} is asked {_number(m.repeat)} times; at most {MAX_REPEAT} repetitions "
-                             "are accepted")
+            raise LimitError(Notice.of("limit_repeat", f"{m.verb} is asked {_number(m.repeat)} times; at most "
+                                       f"{MAX_REPEAT} repetitions are accepted", verb=m.verb, n=_number(m.repeat),
+                                       max=MAX_REPEAT))
         if m.delay is not None and not (math.isfinite(m.delay) and abs(m.delay) <= MAX_SECONDS_CEILING):
-            raise LimitError(f"a delay of {_number(m.delay)} s is asked before {m.verb}, more than a day "
-                             f"({MAX_SECONDS_CEILING:,.0f} s): no budget allows it")
+            raise LimitError(Notice.of("limit_delay", f"a delay of {_number(m.delay)} s is asked before {m.verb}, more "
+                                       f"than a day ({MAX_SECONDS_CEILING:,.0f} s): no budget allows it",
+                                       s=_number(m.delay), max=MAX_SECONDS_CEILING))
         if m.duration is not None and not (math.isfinite(m.duration) and m.duration <= MAX_SECONDS_CEILING):
-            raise LimitError(f"{m.verb} is asked to last {_number(m.duration)} s, more than a day "
-                             f"({MAX_SECONDS_CEILING:,.0f} s): no budget allows it")
+            raise LimitError(Notice.of("limit_duration", f"{m.verb} is asked to last {_number(m.duration)} s, more "
+                                       f"than a day ({MAX_SECONDS_CEILING:,.0f} s): no budget allows it",
+                                       verb=m.verb, s=_number(m.duration), max=MAX_SECONDS_CEILING))
         if m.duration is not None and not 0 <= m.duration <= max_seconds:
-            raise LimitError(f"{m.verb} is asked to last {_number(m.duration)} s; at most {max_seconds:g} s "
-                             "of output are accepted (the budget; --max-seconds raises it)")
+            raise LimitError(Notice.of("limit_duration", f"{m.verb} is asked to last {_number(m.duration)} s; at most "
+                                       f"{max_seconds:g} s of output are accepted (the budget; --max-seconds raises it)",
+                                       verb=m.verb, s=_number(m.duration), max=max_seconds))
     for c in analysis.constraints:
         if c.delay is not None and not (math.isfinite(c.delay) and abs(c.delay) <= MAX_SECONDS_CEILING):
-            raise LimitError(f"a delay of {_number(c.delay)} s is asked, more than a day "
-                             f"({MAX_SECONDS_CEILING:,.0f} s): no budget allows it")
+            raise LimitError(Notice.of("limit_delay", f"a delay of {_number(c.delay)} s is asked, more than a day "
+                                       f"({MAX_SECONDS_CEILING:,.0f} s): no budget allows it",
+                                       s=_number(c.delay), max=MAX_SECONDS_CEILING))
         if c.delay is not None and not abs(c.delay) <= max_seconds:
-            raise LimitError(f"a delay of {_number(c.delay)} s is asked; at most {max_seconds:g} s of output "
-                             "are accepted (the budget; --max-seconds raises it)")
+            raise LimitError(Notice.of("limit_delay", f"a delay of {_number(c.delay)} s is asked; at most "
+                                       f"{max_seconds:g} s of output are accepted (the budget; --max-seconds raises it)",
+                                       s=_number(c.delay), max=max_seconds))
 
 
 def check_table(table, fps: float, max_seconds: float = MAX_SECONDS) -> None:
@@ -169,13 +186,15 @@ def check_table(table, fps: float, max_seconds: float = MAX_SECONDS) -> None:
     budget_frames = math.floor(max_seconds * BUDGET_FPS)
     who = f" for {actors} actors" if actors > 1 else ""
     if not math.isfinite(seconds) or seconds > max_seconds:
-        raise LimitError(f"the animation would last {_number(length)} s{who}: {_number(seconds)} s of output, over "
-                         f"the budget of {max_seconds:g} s (--max-seconds raises it)")
+        raise LimitError(Notice.of("limit_length", f"the animation would last {_number(length)} s{who}: "
+                                   f"{_number(seconds)} s of output, over the budget of {max_seconds:g} s "
+                                   "(--max-seconds raises it)", s=_number(length), actors=actors, max=max_seconds))
     frames = math.ceil(seconds * fps)  # finite now
     if frames > budget_frames:
-        raise LimitError(f"the animation would have {frames} frames ({seconds:.1f} s at {fps:g} fps{who}), over "
-                         f"the budget of {budget_frames} frames ({max_seconds:g} s at {BUDGET_FPS:g} fps; "
-                         "lower --fps or raise --max-seconds)")
+        raise LimitError(Notice.of("limit_frames", f"the animation would have {frames} frames ({seconds:.1f} s at "
+                                   f"{fps:g} fps{who}), over the budget of {budget_frames} frames ({max_seconds:g} s "
+                                   f"at {BUDGET_FPS:g} fps; lower --fps or raise --max-seconds)",
+                                   n=frames, max=budget_frames, fps=fps))
 
 
 def check_options(text, db, fps, max_seconds, smoothness: float = 0.5, fallback: str = "strict",

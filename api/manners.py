@@ -11,6 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
+from text2anim.core.notice import Notice
+
 if TYPE_CHECKING:
     from text2anim.scheduler import TimeTable
     from text2anim.synthesis import tracks as splan
@@ -41,9 +43,18 @@ class Styled:
 
     def warning(self) -> str | None:
         """The sentence for stderr when the manner is not shown, else None."""
+        notice = self.notice()
+        return notice.text if notice is not None else None
+
+    def notice(self) -> Notice | None:
+        """When the manner is not shown, the :class:`core.notice.Notice` ``manner_not_shown`` (``row``, ``verb``,
+        ``word``, ``why``: ``no_style`` when the word names no style the modifiers make and no clip of it was
+        found, ``refused`` when the modifiers could not keep the clip's quality; :attr:`note` in English);
+        else None."""
         if self.by is not None:
             return None
-        return f"row {self.id} {self.verb}: the manner {self.word} is not shown: {self.note}"
+        return Notice.of("manner_not_shown", f"row {self.id} {self.verb}: the manner {self.word} is not shown: {self.note}",
+                         row=self.id, verb=self.verb, word=self.word, why="no_style" if self.note == NO_STYLE else "refused")
 
 
 NO_STYLE = "it names no style the modifiers make (docs/language.md §2.1) and no clip of it was found"

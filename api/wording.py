@@ -11,6 +11,8 @@ import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
+from text2anim.core.notice import Notice
+
 #: ``element 4`` or ``element 4 (jump)`` (the clip's name) in a synthesizer's message.
 _ELEMENT = re.compile(r"\belement (\d+)(?: \(([^()]*)\))?")
 #: ``1→3`` (a join: first element → second) in a synthesizer's message.
@@ -75,6 +77,16 @@ class Terms:
         """A synthesizer's message with its element ids and joins named as the printed table names them."""
         message = _JOIN.sub(lambda m: self.join(int(m[1]), int(m[2])), message)
         return _ELEMENT.sub(lambda m: self.element(int(m[1]), m[2]), message)
+
+    def notice(self, message: str) -> Notice:
+        """A synthesizer's message as a :class:`core.notice.Notice` of kind ``synthesis``: :meth:`reword`'s
+        sentence, with the ``row`` and ``verb`` of the motion it is about: a join's second one, else the first
+        element it names (the synthesizer says its warnings as sentences only)."""
+        join, element = _JOIN.search(message), _ELEMENT.search(message)
+        eid = int(join[2]) if join else int(element[1]) if element else None
+        named = self.names.get(eid) if eid is not None else None
+        params = {"row": named.row, "verb": named.verb} if named is not None else {}
+        return Notice.of("synthesis", self.reword(message), **params)
 
     def label(self, first: int, second: int) -> str:
         """A short join label for the viewer and plots: ``1→2``, ``1 (1/3)→1 (2/3)`` within a repeat."""

@@ -1,13 +1,15 @@
 """The studio's latency in a real browser, as an animator types: from the last keystroke of a sentence to the
 first frame of its animation on screen, measured by the page itself (``window.__studio.keyLatencies``: the time of
-the last ``input`` event of the text sent to the first frame drawn after its answer).
+the last ``input`` event of the text sent to the first frame drawn after its answer: a new sentence's draft), and
+to the first frame of its finished animation (``finishLatencies``: the draft replaced).
 
 ``python benchmarks/bench_studio.py [--seconds 10] [--no-load]`` (needs /usr/bin/chromium and Playwright, as the
 tests do).
 
 For each reading the benchmark types sentences into the page for ``--seconds`` seconds of wall time, one
 character every 90 ms (``keyboard.type``: an ``input`` event each, as committed kana and kanji arrive), waits for
-each sentence's first frame, and goes on with the next one: the typing pause (250 ms) is part of every figure.
+each sentence's finished animation, and goes on with the next one: the typing pause (120 ms) is part of every
+figure.
 
 - **seen**: five sentences typed again and again (the studio keeps recent results: the page's own cost, the
   pause, the request and the viewer's first frame);
@@ -54,10 +56,11 @@ def serve(db_url: str):
     return server, f"http://127.0.0.1:{port}/"
 
 
-def type_sentence(page, text: str) -> float | None:
-    """Select the box's text and type ``text`` over it; the keystroke-to-frame latency (ms) of its animation, or
-    None when it failed."""
+def type_sentence(page, text: str) -> tuple[float, float | None] | None:
+    """Select the box's text and type ``text`` over it; the keystroke-to-frame latencies (ms) of its first frame
+    and of its finished animation's when a draft came first (else None), or None when it failed."""
     n = page.evaluate("window.__studio.keyLatencies.length")
+    done = page.evaluate("window.__studio.finishLatencies.length")
     page.focus("#text")
     page.keyboard.press("Control+a")
     page.keyboard.type(text, delay=KEY_MS)
@@ -67,22 +70,28 @@ def type_sentence(page, text: str) -> float | None:
     if page.evaluate("window.__studio.error"):
         print(f"{text}: {page.evaluate('window.__studio.error')}", file=sys.stderr)
         return None
-    return float(page.evaluate("window.__studio.keyLatencies[window.__studio.keyLatencies.length - 1]"))
+    first = float(page.evaluate("window.__studio.keyLatencies[window.__studio.keyLatencies.length - 1]"))
+    finished = page.evaluate("([k]) => window.__studio.finishLatencies.length > k ? "
+                             "window.__studio.finishLatencies[window.__studio.finishLatencies.length - 1] : null", [done])
+    return first, finished
 
 
 def pct(values: list[float], q: int) -> float:
     return statistics.quantiles(values, n=100, method="inclusive")[q - 1] if len(values) > 1 else values[0]
 
 
-def reading(page, sentences, seconds: float) -> list[float]:
-    out, end = [], time.monotonic() + seconds
+def reading(page, sentences, seconds: float) -> tuple[list[float], list[float]]:
+    """Keystroke to first frame and (for those that had a draft) to the finished animation's, ms."""
+    first, finished, end = [], [], time.monotonic() + seconds
     for text in sentences:
         if time.monotonic() > end:
             break
         ms = type_sentence(page, text)
         if ms is not None:
-            out.append(ms)
-    return out
+            first.append(ms[0])
+            if ms[1] is not None:
+                finished.append(ms[1])
+    return first, finished
 
 
 def main(argv: list[str]) -> int:
@@ -110,6 +119,7 @@ def main(argv: list[str]) -> int:
                 seen = reading(page, itertools.cycle(SEEN), args.seconds)
                 fresh = (f"{n}は{v}" for n, v in itertools.product(NAMES, VERBS) if f"{n}は{v}" not in SEEN)
                 new = reading(page, fresh, args.seconds)
+                phases = page.evaluate("window.__studio.phases.slice(-%d)" % len(new[0])) if new[0] else []
                 browser.close()
             server.should_exit = True
     finally:
@@ -120,9 +130,13 @@ def main(argv: list[str]) -> int:
           f"{'one other CPU-bound process running' if load is not None else 'no other load'}:")
     print("| sentences | renders | p50 ms | p95 ms |")
     print("| --- | ---: | ---: | ---: |")
-    for label, v in (("seen (typed before)", seen), ("new (never animated)", new)):
+    for label, v in (("seen (typed before)", seen[0]), ("new (never animated): first frame", new[0]),
+                     ("new: finished animation (draft replaced)", new[1])):
         if v:
             print(f"| {label} | {len(v)} | {statistics.median(v):.0f} | {pct(v, 95):.0f} |")
+    if phases:
+        print("new sentences, median ms: " + ", ".join(
+            f"{k} {statistics.median(p[k] for p in phases):.0f}" for k in ("pause", "request", "shown")))
     return 0
 
 

@@ -3,8 +3,10 @@
 - ``GET /`` the page (``/?text=…`` opens it with that text animated: a link to share);
 - ``GET /static/NAME`` one of the page's own files, ``GET /static/vendor/...`` the vendored three.js files
   (fixed lists: no path comes from the client);
-- ``POST /api/animate`` ``{"text", "edits"}`` -> the viewer page and the time table (:mod:`.work`);
-  ``edits`` are the timeline's (:class:`text2anim.edits.Edit` as JSON: verb, nth, shift, duration, method);
+- ``POST /api/animate`` ``{"text", "edits", "fallback", "draft", "page"}`` -> the viewer's data and the time
+  table (:mod:`.work`); ``edits`` are the timeline's (:class:`text2anim.edits.Edit` as JSON: verb, nth, shift,
+  duration, method); ``draft: true`` lets a new text be answered with a draft first (:mod:`.work`), ``page:
+  true`` adds the viewer page itself (``html``: the page has none yet to load the data into);
 - ``POST /api/export`` ``{"text", "edits", "format"}`` -> the animation as ``bvh`` (default), ``glb``, ``vrma``
   or the ``report`` (a zip of one file per actor when there are several);
 - ``GET /api/verbs?q=`` the library's verbs holding ``q``; ``POST /api/import`` a dropped BVH (its bytes,
@@ -28,6 +30,7 @@ import asyncio
 import json
 import threading
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 from importlib import resources
 
@@ -40,7 +43,7 @@ from starlette.routing import Route
 from .guard import SameOrigin, new_token, own_hosts
 from .page import FONT_URL, full_font
 from .page import html as served_page
-from .work import FORMATS, Studio
+from .work import FORMATS, Studio, viewer_page
 
 #: Largest request body (bytes).
 MAX_BODY = 64 * 1024
@@ -76,8 +79,10 @@ MAX_UPLOAD = 30 * 1024 * 1024
 MAX_EDITS = 200
 
 
-def _refused(status: int, error: str) -> JSONResponse:
-    return JSONResponse({"ok": False, "error": error}, status_code=status)
+def _refused(status: int, error: str, notice: dict | None = None) -> JSONResponse:
+    """``{"ok": false, "error"}``, with the ``notice`` (:class:`core.notice.Notice` as JSON) the page words when
+    there is one."""
+    return JSONResponse({"ok": False, "error": error, **({"notice": notice} if notice else {})}, status_code=status)
 
 
 async def _body(request: Request, limit: int, what: str) -> bytes | Response:
@@ -97,10 +102,22 @@ async def _body(request: Request, limit: int, what: str) -> bytes | Response:
         return _refused(408, f"{what} did not arrive within {BODY_TIMEOUT:g} s")
 
 
-async def _text_of(request: Request) -> tuple[str, tuple, str, str] | Response:
-    """``(text, edits, format, fallback)`` of a JSON request body ``{"text", "edits": [...], "format",
-    "fallback"}``, or the response refusing it (every malformed body a 4xx: a list for a format, 20,000 nested
-    brackets)."""
+@dataclass(frozen=True)
+class Asked:
+    """What a request for a text asks: the text, the time-table edits, the format of an export, the fallback
+    (``strict`` or ``nearest``), whether a draft may answer first and whether the viewer page is wanted too."""
+
+    text: str
+    edits: tuple
+    format: str = "bvh"
+    fallback: str = "strict"
+    draft: bool = False
+    page: bool = False
+
+
+async def _text_of(request: Request) -> Asked | Response:
+    """What a JSON request body ``{"text", "edits": [...], "format", "fallback", "draft", "page"}`` asks, or the
+    response refusing it (every malformed body a 4xx: a list for a format, 20,000 nested brackets)."""
     from text2anim.edits import Edit
 
     data = await _json_of(request, '{"text": "..."}')
@@ -112,14 +129,18 @@ async def _text_of(request: Request) -> tuple[str, tuple, str, str] | Response:
     fallback = data.get("fallback", "strict")
     if fallback not in ("strict", "nearest"):
         return _refused(400, "fallback must be strict or nearest")
+    draft, page = data.get("draft", False), data.get("page", False)
+    if not isinstance(draft, bool) or not isinstance(page, bool):
+        return _refused(400, "draft and page must be true or false")
     if not isinstance(text, str) or not isinstance(raw, list) or len(raw) > MAX_EDITS \
             or not all(isinstance(e, dict) for e in raw):
         return _refused(400, f"text must be a string and edits a list of at most {MAX_EDITS} objects")
     try:
         edits = tuple(Edit.from_dict(e) for e in raw)
     except (ValueError, TypeError, KeyError, AttributeError) as exc:  # EditError is a ValueError
-        return _refused(400, f"edits: {_short(exc)}")
-    return text, edits, fmt, fallback
+        notice = getattr(exc, "notice", None)
+        return _refused(400, f"edits: {_short(exc)}", notice.to_dict() if notice is not None else None)
+    return Asked(text, edits, fmt, fallback, draft, page)
 
 
 async def _json_of(request: Request, example: str) -> dict | Response:
@@ -198,13 +219,12 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
 
     pending = [0]  # texts waiting for or in the animation
 
-    async def work(request: Request, fn: Callable[..., Response]) -> Response:
-        """``fn(text, edits, format, fallback, cancelled)`` in a worker thread; ``cancelled()`` is true once the
-        client went away (the page aborted the request for a newer text), so that the work stops there."""
+    async def work(request: Request, fn: Callable[[Asked, Callable[[], bool]], Response]) -> Response:
+        """``fn(asked, cancelled)`` in a worker thread; ``cancelled()`` is true once the client went away (the
+        page aborted the request for a newer text), so that the work stops there."""
         got = await _text_of(request)
         if isinstance(got, Response):
             return got
-        text, edits, fmt, fallback = got
         if pending[0] >= MAX_PENDING:
             return _refused(429, f"the studio is busy with {MAX_PENDING} texts; try again in a moment")
         pending[0] += 1
@@ -217,7 +237,7 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
                 await asyncio.sleep(CANCEL_POLL)
         watcher = asyncio.create_task(watch())
         try:
-            return await asyncio.wait_for(run_in_threadpool(fn, text, edits, fmt, fallback, gone.is_set), TIMEOUT)
+            return await asyncio.wait_for(run_in_threadpool(fn, got, gone.is_set), TIMEOUT)
         except asyncio.TimeoutError:
             return JSONResponse({"ok": False, "code": "slow",
                                  "error": f"this text took over {TIMEOUT:g} s; try a shorter one"}, status_code=503)
@@ -227,17 +247,19 @@ def create_app(db_url: str | None, host: str = "127.0.0.1", port: int = 8000) ->
             watcher.cancel()
 
     async def animate(request: Request) -> Response:
-        def run(text, edits, fmt, fallback, cancelled):
-            payload = studio.animate(text, edits, fallback, cancelled)
-            return JSONResponse({k: v for k, v in payload.items() if not k.startswith("_")},
-                                status_code=200 if payload["ok"] else 422)
+        def run(asked: Asked, cancelled: Callable[[], bool]) -> Response:
+            payload = studio.animate(asked.text, asked.edits, asked.fallback, cancelled, draft=asked.draft)
+            answer = {k: v for k, v in payload.items() if not k.startswith("_")}
+            if asked.page and payload["ok"]:
+                answer["html"] = viewer_page(payload)
+            return JSONResponse(answer, status_code=200 if payload["ok"] else 422)
         return await work(request, run)
 
     async def export(request: Request) -> Response:
-        def run(text, edits, fmt, fallback, cancelled):
-            made = studio.export(text, edits, fmt, fallback)
+        def run(asked: Asked, cancelled: Callable[[], bool]) -> Response:
+            made = studio.export(asked.text, asked.edits, asked.format, asked.fallback)
             if made is None:
-                failed = studio.animate(text, edits, fallback)
+                failed = studio.animate(asked.text, asked.edits, asked.fallback)
                 return JSONResponse({"ok": False, "error": failed["error"], "code": failed["code"]}, status_code=422)
             name, data = made
             kind = {"zip": "application/zip", "bvh": "text/plain; charset=utf-8", "json": "application/json",

@@ -2,9 +2,17 @@
 
 One animation at a time (the synthesis is CPU-bound; a newer text makes the page abort the older
 request). The same text with the same database gives the same bytes, so recent results are kept, within
-:data:`CACHE_BYTES` (what the page is sent: the viewer page, the top view, the table): going back to a
+:data:`CACHE_BYTES` (what the page is sent: the viewer's data, the top view, the table): going back to a
 text costs nothing. Only the latest :class:`Animation` itself is kept (for its export; a long text's
 is ~40 MB); exporting another text animates it again.
+
+**Draft first.** A new text is answered at once with a *draft*: the same analysis and clips joined by
+crossfades (``blend="crossfade"``, ~15 ms of synthesis for two motions instead of the optimal blend's
+110-180 ms), marked ``"draft": true``; the page shows it and asks for the finished animation (the optimal
+blend, :data:`FINISHED`) straight after, which replaces it in place. The finished one goes on from the draft's
+planned stages (the analysis, the time table, the clips: the same for both blends), so only its synthesis is
+new work. Exports and the project always use the finished animation; a text whose finished animation is kept
+is answered with it, never with a draft.
 """
 from __future__ import annotations
 
@@ -30,6 +38,10 @@ CACHE = 32
 CACHE_BYTES = 64 * 2**20
 #: What the page may download: format -> file suffix (``Animation.outputs``' keywords).
 FORMATS = {"bvh": "bvh", "glb": "glb", "vrma": "vrma", "report": "json"}
+#: The blends of a draft and of the finished animation (``text2anim.animate(blend=...)``).
+DRAFT, FINISHED = "crossfade", "optimal"
+#: The last pipeline stage a draft and its finished animation share (the synthesis comes after it).
+SHARED_STAGES = "manner"
 
 
 @dataclass
@@ -46,6 +58,7 @@ class Studio:
     rig: Path | None = None
     character: ExportOptions | None = None  # the rig's options: the file read, its joints placed and soles found once
     latest: tuple[str, object] | None = None  # (cache key, Animation) of the latest text animated
+    planned: tuple[str, object] | None = None  # (cache key, pipeline.Work up to SHARED_STAGES) of the latest draft
     session: object | None = None  # the library's copy with the dropped clips, once there are any
     dropped: set[str] = field(default_factory=set)  # the clips dropped in this session
     shelf: threading.Lock = field(default_factory=threading.Lock)  # the cache's own (``lock`` is the work's)
@@ -114,7 +127,7 @@ class Studio:
             if (refused := self._not_mine(clip)) is not None:
                 return refused
             info, motion = self.library.info(clip), self.library.load(clip)  # type: ignore[attr-defined]
-        return {"ok": True, "html": framed(render_html(motion, title=clip)), "verbs": list(info.verbs)}
+        return {"ok": True, "html": framed(render_html(motion, title=clip, props_code=True)), "verbs": list(info.verbs)}
 
     def _not_mine(self, clip: str) -> dict | None:
         """The refusal of a ``clip`` that is not one of the user's own (:meth:`mine`), else None."""
@@ -206,7 +219,7 @@ class Studio:
         """Drop every result (the database or the character changed)."""
         with self.shelf:
             self.cache.clear()
-        self.latest = None
+        self.latest = self.planned = None
 
     def close(self) -> None:
         """Close the session's database and remove the private folder (it, a dropped character, an upload)."""
@@ -215,16 +228,20 @@ class Studio:
         self.folder.cleanup()
 
     def animate(self, text: str, edits: tuple = (), fallback: str = "strict",
-                cancelled: Callable[[], bool] = lambda: False) -> dict:
-        """``{"ok": True, "html", "top", "table", "blends", "duration", "warnings", "fallbacks"}`` for ``text`` with
-        the time-table ``edits`` (:class:`text2anim.edits.Edit`) and ``fallback`` (``strict``, or ``nearest``: a
-        verb no clip has played by its stand-in), or ``{"ok": False, "error", "code"}`` with the message the
-        command line would print (never a traceback) and its kind (:func:`error_code`), which the page words
-        in its own language. ``cancelled()`` true (the page went away: a newer text) stops the work between the
+                cancelled: Callable[[], bool] = lambda: False, draft: bool = False) -> dict:
+        """``{"ok": True, "draft", "view", "top", "table", "blends", "duration", "warnings", "notices", "fallbacks"}`` for
+        ``text`` with the time-table ``edits`` (:class:`text2anim.edits.Edit`) and ``fallback`` (``strict``, or ``nearest``: a
+        verb no clip has played by its stand-in), or ``{"ok": False, "error", "code", "notice"}`` with the message
+        the command line would print (never a traceback), its kind (:func:`error_code`) and, when the error has
+        one, its :class:`core.notice.Notice`, which the page words in its own language (as ``notices``, the
+        ``warnings``' own). ``cancelled()`` true (the page went away: a newer text) stops the work between the
         pipeline's stages, or before it starts once the animation before it is done: ``{"ok": False, "code":
         "cancelled"}``, nothing kept. Each table row carries its edit key (verb, nth), or None for
-        what the scheduler added (a stop, an idle, a posture bridge). ``top`` is the scene seen from above
-        (:meth:`output.topview.TopView.to_dict`), which the page draws beside the animation."""
+        what the scheduler added (a stop, an idle, a posture bridge). ``view`` is the viewer's document
+        (:func:`output.viewer.viewer_data`, which the page's viewer loads in place; :func:`viewer_page` makes the
+        page itself), ``top`` the scene seen from above (:meth:`output.topview.TopView.to_dict`), which the page
+        draws beside the animation. ``draft``: answer a text whose finished animation is not kept with a draft
+        (module docstring; never with a character dropped, whose view is the finished export)."""
         text = text.strip()
         if not text:
             return {"ok": False, "code": "empty", "error": "type a sentence, e.g. 太郎は走って、ボールを蹴る。"}
@@ -232,34 +249,39 @@ class Studio:
             return {"ok": False, "code": "too_long", "max": MAX_TEXT,
                     "error": f"the text is {len(text)} characters long; the studio takes at most {MAX_TEXT}"}
         key = self._key(text, edits, fallback)
-        hit = self._cached(key)  # a text seen before is answered at once, even while another one is being made
+        draft = draft and self.character is None
+        keys = (key, key + "\0draft") if draft else (key,)
+        hit = self._cached(*keys)  # a text seen before is answered at once, even while another one is being made
         if hit is not None:
             return hit
         with self.lock:
-            hit = self._cached(key)  # made while this request waited
+            hit = self._cached(*keys)  # made while this request waited
             if hit is not None:
                 return hit
             try:
-                payload = self._make(text, edits, fallback, cancelled)
+                payload = self._make(text, edits, fallback, cancelled, key, draft)
             except Cancelled:
                 return {"ok": False, "code": "cancelled", "error": "the page asked for another text"}
             anim = payload.pop("_anim", None)
-            if anim is not None:
+            if anim is not None and not draft:
                 self.latest = (key, anim)
             payload["_bytes"] = _size(payload)
             with self.shelf:
-                self.cache[key] = payload
+                self.cache[keys[-1]] = payload
                 while len(self.cache) > 1 and (len(self.cache) > CACHE  # the newest is kept whatever its size
                                                or sum(p["_bytes"] for p in self.cache.values()) > CACHE_BYTES):
                     self.cache.popitem(last=False)
             return payload
 
-    def _cached(self, key: str) -> dict | None:
+    def _cached(self, *keys: str) -> dict | None:
+        """The first of ``keys`` kept (the finished animation's before the draft's), or None."""
         with self.shelf:
-            hit = self.cache.get(key)
-            if hit is not None:
-                self.cache.move_to_end(key)
-            return hit
+            for key in keys:
+                hit = self.cache.get(key)
+                if hit is not None:
+                    self.cache.move_to_end(key)
+                    return hit
+            return None
 
     def _key(self, text: str, edits: tuple, fallback: str = "strict") -> str:
         return text.strip() + "\0" + repr(edits) + "\0" + fallback + "\0" + str(self.rig)
@@ -280,15 +302,15 @@ class Studio:
         with self.lock:
             return self.latest[1] if self.latest is not None and self.latest[0] == key else None
 
-    def _make(self, text: str, edits: tuple, fallback: str, cancelled: Callable[[], bool] = lambda: False) -> dict:
-        import text2anim
+    def _make(self, text: str, edits: tuple, fallback: str, cancelled: Callable[[], bool] = lambda: False,
+              key: str = "", draft: bool = False) -> dict:
         from text2anim.cli.terminal import message
         from text2anim.edits import occurrences
         from text2anim.output.topview import top_view
-        from text2anim.output.viewer import render_html
+        from text2anim.output.viewer import viewer_data
 
         try:
-            anim = self._animation(text, edits, fallback, cancelled)
+            anim = self._animation(text, edits, fallback, cancelled, key, draft)
             keys = {i: list(k) for k, i in occurrences(anim.planned.analysis).items()}
             tracks, props = anim.tracks(), anim.props()
             if self.character is not None:  # the user's character: its own skeleton and proportions
@@ -297,36 +319,48 @@ class Studio:
         except Exception as exc:  # the stages' user errors carry user_facing; anything else is a bug to show
             if not getattr(exc, "user_facing", False) and not isinstance(exc, ValueError):
                 raise
+            notice = getattr(exc, "notice", None)  # a LimitError's, an EditError's: what the page words
             return {"ok": False, "error": message(str(exc)), "code": error_code(exc),
-                    "unknown": unknown_verbs(text, exc)}
+                    "unknown": unknown_verbs(text, exc), **({"notice": notice.to_dict()} if notice is not None else {})}
         rows = [{"id": e.id, "actor": e.actor or "default", "verb": e.verb, "clip": e.clip, "method": e.method,
                  "start": round(e.start, 3), "end": round(e.end, 3), "body_part": e.body_part,
                  "key": keys.get(e.id), "manner": e.manner.to_dict() if e.manner else None}
                 for e in anim.table.elements]
         blends = [{"actor": s.actor, "start": round(s.start, 3), "end": round(s.end, 3), "part": s.part,
                    "label": s.label} for s in anim.spans() if s.kind == "blend"]
-        return {"ok": True, "text": text, "html": framed(render_html(tracks, anim.spans(), title=text, props=props)),
+        return {"ok": True, "text": text, "draft": draft, "view": viewer_data(tracks, anim.spans(), title=text, props=props),
                 "top": top_view(tracks, anim.spans(), props).to_dict(),
                 "rig": self.rig is not None,
                 "notes": list(anim.planned.analysis.notes),
                 "table": rows, "blends": blends, "warnings": list(anim.warnings),
+                "notices": [n.to_dict() for n in anim.notices],
                 "fallbacks": [{"written": f.written, "used": f.used} for f in anim.planned.fallbacks],
                 "duration": round(max((m.duration for m in anim.motions.values()), default=0.0), 3),
                 "_anim": anim}
 
-    def _animation(self, text: str, edits: tuple, fallback: str, cancelled: Callable[[], bool]):
-        """``text2anim.animate(text, edits=edits, fallback=fallback)`` on the studio's database, stage by stage
-        (:mod:`text2anim.pipeline`, as ``text2anim compare`` runs it), raising :class:`Cancelled` between two
-        stages or two joins when ``cancelled()``: an abandoned text stops there instead of delaying the next one."""
+    def _animation(self, text: str, edits: tuple, fallback: str, cancelled: Callable[[], bool], key: str = "",
+                   draft: bool = False):
+        """``text2anim.animate(text, edits=edits, fallback=fallback, blend=DRAFT if draft else FINISHED)`` on the
+        studio's database, stage by stage (:mod:`text2anim.pipeline`, as ``text2anim compare`` runs it), raising
+        :class:`Cancelled` between two stages or two joins when ``cancelled()``: an abandoned text stops there
+        instead of delaying the next one. The finished animation of the latest draft's ``key`` goes on from the
+        draft's stages up to :data:`SHARED_STAGES`."""
+        from dataclasses import replace
+
         from text2anim import limits
         from text2anim.pipeline import NAMES, Request, Work, animation, run
 
         limits.check_options(text, self.db, 30.0, limits.MAX_SECONDS, fallback=fallback)
-        work, done = Work(Request(text, fallback=fallback, edits=tuple(edits)), self.db), None
+        blend = DRAFT if draft else FINISHED
+        work, done = Work(Request(text, fallback=fallback, edits=tuple(edits), blend=blend), self.db), None
+        if not draft and self.planned is not None and self.planned[0] == key:
+            work, done = replace(self.planned[1], request=work.request), SHARED_STAGES
         with cancellable(cancelled):  # and inside synthesis, between two joins (core.cancel)
-            for name in NAMES:
+            for name in NAMES[NAMES.index(done) + 1 if done else 0:]:
                 checkpoint()
                 work, done = run(work, after=done, until=name), name
+                if draft and name == SHARED_STAGES:
+                    self.planned = (key, work)
         return animation(work)
 
     def export(self, text: str, edits: tuple = (), fmt: str = "bvh", fallback: str = "strict") -> tuple[str, bytes] | None:
@@ -353,11 +387,19 @@ class Studio:
 
 #: What the studio changes in the viewer page it frames: the page draws the one (editable) time table itself,
 #: and words the viewer's controls in its own language (studio.js), with the studio's font for their glyphs
-#: (the viewer embeds only those of its own page).
+#: and for the names of the animations loaded in place later (the viewer embeds only those of its own page).
 FRAMED_CSS = ("<style>#timeline-wrap { display: none; }\n"
               '@font-face { font-family: "t2a-studio"; font-display: block; unicode-range: U+2E80-FFFF; '
               'src: url(/static/font/jp.woff) format("woff"); }\n'
-              '#help, #controls label { font-family: "t2a-jp", "t2a-studio", system-ui, sans-serif; }</style>')
+              ':root, #help, #controls label { font-family: "t2a-jp", "t2a-studio", system-ui, sans-serif; }</style>')
+
+
+def viewer_page(payload: dict) -> str:
+    """The viewer page of an answer of :meth:`Studio.animate` as the studio frames it: the page loads it once,
+    then hands the viewer every later answer's ``view`` in place (so it can show things whichever it had)."""
+    from text2anim.output.viewer import viewer_page as page
+
+    return framed(page(payload["view"], props_code=True))
 
 
 def framed(page: str) -> str:
@@ -366,8 +408,10 @@ def framed(page: str) -> str:
 
 
 def _size(payload: dict) -> int:
-    """Bytes a result holds, about: its strings (the viewer page is most of it) and 100 bytes a row."""
-    return sum(len(v) for v in payload.values() if isinstance(v, str)) + 100 * (
+    """Bytes a result holds, about: its strings, the viewer's data (most of it) and 100 bytes a row."""
+    import json
+
+    return sum(len(v) for v in payload.values() if isinstance(v, str)) + len(json.dumps(payload.get("view", ""))) + 100 * (
         len(payload.get("table", ())) + len(payload.get("blends", ())) + len(str(payload.get("top", ""))) // 100)
 
 

@@ -73,7 +73,7 @@ from text2anim.core.motion import Motion
 from .. import embedded_font
 from .types import Prop, Span, Track, as_props, as_spans, as_tracks
 
-__all__ = ["PALETTE", "Prop", "Span", "Track", "render_html", "viewer_data"]
+__all__ = ["PALETTE", "Prop", "Span", "Track", "render_html", "viewer_data", "viewer_page"]
 
 #: Actor colours, in order (chosen to stay distinct on the dark background and for colour-blind viewers).
 PALETTE = ("#4f9cf9", "#f5884a", "#4cc38a", "#c678f5", "#f2c94c", "#ef5b7b", "#3dc9d6", "#a3a3a3")
@@ -315,23 +315,33 @@ PROPS_SLOT = "/* props.js */"
 
 
 def render_html(tracks, spans=(), title: str = "", path: str | os.PathLike | None = None, *,
-                max_fps: float = 30.0, compress: bool = True, props=()) -> str:
+                max_fps: float = 30.0, compress: bool = True, props=(), props_code: bool = False) -> str:
     """The viewer page for ``tracks`` (a list of :class:`Track`, a ``{name: Motion}`` dict or one Motion).
 
     ``spans`` (:class:`Span`) are drawn on the timeline under the 3D view:
     time-table elements as bars, blend intervals shaded (upper / lower body
     lanes); ``props`` (:class:`Prop`) in the 3D view with the actors. Returns the HTML text; when ``path`` is
     given it is also written there atomically (:class:`~core.atomic.OutputError` if it cannot be).
+    ``props_code``: :func:`viewer_page`'s.
     """
     data = viewer_data(tracks, spans, title, max_fps=max_fps, compress=compress, props=props)
-    page_title = title or "text2anim"
+    page = viewer_page(data, props_code=props_code)
+    if path is not None:
+        atomic_write_text(path, page)
+    return page
+
+
+def viewer_page(data: dict, *, props_code: bool = False) -> str:
+    """The page playing ``data`` (:func:`viewer_data`'s document). ``props_code`` inlines ``props.js`` even when
+    ``data`` has no things: a page whose animation is replaced in place (``window.__t2a.load(data)``, the
+    studio) may be handed one that has."""
     script = _asset("viewer.js")
-    if "props" in data:
+    if "props" in data or props_code:
         script = script.replace(PROPS_SLOT, _asset("props.js"), 1)
     if re.search(r"</script", script, re.I):  # pragma: no cover - guards edits of viewer.js
         raise RuntimeError("viewer.js must not contain '</script'")
     fields = {
-        "TITLE": html.escape(page_title),
+        "TITLE": html.escape(data["title"] or "text2anim"),
         "DATA": _script_json(data),
         "SCRIPT": script,
         "FONT": "",
@@ -339,7 +349,4 @@ def render_html(tracks, spans=(), title: str = "", path: str | os.PathLike | Non
     template = _asset("viewer.html")
     page = re.sub(r"\{\{(TITLE|DATA|SCRIPT|FONT)\}\}", lambda mt: fields[mt.group(1)], template)
     fields["FONT"] = embedded_font.font_face_css(page)  # the glyphs of what the page shows, names and verbs
-    page = re.sub(r"\{\{(TITLE|DATA|SCRIPT|FONT)\}\}", lambda mt: fields[mt.group(1)], template)
-    if path is not None:
-        atomic_write_text(path, page)
-    return page
+    return re.sub(r"\{\{(TITLE|DATA|SCRIPT|FONT)\}\}", lambda mt: fields[mt.group(1)], template)

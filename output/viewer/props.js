@@ -23,14 +23,16 @@
       return out;
     }
 
-    function decode() {
-      return Promise.all(DATA.props.map(function (p) {
-        return Promise.all([bytesOf(p.pos), bytesOf(p.rot)]).then(function (b) {
+    // the things of a viewer_data() document, decoded (use() shows them)
+    function decode(props, encoding) {
+      return Promise.all(props.map(function (p) {
+        return Promise.all([bytesOf(p.pos, encoding), bytesOf(p.rot, encoding)]).then(function (b) {
           return { meta: p, T: p.frames, pos: sums(b[0], 3, p.frames, 1000, p.name),
             rot: sums(b[1], 4, p.frames, 32767, p.name), base: hexRgb(p.color), at: [0, 0, 0], R: null };
         });
-      })).then(function (got) { list = got; });
+      }));
     }
+    function use(decoded) { list = decoded; }
 
     function sampleOne(P, t) {
       var f = Math.max(0, Math.min(t * P.meta.fps, P.T - 1)), i0 = Math.floor(f), i1 = Math.min(i0 + 1, P.T - 1);
@@ -231,5 +233,5 @@
       });
     }
 
-    return { decode: decode, sample: sample, draw: draw, shadows: shadows, points: points, legend: legend };
+    return { decode: decode, use: use, sample: sample, draw: draw, shadows: shadows, points: points, legend: legend };
   })();

@@ -13,7 +13,8 @@
 
   var state = {
     t: 0, playing: true, speed: 1, loop: true, follow: true, frame: 0, ready: false,
-    scrubbing: false, dirty: true, last: 0
+    scrubbing: false, dirty: true, last: 0,
+    every: 0, drawn: 0  // ms at least between two drawings (0: every animation frame), the last one's clock
   };
   var actors = [];
   // The things of the scene (balls, chairs): props.js sets this; render_html inlines it here only when
@@ -48,9 +49,9 @@
     var stream = new Blob([u8]).stream().pipeThrough(new DecompressionStream("deflate"));
     return new Response(stream).arrayBuffer().then(function (b) { return new Uint8Array(b); });
   }
-  function bytesOf(s) {
+  function bytesOf(s, encoding) {
     var u8 = b64bytes(s);
-    return DATA.encoding === "deflate" ? inflate(u8) : Promise.resolve(u8);
+    return (encoding || DATA.encoding) === "deflate" ? inflate(u8) : Promise.resolve(u8);
   }
 
   function sideOf(name) {
@@ -59,8 +60,8 @@
     return 0;
   }
 
-  function decodeActor(a) {
-    return Promise.all([bytesOf(a.rel), bytesOf(a.root)]).then(function (parts) {
+  function decodeActor(a, encoding) {
+    return Promise.all([bytesOf(a.rel, encoding), bytesOf(a.root, encoding)]).then(function (parts) {
       var T = a.frames, N = a.points;
       var relV = new DataView(parts[0].buffer, parts[0].byteOffset, parts[0].byteLength);
       var rootV = new DataView(parts[1].buffer, parts[1].byteOffset, parts[1].byteLength);
@@ -642,10 +643,11 @@
       }
       state.dirty = true;
     }
-    if (state.dirty) {
+    if (state.dirty && now - state.drawn >= state.every) {
       updateUi();
-      followStep(dt);
+      followStep(state.drawn ? Math.min(0.25, (now - state.drawn) / 1000) : dt);
       render();
+      state.drawn = now;
       state.dirty = state.follow && state.playing;
     }
   }
@@ -738,6 +740,7 @@
 
   function buildLegend() {
     var lg = $("legend");
+    while (lg.firstChild) lg.removeChild(lg.firstChild);
     actors.forEach(function (A) {
       if (!A.meta.name) return;
       var row = document.createElement("div"); row.className = "actor";
@@ -767,6 +770,13 @@
     play: function () { state.playing = true; state.dirty = true; },
     pause: function () { state.playing = false; state.dirty = true; },
     seek: setTime,
+    load: load,
+    // the document playing (viewer_data()'s: the page's own, or the latest load()ed)
+    get data() { return DATA; },
+    // draw at most this many frames a second while playing (0: at every animation frame, the default): a page
+    // that shares the machine with the work it shows (the studio) draws at the motion's own rate
+    get maxFps() { return state.every ? Math.round(1000 / (state.every + 2)) : 0; },
+    set maxFps(fps) { state.every = fps > 0 ? 1000 / fps - 2 : 0; },
     // draw a body (true) or the stick figure (false, the default)
     get body() { return BODY.on; },
     set body(on) { BODY.on = !!on; state.dirty = true; },
@@ -774,11 +784,36 @@
   };
   window.__t2a = api;
 
+  // Another animation in place of the one playing (a front end that updates its view, the studio): ``data`` is
+  // viewer_data()'s document; it is decoded first, then swapped in at once, the playing time kept (within the
+  // new length), the camera too unless ``home`` (then framed as a new page frames it). A promise, resolved once
+  // the new animation is drawn. Of two loads in flight the later one wins, whichever is decoded first.
+  var loads = 0;
+  function load(data, home) {
+    if (data.props && !Props) return Promise.reject(new Error("this page was written without things (props.js)"));
+    var mine = ++loads;
+    return Promise.all([Promise.all(data.actors.map(function (a) { return decodeActor(a, data.encoding); })),
+                        Props ? Props.decode(data.props || [], data.encoding) : null]).then(function (got) {
+      if (mine !== loads) return;
+      DATA = data; actors = got[0];
+      if (Props) Props.use(got[1]);
+      state.t = Math.min(state.t, DATA.duration);
+      $("title").textContent = DATA.title || "text2anim"; document.title = DATA.title || "text2anim";
+      $("scrub").max = String(DATA.duration);
+      buildRows(); buildLegend(); resize();
+      if (home) initCamera();
+      updateUi(); render();
+      state.dirty = true;
+    });
+  }
+
   // the page's own Japanese font (a subset embedded by render_html), loaded before the canvas draws names
   var fontLoaded = document.fonts && document.fonts.load ?
     document.fonts.load('13px "t2a-jp"').catch(function () { return null; }) : null;
-  Promise.all([Promise.all(DATA.actors.map(decodeActor)), Props ? Props.decode() : null, fontLoaded]).then(function (got) {
+  Promise.all([Promise.all(DATA.actors.map(function (a) { return decodeActor(a); })),
+               Props ? Props.decode(DATA.props || []) : null, fontLoaded]).then(function (got) {
     actors = got[0];
+    if (Props) Props.use(got[1]);
     $("message").style.display = "none";
     buildRows();
     buildLegend();

@@ -42,7 +42,7 @@ own two source clips (as recorded, at the track's rate):
 4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
    ankle or toe would go below it is lifted by IK by the deficit
    (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm is
-   lifted clear (:func:`clear_swings`); after an adaptation, whose fitted legs
+   lifted clear (:func:`lift_skimming_feet`); after an adaptation, whose fitted legs
    reach through the next clip's core, up to the next join.
 
 5. **Weight over the feet**: where the finished region stands a slow body on its feet with its centre of
@@ -164,13 +164,13 @@ def _raise_ankle(motion: Motion, side: str, ankle: int, short: np.ndarray) -> Mo
     return out
 
 
-SWING_CLEARANCE = 0.055  # m: a foot moving faster than SWING_SPEED keeps its toe this high (GMD counts < 5 cm)
+SKIM_HEIGHT = 0.055  # m: a foot moving faster than SWING_SPEED keeps its toe this high (GMD counts < 5 cm)
 SWING_SPEED = 0.5  # m/s, the GMD skating speed
 
 
-def clear_swings(motion: Motion, lo: int, hi: int) -> Motion:
+def lift_skimming_feet(motion: Motion, lo: int, hi: int) -> Motion:
     """``motion`` with every foot that skims the floor over ``[lo, hi)`` lifted: where its toe is lower than
-    :data:`SWING_CLEARANCE` while it moves faster than :data:`SWING_SPEED` (5-frame mean) — a shuffle a
+    :data:`SKIM_HEIGHT` while it moves faster than :data:`SWING_SPEED` (5-frame mean) — a shuffle a
     blend of two foot placements makes, counted as skating — the ankle is raised by IK (world orientation
     kept, so the toe rises as much), by the shortfall widened by 2 frames and smoothed."""
     feet = body_map(motion.skeleton).feet
@@ -182,7 +182,7 @@ def clear_swings(motion: Motion, lo: int, hi: int) -> Motion:
         v = np.zeros(len(p))
         v[1:] = np.linalg.norm(np.diff(xz, axis=0), axis=1) * fps
         fast = (v > SWING_SPEED) & (uniform_filter1d(v, 5, mode="nearest") > SWING_SPEED)
-        short = np.where(fast, np.maximum(0.0, SWING_CLEARANCE - p[:, toe, 1]), 0.0)
+        short = np.where(fast, np.maximum(0.0, SKIM_HEIGHT - p[:, toe, 1]), 0.0)
         short[:lo] = 0.0
         short[hi:] = 0.0
         if not (short > 1e-3).any():
@@ -381,7 +381,7 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
     candidate = chosen.motion()
     for st in stretches:
         st.release()
-    done = lift_off_floor(clear_swings(candidate.share_pose(motion, rows), lo, h2), lo, h2)
+    done = lift_off_floor(lift_skimming_feet(candidate.share_pose(motion, rows), lo, h2), lo, h2)
     # the feet a connection released after its blend may land inside the next core (the engine's frames, not
     # the clip's): where the body stands beside them there, the hips' path is bent over them too
     he = _landing_end(done, h2, region.r1 + h2 - hi)

@@ -89,6 +89,43 @@ def test_typing_a_sentence_changes_the_animation_and_the_time_table(page, tmp_pa
     page.screenshot(path=str(tmp_path / "typed.png"))
 
 
+def test_a_new_text_shows_a_draft_at_once_then_the_finished_animation_in_its_place(page):
+    """A new text plays first as a draft (marked 下書き), then as the finished animation, swapped into the same
+    viewer at the same playing time; the finished answer is held back here until the draft has been looked at."""
+    import json
+
+    text, held = "美咲は走って、止まる。", []
+
+    def hold(route):
+        if json.loads(route.request.post_data or "{}").get("draft") is False:
+            held.append(route)  # the finished animation: answered when the test lets it go
+        else:
+            route.continue_()
+    page.route("**/api/animate", hold)
+    viewer = "document.getElementById('view').contentWindow"
+    page.evaluate(f"window.__first = {viewer}.__t2a")
+    page.fill("#text", text)
+    page.wait_for_function("([text]) => window.__studio.text === text && window.__studio.draft", arg=[text])
+    page.wait_for_function(f"{viewer}.__t2a.time > 0.3", timeout=10000)  # the draft plays
+    assert page.locator("#draft").is_visible() and page.locator("#draft").inner_text() == "下書き"
+    assert "下書き" in page.locator("#status").inner_text() and page.evaluate("window.__studio.busy")
+    draft = page.evaluate(f"{viewer}.__t2a.data.actors[0].rel")
+    for _ in range(100):  # the finished request, asked for once the draft was on screen
+        if held:
+            break
+        page.wait_for_timeout(50)
+    page.evaluate(f"{viewer}.__t2a.pause()")  # held where it is: the swap must leave it there
+    held[0].continue_()
+    page.wait_for_function("!window.__studio.busy")
+    assert not page.locator("#draft").is_visible() and not page.evaluate("window.__studio.draft")
+    assert page.evaluate(f"{viewer}.__t2a.data.actors[0].rel") != draft  # the finished frames, not the draft's
+    assert page.evaluate(f"{viewer}.__t2a === window.__first")  # the same viewer, never reloaded
+    swap = page.evaluate("window.__studio.swap")
+    assert swap["before"] > 0.3 and swap["after"] == swap["before"]  # no jump in the playing time
+    assert page.evaluate(f"{viewer}.__t2a.time") == swap["before"] and not page.evaluate(f"{viewer}.__t2a.playing")
+    page.unroute("**/api/animate")
+
+
 def test_an_unknown_verb_is_shown_under_the_text_and_the_last_animation_stays(page):
     page.fill("#text", "太郎は泳ぐ。")
     page.wait_for_function("document.querySelector('#marks .missing') !== null", timeout=30000)
@@ -98,11 +135,24 @@ def test_an_unknown_verb_is_shown_under_the_text_and_the_last_animation_stays(pa
     assert page.evaluate("window.__studio.table.length") == 3  # the seed sentence still plays
 
 
-def test_a_manner_not_shown_is_said_under_the_text_and_a_styled_bar_names_its_manner(page):
+def test_a_manner_not_shown_and_a_refused_duration_are_said_in_japanese_and_a_styled_bar_names_its_manner(page):
+    """The API's warnings and refusals reach the page as kinds and figures (core.notice), worded from the
+    page's catalogue: Japanese, English by the switch; never the command line's sentence or one of its flags."""
     page.fill("#text", "花子はしょんぼり歩いて、にこにこ座った。")
-    page.wait_for_function("document.querySelectorAll('#marks .warning').length === 1", timeout=30000)
-    assert "にこにこ is not shown" in page.inner_text("#marks .warning")
+    page.wait_for_function("document.querySelectorAll('#marks .warning').length === 1 && !window.__studio.busy",
+                           timeout=30000)
+    said = page.inner_text("#marks .warning")
+    assert "2 行目「座る」: 「にこにこ」の様子はまだ表せない" in said and "is not shown" not in said
+    assert page.locator("#marks .warning button.open-library").inner_text() == "ライブラリを開く"
     assert "しょんぼり (sad)" in page.evaluate("document.getElementById('timeline').textContent")
+    page.select_option("#lang", "en")
+    assert "the manner 「にこにこ」 cannot be shown yet" in page.inner_text("#marks .warning")
+    page.select_option("#lang", "ja")
+    page.fill("#text", "太郎は400秒走る。")
+    page.wait_for_function("window.__studio.error && !window.__studio.busy", timeout=30000)
+    said = page.inner_text("#error")
+    assert "「走る」の長さ 400 秒は長すぎます（300 秒まで）" in said
+    assert "--" not in page.inner_text("body") and "budget" not in page.inner_text("body")
 
 
 def test_adding_a_sentence_while_it_plays_goes_on_from_the_frame_on_screen(page):
@@ -318,8 +368,7 @@ def test_the_things_of_a_scene_show_in_the_viewer_the_top_view_and_on_a_dropped_
     page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
     view = page.frame_locator("#view")
     assert "椅子" in view.locator("#legend").inner_text() and "本" in view.locator("#legend").inner_text()
-    names = page.evaluate("JSON.parse(document.getElementById('view').contentDocument"
-                          ".getElementById('t2a-data').textContent).props.map(p => p.name)")
+    names = page.evaluate("document.getElementById('view').contentWindow.__t2a.data.props.map(p => p.name)")
     assert names == ["椅子", "本"]
     # the top view: the actor's path, the chair's footprint, the book's at the start and the end and its path
     top = page.locator("#topview")
@@ -390,8 +439,9 @@ def test_the_page_is_in_japanese_drawn_with_its_own_font_and_in_english_by_the_b
 
 def test_an_input_method_composition_sends_nothing_until_it_ends(page):
     """While the IME converts (かな typed, not yet committed) no request goes out; the pause counts from its end."""
-    sent: list[str] = []
-    page.on("request", lambda r: sent.append(r.post_data_json["text"]) if r.url.endswith("/api/animate") else None)
+    sent: list[tuple[str, bool]] = []
+    page.on("request", lambda r: sent.append((r.post_data_json["text"], r.post_data_json["draft"]))
+            if r.url.endswith("/api/animate") else None)
     page.fill("#text", "")
     page.wait_for_function("window.__studio.error !== '' && !window.__studio.busy", timeout=30000)
     page.focus("#text")
@@ -403,7 +453,7 @@ def test_an_input_method_composition_sends_nothing_until_it_ends(page):
     assert page.evaluate("window.__studio.composing") and sent == []
     cdp.send("Input.insertText", {"text": "花子は歩く。"})  # the composition is committed: compositionend
     page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
-    assert sent == ["花子は歩く。"]
+    assert {text for text, _ in sent} == {"花子は歩く。"} and sent[0][1]  # the committed text only: a draft first
     assert page.evaluate("window.__studio.table.map(e => e.verb)") == ["歩く"]
 
 

@@ -10,6 +10,7 @@ import pytest
 from starlette.testclient import TestClient
 
 from text2anim.cli.studio.app import MAX_BODY, create_app
+from text2anim.cli.studio.work import Studio
 from text2anim.core.bvh import parse_bvh
 
 PORT = 8123
@@ -39,12 +40,34 @@ def test_the_page_and_its_own_files_are_served(client):
     assert client.get("/static/vendor/../app.py").status_code == 404
 
 
-def test_a_text_becomes_the_viewer_page_and_its_time_table(client):
-    r = client.post("/api/animate", json={"text": "太郎は走って、ボールを蹴る。"})
+def test_a_text_becomes_the_viewers_data_and_its_time_table(client):
+    r = client.post("/api/animate", json={"text": "太郎は走って、ボールを蹴る。", "page": True})
     data = r.json()
-    assert r.status_code == 200 and data["ok"]
+    assert r.status_code == 200 and data["ok"] and not data["draft"]
     assert [(e["verb"], e["method"]) for e in data["table"]] == [("走る", "initial"), ("蹴る", "transition")]
-    assert "__t2a" in data["html"] and data["duration"] > 1.0 and data["blends"]
+    assert data["view"]["actors"] and data["duration"] > 1.0 and data["blends"]
+    assert "__t2a" in data["html"] and "Props = (function" in data["html"]  # the page, asked for: it can show things
+    assert "html" not in client.post("/api/animate", json={"text": "太郎は走って、ボールを蹴る。"}).json()
+
+
+def test_a_new_text_is_answered_with_a_draft_then_the_finished_animation(client, library_db):
+    """A draft (crossfaded joins) first, marked; the finished animation when asked without ``draft``, which then
+    answers the text even when a draft is asked; it has the same bytes as one made without a draft before it."""
+    text = "花子は歩いて、座る。"
+    draft = client.post("/api/animate", json={"text": text, "draft": True}).json()
+    assert draft["ok"] and draft["draft"]
+    finished = client.post("/api/animate", json={"text": text}).json()
+    assert finished["ok"] and not finished["draft"]
+    assert [e["verb"] for e in draft["table"]] == [e["verb"] for e in finished["table"]] == ["歩く", "座る"]
+    assert draft["view"]["actors"][0]["rel"] != finished["view"]["actors"][0]["rel"]  # another blend, other frames
+    assert client.post("/api/animate", json={"text": text, "draft": True}).json() == finished
+    fresh = Studio.open(library_db)
+    try:
+        alone = fresh.animate(text)
+        assert alone["view"] == finished["view"] and alone["table"] == finished["table"]
+    finally:
+        fresh.close()
+    assert client.post("/api/animate", json={"text": text, "draft": "yes"}).status_code == 400
 
 
 def test_a_manner_is_on_its_row_and_one_not_shown_is_a_warning(client):
@@ -53,6 +76,8 @@ def test_a_manner_is_on_its_row_and_one_not_shown_is_a_warning(client):
     assert [(e["verb"], (e["manner"] or {}).get("by")) for e in data["table"]] == [("歩く", "modifiers"),
                                                                                     ("座る", None)]
     assert any("にこにこ is not shown" in w for w in data["warnings"])
+    assert data["notices"] == [{"kind": "manner_not_shown", "text": data["warnings"][0],  # for the page to word
+                                "params": {"row": 2, "verb": "座る", "word": "にこにこ", "why": "no_style"}}]
 
 
 def test_what_cannot_be_animated_says_why_in_the_users_terms(client):
@@ -65,6 +90,13 @@ def test_what_cannot_be_animated_says_why_in_the_users_terms(client):
     assert client.post("/api/animate", json={"text": "  "}).json()["code"] == "empty"
     r = client.post("/api/animate", json={"text": "太郎は" + "九" * 30 + "秒歩く。"})
     assert r.status_code == 422 and r.json()["code"] == "limit"
+    r = client.post("/api/animate", json={"text": "太郎は400秒走る。"})
+    assert r.json()["code"] == "limit" and "--max-seconds" in r.json()["error"]  # the command line's sentence
+    assert r.json()["notice"]["kind"] == "limit_duration"  # and what the page words instead
+    assert r.json()["notice"]["params"] == {"verb": "走る", "s": "400", "max": 300.0}
+    r = client.post("/api/animate", json={"text": "太郎は走る。", "edits": [{"verb": "走る", "duration": 90}]})
+    assert r.status_code == 400 and r.json()["notice"]["kind"] == "edit_duration"
+    assert r.json()["notice"]["params"] == {"verb": "走る", "s": 90.0, "min": 0.1, "max": 60.0}
 
 
 def test_a_verb_no_clip_has_plays_its_stand_in_when_the_page_asks(client):

@@ -1,6 +1,9 @@
 /* text2anim studio: the text box drives /api/animate (after a pause in typing, counted from the end of an
  * input method's composition: nothing is sent while one is open; the latest text wins, a stale request is
- * aborted); the answer's viewer page plays in the iframe and its time table is drawn below it. Dragging a
+ * aborted as soon as the text changes). A new text is answered first with a draft (crossfaded joins, marked
+ * 下書き), then with the finished animation, which replaces it in place at the same playing time. The viewer
+ * page is loaded into the iframe once; every later answer's data is handed to it in place (its load()), and
+ * its time table is drawn below it. Dragging a
  * bar moves the motion, dragging its right end stretches it, clicking it picks how it joins the one before;
  * the edits are kept by verb and occurrence (text2anim.edits) and sent with every text, so editing the text
  * keeps those that still apply. "add" appends a sentence and resumes playback at the time on screen.
@@ -12,11 +15,17 @@
 (function () {
   "use strict";
   var $ = function (id) { return document.getElementById(id); };
-  var DEBOUNCE_MS = 250, PROJECT_VERSION = 1, STORE = "t2a-studio-project";
+  // the viewer draws at the motion's own 30 fps: at every animation frame (60 a second) headless Chromium took
+  // 63% of a core, which the studio's server, on the same machine, needs for the next text
+  var DRAW_FPS = 30;
+  // the pause after the last keystroke (or the end of a composition) before a text is sent: longer than the
+  // gap between two keys of continuous typing; a text sent too early is only a draft, aborted by the next key
+  var DEBOUNCE_MS = 120, PROJECT_VERSION = 1, STORE = "t2a-studio-project";
   var S = { text: null, note: "", seq: 0, shown: 0, controller: null, timer: 0, firedAt: 0, resumeAt: null,
             renders: 0, lastLatencyMs: null, latencies: [], table: [], error: "", busy: false,
             edits: {}, sent: "", fallback: "strict", composing: false, requests: 0,
-            history: [], at: -1, session: [], lang: "ja", keyAt: 0, keyLatencies: [], character: "body" };
+            history: [], at: -1, session: [], lang: "ja", keyAt: 0, keyLatencies: [], character: "body",
+            draft: false, drafts: 0, finishLatencies: [], phases: [] };
   window.__studio = S;
 
   // ---- words: one catalogue, the page's language
@@ -61,7 +70,7 @@
     var tries = 0;
     (function wait() {
       if (!w.__t2a || !w.__t2a.ready) { if (tries++ < 500) setTimeout(wait, 5); return; }
-      viewerWords(w); w.__t2a.body = S.character === "body";
+      viewerWords(w); w.__t2a.body = S.character === "body"; w.__t2a.maxFps = DRAW_FPS;
     })();
   }
 
@@ -98,17 +107,40 @@
     var sent = text + "\u0000" + JSON.stringify(edits) + "\u0000" + S.fallback;
     if (sent === S.sent && !S.error) return;
     S.sent = sent;
-    if (S.controller) S.controller.abort();  // the server drops it too (it checks between stages)
-    var ctl = new AbortController(), seq = ++S.seq;
-    S.controller = ctl; S.firedAt = performance.now(); S.busy = true; S.requests++;
     var keyAt = S.keyAt;  // the last keystroke of the text sent (the benchmark's keystroke-to-frame); 0: no typing
-    S.keyAt = 0;
+    S.keyAt = 0; S.firedAt = performance.now();
     status(t("animating"));
-    fetch("/api/animate", { method: "POST", headers: sends({ "Content-Type": "application/json" }),
-                            body: JSON.stringify({ text: text, edits: edits, fallback: S.fallback }), signal: ctl.signal })
+    request(text, edits, S.fallback, true, keyAt);
+  }
+
+  function viewer() {
+    // the viewer page in the iframe when it can take an answer in place, else null
+    var w = $("view").contentWindow, api = w && w.__t2a;
+    return api && api.ready && api.load ? api : null;
+  }
+
+  function request(text, edits, fallback, draft, keyAt, page) {
+    // one answer for the text: a draft may come first (draft), the finished one after it; ``page``: the
+    // viewer page too, when there is none to load the answer into
+    stop();
+    var ctl = new AbortController(), seq = ++S.seq;
+    S.controller = ctl; S.busy = true; S.requests++;
+    fetch("/api/animate", { method: "POST", headers: sends({ "Content-Type": "application/json" }), signal: ctl.signal,
+                            body: JSON.stringify({ text: text, edits: edits, fallback: fallback, draft: draft,
+                                                   page: !!page || !viewer() }) })
       .then(answer)
-      .then(function (data) { if (seq === S.seq) { S.sentKeyAt = keyAt; show(data, text, seq); } })
+      .then(function (data) {
+        if (seq !== S.seq) return;
+        S.answeredAt = performance.now();
+        if (data.ok && !data.html && !viewer()) { request(text, edits, fallback, draft, keyAt, true); return; }
+        S.sentKeyAt = keyAt; show(data, text, seq, { text: text, edits: edits, fallback: fallback });
+      })
       .catch(function (e) { if (e.name !== "AbortError" && seq === S.seq) fail({ code: "network", error: String(e) }); });
+  }
+
+  function stop() {
+    // the request in flight abandoned (the server drops its work too, between stages and joins)
+    if (S.controller) { S.controller.abort(); S.controller = null; }
   }
 
   function answer(r) {
@@ -126,10 +158,17 @@
   function fail(data) {
     // an error in the page's words; what the server said (in the command's English) under "details"
     var box = $("error");
-    S.error = data.error || data.code || "error"; S.busy = false;
+    S.error = data.error || data.code || "error"; S.busy = false; drafted(false);
     while (box.firstChild) box.removeChild(box.firstChild);
     status("");
     if (data.code === "unknown") return;  // said by marks(): the verb, its stand-in button, similar ones
+    if (data.notice && noticeKey(data.notice)) {  // a refusal the page words itself (a limit, an edit)
+      var row = document.createElement("div");
+      said(row, data.notice);
+      if (/^edit_/.test(data.notice.kind) && S.at > 0) row.appendChild(button(t("undo_edit"), "", function () { step(-1); }, "undo-edit"));
+      box.appendChild(row);
+      return;
+    }
     var line = document.createElement("div");
     line.textContent = data.message || t(CODES[data.code] || "err_other", { n: data.max });
     box.appendChild(line);
@@ -152,7 +191,7 @@
     // and the similar verbs to preview; the analyser's notes (a typo read as meant) on hover; what the
     // animation could not show (a manner no modifier does, an element that did not fit) in words
     var box = $("marks"), unknown = (data && data.unknown) || [], notes = (data && data.notes) || [];
-    var warnings = (data && data.warnings) || [], used = (data && data.fallbacks) || [];
+    var notices = (data && data.notices) || [], used = (data && data.fallbacks) || [];
     while (box.firstChild) box.removeChild(box.firstChild);
     S.unknown = unknown;
     var spans = unknown.filter(function (u) { return u.span; }).sort(function (a, b) { return a.span[0] - b.span[0]; });
@@ -195,11 +234,35 @@
       n.className = "note"; n.textContent = t("read_as"); n.title = notes.join("\n");
       box.appendChild(n);
     }
-    warnings.forEach(function (w) {
+    notices.forEach(function (n) {
       var row = document.createElement("div");
-      row.className = "warning"; row.textContent = w;
+      row.className = "warning"; row.setAttribute("data-kind", n.kind);
+      said(row, n);
+      if (n.kind === "manner_not_shown") row.appendChild(button(t("unknown_library"), "", function () {
+        $("search").value = n.params.verb.slice(0, 1); search(); $("search").focus(); }, "open-library"));
       box.appendChild(row);
     });
+  }
+
+  function noticeKey(n) {
+    // the catalogue's words for a notice (core/notice.py): n_<kind>, n_<kind>_<why> when it says why, or
+    // n_<kind>_any when it names no row; null when the catalogue has none
+    var p = n.params || {}, keys = ["n_" + n.kind + "_" + (p.why || ""), p.row === undefined ? "n_" + n.kind + "_any" : "",
+                                    "n_" + n.kind];
+    for (var i = 0; i < keys.length; i++) if (keys[i] && M[keys[i]]) return keys[i];
+    return null;
+  }
+
+  function said(box, n) {
+    // a notice in the page's words; one the catalogue lacks is a general line with its English under "details"
+    var key = noticeKey(n), line = document.createElement("span");
+    line.textContent = t(key || "n_other", n.params) + " ";
+    box.appendChild(line);
+    if (!key) {
+      var more = document.createElement("details"), sum = document.createElement("summary"), pre = document.createElement("div");
+      sum.textContent = t("details"); pre.textContent = n.text;
+      more.appendChild(sum); more.appendChild(pre); box.appendChild(more);
+    }
   }
 
   function preview(verb) {
@@ -217,41 +280,72 @@
       });
   }
 
-  function show(data, text, seq) {
+  function show(data, text, seq, asked) {
     S.last = { text: text, data: data };
     marks(text, data);
     if (!data.ok) { S.text = text; fail(data); return; }
+    var finishing = !data.draft && S.draft && S.text === text;  // the finished animation of the draft on screen
     S.error = ""; S.text = text; S.table = data.table;
     $("error").textContent = "";
     $("share").href = "/?text=" + encodeURIComponent(text);
-    var view = $("view");
     timeline(data);
     window.__studioTop.show(data.top);
     // the skinned view draws one character; with several (a partner, a person only spoken to) the export
     // holds one file each, and the page draws them as figures
     var actors = new Set(data.table.map(function (e) { return e.actor; })).size;
-    if (data.rig && actors === 1) { skinned(text, seq, data); return; }
+    if (data.rig && actors === 1) { drafted(false); skinned(text, seq, data); return; }
     S.note = data.rig ? t("many_actors", { n: actors }) : "";
     if (data.rig) $("builtin").hidden = false;  // the dropped character is still what the export animates
-    $("view3d").hidden = true; view.hidden = false;
-    view.onload = function () { ready(view, seq, data); };
-    view.srcdoc = data.html;
+    $("view3d").hidden = true; $("view").hidden = false;
+    var api = viewer();
+    if (data.html) {  // the first answer, or the viewer was replaced: the page itself, loaded once
+      var view = $("view");
+      view.onload = function () { ready(seq, data, asked); };
+      view.srcdoc = data.html;
+      return;
+    }
+    S.previewing = null;
+    var before = api.time;
+    api.load(data.view, !finishing).then(function () {
+      if (finishing) S.swap = { before: before, after: api.time };  // the playing time across the replacement
+      if (!finishing) { api.seek(0); api.play(); }  // a new animation plays from its start, as a new page did
+      ready(seq, data, asked);
+    }).catch(function (e) { if (seq === S.seq) request(asked.text, asked.edits, asked.fallback, data.draft, 0, true); });
   }
 
-  function ready(view, seq, data) {
-    var w = view.contentWindow, tries = 0;
+  function ready(seq, data, asked) {
+    var w = $("view").contentWindow, tries = 0;
     (function wait() {
       var api = w.__t2a;
       if (!api || !api.ready) { if (tries++ < 500) setTimeout(wait, 2); return; }
-      viewerWords(w); api.body = S.character === "body";
+      viewerWords(w); api.body = S.character === "body"; api.maxFps = DRAW_FPS;
       if (S.resumeAt !== null) { api.seek(Math.min(S.resumeAt, api.duration)); api.play(); S.resumeAt = null; }
       w.requestAnimationFrame(function () {  // the first frame of the new animation is on screen
-        var ms = performance.now() - S.firedAt;
-        S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq; S.busy = false;
-        if (S.sentKeyAt) S.keyLatencies.push(performance.now() - S.sentKeyAt);
-        status(t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) }) + (S.note || ""));
+        if (seq !== S.seq) return;
+        var now = performance.now(), ms = now - S.firedAt;
+        S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq;
+        if (S.sentKeyAt) {
+          S.keyLatencies.push(now - S.sentKeyAt);
+          // where the time went: the pause, the request (the server's work), the viewer's load and first frame
+          S.phases.push({ pause: S.firedAt - S.sentKeyAt, request: S.answeredAt - S.firedAt, shown: now - S.answeredAt });
+        }
+        if (data.draft) {
+          S.drafts++; S.draftKeyAt = S.sentKeyAt; S.draftMs = ms; drafted(true);
+          status(t("shown_draft", { s: data.duration.toFixed(2), ms: Math.round(ms) }));
+          request(asked.text, asked.edits, asked.fallback, false, 0);  // the finished one, in place when ready
+          return;
+        }
+        if (S.draft && S.draftKeyAt) S.finishLatencies.push(now - S.draftKeyAt);
+        status((S.draft ? t("shown_finished", { s: data.duration.toFixed(2), first: Math.round(S.draftMs), ms: Math.round(ms) })
+                        : t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) })) + (S.note || ""));
+        S.draftKeyAt = 0; S.busy = false; drafted(false);
       });
     })();
+  }
+
+  function drafted(on) {
+    // the draft's mark in the page: what plays is the quick draft, the finished animation is on its way
+    S.draft = on; $("draft").hidden = !on;
   }
 
   function skinned(text, seq, data) {
@@ -610,6 +704,8 @@
   box.addEventListener("compositionend", function () { S.composing = false; S.keyAt = performance.now(); schedule(); });
   box.addEventListener("input", function (e) {
     S.keyAt = performance.now();
+    // the text changed: the animation in flight (and an answer not yet on screen) no longer matters, a new one is due
+    stop(); S.seq++; S.busy = true; S.sent = "";
     if (!e.isComposing && !S.composing) schedule();
   });
   $("add-btn").addEventListener("click", append);
