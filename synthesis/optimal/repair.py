@@ -7,13 +7,14 @@ from dataclasses import replace
 
 import numpy as np
 
-from text2anim.core.contacts import detect_contacts
+from text2anim.core.contacts import FootContacts, detect_contacts
 from text2anim.core.metrics import SOURCE_FACTOR, root_pop, toe_joints, toe_skating_pairs
-from text2anim.core.motion import Motion
+from text2anim.core.motion import Motion, concatenate
 
 from ..join.align import align_through_foot
 from ..join.apply import lift_join
 from ..join.blend import ease
+from ..join.footlock import Lock
 from ..join.measure import skating_exceeds
 from .placement import settle
 from .records import Plan
@@ -58,16 +59,39 @@ def _skating(out: Motion, base: Motion, window: tuple[int, int], locks) -> float
     return float(sk[max(lo, 0):hi].mean())
 
 
+#: frames around the blend window whose root pop is the join's (:func:`_window_pop`)
+POP_MARGIN = 3
+
+
 def _window_pop(out: Motion, window: tuple[int, int]) -> float:
-    """Root pop (m/s², :func:`core.metrics.quality` at the track's rate) of the blend window and 3 frames
-    around: the root's alone, so the same before the feet are locked (locks turn joints, never the root)."""
-    return root_pop(out[max(0, window[0] - 3):min(out.n_frames, window[1] + 3)])
+    """Root pop (m/s², :func:`core.metrics.quality` at the track's rate) of the blend window and
+    :data:`POP_MARGIN` frames around: the root's alone, so the same before the feet are locked (locks turn
+    joints, never the root)."""
+    return root_pop(out[max(0, window[0] - POP_MARGIN):min(out.n_frames, window[1] + POP_MARGIN)])
 
 
 def _held(prepared) -> bytes:
     """The feet a prepared rendering holds (:func:`.render.prepare`), as bytes to compare."""
     planted = prepared[3].planted
     return b"".join(np.asarray(planted[s], dtype=bool).tobytes() for s in ("left", "right"))
+
+
+def _shifted(plan: Plan, by: int) -> Plan:
+    """The plan on a track whose frames are ``by`` later (its blend intervals, runners-up and the next
+    motion's offset moved; what a rendering reads of a plan: the rest is not in frames)."""
+    def moved(iv):
+        return replace(iv, t0=iv.t0 + by, t1=iv.t1 + by)
+    return replace(plan, inc=replace(plan.inc, offset=plan.inc.offset + by),
+                   intervals={k: moved(iv) for k, iv in plan.intervals.items()},
+                   alternatives=[moved(iv) for iv in plan.alternatives])
+
+
+def _first_rendered(tr: Motion, plan: Plan) -> int:
+    """The first track frame any rendering of ``plan`` reads or writes (:func:`carry_out`): the earliest
+    blend interval's start, its runners-up' included, less :data:`POP_MARGIN`. Every frame before it is
+    the track's own in every rendering (a join writes from its window on, the feet's locks start there)."""
+    t0 = min(iv.t0 for iv in [*plan.intervals.values(), *plan.alternatives])
+    return int(np.clip(t0 - POP_MARGIN, 0, tr.n_frames))
 
 
 def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: float = float("inf")):
@@ -84,11 +108,30 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     else of those that do not skate the one that pops least, else the one that skates least; the report
     says which (``fallback``). When every rendering skates, the same is tried with the next-best lower-body
     intervals of eq. (10) (:data:`RUNNERS_UP` of them): the search's minimum subject to the join keeping
-    its feet. Deterministic.
+    its feet. Deterministic. Returns ``(plan, track, locks, window)``.
+
+    The renderings are of the track from :func:`_first_rendered` on (every frame before it is the same in
+    all of them): each is a few hundred frames however long the track, and the whole track is put together
+    once, for the rendering kept.
     """
+    c0 = _first_rendered(tr, plan)
+    whole_c = detect_contacts(tr)  # on the whole track (the detection's thresholds are the track's), then cut
+    p, out, locks, window = _carry_out(tr, tr[c0:], c0, plan, lock, own, own_pop,
+                                       FootContacts(whole_c.fps, whole_c.left[c0:], whole_c.right[c0:]))
+    if c0:
+        out.pose  # (its window's kinematics): the whole track's pose is then joined now, and its slices know theirs
+        out = concatenate([tr[:c0], out])
+        locks = [replace(lk, begin=lk.begin + c0, end=lk.end + c0, release_end=lk.release_end + c0) for lk in locks]
+        window = (window[0] + c0, window[1] + c0)
+    return p, out, locks, window
+
+
+def _carry_out(whole: Motion, tr: Motion, c0: int, plan: Plan, lock: bool, own: float, own_pop: float,
+               tr_c: FootContacts) -> tuple[Plan, Motion, list[Lock], tuple[int, int]]:
+    """:func:`carry_out` on ``tr``, the track ``whole`` from frame ``c0`` on (``tr_c``: its foot contacts):
+    the plans are ``whole``'s, the renderings, locks and window ``tr``'s."""
     best = None
-    tr_c = detect_contacts(tr)  # the track before the join: the same for every rendering
-    parts = Parts()  # and what the renderings share (render.Parts)
+    parts = Parts()  # what the renderings share (render.Parts)
     variants = [("", True, False), ("no_step", False, False), ("eased", True, True), ("eased_no_step", False, True)]
     if plan.intervals["S0"].kind == "motion-motion":
         variants.append(("roots_mid", False, False))
@@ -111,7 +154,8 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
 
     for cname, cand in candidates:
         for vname, step, eased in variants:
-            p = _eased(cand) if eased else (_roots_mid(tr, cand) if vname == "roots_mid" else cand)
+            p_whole = _eased(cand) if eased else (_roots_mid(whole, cand) if vname == "roots_mid" else cand)
+            p = _shifted(p_whole, -c0)
             first = prepare(tr, p, step, tr_c, parts)
             key: tuple = (cname, eased, vname == "roots_mid", _held(first))
             again = key in seen
@@ -135,7 +179,8 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
                 continue
             out, locks, window, moved, base, over = seen[key]
             if moved is not None:  # placed where the locked foot stands: the next motion's own step needs no release
-                p = moved
+                p = moved  # settle moves the next motion in space, not in time
+                p_whole = replace(moved, inc=p_whole.inc, intervals=p_whole.intervals, alternatives=p_whole.alternatives)
                 second = prepare(tr, p, step, tr_c, parts)
                 key = (key, _held(second))
                 again = key in seen
@@ -152,11 +197,11 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
             # it, a jump's landing, is not the join's to fix)
             name = "+".join(x for x in (cname, vname) if x)
             if name:
-                p = replace(p, info=dict(p.info, fallback=name))
+                p_whole = replace(p_whole, info=dict(p_whole.info, fallback=name))
             skates = skating_exceeds(sk, own)
             key = (skates, 0.0 if skates else over, sk)
             if best is None or key < best[0]:
-                best = (key, p, out, locks, window)
+                best = (key, p_whole, out, locks, window)
             if key[:2] == (False, 0.0):
                 break
         if best is not None and not best[0][0]:  # a rendering that does not skate: the runners-up are for feet, not for pops
