@@ -29,6 +29,7 @@ from text2anim.core.cancel import Cancelled, cancellable, checkpoint
 
 if TYPE_CHECKING:
     from text2anim.export import ExportOptions
+    from text2anim.pipeline import Work
 
 #: Longest text the studio animates (characters); the API's own limits apply too.
 MAX_TEXT = 2000
@@ -58,7 +59,7 @@ class Studio:
     rig: Path | None = None
     character: ExportOptions | None = None  # the rig's options: the file read, its joints placed and soles found once
     latest: tuple[str, object] | None = None  # (cache key, Animation) of the latest text animated
-    planned: tuple[str, object] | None = None  # (cache key, pipeline.Work up to SHARED_STAGES) of the latest draft
+    planned: tuple[str, Work] | None = None  # (cache key, pipeline.Work up to SHARED_STAGES) of the latest draft
     session: object | None = None  # the library's copy with the dropped clips, once there are any
     dropped: set[str] = field(default_factory=set)  # the clips dropped in this session
     shelf: threading.Lock = field(default_factory=threading.Lock)  # the cache's own (``lock`` is the work's)
