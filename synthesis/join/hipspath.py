@@ -36,10 +36,10 @@ spread their travel over the join's region, shifting the weight before the step 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from highspy import HighsLp, HighsModelStatus, MatrixFormat
-from highspy._core import _Highs  # the public Highs wraps it with callbacks that print HiGHS's banner on stdout
 from scipy import sparse
 from scipy.spatial import ConvexHull, QhullError
 
@@ -48,6 +48,12 @@ from text2anim.core.motion import Motion
 from text2anim.core.size import human_scale
 
 from .legsolve import feet_kept
+
+try:  # the public Highs wraps this class with callbacks that print HiGHS's banner on stdout
+    from highspy._core import _Highs as _solver_class
+    _Highs: Any = _solver_class
+except ImportError:  # a highspy that moved its private class: scipy's wrapper of the same solver (_minimum_scipy)
+    _Highs = None
 
 #: m at a person's size: how far the hips may be moved off the path the join gave them (along each of four
 #: directions: an octagon, its corners 8 % further)
@@ -196,6 +202,8 @@ def _minimum(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: 
     reach are left out already), with Devex pricing and unscaled (the coefficients span 0.07-2,000 at 30 fps):
     measured the fastest on these programmes; with HiGHS's own scaling again where that finds no optimum.
     HiGHS's choice among equal optima; None when there is none."""
+    if _Highs is None:
+        return _minimum_scipy(cost, rows, lower, upper, col_lower, col_upper)
     a = sparse.csc_matrix(rows)
     a.sort_indices()
     lp = HighsLp()
@@ -214,6 +222,20 @@ def _minimum(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: 
         if solver.getModelStatus() == HighsModelStatus.kOptimal:
             return np.asarray(solver.getSolution().col_value)
     return None
+
+
+def _minimum_scipy(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: np.ndarray,
+                   col_lower: np.ndarray, col_upper: np.ndarray) -> np.ndarray | None:
+    """:func:`_minimum` through :func:`scipy.optimize.linprog` (HiGHS too, slower, without highspy's private class;
+    its choice among equal optima may differ): each two-sided row as two one-sided ones."""
+    from scipy.optimize import linprog
+
+    a = sparse.csr_matrix(rows)
+    up, down = np.isfinite(upper), np.isfinite(lower)
+    res = linprog(cost, A_ub=sparse.vstack([a[up], -a[down]]), b_ub=np.concatenate([upper[up], -lower[down]]),
+                  bounds=[(lo if np.isfinite(lo) else None, hi if np.isfinite(hi) else None)
+                          for lo, hi in zip(col_lower, col_upper)], method="highs")
+    return np.asarray(res.x) if res.status == 0 else None
 
 
 def _least_peak(U: sparse.csr_matrix, a0: np.ndarray, limits: tuple, band: np.ndarray) -> float | None:
