@@ -113,7 +113,7 @@ def bend_toes(motion: Motion, slower_than: float | None = None) -> Motion:
     with ``slower_than`` (m/s), only on frames where the ball moves slower than that."""
     sites = motion.skeleton.end_sites
     tips = motion.end_site_positions()  # (T, E, 3)
-    pos, world = motion.positions, motion.pose.quaternions()
+    pos = motion.positions
     n = max(RAMP, int(round(FLOOR_RAMP_SECONDS * motion.fps)))
     out = motion
     for ankle, toe in body_map(motion.skeleton).feet.values():
@@ -138,7 +138,8 @@ def bend_toes(motion: Motion, slower_than: float | None = None) -> Motion:
         sin = np.linalg.norm(axis, axis=1)
         angle = np.arctan2(sin, np.einsum("ij,ij->i", v, new))
         turn = from_rotvec(axis * (angle / np.maximum(sin, 1e-12))[:, None])  # (T, 4) in world axes
-        out = set_world_rotation(out, toe, multiply(turn, world[:, toe]), mask=bend)
+        world = motion.pose.quaternions()[:, toe]  # only for a foot that bends: most motions have none
+        out = set_world_rotation(out, toe, multiply(turn, world), mask=bend)
     return out
 
 
