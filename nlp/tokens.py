@@ -130,9 +130,11 @@ def _join_phrasal_verbs(tokens: list[Token]) -> list[Token]:
 def unwrap_direction(tokens: list[Token]) -> list[Token]:
     """A stage direction wholly in brackets ((花子、窓を開ける), 花子:(座る), 行くぞ!(ボールを蹴る))
     is text to analyse, not a quotation: the brackets that wrap a whole sentence of the
-    line (after a speaker label or a sentence end, up to the line's or the sentence's end)
-    are dropped."""
-    starts = {script_label_end(tokens)} | {k + 1 for k, t in enumerate(tokens) if t.pos2 == "句点"}
+    line (after a speaker label, a sentence end or a trailing mark such as 〜 or ♪, up to the
+    line's or the sentence's end) are dropped."""
+    # a sentence ends at 。！？ and, in chat, at the mark it trails off with (いらっしゃいませ〜, やったー♪)
+    starts = {script_label_end(tokens)} | {k + 1 for k, t in enumerate(tokens)
+                                           if t.pos2 == "句点" or (t.pos1 == "補助記号" and t.pos2 == "一般")}
     drop = set()
     for s in starts:
         e = _direction_end(tokens, s)
