@@ -22,6 +22,7 @@ import threading
 from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -388,11 +389,16 @@ class Studio:
 
 #: What the studio changes in the viewer page it frames: the page draws the one (editable) time table itself,
 #: and words the viewer's controls in its own language (studio.js), with the studio's font for their glyphs
-#: and for the names of the animations loaded in place later (the viewer embeds only those of its own page).
+#: and for the names of the animations loaded in place later (the viewer embeds only those of its own page):
+#: the face ``t2a-studio``, which the page hands over by the bridge (the frame's opaque origin cannot fetch it:
+#: the studio refuses the ``Origin: null`` such a fetch carries).
 FRAMED_CSS = ("<style>#timeline-wrap { display: none; }\n"
-              '@font-face { font-family: "t2a-studio"; font-display: block; unicode-range: U+2E80-FFFF; '
-              'src: url(/static/font/jp.woff) format("woff"); }\n'
               ':root, #help, #controls label { font-family: "t2a-jp", "t2a-studio", system-ui, sans-serif; }</style>')
+#: The framed page's own policy, beside the one it inherits from the studio's page (``srcdoc``): its scripts
+#: by their hashes only (an element that slipped into the page would not run), styles and fonts inline, and no
+#: request of any kind (the viewer needs none: its data, fonts and icon are in the page or come by the bridge).
+FRAMED_POLICY = ("default-src 'none'; script-src {scripts}; style-src 'unsafe-inline'; font-src data:; img-src data:; "
+                 "base-uri 'none'; form-action 'none'")
 
 
 def viewer_page(payload: dict) -> str:
@@ -404,8 +410,38 @@ def viewer_page(payload: dict) -> str:
 
 
 def framed(page: str) -> str:
-    """The viewer page as the studio frames it (:data:`FRAMED_CSS`)."""
-    return page.replace("</head>", FRAMED_CSS + "</head>", 1)
+    """The viewer page as the studio frames it: :data:`FRAMED_CSS`, the bridge the page talks to it through
+    (``static/viewer_bridge.js``: the frame is sandboxed without ``allow-same-origin``) and
+    :data:`FRAMED_POLICY` as a ``<meta>``, first in its head."""
+    page = page.replace("</head>", FRAMED_CSS + "</head>", 1)
+    end = page.rfind("</body>")
+    page = page[:end] + f"<script>\n{_bridge()}</script>\n" + page[end:]
+    policy = FRAMED_POLICY.format(scripts=" ".join(_script_hashes(page)))
+    return page.replace("<head>", f'<head>\n<meta http-equiv="Content-Security-Policy" content="{policy}">', 1)
+
+
+@lru_cache(maxsize=1)
+def _bridge() -> str:
+    from importlib import resources
+
+    text = resources.files(__package__).joinpath("static").joinpath("viewer_bridge.js").read_text(encoding="utf-8")
+    if "</script" in text.lower():  # pragma: no cover - guards edits of the bridge
+        raise RuntimeError("viewer_bridge.js must not contain '</script'")
+    return text
+
+
+def _script_hashes(page: str) -> list[str]:
+    """The CSP sources (``'sha256-...'``) of the page's inline scripts (``<script>`` without attributes: the
+    data's ``type="application/json"`` element is never run), hashed as the browser hashes them: its parser
+    reads every line break as a line feed."""
+    import base64
+    import hashlib
+
+    sources = []
+    for body in re.findall(r"<script>(.*?)</script>", page, re.S):
+        text = body.replace("\r\n", "\n").replace("\r", "\n")
+        sources.append(f"'sha256-{base64.b64encode(hashlib.sha256(text.encode('utf-8')).digest()).decode('ascii')}'")
+    return sources
 
 
 def _size(payload: dict) -> int:

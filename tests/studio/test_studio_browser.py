@@ -78,6 +78,12 @@ def _canvas(pg) -> bytes:
     return pg.frame_locator("#view").locator("canvas").first.screenshot()
 
 
+def _viewer(pg):
+    """The viewer's frame, to act in it as its user does (its buttons, its keys): the studio's page itself cannot
+    reach into it (an opaque origin) and knows of it only what the viewer reports (``window.__studio.view``)."""
+    return pg.query_selector("#view").content_frame()
+
+
 def test_typing_a_sentence_changes_the_animation_and_the_time_table(page, tmp_path):
     before = _canvas(page)
     assert page.evaluate("window.__studio.table.map(e => e.verb)") == ["走る", "蹴る", "喜ぶ"]
@@ -102,27 +108,29 @@ def test_a_new_text_shows_a_draft_at_once_then_the_finished_animation_in_its_pla
         else:
             route.continue_()
     page.route("**/api/animate", hold)
-    viewer = "document.getElementById('view').contentWindow"
-    page.evaluate(f"window.__first = {viewer}.__t2a")
+    viewer = _viewer(page)
+    viewer.evaluate("window.__first = window.__t2a")
     page.fill("#text", text)
     page.wait_for_function("([text]) => window.__studio.text === text && window.__studio.draft", arg=[text])
-    page.wait_for_function(f"{viewer}.__t2a.time > 0.3", timeout=10000)  # the draft plays
+    page.wait_for_function("window.__studio.view.time > 0.3", timeout=10000)  # the draft plays
     assert page.locator("#draft").is_visible() and page.locator("#draft").inner_text() == "下書き"
     assert "下書き" in page.locator("#status").inner_text() and page.evaluate("window.__studio.busy")
-    draft = page.evaluate(f"{viewer}.__t2a.data.actors[0].rel")
+    draft = viewer.evaluate("window.__t2a.data.actors[0].rel")
     for _ in range(100):  # the finished request, asked for once the draft was on screen
         if held:
             break
         page.wait_for_timeout(50)
-    page.evaluate(f"{viewer}.__t2a.pause()")  # held where it is: the swap must leave it there
+    viewer.click("#play")  # paused in the viewer, where it is: the swap must leave it there
+    page.wait_for_function("!window.__studio.view.playing", timeout=5000)
     held[0].continue_()
     page.wait_for_function("!window.__studio.busy")
     assert not page.locator("#draft").is_visible() and not page.evaluate("window.__studio.draft")
-    assert page.evaluate(f"{viewer}.__t2a.data.actors[0].rel") != draft  # the finished frames, not the draft's
-    assert page.evaluate(f"{viewer}.__t2a === window.__first")  # the same viewer, never reloaded
+    assert viewer.evaluate("window.__t2a.data.actors[0].rel") != draft  # the finished frames, not the draft's
+    assert viewer.evaluate("window.__t2a === window.__first")  # the same viewer, never reloaded
     swap = page.evaluate("window.__studio.swap")
     assert swap["before"] > 0.3 and swap["after"] == swap["before"]  # no jump in the playing time
-    assert page.evaluate(f"{viewer}.__t2a.time") == swap["before"] and not page.evaluate(f"{viewer}.__t2a.playing")
+    assert viewer.evaluate("window.__t2a.time") == swap["before"] and not viewer.evaluate("window.__t2a.playing")
+    assert page.evaluate("window.__studio.view.time") == swap["before"]  # as the viewer reported it
     page.unroute("**/api/animate")
 
 
@@ -157,16 +165,16 @@ def test_a_manner_not_shown_and_a_refused_duration_are_said_in_japanese_and_a_st
 
 def test_adding_a_sentence_while_it_plays_goes_on_from_the_frame_on_screen(page):
     view = page.frame_locator("#view")
-    page.wait_for_function("document.getElementById('view').contentWindow.__t2a.time > 1.5", timeout=30000)
+    page.wait_for_function("window.__studio.view.time > 1.5", timeout=30000)
     page.fill("#add", "そして座る。")
-    at = page.evaluate("document.getElementById('view').contentWindow.__t2a.time")
+    at = _viewer(page).evaluate("window.__t2a.time")
     page.click("#add-btn")
     page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
-    now = page.evaluate("document.getElementById('view').contentWindow.__t2a.time")
+    now = _viewer(page).evaluate("window.__t2a.time")
     assert page.input_value("#text").endswith("そして座る。")
     assert page.evaluate("window.__studio.table.map(e => e.verb)")[-1] == "座る"
     assert now >= at - 0.05  # not restarted from 0
-    assert page.evaluate("document.getElementById('view').contentWindow.__t2a.playing")
+    assert _viewer(page).evaluate("window.__t2a.playing")
     assert view.locator("body").get_attribute("data-ready") == "1"
 
 
@@ -215,7 +223,45 @@ def test_the_page_sends_its_session_token(page):
     with page.expect_request(lambda r: r.url.endswith("/api/animate")) as req:
         page.fill("#text", "太郎は跳ぶ。")
     assert len(token) > 30 and req.value.headers.get("x-studio-token") == token
-    assert page.get_attribute("#view", "sandbox") == "allow-scripts allow-same-origin"
+
+
+def test_the_viewer_frame_is_sandboxed_in_an_opaque_origin_and_still_shows_the_animation_and_its_time(page):
+    """The viewer's frame has scripts but not its page's origin (issue 41: with allow-same-origin too, the framed
+    page could lift its own sandbox): the page cannot reach into it, it cannot reach the page, its own policy
+    lets no other script run and no request go out. The page still shows each animation, and the time on
+    screen reaches it (and the top view) by the bridge."""
+    assert page.get_attribute("#view", "sandbox") == "allow-scripts"
+    viewer = _viewer(page)
+    assert viewer.evaluate("self.origin") == "null"
+    with pytest.raises(playwright_api.Error, match="cross-origin"):
+        page.evaluate("document.getElementById('view').contentWindow.__t2a.time")
+    assert viewer.evaluate("(() => { try { return window.parent.document.title; } catch (e) { return e.name; } })()") \
+        == "SecurityError"
+    assert viewer.evaluate("(() => { try { return localStorage.length; } catch (e) { return e.name; } })()") \
+        == "SecurityError"  # nor the studio's storage (the project)
+    # its policy: a script slipped into the page does not run, nothing is fetched
+    blocked = viewer.evaluate("""() => new Promise(done => {
+        document.addEventListener('securitypolicyviolation', e => done(e.violatedDirective), { once: true });
+        setTimeout(() => done('no violation'), 2000);
+        const s = document.createElement('script'); s.textContent = 'window.__ran = 1'; document.body.appendChild(s);
+    })""")
+    assert blocked.startswith("script-src") and viewer.evaluate("window.__ran") is None
+    assert viewer.evaluate("fetch('/api/library').then(() => 'fetched', e => e.name)") == "TypeError"
+    # a new sentence: shown in the viewer, its time in the page as it plays, and the top view following it
+    page.fill("#text", "花子は歩いて、座る。")
+    page.wait_for_function("window.__studio.table.length === 2 && !window.__studio.busy", timeout=30000)
+    assert viewer.evaluate("window.__t2a.data.title") == "花子は歩いて、座る。"
+    assert page.evaluate("window.__studio.view.duration") == viewer.evaluate("window.__t2a.duration")
+    t0 = page.evaluate("window.__studio.view.time")
+    page.wait_for_function(f"window.__studio.view.time > {t0} + 0.3 && window.__studioTop.time > {t0} + 0.3",
+                           timeout=10000)
+    seen, own = page.evaluate("window.__studio.view.time"), viewer.evaluate("window.__t2a.time")
+    assert 0 <= own - seen < 0.2  # the viewer's last report: at most a few frames behind
+    assert page.evaluate("window.__studio.view.errors") == [] and viewer.locator("body").get_attribute("data-ready") == "1"
+    # the page's commands reach it: paused and sought from the page, the viewer is there and says so
+    page.evaluate("window.__viewerLink.pause(); window.__viewerLink.seek(1.25)")
+    page.wait_for_function("window.__studio.view.time === 1.25 && !window.__studio.view.playing", timeout=5000)
+    assert viewer.evaluate("window.__t2a.time") == 1.25 and viewer.inner_text("#time").startswith("1.25 / ")
 
 
 def _row(page, verb):
@@ -223,7 +269,7 @@ def _row(page, verb):
 
 
 def test_moving_a_bar_moves_the_motion_in_the_time_table_and_the_animation(page):
-    before, length = _row(page, "喜ぶ"), page.evaluate("document.getElementById('view').contentWindow.__t2a.duration")
+    before, length = _row(page, "喜ぶ"), page.evaluate("window.__studio.view.duration")
     page.locator('#timeline rect.bar[data-verb="喜ぶ"]').scroll_into_view_if_needed()
     bar = page.locator('#timeline rect.bar[data-verb="喜ぶ"]').bounding_box()
     page.mouse.move(bar["x"] + 20, bar["y"] + bar["height"] / 2)
@@ -233,7 +279,7 @@ def test_moving_a_bar_moves_the_motion_in_the_time_table_and_the_animation(page)
     page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
     after = _row(page, "喜ぶ")
     assert after["start"] > before["start"] + 0.3  # later by the drag
-    assert page.evaluate("document.getElementById('view').contentWindow.__t2a.duration") > length + 0.3
+    assert page.evaluate("window.__studio.view.duration") > length + 0.3
     assert page.evaluate("Object.values(window.__studio.edits)")[0]["verb"] == "喜ぶ"
     # the edit is kept while the text changes: appending a sentence keeps 喜ぶ late
     page.fill("#add", "そして座る。")
@@ -368,21 +414,21 @@ def test_the_things_of_a_scene_show_in_the_viewer_the_top_view_and_on_a_dropped_
     page.wait_for_function("window.__studio.renders >= 2 && !window.__studio.busy", timeout=30000)
     view = page.frame_locator("#view")
     assert "椅子" in view.locator("#legend").inner_text() and "本" in view.locator("#legend").inner_text()
-    names = page.evaluate("document.getElementById('view').contentWindow.__t2a.data.props.map(p => p.name)")
+    names = _viewer(page).evaluate("window.__t2a.data.props.map(p => p.name)")
     assert names == ["椅子", "本"]
     # the top view: the actor's path, the chair's footprint, the book's at the start and the end and its path
     top = page.locator("#topview")
     assert top.locator("polyline.path").count() == 1 and top.locator("polyline.thing-path").count() == 1
     assert top.locator(".foot").count() == 3
-    marker, api = top.locator("circle.now").first, "document.getElementById('view').contentWindow.__t2a"
+    marker, viewer = top.locator("circle.now").first, _viewer(page)
 
-    def at(t):  # the actor's marker, the viewer paused at t
-        page.evaluate(f"{api}.pause(); {api}.seek({t})")
-        page.wait_for_function(f"window.__studioTop.time === {api}.time", timeout=5000)
+    def at(t):  # the actor's marker, the viewer paused at t (in the viewer: its report reaches the top view)
+        viewer.evaluate(f"window.__t2a.pause(); window.__t2a.seek({t})")
+        page.wait_for_function(f"window.__studioTop.time === {t}", timeout=5000)
         return [float(marker.get_attribute(k)) for k in ("cx", "cy")]
 
-    assert at(0) != at(page.evaluate(f"{api}.duration"))  # it follows the time on screen
-    page.evaluate(f"{api}.play()")
+    assert at(0) != at(page.evaluate("window.__studio.view.duration"))  # it follows the time on screen
+    viewer.evaluate("window.__t2a.play()")
     page.screenshot(path=str(tmp_path / "scene.png"), full_page=True)
     # a dropped character: the GLB drawn by three.js carries the things, each labelled
     _drop(page, vrm_file(tmp_path / "avatar.vrm"))
@@ -560,14 +606,16 @@ def test_a_project_of_another_version_is_refused_in_the_page_and_on_the_command_
 
 
 def test_the_character_has_a_body_and_the_stick_figure_is_one_switch_away(page):
-    api = "document.getElementById('view').contentWindow.__t2a"
-    assert page.evaluate(f"{api}.body") is True and page.input_value("#character") == "body"
-    page.evaluate(f"{api}.pause(); {api}.seek(1.0)")
-    page.wait_for_timeout(100)
+    viewer = _viewer(page)
+    assert viewer.evaluate("window.__t2a.body") is True and page.input_value("#character") == "body"
+    page.evaluate("window.__viewerLink.pause(); window.__viewerLink.seek(1.0)")
+    page.wait_for_function("window.__studio.view.time === 1 && window.__studio.view.body", timeout=5000)
     body = _canvas(page)
     page.select_option("#character", "figure")
-    page.wait_for_timeout(100)
-    assert page.evaluate(f"{api}.body") is False and _canvas(page) != body
+    page.wait_for_function("!window.__studio.view.body", timeout=5000)  # the viewer drew the figure and said so
+    assert viewer.evaluate("window.__t2a.body") is False and _canvas(page) != body
     assert page.evaluate("window.__studio.project().character") == "figure"  # kept with the work
     page.keyboard.press("Control+z")  # a step of the history too
-    assert page.input_value("#character") == "body" and page.evaluate(f"{api}.body") is True
+    assert page.input_value("#character") == "body"
+    page.wait_for_function("window.__studio.view.body", timeout=5000)
+    assert viewer.evaluate("window.__t2a.body") is True

@@ -219,7 +219,31 @@ def test_no_page_may_frame_the_studio_and_its_viewer_is_sandboxed(client):
               client.get("/", headers={"host": "evil.example"})):
         assert r.headers["x-frame-options"] == "DENY"
         assert r.headers["content-security-policy"] == "frame-ancestors 'none'"
-    assert re.search(r'<iframe id="view"[^>]* sandbox="allow-scripts allow-same-origin"', client.get("/").text)
+    assert re.search(r'<iframe id="view"[^>]* sandbox="allow-scripts">', client.get("/").text)
+
+
+def test_the_framed_viewer_runs_its_own_scripts_only_and_asks_for_nothing(client, library_db):
+    """The viewer page the studio frames carries its policy first in its head: its inline scripts by their
+    hashes (the player and the bridge among them), no request of any kind; the page ``text2anim TEXT`` writes
+    has neither the policy nor the bridge (it plays alone, from a file)."""
+    import base64
+    import hashlib
+
+    import text2anim
+    from text2anim.output.viewer import render_html
+
+    page = client.post("/api/animate", json={"text": "太郎は歩く。", "page": True}).json()["html"]
+    head = page[page.index("<head>"):page.index("</head>")]
+    policy = re.match(r'<head>\s*<meta http-equiv="Content-Security-Policy" content="([^"]+)">', head)
+    assert policy is not None
+    rules = dict(r.strip().split(" ", 1) for r in policy.group(1).split(";"))
+    scripts = re.findall(r"<script>(.*?)</script>", page, re.S)
+    hashes = {f"'sha256-{base64.b64encode(hashlib.sha256(s.encode()).digest()).decode()}'" for s in scripts}
+    assert len(scripts) == 3 and set(rules["script-src"].split()) == hashes  # errors, the player, the bridge
+    assert any("window.parent" in s for s in scripts)
+    assert rules["default-src"] == "'none'" and "unsafe" not in rules["script-src"] and "url(/" not in page
+    alone = render_html(text2anim.animate("太郎は歩く。", db=library_db).motions["太郎"])
+    assert "Content-Security-Policy" not in alone and "window.parent" not in alone
 
 
 def test_a_rig_is_checked_whole_before_it_is_kept(client, tmp_path):

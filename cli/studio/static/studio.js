@@ -3,7 +3,8 @@
  * aborted as soon as the text changes). A new text is answered first with a draft (crossfaded joins, marked
  * 下書き), then with the finished animation, which replaces it in place at the same playing time. The viewer
  * page is loaded into the iframe once; every later answer's data is handed to it in place (its load()), and
- * its time table is drawn below it. Dragging a
+ * its time table is drawn below it. The frame is sandboxed (an opaque origin): the page drives the viewer and
+ * hears from it through viewer_link.js only (window.__viewerLink; its state is window.__studio.view). Dragging a
  * bar moves the motion, dragging its right end stretches it, clicking it picks how it joins the one before;
  * the edits are kept by verb and occurrence (text2anim.edits) and sent with every text, so editing the text
  * keeps those that still apply. "add" appends a sentence and resumes playback at the time on screen.
@@ -27,6 +28,8 @@
             history: [], at: -1, session: [], lang: "ja", keyAt: 0, keyLatencies: [], character: "body",
             draft: false, drafts: 0, finishLatencies: [], phases: [] };
   window.__studio = S;
+  var link = window.__viewerLink;  // the viewer in the frame: commands to it, its state (viewer_link.js)
+  S.view = link.state;
 
   // ---- words: one catalogue, the page's language
   var M = JSON.parse(($("t2a-messages") || {}).textContent || "{}");
@@ -47,31 +50,17 @@
       marks(S.last.text, S.last.data);
       if (S.last.data.ok) { timeline(S.last.data); window.__studioTop.show(S.last.data.top); } else fail(S.last.data);
     }
-    var w = $("view").contentWindow;
-    if (w && w.document && w.document.getElementById("help")) viewerWords(w);
+    if (link.state.ready) dress();
     library();
   }
   window.__t2aWord = t;  // topview.js words its legend with it
 
-  function viewerWords(w) {
-    // the framed viewer's controls in the page's language (the studio's font draws them: work.FRAMED_CSS)
-    var d = w.document, help = d.getElementById("help");
-    if (help) help.textContent = t("viewer_help");
-    [["speed", "viewer_speed", true], ["follow", "viewer_follow", false], ["loop", "viewer_loop", false]].forEach(function (c) {
-      var input = d.getElementById(c[0]), label = input && input.parentNode;
-      if (!label || label.tagName !== "LABEL") return;
-      var node = c[2] ? label.firstChild : label.lastChild;
-      if (node && node.nodeType === 3) node.textContent = c[2] ? t(c[1]) + " " : " " + t(c[1]);
-    });
-  }
-
-  function dressed(w) {
-    // a preview's viewer: in the page's words, with the chosen character, once it is ready
-    var tries = 0;
-    (function wait() {
-      if (!w.__t2a || !w.__t2a.ready) { if (tries++ < 500) setTimeout(wait, 5); return; }
-      viewerWords(w); w.__t2a.body = S.character === "body"; w.__t2a.maxFps = DRAW_FPS;
-    })();
+  function dress() {
+    // the viewer in the page's words (the studio's font draws them: work.FRAMED_CSS), with the chosen character,
+    // drawing at the motion's own rate
+    link.set({ body: S.character === "body", maxFps: DRAW_FPS,
+               words: { help: t("viewer_help"), speed: t("viewer_speed"), follow: t("viewer_follow"),
+                        loop: t("viewer_loop") } });
   }
 
   function language() {
@@ -114,9 +103,8 @@
   }
 
   function viewer() {
-    // the viewer page in the iframe when it can take an answer in place, else null
-    var w = $("view").contentWindow, api = w && w.__t2a;
-    return api && api.ready && api.load ? api : null;
+    // whether the viewer page in the frame can take an answer in place
+    return link.state.ready;
   }
 
   function request(text, edits, fallback, draft, keyAt, page) {
@@ -273,9 +261,8 @@
       .then(function (data) {
         if (!data.ok) { fail(data); return; }
         S.previewing = verb;
-        $("view").onload = function () { dressed(this.contentWindow); };  // a preview is no render of the text
         $("view3d").hidden = true; $("view").hidden = false;
-        $("view").srcdoc = data.html;
+        link.open(data.html).then(dress, quiet);  // a preview is no render of the text
         status(t("preview_of", { v: verb, clips: data.table.map(function (e) { return e.clip; }).join(", ") }));
       });
   }
@@ -297,50 +284,50 @@
     S.note = data.rig ? t("many_actors", { n: actors }) : "";
     if (data.rig) $("builtin").hidden = false;  // the dropped character is still what the export animates
     $("view3d").hidden = true; $("view").hidden = false;
-    var api = viewer();
     if (data.html) {  // the first answer, or the viewer was replaced: the page itself, loaded once
-      var view = $("view");
-      view.onload = function () { ready(seq, data, asked); };
-      view.srcdoc = data.html;
+      link.open(data.html).then(function () { dress(); ready(seq, data, asked); }, function (e) {
+        if (e.name !== "Replaced" && seq === S.seq) fail({ code: "other", error: String(e.message || e) });
+      });
       return;
     }
     S.previewing = null;
-    var before = api.time;
-    api.load(data.view, !finishing).then(function () {
-      if (finishing) S.swap = { before: before, after: api.time };  // the playing time across the replacement
-      if (!finishing) { api.seek(0); api.play(); }  // a new animation plays from its start, as a new page did
+    link.load(data.view, !finishing).then(function (swap) {
+      if (finishing) S.swap = swap;  // the playing time across the replacement
+      if (!finishing) { link.seek(0); link.play(); }  // a new animation plays from its start, as a new page did
       ready(seq, data, asked);
-    }).catch(function (e) { if (seq === S.seq) request(asked.text, asked.edits, asked.fallback, data.draft, 0, true); });
+    }).catch(function (e) {
+      if (e.name !== "Replaced" && seq === S.seq) request(asked.text, asked.edits, asked.fallback, data.draft, 0, true);
+    });
+  }
+
+  function quiet(e) {
+    // a viewer page replaced before it was ready: nothing to say; anything else in the page's words
+    if (e.name !== "Replaced") fail({ code: "other", error: String(e.message || e) });
   }
 
   function ready(seq, data, asked) {
-    var w = $("view").contentWindow, tries = 0;
-    (function wait() {
-      var api = w.__t2a;
-      if (!api || !api.ready) { if (tries++ < 500) setTimeout(wait, 2); return; }
-      viewerWords(w); api.body = S.character === "body"; api.maxFps = DRAW_FPS;
-      if (S.resumeAt !== null) { api.seek(Math.min(S.resumeAt, api.duration)); api.play(); S.resumeAt = null; }
-      w.requestAnimationFrame(function () {  // the first frame of the new animation is on screen
-        if (seq !== S.seq) return;
-        var now = performance.now(), ms = now - S.firedAt;
-        S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq;
-        if (S.sentKeyAt) {
-          S.keyLatencies.push(now - S.sentKeyAt);
-          // where the time went: the pause, the request (the server's work), the viewer's load and first frame
-          S.phases.push({ pause: S.firedAt - S.sentKeyAt, request: S.answeredAt - S.firedAt, shown: now - S.answeredAt });
-        }
-        if (data.draft) {
-          S.drafts++; S.draftKeyAt = S.sentKeyAt; S.draftMs = ms; drafted(true);
-          status(t("shown_draft", { s: data.duration.toFixed(2), ms: Math.round(ms) }));
-          request(asked.text, asked.edits, asked.fallback, false, 0);  // the finished one, in place when ready
-          return;
-        }
-        if (S.draft && S.draftKeyAt) S.finishLatencies.push(now - S.draftKeyAt);
-        status((S.draft ? t("shown_finished", { s: data.duration.toFixed(2), first: Math.round(S.draftMs), ms: Math.round(ms) })
-                        : t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) })) + (S.note || ""));
-        S.draftKeyAt = 0; S.busy = false; drafted(false);
-      });
-    })();
+    // the viewer holds the answer: playback resumed where asked, and once its frame is on screen, the figures
+    if (S.resumeAt !== null) { link.seek(S.resumeAt); link.play(); S.resumeAt = null; }  // the viewer keeps it within its length
+    link.drawn().then(function () {  // the first frame of the new animation is on screen
+      if (seq !== S.seq) return;
+      var now = performance.now(), ms = now - S.firedAt;
+      S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq;
+      if (S.sentKeyAt) {
+        S.keyLatencies.push(now - S.sentKeyAt);
+        // where the time went: the pause, the request (the server's work), the viewer's load and first frame
+        S.phases.push({ pause: S.firedAt - S.sentKeyAt, request: S.answeredAt - S.firedAt, shown: now - S.answeredAt });
+      }
+      if (data.draft) {
+        S.drafts++; S.draftKeyAt = S.sentKeyAt; S.draftMs = ms; drafted(true);
+        status(t("shown_draft", { s: data.duration.toFixed(2), ms: Math.round(ms) }));
+        request(asked.text, asked.edits, asked.fallback, false, 0);  // the finished one, in place when ready
+        return;
+      }
+      if (S.draft && S.draftKeyAt) S.finishLatencies.push(now - S.draftKeyAt);
+      status((S.draft ? t("shown_finished", { s: data.duration.toFixed(2), first: Math.round(S.draftMs), ms: Math.round(ms) })
+                      : t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) })) + (S.note || ""));
+      S.draftKeyAt = 0; S.busy = false; drafted(false);
+    }, quiet);
   }
 
   function drafted(on) {
@@ -359,8 +346,7 @@
                            body: JSON.stringify({ text: text, edits: editList(), format: "glb", fallback: S.fallback }) })
       .then(function (r) { if (!r.ok) throw new Error(t("err_character")); return r.arrayBuffer(); })
       .then(function (buffer) {
-        var hidden = $("view").contentWindow && $("view").contentWindow.__t2a;
-        if (hidden && hidden.ready) hidden.pause();  // a hidden viewer drawing every frame slows the skinned one
+        if (link.state.ready) link.pause();  // a hidden viewer drawing every frame slows the skinned one
         $("view").hidden = true; $("view3d").hidden = false;
         return api3d.show(buffer, at);
       })
@@ -472,9 +458,9 @@
   function append() {
     var more = $("add").value.trim();
     if (!more) return;
-    var api = $("view").contentWindow && $("view").contentWindow.__t2a, s3 = window.__studio3d;
+    var s3 = window.__studio3d;
     if (!$("view3d").hidden && s3 && s3.ready) S.resumeAt = s3.time;  // playback goes on from the frame on screen
-    else S.resumeAt = api && api.ready ? api.time : 0;
+    else S.resumeAt = link.state.ready ? link.state.time : 0;
     var text = $("text").value.trim();
     $("text").value = text + (/[。！？!?]$/.test(text) || !text ? "" : "。") + more;
     $("add").value = "";
@@ -532,8 +518,7 @@
   function figure() {
     // the character drawn: a body (the default) or the stick figure, in the viewer on screen
     $("character").value = S.character;
-    var w = $("view").contentWindow, api = w && w.__t2a;
-    if (api && api.ready) api.body = S.character === "body";
+    if (link.state.ready) link.set({ body: S.character === "body" });
   }
 
   function commit() {
@@ -678,9 +663,8 @@
     post("/api/clip", { clip: name }).then(function (data) {
       if (!data.ok) { fail({ message: t("err_other"), error: data.error }); return; }
       S.previewing = name;
-      $("view").onload = function () { dressed(this.contentWindow); };
       $("view3d").hidden = true; $("view").hidden = false;
-      $("view").srcdoc = data.html;
+      link.open(data.html).then(dress, quiet);
       status(t("preview_of", { v: name, clips: data.verbs.join("/") }));
     });
   }

@@ -103,8 +103,8 @@
   }
 
   function clock() {
-    var view = document.getElementById("view"), s3 = window.__studio3d, api = view && view.contentWindow && view.contentWindow.__t2a;
-    var t = !document.getElementById("view3d").hidden && s3 && s3.ready ? s3.time : api && api.ready ? api.time : 0;
+    var s3 = window.__studio3d, seen = window.__viewerLink && window.__viewerLink.state;  // the framed viewer's last report
+    var t = !document.getElementById("view3d").hidden && s3 && s3.ready ? s3.time : seen && seen.ready ? seen.time : 0;
     if (t !== T.time) { T.time = t; place(t); }
     requestAnimationFrame(clock);
   }
