@@ -285,16 +285,23 @@
     if (data.rig) $("builtin").hidden = false;  // the dropped character is still what the export animates
     $("view3d").hidden = true; $("view").hidden = false;
     if (data.html) {  // the first answer, or the viewer was replaced: the page itself, loaded once
-      link.open(data.html).then(function () { dress(); ready(seq, data, asked); }, function (e) {
+      link.open(data.html).then(function () {
+        dress();
+        if (S.resumeAt !== null) { link.seek(S.resumeAt); link.play(); S.resumeAt = null; }  // kept within its length
+        return link.drawn().then(function (drawn) { shown(seq, data, asked, drawn.drawnAt); });
+      }).catch(function (e) {
         if (e.name !== "Replaced" && seq === S.seq) fail({ code: "other", error: String(e.message || e) });
       });
       return;
     }
     S.previewing = null;
-    link.load(data.view, !finishing).then(function (swap) {
-      if (finishing) S.swap = swap;  // the playing time across the replacement
-      if (!finishing) { link.seek(0); link.play(); }  // a new animation plays from its start, as a new page did
-      ready(seq, data, asked);
+    // a new animation plays from its start, as a new page did (or from where "add" asked); the finished one of
+    // the draft on screen goes on at the same time
+    var at = S.resumeAt !== null ? S.resumeAt : finishing ? null : 0;
+    S.resumeAt = null;
+    link.load(data.view, { home: !finishing, at: at, play: at !== null }).then(function (swap) {
+      if (finishing) S.swap = { before: swap.before, after: swap.after };  // the playing time across the replacement
+      shown(seq, data, asked, swap.drawnAt);
     }).catch(function (e) {
       if (e.name !== "Replaced" && seq === S.seq) request(asked.text, asked.edits, asked.fallback, data.draft, 0, true);
     });
@@ -305,29 +312,27 @@
     if (e.name !== "Replaced") fail({ code: "other", error: String(e.message || e) });
   }
 
-  function ready(seq, data, asked) {
-    // the viewer holds the answer: playback resumed where asked, and once its frame is on screen, the figures
-    if (S.resumeAt !== null) { link.seek(S.resumeAt); link.play(); S.resumeAt = null; }  // the viewer keeps it within its length
-    link.drawn().then(function () {  // the first frame of the new animation is on screen
-      if (seq !== S.seq) return;
-      var now = performance.now(), ms = now - S.firedAt;
-      S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq;
-      if (S.sentKeyAt) {
-        S.keyLatencies.push(now - S.sentKeyAt);
-        // where the time went: the pause, the request (the server's work), the viewer's load and first frame
-        S.phases.push({ pause: S.firedAt - S.sentKeyAt, request: S.answeredAt - S.firedAt, shown: now - S.answeredAt });
-      }
-      if (data.draft) {
-        S.drafts++; S.draftKeyAt = S.sentKeyAt; S.draftMs = ms; drafted(true);
-        status(t("shown_draft", { s: data.duration.toFixed(2), ms: Math.round(ms) }));
-        request(asked.text, asked.edits, asked.fallback, false, 0);  // the finished one, in place when ready
-        return;
-      }
-      if (S.draft && S.draftKeyAt) S.finishLatencies.push(now - S.draftKeyAt);
-      status((S.draft ? t("shown_finished", { s: data.duration.toFixed(2), first: Math.round(S.draftMs), ms: Math.round(ms) })
-                      : t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) })) + (S.note || ""));
-      S.draftKeyAt = 0; S.busy = false; drafted(false);
-    }, quiet);
+  function shown(seq, data, asked, now) {
+    // the first frame of the answer came on screen at ``now`` (performance.now(), ms): the figures, and the
+    // finished animation asked for after a draft
+    if (seq !== S.seq) return;
+    var ms = now - S.firedAt;
+    S.lastLatencyMs = ms; S.latencies.push(ms); S.renders++; S.shown = seq;
+    if (S.sentKeyAt) {
+      S.keyLatencies.push(now - S.sentKeyAt);
+      // where the time went: the pause, the request (the server's work), the viewer's load and first frame
+      S.phases.push({ pause: S.firedAt - S.sentKeyAt, request: S.answeredAt - S.firedAt, shown: now - S.answeredAt });
+    }
+    if (data.draft) {
+      S.drafts++; S.draftKeyAt = S.sentKeyAt; S.draftMs = ms; drafted(true);
+      status(t("shown_draft", { s: data.duration.toFixed(2), ms: Math.round(ms) }));
+      request(asked.text, asked.edits, asked.fallback, false, 0);  // the finished one, in place when ready
+      return;
+    }
+    if (S.draft && S.draftKeyAt) S.finishLatencies.push(now - S.draftKeyAt);
+    status((S.draft ? t("shown_finished", { s: data.duration.toFixed(2), first: Math.round(S.draftMs), ms: Math.round(ms) })
+                    : t("shown", { s: data.duration.toFixed(2), ms: Math.round(ms) })) + (S.note || ""));
+    S.draftKeyAt = 0; S.busy = false; drafted(false);
   }
 
   function drafted(on) {

@@ -8,12 +8,16 @@
  *
  * Commands (studio -> viewer), each {type, ...}:
  *   hello {doc}            the page's number for this document, echoed in every message; the state is sent back
- *   load {id, data, home}  viewer_data()'s document in place (window.__t2a.load) -> loaded {id, before, after}
- *                          (the playing time just before and after the swap) or loaded {id, error}
+ *   load {id, data, home, at, play}  viewer_data()'s document in place (window.__t2a.load), then sought to `at`
+ *                          (s) and played when asked -> loaded {id, before, after, drawnAt} once it is on screen (the
+ *                          next animation frame; before, after: the playing time just before and after the
+ *                          swap), or loaded {id, error}: one round trip for what the studio waits for at a keystroke
  *   play, pause, seek {time}
  *   set {body, maxFps, words: {help, speed, follow, loop}}  the figure, the drawing rate, the controls' words
  *   font {bytes}           the studio's Japanese face (WOFF): names loaded later are drawn with it
- *   drawn {id}             -> drawn {id} at the next animation frame (what the viewer drew is on screen)
+ *   drawn {id}             -> drawn {id, drawnAt} at the next animation frame (what the viewer drew is on screen)
+ * drawnAt: when that frame came, on the clock every page shares (performance.timeOrigin + performance.now(), ms):
+ * the message saying so reaches the studio a process hop later (the frame has its own renderer process).
  * Reports (viewer -> studio): state {time, frame, playing, duration, ready, failed, body} whenever the viewer
  * draws (and once it is ready or failed), error {message} for every error on the page. */
 (function () {
@@ -66,7 +70,12 @@
   function load(msg) {
     var before = api.time;
     api.load(msg.data, !!msg.home).then(function () {
-      post({ type: "loaded", id: msg.id, before: before, after: api.time });
+      var after = api.time;
+      if (typeof msg.at === "number" && isFinite(msg.at)) api.seek(msg.at);
+      if (msg.play) api.play();
+      requestAnimationFrame(function () {
+        post({ type: "loaded", id: msg.id, before: before, after: after, drawnAt: performance.timeOrigin + performance.now() });
+      });
     }).catch(function (e) {
       post({ type: "loaded", id: msg.id, error: String(e && e.message ? e.message : e).slice(0, 500) });
     });
@@ -80,7 +89,9 @@
     seek: function (msg) { if (typeof msg.time === "number" && isFinite(msg.time)) api.seek(msg.time); },
     set: set,
     font: function (msg) { font(msg.bytes); },
-    drawn: function (msg) { requestAnimationFrame(function () { post({ type: "drawn", id: msg.id }); }); }
+    drawn: function (msg) {
+      requestAnimationFrame(function () { post({ type: "drawn", id: msg.id, drawnAt: performance.timeOrigin + performance.now() }); });
+    }
   };
 
   window.addEventListener("message", function (e) {

@@ -7,10 +7,15 @@
  *   state                 the viewer's last report: ready, failed, time (s), frame, playing, duration (s), body,
  *                         errors (the viewer page's error messages); the page's tests and the top view read it
  *   open(html)            a new viewer page in the frame (srcdoc); a promise, resolved once it has drawn
- *   load(data, home)      viewer_data()'s document in place; a promise of {before, after} (s: the playing time
- *                         just before and after the swap), rejected with the viewer's error
+ *   load(data, options)   viewer_data()'s document in place, options {home: frame it as a new page does, at:
+ *                         then seek there (s), play}; a promise, resolved once it is on screen with {before,
+ *                         after, drawnAt} (s: the playing time just before and after the swap), rejected with
+ *                         the viewer's error
  *   play(), pause(), seek(t), set({body, maxFps, words})
- *   drawn()               a promise, resolved at the viewer's next animation frame (what it drew is on screen)
+ *   drawn()               a promise of {drawnAt}, resolved at the viewer's next animation frame (what it drew is
+ *                         on screen)
+ * drawnAt: when the viewer's frame came, on this page's performance.now() clock (ms), not when the page heard of
+ * it (a process hop later: the frame has its own renderer process).
  * Messages are taken only from the frame's window (event.source) with the opaque origin ("null") and the number
  * of the page now in it: a report of a page replaced since is dropped. */
 window.__viewerLink = (function () {
@@ -82,7 +87,9 @@ window.__viewerLink = (function () {
       var w = waiting[m.id];
       if (!w) return;
       delete waiting[m.id];
-      if (m.error) w.reject(new Error(m.error)); else w.resolve({ before: m.before, after: m.after });
+      if (m.error) { w.reject(new Error(m.error)); return; }
+      var now = performance.now(), at = typeof m.drawnAt === "number" ? m.drawnAt - performance.timeOrigin : now;
+      w.resolve({ before: m.before, after: m.after, drawnAt: Math.min(at, now) });
     } else if (m.type === "error" && typeof m.message === "string") {
       state.errors.push(m.message);
     }
@@ -97,7 +104,10 @@ window.__viewerLink = (function () {
   return {
     state: state,
     open: open,
-    load: function (data, home) { return ask({ type: "load", data: data, home: !!home }); },
+    load: function (data, options) {
+      var o = options || {};
+      return ask({ type: "load", data: data, home: !!o.home, at: typeof o.at === "number" ? o.at : null, play: !!o.play });
+    },
     play: function () { tell({ type: "play" }); },
     pause: function () { tell({ type: "pause" }); },
     seek: function (t) { tell({ type: "seek", time: t }); },
