@@ -60,7 +60,8 @@ MAX_PENDING = 4
 CANCEL_POLL = 0.02
 #: The page's own files: name -> content type.
 ASSETS = {"studio.js": "text/javascript; charset=utf-8", "studio3d.js": "text/javascript; charset=utf-8",
-          "topview.js": "text/javascript; charset=utf-8", "viewer_link.js": "text/javascript; charset=utf-8", "studio.css": "text/css; charset=utf-8"}
+          "topview.js": "text/javascript; charset=utf-8", "viewer_link.js": "text/javascript; charset=utf-8",
+          "studio.css": "text/css; charset=utf-8"}
 
 
 def _vendored() -> dict[str, Path]:

@@ -3,15 +3,17 @@
  *
  * The frame is sandboxed without allow-same-origin: its origin is opaque, so the studio cannot reach
  * window.__t2a and the two talk by postMessage only. Accepted: messages whose source is window.parent, all from
- * the one origin of the first (the studio's page: an opaque-origin frame cannot read its parent's origin any
- * other way). Posted: only to window.parent, to that origin, never "*"; nothing is posted before it is known.
+ * the one origin of the first (the studio's page: its event.origin is the portable way for an opaque-origin
+ * frame to learn its parent's origin; location.ancestorOrigins is Chromium's only). Posted: only to
+ * window.parent, to that origin, never "*"; nothing is posted before it is known.
  *
  * Commands (studio -> viewer), each {type, ...}:
  *   hello {doc}            the page's number for this document, echoed in every message; the state is sent back
- *   load {id, data, home, at, play}  viewer_data()'s document in place (window.__t2a.load), then sought to `at`
- *                          (s) and played when asked -> loaded {id, before, after, drawnAt} once it is on screen (the
- *                          next animation frame; before, after: the playing time just before and after the
- *                          swap), or loaded {id, error}: one round trip for what the studio waits for at a keystroke
+ *   load {id, data, home, at, play}  viewer_data()'s document in place (window.__t2a.load), then sought to
+ *                          `at` (s) and played when asked -> loaded {id, before, after, drawnAt} once it is on
+ *                          screen (the next animation frame; before, after: the playing time just before and
+ *                          after the swap), or loaded {id, error}: one round trip for what the studio waits for
+ *                          at a keystroke
  *   play, pause, seek {time}
  *   set {body, maxFps, words: {help, speed, follow, loop}}  the figure, the drawing rate, the controls' words
  *   font {bytes}           the studio's Japanese face (WOFF): names loaded later are drawn with it
@@ -30,6 +32,8 @@
     msg.doc = doc;
     up.postMessage(msg, origin);
   }
+
+  function clock() { return performance.timeOrigin + performance.now(); }  // ms, the clock pages share
 
   function state() {
     post({ type: "state", time: api.time, frame: api.frame, playing: api.playing, duration: api.duration,
@@ -74,7 +78,7 @@
       if (typeof msg.at === "number" && isFinite(msg.at)) api.seek(msg.at);
       if (msg.play) api.play();
       requestAnimationFrame(function () {
-        post({ type: "loaded", id: msg.id, before: before, after: after, drawnAt: performance.timeOrigin + performance.now() });
+        post({ type: "loaded", id: msg.id, before: before, after: after, drawnAt: clock() });
       });
     }).catch(function (e) {
       post({ type: "loaded", id: msg.id, error: String(e && e.message ? e.message : e).slice(0, 500) });
@@ -90,7 +94,7 @@
     set: set,
     font: function (msg) { font(msg.bytes); },
     drawn: function (msg) {
-      requestAnimationFrame(function () { post({ type: "drawn", id: msg.id, drawnAt: performance.timeOrigin + performance.now() }); });
+      requestAnimationFrame(function () { post({ type: "drawn", id: msg.id, drawnAt: clock() }); });
     }
   };
 

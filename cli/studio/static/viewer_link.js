@@ -65,7 +65,12 @@ window.__viewerLink = (function () {
 
   function fontBytes() {
     // the studio's own face, fetched once (same origin; the browser's cache holds it too)
-    if (!font) font = fetch(FONT_URL).then(function (r) { if (!r.ok) throw new Error("HTTP " + r.status); return r.arrayBuffer(); });
+    if (!font) {
+      font = fetch(FONT_URL).then(function (r) {
+        if (!r.ok) throw new Error("HTTP " + r.status);
+        return r.arrayBuffer();
+      });
+    }
     return font;
   }
 
