@@ -36,6 +36,7 @@ from .lexicon import (
     THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
+from .phrases import body_nouns
 from .pred import Pred
 from .types import Constraint, MotionSpec
 
@@ -136,6 +137,10 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
     if ph.role:
         return None
     nxt = phrases[i + 1] if i + 1 < len(phrases) else None
+    if _before_no(ph) and nxt is not None and nxt.group == ph.group and nxt.role in ("object", "body part") \
+            and (noun_of(nxt) in BODY_PARTS or noun_of(nxt) in body_nouns()):
+        name, person = _name(ph)  # 花子の肩を叩く: done to 花子
+        return Target(name, True, "を", None, (i,), _sure(ph)) if person else None
     if _before_no(ph) and nxt is not None and nxt.group == ph.group and not nxt.pred and not nxt.role:
         rel = noun_of(nxt)
         particle = _particle(nxt)
