@@ -31,7 +31,7 @@ from dataclasses import replace
 from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
-    BODY_PARTS, CATCHING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
+    BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
     PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
@@ -201,7 +201,7 @@ def _role(pred: Pred, t: Target) -> str | None:
     verb = pred.verb
     if t.particle == "を":
         if t.person:
-            return "patient"
+            return "goal" if verb in CHASING_VERBS else "patient"
         return "source" if verb in LEAVING_VERBS else None
     if t.particle == "と":
         return "partner" if t.person else None
