@@ -258,7 +258,7 @@ def test_the_viewer_frame_is_sandboxed_in_an_opaque_origin_and_still_shows_the_a
     before = viewer.evaluate("window.__t2a.time")
     seen = page.evaluate("window.__studio.view.time")
     after = viewer.evaluate("window.__t2a.time")
-    assert before - 0.1 <= seen <= after  # the viewer's last report: at most a few frames behind
+    assert before - 0.25 <= seen <= after  # the viewer's last report: a few frames behind at most (a loaded machine)
     # when its frames came on screen (the viewer's clock, in the page's terms): after the answer, not before
     phases = page.evaluate("window.__studio.phases")
     assert phases and all(p["shown"] >= 0 for p in phases)

@@ -86,7 +86,7 @@
   }
 
   var COMMANDS = {
-    hello: function (msg) { doc = typeof msg.doc === "number" ? msg.doc : 0; state(); errors(); },
+    hello: function (msg) { doc = typeof msg.doc === "number" ? msg.doc : 0; errors(); state(); },
     load: load,
     play: function () { api.play(); },
     pause: function () { api.pause(); },
@@ -105,8 +105,9 @@
     if (origin === null) origin = e.origin;
     COMMANDS[msg.type](msg);
   });
-  // the viewer sets these on <body> each time it draws (and once it is ready or failed)
-  new MutationObserver(function () { state(); errors(); })
+  // the viewer sets these on <body> each time it draws (and once it is ready or failed); its errors first, so
+  // that the studio has the reason when it hears of a failure
+  new MutationObserver(function () { errors(); state(); })
     .observe(document.body, { attributes: true, attributeFilter: ["data-time", "data-ready"] });
   new MutationObserver(errors).observe(document.documentElement, { attributes: true, attributeFilter: ["data-errors"] });
 })();
