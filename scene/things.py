@@ -17,7 +17,8 @@ throw                it is in the throwing hand until the release (the hand's fa
 pick (拾う, 持ち上げる) it lies on the floor under the hand at its lowest frame, then is held
 put (置く, 下ろす)     it is held until the hand's lowest frame, then rests there (on the table it is put on)
 give (渡す)           it is in the giver's hand until the hand is furthest out, then in the receiver's
-open (開ける, 閉める)  a door in front of the hand at its furthest reach swings open (or shut) on its hinge
+open (開ける, 閉める)  a door in front of the hand at its furthest reach swings open (or shut) on its hinge;
+                     knocked on (ノックする), it stays shut
 any other            it is held (one hand or both, :mod:`scene.shapes`) while the row plays
 seat (座る on it)     it stands under the hips where they sit, from the start
 beside (机の前に座る)  it stands where the body ends beside it, from the start: ahead of the body (前, 後ろ,
@@ -63,6 +64,7 @@ GIVE = frozenset("渡す 手渡す 差し出す".split())
 RECEIVE = frozenset("受け取る 貰う".split())
 OPEN = frozenset("開ける 開く".split())
 CLOSE = frozenset("閉める 閉じる 締める".split())
+KNOCK = frozenset("ノックする".split())
 SIT = frozenset("座る 腰掛ける 着席する".split())
 DRIBBLE = frozenset("ドリブルする".split())
 #: m at the built-in body's size: a dribbled ball's distance ahead of the hips
@@ -226,7 +228,7 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         if p.holder is None or p.holder[0] != r.actor:  # no one handed it over: taken at the reach
             _hold(p, r.actor, m, _instant(m, "both_hands", "reach", f0, f1))
             p.events.append((t, f"{_who(r.actor)} takes it"))
-    elif r.verb in OPEN or r.verb in CLOSE:
+    elif r.verb in OPEN or r.verb in CLOSE or _knocks(r, p):
         _door(p, r, m, f0, f1, fps)
     elif p.holder is None or p.holder[0] != r.actor:
         _hold(p, r.actor, m, 0 if not p.placed() else f0)
@@ -520,6 +522,11 @@ def _table_top(hand_y: float) -> float:
     return float(np.clip(hand_y - 0.05, 0.3, 1.1))
 
 
+def _knocks(r: Element, p: _Path) -> bool:
+    """ドアをノックする, ドアを叩く: a door knocked on."""
+    return r.verb in KNOCK or (r.verb == "叩く" and p.shape.shape == "door")
+
+
 def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float) -> None:
     """A door in front of the right hand at its furthest reach; its hinge on the hand's far side, it swings
     open (or shut) from then to the row's end."""
@@ -533,13 +540,15 @@ def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float) -> None
     hinge[1] = 0.0
     opening = r.verb in OPEN
     n = len(p.pos)
-    angles = np.zeros(n)
     ramp = np.clip((np.arange(n) - reach) / max(1, f1 - reach), 0.0, 1.0)
-    angles[:] = np.radians(DOOR_SWING) * ((3 - 2 * ramp) * ramp * ramp if opening else 1 - (3 - 2 * ramp) * ramp * ramp)
+    angles = np.radians(DOOR_SWING) * ((3 - 2 * ramp) * ramp * ramp if opening else 1 - (3 - 2 * ramp) * ramp * ramp)
+    if _knocks(r, p):
+        angles[:] = 0.0  # knocked on: it stays shut
     centre_local = -0.5 * w * left + [0.0, 0.5 * h, 0.0]
     for k in range(n):
         turn = Rotation.from_euler("y", heading + angles[k])
         p.pos[k] = hinge + Rotation.from_euler("y", angles[k]).apply(centre_local)
         p.rot[k] = turn.as_quat()
     p.holder = None
-    p.events.append((reach / fps, f"{'opened' if opening else 'shut'} by {_who(r.actor)}"))
+    done = "knocked on" if _knocks(r, p) else "opened" if opening else "shut"
+    p.events.append((reach / fps, f"{done} by {_who(r.actor)}"))
