@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from highspy import HighsLp, HighsModelStatus, MatrixFormat
+from highspy import HighsModelStatus, MatrixFormat, ObjSense
 from scipy import sparse
 from scipy.spatial import ConvexHull, QhullError
 
@@ -86,10 +86,14 @@ _DIRS = np.array([[np.cos(a), np.sin(a)] for a in np.arange(4) * np.pi / 4])  # 
 _DIRS[np.abs(_DIRS) < 1e-12] = 0.0  # exact zeros along the axes
 
 
-def _second_difference(n: int) -> sparse.csr_matrix:
-    """``(n + 2, n)``: the second differences at frames ``-1 .. n`` of ``n`` free frames (the frames beside
-    them fixed: their part is :func:`_fixed_part`)."""
-    return sparse.diags([1.0, -2.0, 1.0], [0, -1, -2], shape=(n + 2, n), format="csr")
+_Entries = tuple[np.ndarray, np.ndarray, np.ndarray]  # (rows, columns, values) of a sparse matrix's entries
+
+
+def _second_difference(n: int, fps: float) -> _Entries:
+    """The entries of the ``(n + 2, n)`` matrix of the second differences (times ``fps²``) at frames ``-1 .. n``
+    of ``n`` free frames (the frames beside them fixed: their part is :func:`_fixed_part`)."""
+    j = np.arange(n)
+    return np.concatenate([j, j + 1, j + 2]), np.tile(j, 3), np.repeat([1.0, -2.0, 1.0], n) * fps ** 2
 
 
 def _fixed_part(before: np.ndarray, after: np.ndarray, n: int) -> np.ndarray:
@@ -140,47 +144,58 @@ def support_of(st: Stance) -> Support:
 
 
 def _acceleration(h: np.ndarray, before: np.ndarray, after: np.ndarray,
-                  fps: float) -> tuple[sparse.csr_matrix, np.ndarray]:
+                  fps: float) -> tuple[_Entries, np.ndarray]:
     """``(U, a0)``: ``U @ d + a0`` are the accelerations (m/s²) along each direction ``u_k`` (``u_k · a[t]``, row
     ``k (n + 2) + t`` for ``t`` in ``-1 .. n``) of the path ``h + d`` (``h`` ``(n, 2)``, its moves ``d`` stacked
-    ``[x (n), z (n)]``): ``(4 (n + 2), 2 n)`` and ``(4 (n + 2),)``, ``a0`` the given path's own."""
+    ``[x (n), z (n)]``): the entries of the ``(4 (n + 2), 2 n)`` matrix ``U`` (none for an axis a direction is
+    square to) and ``(4 (n + 2),)``, ``a0`` the given path's own."""
     n = len(h)
-    D = _second_difference(n) * fps ** 2
-    a = D @ h + _fixed_part(before, after, n) * fps ** 2  # (n + 2, 2)
-    U = sparse.vstack([sparse.hstack([D * u[0], D * u[1]]) for u in _DIRS]).tocsr()
-    U.eliminate_zeros()  # the axes' zero components
-    return U, (a @ _DIRS.T).T.ravel()
+    r, c, v = _second_difference(n, fps)
+    a = sparse.csr_matrix((v, (r, c)), shape=(n + 2, n)) @ h + _fixed_part(before, after, n) * fps ** 2  # (n + 2, 2)
+    blocks = [(r + k * (n + 2), c + axis * n, v * u[axis]) for k, u in enumerate(_DIRS) for axis in (0, 1) if u[axis]]
+    return _joined(blocks), (a @ _DIRS.T).T.ravel()
 
 
-def _limits(band: np.ndarray, sup: Support, room: float) -> tuple[sparse.csr_matrix, np.ndarray, np.ndarray]:
-    """``(rows, lower, upper)``: ``lower <= rows @ d <= upper`` holds the moves ``d`` within the octagon's
-    diagonals (its sides along the axes are the moves' bounds) and the balance (no edge's distance grows
-    beyond ``max(gap, room)``): only the edges a move within the octagon can take that far, the rest hold
-    anyway."""
+def _limits(band: np.ndarray, sup: Support, reach: np.ndarray,
+            room: float) -> tuple[_Entries, np.ndarray, np.ndarray]:
+    """``(rows, lower, upper)``: ``lower <= rows @ d <= upper`` (``rows`` as its entries) holds the moves ``d``
+    within the octagon's diagonals (its sides along the axes are the moves' bounds) and the balance (no edge's
+    distance grows beyond ``max(gap, room)``): only the edges a move within the octagon can take that far, the
+    rest hold anyway (``reach``: :func:`_reach`)."""
     n = len(band)
-    eye = sparse.identity(n, format="csr")
-    diagonals = sparse.vstack([sparse.hstack([u[0] * eye, u[1] * eye]) for u in _DIRS[1::2]])
+    t = np.arange(n)
+    diagonals = [(t + i * n, t + axis * n, np.full(n, u[axis])) for i, u in enumerate(_DIRS[1::2]) for axis in (0, 1)]
     wide = np.concatenate([band, band])
     room_left = np.maximum(0.0, room - sup.gap)
-    held = _reach(band, sup) > room_left
-    return (sparse.vstack([diagonals, sup.rows[held]]).tocsr(), np.concatenate([-wide, np.full(held.sum(), -np.inf)]),
-            np.concatenate([wide, room_left[held]]))
+    held = reach > room_left
+    return (_joined(diagonals + [_at(_edges(sup, held), 2 * n, 0)]),
+            np.concatenate([-wide, np.full(held.sum(), -np.inf)]), np.concatenate([wide, room_left[held]]))
+
+
+def _edges(sup: Support, keep: np.ndarray) -> _Entries:
+    """The entries of ``sup.rows[keep]`` (``keep`` ``(R,)`` bool)."""
+    c = sup.rows.tocoo()
+    kept = keep[c.row]
+    return (np.cumsum(keep) - 1)[c.row[kept]], c.col[kept], c.data[kept]
 
 
 def _reach(band: np.ndarray, sup: Support) -> np.ndarray:
     """``(R,)`` m: the furthest a move within the octagon of inradius ``band`` (its corners 1 / cos 22.5° out)
     takes the centre of mass across each edge of the support (with a hair's margin)."""
-    norm = np.sqrt(np.asarray(sup.rows.multiply(sup.rows).sum(axis=1)).ravel())
+    c = sup.rows.tocoo()
+    norm = np.sqrt(np.bincount(c.row, c.data * c.data, minlength=len(sup.gap)))
     return norm * band[sup.frame] / np.cos(np.pi / 8) * (1.0 + 1e-9) + 1e-12
 
 
-_Entries = tuple[np.ndarray, np.ndarray, np.ndarray]  # (rows, columns, values) of a sparse matrix's entries
+def _joined(entries: list[_Entries]) -> _Entries:
+    """The entries of several blocks as one."""
+    r, c, v = (np.concatenate(x) for x in zip(*entries))
+    return r, c, v
 
 
-def _at(M: sparse.spmatrix, row: int, col: int, sign: float = 1.0) -> _Entries:
+def _at(M: _Entries, row: int, col: int, sign: float = 1.0) -> _Entries:
     """The entries of ``M`` placed with its corner at ``(row, col)``, times ``sign``."""
-    c = sparse.coo_matrix(M)
-    return c.row + row, c.col + col, sign * c.data
+    return M[0] + row, M[1] + col, sign * M[2]
 
 
 def _ones(rows: np.ndarray, cols: np.ndarray | int, value: float) -> _Entries:
@@ -189,9 +204,9 @@ def _ones(rows: np.ndarray, cols: np.ndarray | int, value: float) -> _Entries:
 
 
 def _matrix(entries: list[_Entries], shape: tuple[int, int]) -> sparse.csc_matrix:
-    """The matrix of ``shape`` with these entries (assembled at once: stacking sparse blocks cost a tenth of a
-    region's time)."""
-    r, c, v = (np.concatenate(x) for x in zip(*entries))
+    """The matrix of ``shape`` with these entries (none twice), assembled once from index arithmetic (scipy's
+    sparse blocks, stacked, scaled and converted, cost 1.5 ms of a region's 5.8 outside the solver)."""
+    r, c, v = _joined(entries)
     return sparse.csc_matrix((v, (r, c)), shape=shape)
 
 
@@ -206,18 +221,16 @@ def _minimum(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: 
         return _minimum_scipy(cost, rows, lower, upper, col_lower, col_upper)
     a = sparse.csc_matrix(rows)
     a.sort_indices()
-    lp = HighsLp()
-    lp.num_col_, lp.num_row_ = a.shape[1], a.shape[0]
-    lp.col_cost_, lp.col_lower_, lp.col_upper_ = cost, col_lower, col_upper
-    lp.row_lower_, lp.row_upper_ = lower, upper
-    lp.a_matrix_.format_ = MatrixFormat.kColwise
-    lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = a.indptr, a.indices, a.data
+    model = (a.shape[1], a.shape[0], a.nnz, MatrixFormat.kColwise.value, ObjSense.kMinimize.value, 0.0,
+             *(np.ascontiguousarray(v, dtype=np.float64) for v in (cost, col_lower, col_upper, lower, upper)),
+             a.indptr.astype(np.int32), a.indices.astype(np.int32), a.data,
+             np.zeros(a.shape[1], np.int32))  # every column continuous (HiGHS reads num_col of them)
     for scale in (0, 2):  # HiGHS's simplex_scale_strategy: none, then its default
         solver = _Highs()
         for option, value in (("output_flag", False), ("presolve", "off"), ("simplex_scale_strategy", scale),
                               ("simplex_dual_edge_weight_strategy", 1)):  # 1: Devex
             solver.setOptionValue(option, value)
-        solver.passModel(lp)
+        solver.passModel(*model)  # the arrays as they are (a HighsLp's fields cost 1 ms to fill)
         solver.run()
         if solver.getModelStatus() == HighsModelStatus.kOptimal:
             return np.asarray(solver.getSolution().col_value)
@@ -238,16 +251,18 @@ def _minimum_scipy(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, u
     return np.asarray(res.x) if res.status == 0 else None
 
 
-def _least_peak(U: sparse.csr_matrix, a0: np.ndarray, limits: tuple, band: np.ndarray) -> float | None:
+def _least_peak(U: _Entries, a0: np.ndarray, limits: tuple[_Entries, np.ndarray, np.ndarray],
+                band: np.ndarray) -> float | None:
     """Programme 1 of the module docstring: the least peak acceleration (m/s²) over the moves ``d`` ``(2 n,)``
-    within ``band`` and ``limits`` (:func:`_limits`), ``U @ d + a0`` the accelerations (:func:`_acceleration`);
-    None when HiGHS finds none. Its variables are ``[d (2 n), A]``."""
+    within ``band`` ``(n,)`` and ``limits`` (:func:`_limits`), ``U @ d + a0`` the accelerations
+    (:func:`_acceleration`); None when HiGHS finds none. Its variables are ``[d (2 n), A]``."""
     rows, lower, upper = limits
-    (q, w), r = U.shape, np.arange(U.shape[0])
+    q, w = len(a0), 2 * len(band)
+    r = np.arange(q)
     wide = np.concatenate([band, band])
     x = _minimum(np.r_[np.zeros(w), 1.0],
                  _matrix([_at(U, 0, 0), _ones(r, w, -1.0), _at(U, q, 0, -1.0), _ones(q + r, w, -1.0),
-                          _at(rows, 2 * q, 0)], (2 * q + rows.shape[0], w + 1)),
+                          _at(rows, 2 * q, 0)], (2 * q + len(lower), w + 1)),
                  np.concatenate([np.full(2 * q, -np.inf), lower]), np.concatenate([-a0, a0, upper]),
                  np.r_[-wide, 0.0], np.r_[wide, np.inf])
     return None if x is None else float(x[-1])
@@ -277,7 +292,8 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     given_peak = float(np.abs(a0).max())
     if given_peak <= levels[0] and not (sup.gap > 0.0).any():
         return h.copy()
-    limits = _limits(band, sup, room)
+    reach = _reach(band, sup)
+    limits = _limits(band, sup, reach, room)
     # the given path is within every limit: its peak bounds the least, and under the floor the cap is the floor
     least = 0.0 if given_peak * (1.0 + SLACK) + 1e-6 <= levels[0] else _least_peak(U, a0, limits, band)
     if least is None:
@@ -285,14 +301,14 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     peak = max(least * (1.0 + SLACK) + 1e-6, levels[0])
     levels = levels[:1 + int(np.sum(levels[1:] < peak))]  # a level at or over the cap is never exceeded: no price
     K = len(levels)
-    out = sup.gap + _reach(band, sup) > 0.0  # the edges a move may take the centre of mass outside of
+    out = sup.gap + reach > 0.0  # the edges a move may take the centre of mass outside of
     frames, at = np.unique(sup.frame[out], return_inverse=True)
     F = len(frames)
     width = 4 * n + K * m + F
     rows, lims, q, t = limits[0], len(limits[1]), 4 * m, np.arange(4 * m)
     s = 4 * n  # the first column of s
     seg_r, seg_c = np.tile(t, K), s + (np.arange(K)[:, None] * m + t % m).ravel()
-    edges, e = sup.rows[out], 8 * m + lims  # the first row of gap + move <= o
+    edges, e = _edges(sup, out), 8 * m + lims  # the first row of gap + move <= o
     A = _matrix([_at(U, 0, 0), _at(U, 0, 2 * n, -1.0), _ones(seg_r, seg_c, -1.0),  # u·a <= levels[0] + sum s
                  _at(U, q, 0, -1.0), _at(U, q, 2 * n), _ones(q + seg_r, seg_c, -1.0),  # -u·a <= the same
                  _at(rows, 8 * m, 0), _at(rows, 8 * m, 2 * n, -1.0),  # octagon, balance
