@@ -341,8 +341,11 @@ CONTACT_VERBS = frozenset(
 #: Verbs two people do to each other: co-actors of one are each other's partner (太郎と花子は握手する).
 RECIPROCAL_VERBS = frozenset(
     """握手する ハイタッチする 話す 会話する 話し合う 喧嘩する けんかする 戦う 乾杯する キスする 見つめ合う
-    抱き合う 向かい合う 組み合う""".split()
+    抱き合う 向かい合う 組み合う 繋ぐ つなぐ 手を繋ぐ""".split()
 )
+#: Reciprocal verbs done side by side, the hands between the two: the first of the pair holds with the
+#: right hand (its clip mirrored), the partner, on its right, with the left (the clip as keyframed).
+HAND_IN_HAND = frozenset("繋ぐ つなぐ 手を繋ぐ".split())
 
 #: Nouns before に / と that are no target (一緒に is "together", not a place).
 NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
