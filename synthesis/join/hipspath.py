@@ -157,7 +157,7 @@ def _widened_hull(points: np.ndarray, down: np.ndarray, radius: float) -> tuple[
         np.where(down[:, None, :], beyond, -np.inf).max(axis=-1) <= 1e-12 * np.maximum(1.0, length))
     corners = radius * np.stack([np.cos(np.arange(8) * np.pi / 4), np.sin(np.arange(8) * np.pi / 4)], axis=1)
     support = np.where(down[:, None, :], product, -np.inf).max(axis=-1) + (normals @ corners.T).max(axis=-1)
-    edge = np.concatenate([np.broadcast_to(down.any(axis=1)[:, None], (F, 8)), hull_edge], axis=1)
+    edge = np.concatenate([np.repeat(down.any(axis=1, keepdims=True), 8, axis=1), hull_edge], axis=1)
     same = nx[..., None] * nx[:, None] + nz[..., None] * nz[:, None] > 1.0 - 1e-12  # one direction: one edge
     edge &= ~(same & edge[:, None, :] & np.tri(len(angle) + len(first), k=-1, dtype=bool)).any(axis=-1)
     return normals, -support, edge
