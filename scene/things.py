@@ -8,7 +8,9 @@ place). Its story is read from those rows in time order, each at an instant of t
 verb (lemma)         what happens to the thing
 ==================== ====================================================================================
 kick (:data:`KICK`)  it rests on the floor where the kicking foot strikes (the foot's fastest frame) and
-                     leaves it then, faster than the foot, on a ballistic path; it lands, bounces, rolls
+                     leaves it then, faster than the foot, on a ballistic path; it lands, bounces, rolls;
+                     one already on the floor rolls to the foot before the strike
+dribble              it rolls on the floor ahead of the feet (:data:`DRIBBLE_AHEAD`) while the row plays
 throw                it is in the throwing hand until the release (the hand's fastest frame); it flies to
                      the catcher's hands at their catch (both hands furthest out) when one catches it,
                      else on with the hand's speed, lands and rolls
@@ -62,6 +64,9 @@ RECEIVE = frozenset("受け取る 貰う".split())
 OPEN = frozenset("開ける 開く".split())
 CLOSE = frozenset("閉める 閉じる 締める".split())
 SIT = frozenset("座る 腰掛ける 着席する".split())
+DRIBBLE = frozenset("ドリブルする".split())
+#: m at the built-in body's size: a dribbled ball's distance ahead of the hips
+DRIBBLE_AHEAD = 0.5
 #: m at the built-in body's size: the room between the hips and the near side of a thing beside the body
 BESIDE_GAP = 0.3
 #: A door's swing, degrees.
@@ -107,6 +112,9 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
         named = _named(r, motions)
         if not any(how == "handled" for _, how in named) and r.verb in THROW | PUT | GIVE | KICK:
             held = next((q for q in paths.values() if q.holder is not None and q.holder[0] == r.actor), None)
+            if held is None and r.verb in KICK:  # ドリブルして、シュートする: the ball at the feet
+                held = next((q for q in paths.values() if q.events and q.events[-1][1] == f"dribbled by {_who(r.actor)}"),
+                            None)
             named += [(held.name, "handled")] if held is not None else []  # 拾って、投げる: what the hand holds
         for name, how in named:
             if name not in paths:
@@ -184,6 +192,14 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         p.events.append((f / fps, f"{_who(r.actor)} " + ("leaves it" if r.target_role == "source" else "reaches it")))
     elif r.verb in KICK:
         _kick(p, r, m, motions, f0, f1, fps)
+    elif r.verb in DRIBBLE:
+        path, heading = bodies.hips_path(m)
+        ahead = path[f0:f1] + DRIBBLE_AHEAD * p.scale * np.stack([np.sin(heading[f0:f1]), 0 * heading[f0:f1],
+                                                                  np.cos(heading[f0:f1])], axis=1)
+        p.pos[f0:] = ahead[-1] + [0.0, p.half, 0.0]
+        p.pos[f0:f1] = ahead + [0.0, p.half, 0.0]
+        p.holder = None
+        p.events.append((t, f"dribbled by {_who(r.actor)}"))
     elif r.verb in THROW:
         _throw(p, r, m, rows, motions, f0, f1, fps)
     elif r.verb in PICK:
@@ -321,9 +337,13 @@ def _kick(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float
     toe = bodies.toe(m, side)
     heading = float(bodies.hips_path(m)[1][hit])
     start = _on_floor(toe[hit] + 0.5 * p.size[0] * bodies.forward(heading), p)
-    if p.holder is None and (not p.placed() or np.hypot(*(p.pos[hit] - start)[[0, 2]]) > 0.5):
-        p.rest(0 if not p.placed() else f0, start)
+    if p.holder is None and not p.placed():
+        p.rest(0, start)
         p.events.append((0.0, "on the floor"))
+    elif p.holder is None and np.hypot(*(p.pos[hit] - start)[[0, 2]]) > 0.5:  # on the floor away: it rolls there
+        w = np.linspace(0.0, 1.0, hit - f0 + 1)[:, None]
+        p.pos[f0:hit + 1] = (1.0 - w) * p.pos[f0] + w * start
+        p.pos[hit:] = start
     v = np.gradient(toe, 1.0 / fps, axis=0)[hit] * KICK_GAIN
     horizontal = float(np.clip(np.hypot(v[0], v[2]), 4.0, 7.0))  # a kick about, not a shot at goal
     aim = _aim(r, motions, p.pos[hit], hit, heading)
