@@ -18,9 +18,8 @@ matching known rig.
 """
 from __future__ import annotations
 
-from functools import lru_cache
-
 import json
+from functools import lru_cache
 from pathlib import Path
 
 from .rig_error import RigError
