@@ -150,8 +150,16 @@ def rig_roles(skel: Skeleton, joint_map: dict[str, str] | None = None) -> tuple[
     The known rig that places the most required roles (then the most roles) is taken; ``joint_map`` entries
     (``{role: joint name}``) are laid over it. Raises :class:`RigError` naming
     the required roles that stay unplaced, and any joint of the map the
-    skeleton lacks.
+    skeleton lacks. Without a map the answer is kept with the skeleton (a long text's joins read a body's
+    balance a few hundred times, each reading took 2 ms of name matching).
     """
+    if not joint_map:
+        name, roles = skel.derived.get(("rig_roles",), lambda: _rig_roles(skel, None))
+        return name, dict(roles)
+    return _rig_roles(skel, joint_map)
+
+
+def _rig_roles(skel: Skeleton, joint_map: dict[str, str] | None) -> tuple[str, dict[str, int]]:
     closest, found = closest_rig(skel.names)
     roles = dict(found)
     best = closest
