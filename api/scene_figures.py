@@ -28,6 +28,10 @@ behind      the angle of the actor around the target from where it faces   > 120
 reaches     the hand to the door at the row's nearest frame (m)            < 0.15 m
 apart       a thing lying still on the floor to the hips of someone who    > :data:`APART_M`
             does not handle it, over the floor (m, nearest frame)
+at          the hips to the thing's box over the floor (m) at the end of   < :data:`AT_M`, facing it
+            the row (机の前に座る: the body at its front)                  within 45°
+hand_in_    the first one's right wrist to the other's left (m, worst       < :data:`HANDS_M`
+hand        frame of the middle half of the rows' overlap: 手をつなぐ)
 =========== ============================================================== =========================
 """
 from __future__ import annotations
@@ -50,6 +54,7 @@ HOLD_M = 0.10
 LAUNCH_S = 0.1
 CATCH_M = 0.15
 APART_M = 0.5  # m: a ball within half a metre of someone's hips lies at their feet
+AT_M = 0.6  # m: hips within this of a thing's box are at it (a chair's depth between them and a desk)
 
 
 @dataclass(frozen=True)
@@ -225,6 +230,19 @@ def _sync(anim, rows, props, c):
                   f"{a} at {ta:.2f} s, {b} at {tb:.2f} s, hands {apart:.2f} m apart")
 
 
+def _hand_in_hand(anim, rows, props, c):
+    a, b = c["actors"]
+    ra, rb = _row(rows, a, c["verb"]), _row(rows, b, c["verb"])
+    ma, mb = _motion(anim, a), _motion(anim, b)
+    lo, hi = max(ra.start, rb.start), min(ra.end, rb.end)
+    if hi <= lo:
+        return Figure("hand_in_hand", float("inf"), "m", False, "the two rows do not overlap")
+    q = 0.25 * (hi - lo)
+    f0, f1 = _frame(anim, lo + q, ma), _frame(anim, hi - q, ma) + 1
+    worst = float(np.linalg.norm(_wrists(ma)[1][f0:f1] - _wrists(mb)[0][f0:f1], axis=1).max())
+    return Figure("hand_in_hand", worst, "m", worst < HANDS_M)
+
+
 def _hand_point(m, f: int, both: bool):
     """The right wrist (``both``: the wrists' midpoint) at frame ``f``."""
     left, right = _wrists(m)
@@ -343,6 +361,17 @@ def _reaches(anim, rows, props, c):
     return Figure("reaches", d, "m", d < 0.15)
 
 
+def _at(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    p = _thing(props, c)
+    f = min(_frame(anim, r.end, m), m.n_frames - 1)
+    local = Rotation.from_quat(p.rotations[f]).inv().apply(m.root_positions[f] - p.positions[f])
+    d = float(np.hypot(*np.maximum(np.abs(local) - 0.5 * np.array(p.size), 0.0)[[0, 2]]))
+    err = _facing_error(m, f, p.positions[f])
+    return Figure("at", d, "m", d < AT_M and err < 45.0, f"facing {err:.0f}° off")
+
+
 def _apart(anim, rows, props, c):
     p = _thing(props, c)
     m = _motion(anim, c["actor"])
@@ -358,5 +387,5 @@ def _apart(anim, rows, props, c):
 _MEASURES = {"approach": _approach, "faces": _faces, "sync": _sync, "holds": _holds, "launch": _launch,
              "catch": _catch, "seat": _seat, "present": _present, "together": _together, "leaves": _leaves,
              "behind": _behind, "reaches": _reaches,
-             "apart": _apart}
+             "apart": _apart, "at": _at, "hand_in_hand": _hand_in_hand}
 CHECKS = tuple(_MEASURES)
