@@ -459,6 +459,7 @@ def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[di
         added += n_new - (hi - lo)
         if r.into_core:  # an adaptation's fitted legs reach through the next clip's core, up to the next join
             end = min(regions[k + 1].w0 + added if k + 1 < len(regions) else track.n_frames, track.n_frames)
-            a, b = max(0, r.w0 - int(np.ceil(REACH * fps))), min(track.n_frames, end + int(np.ceil(REACH * fps)))
-            track.put(a, b, lift_off_floor(track.window(a, b), r.w0 - a, end - a))
+            if end > r.w0:
+                a, b = max(0, r.w0 - int(np.ceil(REACH * fps))), min(track.n_frames, end + int(np.ceil(REACH * fps)))
+                track.put(a, b, lift_off_floor(track.window(a, b), r.w0 - a, end - a))
     return track.motion(), infos, warps

@@ -45,10 +45,8 @@ class Spliced:
         pieces, start = [], 0
         for p in self._pieces:
             end = start + p.n_frames
-            if end <= a or start >= b:  # untouched
+            if end <= a or start >= b:  # untouched (a piece starting at ``a`` is not: the edit goes before it)
                 pieces.append(p)
-                if end == a:
-                    pieces.append(edited)
                 start = end
                 continue
             if start < a:

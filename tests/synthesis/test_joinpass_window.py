@@ -10,6 +10,7 @@ import numpy as np
 import text2anim
 from text2anim.core.contacts import contacts_within, detect_contacts, floor_levels, lowest_heights
 from text2anim.synthesis.join import joinpass
+from text2anim.synthesis.join.spliced import Spliced
 
 
 def _whole_track_pass(motion, regions):
@@ -54,3 +55,19 @@ def test_a_long_text_finished_join_by_join_on_windows_is_the_whole_track_pass(mo
         part = contacts_within(motion[a:b], floor)
         for side in ("left", "right"):
             assert np.array_equal(part.of(side)[10:-10], whole.of(side)[a + 10:b - 10])
+
+
+def test_a_spliced_track_puts_each_edit_where_it_belongs():
+    track = text2anim.animate("太郎は走る。3秒後に歩く。").motions["太郎"]
+    m = track[:300]
+    spliced = Spliced(m)
+    spliced.put(100, 150, m[100:150])  # pieces [0, 100) [100, 150) [150, 300)
+    spliced.put(150, 160, m[200:230])  # at a boundary, longer: [150, 160) becomes 30 frames
+    spliced.put(0, 20, m[50:60])  # at the start, shorter
+    want = [m[50:60], m[20:150], m[200:230], m[160:300]]
+    got = spliced.motion()
+    assert got.n_frames == sum(p.n_frames for p in want) == spliced.n_frames
+    assert np.array_equal(got.rotations, np.concatenate([p.rotations for p in want]))
+    assert np.array_equal(got.root_positions, np.concatenate([p.root_positions for p in want]))
+    assert np.array_equal(spliced.window(5, 45).rotations, got.rotations[5:45])
+    assert np.array_equal(spliced.floor(), floor_levels(lowest_heights(got)))
