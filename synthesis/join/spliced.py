@@ -19,7 +19,7 @@ class Spliced:
     """A motion as pieces end to end (see the module docstring)."""
 
     def __init__(self, motion: Motion):
-        self._pieces = [motion] if motion.n_frames else []
+        self._pieces = [motion]
         self._heights = lowest_heights(motion)
 
     @property
