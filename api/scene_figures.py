@@ -28,6 +28,8 @@ behind      the angle of the actor around the target from where it faces   > 120
 reaches     the hand to the door at the row's nearest frame (m)            < 0.15 m
 apart       a thing lying still on the floor to the hips of someone who    > :data:`APART_M`
             does not handle it, over the floor (m, nearest frame)
+at          the hips to the thing's box over the floor (m) at the end of   < :data:`AT_M`, facing it
+            the row (机の前に座る: the body at its front)                  within 45°
 =========== ============================================================== =========================
 """
 from __future__ import annotations
@@ -50,6 +52,7 @@ HOLD_M = 0.10
 LAUNCH_S = 0.1
 CATCH_M = 0.15
 APART_M = 0.5  # m: a ball within half a metre of someone's hips lies at their feet
+AT_M = 0.6  # m: hips within this of a thing's box are at it (a chair's depth between them and a desk)
 
 
 @dataclass(frozen=True)
@@ -343,6 +346,17 @@ def _reaches(anim, rows, props, c):
     return Figure("reaches", d, "m", d < 0.15)
 
 
+def _at(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    p = _thing(props, c)
+    f = min(_frame(anim, r.end, m), m.n_frames - 1)
+    local = Rotation.from_quat(p.rotations[f]).inv().apply(m.root_positions[f] - p.positions[f])
+    d = float(np.hypot(*np.maximum(np.abs(local) - 0.5 * np.array(p.size), 0.0)[[0, 2]]))
+    err = _facing_error(m, f, p.positions[f])
+    return Figure("at", d, "m", d < AT_M and err < 45.0, f"facing {err:.0f}° off")
+
+
 def _apart(anim, rows, props, c):
     p = _thing(props, c)
     m = _motion(anim, c["actor"])
@@ -358,5 +372,5 @@ def _apart(anim, rows, props, c):
 _MEASURES = {"approach": _approach, "faces": _faces, "sync": _sync, "holds": _holds, "launch": _launch,
              "catch": _catch, "seat": _seat, "present": _present, "together": _together, "leaves": _leaves,
              "behind": _behind, "reaches": _reaches,
-             "apart": _apart}
+             "apart": _apart, "at": _at}
 CHECKS = tuple(_MEASURES)

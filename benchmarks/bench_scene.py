@@ -50,12 +50,13 @@ def run(items: list[dict]) -> tuple[list[tuple[dict, list, str | None]], list[fl
 
 
 def table(results) -> list[str]:
-    from text2anim.scene_figures import CATCH_M, FACING_DEG, HOLD_M, LAUNCH_S, SYNC_S
+    from text2anim.scene_figures import AT_M, CATCH_M, FACING_DEG, HOLD_M, LAUNCH_S, SYNC_S
 
     limits = {"approach": "0.3-1.6 m", "faces": f"< {FACING_DEG:g} deg", "sync": f"< {SYNC_S:g} s",
               "holds": f"< {HOLD_M:g} m", "launch": f"<= {LAUNCH_S:g} s", "catch": f"< {CATCH_M:g} m",
               "seat": "< 0.2 m", "present": "yes", "together": f"< {SYNC_S:g} s", "leaves": "> 0.5 m",
-              "behind": "> 120 deg", "reaches": "< 0.15 m", "apart": "> 0.5 m"}
+              "behind": "> 120 deg", "reaches": "< 0.15 m", "apart": "> 0.5 m",
+              "at": f"< {AT_M:g} m, facing it"}
     by: dict[str, list] = {}
     for item, figs, err in results:
         for c in item.get("scene", []):
@@ -72,7 +73,7 @@ def table(results) -> list[str]:
         unit = next((f.unit for f in figs if f is not None), "")
         med = f"{statistics.median(vals):.3g}" if vals else "-"
         worst = f"{(min(vals) if check in ('leaves', 'behind') else max(vals)):.3g}" if vals else "-"
-        lines.append(f"{check:9} {ok:>4}/{len(figs):<4} {med:>8} {worst:>8}  {limits.get(check, '')} {unit}")
+        lines.append(f"{check:9} {ok:>4}/{len(figs):<4} {med:>8} {worst:>8}  {limits.get(check, unit)}")
     total = sum(len(item.get("scene", [])) for item, _, _ in results)
     passed = sum(1 for _, figs, _ in results for f in figs if f.passed)
     texts_ok = sum(1 for item, figs, err in results if not err and all(f.passed for f in figs))

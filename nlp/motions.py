@@ -23,7 +23,7 @@ from .pred import Pred
 from .predicates import find_predicate, sahen_verb, settle_reason
 from .reference import resolve_persons
 from .casual import recover_homophone
-from .targets import attach_targets
+from .targets import attach_targets, mark_ways
 from .tokens import is_name
 
 _SIDED = {"手": "arm", "腕": "arm", "足": "leg", "脚": "leg", "て": "arm", "うで": "arm", "あし": "leg"}
@@ -70,6 +70,7 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     if notes is not None:
         notes.extend(said)
     assign_actors(phrases)
+    mark_ways(phrases)
     cues = _attach_modifiers(phrases, values, styled)
     for pred in preds:
         recover_homophone(pred)
@@ -271,6 +272,8 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float],
         if ph.pred:
             continue
         target = _next_pred(phrases, i)
+        while target is not None and target.predicate.reason in ("direction", "facing"):
+            target = _next_pred(phrases, target.index)  # ボールを壁に向かって蹴る: the kick's ball
         if target is None:
             continue
         ph.head = target.index

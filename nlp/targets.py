@@ -35,6 +35,7 @@ from .lexicon import (
     PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
+from .persons import refers, words_of
 from .pred import Pred
 from .types import Constraint, MotionSpec
 
@@ -52,17 +53,19 @@ class Target:
     """A noun a motion is directed at: ``name`` as written, whether it is a ``person``, the particle
     that marked it and the side (``SIDE_NOUNS``), and the phrases it spans (``phrases``)."""
 
-    __slots__ = ("name", "person", "particle", "side", "phrases")
+    __slots__ = ("name", "person", "particle", "side", "phrases", "sure")
 
-    def __init__(self, name: str, person: bool, particle: str, side: str | None, phrases: tuple[int, ...]):
+    def __init__(self, name: str, person: bool, particle: str, side: str | None, phrases: tuple[int, ...],
+                 sure: bool = True):
         self.name, self.person, self.particle, self.side, self.phrases = name, person, particle, side, phrases
+        self.sure = sure  # a person by more than a word that can be a name (机 is also a surname)
 
 
 def attach_targets(phrases: list[Phrase]) -> None:
     """Give each motion its target (this module's docstring); a thing read from それ is said in its note."""
-    _mark_direction_and_facing(phrases)
     pending: list[Target] = []
     group = None
+    actors = {a for ph in phrases if ph.pred for a in (ph.pred.actor, *ph.pred.co_actors) if a}
     for i, ph in enumerate(phrases):
         if ph.group != group:
             pending, group = [], ph.group
@@ -75,7 +78,7 @@ def attach_targets(phrases: list[Phrase]) -> None:
         if pred.reason in ("direction", "facing"):
             continue  # its noun waits for the motion it says the way of
         if pred.motion:
-            _settle(pred, pending, phrases)
+            _settle(pred, pending, actors)
         pending = []
     _follow_on([ph.pred for ph in phrases if ph.pred is not None])
 
@@ -108,6 +111,11 @@ def _name(ph: Phrase, strict: bool = False) -> tuple[str, bool]:
     return (run if noun and noun in run else noun), False
 
 
+def _sure(ph: Phrase) -> bool:
+    """Is ``ph`` a person by more than a word that can be a name: a tag, the lists, an honorific, a pronoun?"""
+    return _surely_person(ph) or refers(words_of(ph.tokens))
+
+
 def _surely_person(ph: Phrase) -> bool:
     toks = ph.tokens
     return (any(t.pos3 == "人名" for t in toks) or noun_of(ph) in PERSON_NOUNS
@@ -135,7 +143,7 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
             particle = "へ"  # 花子のとこ行く: spoken text drops the へ
         if (rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS) and particle in TARGET_PARTICLES:
             name, person = _name(ph)
-            return Target(name, person, particle, SIDE_NOUNS.get(rel), (i, i + 1))
+            return Target(name, person, particle, SIDE_NOUNS.get(rel), (i, i + 1), _sure(ph))
     particle = _particle(ph)
     if particle not in TARGET_PARTICLES:
         return None
@@ -145,7 +153,7 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
     name, person = _name(ph)
     if not name or name in BODY_PARTS or name in NOT_TARGETS or any(t.is_number for t in ph.tokens):
         return None
-    return Target(name, person, particle, None, (i,))
+    return Target(name, person, particle, None, (i,), _sure(ph))
 
 
 def _inner_side(ph: Phrase) -> Target | None:
@@ -157,7 +165,8 @@ def _inner_side(ph: Phrase) -> Target | None:
             if rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS:
                 head = Phrase(ph.index, toks[:k], ph.sentence, ph.quoted)
                 name, person = _name(head)
-                return Target(name, person, _particle(ph), SIDE_NOUNS.get(rel), (ph.index,)) if name else None
+                return (Target(name, person, _particle(ph), SIDE_NOUNS.get(rel), (ph.index,), _sure(head))
+                        if name else None)
             return None
     return None
 
@@ -165,9 +174,13 @@ def _inner_side(ph: Phrase) -> Target | None:
 # ---------------------------------------------------------------- roles
 
 
-def _settle(pred: Pred, pending: list[Target], phrases: list[Phrase]) -> None:
-    """The target of ``pred`` from the nouns before it in its clause (the nearest one with a role wins)."""
+def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
+    """The target of ``pred`` from the nouns before it in its clause (the nearest one with a role wins).
+    A word taken for a person only because it can be a name, never an actor of the text, is a thing where
+    the body goes beside it or onto it (机の前に座る, 岩に座る: 机 and 岩 are also names)."""
     for t in reversed(pending):
+        if t.person and not t.sure and t.name not in actors and (t.side is not None or pred.verb in SUPPORT_VERBS):
+            t.person = False
         role = _role(pred, t)
         if role is None:
             continue
@@ -197,8 +210,8 @@ def _role(pred: Pred, t: Target) -> str | None:
         return "recipient" if t.person else "destination"
     if t.particle in ("へ", "まで") or verb in LOCOMOTION_VERBS:
         return "goal"
-    if verb in SUPPORT_VERBS:
-        return "goal" if t.person else "support"
+    if verb in SUPPORT_VERBS:  # 机の前に座る: beside a thing is where the body goes, not what holds it up
+        return "goal" if t.person or t.side not in (None, "on") else "support"
     if t.person:
         return "patient" if verb in CONTACT_VERBS else "addressee"
     return "at"
@@ -207,8 +220,10 @@ def _role(pred: Pred, t: Target) -> str | None:
 # ---------------------------------------------------------------- phrases that are no motion
 
 
-def _mark_direction_and_facing(phrases: list[Phrase]) -> None:
-    """花子に向かって走る: 向かって says the way of the next motion; 向かい合って that the actors face."""
+def mark_ways(phrases: list[Phrase]) -> None:
+    """花子に向かって走る: 向かって says the way of the next motion; 向かい合って that the actors face.
+    Run before the modifiers attach: a を-noun or body part before the way (ボールを壁に向かって蹴る) is the
+    next motion's."""
     for i, ph in enumerate(phrases):
         pred = ph.pred
         if pred is None or pred.reason or pred.verb not in _WAY_TE or pred.ending not in ("te", "renyou"):

@@ -18,6 +18,8 @@ give (渡す)           it is in the giver's hand until the hand is furthest out
 open (開ける, 閉める)  a door in front of the hand at its furthest reach swings open (or shut) on its hinge
 any other            it is held (one hand or both, :mod:`scene.shapes`) while the row plays
 seat (座る on it)     it stands under the hips where they sit, from the start
+beside (机の前に座る)  it stands where the body ends beside it, from the start: ahead of the body (前, 後ろ,
+                     近く), or to its side (隣, 横, 左, 右); one sat in front of is sat at on a chair
 place (駅まで走る)     a marker on the floor where the walk ends
 ==================== ====================================================================================
 
@@ -56,6 +58,9 @@ GIVE = frozenset("渡す 手渡す 差し出す".split())
 RECEIVE = frozenset("受け取る 貰う".split())
 OPEN = frozenset("開ける 開く".split())
 CLOSE = frozenset("閉める 閉じる 締める".split())
+SIT = frozenset("座る 腰掛ける 着席する".split())
+#: m at the built-in body's size: the room between the hips and the near side of a thing beside the body
+BESIDE_GAP = 0.3
 #: A door's swing, degrees.
 DOOR_SWING = 80.0
 
@@ -131,6 +136,10 @@ def _named(r: Element, motions) -> list[tuple[str, str]]:
             out.append((r.target, "table"))
         elif r.target_role in ("goal", "at", "source") and not shape_of(r.target)[1]:
             out.append((r.target, "place"))
+        elif r.target_role == "goal" and r.target_side not in (None, "on"):
+            out.append((r.target, "beside"))
+            if r.verb in SIT:
+                out.append(("椅子", "seat"))  # 机の前に座る: on a chair at it
         elif r.target_role in ("goal", "at"):
             out.append((r.target, "table"))
     if r.object and r.object not in motions:  # after the table it may be put on
@@ -156,6 +165,9 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         p.events.append((t, f"{_who(r.actor)} " + ("rises from it" if r.target_role == "source" else "sits on it")))
     elif how == "table":
         _table(p, m, f0, f1)
+    elif how == "beside":
+        _beside(p, m, f1 - 1, r.target_side)
+        p.events.append((f1 / fps - 1 / fps, f"{_who(r.actor)} is at its {r.target_side} side"))
     elif how == "place":
         path, heading = bodies.hips_path(m)
         f = f1 - 1 if r.target_role != "source" else f0
@@ -456,6 +468,22 @@ def _table(p: _Path, m: Motion, f0: int, f1: int) -> None:
     p.size = (w, top, d)
     centre = grip[f] + (0.5 * d - 0.1) * bodies.forward(heading)
     p.rest(0, np.array([centre[0], 0.5 * top, centre[2]]), heading)
+
+
+def _beside(p: _Path, m: Motion, f: int, side: str | None) -> None:
+    """A thing standing where the body is at frame ``f`` beside it: ahead of the hips, its near side
+    :data:`BESIDE_GAP` from them (the body at its front, 前, faces it), or to the body's right or left
+    (隣, 横, 右, 左), turned as the body faces."""
+    path, heading = bodies.hips_path(m)
+    h = float(heading[f])
+    w, _, d = p.size
+    gap = BESIDE_GAP * p.scale
+    if side in ("beside", "right", "left"):
+        across = -np.pi / 2 if side in ("beside", "right") else np.pi / 2
+        centre = path[f] + (gap + 0.5 * w) * bodies.forward(h + across)
+    else:
+        centre = path[f] + (gap + 0.5 * d) * bodies.forward(h)
+    p.rest(0, centre + [0.0, p.half, 0.0], h)
 
 
 def _table_top(hand_y: float) -> float:

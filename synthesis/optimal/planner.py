@@ -52,19 +52,25 @@ def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weight
             c2, b2, _ = geometry(tr_contacts, prev, moved, floor, L)
             if c2.method == "motion_transition":
                 phase, inc, choice, bounds = off - inc.offset, moved, c2, b2
+    shift = 0
+    late = bounds.c0_end - int(round(CORE_TOLERANCE * fps)) - bounds.c1[0]
+    if 0 < late <= int(round(MAX_SHIFT * fps)) and prev.cyclic and allow_shift:
+        # a loop whose core the join before used up (a short walk between two motions) walks on a little
+        shift, inc = late, inc.moved(late)
+        choice, bounds, _ = geometry(tr_contacts, prev, inc, floor, L)
     if bounds.c1[0] < bounds.c0_end - int(round(CORE_TOLERANCE * fps)):
         return Skip(f"element {inc.element.id} ({inc.element.clip.name}) is not executed: its core "
                     f"({bounds.c1[0] / fps:.2f} s) would begin before the core of element {prev.element.id} "
                     f"ends ({bounds.c0_end / fps:.2f} s); schedule it later to perform it (paper 000 §4.2.5)")
-    shift = 0
     rs = ranges(choice, bounds)
     if allow_shift:
         s0 = rs[0]
         need = max(L, int(round(MIN_ROOM * fps)), (s0.p_len or 0) if choice.method == "motion_connection" else 0)
         have = s0.t1[1] - s0.t0[0]
-        if have < need:
-            shift = min(need - have, int(round(MAX_SHIFT * fps)))
-            inc = inc.moved(shift)
+        more = min(need - have, int(round(MAX_SHIFT * fps)) - shift)
+        if more > 0:
+            shift += more
+            inc = inc.moved(more)
             choice, bounds, _ = geometry(tr_contacts, prev, inc, floor, L)
             rs = ranges(choice, bounds)
     for k, r in enumerate(rs):

@@ -80,3 +80,29 @@ def test_a_place_keeps_its_suffix_and_kana_split_after_a_particle_is_one_verb():
     assert (run.verb, run.target, run.target_role) == ("走る", "太郎", "goal")  # not は + 知って
     assert hug.target == "太郎" and any("走る" in n for n in a.notes)
     assert [m.verb for m in analyze("花子は歩く。太郎までは知っている。").motions] == ["歩く"]
+
+
+def test_what_comes_before_the_way_belongs_to_the_motion_after_it():
+    (kick,) = analyze("少年はボールを壁に向かって蹴った。").motions
+    assert (kick.object, kick.target) == ("ボール", "壁")  # the ball was dropped with 向かって
+    (wave,) = analyze("花子は手を太郎に向けて振った。").motions
+    assert (wave.body_part, wave.target, wave.target_role) == ("arm", "太郎", "addressee")
+
+
+def test_a_word_that_can_be_a_name_is_a_thing_where_the_body_goes_beside_or_onto_it():
+    (sit,) = analyze("健太は机の前に座った。").motions  # 机 is also a surname
+    assert (sit.target, sit.target_person, sit.target_role, sit.target_side) == ("机", False, "goal", "front")
+    (sit,) = analyze("健太は岩に座った。").motions
+    assert (sit.target, sit.target_person, sit.target_role) == ("岩", False, "support")
+    run, sit = analyze("翼は走った。太郎は翼の隣に座った。").motions  # an actor of the text stays a person
+    assert (sit.target, sit.target_person) == ("翼", True)
+    (sit,) = analyze("太郎は花子の前に座った。").motions
+    assert (sit.target, sit.target_person) == ("花子", True)
+
+
+def test_a_short_walk_between_two_motions_is_walked_not_dropped(db):
+    """開けて部屋に入り、座った: the door's transition used the whole walk, and the sit was 'not executed'."""
+    anim = text2anim.animate("健太はドアを開けて部屋に入り、座った。", db=db)
+    assert not anim.report["skipped"] and all(v.get("executed", True) for v in anim.report["elements"].values())
+    (motion,) = anim.motions.values()
+    assert motion.root_positions[-1, 1] < 0.75 * motion.root_positions[0, 1]  # he ends seated
