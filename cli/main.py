@@ -186,6 +186,20 @@ def main(argv: list[str] | None = None) -> int:
             gc.enable()
 
 
+def command() -> int:
+    """The ``text2anim`` program: :func:`main` of the process's own arguments, for a process that ends with it.
+
+    The collector is frozen once the command is done: the interpreter's end ran the cyclic collector several
+    times over every object the command left (50,000-80,000, 15-35 ms a pass), 0.06-0.08 s of `plan`'s 0.3 s
+    CPU and 0.14-0.17 s of an animation's 1 s, to free what the process's exit frees anyway. Frozen, those
+    last passes skip them; the atexit handlers (the databases closed) and the flush of standard output run
+    as before. A program calling :func:`main` keeps its collector as it was.
+    """
+    status = main()
+    gc.freeze()
+    return status
+
+
 def _main(argv: list[str], commands: dict) -> int:
     parser = build_parser(commands)
     args = _parse(parser, _route_default(argv, commands))
@@ -213,4 +227,4 @@ def _main(argv: list[str], commands: dict) -> int:
 
 
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    sys.exit(command())
