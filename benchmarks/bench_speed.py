@@ -304,14 +304,15 @@ def cpu_split(modules: list[tuple[str, str]], whole: float, env: dict, cwd: str,
     """Where a whole process's CPU goes: child processes that only import, package after package
     (:data:`GROUPS`, then everything else the process imported: our modules and the standard library's
     rest), each median CPU minus the one before; ``run`` is what is left of ``whole``."""
-    steps, wanted = [("python", "import gc\ngc.disable()")], []  # as the command, collector paused (cli.main)
+    # as the command: the collector paused for the imports and frozen at the end (cli.main)
+    steps, wanted = [("python", "import gc\ngc.disable()\ngc.freeze()")], []
     for group in GROUPS + ("text2anim + rest",):
         mods = [m for m, g in modules if g == group or group == "text2anim + rest"]
         if not mods:
             continue
         wanted += [m for m in mods if m not in wanted and not m.startswith("__")]
         steps.append((group, "import gc, importlib\ngc.disable()\nfor m in %r:\n    try:\n        importlib.import_module(m)\n"
-                             "    except ImportError:\n        pass" % (wanted,)))
+                             "    except ImportError:\n        pass\ngc.freeze()" % (wanted,)))
     out, before = [], 0.0
     for name, code in steps:
         cpu = statistics.median(child([sys.executable, "-c", code], env, cwd)[0] for _ in range(runs))
