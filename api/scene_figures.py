@@ -30,6 +30,8 @@ apart       a thing lying still on the floor to the hips of someone who    > :da
             does not handle it, over the floor (m, nearest frame)
 at          the hips to the thing's box over the floor (m) at the end of   < :data:`AT_M`, facing it
             the row (机の前に座る: the body at its front)                  within 45°
+hand_in_    the first one's right wrist to the other's left (m, worst       < :data:`HANDS_M`
+hand        frame of the middle half of the rows' overlap: 手をつなぐ)
 =========== ============================================================== =========================
 """
 from __future__ import annotations
@@ -228,6 +230,19 @@ def _sync(anim, rows, props, c):
                   f"{a} at {ta:.2f} s, {b} at {tb:.2f} s, hands {apart:.2f} m apart")
 
 
+def _hand_in_hand(anim, rows, props, c):
+    a, b = c["actors"]
+    ra, rb = _row(rows, a, c["verb"]), _row(rows, b, c["verb"])
+    ma, mb = _motion(anim, a), _motion(anim, b)
+    lo, hi = max(ra.start, rb.start), min(ra.end, rb.end)
+    if hi <= lo:
+        return Figure("hand_in_hand", float("inf"), "m", False, "the two rows do not overlap")
+    q = 0.25 * (hi - lo)
+    f0, f1 = _frame(anim, lo + q, ma), _frame(anim, hi - q, ma) + 1
+    worst = float(np.linalg.norm(_wrists(ma)[1][f0:f1] - _wrists(mb)[0][f0:f1], axis=1).max())
+    return Figure("hand_in_hand", worst, "m", worst < HANDS_M)
+
+
 def _hand_point(m, f: int, both: bool):
     """The right wrist (``both``: the wrists' midpoint) at frame ``f``."""
     left, right = _wrists(m)
@@ -372,5 +387,5 @@ def _apart(anim, rows, props, c):
 _MEASURES = {"approach": _approach, "faces": _faces, "sync": _sync, "holds": _holds, "launch": _launch,
              "catch": _catch, "seat": _seat, "present": _present, "together": _together, "leaves": _leaves,
              "behind": _behind, "reaches": _reaches,
-             "apart": _apart, "at": _at}
+             "apart": _apart, "at": _at, "hand_in_hand": _hand_in_hand}
 CHECKS = tuple(_MEASURES)

@@ -50,13 +50,13 @@ def run(items: list[dict]) -> tuple[list[tuple[dict, list, str | None]], list[fl
 
 
 def table(results) -> list[str]:
-    from text2anim.scene_figures import AT_M, CATCH_M, FACING_DEG, HOLD_M, LAUNCH_S, SYNC_S
+    from text2anim.scene_figures import AT_M, CATCH_M, FACING_DEG, HANDS_M, HOLD_M, LAUNCH_S, SYNC_S
 
     limits = {"approach": "0.3-1.6 m", "faces": f"< {FACING_DEG:g} deg", "sync": f"< {SYNC_S:g} s",
               "holds": f"< {HOLD_M:g} m", "launch": f"<= {LAUNCH_S:g} s", "catch": f"< {CATCH_M:g} m",
               "seat": "< 0.2 m", "present": "yes", "together": f"< {SYNC_S:g} s", "leaves": "> 0.5 m",
               "behind": "> 120 deg", "reaches": "< 0.15 m", "apart": "> 0.5 m",
-              "at": f"< {AT_M:g} m, facing it"}
+              "at": f"< {AT_M:g} m, facing it", "hand_in_hand": f"< {HANDS_M:g} m"}
     by: dict[str, list] = {}
     for item, figs, err in results:
         for c in item.get("scene", []):
@@ -66,18 +66,18 @@ def table(results) -> list[str]:
         if err:
             for c in item.get("scene", []):
                 by[c["check"]].append(None)
-    lines = [f"{'check':9} {'passed':>9} {'median':>8} {'worst':>8}  limit"]
+    lines = [f"{'check':12} {'passed':>9} {'median':>8} {'worst':>8}  limit"]
     for check, figs in by.items():
         vals = [f.value for f in figs if f is not None and not math.isnan(f.value)]
         ok = sum(1 for f in figs if f is not None and f.passed)
         unit = next((f.unit for f in figs if f is not None), "")
         med = f"{statistics.median(vals):.3g}" if vals else "-"
         worst = f"{(min(vals) if check in ('leaves', 'behind') else max(vals)):.3g}" if vals else "-"
-        lines.append(f"{check:9} {ok:>4}/{len(figs):<4} {med:>8} {worst:>8}  {limits.get(check, unit)}")
+        lines.append(f"{check:12} {ok:>4}/{len(figs):<4} {med:>8} {worst:>8}  {limits.get(check, unit)}")
     total = sum(len(item.get("scene", [])) for item, _, _ in results)
     passed = sum(1 for _, figs, _ in results for f in figs if f.passed)
     texts_ok = sum(1 for item, figs, err in results if not err and all(f.passed for f in figs))
-    lines.append(f"{'all':9} {passed:>4}/{total:<4}   texts with every check met: {texts_ok}/{len(results)}")
+    lines.append(f"{'all':12} {passed:>4}/{total:<4}   texts with every check met: {texts_ok}/{len(results)}")
     return lines
 
 
@@ -101,7 +101,7 @@ def main(argv=None) -> int:
             print(item["text"])
             for f in figs:
                 mark = "ok " if f.passed else "MISS"
-                print(f"  {mark} {f.check:9} {f.value:8.3f} {f.unit:4} {f.note}")
+                print(f"  {mark} {f.check:12} {f.value:8.3f} {f.unit:4} {f.note}")
     return 0
 
 

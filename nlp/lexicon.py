@@ -335,14 +335,19 @@ COUNTERPARTS = {
 #: Verbs done to a person by touching them: the person is the ``patient`` (close by), not an addressee.
 CONTACT_VERBS = frozenset(
     """抱き締める 抱く 抱きつく 抱き付く 押す 叩く 殴る 撫でる 触る 触れる 起こす 揺り起こす 掴む 引く 引っ張る
-    突き飛ばす 支える 担ぐ おんぶする 抱っこする くすぐる""".split()
+    突き飛ばす 支える 担ぐ おんぶする 抱っこする くすぐる 捕まえる 捕らえる""".split()
 )
 
 #: Verbs two people do to each other: co-actors of one are each other's partner (太郎と花子は握手する).
 RECIPROCAL_VERBS = frozenset(
     """握手する ハイタッチする 話す 会話する 話し合う 喧嘩する けんかする 戦う 乾杯する キスする 見つめ合う
-    抱き合う 向かい合う 組み合う""".split()
+    抱き合う 向かい合う 組み合う 繋ぐ つなぐ 手を繋ぐ""".split()
 )
+#: Verbs whose を-person is where the motion ends, not whom it is done to: 男を追いかける runs up to him.
+CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く 追いつく".split())
+#: Reciprocal verbs done side by side, the hands between the two: the first of the pair holds with the
+#: right hand (its clip mirrored), the partner, on its right, with the left (the clip as keyframed).
+HAND_IN_HAND = frozenset("繋ぐ つなぐ 手を繋ぐ".split())
 
 #: Nouns before に / と that are no target (一緒に is "together", not a place).
 NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())

@@ -103,6 +103,8 @@ def _modifier_role(ph: Phrase, values: dict[int, float]) -> str:
         return "mimetic"
     if not toks[0].is_number or toks[0].value is None:
         return ""
+    if len(toks) > 1 and toks[1].surface == "人" and case_particle(ph) in ("は", "が", "も"):
+        return ""  # 2人は: the actor, as 二人は (reference.py reads whom it names)
     values[ph.index] = toks[0].value
     unit = toks[1].surface if len(toks) > 1 else ""
     kind = COUNTERS.get(unit, ("number",))[0]

@@ -224,8 +224,8 @@ def _ending_from_words(words: list[Token], last: Token) -> tuple[str, str]:
         return "tari", w.surface
     if "同時" in surfaces:
         return "douji", cue
-    if w.surface == "の":
-        return "nominal", cue
+    if w.surface == "の" and surfaces != ["の", "で"]:
+        return "nominal", cue  # 歩くのが好き, 走るのではなく; not 来たので (UniDic: の + だ's で, the cause ので)
     if w.surface == "と" and w.pos2 == "格助詞":
         return "quote", cue
     if w.surface in ("と", "ば"):

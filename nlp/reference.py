@@ -16,7 +16,8 @@ particle (花子に, 花子を and 花子の name her too).  Then:
   みんな / 彼ら / 全員 every person named so far, in the order they were named; it needs at least
   two of them.
 - a pronoun or group that refers to no one named keeps its own name as before (彼女, 彼ら: a
-  character of its own; みんな, 二人 then name no one, and the motion is the default character's).
+  character of its own; みんな then names no one, and the motion is the default character's); a counted
+  group (二人, 3人) is the persons named and new characters for the rest (一人目, 二人目, ...).
 
 Each phrase gets ``persons``: the canonical names (as the actor field writes them) of whom it
 names; the analysis says every reading of a pronoun or group in ``notes`` (stderr, ``--explain``).
@@ -105,7 +106,10 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
             persons, why = (seen.group(m) if m.kind == "group"
                             else seen.pronoun(m, () if actor else tuple(acting.get(ph.group, ()))))
             if not persons:
-                persons = _unresolved(ph, m)
+                persons = _unresolved(ph, m, seen.order)
+                if len(persons) > 1:
+                    notes.append(f"read {m.written} as {'、'.join(persons)} (fewer were named: the rest are new "
+                                 "characters)")
             elif persons != (m.written,):
                 notes.append(f"read {m.written} as {'、'.join(persons)} ({why})")
         ph.persons = persons
@@ -179,9 +183,17 @@ class _Named:
         return tuple(p for p in self.order if p in last), f"the last {m.size} persons named"
 
 
-def _unresolved(ph: Phrase, m: Mention) -> tuple[str, ...]:
+#: The characters a counted group that refers to no one named brings on: 二人 -> 一人目, 二人目.
+ORDINALS = tuple(f"{k}人目" for k in "一二三四五六七八九十")
+
+
+def _unresolved(ph: Phrase, m: Mention, named: list[str]) -> tuple[str, ...]:
     """A pronoun or group that refers to no one named: 彼女, 彼ら and 皆さん are characters of their
-    own (as written, as before this rule), みんな and 二人 name no one."""
+    own (as written, as before this rule); 二人 / 三人 with fewer named before are those ``named`` and
+    new characters for the rest (:data:`ORDINALS`, up to ten: 太郎は3人で踊った is 太郎, 二人目 and
+    三人目); みんな names no one."""
+    if m.kind == "group" and len(named) < m.size <= len(ORDINALS):
+        return (*named, *ORDINALS[len(named):m.size])
     if m.kind == "group" and not (any(t.pos1 == "代名詞" for t in ph.tokens) or _honorific(ph.tokens)):
         return ()
     name = person_name(ph)

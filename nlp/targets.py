@@ -31,11 +31,12 @@ from dataclasses import replace
 from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
-    BODY_PARTS, CATCHING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
+    BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
     PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
+from .phrases import body_nouns
 from .pred import Pred
 from .types import Constraint, MotionSpec
 
@@ -136,6 +137,10 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
     if ph.role:
         return None
     nxt = phrases[i + 1] if i + 1 < len(phrases) else None
+    if _before_no(ph) and nxt is not None and nxt.group == ph.group and nxt.role in ("object", "body part") \
+            and (noun_of(nxt) in BODY_PARTS or noun_of(nxt) in body_nouns()):
+        name, person = _name(ph)  # 花子の肩を叩く: done to 花子
+        return Target(name, True, "を", None, (i,), _sure(ph)) if person else None
     if _before_no(ph) and nxt is not None and nxt.group == ph.group and not nxt.pred and not nxt.role:
         rel = noun_of(nxt)
         particle = _particle(nxt)
@@ -196,7 +201,7 @@ def _role(pred: Pred, t: Target) -> str | None:
     verb = pred.verb
     if t.particle == "を":
         if t.person:
-            return "patient"
+            return "goal" if verb in CHASING_VERBS else "patient"
         return "source" if verb in LEAVING_VERBS else None
     if t.particle == "と":
         return "partner" if t.person else None

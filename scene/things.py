@@ -21,6 +21,8 @@ seat (座る on it)     it stands under the hips where they sit, from the start
 beside (机の前に座る)  it stands where the body ends beside it, from the start: ahead of the body (前, 後ろ,
                      近く), or to its side (隣, 横, 左, 右); one sat in front of is sat at on a chair
 place (駅まで走る)     a marker on the floor where the walk ends
+route (公園を歩く)     a marker on the floor halfway along the walk (a を-place of a verb that travels,
+                     with no shape of its own: gone through, not carried)
 ==================== ====================================================================================
 
 Held things follow the hand: its grip point (:func:`scene.bodies.hand`) and turn; a thing between both
@@ -38,6 +40,7 @@ from scipy.spatial.transform import Rotation
 from text2anim.core.contact_instant import contact_instant
 from text2anim.core.fk import matrix_to_quat
 from text2anim.core.motion import Motion
+from text2anim.nlp.lexicon import LOCOMOTION_VERBS
 from text2anim.scheduler.types import Element
 
 from . import bodies
@@ -107,7 +110,7 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
             named += [(held.name, "handled")] if held is not None else []  # 拾って、投げる: what the hand holds
         for name, how in named:
             if name not in paths:
-                shape, known = (PLACE, False) if how == "place" else shape_of(name)
+                shape, known = (PLACE, False) if how in ("place", "route") else shape_of(name)
                 paths[name] = _Path(name, shape, known, n, scale.get(r.actor, 1.0))
             _event(paths[name], how, r, rows, motions, fps)
     out = []
@@ -119,7 +122,7 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
         p.pos[:first] = p.pos[first]
         p.rot[:first] = p.rot[first]
         if not p.known:
-            said.append(f"{p.name}: " + ("a place, shown as a marker where the motion ends" if p.shape is PLACE
+            said.append(f"{p.name}: " + ("a place, shown as a marker on the floor" if p.shape is PLACE
                                          else "no shape of its own, shown as a box"))
         out.append(Thing(p.name, p.shape.shape, p.size, p.shape.color, p.pos, p.rot, tuple(p.events), p.known))
     return tuple(out), said
@@ -142,7 +145,9 @@ def _named(r: Element, motions) -> list[tuple[str, str]]:
                 out.append(("椅子", "seat"))  # 机の前に座る: on a chair at it
         elif r.target_role in ("goal", "at"):
             out.append((r.target, "table"))
-    if r.object and r.object not in motions:  # after the table it may be put on
+    if r.object and r.object not in motions and r.verb in LOCOMOTION_VERBS and not shape_of(r.object)[1]:
+        out.append((r.object, "route"))  # 公園を歩く: the park is walked through, not carried
+    elif r.object and r.object not in motions:  # after the table it may be put on
         out.append((r.object, "handled"))
     return out
 
@@ -168,6 +173,10 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
     elif how == "beside":
         _beside(p, m, f1 - 1, r.target_side)
         p.events.append((f1 / fps - 1 / fps, f"{_who(r.actor)} is at its {r.target_side} side"))
+    elif how == "route":
+        path, _ = bodies.hips_path(m)
+        p.rest(0, path[(f0 + f1) // 2] + [0.0, p.half, 0.0])
+        p.events.append((t, f"{_who(r.actor)} goes through it"))
     elif how == "place":
         path, heading = bodies.hips_path(m)
         f = f1 - 1 if r.target_role != "source" else f0

@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Generic
 
-from text2anim.nlp.lexicon import RECIPROCAL_VERBS
+from text2anim.nlp.lexicon import HAND_IN_HAND, RECIPROCAL_VERBS
 from text2anim.nlp.types import MotionSpec
 
 from .clips import C, ClipMeta, ClipSource, timing
@@ -52,7 +52,9 @@ class Picker(Generic[C]):
                                 + (f" the {spec.body_part}" if spec.body_part else ""))
         n = max(1, int(spec.repeat))
         picks = self._as_long_as_mates(spec.id, self.variants.take(hits, n), group(hits))
-        if picks[0].mirrored and spec.target_role == "partner" and spec.verb in RECIPROCAL_VERBS:
+        if spec.target_role == "partner" and spec.verb in HAND_IN_HAND:  # the first on the partner's left
+            picks[0] = Pick(picks[0].clip, mirrored=all(spec.id < m for m in self.together.get(spec.id, ())))
+        elif picks[0].mirrored and spec.target_role == "partner" and spec.verb in RECIPROCAL_VERBS:
             picks[0] = Pick(picks[0].clip, mirrored=False)  # two people shake right hands: not mirrored
         self.chosen[spec.id] = picks[0].clip
         if picks[0].mirrored:

@@ -76,7 +76,9 @@ def test_a_pronoun_read_as_a_person_is_said_in_the_notes_and_on_stderr(capsys):
     ("太郎は歩いた。彼女は座った。", ["太郎", "太郎"]),  # the only candidate, whatever its name's ending
     ("父が来た。彼女は座った。", ["父", "彼女"]),  # 父 is a man by the word: 彼女 is someone new
     ("彼は立ち上がる。彼女は拍手する。", ["彼", "彼女"]),  # nobody named: each a character of its own
-    ("二人は一緒に歩いた。", [None]),  # a group of no one named names no one
+    ("二人は一緒に歩いた。", ["一人目", "二人目"]),  # a counted group of no one named: two new characters
+    ("太郎は3人で踊った。", ["太郎", "二人目", "三人目"]),  # 太郎 and two more
+    ("みんなで踊った。", [None]),  # an uncounted group of no one named names no one
     ("私は太郎に会った。彼は笑った。", ["私", "太郎"]),  # 彼 never refers to the speaker
 ])
 def test_who_a_pronoun_refers_to(text, actors):

@@ -106,3 +106,11 @@ def test_a_short_walk_between_two_motions_is_walked_not_dropped(db):
     assert not anim.report["skipped"] and all(v.get("executed", True) for v in anim.report["elements"].values())
     (motion,) = anim.motions.values()
     assert motion.root_positions[-1, 1] < 0.75 * motion.root_positions[0, 1]  # he ends seated
+
+
+def test_a_place_walked_through_is_a_marker_on_the_floor_not_a_thing_carried(db):
+    anim = text2anim.animate("太郎は公園を歩いた。", db=db)
+    (park,) = [p for p in anim.props() if p.name == "公園"]
+    (motion,) = anim.motions.values()
+    assert park.size[1] < 0.05 and np.ptp(park.positions, axis=0).max() == 0.0  # flat, lying still
+    assert np.hypot(*(park.positions[0] - motion.root_positions[motion.n_frames // 2])[[0, 2]]) < 0.5
