@@ -186,7 +186,14 @@ class MotionDB(AbstractContextManager):
         with self._errors(), self.engine.connect() as conn:
             fairy = conn.connection
             serial = fairy.info.setdefault("t2a_serial", next(_SERIALS))  # for the life of the DBAPI connection
-            return serial, fairy.dbapi_connection.execute("PRAGMA data_version").fetchone()[0]
+            cursor = fairy.cursor()  # the driver's own: no statement event, nothing compiled
+            try:
+                cursor.execute("PRAGMA data_version")
+                row = cursor.fetchone()
+            finally:
+                cursor.close()
+            assert row is not None
+            return serial, int(row[0])
 
     @contextmanager
     def _session(self, write: bool = False):
