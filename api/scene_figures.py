@@ -14,8 +14,8 @@ sync        the two actors' reach instants apart (s: each one's hand       < :da
             how far apart their hands are then (but in a hug)
 holds       the thing's centre to the holding hand's wrist (m, worst       < :data:`HOLD_M`
             frame of the row; the wrists' midpoint for a two-hand thing)
-launch      the thing's first fast frame to the striking foot's or hand's  < :data:`LAUNCH_S`
-            closest frame to it (s)
+launch      the thing's first fast frame (a kick: its sharpest speed-up)   < :data:`LAUNCH_S`
+            to the striking foot's or hand's closest frame to it (s)
 catch       the thing to the catcher's wrists' midpoint when it stops      < :data:`CATCH_M`
             flying (m)
 seat        the seat's centre to the hips over the floor (m) where they    < 0.2 m, hips 0-0.3 m
@@ -283,9 +283,11 @@ def _launch(anim, rows, props, c):
     joints = [bm.feet["left"][1], bm.feet["right"][1]] if kick else [bm.hands["right"], bm.hands["left"]]
     ends = m.positions[:, joints]
     near = np.linalg.norm(ends[f0:f1] - p.positions[f0:f1, None], axis=2).min(axis=1)
-    if kick:
+    if kick:  # the ball's sharpest speed-up (a dribbled ball rolls to the foot before it)
         contact = f0 + int(np.argmin(near))
         moving = np.nonzero(v[f0:f1] > 1.0)[0]
+        if len(moving):
+            moving = np.array([int(np.argmax(np.diff(v[f0:f1]))) + 1])
     else:  # a throw: the thing leaves the hand (its distance to the hand starts growing fast)
         away = np.nonzero(near > 0.25)[0]
         moving = away

@@ -19,6 +19,7 @@ matching known rig.
 from __future__ import annotations
 
 import json
+from functools import lru_cache
 from pathlib import Path
 
 from .rig_error import RigError
@@ -139,9 +140,16 @@ def _place(names: tuple[str, ...], table: dict[str, str]) -> dict[str, int]:
 
 def closest_rig(names: tuple[str, ...]) -> tuple[str, dict[str, int]]:
     """``(rig name, {role: joint index})`` of the known rig that places the most required roles, then the most roles."""
+    closest, placed = _closest_rig(names)
+    return closest, dict(placed)
+
+
+@lru_cache(maxsize=64)
+def _closest_rig(names: tuple[str, ...]) -> tuple[str, tuple[tuple[str, int], ...]]:
+    """:func:`closest_rig`, kept per skeleton: every join's balance asks it of the same names (3 ms a warm call)."""
     placed = {name: _place(names, t) for name, t in RIGS.items()}
     closest = min(placed, key=lambda n: (-sum(r in placed[n] for r in REQUIRED), -len(placed[n]), n))
-    return closest, placed[closest]
+    return closest, tuple(placed[closest].items())
 
 
 def rig_roles(skel: Skeleton, joint_map: dict[str, str] | None = None) -> tuple[str, dict[str, int]]:

@@ -66,4 +66,6 @@ NOT_MOTION = {
     "direction": "says which way the next motion goes (花子に向かって走る)",
     "facing": "says that the actors face each other (向かい合って)",
     "greeting": "a set greeting (いらっしゃいませ, おかえりなさい: said to someone, not done)",
+    "prop": "says what the next motion is done with (杖をついて歩く: the cane in hand)",
+    "passive": "done to its subject by someone else (花子に言われた, 先生に呼ばれた)",
 }

@@ -65,6 +65,7 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     preds = [ph.pred for ph in phrases if ph.pred]
     _merge_light_verbs(phrases)
     _mark_non_agents(phrases)
+    _mark_passives(phrases)
     _mark_embedded(phrases)
     said = resolve_persons(phrases)
     if notes is not None:
@@ -252,6 +253,23 @@ def _mark_non_agents(phrases: list[Phrase]) -> None:
         target = _next_pred(phrases, i)
         if target is not None and target.predicate.motion:
             target.predicate.reason = "non-agent"
+
+
+def _mark_passives(phrases: list[Phrase]) -> None:
+    """花子に言われた, 先生に呼ばれて: a verb with the passive れる / られる after a に-person of its clause is
+    done to its subject by that person, no action of the subject's (the honorific 先生が来られた has no
+    に-person: an action)."""
+    for i, ph in enumerate(phrases):
+        pred = ph.pred
+        if pred is None or not pred.motion or not any(
+                t.pos1 == "助動詞" and t.lemma in ("れる", "られる") for t in ph.tokens):
+            continue
+        by = next((q for q in reversed(phrases[:i]) if q.group == ph.group and q.pred is None
+                   and case_particle(q) == "に" and person_name(q)), None)
+        if by is not None:
+            pred.reason = "passive"
+            said = f"{by.key}{pred.written or pred.verb} (passive): done by {person_name(by)}, not animated"
+            pred.note = f"{pred.note}; {said}" if pred.note else said
 
 
 def _mark_embedded(phrases: list[Phrase]) -> None:

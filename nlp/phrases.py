@@ -33,9 +33,9 @@ class Idiom:
 
 
 @lru_cache(maxsize=1)
-def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], dict[str, str]]:
-    """``((noun, verb) -> idioms, body noun -> its part)`` from ``phrases.json``; an idiom with ``with``
-    words first."""
+def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], dict[str, str], frozenset[tuple[str, str]]]:
+    """``((noun, verb) -> idioms, body noun -> its part, the props' (noun, verb))`` from ``phrases.json``; an
+    idiom with ``with`` words first."""
     data = json.loads(DATA.read_text(encoding="utf-8"))
     table: dict[tuple[str, str], list[Idiom]] = {}
     for entry in data["idioms"]:
@@ -44,7 +44,7 @@ def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], dict[str, str]]:
             for verb in entry["verbs"]:
                 table.setdefault((noun, verb), []).append(idiom)
     ordered = {k: tuple(sorted(v, key=lambda i: not i.with_)) for k, v in table.items()}
-    return ordered, dict(data["body_nouns"])
+    return ordered, dict(data["body_nouns"]), frozenset((n, v) for n, vs in data["props"].items() for v in vs)
 
 
 def body_nouns() -> dict[str, str]:
@@ -68,10 +68,26 @@ def idiom(noun: str, verbs: tuple[str, ...], words: Callable[[], frozenset[str]]
 def read_phrases(preds: list[Pred], phrases: list[Phrase]) -> None:
     """Give each motion of ``preds`` with a を-noun (``Pred.noun``: or a bare noun, 手振って) its
     phrase and read an idiom as the action it means (module docstring); ``phrases`` are the text's."""
-    for pred in preds:
+    for k, pred in enumerate(preds):
         if pred.noun and pred.motion:
             index = pred.phrase
             _read(pred, pred.noun, lambda: frozenset(p.key for p in phrases if p.head == index and p.pred is None))
+            _hand_on(pred, preds[k + 1:], phrases)
+
+
+def _hand_on(pred: Pred, later: list[Pred], phrases: list[Phrase]) -> None:
+    """杖をついて歩く: a prop's phrase (``phrases.json`` 'props') in て-form is no motion; its noun is the
+    object of the next motion of the sentence that has none (the walk, the cane in hand)."""
+    if pred.ending not in ("te", "renyou") or (pred.noun, pred.written or pred.verb) not in _data()[2] \
+            and (pred.noun, pred.lemma) not in _data()[2]:
+        return
+    sentence = phrases[pred.phrase].sentence
+    nxt = next((q for q in later if q.motion), None)
+    if nxt is None or phrases[nxt.phrase].sentence != sentence:
+        return
+    pred.reason = "prop"
+    if nxt.object is None:
+        nxt.object = pred.noun
 
 
 def _read(pred: Pred, noun: str, words: Callable[[], frozenset[str]]) -> None:

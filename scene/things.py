@@ -8,14 +8,17 @@ place). Its story is read from those rows in time order, each at an instant of t
 verb (lemma)         what happens to the thing
 ==================== ====================================================================================
 kick (:data:`KICK`)  it rests on the floor where the kicking foot strikes (the foot's fastest frame) and
-                     leaves it then, faster than the foot, on a ballistic path; it lands, bounces, rolls
+                     leaves it then, faster than the foot, on a ballistic path; it lands, bounces, rolls;
+                     one already on the floor rolls to the foot before the strike
+dribble              it rolls on the floor ahead of the feet (:data:`DRIBBLE_AHEAD`) while the row plays
 throw                it is in the throwing hand until the release (the hand's fastest frame); it flies to
                      the catcher's hands at their catch (both hands furthest out) when one catches it,
                      else on with the hand's speed, lands and rolls
 pick (拾う, 持ち上げる) it lies on the floor under the hand at its lowest frame, then is held
 put (置く, 下ろす)     it is held until the hand's lowest frame, then rests there (on the table it is put on)
 give (渡す)           it is in the giver's hand until the hand is furthest out, then in the receiver's
-open (開ける, 閉める)  a door in front of the hand at its furthest reach swings open (or shut) on its hinge
+open (開ける, 閉める)  a door in front of the hand at its furthest reach swings open (or shut) on its hinge;
+                     knocked on (ノックする), it stays shut
 any other            it is held (one hand or both, :mod:`scene.shapes`) while the row plays
 seat (座る on it)     it stands under the hips where they sit, from the start
 beside (机の前に座る)  it stands where the body ends beside it, from the start: ahead of the body (前, 後ろ,
@@ -61,7 +64,11 @@ GIVE = frozenset("渡す 手渡す 差し出す".split())
 RECEIVE = frozenset("受け取る 貰う".split())
 OPEN = frozenset("開ける 開く".split())
 CLOSE = frozenset("閉める 閉じる 締める".split())
+KNOCK = frozenset("ノックする".split())
 SIT = frozenset("座る 腰掛ける 着席する".split())
+DRIBBLE = frozenset("ドリブルする".split())
+#: m at the built-in body's size: a dribbled ball's distance ahead of the hips
+DRIBBLE_AHEAD = 0.5
 #: m at the built-in body's size: the room between the hips and the near side of a thing beside the body
 BESIDE_GAP = 0.3
 #: A door's swing, degrees.
@@ -107,6 +114,9 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
         named = _named(r, motions)
         if not any(how == "handled" for _, how in named) and r.verb in THROW | PUT | GIVE | KICK:
             held = next((q for q in paths.values() if q.holder is not None and q.holder[0] == r.actor), None)
+            if held is None and r.verb in KICK:  # ドリブルして、シュートする: the ball at the feet
+                held = next((q for q in paths.values() if q.events and q.events[-1][1] == f"dribbled by {_who(r.actor)}"),
+                            None)
             named += [(held.name, "handled")] if held is not None else []  # 拾って、投げる: what the hand holds
         for name, how in named:
             if name not in paths:
@@ -184,6 +194,14 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         p.events.append((f / fps, f"{_who(r.actor)} " + ("leaves it" if r.target_role == "source" else "reaches it")))
     elif r.verb in KICK:
         _kick(p, r, m, motions, f0, f1, fps)
+    elif r.verb in DRIBBLE:
+        path, heading = bodies.hips_path(m)
+        ahead = path[f0:f1] + DRIBBLE_AHEAD * p.scale * np.stack([np.sin(heading[f0:f1]), 0 * heading[f0:f1],
+                                                                  np.cos(heading[f0:f1])], axis=1)
+        p.pos[f0:] = ahead[-1] + [0.0, p.half, 0.0]
+        p.pos[f0:f1] = ahead + [0.0, p.half, 0.0]
+        p.holder = None
+        p.events.append((t, f"dribbled by {_who(r.actor)}"))
     elif r.verb in THROW:
         _throw(p, r, m, rows, motions, f0, f1, fps)
     elif r.verb in PICK:
@@ -210,7 +228,7 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         if p.holder is None or p.holder[0] != r.actor:  # no one handed it over: taken at the reach
             _hold(p, r.actor, m, _instant(m, "both_hands", "reach", f0, f1))
             p.events.append((t, f"{_who(r.actor)} takes it"))
-    elif r.verb in OPEN or r.verb in CLOSE:
+    elif r.verb in OPEN or r.verb in CLOSE or _knocks(r, p):
         _door(p, r, m, f0, f1, fps)
     elif p.holder is None or p.holder[0] != r.actor:
         _hold(p, r.actor, m, 0 if not p.placed() else f0)
@@ -321,9 +339,13 @@ def _kick(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float
     toe = bodies.toe(m, side)
     heading = float(bodies.hips_path(m)[1][hit])
     start = _on_floor(toe[hit] + 0.5 * p.size[0] * bodies.forward(heading), p)
-    if p.holder is None and (not p.placed() or np.hypot(*(p.pos[hit] - start)[[0, 2]]) > 0.5):
-        p.rest(0 if not p.placed() else f0, start)
+    if p.holder is None and not p.placed():
+        p.rest(0, start)
         p.events.append((0.0, "on the floor"))
+    elif p.holder is None and np.hypot(*(p.pos[hit] - start)[[0, 2]]) > 0.5:  # on the floor away: it rolls there
+        w = np.linspace(0.0, 1.0, hit - f0 + 1)[:, None]
+        p.pos[f0:hit + 1] = (1.0 - w) * p.pos[f0] + w * start
+        p.pos[hit:] = start
     v = np.gradient(toe, 1.0 / fps, axis=0)[hit] * KICK_GAIN
     horizontal = float(np.clip(np.hypot(v[0], v[2]), 4.0, 7.0))  # a kick about, not a shot at goal
     aim = _aim(r, motions, p.pos[hit], hit, heading)
@@ -500,6 +522,11 @@ def _table_top(hand_y: float) -> float:
     return float(np.clip(hand_y - 0.05, 0.3, 1.1))
 
 
+def _knocks(r: Element, p: _Path) -> bool:
+    """ドアをノックする, ドアを叩く: a door knocked on."""
+    return r.verb in KNOCK or (r.verb == "叩く" and p.shape.shape == "door")
+
+
 def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float) -> None:
     """A door in front of the right hand at its furthest reach; its hinge on the hand's far side, it swings
     open (or shut) from then to the row's end."""
@@ -513,13 +540,15 @@ def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float) -> None
     hinge[1] = 0.0
     opening = r.verb in OPEN
     n = len(p.pos)
-    angles = np.zeros(n)
     ramp = np.clip((np.arange(n) - reach) / max(1, f1 - reach), 0.0, 1.0)
-    angles[:] = np.radians(DOOR_SWING) * ((3 - 2 * ramp) * ramp * ramp if opening else 1 - (3 - 2 * ramp) * ramp * ramp)
+    angles = np.radians(DOOR_SWING) * ((3 - 2 * ramp) * ramp * ramp if opening else 1 - (3 - 2 * ramp) * ramp * ramp)
+    if _knocks(r, p):
+        angles[:] = 0.0  # knocked on: it stays shut
     centre_local = -0.5 * w * left + [0.0, 0.5 * h, 0.0]
     for k in range(n):
         turn = Rotation.from_euler("y", heading + angles[k])
         p.pos[k] = hinge + Rotation.from_euler("y", angles[k]).apply(centre_local)
         p.rot[k] = turn.as_quat()
     p.holder = None
-    p.events.append((reach / fps, f"{'opened' if opening else 'shut'} by {_who(r.actor)}"))
+    done = "knocked on" if _knocks(r, p) else "opened" if opening else "shut"
+    p.events.append((reach / fps, f"{done} by {_who(r.actor)}"))

@@ -5,8 +5,8 @@ blends and its adaptation's return (eq. (8): the hips follow the mean of the fee
 step) can concentrate that travel into a fraction of a second — a 40-90 cm change of stance returned over
 a 0.3-0.5 s step is a jolt of 6-11 m/s², where a crossfade's long slide reads 1-3. Step 6 of the join
 post-pass (:mod:`synthesis.join.joinpass`) replaces the hips' horizontal path ``h`` ``(n, 2)`` over a
-finished join region by the path ``x`` found by two linear programmes (HiGHS's dual simplex through
-``highspy``; deterministic), over the accelerations ``a[t] = (x[t-1] - 2 x[t] + x[t+1]) fps²``, the two frames
+finished join region by the path ``x`` found by two linear programmes (PIQP's interior point method,
+:func:`_minimum`; deterministic), over the accelerations ``a[t] = (x[t-1] - 2 x[t] + x[t+1]) fps²``, the two frames
 either side of the region fixed so that position and velocity carry on:
 
 1. the least peak ``A``: minimise ``A`` subject to ``|u_k · a[t]| <= A`` (four directions ``u_k``: an
@@ -35,25 +35,19 @@ spread their travel over the join's region, shifting the weight before the step 
 """
 from __future__ import annotations
 
+import functools
+import importlib
 from dataclasses import dataclass
-from typing import Any
+from types import ModuleType
 
 import numpy as np
-from highspy import HighsLp, HighsModelStatus, MatrixFormat
 from scipy import sparse
-from scipy.spatial import ConvexHull, QhullError
 
 from text2anim.core.balance import SLOW, Stance, stance
 from text2anim.core.motion import Motion
 from text2anim.core.size import human_scale
 
 from .legsolve import feet_kept
-
-try:  # the public Highs wraps this class with callbacks that print HiGHS's banner on stdout
-    from highspy._core import _Highs as _solver_class
-    _Highs: Any = _solver_class
-except ImportError:  # a highspy that moved its private class: scipy's wrapper of the same solver (_minimum_scipy)
-    _Highs = None
 
 #: m at a person's size: how far the hips may be moved off the path the join gave them (along each of four
 #: directions: an octagon, its corners 8 % further)
@@ -86,10 +80,14 @@ _DIRS = np.array([[np.cos(a), np.sin(a)] for a in np.arange(4) * np.pi / 4])  # 
 _DIRS[np.abs(_DIRS) < 1e-12] = 0.0  # exact zeros along the axes
 
 
-def _second_difference(n: int) -> sparse.csr_matrix:
-    """``(n + 2, n)``: the second differences at frames ``-1 .. n`` of ``n`` free frames (the frames beside
-    them fixed: their part is :func:`_fixed_part`)."""
-    return sparse.diags([1.0, -2.0, 1.0], [0, -1, -2], shape=(n + 2, n), format="csr")
+_Entries = tuple[np.ndarray, np.ndarray, np.ndarray]  # (rows, columns, values) of a sparse matrix's entries
+
+
+def _second_difference(n: int, fps: float) -> _Entries:
+    """The entries of the ``(n + 2, n)`` matrix of the second differences (times ``fps²``) at frames ``-1 .. n``
+    of ``n`` free frames (the frames beside them fixed: their part is :func:`_fixed_part`)."""
+    j = np.arange(n)
+    return np.concatenate([j, j + 1, j + 2]), np.tile(j, 3), np.repeat([1.0, -2.0, 1.0], n) * fps ** 2
 
 
 def _fixed_part(before: np.ndarray, after: np.ndarray, n: int) -> np.ndarray:
@@ -111,76 +109,113 @@ class Support:
     takes the centre of mass (moving at most as far as the hips), ``gap[r]`` how far out it is (negative
     inside), ``frame[r]`` the frame."""
 
-    rows: sparse.csr_matrix
+    rows: sparse.coo_matrix
     gap: np.ndarray
     frame: np.ndarray
 
 
 def support_of(st: Stance) -> Support:
-    """The :class:`Support` of a stance, on the frames slower than :data:`NEAR_SLOW` times the figure's."""
+    """The :class:`Support` of a stance, on the frames slower than :data:`NEAR_SLOW` times the figure's (none for a
+    foot of no size, or where a foot down has no place)."""
     n = len(st.com)
-    ring = st.radius * np.array([[np.cos(a), np.sin(a)] for a in np.arange(8) * np.pi / 4])  # (8, 2)
-    normals, gaps, frames = [], [], []
-    for i in np.flatnonzero(st.standing(NEAR_SLOW * SLOW)):
-        pts = (st.corners[i][st.down[i]][:, None, :] + ring[None]).reshape(-1, 2)
-        try:
-            eq = ConvexHull(pts).equations  # (E, 3): normal · p + offset <= 0 inside
-        except (QhullError, ValueError):  # a degenerate foot (no radius, no extent): nothing to hold it to
-            continue
-        normals.append(eq[:, :2])
-        gaps.append(eq[:, :2] @ st.com[i] + eq[:, 2])
-        frames.append(np.full(len(eq), i))
-    if not normals:
-        return Support(sparse.csr_matrix((0, 2 * n)), np.zeros(0), np.zeros(0, dtype=int))
-    nrm, frame = np.concatenate(normals), np.concatenate(frames)
+    frames = np.flatnonzero(st.standing(NEAR_SLOW * SLOW))
+    points, down = st.corners[frames], st.down[frames]
+    placed = (np.isfinite(points).all(axis=-1) | ~down).all(axis=1)
+    if not st.radius > 0.0:
+        placed[:] = False
+    normals, offsets, edge = _widened_hull(np.nan_to_num(points), down, st.radius)  # (F, E, 2), (F, E), (F, E)
+    edge &= placed[:, None]
+    at, _k = np.nonzero(edge)
+    nrm, frame = normals[edge], frames[at]
+    gap = nrm[:, 0] * st.com[frame, 0] + nrm[:, 1] * st.com[frame, 1] + offsets[edge]
     r = np.arange(len(nrm))
-    rows = sparse.csr_matrix((np.concatenate([nrm[:, 0], nrm[:, 1]]), (np.concatenate([r, r]),
+    rows = sparse.coo_matrix((np.concatenate([nrm[:, 0], nrm[:, 1]]), (np.concatenate([r, r]),
                               np.concatenate([frame, n + frame]))), shape=(len(nrm), 2 * n))
-    return Support(rows, np.concatenate(gaps), frame)
+    return Support(rows, gap, frame)
+
+
+def _widened_hull(points: np.ndarray, down: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The edges of the convex hull of each frame's ``down`` ``(F, K)`` points ``(F, K, 2)`` widened by a regular
+    octagon of circumradius ``radius`` (its corners at multiples of 45°), as ``normal · p + offset <= 0`` inside:
+    ``(normals (F, E, 2), offsets (F, E), is_edge (F, E))`` over ``E = 8 + K (K - 1)`` candidates. A sum of two
+    convex polygons has the edge directions of both: the octagon's eight, and those of the points' hull (a pair
+    of points with every other on its inner side); its offset is the sum of the two supports. Equal to qhull's
+    facets of the widened points (to 1e-13 over the golden sentences' 1,151 standing frames), at once for all
+    frames: a hull a frame cost 50 µs."""
+    F, K, _ = points.shape
+    angle = np.pi / 8 + np.arange(8) * np.pi / 4
+    first, second = np.array([(i, j) for i in range(K) for j in range(K) if i != j], dtype=int).reshape(-1, 2).T
+    side = points[:, second] - points[:, first]  # (F, P, 2)
+    length = np.linalg.norm(side, axis=-1)
+    outward = np.stack([side[..., 1], -side[..., 0]], axis=-1) / np.where(length > 0.0, length, 1.0)[..., None]
+    normals = np.concatenate([np.broadcast_to(np.stack([np.cos(angle), np.sin(angle)], axis=1), (F, 8, 2)), outward],
+                             axis=1)  # (F, E, 2)
+    nx, nz = normals[..., 0], normals[..., 1]  # (F, E)
+    product = nx[..., None] * points[:, None, :, 0] + nz[..., None] * points[:, None, :, 1]  # (F, E, K)
+    beyond = product[:, 8:] - np.take_along_axis(product[:, 8:], first[None, :, None], axis=-1)  # (F, P, K)
+    hull_edge = down[:, first] & down[:, second] & (length > 1e-12) & (
+        np.where(down[:, None, :], beyond, -np.inf).max(axis=-1) <= 1e-12 * np.maximum(1.0, length))
+    corners = radius * np.stack([np.cos(np.arange(8) * np.pi / 4), np.sin(np.arange(8) * np.pi / 4)], axis=1)
+    support = np.where(down[:, None, :], product, -np.inf).max(axis=-1) + (normals @ corners.T).max(axis=-1)
+    edge = np.concatenate([np.repeat(down.any(axis=1, keepdims=True), 8, axis=1), hull_edge], axis=1)
+    same = nx[..., None] * nx[:, None] + nz[..., None] * nz[:, None] > 1.0 - 1e-12  # one direction: one edge
+    edge &= ~(same & edge[:, None, :] & np.tri(len(angle) + len(first), k=-1, dtype=bool)).any(axis=-1)
+    return normals, -support, edge
 
 
 def _acceleration(h: np.ndarray, before: np.ndarray, after: np.ndarray,
-                  fps: float) -> tuple[sparse.csr_matrix, np.ndarray]:
+                  fps: float) -> tuple[_Entries, np.ndarray]:
     """``(U, a0)``: ``U @ d + a0`` are the accelerations (m/s²) along each direction ``u_k`` (``u_k · a[t]``, row
     ``k (n + 2) + t`` for ``t`` in ``-1 .. n``) of the path ``h + d`` (``h`` ``(n, 2)``, its moves ``d`` stacked
-    ``[x (n), z (n)]``): ``(4 (n + 2), 2 n)`` and ``(4 (n + 2),)``, ``a0`` the given path's own."""
+    ``[x (n), z (n)]``): the entries of the ``(4 (n + 2), 2 n)`` matrix ``U`` (none for an axis a direction is
+    square to) and ``(4 (n + 2),)``, ``a0`` the given path's own."""
     n = len(h)
-    D = _second_difference(n) * fps ** 2
-    a = D @ h + _fixed_part(before, after, n) * fps ** 2  # (n + 2, 2)
-    U = sparse.vstack([sparse.hstack([D * u[0], D * u[1]]) for u in _DIRS]).tocsr()
-    U.eliminate_zeros()  # the axes' zero components
-    return U, (a @ _DIRS.T).T.ravel()
+    r, c, v = _second_difference(n, fps)
+    a = sparse.csr_matrix((v, (r, c)), shape=(n + 2, n)) @ h + _fixed_part(before, after, n) * fps ** 2  # (n + 2, 2)
+    blocks = [(r + k * (n + 2), c + axis * n, v * u[axis]) for k, u in enumerate(_DIRS) for axis in (0, 1) if u[axis]]
+    return _joined(blocks), (a @ _DIRS.T).T.ravel()
 
 
-def _limits(band: np.ndarray, sup: Support, room: float) -> tuple[sparse.csr_matrix, np.ndarray, np.ndarray]:
-    """``(rows, lower, upper)``: ``lower <= rows @ d <= upper`` holds the moves ``d`` within the octagon's
-    diagonals (its sides along the axes are the moves' bounds) and the balance (no edge's distance grows
-    beyond ``max(gap, room)``): only the edges a move within the octagon can take that far, the rest hold
-    anyway."""
+def _limits(band: np.ndarray, sup: Support, reach: np.ndarray,
+            room: float) -> tuple[_Entries, np.ndarray, np.ndarray]:
+    """``(rows, lower, upper)``: ``lower <= rows @ d <= upper`` (``rows`` as its entries) holds the moves ``d``
+    within the octagon's diagonals (its sides along the axes are the moves' bounds) and the balance (no edge's
+    distance grows beyond ``max(gap, room)``): only the edges a move within the octagon can take that far, the
+    rest hold anyway (``reach``: :func:`_reach`)."""
     n = len(band)
-    eye = sparse.identity(n, format="csr")
-    diagonals = sparse.vstack([sparse.hstack([u[0] * eye, u[1] * eye]) for u in _DIRS[1::2]])
+    t = np.arange(n)
+    diagonals = [(t + i * n, t + axis * n, np.full(n, u[axis])) for i, u in enumerate(_DIRS[1::2]) for axis in (0, 1)]
     wide = np.concatenate([band, band])
     room_left = np.maximum(0.0, room - sup.gap)
-    held = _reach(band, sup) > room_left
-    return (sparse.vstack([diagonals, sup.rows[held]]).tocsr(), np.concatenate([-wide, np.full(held.sum(), -np.inf)]),
-            np.concatenate([wide, room_left[held]]))
+    held = reach > room_left
+    return (_joined(diagonals + [_at(_edges(sup, held), 2 * n, 0)]),
+            np.concatenate([-wide, np.full(held.sum(), -np.inf)]), np.concatenate([wide, room_left[held]]))
+
+
+def _edges(sup: Support, keep: np.ndarray) -> _Entries:
+    """The entries of ``sup.rows[keep]`` (``keep`` ``(R,)`` bool)."""
+    c = sup.rows
+    kept = keep[c.row]
+    return (np.cumsum(keep) - 1)[c.row[kept]], c.col[kept], c.data[kept]
 
 
 def _reach(band: np.ndarray, sup: Support) -> np.ndarray:
     """``(R,)`` m: the furthest a move within the octagon of inradius ``band`` (its corners 1 / cos 22.5° out)
     takes the centre of mass across each edge of the support (with a hair's margin)."""
-    norm = np.sqrt(np.asarray(sup.rows.multiply(sup.rows).sum(axis=1)).ravel())
+    c = sup.rows
+    norm = np.sqrt(np.bincount(c.row, c.data * c.data, minlength=len(sup.gap)))
     return norm * band[sup.frame] / np.cos(np.pi / 8) * (1.0 + 1e-9) + 1e-12
 
 
-_Entries = tuple[np.ndarray, np.ndarray, np.ndarray]  # (rows, columns, values) of a sparse matrix's entries
+def _joined(entries: list[_Entries]) -> _Entries:
+    """The entries of several blocks as one."""
+    r, c, v = (np.concatenate(x) for x in zip(*entries))
+    return r, c, v
 
 
-def _at(M: sparse.spmatrix, row: int, col: int, sign: float = 1.0) -> _Entries:
+def _at(M: _Entries, row: int, col: int, sign: float = 1.0) -> _Entries:
     """The entries of ``M`` placed with its corner at ``(row, col)``, times ``sign``."""
-    c = sparse.coo_matrix(M)
-    return c.row + row, c.col + col, sign * c.data
+    return M[0] + row, M[1] + col, sign * M[2]
 
 
 def _ones(rows: np.ndarray, cols: np.ndarray | int, value: float) -> _Entries:
@@ -189,45 +224,52 @@ def _ones(rows: np.ndarray, cols: np.ndarray | int, value: float) -> _Entries:
 
 
 def _matrix(entries: list[_Entries], shape: tuple[int, int]) -> sparse.csc_matrix:
-    """The matrix of ``shape`` with these entries (assembled at once: stacking sparse blocks cost a tenth of a
-    region's time)."""
-    r, c, v = (np.concatenate(x) for x in zip(*entries))
+    """The matrix of ``shape`` with these entries (none twice), assembled once from index arithmetic (scipy's
+    sparse blocks, stacked, scaled and converted, cost 1.5 ms of a region's 5.8 outside the solver)."""
+    r, c, v = _joined(entries)
     return sparse.csc_matrix((v, (r, c)), shape=shape)
+
+
+@functools.cache
+def _piqp() -> ModuleType | None:
+    """PIQP's compiled module (imported at the first programme: the commands that synthesise nothing never pay
+    for it): its AVX2 build where the CPU has AVX2, as the goldens' bytes are pinned there
+    (:mod:`api.reproducible`; piqp itself takes its AVX-512 build where it can, whose paths differ by up to
+    0.01 mm); else the build piqp chose. None without piqp."""
+    try:
+        import piqp
+    except ImportError:
+        return None
+    try:
+        return importlib.import_module("piqp.piqp_python_avx2") if piqp.instruction_set.avx2 else piqp
+    except ImportError:  # a piqp that renamed its builds
+        return piqp
 
 
 def _minimum(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: np.ndarray, col_lower: np.ndarray,
              col_upper: np.ndarray) -> np.ndarray | None:
     """The ``x`` that minimises ``cost · x`` subject to ``lower <= rows @ x <= upper`` and ``col_lower <= x <=
-    col_upper`` (``np.inf`` for no bound): HiGHS's dual simplex without its presolve (the rows no move can
-    reach are left out already), with Devex pricing and unscaled (the coefficients span 0.07-2,000 at 30 fps):
-    measured the fastest on these programmes; with HiGHS's own scaling again where that finds no optimum.
-    HiGHS's choice among equal optima; None when there is none."""
-    if _Highs is None:
-        return _minimum_scipy(cost, rows, lower, upper, col_lower, col_upper)
-    a = sparse.csc_matrix(rows)
-    a.sort_indices()
-    lp = HighsLp()
-    lp.num_col_, lp.num_row_ = a.shape[1], a.shape[0]
-    lp.col_cost_, lp.col_lower_, lp.col_upper_ = cost, col_lower, col_upper
-    lp.row_lower_, lp.row_upper_ = lower, upper
-    lp.a_matrix_.format_ = MatrixFormat.kColwise
-    lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = a.indptr, a.indices, a.data
-    for scale in (0, 2):  # HiGHS's simplex_scale_strategy: none, then its default
-        solver = _Highs()
-        for option, value in (("output_flag", False), ("presolve", "off"), ("simplex_scale_strategy", scale),
-                              ("simplex_dual_edge_weight_strategy", 1)):  # 1: Devex
-            solver.setOptionValue(option, value)
-        solver.passModel(lp)
-        solver.run()
-        if solver.getModelStatus() == HighsModelStatus.kOptimal:
-            return np.asarray(solver.getSolution().col_value)
-    return None
+    col_upper`` (``np.inf`` for no bound): PIQP's proximal interior point method (a sparse LDLᵀ of the KKT system,
+    12-25 iterations on these programmes, 2.4x faster than HiGHS's dual simplex), on one thread; to its
+    tolerance (1e-8 relative), where optima tie the middle of the optimal ones rather than a vertex. scipy's
+    HiGHS where PIQP finds none or piqp is missing; None when that finds none either."""
+    piqp = _piqp()
+    if piqp is not None:
+        n = len(cost)
+        solver = piqp.SparseSolver()
+        solver.settings.verbose = False
+        solver.settings.num_threads = 1
+        solver.setup(sparse.csc_matrix((n, n)), cost, None, None, sparse.csc_matrix(rows), lower, upper, col_lower,
+                     col_upper)
+        if solver.solve() == piqp.PIQP_SOLVED:
+            return np.array(solver.result.x)
+    return _minimum_scipy(cost, rows, lower, upper, col_lower, col_upper)
 
 
 def _minimum_scipy(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: np.ndarray,
                    col_lower: np.ndarray, col_upper: np.ndarray) -> np.ndarray | None:
-    """:func:`_minimum` through :func:`scipy.optimize.linprog` (HiGHS too, slower, without highspy's private class;
-    its choice among equal optima may differ): each two-sided row as two one-sided ones."""
+    """:func:`_minimum` through :func:`scipy.optimize.linprog` (HiGHS's dual simplex: a vertex among equal
+    optima; its import alone is ~55 ms): each two-sided row as two one-sided ones."""
     from scipy.optimize import linprog
 
     a = sparse.csr_matrix(rows)
@@ -238,16 +280,18 @@ def _minimum_scipy(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, u
     return np.asarray(res.x) if res.status == 0 else None
 
 
-def _least_peak(U: sparse.csr_matrix, a0: np.ndarray, limits: tuple, band: np.ndarray) -> float | None:
+def _least_peak(U: _Entries, a0: np.ndarray, limits: tuple[_Entries, np.ndarray, np.ndarray],
+                band: np.ndarray) -> float | None:
     """Programme 1 of the module docstring: the least peak acceleration (m/s²) over the moves ``d`` ``(2 n,)``
-    within ``band`` and ``limits`` (:func:`_limits`), ``U @ d + a0`` the accelerations (:func:`_acceleration`);
-    None when HiGHS finds none. Its variables are ``[d (2 n), A]``."""
+    within ``band`` ``(n,)`` and ``limits`` (:func:`_limits`), ``U @ d + a0`` the accelerations
+    (:func:`_acceleration`); None when there is none. Its variables are ``[d (2 n), A]``."""
     rows, lower, upper = limits
-    (q, w), r = U.shape, np.arange(U.shape[0])
+    q, w = len(a0), 2 * len(band)
+    r = np.arange(q)
     wide = np.concatenate([band, band])
     x = _minimum(np.r_[np.zeros(w), 1.0],
                  _matrix([_at(U, 0, 0), _ones(r, w, -1.0), _at(U, q, 0, -1.0), _ones(q + r, w, -1.0),
-                          _at(rows, 2 * q, 0)], (2 * q + rows.shape[0], w + 1)),
+                          _at(rows, 2 * q, 0)], (2 * q + len(lower), w + 1)),
                  np.concatenate([np.full(2 * q, -np.inf), lower]), np.concatenate([-a0, a0, upper]),
                  np.r_[-wide, 0.0], np.r_[wide, np.inf])
     return None if x is None else float(x[-1])
@@ -272,12 +316,13 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     costs nothing, every other path costs its distance: it is returned as it is, without a programme."""
     n = len(h)
     m = n + 2  # accelerations at frames -1 .. n
-    sup = support if support is not None else Support(sparse.csr_matrix((0, 2 * n)), np.zeros(0), np.zeros(0, int))
+    sup = support if support is not None else Support(sparse.coo_matrix((0, 2 * n)), np.zeros(0), np.zeros(0, int))
     U, a0 = _acceleration(h, before, after, fps)
     given_peak = float(np.abs(a0).max())
     if given_peak <= levels[0] and not (sup.gap > 0.0).any():
         return h.copy()
-    limits = _limits(band, sup, room)
+    reach = _reach(band, sup)
+    limits = _limits(band, sup, reach, room)
     # the given path is within every limit: its peak bounds the least, and under the floor the cap is the floor
     least = 0.0 if given_peak * (1.0 + SLACK) + 1e-6 <= levels[0] else _least_peak(U, a0, limits, band)
     if least is None:
@@ -285,14 +330,14 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     peak = max(least * (1.0 + SLACK) + 1e-6, levels[0])
     levels = levels[:1 + int(np.sum(levels[1:] < peak))]  # a level at or over the cap is never exceeded: no price
     K = len(levels)
-    out = sup.gap + _reach(band, sup) > 0.0  # the edges a move may take the centre of mass outside of
+    out = sup.gap + reach > 0.0  # the edges a move may take the centre of mass outside of
     frames, at = np.unique(sup.frame[out], return_inverse=True)
     F = len(frames)
     width = 4 * n + K * m + F
     rows, lims, q, t = limits[0], len(limits[1]), 4 * m, np.arange(4 * m)
     s = 4 * n  # the first column of s
     seg_r, seg_c = np.tile(t, K), s + (np.arange(K)[:, None] * m + t % m).ravel()
-    edges, e = sup.rows[out], 8 * m + lims  # the first row of gap + move <= o
+    edges, e = _edges(sup, out), 8 * m + lims  # the first row of gap + move <= o
     A = _matrix([_at(U, 0, 0), _at(U, 0, 2 * n, -1.0), _ones(seg_r, seg_c, -1.0),  # u·a <= levels[0] + sum s
                  _at(U, q, 0, -1.0), _at(U, q, 2 * n), _ones(q + seg_r, seg_c, -1.0),  # -u·a <= the same
                  _at(rows, 8 * m, 0), _at(rows, 8 * m, 2 * n, -1.0),  # octagon, balance
@@ -306,7 +351,7 @@ def least_acceleration_path(h: np.ndarray, before: np.ndarray, after: np.ndarray
     x = _minimum(cost, A, lower, upper, np.zeros(width), col_upper)
     if x is None:
         return None
-    d = x[:2 * n] - x[2 * n:4 * n]
+    d = np.clip(x[:2 * n] - x[2 * n:4 * n], -wide, wide)  # within the band exactly: a still frame's 0 stays 0
     return h + np.stack([d[:n], d[n:]], axis=1)
 
 
