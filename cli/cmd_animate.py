@@ -16,6 +16,12 @@ DEFAULT_BVH = "animation.bvh"
 
 NAME = "animate"
 HELP = "turn a text into animation (the default command: text2anim TEXT ...)"
+#: The modules every run imports (the API's stages, the default blend's synthesis, the BVH writer): loaded with
+#: the command, out of the collector's way (``main.PAUSED_GC``)
+LOADS = ("text2anim.pipeline", "text2anim.animation", "text2anim.export", "text2anim.scene.staging",
+         "text2anim.tracks", "text2anim.manners", "text2anim.synthesis.registry", "text2anim.synthesis.optimal",
+         "text2anim.synthesis.join.joinpass", "text2anim.scene.place", "text2anim.placed",
+         "text2anim.output.bvh_write")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

@@ -13,6 +13,8 @@ from .terminal import safe_json, say
 
 NAME = "plan"
 HELP = "build the motion time table of a text (which clip, how joined, when)"
+#: The modules every run imports: loaded with the command, out of the collector's way (``main.PAUSED_GC``)
+LOADS = ("text2anim.planning", "text2anim.databases")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

@@ -83,7 +83,6 @@ def lift(motion: Motion, limbs: list, deficits: list[np.ndarray], ramp: int = RA
     (:func:`lift_offsets`) and solved by the limb's IK (``limbs``: ``(ik, side, end joint)``), the end's
     world rotation kept."""
     pos = motion.positions
-    world = motion.pose.quaternions()
     out = motion
     for (ik, side, end), deficit in zip(limbs, deficits):
         if not deficit.any():
@@ -93,7 +92,8 @@ def lift(motion: Motion, limbs: list, deficits: list[np.ndarray], ramp: int = RA
         target[:, 1] += lift
         mask = lift > 0
         out = ik(out, side, target, mask=mask)
-        out = set_world_rotation(out, end, world[:, end], mask=mask)
+        # the end's world rotation alone (rows convert independently: the same bits as all joints' at once)
+        out = set_world_rotation(out, end, motion.pose.quaternions(end), mask=mask)
     return out
 
 

@@ -82,22 +82,41 @@ class FootTrack:
     joint: np.ndarray
 
 
-def foot_tracks(motion: Motion) -> dict[str, FootTrack]:
-    """Height above floor and horizontal speed of each foot's lowest joint (both feet in one pass: every
-    quantity is per frame and joint, or per foot column)."""
+def _lowest(motion: Motion) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
+    """``(sides, joints, positions, lowest)``: each foot's ankle and toe ``(2 * feet,)``, their world positions
+    ``(T, feet, 2, 3)`` and which of the two is lower on each frame ``(T, feet)``."""
     bm = body_map(motion.skeleton)
     sides = list(bm.feet)
     joints = np.array([j for side in sides for j in bm.feet[side]])  # (2 * feet,) ankle, toe per foot
     pos = motion.positions[:, joints].reshape(motion.n_frames, len(sides), 2, 3)  # (T, feet, 2, 3)
+    return sides, joints, pos, np.argmin(pos[..., 1], axis=2)
+
+
+def lowest_heights(motion: Motion) -> np.ndarray:
+    """``(T, feet)`` m: the world height of each foot's lowest joint (feet in ``body_map`` order), what
+    :func:`floor_levels` reads. Per frame: a track's is its pieces' end to end."""
+    _sides, _joints, pos, lowest = _lowest(motion)
+    return pos[np.arange(motion.n_frames)[:, None], np.arange(pos.shape[1])[None, :], lowest, 1]
+
+
+def floor_levels(heights: np.ndarray) -> np.ndarray:
+    """``(feet,)`` m: each foot's floor level (module docstring) from its :func:`lowest_heights` ``(T, feet)``."""
+    level = np.percentile(heights, FLOOR_PERCENTILE, axis=0)  # (feet,)
+    # a file whose floor is not near y = 0 (PyMO's walk stands at 0.93 m): levels from its own lowest foot
+    base = float(level.min()) if abs(level.min()) > MAX_FLOOR else 0.0
+    return np.clip(level, base, base + MAX_FLOOR)
+
+
+def foot_tracks(motion: Motion, floor: np.ndarray | None = None) -> dict[str, FootTrack]:
+    """Height above floor and horizontal speed of each foot's lowest joint (both feet in one pass: every
+    quantity is per frame and joint, or per foot column). ``floor``: the feet's levels ``(feet,)``, default
+    the motion's own (:func:`floor_levels`)."""
+    sides, joints, pos, lowest = _lowest(motion)
     rows = np.arange(motion.n_frames)[:, None]
     cols = np.arange(len(sides))[None, :]
-    lowest = np.argmin(pos[..., 1], axis=2)  # (T, feet)
     y = pos[rows, cols, lowest, 1]
     if len(y):
-        level = np.percentile(y, FLOOR_PERCENTILE, axis=0)  # (feet,)
-        # a file whose floor is not near y = 0 (PyMO's walk stands at 0.93 m): levels from its own lowest foot
-        base = float(level.min()) if abs(level.min()) > MAX_FLOOR else 0.0
-        floor = np.clip(level, base, base + MAX_FLOOR)
+        floor = floor_levels(y) if floor is None else floor
         speed = horizontal_speed(pos, motion.fps)[rows, cols, lowest]
     else:
         floor, speed = np.zeros(len(sides)), y
@@ -146,10 +165,18 @@ def detect_contacts(motion: Motion) -> FootContacts:
     return motion.cache.get("contacts", lambda: _detect(motion))
 
 
-def _detect(motion: Motion) -> FootContacts:
+def contacts_within(motion: Motion, floor: np.ndarray) -> FootContacts:
+    """:func:`detect_contacts`' labels of ``motion`` with the feet's floor levels ``floor`` ``(feet,)`` given
+    (:func:`floor_levels`): those of a longer track ``motion`` is a window of. The rest of the rule reads a few
+    frames either side (the speed's difference, the hysteresis' :data:`MIN_PHASE` twice), so the labels are
+    the track's bit for bit but within ``2 * MIN_PHASE`` s and a frame of a window's end inside the track."""
+    return _detect(motion, floor)
+
+
+def _detect(motion: Motion, floor: np.ndarray | None = None) -> FootContacts:
     min_len = max(1, int(round(MIN_PHASE * motion.fps)))
     labels = {}
-    for side, tr in foot_tracks(motion).items():
+    for side, tr in foot_tracks(motion, floor).items():
         raw = (tr.height < HEIGHT_THRESHOLD) & (tr.speed < SPEED_THRESHOLD)
         labels[side] = hysteresis(raw, min_len)
         labels[side].setflags(write=False)

@@ -30,6 +30,14 @@ def data_home() -> Path:
     return Path.home() / ".local" / "share"
 
 
+def cache_home() -> Path:
+    """``$XDG_CACHE_HOME`` if absolute, else ``~/.cache`` (what may be thrown away and found again)."""
+    xdg = os.environ.get("XDG_CACHE_HOME", "")
+    if xdg and os.path.isabs(xdg):
+        return Path(xdg)
+    return Path.home() / ".cache"
+
+
 def default_path() -> Path:
     """The default SQLite file: ``<data home>/text2anim/motions.sqlite``."""
     return data_home() / "text2anim" / DB_FILENAME

@@ -2,14 +2,17 @@
 from __future__ import annotations
 
 import hashlib
+import os
 import warnings
 from collections.abc import Callable, Iterable
+from contextlib import suppress
 from dataclasses import dataclass
 from pathlib import Path
 
 from sqlalchemy import Connection, select
 
 from .errors import ClipValidationError, DBError, SeedWarning
+from .location import cache_home
 from .reads import SkeletonCache
 from .migrate import set_version
 from . import schema as tb
@@ -46,14 +49,50 @@ def seeding_needed(library: str | None, source: SeedSource | None) -> bool:
     return source.builtin and library != source.tag
 
 
-def files_tag(root: Path) -> str:
-    """A hash of the code and data files under ``root`` (compiled ``.pyc`` files left out), by relative path."""
+def _files(root: Path) -> list[Path]:
+    """The code and data files under ``root`` (compiled ``.pyc`` files left out), sorted."""
+    return sorted(p for p in root.rglob("*") if p.is_file() and p.suffix != ".pyc" and "__pycache__" not in p.parts)
+
+
+def files_tag(root: Path, files: list[Path] | None = None) -> str:
+    """A hash of the code and data files under ``root`` (:func:`_files`, or ``files``), by relative path."""
     h = hashlib.sha256()
-    for path in sorted(p for p in root.rglob("*")
-                       if p.is_file() and p.suffix != ".pyc" and "__pycache__" not in p.parts):
+    for path in _files(root) if files is None else files:
         h.update(path.relative_to(root).as_posix().encode("utf-8") + b"\0")
         h.update(path.read_bytes() + b"\0")
     return "sha256:" + h.hexdigest()[:32]
+
+
+def library_tag(root: Path) -> str:
+    """:func:`files_tag` of the built-in library's folder ``root``, kept in the user's cache folder
+    (:func:`location.cache_home`, one small file per library folder) with the files' names, sizes and
+    modification times it was taken for: opening a database reads the library's ~3.5 MB again only when
+    one of its files changed (the hash was ~5 ms of every command). A cache that cannot be read or
+    written is taken again or left as it was, never an error."""
+    files = _files(root)
+    stats = [(p.relative_to(root).as_posix(), p.stat()) for p in files]
+    stamp = _digest(repr([(name, st.st_size, st.st_mtime_ns) for name, st in stats]))
+    kept = cache_home() / "text2anim" / f"library-{_digest(str(root))[:16]}.tag"
+    try:
+        saved, tag = kept.read_text(encoding="utf-8").split()
+        if saved == stamp:
+            return tag
+    except (OSError, ValueError):
+        pass
+    tag = files_tag(root, files)
+    part = kept.with_name(f".{kept.name}.{os.getpid()}.part")
+    try:
+        kept.parent.mkdir(parents=True, exist_ok=True)
+        part.write_text(f"{stamp} {tag}\n", encoding="utf-8")
+        os.replace(part, kept)
+    except OSError:
+        with suppress(OSError):
+            part.unlink(missing_ok=True)
+    return tag
+
+
+def _digest(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
 
 
 _LIBRARY = "text2anim.motiondb.library"
@@ -80,7 +119,7 @@ def _builtin_descriptions() -> dict[str, ClipDescription]:
 def seed_source(seed) -> SeedSource | None:
     """What to seed a new database with; ``None`` for nothing (or the built-in library is absent).
 
-    The built-in library is tagged by :func:`files_tag` of its folder, found without
+    The built-in library is tagged by :func:`files_tag` of its folder (:func:`library_tag`), found without
     importing it: opening a database that is up to date never loads the library's
     generator (scipy.interpolate, IK) nor builds a clip.
     """
@@ -93,7 +132,7 @@ def seed_source(seed) -> SeedSource | None:
     spec = importlib.util.find_spec(_LIBRARY)
     if spec is None or not spec.submodule_search_locations:
         return None  # the built-in library is not there (yet)
-    return SeedSource(files_tag(Path(next(iter(spec.submodule_search_locations)))), _builtin_records, builtin=True,
+    return SeedSource(library_tag(Path(next(iter(spec.submodule_search_locations)))), _builtin_records, builtin=True,
                       contacts=_builtin_contacts, descriptions=_builtin_descriptions)
 
 

@@ -26,6 +26,7 @@ operation, each delegating the work to :mod:`.reads`, :mod:`.writes`, :mod:`.sea
 """
 from __future__ import annotations
 
+import itertools
 import os
 from collections import OrderedDict
 from collections.abc import Callable, Iterable, Sequence
@@ -40,7 +41,7 @@ from text2anim.core.bodyparts import GROUPS
 
 from . import search as _search
 from .connect import PG_LOCK_KEY, describe_error, first_line, open_engine
-from .errors import DBError, UnknownCharacterError, UnknownClipError
+from .errors import DBError, UnknownCharacterError, UnknownClipError, UnknownVerbError
 from .location import resolve_url
 from .migrate import create_schema, migrate, require_schema, schema_state
 from .reads import SkeletonCache, clip_infos
@@ -70,6 +71,10 @@ def __getattr__(name: str):
 
 #: Decoded clips a :class:`MotionDB` keeps (least recently loaded dropped first).
 LOADED_CLIPS = 32
+#: Search answers kept between :meth:`MotionDB.memoised` blocks at most (then they start afresh): a plan asks ~3.
+KEPT_ANSWERS = 4096
+#: serial numbers of the connections :meth:`MotionDB._stamp` has seen (an ``id()`` may be reused)
+_SERIALS = itertools.count(1)
 
 
 # ----------------------------------------------------------------- the database
@@ -88,6 +93,7 @@ class MotionDB(AbstractContextManager):
         self._writer = engine.execution_options(t2a_write=True)
         self._skeletons = SkeletonCache()
         self._memo: dict | None = None  # search answers inside memoised(), else None
+        self._kept: tuple[tuple[int, int] | None, dict] = (None, {})  # (stamp, answers) between memoised() blocks
         self._loaded: OrderedDict[str, tuple[tuple, Motion]] = OrderedDict()  # name -> (row key, motion)
 
     # ------------------------------------------------------------- open/close
@@ -154,22 +160,48 @@ class MotionDB(AbstractContextManager):
         """Within the block, a search asked again is answered from memory (a plan's searches repeat).
 
         Any change made through this object inside the block forgets the answers.
-        Nested blocks share the outer one's memory.
+        Nested blocks share the outer one's memory. On SQLite the answers are kept for the next
+        block while no connection has changed the file since (:meth:`_stamp`): a warm process
+        planning sentence after sentence asks the database only for what it has not asked yet.
         """
         outer = self._memo is not None
         if not outer:
-            self._memo = {}
+            stamp = self._stamp()
+            if stamp is None or stamp != self._kept[0] or len(self._kept[1]) > KEPT_ANSWERS:
+                self._kept = (stamp, {})
+            self._memo = self._kept[1]
         try:
             yield self
         finally:
             if not outer:
                 self._memo = None
 
+    def _stamp(self) -> tuple[int, int] | None:
+        """What the kept answers are valid for: the connection and its SQLite ``data_version``, which
+        changes when another connection (of this or any process) commits to the file; ``None`` when
+        it cannot be known (another database). This object's own writes forget the answers (a
+        connection's own commits leave its ``data_version`` as it was)."""
+        if self.backend != "sqlite":
+            return None
+        with self._errors(), self.engine.connect() as conn:
+            fairy = conn.connection
+            serial = fairy.info.setdefault("t2a_serial", next(_SERIALS))  # for the life of the DBAPI connection
+            cursor = fairy.cursor()  # the driver's own: no statement event, nothing compiled
+            try:
+                cursor.execute("PRAGMA data_version")
+                row = cursor.fetchone()
+            finally:
+                cursor.close()
+            assert row is not None
+            return serial, int(row[0])
+
     @contextmanager
     def _session(self, write: bool = False):
         """A connection in one transaction, committed on success; writers serialised."""
-        if write and self._memo:
-            self._memo.clear()
+        if write:
+            self._kept = (None, {})
+            if self._memo:
+                self._memo.clear()
         with self._errors():
             with (self._writer if write else self.engine).begin() as conn:
                 if write and self.backend == "postgresql":
@@ -294,10 +326,24 @@ class MotionDB(AbstractContextManager):
         # the preferred character and start posture are ranked here, as the query ranks them
         key = (verb, object, character, body_part)
         if key not in self._memo:
-            self._memo[key] = tuple(self._find(verb, object, character, body_part, None, None, None))
-        hits = _search.prefer(self._memo[key], body_part=body_part, character=prefer_character,
+            try:
+                self._memo[key] = tuple(self._find(verb, object, character, body_part, None, None, None))
+            except UnknownVerbError as exc:  # a verb the database lacks is asked again too (a plan's refusal)
+                self._memo[key] = exc
+        known = self._memo[key]
+        if isinstance(known, UnknownVerbError):  # a new error each time; its suggestions are found once
+            raise UnknownVerbError(known.verb, lambda: known.suggestions, known.n_verbs)
+        hits = _search.prefer(known, body_part=body_part, character=prefer_character,
                               start_posture=prefer_start_posture)
         return hits if limit is None else hits[:limit]
+
+    def _remembered(self, key: tuple, read: Callable[[], list]) -> list:
+        """``read()``, answered from memory inside :meth:`memoised` (a refused plan lists every clip and verb)."""
+        if self._memo is None:
+            return read()
+        if key not in self._memo:
+            self._memo[key] = tuple(read())
+        return list(self._memo[key])
 
     def _find(self, verb: str, object: str | None, character: str | None, body_part: str | None,
               prefer_character: str | None, limit: int | None, prefer_start_posture: str | None) -> list[ClipInfo]:
@@ -318,6 +364,9 @@ class MotionDB(AbstractContextManager):
     # ------------------------------------------------------------- listings
     def clips(self, character: str | None = None) -> list[ClipInfo]:
         """Every clip (of one character when given), by name."""
+        return self._remembered(("clips", character), lambda: self._clips(character))
+
+    def _clips(self, character: str | None) -> list[ClipInfo]:
         with self._session() as s:
             stmt = select(tb.clips.c.id).order_by(_search.binary_order(s, tb.clips.c.name))
             if character is not None:
@@ -334,6 +383,9 @@ class MotionDB(AbstractContextManager):
 
     def verbs(self) -> list[VerbInfo]:
         """Every verb with its reading and how many clips use it (by reading, then lemma)."""
+        return self._remembered(("verbs",), self._verbs)
+
+    def _verbs(self) -> list[VerbInfo]:
         with self._session() as s:
             verbs, links = tb.verbs.c, tb.clip_verbs.c
             primary = func.sum(case((links.is_primary, 1), else_=0))

@@ -168,8 +168,14 @@ def join_side(clip, side: str, whole: bool = False) -> Motion:
     if whole or clip.cyclic:
         return m
     c0, c1 = clip.core
-    part = m.between(max(0.0, c1 - NEAR_CORE), m.duration + 1.0) if side == "out" else m.between(0.0, c0 + NEAR_CORE)
-    return part if part.duration >= 0.2 else m
+
+    def make() -> Motion:
+        part = m.between(max(0.0, c1 - NEAR_CORE), m.duration + 1.0) if side == "out" \
+            else m.between(0.0, c0 + NEAR_CORE)
+        return part if part.duration >= 0.2 else m
+    # kept with the clip's motion: the same part, and the figures the post-pass measures of it (kept in its
+    # cache), join after join of a long text
+    return m.cache.get(("join_side", side, float(c0), float(c1)), make)
 
 
 def finish_joins(laid: Laid) -> None:

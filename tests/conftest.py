@@ -215,15 +215,18 @@ def empty_db(db_url):
 
 @pytest.fixture(scope="session", autouse=True)
 def _private_default_database(tmp_path_factory):
-    """No test writes to the user's data directory: the default database lives in a temp folder."""
+    """No test writes to the user's data or cache directory: the default database and the cache
+    (the built-in library's tag) live in temp folders."""
     path = tmp_path_factory.mktemp("default-db") / "motions.sqlite"
-    old = os.environ.get("TEXT2ANIM_DB")
-    os.environ["TEXT2ANIM_DB"] = str(path)
+    given = {"TEXT2ANIM_DB": str(path), "XDG_CACHE_HOME": str(tmp_path_factory.mktemp("cache"))}
+    old = {k: os.environ.get(k) for k in given}
+    os.environ.update(given)
     yield path
-    if old is None:
-        os.environ.pop("TEXT2ANIM_DB", None)
-    else:
-        os.environ["TEXT2ANIM_DB"] = old
+    for k, v in old.items():
+        if v is None:
+            os.environ.pop(k, None)
+        else:
+            os.environ[k] = v
 
 
 @pytest.fixture(scope="session")

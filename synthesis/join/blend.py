@@ -92,16 +92,21 @@ def blend(a: Motion, b: Motion, w) -> Motion:
     return Motion(a.skeleton, a.fps, root, rots)
 
 
-def sample(motion: Motion, frames) -> Motion:
+def sample(motion: Motion, frames, origin: int = 0) -> Motion:
     """The motion at fractional frame positions ``(K,)`` (clamped to its range): lerp/slerp between neighbours.
 
     This is the time warp of a blend: a clip played faster, slower or
     unevenly, e.g. the cycle of a walk stretched onto the cycle of a run.
+
+    ``origin``: ``motion`` is the window of a longer track starting at that frame, and ``frames`` are the
+    track's positions: the fractions are those of the track's positions, bit for bit (``47.3 - 47`` is not
+    ``52.3 - 52``).
     """
-    f = np.clip(np.asarray(frames, dtype=np.float64), 0.0, motion.n_frames - 1)
+    f = np.clip(np.asarray(frames, dtype=np.float64), origin, origin + motion.n_frames - 1)
     i0 = np.floor(f).astype(int)
-    i1 = np.minimum(i0 + 1, motion.n_frames - 1)
     u = f - i0
+    i0 -= origin
+    i1 = np.minimum(i0 + 1, motion.n_frames - 1)
     root = lerp(motion.root_positions[i0], motion.root_positions[i1], u)
     rots = slerp(motion.rotations[i0], motion.rotations[i1], np.broadcast_to(u[:, None], (len(f), motion.skeleton.n_joints)))
     trans = None

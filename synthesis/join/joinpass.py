@@ -73,7 +73,7 @@ from scipy.ndimage import gaussian_filter1d, maximum_filter1d, uniform_filter1d
 from text2anim.core.balance import balance_heights
 from text2anim.core.bodyparts import body_map
 from text2anim.core.cancel import checkpoint
-from text2anim.core.contacts import detect_contacts, runs
+from text2anim.core.contacts import contacts_within, runs
 from text2anim.core.easing import smootherstep_area
 from text2anim.core.hang import slowed_into_hanging
 from text2anim.core.metrics import quality
@@ -86,6 +86,7 @@ from .legsolve import solve_leg
 from .overfeet import over_feet
 from .pruning import Tried, least, may_keep, replaces
 from .smoothing import Smoothed, Stretch, plant_all
+from .spliced import Spliced
 
 SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
 PAD = 0.25  # s: the filtered pose fades in and out over this on each side of a region
@@ -265,12 +266,13 @@ def retime(motion: Motion, lo: int, hi: int, n_new: int, seam: int | None = None
     return replay(motion, lo, hi, warp_frames(hi - lo, n_new, seam))
 
 
-def replay(motion: Motion, lo: int, hi: int, src: np.ndarray) -> Motion:
+def replay(motion: Motion, lo: int, hi: int, src: np.ndarray, origin: int = 0) -> Motion:
     """``motion`` with frames ``[lo, hi)`` replaced by its frames ``lo + src`` (``src`` ``(n_new,)``: a
-    :func:`warp_frames`; later frames follow)."""
+    :func:`warp_frames`; later frames follow). ``origin``: ``motion`` is a window of a track from that frame on
+    (the fractions sampled are the track's, :func:`synthesis.join.blend.sample`)."""
     from text2anim.core.motion import concatenate
 
-    mid = sample(motion, lo + src)
+    mid = sample(motion, (origin + lo) + src, origin)
     return concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
 
 
@@ -299,8 +301,10 @@ def _hardest(m: Motion, lo: int, hi: int) -> int:
 AHEAD = 2  # widths re-planted beside the one asked for, when they may count too (one IK solve for all)
 
 
-def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
-    """One join finished (steps 1–6 of the module docstring).
+def finish_region(motion: Motion, region: Region, contacts,
+                  origin: int = 0) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
+    """One join finished (steps 1–6 of the module docstring). ``origin``: ``motion`` is the window of a track from
+    that frame on (``region`` and ``contacts`` in the window's frames; :func:`finish_track`).
 
     Returns the motion, what was done, and ``(lo, hi, n_new, src)``: the frames ``[lo, hi)`` now play
     over ``n_new``, new frame ``k`` showing source frame ``lo + src[k]`` (:func:`warp_frames`; later frames
@@ -342,10 +346,12 @@ def finish_region(motion: Motion, region: Region, contacts) -> tuple[Motion, dic
         n_new = int(round((whi - lo) * stretch))
         src = played[stretch] = warp_frames(whi - lo, n_new, seam, flights(span, n_new, seam))
         if n_new > whi - lo:
-            base, ref = replay(seamed, lo, whi, src), replay(motion, lo, whi, src)
+            base, ref = replay(seamed, lo, whi, src, origin), replay(motion, lo, whi, src, origin)
         else:
             base, ref = seamed, motion
-        idx = np.round(np.concatenate([np.arange(lo), lo + src, np.arange(whi, T)])).astype(int)
+        # rounded as the track's frames: a window's would round its halves the other way half the time
+        idx = np.round(np.concatenate([np.arange(lo), (origin + lo) + src, np.arange(whi, T)])).astype(int)
+        idx[lo:lo + len(src)] -= origin
         mask = {k: v[np.clip(idx, 0, T - 1)] for k, v in planted.items()}
         h2 = hi + max(n_new, whi - lo) - (whi - lo)
         pad = max(1, min(pad0, (h2 - lo) // 3))
@@ -404,26 +410,56 @@ def _landing_end(motion: Motion, h2: int, r1: int) -> int:
     return r1 if bool((np.nan_to_num(h) > 0.0).any()) else h2
 
 
+#: s: how far beyond a join's frames (its blend window, region end and pads) :func:`finish_region` reads: the widest
+#: low-pass reads 4 sigma beyond the region (``SIGMAS[-1]`` frames at 30 fps: 1.07 s), the rest a few frames (the
+#: feet's contact weights 0.2 s, the contacts' hysteresis 0.1 s); half a second to spare
+REACH = 4.0 * SIGMAS[-1] / 30.0 + 0.5
+
+
+def _shifted(r: Region, by: int) -> Region:
+    """``r`` with its frames ``by`` later."""
+    return Region(r.w0 + by, r.w1 + by, r.r1 + by, r.sources, (r.keep[0] + by, r.keep[1] + by),
+                  None if r.brake_from is None else r.brake_from + by, tuple(x + by for x in r.seams),
+                  r.into_core, r.near)
+
+
+def _window(r: Region, fps: float, T: int) -> tuple[int, int]:
+    """The frames ``[a, b)`` of a track of ``T`` frames that :func:`finish_region` reads and writes for ``r``
+    (:data:`REACH` beyond the region it may take): the join finished on them is the join finished on the
+    whole track, bit for bit, and costs its window's work."""
+    pad0 = max(1, int(round(PAD * fps)))
+    reach = int(np.ceil(REACH * fps))
+    before = max(pad0, int(round(BRAKE * fps)) if r.brake_from is not None else 0)
+    return max(0, r.w0 - before - reach), min(T, max(r.r1, r.w1) + pad0 + reach)
+
+
 def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[dict], list[tuple[int, int, int, np.ndarray]]]:
     """All joins of a track finished in time order (the clips' own floor is the import's: only the joins'
     regions are lifted off it, and after an adaptation, which fits the next clip's legs to the previous
     feet through its core, everything up to the next join). Returns the motion, per join what was done, and per join the retiming
     ``(lo, hi, n_new, src)`` in the frames of the motion as it was *before* that join (earlier joins' added
-    frames included)."""
+    frames included).
+
+    Each join is finished on its window of the track (:func:`_window`), with the foot contacts of the whole
+    track (their floor levels the track's, :class:`synthesis.join.spliced.Spliced`): a long track's joins cost
+    their windows' work, not the track's each."""
     infos, warps = [], []
-    out = motion
+    track = Spliced(motion)
+    fps = motion.fps
     added = 0
     for k, r in enumerate(regions):
-        if added:
-            r = Region(r.w0 + added, r.w1 + added, r.r1 + added, r.sources, (r.keep[0] + added, r.keep[1] + added),
-                       None if r.brake_from is None else r.brake_from + added, tuple(x + added for x in r.seams),
-                       r.into_core, r.near)
+        r = _shifted(r, added)
         checkpoint()  # an abandoned animation stops before its next region
-        out, info, warp = finish_region(out, r, detect_contacts(out))
+        a, b = _window(r, fps, track.n_frames)
+        win = track.window(a, b)
+        done, info, (lo, hi, n_new, src) = finish_region(win, _shifted(r, -a), contacts_within(win, track.floor()), a)
+        track.put(a, b, done)
         infos.append(info)
-        warps.append(warp)
-        added += warp[2] - (warp[1] - warp[0])
+        warps.append((lo + a, hi + a, n_new, src))
+        added += n_new - (hi - lo)
         if r.into_core:  # an adaptation's fitted legs reach through the next clip's core, up to the next join
-            end = regions[k + 1].w0 + added if k + 1 < len(regions) else out.n_frames
-            out = lift_off_floor(out, r.w0, min(end, out.n_frames))
-    return out, infos, warps
+            end = min(regions[k + 1].w0 + added if k + 1 < len(regions) else track.n_frames, track.n_frames)
+            if end > r.w0:
+                a, b = max(0, r.w0 - int(np.ceil(REACH * fps))), min(track.n_frames, end + int(np.ceil(REACH * fps)))
+                track.put(a, b, lift_off_floor(track.window(a, b), r.w0 - a, end - a))
+    return track.motion(), infos, warps

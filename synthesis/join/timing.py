@@ -205,7 +205,9 @@ def prepare(element: Element, fps: float, margin: bool = False) -> Prepared:
     length = element.end - element.start
     n_target = max(1, int(round(length * fps)))
     if clip.cyclic and clip.motion.n_frames >= 3:
-        m = make_cyclic(cycle_at_speed(clip.motion, speed, fps))
+        # kept with the clip's motion: a text that walks 31 times loops the same cycle 31 times
+        m = clip.motion.cache.get(("cyclic at speed", speed, float(fps)),
+                                  lambda: make_cyclic(cycle_at_speed(clip.motion, speed, fps)))
     else:
         m = at_speed(clip.motion, speed, fps)
     n_src = m.n_frames

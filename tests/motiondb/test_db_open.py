@@ -109,6 +109,35 @@ def test_a_failed_seeding_leaves_no_half_database(db_url):
         engine.dispose()
 
 
+def test_the_library_tag_follows_every_change_of_its_files_with_the_cache_or_without(tmp_path, monkeypatch):
+    """The built-in library's tag (what a database was seeded with) is kept in the cache folder by its files'
+    sizes and times: a file edited, added or removed gives the new content's tag, and a cache that is
+    garbage or cannot be written still gives the right one."""
+    import os
+
+    from text2anim.motiondb.seed import files_tag, library_tag
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    lib = tmp_path / "library"
+    (lib / "sub").mkdir(parents=True)
+    (lib / "clips.json").write_text('{"walk": 1}')
+    (lib / "sub" / "keyframed.npz").write_bytes(b"\0" * 1000)
+    first = library_tag(lib)
+    assert first == files_tag(lib) and library_tag(lib) == first
+    (lib / "clips.json").write_text('{"walk": 2}')  # same size: its time tells
+    os.utime(lib / "clips.json", ns=(1, 1))
+    assert library_tag(lib) == files_tag(lib) != first
+    (lib / "run.json").write_text("{}")
+    assert library_tag(lib) == files_tag(lib)
+    (lib / "run.json").unlink()
+    assert library_tag(lib) == files_tag(lib)
+    for kept in (tmp_path / "cache" / "text2anim").iterdir():
+        kept.write_text("garbage")
+    assert library_tag(lib) == files_tag(lib)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(lib / "clips.json"))  # a file where the folder would be
+    assert library_tag(lib) == files_tag(lib)
+
+
 def test_first_open_seeds_the_builtin_library(tmp_path):
     builtin_clips = _builtin_clips()
     expected = sorted(r.name for r in builtin_clips())

@@ -192,6 +192,39 @@ def test_memoised_searches_ask_the_database_once_until_something_changes(empty_d
     assert len(seen) == 1  # outside the block every search asks the database
 
 
+def test_memoised_answers_outlive_the_block_until_another_connection_changes_the_database(db_url, record):
+    """A warm process plans sentence after sentence: each plan's ``memoised()`` block answers from the
+    one before while nothing changed, and a change by another connection (another process's import) or
+    by this object is seen by the next block: new clips, a verb that was missing, the listings."""
+    from text2anim.motiondb import MotionDB
+
+    with MotionDB.open(db_url, seed=False) as mine, MotionDB.open(db_url, seed=False) as other:
+        mine.add([record("walk", ("歩く",))])
+        with mine.memoised():
+            assert names(mine.search("歩く")) == ["walk"]
+            with pytest.raises(UnknownVerbError):
+                mine.search("跳ぶ")
+            assert names(mine.clips()) == ["walk"]
+        seen = _selects(mine)
+        with mine.memoised():
+            assert names(mine.search("歩く")) == ["walk"]
+            with pytest.raises(UnknownVerbError) as err:
+                mine.search("跳ぶ")
+            assert err.value.verb == "跳ぶ" and [v.lemma for v in mine.verbs()] == ["歩く"]
+        if mine.backend == "sqlite":
+            assert len(seen) == 1  # the verbs only: nothing else asked again
+        other.add([record("stroll", ("歩く",)), record("hop", ("跳ぶ",))])
+        with mine.memoised():
+            assert names(mine.search("歩く")) == ["stroll", "walk"]
+            assert names(mine.search("跳ぶ")) == ["hop"]
+            assert names(mine.clips()) == ["hop", "stroll", "walk"]
+        mine.remove("hop")
+        with mine.memoised():
+            with pytest.raises(UnknownVerbError):
+                mine.search("跳ぶ")
+            assert sorted(v.lemma for v in mine.verbs()) == ["歩く"]
+
+
 def test_memoised_searches_rank_the_preferences_as_the_database_does(empty_db, record):
     """Inside ``memoised()`` a verb is asked once; the preferred character and posture are ranked in
     Python (:func:`motiondb.search.prefer`), which must give the query's own order for every combination."""
