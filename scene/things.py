@@ -86,6 +86,7 @@ class _Path:
         self.rot = np.tile([0.0, 0.0, 0.0, 1.0], (n, 1))
         self.events: list[tuple[float, str]] = []
         self.holder: tuple[str | None, str] | None = None  # (actor, "right" / "both") while held
+        self.at_feet: str | None = None  # who dribbles it (ドリブルして、シュートする: the kick's ball)
         self.sitters: list[tuple[np.ndarray, float]] = []  # (hips, heading) of each who sits on it
 
     @property
@@ -115,8 +116,7 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
         if not any(how == "handled" for _, how in named) and r.verb in THROW | PUT | GIVE | KICK:
             held = next((q for q in paths.values() if q.holder is not None and q.holder[0] == r.actor), None)
             if held is None and r.verb in KICK:  # ドリブルして、シュートする: the ball at the feet
-                held = next((q for q in paths.values() if q.events and q.events[-1][1] == f"dribbled by {_who(r.actor)}"),
-                            None)
+                held = next((q for q in paths.values() if q.at_feet == r.actor), None)
             named += [(held.name, "handled")] if held is not None else []  # 拾って、投げる: what the hand holds
         for name, how in named:
             if name not in paths:
@@ -195,12 +195,7 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
     elif r.verb in KICK:
         _kick(p, r, m, motions, f0, f1, fps)
     elif r.verb in DRIBBLE:
-        path, heading = bodies.hips_path(m)
-        ahead = path[f0:f1] + DRIBBLE_AHEAD * p.scale * np.stack([np.sin(heading[f0:f1]), 0 * heading[f0:f1],
-                                                                  np.cos(heading[f0:f1])], axis=1)
-        p.pos[f0:] = ahead[-1] + [0.0, p.half, 0.0]
-        p.pos[f0:f1] = ahead + [0.0, p.half, 0.0]
-        p.holder = None
+        _dribble(p, r, m, f0, f1)
         p.events.append((t, f"dribbled by {_who(r.actor)}"))
     elif r.verb in THROW:
         _throw(p, r, m, rows, motions, f0, f1, fps)
@@ -346,6 +341,7 @@ def _kick(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float
         w = np.linspace(0.0, 1.0, hit - f0 + 1)[:, None]
         p.pos[f0:hit + 1] = (1.0 - w) * p.pos[f0] + w * start
         p.pos[hit:] = start
+    p.at_feet = None
     v = np.gradient(toe, 1.0 / fps, axis=0)[hit] * KICK_GAIN
     horizontal = float(np.clip(np.hypot(v[0], v[2]), 4.0, 7.0))  # a kick about, not a shot at goal
     aim = _aim(r, motions, p.pos[hit], hit, heading)
@@ -357,6 +353,16 @@ def _kick(p: _Path, r: Element, m: Motion, motions, f0: int, f1: int, fps: float
     v = np.array([horizontal * np.sin(aim), lift, horizontal * np.cos(aim)])
     _fly(p, hit, p.pos[hit], v, fps)
     p.events.append((hit / fps, f"kicked by {_who(r.actor)}"))
+
+
+def _dribble(p: _Path, r: Element, m: Motion, f0: int, f1: int) -> None:
+    """The ball on the floor :data:`DRIBBLE_AHEAD` ahead of the hips over frames ``[f0, f1)``, left there after."""
+    path, heading = bodies.hips_path(m)
+    h = heading[f0:f1]
+    ahead = path[f0:f1] + DRIBBLE_AHEAD * p.scale * np.stack([np.sin(h), np.zeros_like(h), np.cos(h)], axis=1)
+    p.pos[f0:] = ahead[-1] + [0.0, p.half, 0.0]
+    p.pos[f0:f1] = ahead + [0.0, p.half, 0.0]
+    p.holder, p.at_feet = None, r.actor
 
 
 def _throw(p: _Path, r: Element, m: Motion, rows, motions, f0: int, f1: int, fps: float) -> None:
