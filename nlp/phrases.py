@@ -78,8 +78,8 @@ def read_phrases(preds: list[Pred], phrases: list[Phrase]) -> None:
 def _hand_on(pred: Pred, later: list[Pred], phrases: list[Phrase]) -> None:
     """杖をついて歩く: a prop's phrase (``phrases.json`` 'props') in て-form is no motion; its noun is the
     object of the next motion of the sentence that has none (the walk, the cane in hand)."""
-    props = _data()[2]
-    if pred.ending not in ("te", "renyou") or not {(pred.noun, pred.written or pred.verb), (pred.noun, pred.lemma)} & props:
+    spelled = {(pred.noun, pred.written or pred.verb), (pred.noun, pred.lemma)}
+    if pred.ending not in ("te", "renyou") or not spelled & _data()[2]:
         return
     sentence = phrases[pred.phrase].sentence
     nxt = next((q for q in later if q.motion), None)
