@@ -356,11 +356,15 @@ def _reaches(anim, rows, props, c):
     _, m, f0, f1 = _played(anim, rows, c)
     p = _thing(props, c)
     _, right = _wrists(m)
-    half = 0.5 * np.array(p.size)
-    local = Rotation.from_quat(p.rotations[f0:f1]).inv().apply(right[f0:f1] - p.positions[f0:f1])
-    outside = np.maximum(np.abs(local) - half, 0.0)
-    d = float(np.linalg.norm(outside, axis=1).min())
+    d = float(np.linalg.norm(_outside(p, right[f0:f1], slice(f0, f1)), axis=1).min())
     return Figure("reaches", d, "m", d < 0.15)
+
+
+def _outside(p, points: np.ndarray, frames) -> np.ndarray:
+    """``(..., 3)`` m: how far ``points`` lie outside thing ``p``'s box along each of its own axes, on ``frames``
+    (an index or a slice of its frames, one point each)."""
+    local = Rotation.from_quat(p.rotations[frames]).inv().apply(points - p.positions[frames])
+    return np.maximum(np.abs(local) - 0.5 * np.array(p.size), 0.0)
 
 
 def _at(anim, rows, props, c):
@@ -368,8 +372,7 @@ def _at(anim, rows, props, c):
     m = _motion(anim, c["actor"])
     p = _thing(props, c)
     f = min(_frame(anim, r.end, m), m.n_frames - 1)
-    local = Rotation.from_quat(p.rotations[f]).inv().apply(m.root_positions[f] - p.positions[f])
-    d = float(np.hypot(*np.maximum(np.abs(local) - 0.5 * np.array(p.size), 0.0)[[0, 2]]))
+    d = float(np.hypot(*_outside(p, m.root_positions[f], f)[[0, 2]]))  # over the floor
     err = _facing_error(m, f, p.positions[f])
     return Figure("at", d, "m", d < AT_M and err < 45.0, f"facing {err:.0f}° off")
 

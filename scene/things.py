@@ -182,7 +182,7 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         _table(p, m, f0, f1)
     elif how == "beside":
         _beside(p, m, f1 - 1, r.target_side)
-        p.events.append((f1 / fps - 1 / fps, f"{_who(r.actor)} is at its {r.target_side} side"))
+        p.events.append(((f1 - 1) / fps, f"{_who(r.actor)} is at its {r.target_side} side"))
     elif how == "route":
         path, _ = bodies.hips_path(m)
         p.rest(0, path[(f0 + f1) // 2] + [0.0, p.half, 0.0])
@@ -544,11 +544,11 @@ def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float) -> None
     handle = hand[reach] + 0.05 * fwd
     hinge = handle + (w - 0.1) * left
     hinge[1] = 0.0
-    opening = r.verb in OPEN
+    opening, knocked = r.verb in OPEN, _knocks(r, p)
     n = len(p.pos)
     ramp = np.clip((np.arange(n) - reach) / max(1, f1 - reach), 0.0, 1.0)
     angles = np.radians(DOOR_SWING) * ((3 - 2 * ramp) * ramp * ramp if opening else 1 - (3 - 2 * ramp) * ramp * ramp)
-    if _knocks(r, p):
+    if knocked:
         angles[:] = 0.0  # knocked on: it stays shut
     centre_local = -0.5 * w * left + [0.0, 0.5 * h, 0.0]
     for k in range(n):
@@ -556,5 +556,5 @@ def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float) -> None
         p.pos[k] = hinge + Rotation.from_euler("y", angles[k]).apply(centre_local)
         p.rot[k] = turn.as_quat()
     p.holder = None
-    done = "knocked on" if _knocks(r, p) else "opened" if opening else "shut"
+    done = "knocked on" if knocked else "opened" if opening else "shut"
     p.events.append((reach / fps, f"{done} by {_who(r.actor)}"))
