@@ -131,27 +131,30 @@ def unwrap_direction(tokens: list[Token]) -> list[Token]:
     """A stage direction wholly in brackets ((花子、窓を開ける), 花子:(座る), 行くぞ!(ボールを蹴る))
     is text to analyse, not a quotation: the brackets that wrap a whole sentence of the
     line (after a speaker label, a sentence end or a trailing mark such as 〜 or ♪, up to the
-    line's or the sentence's end) are dropped."""
+    line's or the sentence's end) are dropped; so are those right after a speaker label, wherever they close
+    (母:(ため息をついて)もう、起きなさい: how the line is said, done)."""
     # a sentence ends at 。！？ and, in chat, at the mark it trails off with (いらっしゃいませ〜, やったー♪)
-    starts = {script_label_end(tokens)} | {k + 1 for k, t in enumerate(tokens)
-                                           if t.pos2 == "句点" or (t.pos1 == "補助記号" and t.pos2 == "一般")}
+    label = script_label_end(tokens)
+    starts = {label} | {k + 1 for k, t in enumerate(tokens)
+                        if t.pos2 == "句点" or (t.pos1 == "補助記号" and t.pos2 == "一般")}
     drop = set()
     for s in starts:
-        e = _direction_end(tokens, s)
+        e = _direction_end(tokens, s, anywhere=s == label > 0)
         if e is not None:
             drop |= {s, e}
     return [t for k, t in enumerate(tokens) if k not in drop] if drop else tokens
 
 
-def _direction_end(tokens: list[Token], s: int) -> int | None:
-    """Index of the ``)`` closing a ``(`` at ``s`` when it closes the sentence (``(座る)。``), else None."""
+def _direction_end(tokens: list[Token], s: int, anywhere: bool = False) -> int | None:
+    """Index of the ``)`` closing a ``(`` at ``s`` when it closes the sentence (``(座る)。``; ``anywhere``: wherever it
+    closes), else None."""
     if s >= len(tokens) or tokens[s].surface != "(":
         return None
     depth = 0
     for k in range(s, len(tokens)):
         depth += {"(": 1, ")": -1}.get(tokens[k].surface, 0)
         if depth == 0:  # the opening bracket closes here: a direction if the sentence ends with it
-            ends = k + 1 == len(tokens) or tokens[k + 1].pos2 == "句点"
+            ends = anywhere or k + 1 == len(tokens) or tokens[k + 1].pos2 == "句点"
             return k if ends and k - s >= 2 else None
     return None
 
