@@ -113,7 +113,7 @@ _RENYOU_SAHEN = Token("", "動詞", "非自立可能", "*", "サ行変格", "連
 def _as(verb: Token, covered: list[Token], form: Token) -> Token:
     """``verb``'s lemma, spelling and reading over the ``covered`` tokens, conjugated as ``form``."""
     return replace(verb, surface="".join(t.surface for t in covered), pos1="動詞", pos2="一般", pos3="*",
-                   ctype=form.ctype, cform=form.cform, start=covered[0].start, end=covered[-1].end)
+                   ctype=form.ctype, cform=form.cform, start=covered[0].start, end=covered[-1].end, honorific=True)
 
 
 @lru_cache(maxsize=64)
@@ -144,7 +144,7 @@ def _relemma(tokens: list[Token], i: int, before: list[Token]) -> Token:
 
 def _renamed(tok: Token, verb: str) -> Token:
     plain_verb = _dictionary_form(verb)
-    return replace(tok, lemma=plain_verb.lemma, orth=plain_verb.orth, kana=plain_verb.kana)
+    return replace(tok, lemma=plain_verb.lemma, orth=plain_verb.orth, kana=plain_verb.kana, honorific=True)
 
 
 def _object_noun(before: list[Token]) -> str:

@@ -142,18 +142,21 @@ PERSON_NOUNS = frozenset(
     息子 娘 夫 妻 奥さん 旦那 旦那さん 祖父 祖母 孫 おじいちゃん おばあちゃん 赤ん坊 幼児 園児 児童
     小学生 中学生 高校生 大学生 留学生 新入生 転校生 同級生 王子 王女 姫 お姫様 女王 勇者 魔女 泥棒
     犯人 刑事 探偵 兄弟 姉妹 彼氏 おばちゃん おじちゃん パパ ママ 新人 仲間 恋人 親友 住民 市民 お年寄り
-    人々 親 両親 主婦 美容師 漁師 職人 商人 旅人 料理人""".split()
+    人々 親 両親 主婦 美容師 漁師 職人 商人 旅人 料理人
+    兄貴 アニキ 姉貴 アネキ 親父 おやじ オヤジ おふくろ お袋 わし 友だち ダチ 嫁 相方
+    坊や 甥 姪 いとこ 従兄弟 従姉妹 叔父 伯父 叔母 伯母 ワンコ わんこ にゃんこ""".split()
 )
 
 #: Person nouns by sex, for the pronouns that name one (彼: a man, 彼女: a woman; docs/language.md §9).
 #: Compared with each noun of a mention (お父さん: 父), so spelling variants are listed once each.
 MALE_NOUNS = frozenset(
     """男 男性 少年 男の子 父 父親 兄 弟 お兄さん 兄ちゃん おじいさん おじいちゃん おじさん おじちゃん
-    祖父 息子 夫 旦那 王様 王子 彼 彼氏 パパ 僧 紳士""".split()
+    祖父 息子 夫 旦那 王様 王子 彼 彼氏 パパ 僧 紳士 兄貴 アニキ 親父 おやじ オヤジ 坊や 甥 叔父 伯父""".split()
 )
 FEMALE_NOUNS = frozenset(
     """女 女性 少女 女の子 母 母親 姉 妹 お姉さん 姉ちゃん おばあさん おばあちゃん おばさん おばちゃん
-    祖母 娘 妻 奥さん 王女 姫 お姫様 女王 女優 魔女 彼女 ママ""".split()
+    祖母 娘 妻 奥さん 王女 姫 お姫様 女王 女優 魔女 彼女 ママ 姉貴 アネキ おふくろ お袋 嫁 姪 叔母
+    伯母""".split()
 )
 
 #: Endings of given names read as a man's or a woman's (花子, 恵子, 美咲; 太郎, 健一, 健太): the

@@ -92,6 +92,31 @@ def _spelling(key: str) -> str | None:
     return None
 
 
+#: The second phrase of a likeness the dictionary splits off (不思議 + そうに, 夢見る + ように).
+_LIKENESS = ("そうに", "ように", "げに", "様子で")
+
+
+def unread(phrases: list[Phrase], i: int) -> str | None:
+    """The manner word phrase ``i`` is, as written, when it has the shape of one but no list reads it
+    (丁寧に, にこやかに, 不思議そうに, 懐かしく): the motion keeps it as a manner of no style, which the
+    animation says it does not show, rather than dropping it in silence. None for any other phrase."""
+    ph = phrases[i]
+    toks = [t for t in ph.tokens if t.pos1 != "補助記号"]
+    if ph.role or not toks:
+        return None
+    prev = phrases[i - 1] if i else None
+    if ph.key in _LIKENESS and prev is not None and prev.sentence == ph.sentence and not prev.role \
+            and not prev.has_comma() and prev.pred is None:
+        return prev.key + ph.key
+    if len(toks) >= 2 and toks[-1].pos1 == "助動詞" and toks[-1].cform == "連用形-ニ" \
+            and all(t.pos1 == "形状詞" for t in toks[:-1]) and toks[0].pos2 == "一般":
+        return ph.key  # 丁寧に, にこやかに
+    if len(toks) == 1 and toks[0].pos1 == "形容詞" and toks[0].pos2 == "一般" and toks[0].cform.startswith("連用形") \
+            and ph.key.endswith("く") and ph.key not in _data()["degree"]:
+        return ph.key  # 懐かしく
+    return None
+
+
 def passed_on(written: str) -> Manner | None:
     """The style a posture idiom in て-form gives the motion after it (胸を張る: proud), or None."""
     return _entry("passes", written)

@@ -178,7 +178,14 @@ def _bare_objects(phrases: list[Phrase]) -> None:
 
 
 def _opens_sentence(phrases: list[Phrase], k: int) -> bool:
-    return k == 0 or phrases[k - 1].sentence != phrases[k].sentence
+    """Phrase ``k`` opens its sentence, or follows only chat openers with their commas (てかさ、太郎寝てる,
+    ねえ、やばい、太郎ずっと寝てる): phrases of no role and no predicate, naming no person."""
+    for q in reversed(phrases[:k]):
+        if q.sentence != phrases[k].sentence:
+            return True
+        if q.role or q.pred or not q.has_comma() or person_name(q):
+            return False
+    return True
 
 
 def _mark_manner(phrases: list[Phrase]) -> None:
@@ -266,10 +273,24 @@ def _mark_passives(phrases: list[Phrase]) -> None:
             continue
         by = next((q for q in reversed(phrases[:i]) if q.group == ph.group and q.pred is None
                    and case_particle(q) == "に" and person_name(q)), None)
-        if by is not None:
+        if by is not None and not _honoured_before(phrases, i):
             pred.reason = "passive"
             said = f"{by.key}{pred.written or pred.verb} (passive): done by {person_name(by)}, not animated"
             pred.note = f"{pred.note}; {said}" if pred.note else said
+
+
+def _honoured_before(phrases: list[Phrase], i: int) -> bool:
+    """社長がお立ちになり、皆に頭を下げられた: the actor of phrase ``i`` was just spoken of in keigo (a verb
+    keigo.py read from an honorific form, earlier in the sentence, no new actor named between), so its
+    れる / られる is the honorific one, not a passive by the に-person."""
+    for q in reversed(phrases[:i]):
+        if q.sentence != phrases[i].sentence:
+            return False
+        if q.pred is not None and any(t.honorific for t in q.tokens):
+            return True
+        if q.pred is None and case_particle(q) in ("は", "が") and person_name(q):
+            return False
+    return False
 
 
 def _mark_embedded(phrases: list[Phrase]) -> None:
@@ -302,6 +323,8 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float],
         found = styled.get(i)
         if found is not None and pred.motion:  # the word nearest the verb is the last one set
             pred.manner, pred.style, pred.intensity = found.word, found.style, found.intensity
+        elif pred.motion and not pred.style and i not in styled and (unread := manners.unread(phrases, i)):
+            pred.manner = unread  # 丁寧にお辞儀する: said as not shown, never dropped in silence
         if role in ("connective", "delay"):
             cue = _time_cue(phrases, i, values)
             if cue:

@@ -33,6 +33,7 @@ class Token:
     end: int
     value: float | None = None  # numbers only (merged digits / kanji numerals)
     kana_form: str = ""  # reading of the form as written (伸び -> ノビ)
+    honorific: bool = False  # a verb keigo.py read from an honorific form (お立ちになる, いらっしゃる)
 
     @property
     def is_number(self) -> bool:
