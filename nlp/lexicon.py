@@ -147,6 +147,13 @@ PERSON_NOUNS = frozenset(
     坊や 甥 姪 いとこ 従兄弟 従姉妹 叔父 伯父 叔母 伯母 ワンコ わんこ にゃんこ""".split()
 )
 
+#: Words that honour the person they name (先生, 社長, 田中様): such an actor doing a gesture with a
+#: part of their own body in れる / られる form is spoken of in keigo, not passively (先生は生徒たちに
+#: 手を振られた: the teacher waved; docs/language.md §9.3).
+HONOURED_TITLES = frozenset(
+    """先生 社長 部長 課長 係長 会長 校長 院長 店長 所長 理事長 監督 教授 先輩 様 さま 殿 陛下 殿下 お客様""".split()
+)
+
 #: Person nouns by sex, for the pronouns that name one (彼: a man, 彼女: a woman; docs/language.md §9).
 #: Compared with each noun of a mention (お父さん: 父), so spelling variants are listed once each.
 MALE_NOUNS = frozenset(

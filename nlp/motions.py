@@ -14,7 +14,7 @@ from .actors import assign_actors, case_particle, noun_of, person_name, speaker_
 from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX,
+    BODY_PARTS, CONNECTIVES, COUNTERS, HONOURED_TITLES, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX,
     SPEED_WORDS, STEPPING_VERBS,
 )
 from . import manners, mimetics
@@ -280,16 +280,18 @@ def _mark_passives(phrases: list[Phrase]) -> None:
 
 
 def _honoured_before(phrases: list[Phrase], i: int) -> bool:
-    """社長がお立ちになり、皆に頭を下げられた: the actor of phrase ``i`` was just spoken of in keigo (a verb
-    keigo.py read from an honorific form, earlier in the sentence, no new actor named between), so its
-    れる / られる is the honorific one, not a passive by the に-person."""
+    """The れる / られる of phrase ``i`` is the honorific one, not a passive by the に-person: its actor was
+    just spoken of in keigo (社長がお立ちになり、皆に頭を下げられた: a verb keigo.py read from an honorific
+    form, earlier in the sentence, no new actor named between), or is an honoured person
+    (``lexicon.HONOURED_TITLES``) making a gesture with a part of the body (先生は生徒たちに手を振られた)."""
+    gesture = any(q.role == "body part" for q in phrases[:i] if q.group == phrases[i].group)
     for q in reversed(phrases[:i]):
         if q.sentence != phrases[i].sentence:
             return False
         if q.pred is not None and any(t.honorific for t in q.tokens):
             return True
         if q.pred is None and case_particle(q) in ("は", "が") and person_name(q):
-            return False
+            return gesture and any(t.surface in HONOURED_TITLES for t in q.tokens)
     return False
 
 

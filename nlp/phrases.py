@@ -47,6 +47,12 @@ def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], dict[str, str], f
     return ordered, dict(data["body_nouns"]), frozenset((n, v) for n, vs in data["props"].items() for v in vs)
 
 
+@lru_cache(maxsize=1)
+def _bare() -> dict[str, str]:
+    """``phrases.json`` 'bare': a verb that is another action when it has no を-noun (掛ける: 座る)."""
+    return dict(json.loads(DATA.read_text(encoding="utf-8"))["bare"])
+
+
 def body_nouns() -> dict[str, str]:
     """Nouns of the actor's body that ``lexicon.BODY_PARTS`` gives no body part (目, 肩, 膝, ...), each with
     the part it is on: ``head``, ``torso``, ``arm`` or ``leg``."""
@@ -69,6 +75,8 @@ def read_phrases(preds: list[Pred], phrases: list[Phrase]) -> None:
     """Give each motion of ``preds`` with a を-noun (``Pred.noun``: or a bare noun, 手振って) its
     phrase and read an idiom as the action it means (module docstring); ``phrases`` are the text's."""
     for k, pred in enumerate(preds):
+        if not pred.noun and pred.motion and (pred.written or pred.verb) in _bare():
+            pred.verb, pred.reading = _bare()[pred.written or pred.verb], ""  # ソファに掛ける: 座る
         if pred.noun and pred.motion:
             index = pred.phrase
             _read(pred, pred.noun, lambda: frozenset(p.key for p in phrases if p.head == index and p.pred is None))

@@ -6,6 +6,8 @@ Run on the tokens of the text before chunking (after :mod:`keigo`), the offsets 
   gives as its lemma, so the speed words and body parts find it (the verb endings 〜はる, 〜とる,
   〜てん, 〜ちゃう and ねん are auxiliaries and particles UniDic already knows);
 - はよ (Kansai 早く, two particles to UniDic) before a verb is a manner adverb;
+- chat's ガチで (seriously), which UniDic reads as the noun ガチ + で and joins to the noun before it
+  (先生ガチで怒ってた: no actor 先生), is tagged as まじで is: an adjectival word + で;
 - a command without a verb ending: an action noun ending its sentence (ジャンプ！, はい、お辞儀！,
   ``3) お辞儀``) is the noun + する, and a verb's 連用形 there (走り！, 座りな, 走りや: the spoken
   and Kansai imperative) is the verb, when it is a bodily action (a library verb or near one in meaning, :func:`meaning.bodily`),
@@ -25,6 +27,8 @@ from .types import Token
 DRAWL = "ー〜～ぁぃぅぇぉ"
 _DRAWL = str.maketrans("", "", DRAWL)
 _DRAWL_CHARS = frozenset(DRAWL)
+#: A chat adverb UniDic tags as a noun; before で it is tagged as まじ is (形状詞).
+CHAT_ADVERB = "ガチ"
 #: Particles that soften a 連用形 command at the end of a sentence: 座りな, 走りや, 立ちよ.
 SOFTENERS = frozenset("な や よ".split())
 
@@ -32,7 +36,7 @@ SOFTENERS = frozenset("な や よ".split())
 def may_apply(text: str, tokens: list[Token]) -> bool:
     """Could :func:`plain` change anything in ``tokens`` (of ``text``): is a word drawn out, or does a
     noun end a sentence (or come before a particle that does)?"""
-    if not _DRAWL_CHARS.isdisjoint(text):
+    if not _DRAWL_CHARS.isdisjoint(text) or CHAT_ADVERB + "で" in text:
         return True
     prev = None
     for t in tokens:
@@ -56,6 +60,10 @@ def plain(tokens: list[Token]) -> list[Token]:
             out.append(replace(tok, surface="はよ", pos1="副詞", pos2="*", pos3="*", lemma="はよ", orth="はよ",
                                kana="ハヨ", kana_form="ハヨ", end=tokens[i + 1].end))
             i += 2
+            continue
+        if tok.surface == CHAT_ADVERB and i + 1 < len(tokens) and tokens[i + 1].surface == "で":
+            out.append(replace(tok, pos1="形状詞", pos2="一般", pos3="*"))  # 先生ガチで怒ってた
+            i += 1
             continue
         command = _command(tokens, i, out)
         if command is not None:
