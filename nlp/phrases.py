@@ -76,7 +76,8 @@ def read_phrases(preds: list[Pred], phrases: list[Phrase]) -> None:
     phrase and read an idiom as the action it means (module docstring); ``phrases`` are the text's."""
     for k, pred in enumerate(preds):
         if not pred.noun and pred.motion and (pred.written or pred.verb) in _bare():
-            pred.verb, pred.reading = _bare()[pred.written or pred.verb], ""  # ソファに掛ける: 座る
+            # ソファに掛ける: 座る, looked up as that verb (the planner tries ``written`` first: hang_up)
+            pred.verb, pred.written, pred.reading = _bare()[pred.written or pred.verb], "", ""
         if pred.noun and pred.motion:
             index = pred.phrase
             _read(pred, pred.noun, lambda: frozenset(p.key for p in phrases if p.head == index and p.pred is None))
