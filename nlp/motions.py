@@ -14,8 +14,8 @@ from .actors import assign_actors, case_particle, noun_of, person_name, speaker_
 from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, HONOURED_TITLES, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX,
-    SPEED_WORDS, STEPPING_VERBS,
+    BODY_PARTS, CONNECTIVES, COUNTERS, HONOURED_TITLES, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS,
+    SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS,
 )
 from . import manners, mimetics
 from .phrases import read_phrases
