@@ -32,7 +32,7 @@ from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
     BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
-    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
+    LOWERING_VERBS, PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
@@ -251,9 +251,12 @@ def _follow_on(preds: list[Pred]) -> None:
     - a gesture right after a motion of the same actor directed at a person is addressed to that person
       (花子に近づいて、お辞儀する), a touch of them done to them (駆け寄って、抱きしめる), a thing sent goes
       to them (近づいて、ボールを渡す: she receives it);
-    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note.
+    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note;
+    - a thing given back (返す, 投げ返す) with no one named goes back to the one who gave it (健は花子に本を
+      貸した。彼女はそれを返した: to 健).
     """
     last: dict[str | None, Pred] = {}
+    givers: dict[str, str | None] = {}  # thing -> the person who sent it
     thing: str | None = None
     before: Pred | None = None
     for pred in preds:
@@ -271,6 +274,7 @@ def _follow_on(preds: list[Pred]) -> None:
                     else "recipient" if pred.verb in TRANSFER_VERBS and pred.object and pred.object not in BODY_PARTS
                     else "addressee")
             pred.target, pred.target_role, pred.target_person = prev.target, role, True
+        _stand_at(pred, prev)
         last[pred.actor] = pred
         if pred.object in THING_ANAPHORS and thing is not None:
             said = f"{pred.object} read as {thing}, the thing last named"
@@ -278,6 +282,31 @@ def _follow_on(preds: list[Pred]) -> None:
             pred.object = thing
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
+        _give_back(pred, givers)
+
+
+def _stand_at(pred: Pred, prev: Pred | None) -> None:
+    """先生は黒板の前に立った: someone on their feet who stands somewhere goes there (a walk that ends
+    standing there, said in the note), rather than rising from a crouch they were never in."""
+    if pred.verb != "立つ" or pred.target_role != "goal":
+        return
+    if prev is not None and (prev.verb in SUPPORT_VERBS or prev.verb in LOWERING_VERBS):
+        return
+    pred.verb = pred.written = "歩く"
+    pred.reading = ""
+    said = f"立つ: walks to stand at {pred.target}"
+    pred.note = f"{pred.note}; {said}" if pred.note else said
+
+
+def _give_back(pred: Pred, givers: dict[str, str | None]) -> None:
+    """A thing given back with no one named goes to whoever sent it (:func:`_follow_on`); remember who sends."""
+    if pred.object is None:
+        return
+    giver = givers.get(pred.object)
+    if pred.target is None and pred.verb.endswith("返す") and giver is not None and giver != pred.actor:
+        pred.target, pred.target_role, pred.target_person = giver, "recipient", True
+    if pred.target_role == "recipient" and pred.target_person:
+        givers[pred.object] = pred.actor
 
 
 # ---------------------------------------------------------------- counterparts
