@@ -172,6 +172,9 @@ PRONOUNS = {"彼": "m", "彼女": "f", "あいつ": "", "こいつ": "", "そい
 GROUP_WORDS = {"二人": 2, "ふたり": 2, "みんな": 0, "皆": 0, "みな": 0, "全員": 0, "皆さん": 0, "みなさん": 0,
                "皆様": 0, "みなさま": 0, "彼ら": 0, "彼女ら": 0, "彼女たち": 0, "あいつら": 0, "一同": 0}
 
+#: One of the last group named (二人は歩いた。一人が止まった。もう一人は振り返った): its members in turn.
+ONE_OF_GROUP = frozenset("一人 ひとり 1人 １人".split())
+
 #: First- and second-person words: persons, but never what 彼 / その人 refers back to.
 SPEAKERS = frozenset("私 僕 俺 わたし ぼく おれ あたし 自分 あなた 君 きみ お前 おまえ".split())
 
