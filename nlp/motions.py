@@ -243,7 +243,8 @@ def _merge_light_verbs(phrases: list[Phrase]) -> None:
 
 def _mark_non_agents(phrases: list[Phrase]) -> None:
     """雨が降る / 音楽が流れる / ボールが転がる: a が-subject that is neither a person nor
-    a body part (手が震える is still the actor's) makes its predicate no action of anyone."""
+    a body part (手が震える is still the actor's) makes its predicate no action of anyone; the
+    subject is kept as its ``object``, the thing it is about."""
     for i, ph in enumerate(phrases):
         if ph.role or ph.pred or case_particle(ph) != "が" or any(t.is_number for t in ph.tokens):
             continue
@@ -253,6 +254,7 @@ def _mark_non_agents(phrases: list[Phrase]) -> None:
         target = _next_pred(phrases, i)
         if target is not None and target.predicate.motion:
             target.predicate.reason = "non-agent"
+            target.predicate.object = noun  # the thing it is about: それ may name it next (targets._follow_on)
 
 
 def _mark_passives(phrases: list[Phrase]) -> None:
