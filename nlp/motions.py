@@ -312,7 +312,8 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float],
             continue
         elif role == "object":
             pred.noun = noun_of(ph)
-            pred.object = pred.noun or None  # never an empty string
+            # never an empty string; a person by whom it names (彼を助け起こす: 一人目, not a thing 彼)
+            pred.object = ph.persons[0] if len(ph.persons) == 1 else pred.noun or None
         elif role == "body part":
             pred.body_part = _body_part(phrases, i)
             if case_particle(ph) != "で":  # 右手で投げる: the limb used, not what the verb acts on

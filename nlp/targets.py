@@ -278,6 +278,8 @@ def _follow_on(preds: list[Pred]) -> None:
                     else "recipient" if pred.verb in TRANSFER_VERBS and pred.object and pred.object not in BODY_PARTS
                     else "addressee")
             pred.target, pred.target_role, pred.target_person = prev.target, role, True
+        if pred.target in pred.co_actors:
+            pred.target_role = "partner"  # 花子の手を取って、一緒に踊る: done with her, not at her
         _stand_at(pred, prev)
         if (pred.object is None and prev is not None and prev.object and prev.object not in BODY_PARTS
                 and (pred.verb in TRANSFER_VERBS or pred.verb in PLACING_VERBS) and prev.ending in ("te", "renyou")):
