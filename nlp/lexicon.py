@@ -162,6 +162,23 @@ FEMALE_NOUNS = frozenset(
 MALE_NAME_ENDINGS = tuple("郎 男 夫 雄 太 介 助 輔 吉 彦 蔵 平 也 哉 樹 斗 翔 一 二 司 治 士 朗 之 人 ろう すけ".split())
 FEMALE_NAME_ENDINGS = tuple("子 美 香 奈 恵 江 代 絵 菜 花 乃 華 咲 衣 莉 里 こ".split())
 
+#: Verbs of the weather: their が-subject is rain or snow, even one that can be a name (ゆきが降る).
+WEATHER_VERBS = frozenset("降る 降り出す 積もる 止む".split())
+
+#: Given names often written in hiragana that UniDic reads as other words (はると: はる + と, あかり: 明かり),
+#: each with the sex a reader takes it for (:mod:`kana_names`; words of everyday use such as ゆき, ひかり, そら,
+#: はな, こころ are left out: ゆきが降った is snow).
+KANA_NAMES = {
+    **dict.fromkeys("""はると ゆうと そうた れん ゆうま はやと りく かいと たくみ こうき しょうた だいき ゆうき けんた たける りょう
+    しょう あきら ひろし たろう じろう けんじ こうた そうま はるき ゆうた ゆうすけ しゅん まさと なおき たいが いつき
+    みなと ひろと ゆいと おさむ まこと つよし たかし さとし けん じゅん かずき ともや りゅうせい こうすけ そうすけ
+    けいた はじめ まさる しんじ ゆうじ とおる だいすけ しゅうと かける けんいち しんいち こうへい しゅうへい ひでき""".split(), "m"),
+    **dict.fromkeys("""さくら あかり ゆい みお あおい ひな めい ゆな りこ ことは えま ほのか みゆ ゆあ さき まい あやか はるか なつみ
+    ちひろ ももか りん かえで ゆり えみ あいり まな ゆか みき なな かな あや まゆ みさき はなこ はるな ゆみ ともこ
+    なおこ けいこ よしこ まりこ あけみ ちか あすか まり りな みく あみ りさ さや ちなつ ひまり つむぎ いろは えり
+    さえ まなみ ゆうか ゆうな みゆき なぎさ ゆきこ さちこ ようこ ひろみ まさみ""".split(), "f"),
+}
+
 #: Pronouns and demonstratives that refer back to one person (docs/language.md §9): word -> sex
 #: ("m", "f" or "" for either).  その/あの/この + a person noun (その男, あの子) is read the same way.
 PRONOUNS = {"彼": "m", "彼女": "f", "あいつ": "", "こいつ": "", "そいつ": "", "その人": "", "あの人": "",

@@ -8,7 +8,7 @@ suffixes, up to its first particle or punctuation mark.
 from __future__ import annotations
 
 from .lexicon import (
-    FEMALE_NAME_ENDINGS, FEMALE_NOUNS, GROUP_WORDS, MALE_NAME_ENDINGS, MALE_NOUNS, PERSON_ENDINGS,
+    FEMALE_NAME_ENDINGS, FEMALE_NOUNS, GROUP_WORDS, KANA_NAMES, MALE_NAME_ENDINGS, MALE_NOUNS, PERSON_ENDINGS,
     PERSON_NOUNS, PERSON_SUFFIXES, PERSONLESS_NOUNS, PRONOUNS,
 )
 from .types import Token
@@ -95,6 +95,8 @@ def name_sex(name: str) -> str:
     """A given name's sex by its ending (花子, 美咲 -> f; 太郎, 健一 -> m), "" when it has none of
     the common ones (``lexicon.MALE_NAME_ENDINGS``, ``FEMALE_NAME_ENDINGS``): names are not
     gendered by a dictionary, so this is a guess a lone candidate overrides (:mod:`reference`)."""
+    if name in KANA_NAMES:
+        return KANA_NAMES[name]
     if name.endswith(FEMALE_NAME_ENDINGS):
         return "f"
     if name.endswith(MALE_NAME_ENDINGS):
