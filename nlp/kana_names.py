@@ -55,13 +55,15 @@ def read_names(line: str, offset: int, tokens: list[Token], notes: list[str]) ->
         name = m.group()
         merged.append((first, last, Token(name, "名詞", "固有名詞", "人名", "*", "*", name, name,
                                           _katakana(name), a, b, kana_form=_katakana(name))))
-        notes.append(f"read {name} as a name")
     for first, last, tok in reversed(merged):
         out[first:last + 1] = [tok]
         nxt = first + 1
         if nxt < len(out) and out[nxt].surface in HONORIFICS and out[nxt].pos1 != "接尾辞":
             out[nxt] = replace(out[nxt], pos1="接尾辞", pos2="名詞的", pos3="一般", ctype="*", cform="*",
                                lemma=out[nxt].surface, orth=out[nxt].surface)  # ゆうとくん: くん is no 来る
+            notes.append(f"read {tok.surface}{out[nxt].surface} as a name and its honorific")
+        else:
+            notes.append(f"read {tok.surface} as a name")
     return out
 
 

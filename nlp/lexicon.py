@@ -304,7 +304,7 @@ LOCOMOTION_VERBS = frozenset(
     """歩く 走る 駆ける 駆け出す 駆け寄る 駆け込む 走り寄る 近付く 近寄る 歩み寄る 寄る 行く 来る 向かう 戻る
     帰る 入る 進む 前進する 移動する 急ぐ 逃げる 離れる 下がる 後ずさりする 後退りする スキップする 歩き出す
     走り出す 出る 出掛ける 這う 飛び込む 近寄る 立つ 隠れる 回り込む 詰め寄る 駆け上がる 駆け下りる 駆け降りる
-    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く""".split()
+    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く 渡る 横切る 下る""".split()
 )
 
 #: Verbs that take the body down off its feet (besides ``SUPPORT_VERBS``): after them 立つ is rising, before
@@ -379,7 +379,7 @@ CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く �
 HAND_IN_HAND = frozenset("繋ぐ つなぐ 手を繋ぐ".split())
 
 #: Nouns before に / と that are no target (一緒に is "together", not a place).
-NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 一斉 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
+NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 一斉 列 一列 輪 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
 
 #: Verbs that send a thing through the air to someone, and verbs that catch it: a catch of the thing another
 #: person throws is timed by the flight (docs/language.md §8), not after the throw has ended.
