@@ -393,11 +393,13 @@ def least_acceleration(motion: Motion, lo: int, hi: int) -> tuple[Motion, float]
 
 def _kept_path(h: np.ndarray, before: np.ndarray, after: np.ndarray, fps: float, band: np.ndarray,
                support: Support | None, levels: np.ndarray, room: float) -> np.ndarray | None:
-    """:func:`least_acceleration_path` of these arguments, kept (:data:`KEPT_PATHS`) by their values and the solver
-    that answers (PIQP's build, or the fallback): the same path, bit for bit, the programmes solved once."""
+    """:func:`least_acceleration_path` of these arguments, kept (:data:`KEPT_PATHS`) by their values, the module's
+    prices and the solver that answers (PIQP's build, or the fallback): the same path, bit for bit, the programmes
+    solved once."""
     sup = () if support is None else (support.rows.row, support.rows.col, support.rows.data, support.rows.shape,
                                       support.gap, support.frame)
     solver = _piqp()
-    key = digest(h, before, after, fps, band, *sup, levels, room, None if solver is None else solver.__name__)
+    key = digest(h, before, after, fps, band, *sup, levels, room, SLACK, OUTSIDE, NEAR, _DIRS,
+                 None if solver is None else solver.__name__)
     path = KEPT_PATHS.get(key, lambda: least_acceleration_path(h, before, after, fps, band, support, levels, room))
     return None if path is None else path.copy()
