@@ -300,21 +300,12 @@ def _hardest(m: Motion, lo: int, hi: int) -> int:
 
 
 AHEAD = 2  # widths re-planted beside the one asked for, when they may count too (one IK solve for all)
-#: the search's choice ``(stretch, width index)`` of the last joins finished, by the value of what the search reads
-#: (:func:`_choice_key`): a warm process finishes the same joins again (the studio re-animates the whole text at
-#: every pause in typing), and a join met again makes the chosen width alone, not the dozen the search weighs
-KEPT_CHOICES: Kept[tuple[float, int]] = Kept(256)
 
 
-def _choice_key(motion: Motion, region: Region, contacts, origin: int, lims: tuple[float, ...],
-                pop_lim: float) -> bytes:
-    """A digest of everything :func:`finish_region`'s search reads: the window's frames and skeleton, the region's
-    frames, the contacts, the limits, and this module's settings."""
-    sk = motion.skeleton
-    return digest(motion.fps, motion.root_positions, motion.rotations, motion.translations, sk.offsets, sk.parents,
-                  tuple(sk.names), region.w0, region.w1, region.r1, region.keep, region.brake_from, region.seams,
-                  region.into_core, contacts.left, contacts.right, origin, lims, pop_lim, SIGMAS, STRETCHES, SLACK,
-                  PAD, BRAKE, POP_FLOOR, SEAM_DECAY, STILL, AHEAD)
+#: the last joins finished (:func:`finish_region`), by the value of everything the pass reads (:func:`_finished_key`):
+#: a warm process finishes the same joins again (the studio re-animates the whole text at every pause in typing,
+#: and only the joins the edit reached differ); each keeps the window's arrays (~0.2 MB), no kinematics
+KEPT_FINISHED: Kept[tuple] = Kept(64)
 
 
 def finish_region(motion: Motion, region: Region, contacts,
@@ -324,8 +315,38 @@ def finish_region(motion: Motion, region: Region, contacts,
 
     Returns the motion, what was done, and ``(lo, hi, n_new, src)``: the frames ``[lo, hi)`` now play
     over ``n_new``, new frame ``k`` showing source frame ``lo + src[k]`` (:func:`warp_frames`; later frames
-    are ``n_new - (hi - lo)`` later).
+    are ``n_new - (hi - lo)`` later). A join finished before, from the same values, is the frames it gave then
+    (:data:`KEPT_FINISHED`; bit for bit the pass), their kinematics shared with ``motion`` where they are its.
     """
+    key = _finished_key(motion, region, contacts, origin)
+    known = KEPT_FINISHED.known(key)
+    if known is None:
+        done, info, warp = _finish_region(motion, region, contacts, origin)
+        warp[3].setflags(write=False)  # kept: read-only, as the frames are
+        KEPT_FINISHED.put(key, (done.root_positions, done.rotations, done.translations, info, warp))
+        return done, dict(info), warp
+    root, rotations, translations, info, warp = known
+    done = Motion(motion.skeleton, motion.fps, root, rotations, translations)
+    lo, added = warp[0], len(root) - motion.n_frames  # the frames before lo are the input's, those after the
+    rows = np.arange(len(root))  # region the input's `added` later: shared where bit for bit so
+    rows[lo:] -= added
+    return done.share_pose(motion, np.where(rows < motion.n_frames, rows, -1)), dict(info), warp
+
+
+def _finished_key(motion: Motion, region: Region, contacts, origin: int) -> bytes:
+    """A digest of everything :func:`finish_region` reads: the window's frames and skeleton, the region's frames,
+    the sources' figures (its limits), the contacts, and this module's settings."""
+    sk, fps = motion.skeleton, motion.fps
+    return digest(fps, motion.root_positions, motion.rotations, motion.translations, sk.offsets, sk.parents,
+                  tuple(sk.names), region.w0, region.w1, region.r1, region.keep, region.brake_from, region.seams,
+                  region.into_core, _limits(region.sources, fps), _limits(region.near, fps) if region.near else None,
+                  contacts.fps, contacts.left, contacts.right, origin, SIGMAS, STRETCHES, SLACK, PAD, BRAKE,
+                  POP_FLOOR, SEAM_DECAY, STILL, AHEAD, FLOOR, SKIM_HEIGHT, SWING_SPEED, AIR_EASE)
+
+
+def _finish_region(motion: Motion, region: Region, contacts,
+                   origin: int = 0) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
+    """:func:`finish_region`, done."""
     fps = motion.fps
     T = motion.n_frames
     pad0 = max(1, int(round(PAD * fps)))
@@ -358,9 +379,7 @@ def finish_region(motion: Motion, region: Region, contacts,
     stretches: list[Stretch] = []
     played: dict[float, np.ndarray] = {}  # per stretch, the warp of [lo, whi) (flights kept at their time)
     span = seamed[lo:whi]  # one slice: its kinematics are computed once for every stretch's flights
-
-    def stretched(stretch: float) -> tuple[Stretch, int]:
-        """The widths of one stretch of the region, and the region's end retimed."""
+    for stretch in STRETCHES:
         n_new = int(round((whi - lo) * stretch))
         src = played[stretch] = warp_frames(whi - lo, n_new, seam, flights(span, n_new, seam))
         if n_new > whi - lo:
@@ -378,41 +397,28 @@ def finish_region(motion: Motion, region: Region, contacts,
         widths = Stretch(base, ref, lo, h2, mask, [
             (sigma * scale, pad, max(pad, min(int(np.ceil(2.5 * sigma * scale)), (h2 - lo) // 3))) for sigma in SIGMAS])
         stretches.append(widths)
-        return widths, h2
-
-    key = _choice_key(motion, region, contacts, origin, lims, pop_lim)
-    choice = KEPT_CHOICES.known(key)
-    if choice is not None:  # these very inputs were finished before: only the width the search chose is made
-        stretch, i = choice
-        widths, h2 = stretched(stretch)
-        sigma, chosen = SIGMAS[i], widths[i]
-        jk, pop = chosen.plant()
-    else:
-        for stretch in STRETCHES:
-            widths, h2 = stretched(stretch)
-            for i, sigma in enumerate(SIGMAS):
-                cand = widths[i]
-                tried.append((sigma, stretch, cand, h2))
-                if not may_keep(cand, lims, kept):
-                    continue
-                if cand.jk is None:  # re-planted with the next widths that may count too: one IK solve for all
-                    ahead = range(i + 1, min(len(SIGMAS), i + 1 + AHEAD))
-                    plant_all([cand] + [widths[j] for j in ahead if may_keep(widths[j], lims, kept)])
-                jk, pop = cand.plant()
-                if max(jk / lims[0], pop / lims[1]) <= 1.0:  # within the whole clips' figures: no more time. A
-                    # wider smoothing is taken if it is still within them and nearer the figures of the parts the
-                    # join replaces (the larger ratio smaller: a root pop brought down to the replaced frames'
-                    # may cost jerk within the sources')
-                    near = max(jk / lims[2], pop / lims[3])
-                    if replaces(near, jk, pop, kept):
-                        kept = (near, sigma, stretch, cand, jk, pop, h2)
-                    assert kept is not None  # the first within is always kept
-                    if kept[0] <= 1.0:
-                        break
-            if kept is not None:
-                break
-        _score, sigma, stretch, chosen, jk, pop, h2 = kept or least(tried, lims)
-        KEPT_CHOICES.put(key, (stretch, SIGMAS.index(sigma)))
+        for i, sigma in enumerate(SIGMAS):
+            cand = widths[i]
+            tried.append((sigma, stretch, cand, h2))
+            if not may_keep(cand, lims, kept):
+                continue
+            if cand.jk is None:  # re-planted with the next widths that may count too: one IK solve for all
+                ahead = range(i + 1, min(len(SIGMAS), i + 1 + AHEAD))
+                plant_all([cand] + [widths[j] for j in ahead if may_keep(widths[j], lims, kept)])
+            jk, pop = cand.plant()
+            if max(jk / lims[0], pop / lims[1]) <= 1.0:  # within the whole clips' figures: no more time. A wider
+                # smoothing is taken if it is still within them and nearer the figures of the parts the join
+                # replaces (the larger ratio smaller: a root pop brought down to the replaced frames' may cost
+                # jerk within the sources')
+                near = max(jk / lims[2], pop / lims[3])
+                if replaces(near, jk, pop, kept):
+                    kept = (near, sigma, stretch, cand, jk, pop, h2)
+                assert kept is not None  # the first within is always kept
+                if kept[0] <= 1.0:
+                    break
+        if kept is not None:
+            break
+    _score, sigma, stretch, chosen, jk, pop, h2 = kept or least(tried, lims)
     # outside [lo, h2) the frames are the input's (those the seams left alone): their kinematics is known
     rows = np.concatenate([np.arange(lo), np.full(h2 - lo, -1), np.arange(hi, T)])
     candidate = chosen.motion()

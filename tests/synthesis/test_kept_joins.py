@@ -1,6 +1,6 @@
 """What a warm process keeps of the joins it finished (the hips' paths, synthesis.join.hipspath.KEPT_PATHS; the
-post-pass's choice of smoothing, synthesis.join.joinpass.KEPT_CHOICES): a text animated again takes them from
-what it kept, and gives the same bytes and report as when they were solved and searched."""
+joins the post-pass finished, synthesis.join.joinpass.KEPT_FINISHED): a text animated again takes them from
+what it kept, and gives the same bytes and report as when they were solved and finished."""
 from __future__ import annotations
 
 import json
@@ -20,10 +20,10 @@ def _output(db: str, blend: str) -> tuple[str, str]:
 def test_a_text_animated_again_reuses_its_joins_and_gives_the_same_bytes(library_db):
     for blend in ("optimal", "constraint"):
         hipspath.KEPT_PATHS.clear()
-        joinpass.KEPT_CHOICES.clear()
+        joinpass.KEPT_FINISHED.clear()
         solved = _output(library_db, blend)
-        paths, choices = len(hipspath.KEPT_PATHS), len(joinpass.KEPT_CHOICES)
-        assert paths >= 1 and choices >= 3  # its joins were searched, and at least one bent the hips
+        paths, finished = len(hipspath.KEPT_PATHS), len(joinpass.KEPT_FINISHED)
+        assert paths >= 1 and finished >= 3  # its joins were searched, and at least one bent the hips
         again = _output(library_db, blend)
-        assert (len(hipspath.KEPT_PATHS), len(joinpass.KEPT_CHOICES)) == (paths, choices)  # each join met again
+        assert (len(hipspath.KEPT_PATHS), len(joinpass.KEPT_FINISHED)) == (paths, finished)  # each join met again
         assert again == solved
