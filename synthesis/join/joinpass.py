@@ -305,7 +305,7 @@ AHEAD = 2  # widths re-planted beside the one asked for, when they may count too
 #: the last joins finished (:func:`finish_region`), by the value of everything the pass reads (:func:`_finished_key`):
 #: a warm process finishes the same joins again (the studio re-animates the whole text at every pause in typing,
 #: and only the joins the edit reached differ); each keeps the window's arrays (~0.2 MB), no kinematics
-KEPT_FINISHED: Kept[tuple] = Kept(64)
+KEPT_FINISHED: Kept[tuple] = Kept(32)
 
 
 def finish_region(motion: Motion, region: Region, contacts,

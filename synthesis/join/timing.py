@@ -192,10 +192,11 @@ def repetitions(elements: Sequence[Element]) -> list[tuple[Element, int]]:
     return out
 
 
-#: the preparations kept with each clip's motion (by speed, rate, length and margin): a warm process lays the same
-#: elements again (the studio re-animates the whole text at every pause in typing), and what is derived from a
-#: prepared motion (its pose, its foot contacts) is kept with it
-PREPARED = 8
+#: the last preparations made (:func:`prepare`), by clip, speed, rate, length and margin: a warm process lays the
+#: same elements again (the studio re-animates the whole text at every pause in typing), and what is derived from a
+#: prepared motion (its pose, its foot contacts) is kept with it (~0.5-1 MB each). An entry holds its clip's motion,
+#: so the motion's ``id`` in its key names no other motion while it is kept.
+PREPARED: Kept[tuple[Motion, Prepared, int]] = Kept(16)
 
 
 def prepare(element: Element, fps: float, margin: bool = False) -> Prepared:
@@ -204,7 +205,7 @@ def prepare(element: Element, fps: float, margin: bool = False) -> Prepared:
     Repeats are not this function's: a repeated whole-body element comes here as its
     :func:`repetitions`. With ``margin`` a cyclic clip gets one more cycle before its start and after its
     end (``lead`` frames before): a transition may then enter it at any phase. The last :data:`PREPARED`
-    preparations of a clip are kept with its motion (the same motion object for the same request).
+    preparations are kept (the same motion object for the same request).
     """
     clip = element.clip
     speed = float(element.speed)
@@ -212,9 +213,11 @@ def prepare(element: Element, fps: float, margin: bool = False) -> Prepared:
         raise ValueError(f"element {element.id}: speed must be positive, got {speed}")
     length = element.end - element.start
     n_target = max(1, int(round(length * fps)))
-    key = (speed, float(fps), n_target, bool(margin), tuple(clip.core), bool(clip.cyclic))
-    kept: Kept[tuple[Prepared, int]] = clip.motion.cache.get("prepared", lambda: Kept(PREPARED))
-    prep, over = kept.get(key, lambda: _prepared(clip, speed, fps, n_target, margin))
+    key = (id(clip.motion), speed, float(fps), n_target, bool(margin), tuple(clip.core), bool(clip.cyclic))
+    known = PREPARED.known(key)
+    if known is None or known[0] is not clip.motion:
+        known = PREPARED.put(key, (clip.motion, *_prepared(clip, speed, fps, n_target, margin)))
+    _, prep, over = known
     if over:
         return replace(prep, warnings=(
             f"element {element.id}: its core ({(clip.core[1] - clip.core[0]) / speed:.2f} s) does not "
