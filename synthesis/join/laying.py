@@ -57,8 +57,8 @@ def incoming(e: Element, rep: int, fps: float, state: TrackState) -> Placed:
     lead = prep.lead
     start = int(round(e.start * fps))
     motion = prep.motion
-    # found (or kept) with the prepared motion, as the preparation is kept with its clip (timing.PREPARED); its
-    # pose with them, which a writable copy of its rows below then shares
+    # found once for a prepared motion and kept with it, as the preparation is kept (timing.PREPARED); its pose
+    # with them, which a writable copy of its rows below then shares
     contacts = detect_contacts(motion)
     if not motion.root_positions.flags.writeable:  # cached library clips are read-only; scipy's Rotation.apply
         motion = motion.replace(root_positions=motion.root_positions.copy())  # (align.match) wants writable rows
