@@ -21,6 +21,7 @@ VERB_ALIASES = {
     "指差す": "指さす",
     "とぶ": "跳ぶ",
     "屈む": "しゃがむ",
+    "返る": "帰る",  # UniDic's lemma of 帰る (家に帰った): going home, a walk there
 }
 
 #: Reading (katakana, base form) -> library verb, for verbs written in
@@ -171,6 +172,23 @@ FEMALE_NOUNS = frozenset(
 MALE_NAME_ENDINGS = tuple("郎 男 夫 雄 太 介 助 輔 吉 彦 蔵 平 也 哉 樹 斗 翔 一 二 司 治 士 朗 之 人 ろう すけ".split())
 FEMALE_NAME_ENDINGS = tuple("子 美 香 奈 恵 江 代 絵 菜 花 乃 華 咲 衣 莉 里 こ".split())
 
+#: Verbs of the weather: their が-subject is rain or snow, even one that can be a name (ゆきが降る).
+WEATHER_VERBS = frozenset("降る 降り出す 積もる 止む".split())
+
+#: Given names often written in hiragana that UniDic reads as other words (はると: はる + と, あかり: 明かり),
+#: each with the sex a reader takes it for (:mod:`kana_names`; words of everyday use such as ゆき, ひかり, そら,
+#: はな, こころ are left out: ゆきが降った is snow).
+KANA_NAMES = {
+    **dict.fromkeys("""はると ゆうと そうた れん ゆうま はやと りく かいと たくみ こうき しょうた だいき ゆうき けんた たける りょう
+    しょう あきら ひろし たろう じろう けんじ こうた そうま はるき ゆうた ゆうすけ しゅん まさと なおき たいが いつき
+    みなと ひろと ゆいと おさむ まこと つよし たかし さとし けん じゅん かずき ともや りゅうせい こうすけ そうすけ
+    けいた はじめ まさる しんじ ゆうじ とおる だいすけ しゅうと かける けんいち しんいち こうへい しゅうへい ひでき""".split(), "m"),
+    **dict.fromkeys("""さくら あかり ゆい みお あおい ひな めい ゆな りこ ことは えま ほのか みゆ ゆあ さき まい あやか はるか なつみ
+    ちひろ ももか りん かえで ゆり えみ あいり まな ゆか みき なな かな あや まゆ みさき はなこ はるな ゆみ ともこ
+    なおこ けいこ よしこ まりこ あけみ ちか あすか まり りな みく あみ りさ さや ちなつ ひまり つむぎ いろは えり
+    さえ まなみ ゆうか ゆうな みゆき なぎさ ゆきこ さちこ ようこ ひろみ まさみ""".split(), "f"),
+}
+
 #: Pronouns and demonstratives that refer back to one person (docs/language.md §9): word -> sex
 #: ("m", "f" or "" for either).  その/あの/この + a person noun (その男, あの子) is read the same way.
 PRONOUNS = {"彼": "m", "彼女": "f", "あいつ": "", "こいつ": "", "そいつ": "", "その人": "", "あの人": "",
@@ -180,6 +198,9 @@ PRONOUNS = {"彼": "m", "彼女": "f", "あいつ": "", "こいつ": "", "そい
 #: N人とも are read from the number (三人 -> 3).
 GROUP_WORDS = {"二人": 2, "ふたり": 2, "みんな": 0, "皆": 0, "みな": 0, "全員": 0, "皆さん": 0, "みなさん": 0,
                "皆様": 0, "みなさま": 0, "彼ら": 0, "彼女ら": 0, "彼女たち": 0, "あいつら": 0, "一同": 0}
+
+#: One of the last group named (二人は歩いた。一人が止まった。もう一人は振り返った): its members in turn.
+ONE_OF_GROUP = frozenset("一人 ひとり 1人 １人".split())
 
 #: First- and second-person words: persons, but never what 彼 / その人 refers back to.
 SPEAKERS = frozenset("私 僕 俺 わたし ぼく おれ あたし 自分 あなた 君 きみ お前 おまえ".split())
@@ -293,7 +314,13 @@ LOCOMOTION_VERBS = frozenset(
     """歩く 走る 駆ける 駆け出す 駆け寄る 駆け込む 走り寄る 近付く 近寄る 歩み寄る 寄る 行く 来る 向かう 戻る
     帰る 入る 進む 前進する 移動する 急ぐ 逃げる 離れる 下がる 後ずさりする 後退りする スキップする 歩き出す
     走り出す 出る 出掛ける 這う 飛び込む 近寄る 立つ 隠れる 回り込む 詰め寄る 駆け上がる 駆け下りる 駆け降りる
-    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く""".split()
+    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く 渡る 横切る 下る""".split()
+)
+
+#: Verbs that take the body down off its feet (besides ``SUPPORT_VERBS``): after them 立つ is rising, before
+#: them 花子の前に立つ is going to stand there (a walk).
+LOWERING_VERBS = frozenset(
+    "しゃがむ しゃがみ込む 屈む かがむ 転ぶ 倒れる ひざまずく 跪く 伏せる 寝転ぶ 横になる 座り込む うずくまる".split()
 )
 
 #: Verbs whose に-thing holds the body up (the ``support``): 椅子に座る, ベッドに寝る.
@@ -305,7 +332,7 @@ SUPPORT_VERBS = frozenset(
 #: Verbs that send a thing to a person (the に-person is the ``recipient``) or to a place (``destination``).
 TRANSFER_VERBS = frozenset(
     """渡す 手渡す 差し出す 投げる 放る 放り投げる 蹴る パスする 返す 見せる 上げる 送る 届ける 配る
-    投げ渡す 転がす 差し上げる 呉れる""".split()
+    投げ渡す 転がす 差し上げる 呉れる 貸す 蹴り返す 投げ返す""".split()
 )
 
 #: Verbs that put a thing somewhere: the に-noun is its ``destination`` (机に置く).
@@ -339,6 +366,7 @@ THING_ANAPHORS = frozenset("それ これ あれ そいつ".split())
 #: verb (lemma) -> (the counterpart's verb, its reading, the role the first motion's target has).
 COUNTERPARTS = {
     "渡す": ("受け取る", "ウケトル", "recipient"), "手渡す": ("受け取る", "ウケトル", "recipient"),
+    "貸す": ("受け取る", "ウケトル", "recipient"), "返す": ("受け取る", "ウケトル", "recipient"),
     "差し出す": ("受け取る", "ウケトル", "recipient"),
     "受け取る": ("渡す", "ワタス", "source"), "貰う": ("渡す", "ワタス", "source"),
 }
@@ -361,7 +389,7 @@ CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く �
 HAND_IN_HAND = frozenset("繋ぐ つなぐ 手を繋ぐ".split())
 
 #: Nouns before に / と that are no target (一緒に is "together", not a place).
-NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
+NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 一斉 列 一列 輪 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
 
 #: Verbs that send a thing through the air to someone, and verbs that catch it: a catch of the thing another
 #: person throws is timed by the flight (docs/language.md §8), not after the throw has ended.

@@ -32,7 +32,7 @@ from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
     BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
-    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
+    LOWERING_VERBS, PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
@@ -137,10 +137,12 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
     if ph.role:
         return None
     nxt = phrases[i + 1] if i + 1 < len(phrases) else None
-    if _before_no(ph) and nxt is not None and nxt.group == ph.group and nxt.role in ("object", "body part") \
+    if _before_no(ph) and nxt is not None and nxt.group == ph.group \
+            and (nxt.role in ("object", "body part") or (not nxt.role and _particle(nxt) == "に")) \
             and (noun_of(nxt) in BODY_PARTS or noun_of(nxt) in body_nouns()):
-        name, person = _name(ph)  # 花子の肩を叩く: done to 花子
-        return Target(name, True, "を", None, (i,), _sure(ph)) if person else None
+        name, person = _name(ph)  # 花子の肩を叩く, 彼女の肩に手を置く: done to 花子
+        span = (i,) if nxt.role else (i, i + 1)  # 肩に is no place of its own
+        return Target(name, True, "を", None, span, _sure(ph)) if person else None
     if _before_no(ph) and nxt is not None and nxt.group == ph.group and not nxt.pred and not nxt.role:
         rel = noun_of(nxt)
         particle = _particle(nxt)
@@ -251,14 +253,21 @@ def _follow_on(preds: list[Pred]) -> None:
     - a gesture right after a motion of the same actor directed at a person is addressed to that person
       (花子に近づいて、お辞儀する), a touch of them done to them (駆け寄って、抱きしめる), a thing sent goes
       to them (近づいて、ボールを渡す: she receives it);
-    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note.
+    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note,
+      and a motion that sends or puts a thing right after one in て-form with a thing, none named, sends
+      or puts that one (ボールを拾って、投げ返した);
+    - a thing given back (返す, 投げ返す) with no one named goes back to the one who gave it (健は花子に本を
+      貸した。彼女はそれを返した: to 健).
     """
     last: dict[str | None, Pred] = {}
+    givers: dict[str, str | None] = {}  # thing -> the person who sent it
     thing: str | None = None
     before: Pred | None = None
     for pred in preds:
         facing = before is not None and before.reason == "facing"
         before = pred
+        if pred.reason == "non-agent" and pred.object:
+            thing = pred.object  # ボールが転がってきた。少年はそれを拾った: the ball
         if not pred.motion:
             continue
         if (facing or pred.verb in RECIPROCAL_VERBS or pred.verb.endswith("合う")) and not pred.target \
@@ -271,6 +280,12 @@ def _follow_on(preds: list[Pred]) -> None:
                     else "recipient" if pred.verb in TRANSFER_VERBS and pred.object and pred.object not in BODY_PARTS
                     else "addressee")
             pred.target, pred.target_role, pred.target_person = prev.target, role, True
+        if pred.target in pred.co_actors:
+            pred.target_role = "partner"  # 花子の手を取って、一緒に踊る: done with her, not at her
+        _stand_at(pred, prev)
+        if (pred.object is None and prev is not None and prev.object and prev.object not in BODY_PARTS
+                and (pred.verb in TRANSFER_VERBS or pred.verb in PLACING_VERBS) and prev.ending in ("te", "renyou")):
+            pred.object = prev.object  # 拾って、投げ返した: the thing just picked up
         last[pred.actor] = pred
         if pred.object in THING_ANAPHORS and thing is not None:
             said = f"{pred.object} read as {thing}, the thing last named"
@@ -278,6 +293,31 @@ def _follow_on(preds: list[Pred]) -> None:
             pred.object = thing
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
+        _give_back(pred, givers)
+
+
+def _stand_at(pred: Pred, prev: Pred | None) -> None:
+    """先生は黒板の前に立った: someone on their feet who stands somewhere goes there (a walk that ends
+    standing there, said in the note), rather than rising from a crouch they were never in."""
+    if pred.verb != "立つ" or pred.target_role != "goal":
+        return
+    if prev is not None and (prev.verb in SUPPORT_VERBS or prev.verb in LOWERING_VERBS):
+        return
+    pred.verb = pred.written = "歩く"
+    pred.reading = ""
+    said = f"立つ: walks to stand at {pred.target}"
+    pred.note = f"{pred.note}; {said}" if pred.note else said
+
+
+def _give_back(pred: Pred, givers: dict[str, str | None]) -> None:
+    """A thing given back with no one named goes to whoever sent it (:func:`_follow_on`); remember who sends."""
+    if pred.object is None:
+        return
+    giver = givers.get(pred.object)
+    if pred.target is None and pred.verb.endswith("返す") and giver is not None and giver != pred.actor:
+        pred.target, pred.target_role, pred.target_person = giver, "recipient", True
+    if pred.target_role == "recipient" and pred.target_person:
+        givers[pred.object] = pred.actor
 
 
 # ---------------------------------------------------------------- counterparts
