@@ -81,10 +81,11 @@ MANNER_TE = frozenset(
     張り切って 揃って そろって 改めて 初めて 続けて 気をつけて 注意して 並んで ならんで""".split()
 )
 
-#: Verbs that are states or formal verbs, not motions (compared by lemma).
+#: Verbs that are states or formal verbs, not motions (compared by lemma); 始める / 終える / 続ける as a
+#: main verb (試合を始めた) say when something happens, not what is done.
 NON_ACTION_LEMMAS = frozenset(
     """居る 有る 在る 成る 出来る 思う 考える 分かる 見える 聞こえる 要る 知る 似る 違う
-    為る 御座る 居す""".split()
+    為る 御座る 居す 始める 始まる 終える 終わる 続ける 続く""".split()
 )
 
 #: Set greetings built on a motion verb (いらっしゃる, 行く, 帰る, 休む), as the phrase is written without its

@@ -67,6 +67,12 @@ CLOSE = frozenset("閉める 閉じる 締める".split())
 KNOCK = frozenset("ノックする".split())
 SIT = frozenset("座る 腰掛ける 着席する".split())
 DRIBBLE = frozenset("ドリブルする".split())
+#: Verbs done towards a thing without touching it: its object stands ahead of the actor, not in the hand
+#: (花を見る, バスを待つ).
+SIGHT = frozenset("""見る 眺める 見つめる 見回す 見上げる 見下ろす 覗く 覗き込む 探す 見つける 見失う 待つ 呼ぶ
+    指さす 指差す 見送る 睨む""".split())
+#: m at a person's size: how far ahead a thing looked at or waited for stands.
+SIGHT_M = 1.5
 #: m at the built-in body's size: a dribbled ball's distance ahead of the hips
 DRIBBLE_AHEAD = 0.5
 #: m at the built-in body's size: the room between the hips and the near side of a thing beside the body
@@ -139,7 +145,8 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
 
 
 def _named(r: Element, motions) -> list[tuple[str, str]]:
-    """The things row ``r`` names and how: ``handled`` (its object), ``seat``, ``table``, ``place``."""
+    """The things row ``r`` names and how: ``handled`` (its object), ``sight`` (the object of a look or a
+    wait: ahead), ``seat``, ``table``, ``place``, ``beside``, ``route``."""
     out = []
     if r.target and r.target not in motions:
         if r.target_role == "support" or (r.target_role == "source" and shape_of(r.target)[0].shape in
@@ -157,6 +164,8 @@ def _named(r: Element, motions) -> list[tuple[str, str]]:
             out.append((r.target, "table"))
     if r.object and r.object not in motions and r.verb in LOCOMOTION_VERBS and not shape_of(r.object)[1]:
         out.append((r.object, "route"))  # 公園を歩く: the park is walked through, not carried
+    elif r.object and r.object not in motions and r.verb in SIGHT:
+        out.append((r.object, "sight"))  # バスを待つ: ahead, not in the hand
     elif r.object and r.object not in motions:  # after the table it may be put on
         out.append((r.object, "handled"))
     return out
@@ -187,6 +196,13 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         path, _ = bodies.hips_path(m)
         p.rest(0, path[(f0 + f1) // 2] + [0.0, p.half, 0.0])
         p.events.append((t, f"{_who(r.actor)} goes through it"))
+    elif how == "sight":
+        if not p.placed():
+            path, heading = bodies.hips_path(m)
+            mid = (f0 + f1) // 2
+            p.rest(0, path[mid] + SIGHT_M * p.scale * bodies.forward(heading[mid]) + [0.0, p.half, 0.0],
+                   float(heading[mid]))
+        p.events.append((t, f"{_who(r.actor)} {r.verb} it"))
     elif how == "place":
         path, heading = bodies.hips_path(m)
         f = f1 - 1 if r.target_role != "source" else f0
