@@ -310,7 +310,7 @@ def test_an_unknown_verb_is_underlined_with_what_may_stand_in_each_previewable(p
     assert standin.count() == 1 and standin.inner_text() == "代わりに「歩く」で再生"  # ぶらつく has one, 泳ぐ none
     n = page.evaluate("window.__studio.renders")
     page.locator("#marks button.nearest").first.click()  # a similar verb, previewed: the text stays as it is
-    page.wait_for_function("window.__studio.previewing === '歩く'", timeout=30000)
+    page.wait_for_function("window.__studio.previewing === '歩き回る'", timeout=30000)  # ぶらつく's nearest
     assert page.input_value("#text") == "太郎は公園をぶらついて、泳ぐ。"
     assert page.evaluate("window.__studio.renders") == n
     # the stand-in button plays the whole text with it (what --fallback nearest does, in the page's terms)
