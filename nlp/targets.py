@@ -184,9 +184,11 @@ def _inner_side(ph: Phrase) -> Target | None:
 def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
     """The target of ``pred`` from the nouns before it in its clause (the nearest one with a role wins).
     A word taken for a person only because it can be a name, never an actor of the text, is a thing where
-    the body goes beside it or onto it (机の前に座る, 岩に座る: 机 and 岩 are also names)."""
+    the body goes beside it or onto it, or a thing is put on it (机の前に座る, 岩に座る, 書類を机に置く: 机 and 岩
+    are also names)."""
     for t in reversed(pending):
-        if t.person and not t.sure and t.name not in actors and (t.side is not None or pred.verb in SUPPORT_VERBS):
+        if t.person and not t.sure and t.name not in actors and (
+                t.side is not None or pred.verb in SUPPORT_VERBS or pred.verb in PLACING_VERBS):
             t.person = False
         role = _role(pred, t)
         if role is None:
