@@ -80,8 +80,27 @@ def attach_targets(phrases: list[Phrase]) -> None:
             continue  # its noun waits for the motion it says the way of
         if pred.motion:
             _settle(pred, pending, actors)
+            if pred.target is None and pred.verb in LOCOMOTION_VERBS and _comes(ph):
+                _come_to(pred, phrases, i)
         pending = []
     _follow_on([ph.pred for ph in phrases if ph.pred is not None])
+
+
+def _comes(ph: Phrase) -> bool:
+    """Is ``ph`` a motion + て + くる (帰ってくる, 入ってきた, 走ってくる): towards where the story is?"""
+    toks = ph.tokens
+    return any(t.lemma == "て" and t.pos1 == "助詞" and toks[k + 1].lemma == "来る"
+               for k, t in enumerate(toks[:-1]))
+
+
+def _come_to(pred: Pred, phrases: list[Phrase], i: int) -> None:
+    """息子が帰ってくると、父は…: someone who comes with nowhere named comes to the person the story is with,
+    the actor named nearest before (else after) who is someone else."""
+    def others(seq):
+        return (a for ph in seq if ph.pred and ph.pred.motion for a in (ph.pred.actor,) if a and a != pred.actor)
+    person = next(others(reversed(phrases[:i])), None) or next(others(phrases[i + 1:]), None)
+    if person is not None:
+        pred.target, pred.target_role, pred.target_person = person, "goal", True
 
 
 # ---------------------------------------------------------------- the nouns
