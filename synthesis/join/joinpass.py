@@ -41,8 +41,9 @@ own two source clips (as recorded, at the track's rate):
    over the air phase around it.
 4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
    ankle or toe would go below it is lifted by IK by the deficit
-   (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm is
-   lifted clear (:func:`lift_skimming_feet`); after an adaptation, whose fitted legs
+   (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm (above the floor, and
+   above the motion's lowest foot point where GMD reads it) is lifted clear (:func:`lift_skimming_feet`);
+   after an adaptation, whose fitted legs
    reach through the next clip's core, up to the next join.
 
 5. **Weight over the feet**: where the finished region stands a slow body on its feet with its centre of
@@ -75,8 +76,9 @@ from text2anim.core.bodyparts import body_map
 from text2anim.core.cancel import checkpoint
 from text2anim.core.contacts import contacts_within, runs
 from text2anim.core.easing import smootherstep_area
+from text2anim.core.floor import ON_FLOOR
 from text2anim.core.hang import slowed_into_hanging
-from text2anim.core.metrics import quality
+from text2anim.core.metrics import gmd_floor, quality
 from text2anim.core.motion import Motion
 
 from .blend import sample
@@ -167,23 +169,34 @@ def _raise_ankle(motion: Motion, side: str, ankle: int, short: np.ndarray) -> Mo
 
 SKIM_HEIGHT = 0.055  # m: a foot moving faster than SWING_SPEED keeps its toe this high (GMD counts < 5 cm)
 SWING_SPEED = 0.5  # m/s, the GMD skating speed
+#: m under core.floor.ON_FLOOR a lifted toe stays: higher, the foot no longer touches (core.balance, core.hang)
+TOUCH_MARGIN = 0.005
 
 
 def lift_skimming_feet(motion: Motion, lo: int, hi: int) -> Motion:
     """``motion`` with every foot that skims the floor over ``[lo, hi)`` lifted: where its toe is lower than
     :data:`SKIM_HEIGHT` while it moves faster than :data:`SWING_SPEED` (5-frame mean) — a shuffle a
     blend of two foot placements makes, counted as skating — the ankle is raised by IK (world orientation
-    kept, so the toe rises as much), by the shortfall widened by 2 frames and smoothed."""
+    kept, so the toe rises as much), by the shortfall widened by 2 frames and smoothed.
+
+    GMD's figure reads toes above the motion's lowest foot point (:func:`core.metrics.gmd_floor`), not
+    above y = 0: a crouch whose toe goes 1.7 cm down counts a toe up to 6.7 cm as on the floor. Where the
+    other foot is on the floor, the toe is kept :data:`SKIM_HEIGHT` above that point too (below
+    :data:`core.floor.ON_FLOOR`, so the lifted foot still touches: a spin's pivoting feet stay its support);
+    where it is not, only above y = 0 (lifted higher, a landing foot kept a run's flight in the air longer)."""
     feet = body_map(motion.skeleton).feet
     out = motion
     fps = motion.fps
+    skim = min(SKIM_HEIGHT + max(0.0, gmd_floor(motion)), ON_FLOOR - TOUCH_MARGIN)
     for side, (ankle, toe) in feet.items():
         p = out.positions
+        other = feet["right" if side == "left" else "left"]
+        height = np.where(p[:, list(other), 1].min(axis=1) < ON_FLOOR, skim, SKIM_HEIGHT)
         xz = p[:, toe][:, [0, 2]]
         v = np.zeros(len(p))
         v[1:] = np.linalg.norm(np.diff(xz, axis=0), axis=1) * fps
         fast = (v > SWING_SPEED) & (uniform_filter1d(v, 5, mode="nearest") > SWING_SPEED)
-        short = np.where(fast, np.maximum(0.0, SKIM_HEIGHT - p[:, toe, 1]), 0.0)
+        short = np.where(fast, np.maximum(0.0, height - p[:, toe, 1]), 0.0)
         short[:lo] = 0.0
         short[hi:] = 0.0
         if not (short > 1e-3).any():
