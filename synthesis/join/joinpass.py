@@ -173,7 +173,7 @@ SWING_SPEED = 0.5  # m/s, the GMD skating speed
 TOUCH_MARGIN = 0.005
 
 
-def lift_skimming_feet(motion: Motion, lo: int, hi: int) -> Motion:
+def lift_skimming_feet(motion: Motion, lo: int, hi: int, lowest: float | None = None) -> Motion:
     """``motion`` with every foot that skims the floor over ``[lo, hi)`` lifted: where its toe is lower than
     :data:`SKIM_HEIGHT` while it moves faster than :data:`SWING_SPEED` (5-frame mean) — a shuffle a
     blend of two foot placements makes, counted as skating — the ankle is raised by IK (world orientation
@@ -183,11 +183,13 @@ def lift_skimming_feet(motion: Motion, lo: int, hi: int) -> Motion:
     above y = 0: a crouch whose toe goes 1.7 cm down counts a toe up to 6.7 cm as on the floor. Where the
     other foot is on the floor, the toe is kept :data:`SKIM_HEIGHT` above that point too (below
     :data:`core.floor.ON_FLOOR`, so the lifted foot still touches: a spin's pivoting feet stay its support);
-    where it is not, only above y = 0 (lifted higher, a landing foot kept a run's flight in the air longer)."""
+    where it is not, only above y = 0 (lifted higher, a landing foot kept a run's flight in the air longer).
+    ``lowest`` (m): that point, default ``motion``'s own (a window's: its track's, :func:`finish_track`)."""
     feet = body_map(motion.skeleton).feet
     out = motion
     fps = motion.fps
-    skim = min(SKIM_HEIGHT + max(0.0, gmd_floor(motion)), ON_FLOOR - TOUCH_MARGIN)
+    floor = gmd_floor(motion) if lowest is None else lowest
+    skim = min(SKIM_HEIGHT + max(0.0, floor), ON_FLOOR - TOUCH_MARGIN)
     for side, (ankle, toe) in feet.items():
         p = out.positions
         other = feet["right" if side == "left" else "left"]
@@ -314,10 +316,11 @@ def _hardest(m: Motion, lo: int, hi: int) -> int:
 AHEAD = 2  # widths re-planted beside the one asked for, when they may count too (one IK solve for all)
 
 
-def finish_region(motion: Motion, region: Region, contacts,
-                  origin: int = 0) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
+def finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
+                  outside: float = np.inf) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
     """One join finished (steps 1–6 of the module docstring). ``origin``: ``motion`` is the window of a track from
-    that frame on (``region`` and ``contacts`` in the window's frames; :func:`finish_track`).
+    that frame on (``region`` and ``contacts`` in the window's frames; :func:`finish_track`), ``outside`` (m) the
+    lowest foot joint of the track outside the window (:meth:`Spliced.lowest_outside`).
 
     Returns the motion, what was done, and ``(lo, hi, n_new, src)``: the frames ``[lo, hi)`` now play
     over ``n_new``, new frame ``k`` showing source frame ``lo + src[k]`` (:func:`warp_frames`; later frames
@@ -400,7 +403,8 @@ def finish_region(motion: Motion, region: Region, contacts,
     candidate = chosen.motion()
     for st in stretches:
         st.release()
-    done = lift_off_floor(lift_skimming_feet(candidate.share_pose(motion, rows), lo, h2), lo, h2)
+    finished = candidate.share_pose(motion, rows)
+    done = lift_off_floor(lift_skimming_feet(finished, lo, h2, min(outside, gmd_floor(finished))), lo, h2)
     # the feet a connection released after its blend may land inside the next core (the engine's frames, not
     # the clip's): where the body stands beside them there, the hips' path is bent over them too
     he = _landing_end(done, h2, region.r1 + h2 - hi)
@@ -465,7 +469,8 @@ def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[di
         checkpoint()  # an abandoned animation stops before its next region
         a, b = _window(r, fps, track.n_frames)
         win = track.window(a, b)
-        done, info, (lo, hi, n_new, src) = finish_region(win, _shifted(r, -a), contacts_within(win, track.floor()), a)
+        done, info, (lo, hi, n_new, src) = finish_region(win, _shifted(r, -a), contacts_within(win, track.floor()), a,
+                                                         track.lowest_outside(a, b))
         track.put(a, b, done)
         infos.append(info)
         warps.append((lo + a, hi + a, n_new, src))
