@@ -118,6 +118,11 @@ def _read_place(pred: Pred, phrases: list[Phrase]) -> None:
                 return
 
 
+def reread(pred: Pred, noun: str) -> None:
+    """Read ``pred`` with the を-noun ``noun`` it turned out to have (それ: the ball, in バッターはそれを打った)."""
+    _read(pred, noun, frozenset)
+
+
 def _after_no(ph: Phrase) -> str:
     """The nouns between the last の and a final を of ``ph`` (兄の後を -> 後), '' when it is not so made."""
     toks = [t for t in ph.tokens if t.pos1 != "補助記号"]

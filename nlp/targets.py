@@ -36,7 +36,7 @@ from .lexicon import (
     THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
-from .phrases import body_nouns
+from .phrases import body_nouns, reread
 from .pred import Pred
 from .types import Constraint, MotionSpec
 
@@ -312,6 +312,7 @@ def _follow_on(preds: list[Pred]) -> None:
             said = f"{pred.object} read as {thing}, the thing last named"
             pred.note = f"{pred.note}; {said}" if pred.note else said
             pred.object = thing
+            reread(pred, thing)
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
         _give_back(pred, givers)
