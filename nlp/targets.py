@@ -80,10 +80,14 @@ def attach_targets(phrases: list[Phrase]) -> None:
             continue  # its noun waits for the motion it says the way of
         if pred.motion:
             _settle(pred, pending, actors)
-            if pred.target is None and pred.verb in LOCOMOTION_VERBS and _comes(ph):
+            if pred.target is None and pred.verb in LOCOMOTION_VERBS and (_comes(ph) or pred.verb in COMING_VERBS):
                 _come_to(pred, phrases, i)
         pending = []
     _follow_on([ph.pred for ph in phrases if ph.pred is not None])
+
+
+#: Verbs of coming to someone: with no one named, to the person the story is with (:func:`_come_to`).
+COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る".split())
 
 
 def _comes(ph: Phrase) -> bool:
