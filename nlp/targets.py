@@ -36,7 +36,7 @@ from .lexicon import (
     THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
-from .phrases import body_nouns
+from .phrases import body_nouns, reread
 from .pred import Pred
 from .types import Constraint, MotionSpec
 
@@ -80,8 +80,31 @@ def attach_targets(phrases: list[Phrase]) -> None:
             continue  # its noun waits for the motion it says the way of
         if pred.motion:
             _settle(pred, pending, actors)
+            if pred.target is None and pred.verb in LOCOMOTION_VERBS and (_comes(ph) or pred.verb in COMING_VERBS):
+                _come_to(pred, phrases, i)
         pending = []
     _follow_on([ph.pred for ph in phrases if ph.pred is not None])
+
+
+#: Verbs of coming to someone: with no one named, to the person the story is with (:func:`_come_to`).
+COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る".split())
+
+
+def _comes(ph: Phrase) -> bool:
+    """Is ``ph`` a motion + て + くる (帰ってくる, 入ってきた, 走ってくる): towards where the story is?"""
+    toks = ph.tokens
+    return any(t.lemma == "て" and t.pos1 == "助詞" and toks[k + 1].lemma == "来る"
+               for k, t in enumerate(toks[:-1]))
+
+
+def _come_to(pred: Pred, phrases: list[Phrase], i: int) -> None:
+    """息子が帰ってくると、父は…: someone who comes with nowhere named comes to the person the story is with,
+    the actor named nearest before (else after) who is someone else."""
+    def others(seq):
+        return (a for ph in seq if ph.pred and ph.pred.motion for a in (ph.pred.actor,) if a and a != pred.actor)
+    person = next(others(reversed(phrases[:i])), None) or next(others(phrases[i + 1:]), None)
+    if person is not None:
+        pred.target, pred.target_role, pred.target_person = person, "goal", True
 
 
 # ---------------------------------------------------------------- the nouns
@@ -184,9 +207,11 @@ def _inner_side(ph: Phrase) -> Target | None:
 def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
     """The target of ``pred`` from the nouns before it in its clause (the nearest one with a role wins).
     A word taken for a person only because it can be a name, never an actor of the text, is a thing where
-    the body goes beside it or onto it (机の前に座る, 岩に座る: 机 and 岩 are also names)."""
+    the body goes beside it or onto it, or a thing is put on it (机の前に座る, 岩に座る, 書類を机に置く: 机 and 岩
+    are also names)."""
     for t in reversed(pending):
-        if t.person and not t.sure and t.name not in actors and (t.side is not None or pred.verb in SUPPORT_VERBS):
+        if t.person and not t.sure and t.name not in actors and (
+                t.side is not None or pred.verb in SUPPORT_VERBS or pred.verb in PLACING_VERBS):
             t.person = False
         role = _role(pred, t)
         if role is None:
@@ -291,6 +316,7 @@ def _follow_on(preds: list[Pred]) -> None:
             said = f"{pred.object} read as {thing}, the thing last named"
             pred.note = f"{pred.note}; {said}" if pred.note else said
             pred.object = thing
+            reread(pred, thing)
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
         _give_back(pred, givers)
