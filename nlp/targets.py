@@ -278,9 +278,7 @@ def _follow_on(preds: list[Pred]) -> None:
     - a gesture right after a motion of the same actor directed at a person is addressed to that person
       (花子に近づいて、お辞儀する), a touch of them done to them (駆け寄って、抱きしめる), a thing sent goes
       to them (近づいて、ボールを渡す: she receives it);
-    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note,
-      and a motion that sends or puts a thing right after one in て-form with a thing, none named, sends
-      or puts that one (ボールを拾って、投げ返した);
+    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note;
     - a thing given back (返す, 投げ返す) with no one named goes back to the one who gave it (健は花子に本を
       貸した。彼女はそれを返した: to 健).
     """
@@ -308,9 +306,6 @@ def _follow_on(preds: list[Pred]) -> None:
         if pred.target in pred.co_actors:
             pred.target_role = "partner"  # 花子の手を取って、一緒に踊る: done with her, not at her
         _stand_at(pred, prev)
-        if (pred.object is None and prev is not None and prev.object and prev.object not in BODY_PARTS
-                and (pred.verb in TRANSFER_VERBS or pred.verb in PLACING_VERBS) and prev.ending in ("te", "renyou")):
-            pred.object = prev.object  # 拾って、投げ返した: the thing just picked up
         last[pred.actor] = pred
         if pred.object in THING_ANAPHORS and thing is not None:
             said = f"{pred.object} read as {thing}, the thing last named"
