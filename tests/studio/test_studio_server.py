@@ -291,17 +291,17 @@ def test_a_dropped_clip_is_the_sessions_until_kept_then_listed_renamed_and_remov
     library = tmp_path / "mine.sqlite"
     studio = work.Studio.open(str(library))
     try:
-        done = studio.import_bvh(format_bvh(motion).encode(), "walk.bvh", "手招きする", False)
+        done = studio.import_bvh(format_bvh(motion).encode(), "walk.bvh", "逆立ちする", False)
         assert done["ok"] and done["clip"] == "walk_2"  # a dropped walk.bvh never replaces the built-in walk
-        assert studio.animate("花子は手招きする。")["table"][0]["clip"] == "walk_2"
+        assert studio.animate("花子は逆立ちする。")["table"][0]["clip"] == "walk_2"
         assert studio.mine() == [] and studio.keep("walk") == {"ok": False, "error": "no clip 'walk' was dropped in "
                                                                                       "this session"}
         assert studio.keep("walk_2")["ok"] and [c["name"] for c in studio.mine()] == ["walk_2"]
         assert studio.rename("walk_2", "手招き")["ok"] and [c["name"] for c in studio.mine()] == ["手招き"]
-        assert studio.animate("花子は手招きする。")["table"][0]["clip"] == "手招き"
+        assert studio.animate("花子は逆立ちする。")["table"][0]["clip"] == "手招き"
         assert studio.remove("walk")["ok"] is False  # a built-in clip is not the user's to remove
         assert studio.remove("手招き")["ok"] and studio.mine() == []
-        assert studio.animate("花子は手招きする。")["code"] == "unknown"
+        assert studio.animate("花子は逆立ちする。")["code"] == "unknown"
     finally:
         studio.close()
 
