@@ -270,7 +270,7 @@ DEFAULT_PAUSE = CONNECTIVES["しばらくして"][3]
 
 #: Counters: unit -> (kind, factor to seconds or 1).
 COUNTERS = {
-    "回": ("repeat", 1), "度": ("repeat", 1), "歩": ("steps", 1),
+    "回": ("repeat", 1), "度": ("repeat", 1), "周": ("repeat", 1), "歩": ("steps", 1),
     "秒間": ("duration", 1.0), "分間": ("duration", 60.0),
     "秒": ("seconds", 1.0), "分": ("seconds", 60.0),
 }
@@ -309,8 +309,9 @@ SIDE_NOUNS = {
     "後ろ": "behind", "うしろ": "behind", "後": "behind", "背後": "behind",
     "隣": "beside", "となり": "beside", "横": "beside", "よこ": "beside", "そば": "near", "傍": "near",
     "近く": "near", "側": "near", "脇": "beside",
-    "上": "on", "うえ": "on",
+    "上": "on", "うえ": "on", "下": "under",
     "左": "left", "右": "right",
+    "周り": "around", "まわり": "around", "周囲": "around",
 }
 
 #: Nouns after 〜の that only say "where X is" (花子のところへ, 花子の方へ, 花子のもとへ).
@@ -321,6 +322,15 @@ DIRECTION_TE = frozenset("向かう 向ける".split())
 
 #: Verbs by which two people face each other (二人は向かい合ってお辞儀する): no motion of their own.
 FACING_VERBS = frozenset("向かい合う 向き合う 対面する".split())
+
+#: Nouns that are the ground itself: a thing put there lies on the floor (箱を床に下ろす), no thing of its own.
+GROUND_NOUNS = frozenset("床 ゆか 地面 地べた 床の上 足元 足下".split())
+
+#: Verbs done to a door (ドアを引いて開ける): one written without its object is done to the door just handled.
+DOOR_VERBS = frozenset("開ける 開く 閉める 閉じる ノックする".split())
+
+#: Verbs of looking: their を-thing is looked at, not held (空を見上げる).
+LOOKING_VERBS = frozenset("見る 見上げる 見下ろす 見つめる 眺める 覗く 見回す 見渡す にらむ 睨む 見送る".split())
 
 #: Demonstratives that name the thing last named (花子はそれを投げた: the ball 太郎 handed her).
 THING_ANAPHORS = frozenset("それ これ あれ そいつ".split())
