@@ -13,7 +13,8 @@ kick (:data:`KICK`)  it rests on the floor where the kicking foot strikes (the f
 dribble              it rolls on the floor ahead of the feet (:data:`DRIBBLE_AHEAD`) while the row plays
 throw                it is in the throwing hand until the release (the hand's fastest frame); it flies to
                      the catcher's hands at their catch (both hands furthest out) when one catches it,
-                     else on with the hand's speed, lands and rolls
+                     else on with the hand's speed, lands and rolls; thrown to someone who does not catch
+                     it, it strikes them and drops at their feet
 pick (拾う, 持ち上げる) it lies on the floor under the hand at its lowest frame, then is held; so does a thing
                      taken (取る, 持つ) that is nowhere yet by a hand that goes down for it; 机の上のペンを取る:
                      on the desk under the hand
@@ -26,7 +27,8 @@ open (開ける, 閉める)  a door in front of the hand at its furthest reach s
 look (見る, 見上げる)  nothing: it is looked at, not held; one nothing else places is said, not drawn
 drink (水を飲む)       nothing new: the drink is in the cup the drinker holds, if any
 any other            it is held (one hand or both, :mod:`scene.shapes`) while the row plays
-seat (座る on it)     it stands under the hips where they sit, from the start
+seat (座る on it)     it stands under the hips where they sit, from the start; a sitter with no seat named
+                     (座った, 花子の横に座った) sits on a chair (said): a sitting clip's hips are at its height
 beside (机の前に座る)  it stands where the body ends beside it, from the start: ahead of the body (前, 後ろ,
                      近く, and a goal with no side: ドアまで歩く), or to its side (隣, 横, 左, 右); one sat in
                      front of is sat at on a chair
@@ -78,6 +80,8 @@ OPEN = frozenset("開ける 開く".split())
 CLOSE = frozenset("閉める 閉じる 締める".split())
 KNOCK = frozenset("ノックする".split())
 SIT = frozenset("座る 腰掛ける 着席する".split())
+#: What one sits on when the text names no seat (a sitting clip's hips are at a chair's height).
+SEAT_STAND_IN = "椅子"
 DRIBBLE = frozenset("ドリブルする".split())
 #: m at the built-in body's size: a dribbled ball's distance ahead of the hips
 DRIBBLE_AHEAD = 0.5
@@ -100,6 +104,7 @@ class _Path:
         self.holder: tuple[str | None, str] | None = None  # (actor, "right" / "both") while held
         self.at_feet: str | None = None  # who dribbles it (ドリブルして、シュートする: the kick's ball)
         self.sitters: list[tuple[np.ndarray, float]] = []  # (hips, heading) of each who sits on it
+        self.sat_by: str | None = None  # the first who sits on it
         self.hinge: tuple[np.ndarray, float, float] | None = None  # a door's hinge, heading and angle so far
 
     @property
@@ -126,6 +131,10 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
         if r.actor not in motions:
             continue
         named = _named(r, motions)
+        if r.verb in SIT and not any(how == "seat" for _, how in named):  # 座った, 花子の横に座った: not on air
+            seat = _seat_for(paths, r.actor)
+            named.append((seat, "seat"))
+            said.append(f"{seat}: no seat named for {_who(r.actor)} {r.verb}; a chair stands under the hips")
         if not any(how == "handled" for _, how in named) and r.verb in THROW | PUT | GIVE | KICK:
             held = next((q for q in paths.values() if q.holder is not None and q.holder[0] == r.actor), None)
             if held is None and r.verb in KICK:  # ドリブルして、シュートする: the ball at the feet
@@ -141,7 +150,7 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
                 cup.events.append((r.start, f"{_who(r.actor)} drinks {name} from it"))
                 continue
             if name not in paths:
-                shape, known = (PLACE, False) if how in ("place", "route") else shape_of(name)
+                shape, known = (PLACE, False) if how in ("place", "route") else shape_of(name.split(" ")[0])
                 paths[name] = _Path(name, shape, known, n, scale.get(r.actor, 1.0))
             if how == "around":
                 said.append(f"{name}: {r.verb} around it in the text; the walk passes beside it, not round it")
@@ -159,6 +168,17 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
                                          else "no shape of its own, shown as a box"))
         out.append(Thing(p.name, p.shape.shape, p.size, p.shape.color, p.pos, p.rot, tuple(p.events), p.known))
     return tuple(out), said
+
+
+def _seat_for(paths: dict[str, _Path], actor: str | None) -> str:
+    """The stand-in chair of ``actor``: 椅子, or 椅子 2, 椅子 3, ... when others already sit on one."""
+    k = 1
+    while True:
+        name = SEAT_STAND_IN if k == 1 else f"{SEAT_STAND_IN} {k}"
+        p = paths.get(name)
+        if p is None or p.sat_by in (None, actor):
+            return name
+        k += 1
 
 
 def _cup_held(paths: dict[str, _Path], actor: str | None) -> _Path | None:
@@ -186,7 +206,7 @@ def _named(r: Element, motions) -> list[tuple[str, str]]:
         elif r.target_role == "goal" and side != "on":  # ドアまで歩く: it stands ahead where the walk ends
             out.append((r.target, "beside"))
             if r.verb in SIT and side is not None:
-                out.append(("椅子", "seat"))  # 机の前に座る: on a chair at it
+                out.append((SEAT_STAND_IN, "seat"))  # 机の前に座る: on a chair at it
         elif r.target_role in ("goal", "at"):
             out.append((r.target, "table"))
     if r.object and r.object not in motions and r.verb in LOCOMOTION_VERBS and not shape_of(r.object)[1]:
@@ -210,6 +230,7 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
     f0, f1 = _frames(r, fps, m.n_frames)
     t = f0 / fps
     if how == "seat":
+        p.sat_by = p.sat_by or r.actor
         _seat(p, m, f0 if r.target_role == "source" else f1 - 1)
         p.events.append((t, f"{_who(r.actor)} " + ("rises from it" if r.target_role == "source" else "sits on it")))
     elif how == "table":
@@ -449,6 +470,29 @@ def _throw(p: _Path, r: Element, m: Motion, rows, motions, f0: int, f1: int, fps
     aim = _aim(r, motions, start, let_go, heading)
     _fly(p, let_go, start, np.array([speed * np.sin(aim), float(np.clip(v[1], 1.0, 4.0)), speed * np.cos(aim)]), fps)
     p.events.append((let_go / fps, f"thrown by {_who(r.actor)}"))
+    hit = _reaches_body(p, r, motions, let_go)
+    if hit is not None:  # thrown to someone who does not catch it: it strikes them and drops at their feet
+        back = p.pos[hit - 1] - p.pos[hit]
+        back[1] = 0.0
+        _fly(p, hit, p.pos[hit], 0.5 * back / max(float(np.linalg.norm(back)), 1e-9), fps)
+        p.events.append((hit / fps, f"drops at {r.target}'s feet"))
+
+
+#: m at the built-in body's size: a flying thing this near a person's hips, over the floor, meets their body.
+BODY_RADIUS = 0.25
+
+
+def _reaches_body(p: _Path, r: Element, motions, after: int) -> int | None:
+    """The first frame after ``after`` at which the thing flying to row ``r``'s recipient meets their body (within
+    :data:`BODY_RADIUS` of their hips over the floor, below their head), or ``None``."""
+    if r.target not in motions or r.target_role != "recipient":
+        return None
+    hips = bodies.hips_path(motions[r.target])[0]
+    n = min(len(p.pos), len(hips))
+    for f in range(after + 1, n):
+        if np.hypot(*(p.pos[f] - hips[f])[[0, 2]]) < BODY_RADIUS * p.scale and p.pos[f, 1] < 1.8 * p.scale:
+            return f
+    return None
 
 
 def _catcher(p: _Path, r: Element, rows, motions, after: int, fps: float):
