@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from .bunsetsu import FUNCTION_POS, Phrase
 from .endings import ENDINGS
-from .lexicon import HONORIFICS, PERSON_NOUNS, SCRIPT_HEADINGS
+from .lexicon import HONORIFICS, PERSON_NOUNS, PLACE_OF_NOUNS, SCRIPT_HEADINGS, SIDE_NOUNS
 from .persons import refers, words_of
 from .together import Joined, together
 from .tokens import is_name
@@ -65,8 +65,10 @@ def _person_name(ph: Phrase) -> str | None:
         return speaker_label(ph)
     nouns: list[Token] = []
     affixed = honorific = proper = False
-    for t in toks:  # one pass: this runs on most phrases of every text
+    for k, t in enumerate(toks):  # one pass: this runs on most phrases of every text
         pos1 = t.pos1
+        if pos1 == "助詞" and t.surface == "の" and nouns and _names_a_side(toks[k + 1:]):
+            return None  # 兄の後を, 花子の前に: a place beside a person, not a person
         if pos1 == "名詞" or pos1 == "代名詞":
             nouns.append(t)
             proper = proper or t.pos3 == "人名"
@@ -82,6 +84,12 @@ def _person_name(ph: Phrase) -> str | None:
             or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name)) or refers(words_of(toks))):
         return None
     return as_written(toks) if affixed else name
+
+
+def _names_a_side(toks: list[Token]) -> bool:
+    """Do the words after a の name a side or place of what comes before it (後, 前, ところ)?"""
+    rel = "".join(t.surface for t in toks if t.pos1 in ("名詞", "接尾辞"))
+    return rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS
 
 
 def as_written(toks: list[Token]) -> str:

@@ -283,7 +283,7 @@ LOCOMOTION_VERBS = frozenset(
     """歩く 走る 駆ける 駆け出す 駆け寄る 駆け込む 走り寄る 近付く 近寄る 歩み寄る 寄る 行く 来る 向かう 戻る
     帰る 入る 進む 前進する 移動する 急ぐ 逃げる 離れる 下がる 後ずさりする 後退りする スキップする 歩き出す
     走り出す 出る 出掛ける 這う 飛び込む 近寄る 立つ 隠れる 回り込む 詰め寄る 駆け上がる 駆け下りる 駆け降りる
-    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う""".split()
+    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く""".split()
 )
 
 #: Verbs whose に-thing holds the body up (the ``support``): 椅子に座る, ベッドに寝る.
@@ -352,7 +352,7 @@ CONTACT_VERBS = frozenset(
 #: Verbs two people do to each other: co-actors of one are each other's partner (太郎と花子は握手する).
 RECIPROCAL_VERBS = frozenset(
     """握手する ハイタッチする 話す 会話する 話し合う 喧嘩する けんかする 戦う 乾杯する キスする 見つめ合う
-    抱き合う 向かい合う 組み合う 繋ぐ つなぐ 手を繋ぐ""".split()
+    抱き合う 向かい合う 組み合う 繋ぐ つなぐ 手を繋ぐ 出会う 出合う""".split()
 )
 #: Verbs whose を-person is where the motion ends, not whom it is done to: 男を追いかける runs up to him.
 CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く 追いつく".split())

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
+from .actors import case_particle, noun_of
 from .bunsetsu import Phrase
 from .pred import Pred
 
@@ -33,16 +34,16 @@ class Idiom:
 
 
 @lru_cache(maxsize=1)
-def _data() -> tuple[dict[tuple[str, str], tuple[Idiom, ...]], dict[str, str], frozenset[tuple[str, str]]]:
-    """``((noun, verb) -> idioms, body noun -> its part, the props' (noun, verb))`` from ``phrases.json``; an
-    idiom with ``with`` words first."""
+def _data() -> tuple[dict[tuple[str, str, str], tuple[Idiom, ...]], dict[str, str], frozenset[tuple[str, str]]]:
+    """``((particle, noun, verb) -> idioms, body noun -> its part, the props' (noun, verb))`` from
+    ``phrases.json``; an idiom with ``with`` words first; an idiom's particle is を unless it says (席に着く)."""
     data = json.loads(DATA.read_text(encoding="utf-8"))
-    table: dict[tuple[str, str], list[Idiom]] = {}
+    table: dict[tuple[str, str, str], list[Idiom]] = {}
     for entry in data["idioms"]:
         idiom = Idiom(entry["action"], entry["part"], frozenset(entry.get("with", ())))
         for noun in entry["nouns"]:
             for verb in entry["verbs"]:
-                table.setdefault((noun, verb), []).append(idiom)
+                table.setdefault((entry.get("particle", "を"), noun, verb), []).append(idiom)
     ordered = {k: tuple(sorted(v, key=lambda i: not i.with_)) for k, v in table.items()}
     return ordered, dict(data["body_nouns"]), frozenset((n, v) for n, vs in data["props"].items() for v in vs)
 
@@ -53,13 +54,14 @@ def body_nouns() -> dict[str, str]:
     return _data()[1]
 
 
-def idiom(noun: str, verbs: tuple[str, ...], words: Callable[[], frozenset[str]] = frozenset) -> Idiom | None:
-    """The idiom ``noun`` + one of ``verbs`` (spellings of one verb: as written, its lemma) is, given
-    the other ``words()`` that modify the verb (asked only of an idiom that needs one); None when
-    the phrase means what its verb does."""
+def idiom(noun: str, verbs: tuple[str, ...], words: Callable[[], frozenset[str]] = frozenset,
+          particle: str = "を") -> Idiom | None:
+    """The idiom ``noun`` + ``particle`` + one of ``verbs`` (spellings of one verb: as written, its lemma)
+    is, given the other ``words()`` that modify the verb (asked only of an idiom that needs one); None
+    when the phrase means what its verb does."""
     table = _data()[0]
     for verb in verbs:
-        for entry in table.get((noun, verb), ()):
+        for entry in table.get((particle, noun, verb), ()):
             if not entry.with_ or entry.with_ & words():
                 return entry
     return None
@@ -73,6 +75,8 @@ def read_phrases(preds: list[Pred], phrases: list[Phrase]) -> None:
             index = pred.phrase
             _read(pred, pred.noun, lambda: frozenset(p.key for p in phrases if p.head == index and p.pred is None))
             _hand_on(pred, preds[k + 1:], phrases)
+        elif pred.motion:
+            _read_place(pred, phrases)
 
 
 def _hand_on(pred: Pred, later: list[Pred], phrases: list[Phrase]) -> None:
@@ -88,6 +92,20 @@ def _hand_on(pred: Pred, later: list[Pred], phrases: list[Phrase]) -> None:
     pred.reason = "prop"
     if nxt.object is None:
         nxt.object = pred.noun
+
+
+def _read_place(pred: Pred, phrases: list[Phrase]) -> None:
+    """席に着く: an idiom of a に-noun (``particle`` に in ``phrases.json``) read as the action it means; the
+    noun stays where the action is done (the seat sat on)."""
+    written = pred.written or pred.verb
+    for ph in phrases:
+        if ph.head == pred.phrase and ph.pred is None and case_particle(ph) == "に":
+            noun = noun_of(ph)
+            found = idiom(noun, (written, pred.lemma, pred.verb), particle="に")
+            if found is not None:
+                pred.verb_phrase = f"{noun}に{written}"
+                pred.verb, pred.written, pred.reading, pred.body_part = found.action, pred.verb_phrase, "", found.part
+                return
 
 
 def _read(pred: Pred, noun: str, words: Callable[[], frozenset[str]]) -> None:

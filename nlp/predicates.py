@@ -9,6 +9,8 @@ before (ジャンプをする, お辞儀をする).  Its *verb group* is the ver
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 from .bunsetsu import Phrase
 from .lexicon import (
     BODY_PARTS, GREETINGS, LIBRARY_BY_READING, LIBRARY_VERBS, NON_ACTION_LEMMAS, VERB_ALIASES,
@@ -64,6 +66,9 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
         pred = Pred(ph.index, first.surface + "する", first.kana_form + "スル", "為る",
                     first.start, 0)
     else:
+        come = _come(toks, v)
+        if come is not None:
+            first = replace(come, start=first.start)  # やってくる / やって来る: 来る, nothing done (遣る)
         pred = Pred(ph.index, canonical_verb(first), first.kana, first.lemma, first.start, 0)
         pred.written = first.orth
         if first.lemma == "為る":
@@ -85,6 +90,14 @@ def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:
     pred.ending, pred.cue = _ending(toks, g, ph, next_ph)
     settle_reason(pred, ph.quoted)
     return pred
+
+
+def _come(toks: list[Token], v: int) -> Token | None:
+    """The 来る or 行く of やってくる / やっていく (someone comes or goes), or ``None``."""
+    if toks[v].lemma != "遣る" or v + 2 >= len(toks):
+        return None
+    te, verb = toks[v + 1], toks[v + 2]
+    return verb if te.lemma == "て" and te.pos1 == "助詞" and verb.lemma in ("来る", "行く") else None
 
 
 def _mimetic_verb(phrase: int, adverb: Token) -> Pred | None:

@@ -93,32 +93,60 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
     seen = _Named()
     notes: list[str] = []
     acting: dict[int, list[str]] = {}  # clause group -> the persons its actor phrases named so far
+    subjects: dict[int, list[str]] = {}  # sentence -> the persons its が-actors named so far
     for i, ph in enumerate(phrases):
         if ph.role not in _MAY_NAME or ph.pred is not None or person_name(ph) is None:
             continue  # (asked of most phrases of every text: what mention() would refuse first, cheaply)
         m = mention(phrases, i)
         if m is None:
             continue
-        actor = ph.role == "actor" or case_particle(ph) in ("は", "が", "も")
+        particle = case_particle(ph)
+        if m.kind == "name" and m.guessed and particle == "を" and not _tagged(ph):
+            continue  # 本を取る: a を-object that is a name only because it can be one is a thing
+        actor = ph.role == "actor" or particle in ("は", "が", "も")
         if m.kind == "name":
             persons: tuple[str, ...] = (m.written,)
+        elif m.kind == "group":
+            persons, why = seen.group(m)
+        elif not actor:
+            persons, why = seen.pronoun(m, tuple(acting.get(ph.group, ())))
         else:
-            persons, why = (seen.group(m) if m.kind == "group"
-                            else seen.pronoun(m, () if actor else tuple(acting.get(ph.group, ()))))
-            if not persons:
-                persons = _unresolved(ph, m, seen.order)
-                if len(persons) > 1:
-                    notes.append(f"read {m.written} as {'、'.join(persons)} (fewer were named: the rest are new "
-                                 "characters)")
-            elif persons != (m.written,):
-                notes.append(f"read {m.written} as {'、'.join(persons)} ({why})")
+            topic = particle in ("は", "も")
+            persons, why = _topic_pronoun(seen, m, tuple(subjects.get(ph.sentence, ())) if topic else ())
+        if m.kind != "name" and not persons:
+            persons = _unresolved(ph, m, seen.order)
+            if len(persons) > 1:
+                notes.append(f"read {m.written} as {'、'.join(persons)} (fewer were named: the rest are new "
+                             "characters)")
+        elif persons != (m.written,):
+            notes.append(f"read {m.written} as {'、'.join(persons)} ({why})")
         ph.persons = persons
         if m.kind != "group":
             seen.learn(persons, m.sex, m.guessed)
         seen.add(persons)
         if actor:
             acting.setdefault(ph.group, []).extend(persons)
+        if particle == "が":
+            subjects.setdefault(ph.sentence, []).extend(persons)
     return notes
+
+
+def _topic_pronoun(seen: _Named, m: Mention, subjects: tuple[str, ...]) -> tuple[tuple[str, ...], str]:
+    """Whom a pronoun that is an actor (彼は, 彼も) refers to. A が-subject earlier in its sentence is
+    someone else when another fits (父は新聞を読んでいた。息子が帰ってくると、彼は顔を上げた: 彼 is 父;
+    兄が止まると、彼も止まった: 彼 is not 兄): a clause's が marks a new subject, the main clause's
+    は or も goes back to the one the story is about."""
+    if subjects:
+        persons, why = seen.pronoun(m, subjects)
+        if persons:
+            return persons, f"{why}, not {'、'.join(subjects)} of the clause before"
+    return seen.pronoun(m, ())
+
+
+def _tagged(ph: Phrase) -> bool:
+    """Is ``ph`` a person by more than a word that can be a name: tagged a name here, a person noun,
+    or with an honorific?"""
+    return _proper(ph.tokens) or _honorific(ph.tokens) or is_person_noun(words_of(ph.tokens))
 
 
 #: The roles of a phrase that may name a person (not a predicate, a body part, a time or manner word).

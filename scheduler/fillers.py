@@ -112,6 +112,15 @@ def _idles(e: Element, info: C) -> bool:
     return e.verb == IDLE_VERB and info.cyclic
 
 
+def _walks_to_stop(find: _Finder[C], before: C, info: C) -> bool:
+    """Does a looping motion (walk, run) go on until the stop that comes next (兄が止まると、彼も止まった:
+    he walks until then, rather than stopping, standing and stopping again)?"""
+    if not before.cyclic:
+        return False
+    stop = find.by_verb(STOP_VERB, info.character)
+    return stop is not None and stop.name == info.name
+
+
 def _actor_track(find: _Finder[C], add: _Adder[C], mine: list[Element], clips: dict[int, C],
                  fps: float) -> list[Element]:
     """One actor's elements in playing order with a late start's idle and the connections' waits filled."""
@@ -128,8 +137,8 @@ def _actor_track(find: _Finder[C], add: _Adder[C], mine: list[Element], clips: d
         before = next((x for x in track if x.id == e.prev), None) if e.method == "connection" else None
         if before is not None and e.start - before.end > IDLE_GAP:
             before_info = clips.get(before.id) or add.clips[before.id]
-            if _idles(before, before_info):  # a wait goes on waiting: its loop plays longer
-                track[track.index(before)] = replace(before, end=e.start)
+            if _idles(before, before_info) or _walks_to_stop(find, before_info, info):
+                track[track.index(before)] = replace(before, end=e.start)  # its loop plays longer
             else:
                 fill = _fill_gap(find, add, before, before_info, before.end, e.start, info.character, fps)
                 track.extend(fill)

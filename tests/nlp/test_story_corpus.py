@@ -57,6 +57,12 @@ def _bunsetsu(text: str, starts: str):
     ("先輩と後輩と新人が来た。みんなで踊った。", "みんなで", ("先輩", "後輩", "新人")),
     ("係の人が来た。", "人が", ("係の人",)),
     ("新入社員の山田さんが来た。", "山田さんが", ("山田",)),
+    # a が-subject of the clause before is someone else than the main clause's 彼は / 彼も
+    ("父は新聞を読んでいた。息子が帰ってくると、彼は顔を上げた。", "彼は", ("父",)),
+    ("次郎は兄と歩いた。兄が止まると、彼も止まった。", "彼も", ("次郎",)),
+    ("花子が来ると、彼女は座った。", "彼女は", ("花子",)),  # no one else: still her
+    # 本 is also a surname: as a を-object it is a thing, not the woman 彼女 refers to
+    ("みきは本を棚から取った。彼女はそれを机に置いた。", "彼女は", ("みき",)),
 ])
 def test_every_phrase_naming_a_person_says_whom(text, mention, persons):
     assert _bunsetsu(text, mention).persons == persons

@@ -40,6 +40,19 @@ def test_plan_shows_the_stop_and_the_idle_before_a_delayed_motion(library_db):
     assert stop["id"] > walk["id"] and idle["id"] > walk["id"]  # added after the text's own motions
 
 
+def test_a_walk_goes_on_until_the_stop_the_text_says(db):
+    # 兄が止まると、彼も止まった: 次郎 walks until his brother stops, then stops once (no stop, idle, stop)
+    planned = text2anim.plan("次郎は兄の後ろを歩いた。兄が止まると、彼も止まった。", db)
+    mine = sorted((e for e in planned.table.elements if e.actor == "次郎"), key=lambda e: e.start)
+    assert [e.verb for e in mine] == ["歩く", STOP_VERB]
+    walk, stop = mine
+    assert walk.end == stop.start
+    assert walk.end - walk.start > played_duration(planned.clips[walk.id], planned.table.fps) + IDLE_GAP
+    # a wait before another motion still stops and idles
+    planned = text2anim.plan("太郎は走る。3秒後に歩く。", db)
+    assert [e.verb for e in sorted(planned.table.elements, key=lambda e: e.start)][1:3] == [STOP_VERB, IDLE_VERB]
+
+
 def test_the_stop_lasts_its_clip_as_played(db):
     planned = text2anim.plan("太郎は走る。3秒後に歩く。", db, fps=24.0)
     stop = next(e for e in planned.table.elements if e.verb == STOP_VERB)
