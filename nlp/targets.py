@@ -17,12 +17,15 @@ written, a person by the actor's name), ``target_role`` and ``target_side``:
 ============== ======================================================================
 
 ``target_side`` says where relative to the target (花子の前に: ``front``; ``behind``, ``beside``,
-``near``, ``on``, ``left``, ``right``). A partner performs the motion too (a co-actor, facing or
+``near``, ``on``, ``under``, ``around``, ``left``, ``right``); で after a side noun says it as に does
+(ドアの前で), and a side noun marked を is no object (花子の方を向く, 木の周りを歩く); 机の上のペンを取る takes
+the pen from the desk (``source``). A motion keeps one target; another noun with a role is said in its note. A partner performs the motion too (a co-actor, facing or
 beside the actor: the scene decides by the verb); 向かい合って / 向き合って make the actors of the
 next motion each other's partners and are no motion of their own, nor is に向かって (its noun is
 the next motion's goal). A gesture with no target of its own right after a motion of the same actor
-directed at a person (近づいて、お辞儀する) is addressed to that person. それ / これ as an object is the
-thing last named.
+directed at a person (近づいて、お辞儀する) is addressed to that person, unless the body only went to their
+side (隣に立って、写真を撮る). それ / これ as an object is the thing last named; a door verb with no object
+(開ける, ノックする) is done to the thing the actor has just handled or gone to.
 """
 from __future__ import annotations
 
@@ -176,8 +179,8 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
             particle = "へ"  # 花子のとこ行く: spoken text drops the へ
         after = phrases[i + 2] if i + 2 < len(phrases) else None
         if particle == "の" and rel in SIDE_NOUNS and after is not None and after.role == "object":
-            name, person = _name(ph)  # 机の上のペンを取る: where the pen lies
-            return Target(name, person, "の", SIDE_NOUNS[rel], (i, i + 1), _sure(ph)) if name else None
+            name, person = _name(ph)  # 机の上のペンを取る: where the pen lies (a thing; 太郎の隣の本 says no place)
+            return Target(name, False, "の", SIDE_NOUNS[rel], (i, i + 1), _sure(ph)) if name and not person else None
         if (rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS) and particle in TARGET_PARTICLES:
             name, person = _name(ph)
             return Target(name, person, particle, SIDE_NOUNS.get(rel), (i, i + 1), _sure(ph))

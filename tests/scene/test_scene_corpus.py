@@ -124,5 +124,6 @@ def test_a_noun_the_motion_cannot_keep_is_said_and_a_door_verb_takes_the_door_ju
     a = analyze("花子はドアを引いて開けた。")
     assert [(m.verb, m.object) for m in a.motions] == [("引く", "ドア"), ("開ける", "ドア")]
     assert a.notes == ("開ける read as done to ドア, the thing just handled",)
+    assert [m.object for m in analyze("花子はドアを開けて、閉めた。").motions] == ["ドア", "ドア"]  # 閉める: 締める
     (stop, knock) = analyze("太郎は公園で立ち止まって、ノックした。").motions  # a bare で-place is no target
     assert stop.target is None and knock.object is None
