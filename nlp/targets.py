@@ -180,7 +180,8 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
         after = phrases[i + 2] if i + 2 < len(phrases) else None
         if particle == "の" and rel in SIDE_NOUNS and after is not None and after.role == "object":
             name, person = _name(ph)  # 机の上のペンを取る: where the pen lies (a thing; 太郎の隣の本 says no place)
-            return Target(name, False, "の", SIDE_NOUNS[rel], (i, i + 1), _sure(ph)) if name and not person else None
+            thing = name and not (person and _sure(ph))  # 机 can be a name, but is no person here
+            return Target(name, False, "の", SIDE_NOUNS[rel], (i, i + 1), _sure(ph)) if thing else None
         if (rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS) and particle in TARGET_PARTICLES:
             name, person = _name(ph)
             return Target(name, person, particle, SIDE_NOUNS.get(rel), (i, i + 1), _sure(ph))
