@@ -37,6 +37,9 @@ rests       the thing's bottom to what it is put on (m: the floor, 床に      <
             下ろす, or a thing's top, テーブルの上に置く) at the row's end   thing's top
 free        the thing to the nearer wrist over the row (m; a thing not      > :data:`FREE_M`
             drawn is free): 空を見上げる holds no sky
+round       the turns the hips sweep round the thing over the row (laps:    >= 0.9 of ``laps``, never
+            木の周りを三周歩く), and their nearest distance to its centre   within :data:`CLEAR_M` of
+                                                                           its side
 =========== ============================================================== =========================
 """
 from __future__ import annotations
@@ -62,6 +65,7 @@ APART_M = 0.5  # m: a ball within half a metre of someone's hips lies at their f
 AT_M = 0.6  # m: hips within this of a thing's box are at it (a chair's depth between them and a desk)
 REST_M = 0.03  # m between a thing put down and what it rests on
 FREE_M = 0.3  # m: a thing further than this from both wrists is not in the hand
+CLEAR_M = 0.2  # m between the hips and the side of a thing walked round
 
 
 @dataclass(frozen=True)
@@ -421,8 +425,19 @@ def _free(anim, rows, props, c):
     return Figure("free", d, "m", d > FREE_M)
 
 
+def _round(anim, rows, props, c):
+    _, m, f0, f1 = _played(anim, rows, c)
+    p = _thing(props, c)
+    rel = m.root_positions[f0:f1] - p.positions[f0:f1]
+    swept = float(np.abs(np.sum(wrap_angle(np.diff(np.arctan2(rel[:, 0], rel[:, 2]))))) / (2.0 * np.pi))
+    near = float(np.hypot(rel[:, 0], rel[:, 2]).min())
+    clear = near - 0.5 * max(p.size[0], p.size[2]) >= CLEAR_M
+    return Figure("round", swept, "laps", swept >= 0.9 * c["laps"] and clear, f"nearest {near:.2f} m")
+
+
 _MEASURES = {"approach": _approach, "faces": _faces, "sync": _sync, "holds": _holds, "launch": _launch,
              "catch": _catch, "seat": _seat, "present": _present, "together": _together, "leaves": _leaves,
              "behind": _behind, "reaches": _reaches,
-             "apart": _apart, "at": _at, "hand_in_hand": _hand_in_hand, "rests": _rests, "free": _free}
+             "apart": _apart, "at": _at, "hand_in_hand": _hand_in_hand, "rests": _rests, "free": _free,
+             "round": _round}
 CHECKS = tuple(_MEASURES)

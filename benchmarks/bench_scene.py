@@ -58,7 +58,7 @@ def table(results) -> list[str]:
               "seat": "< 0.2 m", "present": "yes", "together": f"< {SYNC_S:g} s", "leaves": "> 0.5 m",
               "behind": "> 120 deg", "reaches": "< 0.15 m", "apart": "> 0.5 m",
               "at": f"< {AT_M:g} m, facing it", "hand_in_hand": f"< {HANDS_M:g} m", "rests": f"< {REST_M:g} m",
-              "free": f"> {FREE_M:g} m"}
+              "free": f"> {FREE_M:g} m", "round": ">= 0.9 laps"}
     by: dict[str, list] = {}
     for item, figs, err in results:
         for c in item.get("scene", []):

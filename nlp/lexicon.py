@@ -268,9 +268,12 @@ HOMOPHONE_TYPOS = {
 #: Default delay of しばらくして, in seconds.
 DEFAULT_PAUSE = CONNECTIVES["しばらくして"][3]
 
+#: s: a lap round something (木の周りを三周歩く: 12 s of walking, three laps: scene.circling).
+LAP_SECONDS = 4.0
+
 #: Counters: unit -> (kind, factor to seconds or 1).
 COUNTERS = {
-    "回": ("repeat", 1), "度": ("repeat", 1), "周": ("repeat", 1), "歩": ("steps", 1),
+    "回": ("repeat", 1), "度": ("repeat", 1), "周": ("duration", LAP_SECONDS), "歩": ("steps", 1),
     "秒間": ("duration", 1.0), "分間": ("duration", 60.0),
     "秒": ("seconds", 1.0), "分": ("seconds", 60.0),
 }

@@ -32,7 +32,7 @@ seat (座る on it)     it stands under the hips where they sit, from the start;
 beside (机の前に座る)  it stands where the body ends beside it, from the start: ahead of the body (前, 後ろ,
                      近く, and a goal with no side: ドアまで歩く), or to its side (隣, 横, 左, 右); one sat in
                      front of is sat at on a chair
-around (木の周りを歩く) it stands beside the middle of the walk (said: the walk does not circle it)
+around (木の周りを歩く) it stands in the middle of the loops the walk was steered into (:mod:`scene.circling`)
 place (駅まで走る)     a marker on the floor where the walk ends
 route (公園を歩く)     a marker on the floor halfway along the walk (a を-place of a verb that travels,
                      with no shape of its own: gone through, not carried)
@@ -56,7 +56,7 @@ from text2anim.core.motion import Motion
 from text2anim.nlp.lexicon import DRINKS, GROUND_NOUNS, LOCOMOTION_VERBS, LOOKING_VERBS
 from text2anim.scheduler.types import Element
 
-from . import bodies
+from . import bodies, circling
 from .shapes import PLACE, Shape, shape_of
 from .types import Kick, Thing
 
@@ -152,8 +152,6 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
             if name not in paths:
                 shape, known = (PLACE, False) if how in ("place", "route") else shape_of(name.split(" ")[0])
                 paths[name] = _Path(name, shape, known, n, scale.get(r.actor, 1.0))
-            if how == "around":
-                said.append(f"{name}: {r.verb} around it in the text; the walk passes beside it, not round it")
             _event(paths[name], how, r, rows, motions, fps)
     out = []
     for p in paths.values():
@@ -241,12 +239,10 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
     elif how == "by":
         _by(p, m, f0, f1, r.object)
         p.events.append((t, f"{_who(r.actor)} puts {r.object or 'a thing'} by it"))
-    elif how == "around":
-        path, heading = bodies.hips_path(m)
-        mid = (f0 + f1) // 2
-        aside = (BESIDE_GAP * p.scale + 0.5 * p.size[0]) * bodies.forward(float(heading[mid]) + np.pi / 2)
-        p.rest(0, path[mid] + aside + [0.0, p.half, 0.0])
-        p.events.append((mid / fps, f"{_who(r.actor)} passes it"))
+    elif how == "around":  # the walk was steered into loops round it (scene.circling)
+        middle, _ = circling.centre(m, f0, f1)
+        p.rest(0, middle + [0.0, p.half, 0.0])
+        p.events.append((t, f"{_who(r.actor)} goes round it"))
     elif how == "route":
         path, _ = bodies.hips_path(m)
         p.rest(0, path[(f0 + f1) // 2] + [0.0, p.half, 0.0])
