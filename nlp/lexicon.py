@@ -329,8 +329,11 @@ FACING_VERBS = frozenset("向かい合う 向き合う 対面する".split())
 #: Nouns that are the ground itself: a thing put there lies on the floor (箱を床に下ろす), no thing of its own.
 GROUND_NOUNS = frozenset("床 ゆか 地面 地べた 床の上 足元 足下".split())
 
-#: Verbs done to a door (ドアを引いて開ける): one written without its object is done to the door just handled.
+#: Verbs done to a door (ドアを引いて開ける): one written without its object is done to the door just handled
+#: or gone to (ドアの前で立ち止まって、ノックした).
 DOOR_VERBS = frozenset("開ける 開く 閉める 締める 閉じる ノックする".split())
+#: Verbs that move a thing: one written without its object moves the thing just handled (台車を押して、運んだ).
+MOVING_VERBS = frozenset("運ぶ 持ち運ぶ 押して行く".split())
 
 #: Verbs of looking: their を-thing is looked at, not held (空を見上げる).
 LOOKING_VERBS = frozenset("見る 見上げる 見下ろす 見つめる 眺める 覗く 見回す 見渡す にらむ 睨む 見送る".split())

@@ -25,7 +25,8 @@ next motion each other's partners and are no motion of their own, nor is に向�
 the next motion's goal). A gesture with no target of its own right after a motion of the same actor
 directed at a person (近づいて、お辞儀する) is addressed to that person, unless the body only went to their
 side (隣に立って、写真を撮る). それ / これ as an object is the thing last named; a door verb with no object
-(開ける, ノックする) is done to the thing the actor has just handled or gone to.
+(開ける, ノックする) is done to the thing the actor has just handled or gone to, a carry (運ぶ) to the thing
+just handled.
 """
 from __future__ import annotations
 
@@ -35,7 +36,7 @@ from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
     BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS, FACING_VERBS, HONORIFICS,
-    LOCOMOTION_VERBS, NOT_TARGETS,
+    LOCOMOTION_VERBS, MOVING_VERBS, NOT_TARGETS,
     PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
@@ -325,11 +326,12 @@ def _follow_on(preds: list[Pred]) -> None:
         if facing and pred.target_role == "partner":
             pred.target_side = "front"  # 向かい合って立つ: each in front of the other, not side by side
         prev = last.get(pred.actor)
-        if prev is not None and pred.verb in DOOR_VERBS and not pred.object:
-            door = prev.object or (prev.target if prev.target and not prev.target_person else None)
-            if door:  # ドアを引いて開ける, ドアの前で立ち止まってノックする: the door just handled
-                pred.object = door
-                _say(pred, f"{pred.verb} read as done to {door}, the thing just handled")
+        if prev is not None and pred.verb in DOOR_VERBS | MOVING_VERBS and not pred.object:
+            gone_to = prev.target if pred.verb in DOOR_VERBS and prev.target and not prev.target_person else None
+            handled = prev.object or gone_to
+            if handled:  # ドアを引いて開ける, ドアの前で立ち止まってノックする, 台車を押して運ぶ: the thing just handled
+                pred.object = handled
+                _say(pred, f"{pred.verb} read as done to {handled}, the thing just handled")
         if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
                 and prev.target_side not in ALONGSIDE
                 and pred.verb not in LOCOMOTION_VERBS and pred.verb not in SUPPORT_VERBS):

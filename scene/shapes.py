@@ -30,6 +30,7 @@ _TABLE = Shape("box", (1.0, 0.72, 0.6), "#9c7a4e")
 _DOOR = Shape("door", (0.9, 2.0, 0.04), "#c4a574")
 _STICK = Shape("stick", (0.03, 0.9, 0.03), "#404040")
 _PHONE = Shape("box", (0.07, 0.14, 0.01), "#202020")
+_CART = Shape("box", (0.6, 0.35, 0.9), "#7a7a7a")
 _PEN = Shape("stick", (0.012, 0.15, 0.012), "#1f3f8f")
 _TREE = Shape("cylinder", (0.35, 3.0, 0.35), "#6b4f2a")
 _SHELF = Shape("box", (0.8, 1.2, 0.35), "#9c7a4e")
@@ -48,6 +49,7 @@ SHAPES: dict[str, Shape] = {
     **dict.fromkeys("ペン 鉛筆 ボールペン 筆".split(), _PEN),
     **dict.fromkeys("電話 スマホ 携帯 携帯電話 スマートフォン".split(), _PHONE),
     **dict.fromkeys("木 樹 樹木 大木 桜 桜の木".split(), _TREE),
+    **dict.fromkeys("台車 カート 手押し車 リヤカー 荷車".split(), _CART),
     **dict.fromkeys("棚 本棚 戸棚 食器棚".split(), _SHELF),
     **dict.fromkeys("黒板 ホワイトボード 掲示板".split(), _BOARD),
 }

@@ -24,6 +24,8 @@ give (渡す)           it is in the giver's hand until the hand is furthest out
 open (開ける, 閉める)  a door in front of the hand at its furthest reach swings open (or shut) on its hinge;
                      knocked on (ノックする), it stays shut; pushed or pulled (押す, 引く), it swings open.
                      It stands where it is first handled; later rows swing it from there
+push (押す)           it slides on the floor ahead of the hips while the row plays, and on while the pusher
+                     walks or carries (台車を押して、倉庫まで運んだ)
 look (見る, 見上げる)  nothing: it is looked at, not held; one nothing else places is said, not drawn
 drink (水を飲む)       nothing new: the drink is in the cup the drinker holds, if any
 any other            it is held (one hand or both, :mod:`scene.shapes`) while the row plays
@@ -53,7 +55,7 @@ from scipy.spatial.transform import Rotation
 from text2anim.core.contact_instant import contact_instant
 from text2anim.core.fk import matrix_to_quat
 from text2anim.core.motion import Motion
-from text2anim.nlp.lexicon import DRINKS, GROUND_NOUNS, LOCOMOTION_VERBS, LOOKING_VERBS
+from text2anim.nlp.lexicon import DRINKS, GROUND_NOUNS, LOCOMOTION_VERBS, LOOKING_VERBS, MOVING_VERBS
 from text2anim.scheduler.types import Element
 
 from . import bodies, circling
@@ -71,8 +73,11 @@ CATCH = frozenset("取る 捕る キャッチする 受け止める 捕まえる
 PICK = frozenset("拾う 拾い上げる 持ち上げる 抱え上げる".split())
 #: Verbs that take a thing into the hand: one that lies nowhere yet is picked up (机の上のペンを取る).
 TAKE = frozenset("取る 手に取る 持つ 掴む つかむ 取り上げる 取り出す".split())
-#: Verbs that push or pull: a door pushed or pulled swings open.
+#: Verbs that push or pull: a door pushed or pulled swings open; any other thing pushed slides on the floor.
 PUSH_PULL = frozenset("押す 引く 引っ張る".split())
+PUSH = frozenset("押す".split())
+#: m at the built-in body's size: between the hips and the near side of a thing pushed along the floor.
+PUSH_GAP = 0.45
 PUT = frozenset("置く 下ろす 降ろす 落とす 積む 乗せる 載せる".split())
 GIVE = frozenset("渡す 手渡す 差し出す".split())
 RECEIVE = frozenset("受け取る 貰う".split())
@@ -105,6 +110,7 @@ class _Path:
         self.at_feet: str | None = None  # who dribbles it (ドリブルして、シュートする: the kick's ball)
         self.sitters: list[tuple[np.ndarray, float]] = []  # (hips, heading) of each who sits on it
         self.sat_by: str | None = None  # the first who sits on it
+        self.pushed_by: str | None = None  # who pushes it along the floor (台車を押して、運んだ)
         self.hinge: tuple[np.ndarray, float, float] | None = None  # a door's hinge, heading and angle so far
 
     @property
@@ -140,6 +146,9 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
             if held is None and r.verb in KICK:  # ドリブルして、シュートする: the ball at the feet
                 held = next((q for q in paths.values() if q.at_feet == r.actor), None)
             named += [(held.name, "handled")] if held is not None else []  # 拾って、投げる: what the hand holds
+        if not any(how == "handled" for _, how in named) and r.verb in LOCOMOTION_VERBS | MOVING_VERBS:
+            pushed = next((q for q in paths.values() if q.pushed_by == r.actor), None)
+            named += [(pushed.name, "handled")] if pushed is not None else []  # 台車を押して歩く: it comes along
         for name, how in named:
             if how == "handled" and r.verb in LOOKING_VERBS:  # 空を見上げる: looked at, not held
                 if name not in paths:
@@ -293,6 +302,10 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         also = None if opening is None else bodies.hand(m, "right")[_instant(m, "right_hand", "reach",
                                                                              *_frames(opening, fps, m.n_frames))]
         _door(p, r, m, f0, f1, fps, opening is None, also)
+    elif (r.verb in PUSH and p.shape.shape != "door") or (
+            p.pushed_by == r.actor and r.verb in LOCOMOTION_VERBS | MOVING_VERBS):
+        _push(p, r, m, f0, f1)
+        p.events.append((t, f"pushed by {_who(r.actor)}"))
     elif p.holder is None or p.holder[0] != r.actor:
         _hold(p, r.actor, m, 0 if not p.placed() else f0)
         p.events.append((t, f"{_who(r.actor)} holds it"))
@@ -442,6 +455,20 @@ def _dribble(p: _Path, r: Element, m: Motion, f0: int, f1: int) -> None:
     p.pos[f0:] = ahead[-1] + [0.0, p.half, 0.0]
     p.pos[f0:f1] = ahead + [0.0, p.half, 0.0]
     p.holder, p.at_feet = None, r.actor
+
+
+def _push(p: _Path, r: Element, m: Motion, f0: int, f1: int) -> None:
+    """The thing on the floor ahead of the hips (:data:`PUSH_GAP` to its near side) over frames ``[f0, f1)``,
+    turned as they face, left there after: pushed along (台車を押す, and on with the pusher's walk or carry)."""
+    path, heading = bodies.hips_path(m)
+    h = heading[f0:f1]
+    reach = PUSH_GAP * p.scale + 0.5 * p.size[2]
+    ahead = path[f0:f1] + reach * np.stack([np.sin(h), np.zeros_like(h), np.cos(h)], axis=1) + [0.0, p.half, 0.0]
+    p.pos[f0:] = ahead[-1]
+    p.pos[f0:f1] = ahead
+    p.rot[f0:] = Rotation.from_euler("y", float(h[-1])).as_quat()
+    p.rot[f0:f1] = Rotation.from_euler("y", h[:, None]).as_quat()
+    p.holder, p.pushed_by = None, r.actor
 
 
 def _throw(p: _Path, r: Element, m: Motion, rows, motions, f0: int, f1: int, fps: float) -> None:
