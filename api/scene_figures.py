@@ -21,8 +21,10 @@ catch       the thing to the catcher's wrists' midpoint when it stops      < :da
 seat        the seat's centre to the hips over the floor (m) where they    < 0.2 m, hips 0-0.3 m
             sit, and the hips above the seat's top                          above the top
 present     the person is one of the scene's actors                        yes
-together    the two actors' rows start apart (s)                           < :data:`SYNC_S`, side by
-                                                                           side within 2 m
+together    the two actors' rows start apart (s; 0 with ``"sync": false``:   < :data:`SYNC_S`, within
+            one joins a walk the other carries on, 近づいて、一緒に歩く)    :data:`TOGETHER_M` at its
+                                                                           middle and end, never
+                                                                           within :data:`CLEAR_M`
 leaves      the distance grows over the row (m)                            > 0.5 m
 behind      the angle of the actor around the target from where it faces   > 120°
 reaches     the hand to the door at the row's nearest frame (m)            < 0.15 m
@@ -38,7 +40,7 @@ rests       the thing's bottom to what it is put on (m: the floor, 床に      <
 free        the thing to the nearer wrist over the row (m; a thing not      > :data:`FREE_M`
             drawn is free): 空を見上げる holds no sky
 round       the turns the hips sweep round the thing over the row (laps:    >= 0.9 of ``laps``, never
-            木の周りを三周歩く), and their nearest distance to its centre   within :data:`CLEAR_M` of
+            木の周りを三周歩く), and their nearest distance to its centre   within :data:`ROUND_M` of
                                                                            its side
 =========== ============================================================== =========================
 """
@@ -65,7 +67,9 @@ APART_M = 0.5  # m: a ball within half a metre of someone's hips lies at their f
 AT_M = 0.6  # m: hips within this of a thing's box are at it (a chair's depth between them and a desk)
 REST_M = 0.03  # m between a thing put down and what it rests on
 FREE_M = 0.3  # m: a thing further than this from both wrists is not in the hand
-CLEAR_M = 0.2  # m between the hips and the side of a thing walked round
+ROUND_M = 0.2  # m between the hips and the side of a thing walked round
+TOGETHER_M = 2.0  # m: two who walk or dance together stay this close (walking apart ends metres away)
+CLEAR_M = 0.3  # m, hips to hips: closer, two bodies are inside each other
 
 
 @dataclass(frozen=True)
@@ -340,10 +344,12 @@ def _together(anim, rows, props, c):
     a, b = c["actors"]
     ra, rb = _row(rows, a, c["verb"]), _row(rows, b, c["verb"])
     ma, mb = _motion(anim, a), _motion(anim, b)
-    f = _frame(anim, 0.5 * (ra.start + ra.end), ma)
-    d = float(np.hypot(*(ma.root_positions[f] - mb.root_positions[f])[[0, 2]]))
-    dt = abs(ra.start - rb.start)
-    return Figure("together", dt, "s", dt < SYNC_S and d <= 2.0, f"{d:.2f} m apart")
+    f0, f1 = _frame(anim, ra.start, ma), _frame(anim, ra.end, ma)
+    gaps = np.hypot(*(ma.root_positions[f0:f1 + 1] - mb.root_positions[f0:f1 + 1])[:, [0, 2]].T)
+    d = float(gaps[len(gaps) // 2])
+    dt = abs(ra.start - rb.start) if c.get("sync", True) else 0.0  # false: one joins a walk under way
+    ok = dt < SYNC_S and d <= TOGETHER_M and gaps[-1] <= TOGETHER_M and gaps.min() >= CLEAR_M
+    return Figure("together", dt, "s", bool(ok), f"{d:.2f} m apart, {gaps.min():.2f}-{gaps.max():.2f} m over it")
 
 
 def _leaves(anim, rows, props, c):
@@ -431,7 +437,7 @@ def _round(anim, rows, props, c):
     rel = m.root_positions[f0:f1] - p.positions[f0:f1]
     swept = float(np.abs(np.sum(wrap_angle(np.diff(np.arctan2(rel[:, 0], rel[:, 2]))))) / (2.0 * np.pi))
     near = float(np.hypot(rel[:, 0], rel[:, 2]).min())
-    clear = near - 0.5 * max(p.size[0], p.size[2]) >= CLEAR_M
+    clear = near - 0.5 * max(p.size[0], p.size[2]) >= ROUND_M
     return Figure("round", swept, "laps", swept >= 0.9 * c["laps"] and clear, f"nearest {near:.2f} m")
 
 

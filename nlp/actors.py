@@ -81,7 +81,8 @@ def _person_name(ph: Phrase) -> str | None:
         return None
     name = nouns[0].surface if len(nouns) == 1 else "".join(t.surface for t in nouns)
     if not (honorific or proper or name in PERSON_NOUNS
-            or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and is_name(name)) or refers(words_of(toks))):
+            or (len(nouns) == 1 and nouns[0].pos1 == "名詞" and nouns[0].pos3 != "サ変可能" and is_name(name))
+            or refers(words_of(toks))):  # ゴール (a goal; Gaul) is an action noun here, no name
         return None
     return as_written(toks) if affixed else name
 

@@ -62,7 +62,8 @@ def analyze(text: str) -> Analysis:
 
 def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: dict[int, tuple[str, ...]]) -> None:
     """太郎と花子が歩く: each co-actor gets a copy of the motions (ids after the text's own, same span); a
-    partner's copy is directed at the actor (太郎は花子と握手する: 花子's handshake is with 太郎).
+    copy directed at its co-actor is directed at the actor instead (太郎は花子と握手する: 花子's handshake is
+    with 太郎; 花子の手を取って、一緒に踊る: she dances toward him).
 
     Links among the copied motions are copied; a copy with no copied link starts
     with its original (parallel), so every actor's track is linked as the contract says.
@@ -75,7 +76,7 @@ def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: d
         for orig in sorted(i for i, group in co.items() if name in group):
             copies[orig] = next_id
             spec = by_id[orig]
-            target = spec.actor if spec.target_role == "partner" and spec.target == name else spec.target
+            target = spec.actor if spec.target == name else spec.target  # never directed at oneself
             specs.append(replace(spec, id=next_id, actor=name, target=target))
             next_id += 1
         linked = set()

@@ -21,6 +21,7 @@ VERB_ALIASES = {
     "指差す": "指さす",
     "とぶ": "跳ぶ",
     "屈む": "しゃがむ",
+    "返る": "帰る",  # UniDic's lemma of 帰る (家に帰った): going home, a walk there
 }
 
 #: Reading (katakana, base form) -> library verb, for verbs written in
@@ -171,6 +172,9 @@ PRONOUNS = {"彼": "m", "彼女": "f", "あいつ": "", "こいつ": "", "そい
 GROUP_WORDS = {"二人": 2, "ふたり": 2, "みんな": 0, "皆": 0, "みな": 0, "全員": 0, "皆さん": 0, "みなさん": 0,
                "皆様": 0, "みなさま": 0, "彼ら": 0, "彼女ら": 0, "彼女たち": 0, "あいつら": 0, "一同": 0}
 
+#: One of the last group named (二人は歩いた。一人が止まった。もう一人は振り返った): its members in turn.
+ONE_OF_GROUP = frozenset("一人 ひとり 1人 １人".split())
+
 #: First- and second-person words: persons, but never what 彼 / その人 refers back to.
 SPEAKERS = frozenset("私 僕 俺 わたし ぼく おれ あたし 自分 あなた 君 きみ お前 おまえ".split())
 
@@ -289,6 +293,12 @@ LOCOMOTION_VERBS = frozenset(
     駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く""".split()
 )
 
+#: Verbs that take the body down off its feet (besides ``SUPPORT_VERBS``): after them 立つ is rising, before
+#: them 花子の前に立つ is going to stand there (a walk).
+LOWERING_VERBS = frozenset(
+    "しゃがむ しゃがみ込む 屈む かがむ 転ぶ 倒れる ひざまずく 跪く 伏せる 寝転ぶ 横になる 座り込む うずくまる".split()
+)
+
 #: Verbs whose に-thing holds the body up (the ``support``): 椅子に座る, ベッドに寝る.
 SUPPORT_VERBS = frozenset(
     """座る 腰掛ける 着席する 座り込む 寝る 横になる 寝転ぶ 寝そべる 乗る 登る 上る 上がる 寄り掛かる
@@ -298,7 +308,7 @@ SUPPORT_VERBS = frozenset(
 #: Verbs that send a thing to a person (the に-person is the ``recipient``) or to a place (``destination``).
 TRANSFER_VERBS = frozenset(
     """渡す 手渡す 差し出す 投げる 放る 放り投げる 蹴る パスする 返す 見せる 上げる 送る 届ける 配る
-    投げ渡す 転がす 差し上げる 呉れる""".split()
+    投げ渡す 転がす 差し上げる 呉れる 貸す 蹴り返す 投げ返す""".split()
 )
 
 #: Verbs that put a thing somewhere: the に-noun is its ``destination`` (机に置く).
@@ -345,6 +355,7 @@ THING_ANAPHORS = frozenset("それ これ あれ そいつ".split())
 #: verb (lemma) -> (the counterpart's verb, its reading, the role the first motion's target has).
 COUNTERPARTS = {
     "渡す": ("受け取る", "ウケトル", "recipient"), "手渡す": ("受け取る", "ウケトル", "recipient"),
+    "貸す": ("受け取る", "ウケトル", "recipient"), "返す": ("受け取る", "ウケトル", "recipient"),
     "差し出す": ("受け取る", "ウケトル", "recipient"),
     "受け取る": ("渡す", "ワタス", "source"), "貰う": ("渡す", "ワタス", "source"),
 }
@@ -367,7 +378,7 @@ CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く �
 HAND_IN_HAND = frozenset("繋ぐ つなぐ 手を繋ぐ".split())
 
 #: Nouns before に / と that are no target (一緒に is "together", not a place).
-NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
+NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 一斉 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
 
 #: Verbs that send a thing through the air to someone, and verbs that catch it: a catch of the thing another
 #: person throws is timed by the flight (docs/language.md §8), not after the throw has ended.

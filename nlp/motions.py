@@ -243,7 +243,8 @@ def _merge_light_verbs(phrases: list[Phrase]) -> None:
 
 def _mark_non_agents(phrases: list[Phrase]) -> None:
     """雨が降る / 音楽が流れる / ボールが転がる: a が-subject that is neither a person nor
-    a body part (手が震える is still the actor's) makes its predicate no action of anyone."""
+    a body part (手が震える is still the actor's) makes its predicate no action of anyone; the
+    subject is kept as its ``object``, the thing it is about."""
     for i, ph in enumerate(phrases):
         if ph.role or ph.pred or case_particle(ph) != "が" or any(t.is_number for t in ph.tokens):
             continue
@@ -253,6 +254,7 @@ def _mark_non_agents(phrases: list[Phrase]) -> None:
         target = _next_pred(phrases, i)
         if target is not None and target.predicate.motion:
             target.predicate.reason = "non-agent"
+            target.predicate.object = noun  # the thing it is about: それ may name it next (targets._follow_on)
 
 
 def _mark_passives(phrases: list[Phrase]) -> None:
@@ -310,7 +312,8 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float],
             continue
         elif role == "object":
             pred.noun = noun_of(ph)
-            pred.object = pred.noun or None  # never an empty string
+            # never an empty string; a person by whom it names (彼を助け起こす: 一人目, not a thing 彼)
+            pred.object = ph.persons[0] if len(ph.persons) == 1 else pred.noun or None
         elif role == "body part":
             pred.body_part = _body_part(phrases, i)
             if case_particle(ph) != "で":  # 右手で投げる: the limb used, not what the verb acts on

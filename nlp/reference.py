@@ -14,7 +14,8 @@ particle (花子に, 花子を and 花子の name her too).  Then:
   are never what 彼 refers to.
 - a **group word** names several: 二人 / ふたり the last two persons named, 三人 the last three,
   みんな / 彼ら / 全員 every person named so far, in the order they were named; it needs at least
-  two of them.
+  two of them. A person noun after a counted group and の is that group (二人の子ども), and 一人 /
+  もう一人 after a group are its members in turn (一人が転んだ。もう一人は…: 一人目, then 二人目).
 - a pronoun or group that refers to no one named keeps its own name as before (彼女, 彼ら: a
   character of its own; みんな then names no one, and the motion is the default character's); a counted
   group (二人, 3人) is the persons named and new characters for the rest (一人目, 二人目, ...).
@@ -28,7 +29,7 @@ from typing import NamedTuple
 
 from .actors import case_particle, person_name
 from .bunsetsu import Phrase
-from .lexicon import GROUP_WORDS, HONORIFICS, PERSON_HEADS, PRONOUNS, SPEAKERS
+from .lexicon import GROUP_WORDS, HONORIFICS, ONE_OF_GROUP, PERSON_HEADS, PRONOUNS, SPEAKERS
 from .persons import DEMONSTRATIVES, group_size, is_person_noun, name_sex, noun_sex, pronoun_sex, words_of
 from .tokens import is_name
 from .types import Token
@@ -37,9 +38,9 @@ from .types import Token
 class Mention(NamedTuple):
     """What one phrase says of a person.
 
-    ``kind``: ``name`` (a name or person noun), ``pronoun`` (彼, その人, その男) or ``group`` (二人,
-    みんな); ``written``: the name as the analysis writes it (花子 for 花子さん) or the pronoun as
-    written; ``sex``: "m", "f" or "" (either); ``size``: a group's size (0: everyone named);
+    ``kind``: ``name`` (a name or person noun), ``pronoun`` (彼, その人, その男), ``group`` (二人,
+    みんな) or ``member`` (一人 of a group named before, 二人の子ども's 子ども); ``written``: the name as
+    the analysis writes it (花子 for 花子さん) or the pronoun as written; ``sex``: "m", "f" or "" (either); ``size``: a group's size (0: everyone named);
     ``noun``: a description's own person noun (その店員: 店員), matched before any other;
     ``guessed``: the sex is read from a name's ending, not said by a word (父, 彼).
     """
@@ -94,6 +95,7 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
     notes: list[str] = []
     acting: dict[int, list[str]] = {}  # clause group -> the persons its actor phrases named so far
     subjects: dict[int, list[str]] = {}  # sentence -> the persons its が-actors named so far
+    counted: tuple[int, tuple[str, ...]] | None = None  # 二人の (its phrase, whom it names) before 子ども
     for i, ph in enumerate(phrases):
         if ph.role not in _MAY_NAME or ph.pred is not None or person_name(ph) is None:
             continue  # (asked of most phrases of every text: what mention() would refuse first, cheaply)
@@ -104,8 +106,16 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
         if m.kind == "name" and m.guessed and particle == "を" and not _tagged(ph):
             continue  # 本を取る: a を-object that is a name only because it can be one is a thing
         actor = ph.role == "actor" or particle in ("は", "が", "も")
-        if m.kind == "name":
-            persons: tuple[str, ...] = (m.written,)
+        persons: tuple[str, ...]
+        why = ""
+        if m.written in ONE_OF_GROUP and seen.members:
+            m = m._replace(kind="member")
+            persons, why = seen.member(_after_mou(phrases, i))
+        elif m.kind == "name" and counted and counted[0] == i - 1 and is_person_noun(words_of(ph.tokens)):
+            m = m._replace(kind="member")
+            persons, why = counted[1], f"{phrases[i - 1].key}{m.written}: a group of them"
+        elif m.kind == "name":
+            persons = (m.written,)
         elif m.kind == "group":
             persons, why = seen.group(m)
         elif not actor:
@@ -121,8 +131,11 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
         elif persons != (m.written,):
             notes.append(f"read {m.written} as {'、'.join(persons)} ({why})")
         ph.persons = persons
-        if m.kind != "group":
+        counted = (i, persons) if m.kind == "group" and ph.key.endswith("の") and len(persons) > 1 else None
+        if m.kind in ("name", "pronoun"):
             seen.learn(persons, m.sex, m.guessed)
+        elif m.kind == "group" and len(persons) > 1:
+            seen.members, seen.picked = persons, []
         seen.add(persons)
         if actor:
             acting.setdefault(ph.group, []).extend(persons)
@@ -162,6 +175,8 @@ class _Named:
         self.recent: list[str] = []
         self.sexes: dict[str, str] = {}
         self.sure: set[str] = set()
+        self.members: tuple[str, ...] = ()  # the last group named (二人), whose 一人 / もう一人 are its members
+        self.picked: list[str] = []
 
     def learn(self, persons: tuple[str, ...], sex: str, guessed: bool) -> None:
         """A lone person named by a word of a sex takes it, where it was unknown or only guessed
@@ -201,6 +216,14 @@ class _Named:
             return (), ""
         return (cands[0],), "the only person named" if len(self.order) == 1 else "the last person named"
 
+    def member(self, other: bool) -> tuple[tuple[str, ...], str]:
+        """一人 of the last group named: its first member not yet named so; もう一人 (``other``): one not
+        yet named since (二人は歩いた。一人が止まった。もう一人は振り返った: 一人目, then 二人目)."""
+        pick = next((p for p in self.members if p not in self.picked), self.members[0])
+        self.picked.append(pick)
+        group = "、".join(self.members)
+        return (pick,), f"{'another' if other else 'one'} of {group}"
+
     def group(self, m: Mention) -> tuple[tuple[str, ...], str]:
         """(the persons group ``m`` names, in the order they were named, why) or ((), "")."""
         if len(self.order) < max(2, m.size):
@@ -226,6 +249,12 @@ def _unresolved(ph: Phrase, m: Mention, named: list[str]) -> tuple[str, ...]:
         return ()
     name = person_name(ph)
     return (name,) if name else ()
+
+
+def _after_mou(phrases: list[Phrase], i: int) -> bool:
+    """Is phrase ``i`` (一人) after もう (もう一人: the other one)?"""
+    prev = _neighbour(phrases, i, -1)
+    return prev is not None and prev.key == "もう" or phrases[i].tokens[0].surface == "もう"
 
 
 def _neighbour(phrases: list[Phrase], i: int, step: int) -> Phrase | None:

@@ -19,8 +19,9 @@ written, a person by the actor's name), ``target_role`` and ``target_side``:
 ``target_side`` says where relative to the target (花子の前に: ``front``; ``behind``, ``beside``,
 ``near``, ``on``, ``under``, ``around``, ``left``, ``right``); で after a side noun says it as に does
 (ドアの前で), and a side noun marked を is no object (花子の方を向く, 木の周りを歩く); 机の上のペンを取る takes
-the pen from the desk (``source``). A motion keeps one target; another noun with a role is said in its note. A partner performs the motion too (a co-actor, facing or
-beside the actor: the scene decides by the verb); 向かい合って / 向き合って make the actors of the
+the pen from the desk (``source``). A motion keeps one target; another noun with a role is said in its
+note. A partner performs the motion too (a co-actor, facing or beside the actor: the scene decides by the
+verb); 向かい合って / 向き合って make the actors of the
 next motion each other's partners and are no motion of their own, nor is に向かって (its noun is
 the next motion's goal). A gesture with no target of its own right after a motion of the same actor
 directed at a person (近づいて、お辞儀する) is addressed to that person, unless the body only went to their
@@ -36,7 +37,7 @@ from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
     BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS, FACING_VERBS, HONORIFICS,
-    LOCOMOTION_VERBS, MOVING_VERBS, NOT_TARGETS,
+    LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
     PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
@@ -310,14 +311,21 @@ def _follow_on(preds: list[Pred]) -> None:
     - a gesture right after a motion of the same actor directed at a person is addressed to that person
       (花子に近づいて、お辞儀する), a touch of them done to them (駆け寄って、抱きしめる), a thing sent goes
       to them (近づいて、ボールを渡す: she receives it);
-    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note.
+    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note,
+      and a motion that sends or puts a thing right after one in て-form with a thing, none named, sends
+      or puts that one (ボールを拾って、投げ返した);
+    - a thing given back (返す, 投げ返す) with no one named goes back to the one who gave it (健は花子に本を
+      貸した。彼女はそれを返した: to 健).
     """
     last: dict[str | None, Pred] = {}
+    givers: dict[str, str | None] = {}  # thing -> the person who sent it
     thing: str | None = None
     before: Pred | None = None
     for pred in preds:
         facing = before is not None and before.reason == "facing"
         before = pred
+        if pred.reason == "non-agent" and pred.object:
+            thing = pred.object  # ボールが転がってきた。少年はそれを拾った: the ball
         if not pred.motion:
             continue
         if (facing or pred.verb in RECIPROCAL_VERBS or pred.verb.endswith("合う")) and not pred.target \
@@ -339,12 +347,43 @@ def _follow_on(preds: list[Pred]) -> None:
                     else "recipient" if pred.verb in TRANSFER_VERBS and pred.object and pred.object not in BODY_PARTS
                     else "addressee")
             pred.target, pred.target_role, pred.target_person = prev.target, role, True
+        if pred.target in pred.co_actors:
+            pred.target_role = "partner"  # 花子の手を取って、一緒に踊る: done with her, not at her
+        _stand_at(pred, prev)
+        if (pred.object is None and prev is not None and prev.object and prev.object not in BODY_PARTS
+                and (pred.verb in TRANSFER_VERBS or pred.verb in PLACING_VERBS) and prev.ending in ("te", "renyou")):
+            pred.object = prev.object  # 拾って、投げ返した: the thing just picked up
         last[pred.actor] = pred
         if pred.object in THING_ANAPHORS and thing is not None:
             _say(pred, f"{pred.object} read as {thing}, the thing last named")
             pred.object = thing
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
+        _give_back(pred, givers)
+
+
+def _stand_at(pred: Pred, prev: Pred | None) -> None:
+    """先生は黒板の前に立った: someone on their feet who stands somewhere goes there (a walk that ends
+    standing there, said in the note), rather than rising from a crouch they were never in."""
+    if pred.verb != "立つ" or pred.target_role != "goal":
+        return
+    if prev is not None and (prev.verb in SUPPORT_VERBS or prev.verb in LOWERING_VERBS):
+        return
+    pred.verb = pred.written = "歩く"
+    pred.reading = ""
+    said = f"立つ: walks to stand at {pred.target}"
+    pred.note = f"{pred.note}; {said}" if pred.note else said
+
+
+def _give_back(pred: Pred, givers: dict[str, str | None]) -> None:
+    """A thing given back with no one named goes to whoever sent it (:func:`_follow_on`); remember who sends."""
+    if pred.object is None:
+        return
+    giver = givers.get(pred.object)
+    if pred.target is None and pred.verb.endswith("返す") and giver is not None and giver != pred.actor:
+        pred.target, pred.target_role, pred.target_person = giver, "recipient", True
+    if pred.target_role == "recipient" and pred.target_person:
+        givers[pred.object] = pred.actor
 
 
 # ---------------------------------------------------------------- counterparts

@@ -3,7 +3,8 @@
 A together word (``lexicon.TOGETHER_WORDS``) makes more persons perform the motion it modifies:
 the persons joined to it by と (太郎は花子と一緒に歩く: 花子 walks too; 友達と二人で), or, with no
 one joined, the group it names itself (みんなで, 二人で, 三人で: its ``persons``, which
-:mod:`reference` resolved to the persons named so far).  They join the actor from that motion to
+:mod:`reference` resolved to the persons named so far), or else the person last named before it in
+its sentence who is not an actor there (太郎は花子の手を取って、一緒に踊る: 花子 dances too).  They join the actor from that motion to
 the end of the sentence (太郎は花子と一緒に歩いて、座った: both sit), and, as co-actors of
 太郎と花子が do, they perform it for the same time (the scheduler's ``together``).
 """
@@ -52,7 +53,19 @@ def together(phrases: list[Phrase], partners: Callable[[list[Phrase], int], list
             out[target] = Joined(tuple(names))
         elif ph.persons:
             out[target] = Joined(ph.persons, group=True)
+        elif ph.key in TOGETHER_WORDS and (other := _other_named(phrases, i)):
+            out[target] = Joined((other,))
     return out
+
+
+def _other_named(phrases: list[Phrase], i: int) -> str | None:
+    """太郎は花子の手を取って、一緒に踊る: with no one joined by と, 一緒に is with the person last named
+    before it in its sentence who is not an actor there (花子), if any."""
+    sentence = phrases[i].sentence
+    actors = {p for q in phrases[:i] if q.sentence == sentence and q.role == "actor" for p in q.persons}
+    others = [p for q in phrases[:i] if q.sentence == sentence and q.role != "actor" for p in q.persons
+              if p not in actors]
+    return others[-1] if others else None
 
 
 def _counted_group(ph: Phrase) -> bool:

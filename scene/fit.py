@@ -42,11 +42,12 @@ def fit(motions: dict[str | None, Motion], rels: Sequence[Relation], kicks: Sequ
     moves) and how well each relation holds after all moves."""
     motions = dict(motions)
     rigids: dict[str | None, Rigid] = {}
-    for rel in sorted(rels, key=lambda r: (r.role == "addressee", r.time, r.element)):
+    pairs = {frozenset((r.actor, r.other)) for r in rels if _together(r)}
+    for rel in sorted(rels, key=lambda r: (r.role == "addressee", not _together(r), r.time, r.element)):
         a, b = rel.actor, rel.other
         if a in rigids and b in rigids:
-            if rel.role == "goal" and rel.start is not None:
-                motions[a] = _steered(motions, rigids, rel)
+            if rel.role == "goal" and rel.start is not None and frozenset((a, b)) not in pairs:
+                motions[a] = _steered(motions, rigids, rel)  # (steering partners would part them again)
             continue
         if a not in rigids and b not in rigids:
             rigids[a] = Rigid()
@@ -63,6 +64,12 @@ def fit(motions: dict[str | None, Motion], rels: Sequence[Relation], kicks: Sequ
         if kick.actor in motions:
             motions[kick.actor] = _clear_kick(motions, rigids, kick)
     return motions, rigids, [measure(motions, rigids, rel) for rel in rels]
+
+
+def _together(rel: Relation) -> bool:
+    """Partners side by side (太郎は花子と一緒に歩いた): placed first, so that what comes before (his approach)
+    is steered to where they set off together rather than turning her to face him, and their walk apart."""
+    return rel.role == "partner" and rel.kind == "beside"
 
 
 def _clear_kick(motions, rigids, kick: Kick) -> Motion:

@@ -73,11 +73,11 @@ def test_a_refusal_says_what_was_looked_for(library_db):
 
 
 def test_a_compound_verb_plays_as_its_first_verb_when_the_clip_does_that(library_db):
-    """走り回る (run around) is 走る + 回る; 叩きのめす (beat up) is not played as 叩く's clap."""
+    """殴りかかる (go at someone with fists) is 殴る + かかる; 叩きのめす (beat up) is not played as 叩く's clap."""
     with MotionDB.open(library_db) as db:
-        planned = text2anim.plan("太郎は走り回る。", db, fallback="nearest")
-        assert planned.table.elements[0].clip == "run"
-        assert "走り回る is 走る + 回る" in planned.fallbacks[0].reason
+        planned = text2anim.plan("太郎は殴りかかる。", db, fallback="nearest")
+        assert planned.table.elements[0].clip == "punch"
+        assert "殴りかかる is 殴る + かかる" in planned.fallbacks[0].reason
         assert _played("叩きのめす", db) is None
 
 
