@@ -155,6 +155,8 @@ class PoseCache(Memo):
         instead: the world rotations stay (frames shared with another pose and not moved still are)."""
         if self._pose is None and isinstance(self._recipe, _Rows):
             return self._recipe.redone((root_positions.view(np.int64) != m.root_positions.view(np.int64)).any(axis=1))
+        if self._pose is not None and np.array_equal(root_positions.view(np.int64), m.root_positions.view(np.int64)):
+            return PoseCache(self._pose)  # the same frames (a writable copy of the rows): the same pose
         return PoseCache(recipe=None if self._pose is None else _RootMoved(self._pose))
 
     def of_rotations(self, m: Frames, rotations: np.ndarray) -> "PoseCache":

@@ -68,4 +68,5 @@ NOT_MOTION = {
     "greeting": "a set greeting (いらっしゃいませ, おかえりなさい: said to someone, not done)",
     "prop": "says what the next motion is done with (杖をついて歩く: the cane in hand)",
     "passive": "done to its subject by someone else (花子に言われた, 先生に呼ばれた)",
+    "unseen": "done with the face alone (目を覚ます), which is not animated: said in the notes",
 }

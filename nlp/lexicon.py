@@ -81,10 +81,11 @@ MANNER_TE = frozenset(
     張り切って 揃って そろって 改めて 初めて 続けて 気をつけて 注意して 並んで ならんで""".split()
 )
 
-#: Verbs that are states or formal verbs, not motions (compared by lemma).
+#: Verbs that are states or formal verbs, not motions (compared by lemma); 始める / 終える / 続ける as a
+#: main verb (試合を始めた) say when something happens, not what is done.
 NON_ACTION_LEMMAS = frozenset(
     """居る 有る 在る 成る 出来る 思う 考える 分かる 見える 聞こえる 要る 知る 似る 違う
-    為る 御座る 居す""".split()
+    為る 御座る 居す 始める 始まる 終える 終わる 続ける 続く""".split()
 )
 
 #: Set greetings built on a motion verb (いらっしゃる, 行く, 帰る, 休む), as the phrase is written without its
@@ -161,6 +162,23 @@ FEMALE_NOUNS = frozenset(
 #: common patterns, not a dictionary; a name with none of them is either (docs/language.md §9).
 MALE_NAME_ENDINGS = tuple("郎 男 夫 雄 太 介 助 輔 吉 彦 蔵 平 也 哉 樹 斗 翔 一 二 司 治 士 朗 之 人 ろう すけ".split())
 FEMALE_NAME_ENDINGS = tuple("子 美 香 奈 恵 江 代 絵 菜 花 乃 華 咲 衣 莉 里 こ".split())
+
+#: Verbs of the weather: their が-subject is rain or snow, even one that can be a name (ゆきが降る).
+WEATHER_VERBS = frozenset("降る 降り出す 積もる 止む".split())
+
+#: Given names often written in hiragana that UniDic reads as other words (はると: はる + と, あかり: 明かり),
+#: each with the sex a reader takes it for (:mod:`kana_names`; words of everyday use such as ゆき, ひかり, そら,
+#: はな, こころ are left out: ゆきが降った is snow).
+KANA_NAMES = {
+    **dict.fromkeys("""はると ゆうと そうた れん ゆうま はやと りく かいと たくみ こうき しょうた だいき ゆうき けんた たける りょう
+    しょう あきら ひろし たろう じろう けんじ こうた そうま はるき ゆうた ゆうすけ しゅん まさと なおき たいが いつき
+    みなと ひろと ゆいと おさむ まこと つよし たかし さとし けん じゅん かずき ともや りゅうせい こうすけ そうすけ
+    けいた はじめ まさる しんじ ゆうじ とおる だいすけ しゅうと かける けんいち しんいち こうへい しゅうへい ひでき""".split(), "m"),
+    **dict.fromkeys("""さくら あかり ゆい みお あおい ひな めい ゆな りこ ことは えま ほのか みゆ ゆあ さき まい あやか はるか なつみ
+    ちひろ ももか りん かえで ゆり えみ あいり まな ゆか みき なな かな あや まゆ みさき はなこ はるな ゆみ ともこ
+    なおこ けいこ よしこ まりこ あけみ ちか あすか まり りな みく あみ りさ さや ちなつ ひまり つむぎ いろは えり
+    さえ まなみ ゆうか ゆうな みゆき なぎさ ゆきこ さちこ ようこ ひろみ まさみ""".split(), "f"),
+}
 
 #: Pronouns and demonstratives that refer back to one person (docs/language.md §9): word -> sex
 #: ("m", "f" or "" for either).  その/あの/この + a person noun (その男, あの子) is read the same way.
@@ -290,7 +308,7 @@ LOCOMOTION_VERBS = frozenset(
     """歩く 走る 駆ける 駆け出す 駆け寄る 駆け込む 走り寄る 近付く 近寄る 歩み寄る 寄る 行く 来る 向かう 戻る
     帰る 入る 進む 前進する 移動する 急ぐ 逃げる 離れる 下がる 後ずさりする 後退りする スキップする 歩き出す
     走り出す 出る 出掛ける 這う 飛び込む 近寄る 立つ 隠れる 回り込む 詰め寄る 駆け上がる 駆け下りる 駆け降りる
-    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く""".split()
+    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く 渡る 横切る 下る""".split()
 )
 
 #: Verbs that take the body down off its feet (besides ``SUPPORT_VERBS``): after them 立つ is rising, before
@@ -345,9 +363,6 @@ DOOR_VERBS = frozenset("開ける 開く 閉める 締める 閉じる ノック
 #: Verbs that move a thing: one written without its object moves the thing just handled (台車を押して、運んだ).
 MOVING_VERBS = frozenset("運ぶ 持ち運ぶ 押して行く".split())
 
-#: Verbs of looking: their を-thing is looked at, not held (空を見上げる).
-LOOKING_VERBS = frozenset("見る 見上げる 見下ろす 見つめる 眺める 覗く 見回す 見渡す にらむ 睨む 見送る".split())
-
 #: Demonstratives that name the thing last named (花子はそれを投げた: the ball 太郎 handed her).
 THING_ANAPHORS = frozenset("それ これ あれ そいつ".split())
 
@@ -378,7 +393,7 @@ CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く �
 HAND_IN_HAND = frozenset("繋ぐ つなぐ 手を繋ぐ".split())
 
 #: Nouns before に / と that are no target (一緒に is "together", not a place).
-NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 一斉 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
+NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 一斉 列 一列 輪 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
 
 #: Verbs that send a thing through the air to someone, and verbs that catch it: a catch of the thing another
 #: person throws is timed by the flight (docs/language.md §8), not after the throw has ended.

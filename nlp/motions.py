@@ -14,8 +14,8 @@ from .actors import assign_actors, case_particle, noun_of, person_name, speaker_
 from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX,
-    SPEED_WORDS, STEPPING_VERBS,
+    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX,
+    SPEED_WORDS, STEPPING_VERBS, WEATHER_VERBS,
 )
 from . import manners, mimetics
 from .phrases import read_phrases
@@ -246,12 +246,14 @@ def _mark_non_agents(phrases: list[Phrase]) -> None:
     a body part (手が震える is still the actor's) makes its predicate no action of anyone; the
     subject is kept as its ``object``, the thing it is about."""
     for i, ph in enumerate(phrases):
-        if ph.role or ph.pred or case_particle(ph) != "が" or any(t.is_number for t in ph.tokens):
+        if ph.role not in ("", "actor") or ph.pred or case_particle(ph) != "が" or any(t.is_number for t in ph.tokens):
             continue
         noun = noun_of(ph)
-        if not noun or noun in BODY_PARTS or person_name(ph):
-            continue
         target = _next_pred(phrases, i)
+        weather = target is not None and target.predicate.lemma in WEATHER_VERBS and not any(
+            t.pos3 == "人名" or t.surface in HONORIFICS for t in ph.tokens)  # ゆきが降る: snow, not ゆき
+        if not noun or noun in BODY_PARTS or (person_name(ph) and not weather):
+            continue
         if target is not None and target.predicate.motion:
             target.predicate.reason = "non-agent"
             target.predicate.object = noun  # the thing it is about: それ may name it next (targets._follow_on)

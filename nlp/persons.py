@@ -8,7 +8,7 @@ suffixes, up to its first particle or punctuation mark.
 from __future__ import annotations
 
 from .lexicon import (
-    FEMALE_NAME_ENDINGS, FEMALE_NOUNS, GROUP_WORDS, MALE_NAME_ENDINGS, MALE_NOUNS, PERSON_ENDINGS,
+    FEMALE_NAME_ENDINGS, FEMALE_NOUNS, GROUP_WORDS, KANA_NAMES, MALE_NAME_ENDINGS, MALE_NOUNS, PERSON_ENDINGS,
     PERSON_NOUNS, PERSON_SUFFIXES, PERSONLESS_NOUNS, PRONOUNS,
 )
 from .types import Token
@@ -30,13 +30,14 @@ def words_of(tokens: list[Token]) -> list[Token]:
 
 def is_person_noun(words: list[Token]) -> bool:
     """店長, 駅員, 運転手 (運転 + 手), 参加者, 新入社員 (新入 + 社員), 校長先生: a person by the
-    list (``lexicon.PERSON_NOUNS``), by a person suffix after a noun (``PERSON_SUFFIXES``), or by
+    list (``lexicon.PERSON_NOUNS``), by a person suffix after a noun (``PERSON_SUFFIXES``; たち / 達:
+    家来たち), or by
     the ending of a one-word noun (駅員, 記者, 店長; not the ``PERSONLESS_NOUNS`` 身長, 定員 nor a
     サ変 noun: 延長, 成長).  A compound is a person when its last noun is."""
     if not words:
         return False
     last = words[-1]
-    if last.pos1 == "接尾辞" and last.surface in PERSON_SUFFIXES and len(words) >= 2:
+    if last.pos1 == "接尾辞" and (last.surface in PERSON_SUFFIXES or last.lemma == "達") and len(words) >= 2:
         before = words[-2]
         return before.pos1 == "名詞" and not before.is_number and before.pos2 != "数詞"
     noun = next((t for t in reversed(words) if (t.pos1 == "名詞" or t.pos1 == "代名詞")
@@ -95,6 +96,8 @@ def name_sex(name: str) -> str:
     """A given name's sex by its ending (花子, 美咲 -> f; 太郎, 健一 -> m), "" when it has none of
     the common ones (``lexicon.MALE_NAME_ENDINGS``, ``FEMALE_NAME_ENDINGS``): names are not
     gendered by a dictionary, so this is a guess a lone candidate overrides (:mod:`reference`)."""
+    if name in KANA_NAMES:
+        return KANA_NAMES[name]
     if name.endswith(FEMALE_NAME_ENDINGS):
         return "f"
     if name.endswith(MALE_NAME_ENDINGS):

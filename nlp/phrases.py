@@ -116,5 +116,10 @@ def _read(pred: Pred, noun: str, words: Callable[[], frozenset[str]]) -> None:
         return
     if found.with_:  # 首を縦に振る: the word that makes it this idiom is part of the phrase
         pred.verb_phrase = f"{noun}を{min(found.with_ & words())}{written}"
+    if not found.action:  # 目を覚ます: the face alone, which no clip animates
+        pred.reason = "unseen"
+        said = f"{pred.verb_phrase}: the face is not animated, nothing plays for it"
+        pred.note = f"{pred.note}; {said}" if pred.note else said
+        return
     pred.verb, pred.written, pred.reading = found.action, pred.verb_phrase, ""
     pred.object, pred.body_part = None, found.part

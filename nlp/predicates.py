@@ -210,6 +210,8 @@ def _ending(toks: list[Token], g: int, ph: Phrase, next_ph: Phrase | None) -> tu
     words = [t for t in toks[g + 1:] if t.pos1 != "補助記号"]
     if words and _sentence_particles(words):
         return "final", _punct(ph)
+    if words and _attempt(words, last, next_ph):
+        return "te", "".join(t.surface for t in words)  # 持ち上げようとした, 登ろうとして: tried, played
     if words:
         return _ending_from_words(words, last)
     if last.lemma == "て" and last.pos1 == "助詞":
@@ -223,6 +225,12 @@ def _ending(toks: list[Token], g: int, ph: Phrase, next_ph: Phrase | None) -> tu
     if _starts_with_noun(next_ph):
         return "relative", ""
     return "final", ""
+
+
+def _attempt(words: list[Token], last: Token, next_ph: Phrase | None) -> bool:
+    """A volitional form + と + する: an attempt (持ち上げようとした), not a quote; 走ろうと思った stays a thought."""
+    return (last.cform.startswith("意志推量形") and words[0].surface == "と" and next_ph is not None
+            and bool(next_ph.tokens) and next_ph.tokens[0].lemma == "為る")
 
 
 def _ending_from_words(words: list[Token], last: Token) -> tuple[str, str]:

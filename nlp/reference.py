@@ -242,10 +242,12 @@ def _unresolved(ph: Phrase, m: Mention, named: list[str]) -> tuple[str, ...]:
     """A pronoun or group that refers to no one named: 彼女, 彼ら and 皆さん are characters of their
     own (as written, as before this rule); 二人 / 三人 with fewer named before are those ``named`` and
     new characters for the rest (:data:`ORDINALS`, up to ten: 太郎は3人で踊った is 太郎, 二人目 and
-    三人目); みんな names no one."""
+    三人目); みんな as an actor is a character of its own (花子が歌い出すと、みんなが手拍子をした: not 花子),
+    elsewhere it names no one."""
     if m.kind == "group" and len(named) < m.size <= len(ORDINALS):
         return (*named, *ORDINALS[len(named):m.size])
-    if m.kind == "group" and not (any(t.pos1 == "代名詞" for t in ph.tokens) or _honorific(ph.tokens)):
+    if m.kind == "group" and not (any(t.pos1 == "代名詞" for t in ph.tokens) or _honorific(ph.tokens)
+                                  or case_particle(ph) in ("は", "が")):
         return ()
     name = person_name(ph)
     return (name,) if name else ()

@@ -164,10 +164,12 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
     if ph.role:
         return None
     nxt = phrases[i + 1] if i + 1 < len(phrases) else None
-    if _before_no(ph) and nxt is not None and nxt.group == ph.group and nxt.role in ("object", "body part") \
+    if _before_no(ph) and nxt is not None and nxt.group == ph.group \
+            and (nxt.role in ("object", "body part") or (not nxt.role and _particle(nxt) == "に")) \
             and (noun_of(nxt) in BODY_PARTS or noun_of(nxt) in body_nouns()):
-        name, person = _name(ph)  # 花子の肩を叩く: done to 花子
-        return Target(name, True, "を", None, (i,), _sure(ph)) if person else None
+        name, person = _name(ph)  # 花子の肩を叩く, 彼女の肩に手を置く: done to 花子
+        span = (i,) if nxt.role else (i, i + 1)  # 肩に is no place of its own
+        return Target(name, True, "を", None, span, _sure(ph)) if person else None
     if _before_no(ph) and nxt is not None and nxt.group == ph.group and nxt.role == "object" \
             and (noun_of(nxt) in PLACE_OF_NOUNS or SIDE_NOUNS.get(noun_of(nxt) or "") == "around"):
         rel = noun_of(nxt) or ""  # 花子の方を向く: towards her; 木の周りを歩く: around it

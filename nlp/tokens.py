@@ -6,7 +6,7 @@ from __future__ import annotations
 import unicodedata
 from functools import lru_cache
 
-from . import casual, keigo, spelling, spoken
+from . import casual, kana_names, keigo, spelling, spoken
 from .numbers import merge_numbers
 from .tagging import as_verb, tag, tagger
 from .types import Token
@@ -90,6 +90,8 @@ def tokenize(norm: str, notes: list[str] | None = None) -> list[Token]:
     for line in norm.split("\n"):
         if line.strip():
             tagged = spelling.repair(line, pos, _tag_line(line, pos), said)
+            if kana_names.may_apply(line):
+                tagged = kana_names.read_names(line, pos, tagged, said)
             if casual.may_apply(line):
                 tagged = casual.repair(tagged, said)
             tokens.extend(unwrap_direction(tagged) if "(" in line else tagged)

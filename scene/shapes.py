@@ -53,6 +53,8 @@ SHAPES: dict[str, Shape] = {
     **dict.fromkeys("棚 本棚 戸棚 食器棚".split(), _SHELF),
     **dict.fromkeys("黒板 ホワイトボード 掲示板".split(), _BOARD),
 }
+#: What is looked at but is no thing on the floor: the sky and what is above or all around (空を見上げる).
+UNDRAWN = frozenset("空 そら 星 月 太陽 雲 天井 景色 風景 夜空 青空".split())
 #: A noun the scene has no shape for.
 STAND_IN = Shape("box", (0.2, 0.2, 0.2), "#c8b27a")
 #: A place (the goal of a walk): a flat marker on the floor.

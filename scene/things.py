@@ -26,7 +26,8 @@ open (開ける, 閉める)  a door in front of the hand at its furthest reach s
                      It stands where it is first handled; later rows swing it from there
 push (押す)           it slides on the floor ahead of the hips while the row plays, and on while the pusher
                      walks or carries (台車を押して、倉庫まで運んだ)
-look (見る, 見上げる)  nothing: it is looked at, not held; one nothing else places is said, not drawn
+look (見る, 待つ)     it stands :data:`SIGHT_M` ahead of the actor, not in the hand (バスを待つ, 花を見る); the sky
+                     and what is above (:data:`shapes.UNDRAWN`: 空を見上げる) is said, not drawn
 drink (水を飲む)       nothing new: the drink is in the cup the drinker holds, if any
 any other            it is held (one hand or both, :mod:`scene.shapes`) while the row plays
 seat (座る on it)     it stands under the hips where they sit, from the start; a sitter with no seat named
@@ -55,11 +56,11 @@ from scipy.spatial.transform import Rotation
 from text2anim.core.contact_instant import contact_instant
 from text2anim.core.fk import matrix_to_quat
 from text2anim.core.motion import Motion
-from text2anim.nlp.lexicon import DRINKS, GROUND_NOUNS, LOCOMOTION_VERBS, LOOKING_VERBS, MOVING_VERBS
+from text2anim.nlp.lexicon import DRINKS, GROUND_NOUNS, LOCOMOTION_VERBS, MOVING_VERBS
 from text2anim.scheduler.types import Element
 
 from . import bodies, circling
-from .shapes import PLACE, Shape, shape_of
+from .shapes import PLACE, UNDRAWN, Shape, shape_of
 from .types import Kick, Thing
 
 G = 9.81  # m/s²
@@ -88,6 +89,12 @@ SIT = frozenset("座る 腰掛ける 着席する".split())
 #: What one sits on when the text names no seat (a sitting clip's hips are at a chair's height).
 SEAT_STAND_IN = "椅子"
 DRIBBLE = frozenset("ドリブルする".split())
+#: Verbs done towards a thing without touching it: its object stands ahead of the actor, not in the hand
+#: (花を見る, バスを待つ).
+SIGHT = frozenset("""見る 眺める 見つめる 見回す 見上げる 見下ろす 覗く 覗き込む 探す 見つける 見失う 待つ 呼ぶ
+    指さす 指差す 見送る 睨む""".split())
+#: m at a person's size: how far ahead a thing looked at or waited for stands.
+SIGHT_M = 1.5
 #: m at the built-in body's size: a dribbled ball's distance ahead of the hips
 DRIBBLE_AHEAD = 0.5
 #: m at the built-in body's size: the room between the hips and the near side of a thing beside the body
@@ -150,7 +157,7 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
             pushed = next((q for q in paths.values() if q.pushed_by == r.actor), None)
             named += [(pushed.name, "handled")] if pushed is not None else []  # 台車を押して歩く: it comes along
         for name, how in named:
-            if how == "handled" and r.verb in LOOKING_VERBS:  # 空を見上げる: looked at, not held
+            if how == "sight" and name in UNDRAWN:  # 空を見上げる: the sky is no box ahead on the floor
                 if name not in paths:
                     said.append(f"{name}: looked at ({r.verb}), not drawn")
                 continue
@@ -194,8 +201,9 @@ def _cup_held(paths: dict[str, _Path], actor: str | None) -> _Path | None:
 
 
 def _named(r: Element, motions) -> list[tuple[str, str]]:
-    """The things row ``r`` names and how: ``handled`` (its object), ``seat``, ``table``, ``place``,
-    ``beside``, ``by`` (what a thing is put beside), ``around``; the ground (床に下ろす) is no thing."""
+    """The things row ``r`` names and how: ``handled`` (its object), ``sight`` (the object of a look or a
+    wait: ahead), ``seat``, ``table``, ``place``, ``beside``, ``by`` (what a thing is put beside), ``around``,
+    ``route``; the ground (床に下ろす) is no thing."""
     out = []
     side = r.target_side
     if r.target and r.target not in motions and r.target not in GROUND_NOUNS:
@@ -218,6 +226,8 @@ def _named(r: Element, motions) -> list[tuple[str, str]]:
             out.append((r.target, "table"))
     if r.object and r.object not in motions and r.verb in LOCOMOTION_VERBS and not shape_of(r.object)[1]:
         out.append((r.object, "route"))  # 公園を歩く: the park is walked through, not carried
+    elif r.object and r.object not in motions and r.verb in SIGHT:
+        out.append((r.object, "sight"))  # バスを待つ: ahead, not in the hand
     elif r.object and r.object not in motions:  # after the table it may be put on
         out.append((r.object, "handled"))
     return out
@@ -256,6 +266,13 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         path, _ = bodies.hips_path(m)
         p.rest(0, path[(f0 + f1) // 2] + [0.0, p.half, 0.0])
         p.events.append((t, f"{_who(r.actor)} goes through it"))
+    elif how == "sight":
+        if not p.placed():
+            path, heading = bodies.hips_path(m)
+            mid = (f0 + f1) // 2
+            p.rest(0, path[mid] + SIGHT_M * p.scale * bodies.forward(heading[mid]) + [0.0, p.half, 0.0],
+                   float(heading[mid]))
+        p.events.append((t, f"{_who(r.actor)} {r.verb} it"))
     elif how == "place":
         path, heading = bodies.hips_path(m)
         f = f1 - 1 if r.target_role != "source" else f0

@@ -44,6 +44,7 @@ import numpy as np
 from scipy import sparse
 
 from text2anim.core.balance import SLOW, Stance, stance
+from text2anim.core.kept import Kept, digest
 from text2anim.core.motion import Motion
 from text2anim.core.size import human_scale
 
@@ -78,6 +79,9 @@ BALANCE_ROOM = 0.03
 MAX_FRAMES = 900
 _DIRS = np.array([[np.cos(a), np.sin(a)] for a in np.arange(4) * np.pi / 4])  # (4, 2) unit directions
 _DIRS[np.abs(_DIRS) < 1e-12] = 0.0  # exact zeros along the axes
+#: the paths of the last regions solved, by the value of their programme's inputs (:func:`least_acceleration`): a
+#: warm process meets the same joins again (the studio re-animates the whole text at every pause in typing)
+KEPT_PATHS: Kept[np.ndarray | None] = Kept(256)
 
 
 _Entries = tuple[np.ndarray, np.ndarray, np.ndarray]  # (rows, columns, values) of a sparse matrix's entries
@@ -374,8 +378,8 @@ def least_acceleration(motion: Motion, lo: int, hi: int) -> tuple[Motion, float]
     support = None if st is None else support_of(st)
     speed = np.linalg.norm(np.gradient(xz[lo - 1:hi + 1], axis=0), axis=-1)[1:-1] * motion.fps * k
     band = BAND / k * np.clip((speed - STILL) / (MOVING - STILL), 0.0, 1.0)  # a still body stays where it stands
-    path = least_acceleration_path(xz[lo:hi], xz[lo - 2:lo], xz[hi:hi + 2], motion.fps, band, support,
-                                   np.asarray(LEVELS) / k, BALANCE_ROOM / k)
+    path = _kept_path(xz[lo:hi], xz[lo - 2:lo], xz[hi:hi + 2], motion.fps, band, support, np.asarray(LEVELS) / k,
+                      BALANCE_ROOM / k)
     if path is None:
         return motion, 0.0
     size = float(np.linalg.norm(path - xz[lo:hi], axis=1).max())
@@ -385,3 +389,17 @@ def least_acceleration(motion: Motion, lo: int, hi: int) -> tuple[Motion, float]
     root[lo:hi, 0] = path[:, 0]
     root[lo:hi, 2] = path[:, 1]
     return feet_kept(motion, motion.replace(root_positions=root), lo, hi), size
+
+
+def _kept_path(h: np.ndarray, before: np.ndarray, after: np.ndarray, fps: float, band: np.ndarray,
+               support: Support | None, levels: np.ndarray, room: float) -> np.ndarray | None:
+    """:func:`least_acceleration_path` of these arguments, kept (:data:`KEPT_PATHS`) by their values, the module's
+    prices and the solver that answers (PIQP's build, or the fallback): the same path, bit for bit, the programmes
+    solved once."""
+    sup = () if support is None else (support.rows.row, support.rows.col, support.rows.data, support.rows.shape,
+                                      support.gap, support.frame)
+    solver = _piqp()
+    key = digest(h, before, after, fps, band, *sup, levels, room, SLACK, OUTSIDE, NEAR, _DIRS,
+                 None if solver is None else solver.__name__)
+    path = KEPT_PATHS.get(key, lambda: least_acceleration_path(h, before, after, fps, band, support, levels, room))
+    return None if path is None else path.copy()

@@ -76,6 +76,7 @@ from text2anim.core.cancel import checkpoint
 from text2anim.core.contacts import contacts_within, runs
 from text2anim.core.easing import smootherstep_area
 from text2anim.core.hang import slowed_into_hanging
+from text2anim.core.kept import Kept, digest
 from text2anim.core.metrics import quality
 from text2anim.core.motion import Motion
 
@@ -301,6 +302,12 @@ def _hardest(m: Motion, lo: int, hi: int) -> int:
 AHEAD = 2  # widths re-planted beside the one asked for, when they may count too (one IK solve for all)
 
 
+#: the last joins finished (:func:`finish_region`), by the value of everything the pass reads (:func:`_finished_key`):
+#: a warm process finishes the same joins again (the studio re-animates the whole text at every pause in typing,
+#: and only the joins the edit reached differ); each keeps the window's arrays (~0.2 MB), no kinematics
+KEPT_FINISHED: Kept[tuple] = Kept(32)
+
+
 def finish_region(motion: Motion, region: Region, contacts,
                   origin: int = 0) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
     """One join finished (steps 1–6 of the module docstring). ``origin``: ``motion`` is the window of a track from
@@ -308,8 +315,38 @@ def finish_region(motion: Motion, region: Region, contacts,
 
     Returns the motion, what was done, and ``(lo, hi, n_new, src)``: the frames ``[lo, hi)`` now play
     over ``n_new``, new frame ``k`` showing source frame ``lo + src[k]`` (:func:`warp_frames`; later frames
-    are ``n_new - (hi - lo)`` later).
+    are ``n_new - (hi - lo)`` later). A join finished before, from the same values, is the frames it gave then
+    (:data:`KEPT_FINISHED`; bit for bit the pass), their kinematics shared with ``motion`` where they are its.
     """
+    key = _finished_key(motion, region, contacts, origin)
+    known = KEPT_FINISHED.known(key)
+    if known is None:
+        done, info, warp = _finish_region(motion, region, contacts, origin)
+        warp[3].setflags(write=False)  # kept: read-only, as the frames are
+        KEPT_FINISHED.put(key, (done.root_positions, done.rotations, done.translations, info, warp))
+        return done, dict(info), warp
+    root, rotations, translations, info, warp = known
+    done = Motion(motion.skeleton, motion.fps, root, rotations, translations)
+    lo, added = warp[0], len(root) - motion.n_frames  # the frames before lo are the input's, those after the
+    rows = np.arange(len(root))  # region the input's `added` later: shared where bit for bit so
+    rows[lo:] -= added
+    return done.share_pose(motion, np.where(rows < motion.n_frames, rows, -1)), dict(info), warp
+
+
+def _finished_key(motion: Motion, region: Region, contacts, origin: int) -> bytes:
+    """A digest of everything :func:`finish_region` reads: the window's frames and skeleton, the region's frames,
+    the sources' figures (its limits), the contacts, and this module's settings."""
+    sk, fps = motion.skeleton, motion.fps
+    return digest(fps, motion.root_positions, motion.rotations, motion.translations, sk.offsets, sk.parents,
+                  tuple(sk.names), region.w0, region.w1, region.r1, region.keep, region.brake_from, region.seams,
+                  region.into_core, _limits(region.sources, fps), _limits(region.near, fps) if region.near else None,
+                  contacts.fps, contacts.left, contacts.right, origin, SIGMAS, STRETCHES, SLACK, PAD, BRAKE,
+                  POP_FLOOR, SEAM_DECAY, STILL, AHEAD, FLOOR, SKIM_HEIGHT, SWING_SPEED, AIR_EASE)
+
+
+def _finish_region(motion: Motion, region: Region, contacts,
+                   origin: int = 0) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
+    """:func:`finish_region`, done."""
     fps = motion.fps
     T = motion.n_frames
     pad0 = max(1, int(round(PAD * fps)))

@@ -28,6 +28,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from text2anim.core.kept import Kept
 from text2anim.core.motion import Motion
 
 from ..tracks import Element
@@ -191,12 +192,20 @@ def repetitions(elements: Sequence[Element]) -> list[tuple[Element, int]]:
     return out
 
 
+#: the last preparations made (:func:`prepare`), by clip, speed, rate, length and margin: a warm process lays the
+#: same elements again (the studio re-animates the whole text at every pause in typing), and what is derived from a
+#: prepared motion (its pose, its foot contacts) is kept with it (~0.5-1 MB each). An entry holds its clip's motion,
+#: so the motion's ``id`` in its key names no other motion while it is kept.
+PREPARED: Kept[tuple[Motion, Prepared, int]] = Kept(16)
+
+
 def prepare(element: Element, fps: float, margin: bool = False) -> Prepared:
     """The element's clip made ready for the track: speed, loop or hold/trim to ``end - start``.
 
     Repeats are not this function's: a repeated whole-body element comes here as its
     :func:`repetitions`. With ``margin`` a cyclic clip gets one more cycle before its start and after its
-    end (``lead`` frames before): a transition may then enter it at any phase.
+    end (``lead`` frames before): a transition may then enter it at any phase. The last :data:`PREPARED`
+    preparations are kept (the same motion object for the same request).
     """
     clip = element.clip
     speed = float(element.speed)
@@ -204,6 +213,21 @@ def prepare(element: Element, fps: float, margin: bool = False) -> Prepared:
         raise ValueError(f"element {element.id}: speed must be positive, got {speed}")
     length = element.end - element.start
     n_target = max(1, int(round(length * fps)))
+    key = (id(clip.motion), speed, float(fps), n_target, bool(margin), tuple(clip.core), bool(clip.cyclic))
+    known = PREPARED.known(key)
+    if known is None or known[0] is not clip.motion:
+        known = PREPARED.put(key, (clip.motion, *_prepared(clip, speed, fps, n_target, margin)))
+    _, prep, over = known
+    if over:
+        return replace(prep, warnings=(
+            f"element {element.id}: its core ({(clip.core[1] - clip.core[0]) / speed:.2f} s) does not "
+            f"fit in {length:.2f} s; the core is kept and the element runs {over / fps:.2f} s longer",))
+    return prep
+
+
+def _prepared(clip, speed: float, fps: float, n_target: int, margin: bool) -> tuple[Prepared, int]:
+    """:func:`prepare` of a clip at ``speed`` to ``n_target`` frames: the preparation (without warnings) and the
+    frames by which a trimmed core overruns (0 when it fits)."""
     if clip.cyclic and clip.motion.n_frames >= 3:
         # kept with the clip's motion: a text that walks 31 times loops the same cycle 31 times
         m = clip.motion.cache.get(("cyclic at speed", speed, float(fps)),
@@ -218,14 +242,11 @@ def prepare(element: Element, fps: float, margin: bool = False) -> Prepared:
         out = loop(m, n_target + 2 * lead, -lead)
         full = max(1, n_target // n_src)
         core = (lead + min(c0, n_target - 1), lead + min(n_target, (full - 1) * n_src + c1))
-        return Prepared(out, core, n_src, n_target, (), lead)
-    warnings: list[str] = []
+        return Prepared(out, core, n_src, n_target, (), lead), 0
+    over = 0
     if n_target >= n_src:
         out, played = hold(m, n_target), n_src
     else:
         out, over = trim(m, n_target, (c0, c1))
         played = out.n_frames
-        if over:
-            warnings.append(f"element {element.id}: its core ({(clip.core[1] - clip.core[0]) / speed:.2f} s) does not "
-                            f"fit in {length:.2f} s; the core is kept and the element runs {over / fps:.2f} s longer")
-    return Prepared(out, (c0, min(c1, out.n_frames)), 0, played, tuple(warnings))
+    return Prepared(out, (c0, min(c1, out.n_frames)), 0, played, ()), over

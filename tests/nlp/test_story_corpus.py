@@ -171,3 +171,22 @@ def test_misspelt_verbs_are_read_or_said_unread(text, verbs, note):
 @pytest.mark.parametrize("text", ["ジャンプを3回する。", "今日は本を読む。", "私らは歩いた。", "水たまりを歩く。"])
 def test_text_as_written_is_not_repaired(text):
     assert analyze(text).notes == ()
+
+
+@pytest.mark.parametrize("text, actors", [
+    ("あかりは公園へ走った。そこではるとが待っていた。", ["あかり", "はると"]),
+    ("ゆうとくんは朝ごはんを食べてから、歯を磨いた。", ["ゆうと", "ゆうと"]),  # くん is no 来る
+    ("そうたは走った。れんも走った。", ["そうた", "れん"]),
+    ("さくらちゃんが笑った。", ["さくら"]),
+])
+def test_a_name_written_in_hiragana_is_a_person(text, actors):
+    analysis = analyze(text)
+    assert [m.actor for m in analysis.motions if m.verb != "待つ" or m.actor in actors][:len(actors)] == actors
+    assert any(n.startswith(f"read {actors[0]}") and "as a name" in n for n in analysis.notes)
+
+
+@pytest.mark.parametrize("text, verb", [("太郎はさくらを見た。", "見る"), ("ゆきが降ってきた。太郎は走った。", "走る")])
+def test_a_word_that_is_also_a_hiragana_name_keeps_its_meaning(text, verb):
+    analysis = analyze(text)
+    assert [m.actor for m in analysis.motions] == ["太郎"] and analysis.motions[0].verb == verb
+    assert not any("as a name" in n for n in analysis.notes)
