@@ -70,7 +70,7 @@ JERK_PERCENTILE = 99.0
 CAPTURE_GMD_LIMIT = 0.26
 #: Thresholds for motion made from the built-in library (issue 11): root pop (m/s²), joint jerk p99
 #: (m/s³), skating ratio (floor-true, and GMD's floor from capture), floor penetration (cm), floating foot
-#: (cm: the built-in clips float at most 6.5, :mod:`core.floating`); the frozen-frame fraction is held to
+#: (cm: the built-in clips float at most 6, :mod:`core.floating`); the frozen-frame fraction is held to
 #: :data:`MAX_FROZEN`.
 BUILTIN_LIMITS = {"root_pop": 15.0, "jerk_p99": 2300.0, "skating_ratio": 0.02, "floor_penetration_cm": 1.0,
                   "floating_cm": 10.0, "skating_gmd": CAPTURE_GMD_LIMIT}

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 from .bunsetsu import Phrase
 from .endings import ENDINGS
+from .lexicon import TOGETHER_WORDS
 from .motions import TimeCue
 from .types import Constraint
 
@@ -46,7 +47,7 @@ def build_constraints(phrases: list[Phrase], cues: list[TimeCue]) -> list[Constr
         _make_tree(group_edges, group)
         edges.extend(group_edges)
     for prev, cur in zip(groups, groups[1:]):
-        edges.append(_sentence_edge(prev, cur, edges))
+        edges.append(_joins_in(phrases, prev, cur) or _sentence_edge(prev, cur, edges))
     for cue in cues:
         _apply_cue(cue, edges, phrases)
     ids = {ph.index: ph.predicate.id for group in groups for ph in group}
@@ -183,6 +184,16 @@ def _sentence_edge(prev: list[Phrase], cur: list[Phrase], edges: list[_Edge]) ->
     root = next((ph.index for ph in cur if ph.index not in has_incoming), cur[0].index)
     cue = prev[-1].predicate.cue or "。"
     return _Edge(src, root, "serial", False, None, "connection", cue)
+
+
+def _joins_in(phrases: list[Phrase], prev: list[Phrase], cur: list[Phrase]) -> _Edge | None:
+    """花子は踊り始めた。太郎も一緒に踊った: someone else doing the same motion 一緒に, right after it was
+    told, does it with them (a parallel link from that motion), not after it has ended."""
+    first, last = cur[0], prev[-1]
+    together = [ph for ph in phrases if ph.key in TOGETHER_WORDS and ph.head == first.index]
+    if not together or first.predicate.verb != last.predicate.verb or first.predicate.actor == last.predicate.actor:
+        return None
+    return _Edge(last.index, first.index, "parallel", None, None, "composition", f"。+{together[0].key}")
 
 
 def _apply_cue(cue: TimeCue, edges: list[_Edge], phrases: list[Phrase]) -> None:

@@ -16,6 +16,7 @@ from dataclasses import replace
 from functools import lru_cache
 
 from .lexicon import HONORIFICS, KANA_NAMES
+from .tagging import katakana
 from .types import Token
 
 #: What may follow a name: an honorific, a particle or punctuation.
@@ -54,7 +55,7 @@ def read_names(line: str, offset: int, tokens: list[Token], notes: list[str]) ->
             continue
         name = m.group()
         merged.append((first, last, Token(name, "名詞", "固有名詞", "人名", "*", "*", name, name,
-                                          _katakana(name), a, b, kana_form=_katakana(name))))
+                                          katakana(name), a, b, kana_form=katakana(name))))
     for first, last, tok in reversed(merged):
         out[first:last + 1] = [tok]
         nxt = first + 1
@@ -75,7 +76,3 @@ def _opens_word(line: str, i: int, tokens: list[Token], k: int) -> bool:
 
 def _hiragana(ch: str) -> bool:
     return "\u3041" <= ch <= "\u309f"
-
-
-def _katakana(s: str) -> str:
-    return "".join(chr(ord(ch) + 0x60) if "\u3041" <= ch <= "\u3096" else ch for ch in s)

@@ -144,7 +144,12 @@ PERSON_NOUNS = frozenset(
     息子 娘 夫 妻 奥さん 旦那 旦那さん 祖父 祖母 孫 おじいちゃん おばあちゃん 赤ん坊 幼児 園児 児童
     小学生 中学生 高校生 大学生 留学生 新入生 転校生 同級生 王子 王女 姫 お姫様 女王 勇者 魔女 泥棒
     犯人 刑事 探偵 兄弟 姉妹 彼氏 おばちゃん おじちゃん パパ ママ 新人 仲間 恋人 親友 住民 市民 お年寄り
-    人々 親 両親 主婦 美容師 漁師 職人 商人 旅人 料理人""".split()
+    人々 親 両親 主婦 美容師 漁師 職人 商人 旅人 料理人
+    ピッチャー バッター キャッチャー ランナー プレイヤー プレーヤー キーパー ゴールキーパー ストライカー
+    ドライバー パイロット シェフ ウェイター ウェイトレス スタッフ マネージャー リーダー メンバー ゲスト
+    アイドル モデル ボクサー レスラー スケーター スイマー ピエロ マジシャン サンタ サンタクロース ヒーロー
+    ヒロイン プリンセス プリンス ナース ドクター ガイド アナウンサー カメラマン チームメイト キャプテン
+    警備員 係の人 お巡りさん 審判員 店の人""".split()
 )
 
 #: Person nouns by sex, for the pronouns that name one (彼: a man, 彼女: a woman; docs/language.md §9).
@@ -308,7 +313,8 @@ LOCOMOTION_VERBS = frozenset(
     """歩く 走る 駆ける 駆け出す 駆け寄る 駆け込む 走り寄る 近付く 近寄る 歩み寄る 寄る 行く 来る 向かう 戻る
     帰る 入る 進む 前進する 移動する 急ぐ 逃げる 離れる 下がる 後ずさりする 後退りする スキップする 歩き出す
     走り出す 出る 出掛ける 這う 飛び込む 近寄る 立つ 隠れる 回り込む 詰め寄る 駆け上がる 駆け下りる 駆け降りる
-    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く 渡る 横切る 下る""".split()
+    駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く 渡る 横切る 下る
+    集まる""".split()
 )
 
 #: Verbs that take the body down off its feet (besides ``SUPPORT_VERBS``): after them 立つ is rising, before
@@ -339,11 +345,13 @@ SIDE_NOUNS = {
     "前": "front", "まえ": "front", "正面": "front", "目の前": "front",
     "後ろ": "behind", "うしろ": "behind", "後": "behind", "背後": "behind",
     "隣": "beside", "となり": "beside", "横": "beside", "よこ": "beside", "そば": "near", "傍": "near",
-    "近く": "near", "側": "near", "脇": "beside",
+    "近く": "near", "側": "near", "脇": "beside", "周り": "near", "まわり": "near", "周囲": "near",
     "上": "on", "うえ": "on", "下": "under",
     "左": "left", "右": "right",
-    "周り": "around", "まわり": "around", "周囲": "around",
 }
+#: Side nouns that, marked を, say a way round the noun before them (木の周りを歩く: ``around``); with に they
+#: are only near it (先生の周りに集まる).
+AROUND_NOUNS = frozenset("周り まわり 周囲".split())
 
 #: Nouns after 〜の that only say "where X is" (花子のところへ, 花子の方へ, 花子のもとへ).
 PLACE_OF_NOUNS = frozenset("ところ 所 とこ トコ 方 ほう もと 元 側".split())

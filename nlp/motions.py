@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .actors import assign_actors, case_particle, noun_of, person_name, speaker_label
+from .actors import as_written, assign_actors, case_particle, noun_of, person_name, speaker_label
 from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
@@ -314,8 +314,10 @@ def _attach_modifiers(phrases: list[Phrase], values: dict[int, float],
             continue
         elif role == "object":
             pred.noun = noun_of(ph)
+            run = as_written(ph.tokens)  # a thing keeps its suffix: 教科書, not 教科
             # never an empty string; a person by whom it names (彼を助け起こす: 一人目, not a thing 彼)
-            pred.object = ph.persons[0] if len(ph.persons) == 1 else pred.noun or None
+            pred.object = ph.persons[0] if len(ph.persons) == 1 else (
+                run if pred.noun and pred.noun in run else pred.noun) or None
         elif role == "body part":
             pred.body_part = _body_part(phrases, i)
             if case_particle(ph) != "で":  # 右手で投げる: the limb used, not what the verb acts on

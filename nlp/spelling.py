@@ -19,7 +19,7 @@ from dataclasses import replace
 from functools import lru_cache
 
 from .lexicon import LIBRARY_BY_READING, LIBRARY_VERBS
-from .tagging import tag
+from .tagging import katakana, tag
 from .types import Token
 
 #: What may follow a kanji that opens a misspelt verb: not a case or topic particle (手を, 前に, 本は)
@@ -41,6 +41,8 @@ def repair(line: str, offset: int, tokens: list[Token], notes: list[str]) -> lis
     """The tokens of ``line`` (starting at ``offset`` in the text) with misspelt verbs read as meant."""
     if "は" in line:
         tokens = _ha_verb(tokens, notes)
+    if "んだ" in line or "んで" in line:
+        tokens = _nasal_verb(tokens, notes)
     drawn = not _DRAWL.isdisjoint(line)
     # both passes below read a one-character noun (or suffix) only: most lines have none
     singles = [k for k, t in enumerate(tokens) if len(t.surface) == 1 and t.pos1 in ("名詞", "接尾辞")]
@@ -191,6 +193,48 @@ def _ha_verb(tokens: list[Token], notes: list[str]) -> list[Token]:
                 continue
         out.append(tok)
     return out
+
+
+def _nasal_verb(tokens: list[Token], notes: list[str]) -> list[Token]:
+    """ころんだけど, ぴょんととんだ: a verb in kana with its ん-form read as an adverb (ころん + だ) or as the
+    adnominal とんだ (outrageous), where the kana before ん + ぶ / む / ぬ is a library verb's sound (コロブ:
+    転ぶ) and no noun follows: the verb and its た / て, said."""
+    out: list[Token] = []
+    k = 0
+    while k < len(tokens):
+        tok, nxt = tokens[k], tokens[k + 1] if k + 1 < len(tokens) else None
+        stem, ending = "", None
+        if (tok.pos1 == "副詞" and tok.surface.endswith("ん") and nxt is not None and nxt.surface in ("だ", "で")
+                and nxt.start == tok.end):
+            stem, ending = tok.surface[:-1], nxt
+        elif tok.pos1 == "連体詞" and tok.surface.endswith("んだ") and (nxt is None or nxt.pos1 != "名詞"):
+            stem = tok.surface[:-2]
+        meant = _nasal_reading(stem) if stem and all(_is_hiragana(ch) for ch in stem) else None
+        if meant is None:
+            out.append(tok)
+            k += 1
+            continue
+        verb_end = tok.start + len(stem) + 1
+        out.append(replace(tok, surface=stem + "ん", end=verb_end, pos1="動詞", pos2="一般", pos3="*", ctype="五段",
+                           cform="連用形-撥音便", lemma=meant[0], orth=meant[0], kana=meant[1],
+                           kana_form=katakana(stem + "ん")))
+        te = (ending or tok).surface[-1] == "で"
+        out.append(Token("で" if te else "だ", "助詞" if te else "助動詞", "接続助詞" if te else "*", "*", "*", "*",
+                         "て" if te else "た", "て" if te else "た", "テ" if te else "タ", verb_end, verb_end + 1,
+                         None, "デ" if te else "ダ"))
+        notes.append(f"read {stem}ん{out[-1].surface} as {meant[0]} (a verb's ん-form the dictionary read as "
+                     "another word)")
+        k += 2 if ending is not None else 1
+    return out
+
+
+def _nasal_reading(stem: str) -> tuple[str, str] | None:
+    """(library verb, its reading) whose ん-form is ``stem`` + ん (ころ -> 転ぶ), if any."""
+    for end in "ぶむぬ":
+        reading = katakana(stem + end)
+        if reading in LIBRARY_BY_READING:
+            return LIBRARY_BY_READING[reading], reading
+    return None
 
 
 def _same_sound(tokens: list[Token], notes: list[str]) -> list[Token]:

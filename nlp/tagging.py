@@ -76,3 +76,8 @@ def as_verb(tok: Token) -> Token | None:
         return None
     made = make_token(tok.surface, features(words[0]), tok.start, tok.end)
     return made if made.pos1 == "動詞" and made.cform.startswith("連用形") else None
+
+
+def katakana(s: str) -> str:
+    """``s`` with its hiragana written in katakana (はると -> ハルト): the form of UniDic's readings."""
+    return "".join(chr(ord(ch) + 0x60) if "\u3041" <= ch <= "\u3096" else ch for ch in s)

@@ -36,8 +36,8 @@ from dataclasses import replace
 from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
-    BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS, FACING_VERBS, HONORIFICS,
-    LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
+    AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
+    FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
     PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
@@ -91,8 +91,27 @@ def attach_targets(phrases: list[Phrase]) -> None:
             continue  # its noun waits for the motion it says the way of
         if pred.motion:
             _settle(pred, pending, actors)
+            if pred.target is None and pred.verb in LOCOMOTION_VERBS and _comes(ph):
+                _come_to(pred, phrases, i)
         pending = []
     _follow_on([ph.pred for ph in phrases if ph.pred is not None])
+
+
+def _comes(ph: Phrase) -> bool:
+    """Is ``ph`` a motion + て + くる (帰ってくる, 入ってきた, 走ってくる): towards where the story is?"""
+    toks = ph.tokens
+    return any(t.lemma == "て" and t.pos1 == "助詞" and toks[k + 1].lemma == "来る"
+               for k, t in enumerate(toks[:-1]))
+
+
+def _come_to(pred: Pred, phrases: list[Phrase], i: int) -> None:
+    """息子が帰ってくると、父は…: someone who comes with nowhere named comes to the person the story is with,
+    the actor named nearest before (else after) who is someone else."""
+    def others(seq):
+        return (a for ph in seq if ph.pred and ph.pred.motion for a in (ph.pred.actor,) if a and a != pred.actor)
+    person = next(others(reversed(phrases[:i])), None) or next(others(phrases[i + 1:]), None)
+    if person is not None:
+        pred.target, pred.target_role, pred.target_person = person, "goal", True
 
 
 # ---------------------------------------------------------------- the nouns
@@ -171,11 +190,11 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
         span = (i,) if nxt.role else (i, i + 1)  # 肩に is no place of its own
         return Target(name, True, "を", None, span, _sure(ph)) if person else None
     if _before_no(ph) and nxt is not None and nxt.group == ph.group and nxt.role == "object" \
-            and (noun_of(nxt) in PLACE_OF_NOUNS or SIDE_NOUNS.get(noun_of(nxt) or "") == "around"):
+            and (noun_of(nxt) in PLACE_OF_NOUNS or noun_of(nxt) in AROUND_NOUNS):
         rel = noun_of(nxt) or ""  # 花子の方を向く: towards her; 木の周りを歩く: around it
         name, person = _name(ph)
-        return Target(name, person, "へ" if rel in PLACE_OF_NOUNS else "を", SIDE_NOUNS.get(rel), (i, i + 1),
-                      _sure(ph), rel)
+        toward = rel in PLACE_OF_NOUNS
+        return Target(name, person, "へ" if toward else "を", None if toward else "around", (i, i + 1), _sure(ph), rel)
     if _before_no(ph) and nxt is not None and nxt.group == ph.group and not nxt.pred and not nxt.role:
         rel = noun_of(nxt)
         particle = _at_side(_particle(nxt))
@@ -229,7 +248,8 @@ def _at_side(particle: str) -> str:
 def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
     """The target of ``pred`` from the nouns before it in its clause (the nearest one with a role wins).
     A word taken for a person only because it can be a name, never an actor of the text, is a thing where
-    the body goes beside it or onto it (机の前に座る, 岩に座る: 机 and 岩 are also names)."""
+    the body goes beside it or onto it, or a thing is put on it (机の前に座る, 岩に座る, 書類を机に置く: 机 and 岩
+    are also names)."""
     chosen: Target | None = None
     for t in reversed(pending):
         if t.person and not t.sure and t.name not in actors and (

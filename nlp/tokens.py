@@ -8,7 +8,8 @@ from functools import lru_cache
 
 from . import casual, kana_names, keigo, spelling, spoken
 from .numbers import merge_numbers
-from .tagging import as_verb, tag, tagger
+from .lexicon import KANA_NAMES
+from .tagging import as_verb, katakana, tag, tagger
 from .types import Token
 
 __all__ = ["OffsetMap", "is_name", "normalize", "tagger", "tokenize", "unwrap_direction", "script_label_end"]
@@ -224,13 +225,13 @@ def _split_name(line: str, offset: int, at: int) -> list[Token] | None:
     run = line[at:at + 12]
     for k in range(min(len(run) - 1, 8), 1, -1):
         name, particle = run[:k], run[k]
-        if particle in _ACTOR_PARTICLES and _is_hiragana(name) and is_name(name):
+        if particle in _ACTOR_PARTICLES and _is_hiragana(name) and (name in KANA_NAMES or is_name(name)):
             a = offset + at
             rest = _repair_kana(line, offset, tag(line[at + k + 1:], a + k + 1)) if at + k + 1 < len(line) else []
-            return [Token(name, "名詞", "固有名詞", "人名", "*", "*", name, name, _katakana(name), a, a + k,
-                          None, _katakana(name)),
+            return [Token(name, "名詞", "固有名詞", "人名", "*", "*", name, name, katakana(name), a, a + k,
+                          None, katakana(name)),
                     Token(particle, "助詞", _ACTOR_PARTICLES[particle], "*", "*", "*", particle, particle,
-                          _katakana(particle), a + k, a + k + 1, None, _katakana(particle))] + rest
+                          katakana(particle), a + k, a + k + 1, None, katakana(particle))] + rest
     return None
 
 
@@ -241,10 +242,6 @@ def _as_hand(tok: Token) -> Token:
 
 def _is_hiragana(s: str) -> bool:
     return all("\u3041" <= ch <= "\u309f" or ch == "ー" for ch in s)
-
-
-def _katakana(s: str) -> str:
-    return "".join(chr(ord(ch) + 0x60) if "\u3041" <= ch <= "\u3096" else ch for ch in s)
 
 
 def _retag_list_items(tokens: list[Token]) -> list[Token]:

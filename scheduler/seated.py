@@ -4,7 +4,8 @@ Most clips are captured or keyframed standing (``read``, ``drink``, ``pray``). A
 following action that does not need the legs is still done on the chair: 椅子に座って本を
 読む reads seated. And a later 立ち上がる says the actions before it were done seated:
 コーヒーを飲んで立ち上がる drinks seated, then stands up (no sitting down first). Kneeling
-carries on alike: 膝をついて、祈る。そして立ち上がる prays on one knee and rises from it.
+carries on alike: 膝をついて、祈る。そして立ち上がる prays on one knee and rises from it; so does a
+crouch: しゃがんで、花を見た。それから立ち上がった looks at the flower crouched (``wait_crouched``).
 
 - :func:`plays_in` tells an action that can be played seated or kneeling from its clip's
   metadata: a clip of the action that starts and ends in that posture, or a standing clip
@@ -16,7 +17,7 @@ carries on alike: 膝をついて、祈る。そして立ち上がる prays on o
 
 :func:`arrangement.arrange` plays each of them as its upper body composed onto the idle of
 that posture (the clip of :data:`fillers.IDLE_VERB` that keeps it, :func:`postures.matching`:
-``wait_seated``, ``wait_kneeling``), as ながら composes, instead of a bridge that stands up.
+``wait_seated``, ``wait_kneeling``, ``wait_crouched``), as ながら composes, instead of a bridge that stands up.
 Only clip metadata is read.
 """
 from __future__ import annotations
@@ -28,8 +29,9 @@ from .clips import ClipMeta, foot_moving
 
 SEATED = "seated"
 KNEELING = "kneeling"
+CROUCHED = "crouched"
 #: The postures an action that does not need the legs is played in when the actor is already there.
-KEPT = (SEATED, KNEELING)
+KEPT = (SEATED, KNEELING, CROUCHED)
 
 
 def plays_in(clip: ClipMeta, posture: str) -> bool:

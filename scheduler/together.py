@@ -16,12 +16,17 @@ from text2anim.nlp.types import Analysis
 
 def together(analysis: Analysis) -> dict[int, tuple[int, ...]]:
     """Motion id -> the ids of the other motions performed together with it: the same verb on the same
-    span of the text (not empty: a bridge the scheduler adds has none), another actor."""
+    span of the text (not empty: a bridge the scheduler adds has none), or linked to it in parallel (太郎も
+    一緒に踊った, 同時に), another actor."""
     groups: dict[tuple[str, tuple[int, int]], list[int]] = {}
     for m in analysis.motions:
         if m.span[1] > m.span[0]:
             groups.setdefault((m.verb, m.span), []).append(m.id)
     by_id = {m.id: m for m in analysis.motions}
+    for c in analysis.constraints:  # 花子は踊り始めた。太郎も一緒に踊った: linked in parallel, the same verb
+        a, b = by_id.get(c.first), by_id.get(c.second)
+        if c.relation == "parallel" and a is not None and b is not None and a.verb == b.verb and a.actor != b.actor:
+            groups[(a.verb, (-c.first, -c.second))] = [a.id, b.id]
     out: dict[int, tuple[int, ...]] = {}
     for ids in groups.values():
         if len({by_id[i].actor for i in ids}) < 2:

@@ -41,8 +41,9 @@ own two source clips (as recorded, at the track's rate):
    over the air phase around it.
 4. **Nothing below the floor** (y = 0) and no shuffle: in the region a foot whose
    ankle or toe would go below it is lifted by IK by the deficit
-   (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm is
-   lifted clear (:func:`lift_skimming_feet`); after an adaptation, whose fitted legs
+   (:func:`lift_off_floor`), and a foot moving fast with its toe under 5.5 cm (above the floor, and
+   above the motion's lowest foot point where GMD reads it) is lifted clear (:func:`lift_skimming_feet`);
+   after an adaptation, whose fitted legs
    reach through the next clip's core, up to the next join.
 
 5. **Weight over the feet**: where the finished region stands a slow body on its feet with its centre of
@@ -75,9 +76,10 @@ from text2anim.core.bodyparts import body_map
 from text2anim.core.cancel import checkpoint
 from text2anim.core.contacts import contacts_within, runs
 from text2anim.core.easing import smootherstep_area
+from text2anim.core.floor import ON_FLOOR
 from text2anim.core.hang import slowed_into_hanging
 from text2anim.core.kept import Kept, digest
-from text2anim.core.metrics import quality
+from text2anim.core.metrics import gmd_floor, quality
 from text2anim.core.motion import Motion
 
 from .blend import sample
@@ -168,23 +170,36 @@ def _raise_ankle(motion: Motion, side: str, ankle: int, short: np.ndarray) -> Mo
 
 SKIM_HEIGHT = 0.055  # m: a foot moving faster than SWING_SPEED keeps its toe this high (GMD counts < 5 cm)
 SWING_SPEED = 0.5  # m/s, the GMD skating speed
+#: m under core.floor.ON_FLOOR a lifted toe stays: higher, the foot no longer touches (core.balance, core.hang)
+TOUCH_MARGIN = 0.005
 
 
-def lift_skimming_feet(motion: Motion, lo: int, hi: int) -> Motion:
+def lift_skimming_feet(motion: Motion, lo: int, hi: int, lowest: float | None = None) -> Motion:
     """``motion`` with every foot that skims the floor over ``[lo, hi)`` lifted: where its toe is lower than
     :data:`SKIM_HEIGHT` while it moves faster than :data:`SWING_SPEED` (5-frame mean) — a shuffle a
     blend of two foot placements makes, counted as skating — the ankle is raised by IK (world orientation
-    kept, so the toe rises as much), by the shortfall widened by 2 frames and smoothed."""
+    kept, so the toe rises as much), by the shortfall widened by 2 frames and smoothed.
+
+    GMD's figure reads toes above the motion's lowest foot point (:func:`core.metrics.gmd_floor`), not
+    above y = 0: a crouch whose toe goes 1.7 cm down counts a toe up to 6.7 cm as on the floor. Where the
+    other foot is on the floor, the toe is kept :data:`SKIM_HEIGHT` above that point too (below
+    :data:`core.floor.ON_FLOOR`, so the lifted foot still touches: a spin's pivoting feet stay its support);
+    where it is not, only above y = 0 (lifted higher, a landing foot kept a run's flight in the air longer).
+    ``lowest`` (m): that point, default ``motion``'s own (a window's: its track's, :func:`finish_track`)."""
     feet = body_map(motion.skeleton).feet
     out = motion
     fps = motion.fps
+    floor = gmd_floor(motion) if lowest is None else lowest
+    skim = min(SKIM_HEIGHT + max(0.0, floor), ON_FLOOR - TOUCH_MARGIN)
     for side, (ankle, toe) in feet.items():
         p = out.positions
+        other = feet["right" if side == "left" else "left"]
+        height = np.where(p[:, list(other), 1].min(axis=1) < ON_FLOOR, skim, SKIM_HEIGHT)
         xz = p[:, toe][:, [0, 2]]
         v = np.zeros(len(p))
         v[1:] = np.linalg.norm(np.diff(xz, axis=0), axis=1) * fps
         fast = (v > SWING_SPEED) & (uniform_filter1d(v, 5, mode="nearest") > SWING_SPEED)
-        short = np.where(fast, np.maximum(0.0, SKIM_HEIGHT - p[:, toe, 1]), 0.0)
+        short = np.where(fast, np.maximum(0.0, height - p[:, toe, 1]), 0.0)
         short[:lo] = 0.0
         short[hi:] = 0.0
         if not (short > 1e-3).any():
@@ -308,20 +323,21 @@ AHEAD = 2  # widths re-planted beside the one asked for, when they may count too
 KEPT_FINISHED: Kept[tuple] = Kept(32)
 
 
-def finish_region(motion: Motion, region: Region, contacts,
-                  origin: int = 0) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
+def finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
+                  outside: float = np.inf) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
     """One join finished (steps 1–6 of the module docstring). ``origin``: ``motion`` is the window of a track from
-    that frame on (``region`` and ``contacts`` in the window's frames; :func:`finish_track`).
+    that frame on (``region`` and ``contacts`` in the window's frames; :func:`finish_track`), ``outside`` (m) the
+    lowest foot joint of the track outside the window (:meth:`Spliced.lowest_outside`).
 
     Returns the motion, what was done, and ``(lo, hi, n_new, src)``: the frames ``[lo, hi)`` now play
     over ``n_new``, new frame ``k`` showing source frame ``lo + src[k]`` (:func:`warp_frames`; later frames
     are ``n_new - (hi - lo)`` later). A join finished before, from the same values, is the frames it gave then
     (:data:`KEPT_FINISHED`; bit for bit the pass), their kinematics shared with ``motion`` where they are its.
     """
-    key = _finished_key(motion, region, contacts, origin)
+    key = _finished_key(motion, region, contacts, origin, outside)
     known = KEPT_FINISHED.known(key)
     if known is None:
-        done, info, warp = _finish_region(motion, region, contacts, origin)
+        done, info, warp = _finish_region(motion, region, contacts, origin, outside)
         warp[3].setflags(write=False)  # kept: read-only, as the frames are
         KEPT_FINISHED.put(key, (done.root_positions, done.rotations, done.translations, info, warp))
         return done, dict(info), warp
@@ -333,19 +349,21 @@ def finish_region(motion: Motion, region: Region, contacts,
     return done.share_pose(motion, np.where(rows < motion.n_frames, rows, -1)), dict(info), warp
 
 
-def _finished_key(motion: Motion, region: Region, contacts, origin: int) -> bytes:
+def _finished_key(motion: Motion, region: Region, contacts, origin: int, outside: float) -> bytes:
     """A digest of everything :func:`finish_region` reads: the window's frames and skeleton, the region's frames,
-    the sources' figures (its limits), the contacts, and this module's settings."""
+    the sources' figures (its limits), the contacts, the track's lowest foot outside the window, and this
+    module's settings."""
     sk, fps = motion.skeleton, motion.fps
     return digest(fps, motion.root_positions, motion.rotations, motion.translations, sk.offsets, sk.parents,
                   tuple(sk.names), region.w0, region.w1, region.r1, region.keep, region.brake_from, region.seams,
                   region.into_core, _limits(region.sources, fps), _limits(region.near, fps) if region.near else None,
-                  contacts.fps, contacts.left, contacts.right, origin, SIGMAS, STRETCHES, SLACK, PAD, BRAKE,
-                  POP_FLOOR, SEAM_DECAY, STILL, AHEAD, FLOOR, SKIM_HEIGHT, SWING_SPEED, AIR_EASE)
+                  contacts.fps, contacts.left, contacts.right, origin, outside, SIGMAS, STRETCHES, SLACK, PAD,
+                  BRAKE, POP_FLOOR, SEAM_DECAY, STILL, AHEAD, FLOOR, SKIM_HEIGHT, SWING_SPEED, AIR_EASE,
+                  TOUCH_MARGIN, ON_FLOOR)
 
 
-def _finish_region(motion: Motion, region: Region, contacts,
-                   origin: int = 0) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
+def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
+                   outside: float = np.inf) -> tuple[Motion, dict, tuple[int, int, int, np.ndarray]]:
     """:func:`finish_region`, done."""
     fps = motion.fps
     T = motion.n_frames
@@ -424,7 +442,8 @@ def _finish_region(motion: Motion, region: Region, contacts,
     candidate = chosen.motion()
     for st in stretches:
         st.release()
-    done = lift_off_floor(lift_skimming_feet(candidate.share_pose(motion, rows), lo, h2), lo, h2)
+    finished = candidate.share_pose(motion, rows)
+    done = lift_off_floor(lift_skimming_feet(finished, lo, h2, min(outside, gmd_floor(finished))), lo, h2)
     # the feet a connection released after its blend may land inside the next core (the engine's frames, not
     # the clip's): where the body stands beside them there, the hips' path is bent over them too
     he = _landing_end(done, h2, region.r1 + h2 - hi)
@@ -489,7 +508,8 @@ def finish_track(motion: Motion, regions: list[Region]) -> tuple[Motion, list[di
         checkpoint()  # an abandoned animation stops before its next region
         a, b = _window(r, fps, track.n_frames)
         win = track.window(a, b)
-        done, info, (lo, hi, n_new, src) = finish_region(win, _shifted(r, -a), contacts_within(win, track.floor()), a)
+        done, info, (lo, hi, n_new, src) = finish_region(win, _shifted(r, -a), contacts_within(win, track.floor()), a,
+                                                         track.lowest_outside(a, b))
         track.put(a, b, done)
         infos.append(info)
         warps.append((lo + a, hi + a, n_new, src))

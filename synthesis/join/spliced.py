@@ -30,6 +30,12 @@ class Spliced:
         """``(feet,)`` m: the whole track's floor levels (:func:`core.contacts.floor_levels`)."""
         return floor_levels(self._heights)
 
+    def lowest_outside(self, a: int, b: int) -> float:
+        """m: the lowest foot joint of the track outside its frames ``[a, b)`` (``inf`` where there are none):
+        with a window's own, the whole track's (GMD's floor, :func:`core.metrics.gmd_floor`)."""
+        rest = np.concatenate([self._heights[:a], self._heights[b:]])
+        return float(rest.min()) if rest.size else float("inf")
+
     def window(self, a: int, b: int) -> Motion:
         """Frames ``[a, b)`` of the track (``0 <= a < b <= n_frames``)."""
         parts, start = [], 0

@@ -5,10 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from shared_data import CMU_FILES, requires_cmu
+from shared_data import CMU_FILES, cmu, requires_cmu
 from text2anim.core import read_bvh
 from text2anim.core.floating import floating_cm, floating_heights
-from text2anim.core.floor import place_on_floor
+from text2anim.core.bodyparts import body_map
+from text2anim.core.floor import FOOT_CLEARANCE, place_on_floor
 from text2anim.core.metrics import BUILTIN_LIMITS, quality
 from text2anim.core.size import at_human_size
 from text2anim.motiondb import MotionDB
@@ -56,3 +57,18 @@ def test_real_capture_on_the_floor_stays_within_the_calibration():
         worst.append((floating_cm(m.resample(30)), path.name))
     assert max(worst)[0] <= 15.0, max(worst)
     assert np.median([w for w, _ in worst]) < 8.0
+
+
+@requires_cmu
+def test_a_foot_on_its_heel_stands_on_the_floor():
+    """CMU 05_03 (a dance), 0.40-0.72 s on its own floor: the left leg straight and still, the foot on its heel
+    with the toes raised above the ankle. Its lowest joint is the ankle, 5.2 cm up, which read as a foot on
+    air (pitch → dance floated 6.6 cm where its sources' limit was 5.1); the heel stands no higher than a
+    planted ball does (FOOT_CLEARANCE), and the same foot lifted 30 cm still reads the lift."""
+    m, _ = place_on_floor(read_bvh(cmu("05_03_dance"), drop_first=True))
+    heel = m.resample(30).between(0.40, 0.72)
+    ankle, toe = body_map(heel.skeleton).feet["left"]
+    y = heel.positions[..., 1]
+    assert (y[:, toe] > y[:, ankle]).all() and y[:, ankle].min() > 0.05  # toes up, the ankle 5 cm up or more
+    assert 0.0 < floating_cm(heel) <= 100 * FOOT_CLEARANCE
+    assert floating_cm(_lifted(heel, 0.30)) == pytest.approx(floating_cm(heel) + 30.0, abs=1.0)

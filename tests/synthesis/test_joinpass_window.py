@@ -71,3 +71,6 @@ def test_a_spliced_track_puts_each_edit_where_it_belongs():
     assert np.array_equal(got.root_positions, np.concatenate([p.root_positions for p in want]))
     assert np.array_equal(spliced.window(5, 45).rotations, got.rotations[5:45])
     assert np.array_equal(spliced.floor(), floor_levels(lowest_heights(got)))
+    heights = lowest_heights(got)
+    assert spliced.lowest_outside(5, 45) == np.concatenate([heights[:5], heights[45:]]).min()
+    assert spliced.lowest_outside(0, spliced.n_frames) == np.inf

@@ -23,7 +23,7 @@ from text2anim.core.metrics import MAX_PENETRATION_CM, SKATING_MARGIN, SOURCE_FA
 from text2anim.quality import introduced_root_pop, join_quality, played_frames
 from text2anim.motiondb import MotionDB
 from text2anim.synthesis.registry import synthesize_with
-from text2anim.synthesis.tracks import Track
+from text2anim.synthesis.tracks import Element, Track
 from text2anim.synthesis.join.cycles import loop, make_cyclic
 
 from cmu_pairs import cut_take, import_cut, pair_track, read_back
@@ -157,6 +157,19 @@ def test_a_run_started_from_standing_does_not_hang_in_the_air(clips, first, seco
     (entry,) = join_quality(res, [track])
     assert entry["transition"]["hang_s"] <= HANG_S
     assert all(entry["transition"]["meets"].values())
+
+
+@pytest.mark.parametrize("first, second", [("run", "pickup"), ("pickup", "lunge")])
+def test_a_join_skates_as_gmd_reads_it_no_more_than_its_sources_as_played(clips, first, second):
+    """GMD's skating reads toes above the motion's lowest foot point. run → pick-up: the run's last step slid
+    the right foot in at 1-1.5 m/s, its toe 6-7 cm up, within 5 cm of the pair's lowest toe (1.7 cm, the run's);
+    pick-up → lunge: the lunge's long step landed fast 5.5-8 cm up, within 5 cm of the pick-up's crouch (3.3):
+    0.042 and 0.051 where each source, played alone as long as in the pair, reads 0.0."""
+    track = track_of(clips, first, second)
+    out = quality(synthesize_with("optimal", [track], FPS).motions[None]).skating_gmd
+    alone = [Track(None, (Element(1, e.clip, 0.0, e.end - e.start, "initial"),)) for e in track.elements]
+    played = [quality(synthesize_with("optimal", [t], FPS).motions[None]).skating_gmd for t in alone]
+    assert out <= max(played) + SKATING_MARGIN, (out, played)
 
 
 def test_the_introduced_root_pop_reads_the_frames_a_method_changed(clips):
