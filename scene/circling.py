@@ -1,8 +1,8 @@
 """A walk round a thing or a person (木の周りを三周歩く, 花子の周りを走る): the walk steered into loops.
 
 The synthesised walk goes straight; :func:`circle` turns it at an even rate, a whole turn per lap (三周:
-twelve seconds of walking, three laps), in short steps each about the foot on the floor (:func:`core.steer.steer`), so the
-feet stay planted and the hips' path closes into loops. It turns to the right (clockwise seen from above):
+twelve seconds of walking, three laps), in short steps each about the foot on the floor
+(:func:`core.steer.steer`), so the feet stay planted and the hips' path closes into loops. It turns to the right (clockwise seen from above):
 what it goes round is on the walker's right, where a ``beside`` relation puts the other person.
 :func:`centre` is the middle of those loops and their radius, where the thing stands.
 """
