@@ -96,16 +96,41 @@ def _hand_on(pred: Pred, later: list[Pred], phrases: list[Phrase]) -> None:
 
 def _read_place(pred: Pred, phrases: list[Phrase]) -> None:
     """席に着く: an idiom of a に-noun (``particle`` に in ``phrases.json``) read as the action it means; the
-    noun stays where the action is done (the seat sat on)."""
+    noun stays where the action is done (the seat sat on). 兄の後をついて: the noun after の of a phrase that
+    ends in を (one phrase to UniDic) is read as a を-noun."""
     written = pred.written or pred.verb
     for ph in phrases:
-        if ph.head == pred.phrase and ph.pred is None and case_particle(ph) == "に":
+        if ph.head != pred.phrase or ph.pred is not None:
+            continue
+        inner = _after_no(ph)
+        if inner:
+            found = idiom(inner, (written, pred.lemma, pred.verb))
+            if found is not None:
+                pred.verb_phrase = f"{inner}を{written}"
+                pred.verb, pred.written, pred.reading, pred.body_part = found.action, pred.verb_phrase, "", found.part
+                return
+        if case_particle(ph) == "に":
             noun = noun_of(ph)
             found = idiom(noun, (written, pred.lemma, pred.verb), particle="に")
             if found is not None:
                 pred.verb_phrase = f"{noun}に{written}"
                 pred.verb, pred.written, pred.reading, pred.body_part = found.action, pred.verb_phrase, "", found.part
                 return
+
+
+def reread(pred: Pred, noun: str) -> None:
+    """Read ``pred`` with the を-noun ``noun`` it turned out to have (それ: the ball, in バッターはそれを打った)."""
+    _read(pred, noun, frozenset)
+
+
+def _after_no(ph: Phrase) -> str:
+    """The nouns between the last の and a final を of ``ph`` (兄の後を -> 後), '' when it is not so made."""
+    toks = [t for t in ph.tokens if t.pos1 != "補助記号"]
+    if len(toks) < 4 or toks[-1].surface != "を":
+        return ""
+    k = max((i for i, t in enumerate(toks[:-1]) if t.surface == "の" and t.pos1 == "助詞"), default=-1)
+    between = toks[k + 1:-1]
+    return "".join(t.surface for t in between) if k > 0 and between and all(t.pos1 == "名詞" for t in between) else ""
 
 
 def _read(pred: Pred, noun: str, words: Callable[[], frozenset[str]]) -> None:

@@ -42,7 +42,7 @@ from .lexicon import (
     THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
-from .phrases import body_nouns
+from .phrases import body_nouns, reread
 from .pred import Pred
 from .tagging import tagger
 from .types import Constraint, MotionSpec
@@ -91,10 +91,14 @@ def attach_targets(phrases: list[Phrase]) -> None:
             continue  # its noun waits for the motion it says the way of
         if pred.motion:
             _settle(pred, pending, actors)
-            if pred.target is None and pred.verb in LOCOMOTION_VERBS and _comes(ph):
+            if pred.target is None and pred.verb in LOCOMOTION_VERBS and (_comes(ph) or pred.verb in COMING_VERBS):
                 _come_to(pred, phrases, i)
         pending = []
     _follow_on([ph.pred for ph in phrases if ph.pred is not None])
+
+
+#: Verbs of coming to someone: with no one named, to the person the story is with (:func:`_come_to`).
+COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る".split())
 
 
 def _comes(ph: Phrase) -> bool:
@@ -333,9 +337,7 @@ def _follow_on(preds: list[Pred]) -> None:
     - a gesture right after a motion of the same actor directed at a person is addressed to that person
       (花子に近づいて、お辞儀する), a touch of them done to them (駆け寄って、抱きしめる), a thing sent goes
       to them (近づいて、ボールを渡す: she receives it);
-    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note,
-      and a motion that sends or puts a thing right after one in て-form with a thing, none named, sends
-      or puts that one (ボールを拾って、投げ返した);
+    - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note;
     - a thing given back (返す, 投げ返す) with no one named goes back to the one who gave it (健は花子に本を
       貸した。彼女はそれを返した: to 健).
     """
@@ -372,13 +374,11 @@ def _follow_on(preds: list[Pred]) -> None:
         if pred.target in pred.co_actors:
             pred.target_role = "partner"  # 花子の手を取って、一緒に踊る: done with her, not at her
         _stand_at(pred, prev)
-        if (pred.object is None and prev is not None and prev.object and prev.object not in BODY_PARTS
-                and (pred.verb in TRANSFER_VERBS or pred.verb in PLACING_VERBS) and prev.ending in ("te", "renyou")):
-            pred.object = prev.object  # 拾って、投げ返した: the thing just picked up
         last[pred.actor] = pred
         if pred.object in THING_ANAPHORS and thing is not None:
             _say(pred, f"{pred.object} read as {thing}, the thing last named")
             pred.object = thing
+            reread(pred, thing)
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
         _give_back(pred, givers)

@@ -68,8 +68,8 @@ RESTITUTION = 0.45
 ROLL_DECELERATION = 2.0  # m/s²: a ball on grass
 #: A kicked ball leaves faster than the foot that strikes it (a ball's mass is small against the leg's).
 KICK_GAIN = 1.3
-KICK = frozenset("蹴る キックする シュートする 蹴り上げる 蹴飛ばす".split())
-THROW = frozenset("投げる 放る 放り投げる 投げ渡す パスする".split())
+KICK = frozenset("蹴る キックする シュートする 蹴り上げる 蹴飛ばす 蹴り返す".split())
+THROW = frozenset("投げる 放る 放り投げる 投げ渡す パスする 投げ返す".split())
 CATCH = frozenset("取る 捕る キャッチする 受け止める 捕まえる".split())
 PICK = frozenset("拾う 拾い上げる 持ち上げる 抱え上げる".split())
 #: Verbs that take a thing into the hand: one that lies nowhere yet is picked up (机の上のペンを取る).
