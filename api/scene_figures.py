@@ -31,9 +31,17 @@ reaches     the hand to the door at the row's nearest frame (m)            < 0.1
 apart       a thing lying still on the floor to the hips of someone who    > :data:`APART_M`
             does not handle it, over the floor (m, nearest frame)
 at          the hips to the thing's box over the floor (m) at the end of   < :data:`AT_M`, facing it
-            the row (机の前に座る: the body at its front)                  within 45°
+            the row (机の前に座る: the body at its front; ``"facing":       within 45°
+            false``: 木の下に座る, the back to it)
 hand_in_    the first one's right wrist to the other's left (m, worst       < :data:`HANDS_M`
 hand        frame of the middle half of the rows' overlap: 手をつなぐ)
+rests       the thing's bottom to what it is put on (m: the floor, 床に      < :data:`REST_M`, over the
+            下ろす, or a thing's top, テーブルの上に置く) at the row's end   thing's top
+free        the thing to the nearer wrist over the row (m; a thing not      > :data:`FREE_M`
+            drawn is free): 空を見上げる holds no sky
+round       the turns the hips sweep round the thing over the row (laps:    >= 0.9 of ``laps``, never
+            木の周りを三周歩く), and their nearest distance to its centre   within :data:`ROUND_M` of
+                                                                           its side
 =========== ============================================================== =========================
 """
 from __future__ import annotations
@@ -57,6 +65,9 @@ LAUNCH_S = 0.1
 CATCH_M = 0.15
 APART_M = 0.5  # m: a ball within half a metre of someone's hips lies at their feet
 AT_M = 0.6  # m: hips within this of a thing's box are at it (a chair's depth between them and a desk)
+REST_M = 0.03  # m between a thing put down and what it rests on
+FREE_M = 0.3  # m: a thing further than this from both wrists is not in the hand
+ROUND_M = 0.2  # m between the hips and the side of a thing walked round
 TOGETHER_M = 2.0  # m: two who walk or dance together stay this close (walking apart ends metres away)
 CLEAR_M = 0.3  # m, hips to hips: closer, two bodies are inside each other
 
@@ -272,7 +283,7 @@ def _holds(anim, rows, props, c):
 
 #: The part of a row (fractions of it) in which its actor holds the thing: after a pick, before a put or a
 #: hand-over, after a taking; the middle third of any other.
-_HELD_PART = {**dict.fromkeys(("拾う", "持ち上げる", "拾い上げる"), (0.7, 1.0)),
+_HELD_PART = {**dict.fromkeys(("拾う", "持ち上げる", "拾い上げる", "取る", "持つ"), (0.7, 1.0)),
               **dict.fromkeys(("置く", "下ろす", "降ろす"), (0.0, 0.3)),
               **dict.fromkeys(("渡す", "手渡す", "差し出す"), (0.1, 0.45)),
               **dict.fromkeys(("受け取る", "貰う"), (0.7, 1.0))}
@@ -380,7 +391,8 @@ def _at(anim, rows, props, c):
     f = min(_frame(anim, r.end, m), m.n_frames - 1)
     d = float(np.hypot(*_outside(p, m.root_positions[f], f)[[0, 2]]))  # over the floor
     err = _facing_error(m, f, p.positions[f])
-    return Figure("at", d, "m", d < AT_M and err < 45.0, f"facing {err:.0f}° off")
+    facing = err < 45.0 or c.get("facing", True) is False  # 木の下に座る: at its foot, the back to it
+    return Figure("at", d, "m", d < AT_M and facing, f"facing {err:.0f}° off")
 
 
 def _apart(anim, rows, props, c):
@@ -395,8 +407,43 @@ def _apart(anim, rows, props, c):
     return Figure("apart", d, "m", d > APART_M)
 
 
+def _rests(anim, rows, props, c):
+    r = _row(rows, c["actor"], c["verb"])
+    m = _motion(anim, c["actor"])
+    p = _thing(props, c)
+    f = min(_frame(anim, r.end, m), m.n_frames - 1)
+    bottom = p.positions[f, 1] - 0.5 * p.size[1]
+    if c["on"] == "floor":
+        return Figure("rests", abs(bottom), "m", abs(bottom) < REST_M, "on the floor")
+    under = _thing(props, {"thing": c["on"]})
+    top = under.positions[f, 1] + 0.5 * under.size[1]
+    off = float(np.hypot(*_outside(under, p.positions[f], f)[[0, 2]]))
+    return Figure("rests", abs(bottom - top), "m", abs(bottom - top) < REST_M and off < 0.01,
+                  f"on {c['on']}, {off:.2f} m off its top")
+
+
+def _free(anim, rows, props, c):
+    _, m, f0, f1 = _played(anim, rows, c)
+    if c["thing"] not in props:
+        return Figure("free", float("inf"), "m", True, "not drawn")
+    p = props[c["thing"]]
+    d = min(float(np.linalg.norm(p.positions[f0:f1] - w[f0:f1], axis=1).min()) for w in _wrists(m))
+    return Figure("free", d, "m", d > FREE_M)
+
+
+def _round(anim, rows, props, c):
+    _, m, f0, f1 = _played(anim, rows, c)
+    p = _thing(props, c)
+    rel = m.root_positions[f0:f1] - p.positions[f0:f1]
+    swept = float(np.abs(np.sum(wrap_angle(np.diff(np.arctan2(rel[:, 0], rel[:, 2]))))) / (2.0 * np.pi))
+    near = float(np.hypot(rel[:, 0], rel[:, 2]).min())
+    clear = near - 0.5 * max(p.size[0], p.size[2]) >= ROUND_M
+    return Figure("round", swept, "laps", swept >= 0.9 * c["laps"] and clear, f"nearest {near:.2f} m")
+
+
 _MEASURES = {"approach": _approach, "faces": _faces, "sync": _sync, "holds": _holds, "launch": _launch,
              "catch": _catch, "seat": _seat, "present": _present, "together": _together, "leaves": _leaves,
              "behind": _behind, "reaches": _reaches,
-             "apart": _apart, "at": _at, "hand_in_hand": _hand_in_hand}
+             "apart": _apart, "at": _at, "hand_in_hand": _hand_in_hand, "rests": _rests, "free": _free,
+             "round": _round}
 CHECKS = tuple(_MEASURES)

@@ -5,7 +5,8 @@ objects, interactions) with the built-in library (``--fallback nearest``: a verb
 its stand-in or is refused) and measures each of the line's checks on the output
 (:mod:`text2anim.scene_figures`: distance to the target at the end of an approach, heading error towards
 an addressee, contact-instant alignment of synchronized pairs, a held thing's distance to its hand, a
-kicked or thrown thing's launch against the foot's or hand's contact, ...). Prints one row per check:
+kicked or thrown thing's launch against the foot's or hand's contact, a thing put down resting on the floor
+or the table, a thing looked at not held, ...). Prints one row per check:
 how many pass, the median and worst figure, the limit; then the lines animated or refused, and the CPU and
 wall time per line (median). ``--list`` prints every check of every line.
 """
@@ -50,13 +51,14 @@ def run(items: list[dict]) -> tuple[list[tuple[dict, list, str | None]], list[fl
 
 
 def table(results) -> list[str]:
-    from text2anim.scene_figures import AT_M, CATCH_M, FACING_DEG, HANDS_M, HOLD_M, LAUNCH_S, SYNC_S
+    from text2anim.scene_figures import AT_M, CATCH_M, FACING_DEG, FREE_M, HANDS_M, HOLD_M, LAUNCH_S, REST_M, SYNC_S
 
     limits = {"approach": "0.3-1.6 m", "faces": f"< {FACING_DEG:g} deg", "sync": f"< {SYNC_S:g} s",
               "holds": f"< {HOLD_M:g} m", "launch": f"<= {LAUNCH_S:g} s", "catch": f"< {CATCH_M:g} m",
               "seat": "< 0.2 m", "present": "yes", "together": f"< {SYNC_S:g} s", "leaves": "> 0.5 m",
               "behind": "> 120 deg", "reaches": "< 0.15 m", "apart": "> 0.5 m",
-              "at": f"< {AT_M:g} m, facing it", "hand_in_hand": f"< {HANDS_M:g} m"}
+              "at": f"< {AT_M:g} m, facing it", "hand_in_hand": f"< {HANDS_M:g} m", "rests": f"< {REST_M:g} m",
+              "free": f"> {FREE_M:g} m", "round": ">= 0.9 laps"}
     by: dict[str, list] = {}
     for item, figs, err in results:
         for c in item.get("scene", []):

@@ -305,9 +305,12 @@ HOMOPHONE_TYPOS = {
 #: Default delay of しばらくして, in seconds.
 DEFAULT_PAUSE = CONNECTIVES["しばらくして"][3]
 
+#: s: a lap round something (木の周りを三周歩く: 12 s of walking, three laps: scene.circling).
+LAP_SECONDS = 4.0
+
 #: Counters: unit -> (kind, factor to seconds or 1).
 COUNTERS = {
-    "回": ("repeat", 1), "度": ("repeat", 1), "歩": ("steps", 1),
+    "回": ("repeat", 1), "度": ("repeat", 1), "周": ("duration", LAP_SECONDS), "歩": ("steps", 1),
     "秒間": ("duration", 1.0), "分間": ("duration", 60.0),
     "秒": ("seconds", 1.0), "分": ("seconds", 60.0),
 }
@@ -353,9 +356,12 @@ SIDE_NOUNS = {
     "後ろ": "behind", "うしろ": "behind", "後": "behind", "背後": "behind",
     "隣": "beside", "となり": "beside", "横": "beside", "よこ": "beside", "そば": "near", "傍": "near",
     "近く": "near", "側": "near", "脇": "beside", "周り": "near", "まわり": "near", "周囲": "near",
-    "上": "on", "うえ": "on",
+    "上": "on", "うえ": "on", "下": "under",
     "左": "left", "右": "right",
 }
+#: Side nouns that, marked を, say a way round the noun before them (木の周りを歩く: ``around``); with に they
+#: are only near it (先生の周りに集まる).
+AROUND_NOUNS = frozenset("周り まわり 周囲".split())
 
 #: Nouns after 〜の that only say "where X is" (花子のところへ, 花子の方へ, 花子のもとへ).
 PLACE_OF_NOUNS = frozenset("ところ 所 とこ トコ 方 ほう もと 元 側".split())
@@ -365,6 +371,15 @@ DIRECTION_TE = frozenset("向かう 向ける".split())
 
 #: Verbs by which two people face each other (二人は向かい合ってお辞儀する): no motion of their own.
 FACING_VERBS = frozenset("向かい合う 向き合う 対面する".split())
+
+#: Nouns that are the ground itself: a thing put there lies on the floor (箱を床に下ろす), no thing of its own.
+GROUND_NOUNS = frozenset("床 ゆか 地面 地べた 床の上 足元 足下".split())
+
+#: Verbs done to a door (ドアを引いて開ける): one written without its object is done to the door just handled
+#: or gone to (ドアの前で立ち止まって、ノックした).
+DOOR_VERBS = frozenset("開ける 開く 閉める 締める 閉じる ノックする".split())
+#: Verbs that move a thing: one written without its object moves the thing just handled (台車を押して、運んだ).
+MOVING_VERBS = frozenset("運ぶ 持ち運ぶ 押して行く".split())
 
 #: Demonstratives that name the thing last named (花子はそれを投げた: the ball 太郎 handed her).
 THING_ANAPHORS = frozenset("それ これ あれ そいつ".split())

@@ -17,12 +17,17 @@ written, a person by the actor's name), ``target_role`` and ``target_side``:
 ============== ======================================================================
 
 ``target_side`` says where relative to the target (花子の前に: ``front``; ``behind``, ``beside``,
-``near``, ``on``, ``left``, ``right``). A partner performs the motion too (a co-actor, facing or
-beside the actor: the scene decides by the verb); 向かい合って / 向き合って make the actors of the
+``near``, ``on``, ``under``, ``around``, ``left``, ``right``); で after a side noun says it as に does
+(ドアの前で), and a side noun marked を is no object (花子の方を向く, 木の周りを歩く); 机の上のペンを取る takes
+the pen from the desk (``source``). A motion keeps one target; another noun with a role is said in its
+note. A partner performs the motion too (a co-actor, facing or beside the actor: the scene decides by the
+verb); 向かい合って / 向き合って make the actors of the
 next motion each other's partners and are no motion of their own, nor is に向かって (its noun is
 the next motion's goal). A gesture with no target of its own right after a motion of the same actor
-directed at a person (近づいて、お辞儀する) is addressed to that person. それ / これ as an object is the
-thing last named.
+directed at a person (近づいて、お辞儀する) is addressed to that person, unless the body only went to their
+side (隣に立って、写真を撮る). それ / これ as an object is the thing last named; a door verb with no object
+(開ける, ノックする) is done to the thing the actor has just handled or gone to, a carry (運ぶ) to the thing
+just handled.
 """
 from __future__ import annotations
 
@@ -31,13 +36,15 @@ from dataclasses import replace
 from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
 from .lexicon import (
-    BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, NOT_TARGETS,
-    LOWERING_VERBS, PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
+    AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
+    FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
+    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
 from .phrases import body_nouns, reread
 from .pred import Pred
+from .tagging import tagger
 from .types import Constraint, MotionSpec
 
 #: Particles that mark a target, and the ones a 〜の + noun phrase may end with.
@@ -48,18 +55,22 @@ LEAVING_VERBS = frozenset("出る 離れる 去る 降りる 立ち去る 出て
 _WAY_TE = FACING_VERBS | DIRECTION_TE
 #: Roles a person keeps as the addressee of a following gesture (近づいて、お辞儀する).
 DIRECTED = frozenset(("goal", "addressee", "partner", "patient", "recipient"))
+#: Sides of a goal that put the body by the person, not before them: a gesture after 花子の隣に立って is for
+#: no one in particular (写真を撮る), not addressed to her.
+ALONGSIDE = frozenset(("beside", "behind", "left", "right", "around", "under", "on"))
 
 
 class Target:
     """A noun a motion is directed at: ``name`` as written, whether it is a ``person``, the particle
     that marked it and the side (``SIDE_NOUNS``), and the phrases it spans (``phrases``)."""
 
-    __slots__ = ("name", "person", "particle", "side", "phrases", "sure")
+    __slots__ = ("name", "person", "particle", "side", "phrases", "sure", "covers")
 
     def __init__(self, name: str, person: bool, particle: str, side: str | None, phrases: tuple[int, ...],
-                 sure: bool = True):
+                 sure: bool = True, covers: str | None = None):
         self.name, self.person, self.particle, self.side, self.phrases = name, person, particle, side, phrases
         self.sure = sure  # a person by more than a word that can be a name (机 is also a surname)
+        self.covers = covers  # the side noun read as the motion's を-object (花子の方を向く: 方), if any
 
 
 def attach_targets(phrases: list[Phrase]) -> None:
@@ -142,8 +153,24 @@ def _sure(ph: Phrase) -> bool:
 
 def _surely_person(ph: Phrase) -> bool:
     toks = ph.tokens
-    return (any(t.pos3 == "人名" for t in toks) or noun_of(ph) in PERSON_NOUNS
-            or any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in toks))
+    noun = noun_of(ph)
+    return (any(t.pos3 == "人名" for t in toks) or noun in PERSON_NOUNS
+            or any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in toks) or _name_alone(noun))
+
+
+_ALONE: dict[str, bool] = {}
+
+
+def _name_alone(noun: str | None) -> bool:
+    """Is ``noun`` tagged a name when written alone (太郎を: yes; 本を, 机を: no)? UniDic reads 太郎 as a common
+    noun after another name (次郎は太郎を押した), not by itself; a thing that is also a surname stays a thing."""
+    if not noun:
+        return False
+    found = _ALONE.get(noun)
+    if found is None:
+        words = tagger()(noun + "を")
+        found = _ALONE[noun] = len(words) == 2 and words[0].surface == noun and words[0].feature.pos3 == "人名"
+    return found
 
 
 def _before_no(ph: Phrase) -> Phrase | None:
@@ -166,19 +193,30 @@ def _target_at(phrases: list[Phrase], i: int) -> Target | None:
         name, person = _name(ph)  # 花子の肩を叩く, 彼女の肩に手を置く: done to 花子
         span = (i,) if nxt.role else (i, i + 1)  # 肩に is no place of its own
         return Target(name, True, "を", None, span, _sure(ph)) if person else None
+    if _before_no(ph) and nxt is not None and nxt.group == ph.group and nxt.role == "object" \
+            and (noun_of(nxt) in PLACE_OF_NOUNS or noun_of(nxt) in AROUND_NOUNS):
+        rel = noun_of(nxt) or ""  # 花子の方を向く: towards her; 木の周りを歩く: around it
+        name, person = _name(ph)
+        toward = rel in PLACE_OF_NOUNS
+        return Target(name, person, "へ" if toward else "を", None if toward else "around", (i, i + 1), _sure(ph), rel)
     if _before_no(ph) and nxt is not None and nxt.group == ph.group and not nxt.pred and not nxt.role:
         rel = noun_of(nxt)
-        particle = _particle(nxt)
+        particle = _at_side(_particle(nxt))
         if not particle and rel in PLACE_OF_NOUNS:
             particle = "へ"  # 花子のとこ行く: spoken text drops the へ
+        after = phrases[i + 2] if i + 2 < len(phrases) else None
+        if particle == "の" and rel in SIDE_NOUNS and after is not None and after.role == "object":
+            name, person = _name(ph)  # 机の上のペンを取る: where the pen lies (a thing; 太郎の隣の本 says no place)
+            thing = name and not (person and _sure(ph))  # 机 can be a name, but is no person here
+            return Target(name, False, "の", SIDE_NOUNS[rel], (i, i + 1), _sure(ph)) if thing else None
         if (rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS) and particle in TARGET_PARTICLES:
             name, person = _name(ph)
             return Target(name, person, particle, SIDE_NOUNS.get(rel), (i, i + 1), _sure(ph))
     particle = _particle(ph)
-    if particle not in TARGET_PARTICLES:
+    if particle not in TARGET_PARTICLES and particle != "で":
         return None
     inner = _inner_side(ph)
-    if inner is not None:
+    if inner is not None or particle == "で":
         return inner
     name, person = _name(ph)
     if not name or name in BODY_PARTS or name in NOT_TARGETS or any(t.is_number for t in ph.tokens):
@@ -195,10 +233,17 @@ def _inner_side(ph: Phrase) -> Target | None:
             if rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS:
                 head = Phrase(ph.index, toks[:k], ph.sentence, ph.quoted)
                 name, person = _name(head)
-                return (Target(name, person, _particle(ph), SIDE_NOUNS.get(rel), (ph.index,), _sure(head))
-                        if name else None)
+                particle = _at_side(_particle(ph))
+                return (Target(name, person, particle, SIDE_NOUNS.get(rel), (ph.index,), _sure(head))
+                        if name and particle in TARGET_PARTICLES else None)
             return None
     return None
+
+
+def _at_side(particle: str) -> str:
+    """で after a side noun says where the body is, as に does (ドアの前で立ち止まる: in front of the door); a
+    bare で-place (公園で遊ぶ) is where the whole scene is, no target."""
+    return "に" if particle == "で" else particle
 
 
 # ---------------------------------------------------------------- roles
@@ -209,23 +254,35 @@ def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
     A word taken for a person only because it can be a name, never an actor of the text, is a thing where
     the body goes beside it or onto it, or a thing is put on it (机の前に座る, 岩に座る, 書類を机に置く: 机 and 岩
     are also names)."""
+    chosen: Target | None = None
     for t in reversed(pending):
         if t.person and not t.sure and t.name not in actors and (
                 t.side is not None or pred.verb in SUPPORT_VERBS or pred.verb in PLACING_VERBS):
             t.person = False
         role = _role(pred, t)
-        if role is None:
+        if role is None or (t.person and t.name == pred.actor):
             continue
-        if t.person and t.name == pred.actor:
+        if chosen is not None:  # 駅から家まで走る: one target a motion; the other is said, never dropped
+            _say(pred, f"{t.name} ({role}) is not placed: the motion keeps one target, {chosen.name}")
             continue
+        chosen = t
         pred.target, pred.target_role, pred.target_side, pred.target_person = t.name, role, t.side, t.person
+        if t.covers is not None and pred.object == t.covers:
+            pred.object = None  # 花子の方を向く: 方 says where, it is not a thing turned
         if role == "partner" and t.name not in pred.co_actors:
             pred.co_actors = (*pred.co_actors, t.name)  # 花子と握手する: she shakes hands too
-        return
+
+
+def _say(pred: Pred, said: str) -> None:
+    pred.note = f"{pred.note}; {said}" if pred.note else said
 
 
 def _role(pred: Pred, t: Target) -> str | None:
     verb = pred.verb
+    if t.particle == "の":  # 机の上のペンを取る: taken from where it lies
+        return "source"
+    if t.particle == "を" and t.side == "around":  # 木の周りを歩く
+        return "goal"
     if t.particle == "を":
         if t.person:
             return "goal" if verb in CHASING_VERBS else "patient"
@@ -240,6 +297,8 @@ def _role(pred: Pred, t: Target) -> str | None:
         return "goal"
     if verb in TRANSFER_VERBS and pred.object not in BODY_PARTS:
         return "recipient" if t.person else "destination"
+    if t.side is not None and t.side != "on":  # ドアの前で立ち止まる, 木の下に座る: where the body is
+        return "goal"
     if t.particle in ("へ", "まで") or verb in LOCOMOTION_VERBS:
         return "goal"
     if verb in SUPPORT_VERBS:  # 机の前に座る: beside a thing is where the body goes, not what holds it up
@@ -296,8 +355,17 @@ def _follow_on(preds: list[Pred]) -> None:
         if (facing or pred.verb in RECIPROCAL_VERBS or pred.verb.endswith("合う")) and not pred.target \
                 and pred.co_actors:
             pred.target, pred.target_role, pred.target_person = pred.co_actors[0], "partner", True
+        if facing and pred.target_role == "partner":
+            pred.target_side = "front"  # 向かい合って立つ: each in front of the other, not side by side
         prev = last.get(pred.actor)
+        if prev is not None and pred.verb in DOOR_VERBS | MOVING_VERBS and not pred.object:
+            gone_to = prev.target if pred.verb in DOOR_VERBS and prev.target and not prev.target_person else None
+            handled = prev.object or gone_to
+            if handled:  # ドアを引いて開ける, ドアの前で立ち止まってノックする, 台車を押して運ぶ: the thing just handled
+                pred.object = handled
+                _say(pred, f"{pred.verb} read as done to {handled}, the thing just handled")
         if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
+                and prev.target_side not in ALONGSIDE
                 and pred.verb not in LOCOMOTION_VERBS and pred.verb not in SUPPORT_VERBS):
             role = ("patient" if pred.verb in CONTACT_VERBS
                     else "recipient" if pred.verb in TRANSFER_VERBS and pred.object and pred.object not in BODY_PARTS
@@ -308,8 +376,7 @@ def _follow_on(preds: list[Pred]) -> None:
         _stand_at(pred, prev)
         last[pred.actor] = pred
         if pred.object in THING_ANAPHORS and thing is not None:
-            said = f"{pred.object} read as {thing}, the thing last named"
-            pred.note = f"{pred.note}; {said}" if pred.note else said
+            _say(pred, f"{pred.object} read as {thing}, the thing last named")
             pred.object = thing
             reread(pred, thing)
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":

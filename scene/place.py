@@ -6,12 +6,15 @@ and each actor's synthesised motion, and returns the :class:`~scene.types.Scene`
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
 from text2anim.core.motion import Motion
+from text2anim.nlp.lexicon import LAP_SECONDS, LOCOMOTION_VERBS
 from text2anim.scheduler.types import Element
 
+from .circling import centre, circle
 from .fit import arrival, fit
 from .relations import HANDS, HIPS_HEIGHT, relations
 from .things import kicks, reach_instant, send_instant, things
@@ -30,19 +33,37 @@ def place(staging: Staging, rows: Sequence[Element], motions: dict[str | None, M
     """The placed scene of ``rows`` (time-table rows at their played times) and ``motions`` (each actor's
     motion as synthesised from its spot of ``staging``)."""
     scale = {a: size_of(m) for a, m in motions.items()}
+    motions, radii = _rounds(rows, motions, fps)
     sends = {r.id: t for r in rows if r.actor in motions
              and (t := send_instant(r, motions[r.actor], fps)) is not None}
     reaches = {r.id: reach_instant(r, motions[r.actor], HANDS[r.verb], fps) for r in rows
                if r.actor in motions and r.verb in HANDS}
     arrivals = {r.id: arrival(motions[r.actor], r.end) for r in rows
                 if r.actor in motions and r.target_role == "goal"}
-    rels = relations(rows, set(motions), scale, sends, reaches, arrivals)
+    rels = [replace(rel, distance=radii[rel.element]) if rel.element in radii else rel
+            for rel in relations(rows, set(motions), scale, sends, reaches, arrivals)]
     steered, rigids, met = fit(motions, rels, kicks(rows, motions, fps))
     moved = {a: rigids[a].apply(m) for a, m in steered.items()}
     spots = tuple(_moved_spot(s, rigids) for s in staging.spots if s.actor in rigids)
     made, said = things(rows, moved, scale, fps)
     said = [*(_missed(m, scale) for m in met if _misses(m, scale)), *_unknown_targets(rows, motions, made), *said]
     return Scene(moved, rigids, spots, made, tuple(met), tuple(said), fps)
+
+
+def _rounds(rows: Sequence[Element], motions: dict[str | None, Motion], fps: float
+            ) -> tuple[dict[str | None, Motion], dict[int, float]]:
+    """Each walk round something (a goal ``around``: 木の周りを三周歩く) steered into its laps (one each
+    :data:`~nlp.lexicon.LAP_SECONDS` it plays, at least one: :func:`circling.circle`), and the radius (m) of each one's loops by its row's id: how far from the walker
+    the person it goes round stands."""
+    out, radii = dict(motions), {}
+    for r in rows:
+        if r.target_side == "around" and r.target_role == "goal" and r.actor in out and r.verb in LOCOMOTION_VERBS:
+            m = out[r.actor]
+            f0 = int(np.clip(round(r.start * fps), 0, m.n_frames - 1))
+            f1 = int(np.clip(round(r.end * fps), f0 + 1, m.n_frames))
+            out[r.actor] = circle(m, f0, f1, max(1, round((r.end - r.start) / LAP_SECONDS)))
+            radii[r.id] = centre(out[r.actor], f0, f1)[1]
+    return out, radii
 
 
 def size_of(motion: Motion) -> float:

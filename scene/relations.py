@@ -16,8 +16,9 @@ goal (beside, near, ...)    ``beside`` :data:`BESIDE`                     the ro
 source                      ``away``   :data:`APPROACH`                   the row's start
 addressee, patient,         ``face``   :data:`DISTANCES` by verb, else   the row's middle (its
 recipient                              :data:`BY_ROLE`                    middle half for facing)
-partner                     ``face`` for :data:`FACE_TO_FACE` verbs,     the row's middle
-                            else ``beside`` (:data:`BESIDE`, together)
+partner                     ``face`` for :data:`FACE_TO_FACE` verbs and  the row's middle
+                            the side ``front`` (向かい合って), else
+                            ``beside`` (:data:`BESIDE`, together)
 =========================== ========== ================================= ==========================
 """
 from __future__ import annotations
@@ -131,13 +132,13 @@ def _shape(r: Element, later: Sequence[Element]) -> tuple[str, float, float]:
     if role == "goal":
         if r.target_side == "behind":
             return "behind", BEHIND, r.end
-        if r.target_side in ("beside", "near", "left", "right", "on"):
+        if r.target_side in ("beside", "near", "left", "right", "on", "around", "under"):
             return "beside", BESIDE, r.end
         nxt = next((x for x in later if x.actor == r.actor and x.method != "composition"), None)
         close = DISTANCES.get(nxt.verb) if nxt is not None and nxt.target == r.target else None
         return "face", min(APPROACH, close) if close else APPROACH, r.end
     if role == "source" and r.verb not in HANDS:  # 離れる: where it starts; 受け取る from someone: face them
         return "away", APPROACH, r.start
-    if role == "partner" and r.verb not in FACE_TO_FACE:
+    if role == "partner" and r.verb not in FACE_TO_FACE and r.target_side != "front":  # 向かい合って: face
         return "beside", BESIDE, mid
     return "face", DISTANCES.get(r.verb, BY_ROLE.get(role or "", APPROACH)), mid

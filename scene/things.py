@@ -13,16 +13,29 @@ kick (:data:`KICK`)  it rests on the floor where the kicking foot strikes (the f
 dribble              it rolls on the floor ahead of the feet (:data:`DRIBBLE_AHEAD`) while the row plays
 throw                it is in the throwing hand until the release (the hand's fastest frame); it flies to
                      the catcher's hands at their catch (both hands furthest out) when one catches it,
-                     else on with the hand's speed, lands and rolls
-pick (拾う, 持ち上げる) it lies on the floor under the hand at its lowest frame, then is held
-put (置く, 下ろす)     it is held until the hand's lowest frame, then rests there (on the table it is put on)
+                     else on with the hand's speed, lands and rolls; thrown to someone who does not catch
+                     it, it strikes them and drops at their feet
+pick (拾う, 持ち上げる) it lies on the floor under the hand at its lowest frame, then is held; so does a thing
+                     taken (取る, 持つ) that is nowhere yet by a hand that goes down for it; 机の上のペンを取る:
+                     on the desk under the hand
+put (置く, 下ろす)     it is held until the hand's lowest frame, then rests there (on the table it is put on;
+                     on the floor: 床に下ろす; beside what it is put by: 窓のそばに置く, which stands beyond it)
 give (渡す)           it is in the giver's hand until the hand is furthest out, then in the receiver's
 open (開ける, 閉める)  a door in front of the hand at its furthest reach swings open (or shut) on its hinge;
-                     knocked on (ノックする), it stays shut
+                     knocked on (ノックする), it stays shut; pushed or pulled (押す, 引く), it swings open.
+                     It stands where it is first handled; later rows swing it from there
+push (押す)           it slides on the floor ahead of the hips while the row plays, and on while the pusher
+                     walks or carries (台車を押して、倉庫まで運んだ)
+look (見る, 待つ)     it stands :data:`SIGHT_M` ahead of the actor, not in the hand (バスを待つ, 花を見る); the sky
+                     and what is above (:data:`shapes.UNDRAWN`: 空を見上げる) is said, not drawn
+drink (水を飲む)       nothing new: the drink is in the cup the drinker holds, if any
 any other            it is held (one hand or both, :mod:`scene.shapes`) while the row plays
-seat (座る on it)     it stands under the hips where they sit, from the start
+seat (座る on it)     it stands under the hips where they sit, from the start; a sitter with no seat named
+                     (座った, 花子の横に座った) sits on a chair (said): a sitting clip's hips are at its height
 beside (机の前に座る)  it stands where the body ends beside it, from the start: ahead of the body (前, 後ろ,
-                     近く), or to its side (隣, 横, 左, 右); one sat in front of is sat at on a chair
+                     近く, and a goal with no side: ドアまで歩く), or to its side (隣, 横, 左, 右); one sat in
+                     front of is sat at on a chair
+around (木の周りを歩く) it stands in the middle of the loops the walk was steered into (:mod:`scene.circling`)
 place (駅まで走る)     a marker on the floor where the walk ends
 route (公園を歩く)     a marker on the floor halfway along the walk (a を-place of a verb that travels,
                      with no shape of its own: gone through, not carried)
@@ -43,11 +56,11 @@ from scipy.spatial.transform import Rotation
 from text2anim.core.contact_instant import contact_instant
 from text2anim.core.fk import matrix_to_quat
 from text2anim.core.motion import Motion
-from text2anim.nlp.lexicon import LOCOMOTION_VERBS
+from text2anim.nlp.lexicon import DRINKS, GROUND_NOUNS, LOCOMOTION_VERBS, MOVING_VERBS
 from text2anim.scheduler.types import Element
 
-from . import bodies
-from .shapes import PLACE, Shape, shape_of
+from . import bodies, circling
+from .shapes import PLACE, UNDRAWN, Shape, shape_of
 from .types import Kick, Thing
 
 G = 9.81  # m/s²
@@ -59,6 +72,13 @@ KICK = frozenset("蹴る キックする シュートする 蹴り上げる 蹴�
 THROW = frozenset("投げる 放る 放り投げる 投げ渡す パスする 投げ返す".split())
 CATCH = frozenset("取る 捕る キャッチする 受け止める 捕まえる".split())
 PICK = frozenset("拾う 拾い上げる 持ち上げる 抱え上げる".split())
+#: Verbs that take a thing into the hand: one that lies nowhere yet is picked up (机の上のペンを取る).
+TAKE = frozenset("取る 手に取る 持つ 掴む つかむ 取り上げる 取り出す".split())
+#: Verbs that push or pull: a door pushed or pulled swings open; any other thing pushed slides on the floor.
+PUSH_PULL = frozenset("押す 引く 引っ張る".split())
+PUSH = frozenset("押す".split())
+#: m at the built-in body's size: between the hips and the near side of a thing pushed along the floor.
+PUSH_GAP = 0.45
 PUT = frozenset("置く 下ろす 降ろす 落とす 積む 乗せる 載せる".split())
 GIVE = frozenset("渡す 手渡す 差し出す".split())
 RECEIVE = frozenset("受け取る 貰う".split())
@@ -66,6 +86,8 @@ OPEN = frozenset("開ける 開く".split())
 CLOSE = frozenset("閉める 閉じる 締める".split())
 KNOCK = frozenset("ノックする".split())
 SIT = frozenset("座る 腰掛ける 着席する".split())
+#: What one sits on when the text names no seat (a sitting clip's hips are at a chair's height).
+SEAT_STAND_IN = "椅子"
 DRIBBLE = frozenset("ドリブルする".split())
 #: Verbs done towards a thing without touching it: its object stands ahead of the actor, not in the hand
 #: (花を見る, バスを待つ).
@@ -94,6 +116,9 @@ class _Path:
         self.holder: tuple[str | None, str] | None = None  # (actor, "right" / "both") while held
         self.at_feet: str | None = None  # who dribbles it (ドリブルして、シュートする: the kick's ball)
         self.sitters: list[tuple[np.ndarray, float]] = []  # (hips, heading) of each who sits on it
+        self.sat_by: str | None = None  # the first who sits on it
+        self.pushed_by: str | None = None  # who pushes it along the floor (台車を押して、運んだ)
+        self.hinge: tuple[np.ndarray, float, float] | None = None  # a door's hinge, heading and angle so far
 
     @property
     def half(self) -> float:
@@ -119,14 +144,29 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
         if r.actor not in motions:
             continue
         named = _named(r, motions)
+        if r.verb in SIT and not any(how == "seat" for _, how in named):  # 座った, 花子の横に座った: not on air
+            seat = _seat_for(paths, r.actor)
+            named.append((seat, "seat"))
+            said.append(f"{seat}: no seat named for {_who(r.actor)} {r.verb}; a chair stands under the hips")
         if not any(how == "handled" for _, how in named) and r.verb in THROW | PUT | GIVE | KICK:
             held = next((q for q in paths.values() if q.holder is not None and q.holder[0] == r.actor), None)
             if held is None and r.verb in KICK:  # ドリブルして、シュートする: the ball at the feet
                 held = next((q for q in paths.values() if q.at_feet == r.actor), None)
             named += [(held.name, "handled")] if held is not None else []  # 拾って、投げる: what the hand holds
+        if not any(how == "handled" for _, how in named) and r.verb in LOCOMOTION_VERBS | MOVING_VERBS:
+            pushed = next((q for q in paths.values() if q.pushed_by == r.actor), None)
+            named += [(pushed.name, "handled")] if pushed is not None else []  # 台車を押して歩く: it comes along
         for name, how in named:
+            if how == "sight" and name in UNDRAWN:  # 空を見上げる: the sky is no box ahead on the floor
+                if name not in paths:
+                    said.append(f"{name}: looked at ({r.verb}), not drawn")
+                continue
+            cup = _cup_held(paths, r.actor) if how == "handled" and name in DRINKS else None
+            if cup is not None:  # コップを手に取って、水を飲む: the water is in the cup
+                cup.events.append((r.start, f"{_who(r.actor)} drinks {name} from it"))
+                continue
             if name not in paths:
-                shape, known = (PLACE, False) if how in ("place", "route") else shape_of(name)
+                shape, known = (PLACE, False) if how in ("place", "route") else shape_of(name.split(" ")[0])
                 paths[name] = _Path(name, shape, known, n, scale.get(r.actor, 1.0))
             _event(paths[name], how, r, rows, motions, fps)
     out = []
@@ -144,22 +184,44 @@ def things(rows: Sequence[Element], motions: dict[str | None, Motion], scale: di
     return tuple(out), said
 
 
+def _seat_for(paths: dict[str, _Path], actor: str | None) -> str:
+    """The stand-in chair of ``actor``: 椅子, or 椅子 2, 椅子 3, ... when others already sit on one."""
+    k = 1
+    while True:
+        name = SEAT_STAND_IN if k == 1 else f"{SEAT_STAND_IN} {k}"
+        p = paths.get(name)
+        if p is None or p.sat_by in (None, actor):
+            return name
+        k += 1
+
+
+def _cup_held(paths: dict[str, _Path], actor: str | None) -> _Path | None:
+    return next((q for q in paths.values() if q.holder is not None and q.holder[0] == actor
+                 and q.shape.shape == "cup"), None)
+
+
 def _named(r: Element, motions) -> list[tuple[str, str]]:
     """The things row ``r`` names and how: ``handled`` (its object), ``sight`` (the object of a look or a
-    wait: ahead), ``seat``, ``table``, ``place``, ``beside``, ``route``."""
+    wait: ahead), ``seat``, ``table``, ``place``, ``beside``, ``by`` (what a thing is put beside), ``around``,
+    ``route``; the ground (床に下ろす) is no thing."""
     out = []
-    if r.target and r.target not in motions:
+    side = r.target_side
+    if r.target and r.target not in motions and r.target not in GROUND_NOUNS:
         if r.target_role == "support" or (r.target_role == "source" and shape_of(r.target)[0].shape in
                                           ("chair", "bench")):
             out.append((r.target, "seat"))
         elif r.target_role == "destination":
+            out.append((r.target, "table" if side in (None, "on") else "by"))
+        elif r.target_role == "source" and side == "on":  # 机の上のペンを取る: the desk under the hand
             out.append((r.target, "table"))
         elif r.target_role in ("goal", "at", "source") and not shape_of(r.target)[1]:
             out.append((r.target, "place"))
-        elif r.target_role == "goal" and r.target_side not in (None, "on"):
+        elif r.target_role == "goal" and side == "around":
+            out.append((r.target, "around"))
+        elif r.target_role == "goal" and side != "on":  # ドアまで歩く: it stands ahead where the walk ends
             out.append((r.target, "beside"))
-            if r.verb in SIT:
-                out.append(("椅子", "seat"))  # 机の前に座る: on a chair at it
+            if r.verb in SIT and side is not None:
+                out.append((SEAT_STAND_IN, "seat"))  # 机の前に座る: on a chair at it
         elif r.target_role in ("goal", "at"):
             out.append((r.target, "table"))
     if r.object and r.object not in motions and r.verb in LOCOMOTION_VERBS and not shape_of(r.object)[1]:
@@ -185,13 +247,21 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
     f0, f1 = _frames(r, fps, m.n_frames)
     t = f0 / fps
     if how == "seat":
+        p.sat_by = p.sat_by or r.actor
         _seat(p, m, f0 if r.target_role == "source" else f1 - 1)
         p.events.append((t, f"{_who(r.actor)} " + ("rises from it" if r.target_role == "source" else "sits on it")))
     elif how == "table":
         _table(p, m, f0, f1)
     elif how == "beside":
-        _beside(p, m, f1 - 1, r.target_side)
-        p.events.append(((f1 - 1) / fps, f"{_who(r.actor)} is at its {r.target_side} side"))
+        _beside(p, m, f1 - 1, r.target_side, _turns_to_someone(r, rows, motions))
+        p.events.append(((f1 - 1) / fps, f"{_who(r.actor)} is at its {r.target_side or 'front'} side"))
+    elif how == "by":
+        _by(p, m, f0, f1, r.object)
+        p.events.append((t, f"{_who(r.actor)} puts {r.object or 'a thing'} by it"))
+    elif how == "around":  # the walk was steered into loops round it (scene.circling)
+        middle, _ = circling.centre(m, f0, f1)
+        p.rest(0, middle + [0.0, p.half, 0.0])
+        p.events.append((t, f"{_who(r.actor)} goes round it"))
     elif how == "route":
         path, _ = bodies.hips_path(m)
         p.rest(0, path[(f0 + f1) // 2] + [0.0, p.half, 0.0])
@@ -215,10 +285,13 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         p.events.append((t, f"dribbled by {_who(r.actor)}"))
     elif r.verb in THROW:
         _throw(p, r, m, rows, motions, f0, f1, fps)
-    elif r.verb in PICK:
+    elif r.verb in PICK or (r.verb in TAKE and not p.placed() and _reaches_down(m, p, f0, f1)):
         grab = bodies.lowest(_grip(m, p), f0, f1)
-        if not p.placed():  # it lay where the hand finds it
-            p.rest(0, _on_floor(_grip(m, p)[grab], p))
+        if not p.placed():  # it lay where the hand finds it: on the floor, or on the desk it is taken from
+            point = _on_floor(_grip(m, p)[grab], p)
+            if r.target_role == "source" and r.target_side == "on" and r.target not in GROUND_NOUNS:
+                point[1] += _table_top(bodies.hand(m, "right")[bodies.lowest(bodies.hand(m, "right"), f0, f1), 1])
+            p.rest(0, point)
         else:  # one already on its way (a pass) is met by the hand as it comes
             _meet(p, _grip(m, p), grab, int(MEET_S * fps))
         _hold(p, r.actor, m, grab)
@@ -229,18 +302,27 @@ def _event(p: _Path, how: str, r: Element, rows: Sequence[Element], motions, fps
         grip = _grip(m, p)
         let_go = bodies.lowest(grip, f0, f1)
         point = _on_floor(grip[let_go], p)
-        if r.target_role == "destination":  # on the table :func:`_table` puts under the hand
+        on_table = r.target_role == "destination" and r.target_side in (None, "on") and r.target not in GROUND_NOUNS
+        if on_table:  # on the table :func:`_table` puts under the hand
             point[1] += _table_top(bodies.hand(m, "right")[bodies.lowest(bodies.hand(m, "right"), f0, f1), 1])
         p.rest(let_go, point, float(bodies.hips_path(m)[1][let_go]))
-        p.events.append((let_go / fps, f"{_who(r.actor)} puts it down"))
+        floor = " on the floor" if r.target in GROUND_NOUNS else ""
+        p.events.append((let_go / fps, f"{_who(r.actor)} puts it down{floor}"))
     elif r.verb in GIVE:
         _give(p, r, m, motions, f0, f1, fps)
     elif r.verb in RECEIVE:
         if p.holder is None or p.holder[0] != r.actor:  # no one handed it over: taken at the reach
             _hold(p, r.actor, m, _instant(m, "both_hands", "reach", f0, f1))
             p.events.append((t, f"{_who(r.actor)} takes it"))
-    elif r.verb in OPEN or r.verb in CLOSE or _knocks(r, p):
-        _door(p, r, m, f0, f1, fps)
+    elif r.verb in OPEN or r.verb in CLOSE or _knocks(r, p) or (r.verb in PUSH_PULL and p.shape.shape == "door"):
+        opening = _opening_after(r, rows, p)
+        also = None if opening is None else bodies.hand(m, "right")[_instant(m, "right_hand", "reach",
+                                                                             *_frames(opening, fps, m.n_frames))]
+        _door(p, r, m, f0, f1, fps, opening is None, also)
+    elif (r.verb in PUSH and p.shape.shape != "door") or (
+            p.pushed_by == r.actor and r.verb in LOCOMOTION_VERBS | MOVING_VERBS):
+        _push(p, r, m, f0, f1)
+        p.events.append((t, f"pushed by {_who(r.actor)}"))
     elif p.holder is None or p.holder[0] != r.actor:
         _hold(p, r.actor, m, 0 if not p.placed() else f0)
         p.events.append((t, f"{_who(r.actor)} holds it"))
@@ -264,6 +346,17 @@ def _meet(p: _Path, grip: np.ndarray, f: int, n: int) -> None:
     u = (np.arange(lo, f) - lo + 1) / (f - lo + 1)
     w = (u * u * (3.0 - 2.0 * u))[:, None]
     p.pos[lo:f] = (1.0 - w) * p.pos[lo:f] + w * grip[lo:f]
+
+
+#: m at the built-in body's size: a hand lower than this reaches down for a thing (about the knees).
+REACH_DOWN = 0.55
+
+
+def _reaches_down(m: Motion, p: _Path, f0: int, f1: int) -> bool:
+    """Does the hand go down for the thing in frames ``[f0, f1)`` (a take that picks it up: 手に取る), rather
+    than stay up (写真を撮る: the camera is held from the start)?"""
+    grip = _grip(m, p)
+    return float(grip[bodies.lowest(grip, f0, f1), 1]) < REACH_DOWN * p.scale
 
 
 def _grip(m: Motion, p: _Path) -> np.ndarray:
@@ -381,6 +474,20 @@ def _dribble(p: _Path, r: Element, m: Motion, f0: int, f1: int) -> None:
     p.holder, p.at_feet = None, r.actor
 
 
+def _push(p: _Path, r: Element, m: Motion, f0: int, f1: int) -> None:
+    """The thing on the floor ahead of the hips (:data:`PUSH_GAP` to its near side) over frames ``[f0, f1)``,
+    turned as they face, left there after: pushed along (台車を押す, and on with the pusher's walk or carry)."""
+    path, heading = bodies.hips_path(m)
+    h = heading[f0:f1]
+    reach = PUSH_GAP * p.scale + 0.5 * p.size[2]
+    ahead = path[f0:f1] + reach * np.stack([np.sin(h), np.zeros_like(h), np.cos(h)], axis=1) + [0.0, p.half, 0.0]
+    p.pos[f0:] = ahead[-1]
+    p.pos[f0:f1] = ahead
+    p.rot[f0:] = Rotation.from_euler("y", float(h[-1])).as_quat()
+    p.rot[f0:f1] = Rotation.from_euler("y", h[:, None]).as_quat()
+    p.holder, p.pushed_by = None, r.actor
+
+
 def _throw(p: _Path, r: Element, m: Motion, rows, motions, f0: int, f1: int, fps: float) -> None:
     if p.holder is None or p.holder[0] != r.actor:
         _hold(p, r.actor, m, 0 if not p.placed() else f0)
@@ -403,6 +510,29 @@ def _throw(p: _Path, r: Element, m: Motion, rows, motions, f0: int, f1: int, fps
     aim = _aim(r, motions, start, let_go, heading)
     _fly(p, let_go, start, np.array([speed * np.sin(aim), float(np.clip(v[1], 1.0, 4.0)), speed * np.cos(aim)]), fps)
     p.events.append((let_go / fps, f"thrown by {_who(r.actor)}"))
+    hit = _reaches_body(p, r, motions, let_go)
+    if hit is not None:  # thrown to someone who does not catch it: it strikes them and drops at their feet
+        back = p.pos[hit - 1] - p.pos[hit]
+        back[1] = 0.0
+        _fly(p, hit, p.pos[hit], 0.5 * back / max(float(np.linalg.norm(back)), 1e-9), fps)
+        p.events.append((hit / fps, f"drops at {r.target}'s feet"))
+
+
+#: m at the built-in body's size: a flying thing this near a person's hips, over the floor, meets their body.
+BODY_RADIUS = 0.25
+
+
+def _reaches_body(p: _Path, r: Element, motions, after: int) -> int | None:
+    """The first frame after ``after`` at which the thing flying to row ``r``'s recipient meets their body (within
+    :data:`BODY_RADIUS` of their hips over the floor, below their head), or ``None``."""
+    if r.target not in motions or r.target_role != "recipient":
+        return None
+    hips = bodies.hips_path(motions[r.target])[0]
+    n = min(len(p.pos), len(hips))
+    for f in range(after + 1, n):
+        if np.hypot(*(p.pos[f] - hips[f])[[0, 2]]) < BODY_RADIUS * p.scale and p.pos[f, 1] < 1.8 * p.scale:
+            return f
+    return None
 
 
 def _catcher(p: _Path, r: Element, rows, motions, after: int, fps: float):
@@ -523,10 +653,18 @@ def _table(p: _Path, m: Motion, f0: int, f1: int) -> None:
     p.rest(0, np.array([centre[0], 0.5 * top, centre[2]]), heading)
 
 
-def _beside(p: _Path, m: Motion, f: int, side: str | None) -> None:
+def _turns_to_someone(r: Element, rows: Sequence[Element], motions) -> bool:
+    """Does the actor of ``r``, standing at the front of a thing (黒板の前に立って), then act towards a person
+    (生徒たちにお辞儀する)? Then the body faces them, its back to the thing."""
+    return r.target_side == "front" and any(
+        q.actor == r.actor and q.id != r.id and q.start >= r.start and q.target in motions
+        and q.target_role in ("addressee", "recipient", "patient", "partner") for q in rows)
+
+
+def _beside(p: _Path, m: Motion, f: int, side: str | None, back: bool = False) -> None:
     """A thing standing where the body is at frame ``f`` beside it: ahead of the hips, its near side
     :data:`BESIDE_GAP` from them (the body at its front, 前, faces it), or to the body's right or left
-    (隣, 横, 右, 左), turned as the body faces."""
+    (隣, 横, 右, 左), or behind it (``back``; 下: at the foot of a tree), turned as the body faces."""
     path, heading = bodies.hips_path(m)
     h = float(heading[f])
     w, _, d = p.size
@@ -534,9 +672,22 @@ def _beside(p: _Path, m: Motion, f: int, side: str | None) -> None:
     if side in ("beside", "right", "left"):
         across = -np.pi / 2 if side in ("beside", "right") else np.pi / 2
         centre = path[f] + (gap + 0.5 * w) * bodies.forward(h + across)
+    elif side == "under" or back:  # 木の下に座る: at its foot, the trunk at the back; 黒板の前で話す
+        centre = path[f] - (gap + 0.5 * d) * bodies.forward(h)
     else:
         centre = path[f] + (gap + 0.5 * d) * bodies.forward(h)
     p.rest(0, centre + [0.0, p.half, 0.0], h)
+
+
+def _by(p: _Path, m: Motion, f0: int, f1: int, thing: str | None) -> None:
+    """A thing a held thing is put beside (窓のそばに置く): standing beyond where the hand puts it down (its
+    lowest frame), room for that thing between, turned as the body faces."""
+    grip = bodies.hand(m, "right")
+    f = bodies.lowest(grip, f0, f1)
+    heading = float(bodies.hips_path(m)[1][f])
+    room = (shape_of(thing)[0].size[2] if thing else 0.3) * p.scale
+    centre = grip[f] + (room + BESIDE_GAP * p.scale * 0.5 + 0.5 * p.size[2]) * bodies.forward(heading)
+    p.rest(0, np.array([centre[0], p.half, centre[2]]), heading)
 
 
 def _table_top(hand_y: float) -> float:
@@ -549,28 +700,48 @@ def _knocks(r: Element, p: _Path) -> bool:
     return r.verb in KNOCK or (r.verb == "叩く" and p.shape.shape == "door")
 
 
-def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float) -> None:
-    """A door in front of the right hand at its furthest reach; its hinge on the hand's far side, it swings
-    open (or shut) from then to the row's end."""
-    hand = bodies.hand(m, "right")
+def _opening_after(r: Element, rows: Sequence[Element], p: _Path) -> Element | None:
+    """The opening of door ``p`` by the same actor after a push or pull ``r`` (ドアを引いて開ける: one act, the
+    pull takes the handle, the opening swings it), if any."""
+    if r.verb not in PUSH_PULL:
+        return None
+    return next((q for q in rows if q.actor == r.actor and q.id != r.id and q.start >= r.start and q.verb in OPEN
+                 and q.object == p.name), None)
+
+
+def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float, swings: bool = True,
+          also: np.ndarray | None = None) -> None:
+    """A door in front of the right hand at its furthest reach, its hinge on the hand's far side, where it is
+    first handled (a door held, the goal of a walk, is placed anew; with ``also``, the hand at the opening a
+    pull leads to, it stands at the nearer of the two reaches, the further one on its handle); it swings open
+    (or shut) from the reach to the row's end, from the angle it had, unless it does not ``swings`` (a pull
+    before an opening)."""
     reach = _instant(m, "right_hand", "reach", f0, f1)
-    heading = float(bodies.hips_path(m)[1][reach])
-    fwd, left = bodies.forward(heading), bodies.forward(heading + np.pi / 2)
-    w, h, _ = p.size
-    handle = hand[reach] + 0.05 * fwd
-    hinge = handle + (w - 0.1) * left
-    hinge[1] = 0.0
-    opening, knocked = r.verb in OPEN, _knocks(r, p)
+    fresh = p.hinge is None or p.holder is not None
+    if fresh:
+        heading = float(bodies.hips_path(m)[1][reach])
+        hand = bodies.hand(m, "right")[reach]
+        if also is not None and float(np.dot(also - hand, bodies.forward(heading))) < 0.0:
+            hand = also
+        handle = hand + 0.05 * bodies.forward(heading)
+        hinge = handle + (p.size[0] - 0.1) * bodies.forward(heading + np.pi / 2)
+        hinge[1] = 0.0
+        p.hinge = (hinge, heading, np.radians(DOOR_SWING) if r.verb in CLOSE else 0.0)  # ドアを閉める: it was open
+    hinge, heading, was = p.hinge
+    opening, knocked = r.verb in OPEN or r.verb in PUSH_PULL, _knocks(r, p)
+    to = was if knocked or not swings else np.radians(DOOR_SWING) if opening else 0.0
     n = len(p.pos)
-    ramp = np.clip((np.arange(n) - reach) / max(1, f1 - reach), 0.0, 1.0)
-    angles = np.radians(DOOR_SWING) * ((3 - 2 * ramp) * ramp * ramp if opening else 1 - (3 - 2 * ramp) * ramp * ramp)
-    if knocked:
-        angles[:] = 0.0  # knocked on: it stays shut
-    centre_local = -0.5 * w * left + [0.0, 0.5 * h, 0.0]
-    for k in range(n):
-        turn = Rotation.from_euler("y", heading + angles[k])
-        p.pos[k] = hinge + Rotation.from_euler("y", angles[k]).apply(centre_local)
-        p.rot[k] = turn.as_quat()
+    ramp = np.clip((np.arange(reach, n) - reach) / max(1, f1 - reach), 0.0, 1.0)
+    angles = was + (to - was) * (3 - 2 * ramp) * ramp * ramp
+    p.hinge = (hinge, heading, float(to))
+    w, h, _ = p.size
+    centre_local = -0.5 * w * bodies.forward(heading + np.pi / 2) + [0.0, 0.5 * h, 0.0]
+    if fresh:  # it stood there from the start (a door walked up to is where the hand finds it)
+        p.pos[:reach] = hinge + Rotation.from_euler("y", was).apply(centre_local)
+        p.rot[:reach] = Rotation.from_euler("y", heading + was).as_quat()
+    p.pos[reach:] = hinge + Rotation.from_euler("y", angles[:, None]).apply(centre_local)
+    p.rot[reach:] = Rotation.from_euler("y", heading + angles[:, None]).as_quat()
     p.holder = None
-    done = "knocked on" if knocked else "opened" if opening else "shut"
-    p.events.append((reach / fps, f"{done} by {_who(r.actor)}"))
+    if knocked or to != was or not swings:
+        done = "knocked on" if knocked else "taken by the handle" if not swings else "opened" if opening else "shut"
+        p.events.append((reach / fps, f"{done} by {_who(r.actor)}"))

@@ -114,3 +114,16 @@ def test_a_place_walked_through_is_a_marker_on_the_floor_not_a_thing_carried(db)
     (motion,) = anim.motions.values()
     assert park.size[1] < 0.05 and np.ptp(park.positions, axis=0).max() == 0.0  # flat, lying still
     assert np.hypot(*(park.positions[0] - motion.root_positions[motion.n_frames // 2])[[0, 2]]) < 0.5
+
+
+def test_a_noun_the_motion_cannot_keep_is_said_and_a_door_verb_takes_the_door_just_handled():
+    a = analyze("太郎は駅から家まで走った。")
+    (run,) = a.motions
+    assert (run.target, run.target_role) == ("家", "goal")
+    assert a.notes == ("駅 (source) is not placed: the motion keeps one target, 家",)  # said, never dropped
+    a = analyze("花子はドアを引いて開けた。")
+    assert [(m.verb, m.object) for m in a.motions] == [("引く", "ドア"), ("開ける", "ドア")]
+    assert a.notes == ("開ける read as done to ドア, the thing just handled",)
+    assert [m.object for m in analyze("花子はドアを開けて、閉めた。").motions] == ["ドア", "ドア"]  # 閉める: 締める
+    (stop, knock) = analyze("太郎は公園で立ち止まって、ノックした。").motions  # a bare で-place is no target
+    assert stop.target is None and knock.object is None
