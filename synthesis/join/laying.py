@@ -14,7 +14,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
 from text2anim.core.cancel import checkpoint
-from text2anim.core.contacts import FootContacts, detect_contacts
+from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 from text2anim.core.skeleton import Skeleton
 
