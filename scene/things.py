@@ -727,6 +727,7 @@ def _door(p: _Path, r: Element, m: Motion, f0: int, f1: int, fps: float, swings:
         hinge = handle + (p.size[0] - 0.1) * bodies.forward(heading + np.pi / 2)
         hinge[1] = 0.0
         p.hinge = (hinge, heading, np.radians(DOOR_SWING) if r.verb in CLOSE else 0.0)  # ドアを閉める: it was open
+    assert p.hinge is not None  # placed above when fresh
     hinge, heading, was = p.hinge
     opening, knocked = r.verb in OPEN or r.verb in PUSH_PULL, _knocks(r, p)
     to = was if knocked or not swings else np.radians(DOOR_SWING) if opening else 0.0
