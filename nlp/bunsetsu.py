@@ -117,7 +117,8 @@ def chunk(sentences: list[list[Token]]) -> list[Phrase]:
         numunit = False  # the current phrase is a number (+ counter)
         for k, tok in enumerate(sent):
             if cur and (_starts_phrase(tok, prev, numunit) or (
-                    k == 1 and prev is not None and _name_then_thing(prev, tok, sent[2] if len(sent) > 2 else None))):
+                    len(cur) == 1 and prev is not None
+                    and _name_then_thing(prev, tok, sent[k + 1] if k + 1 < len(sent) else None))):
                 phrases.append(Phrase(len(phrases), cur, s_index, quoted))
                 cur, numunit, quoted = [], False, False
             if tok.surface in _OPEN:
@@ -171,12 +172,13 @@ def _is_formal(tok: Token) -> bool:
 
 
 def _name_then_thing(prev: Token, tok: Token, after: Token | None) -> bool:
-    """太郎 + ボールを, 花子 + 手を opening a sentence: a person's name and a common noun with its own
-    particle, no person (田中 + 先生 is one), are two phrases, the name's particle left out
+    """太郎 + ボールを, 花子 + 手を, まじで太郎 + ジャンプした opening a phrase: a person's name and a common noun
+    with its own particle or する, no person (田中 + 先生 is one), are two phrases, the name's particle left out
     (docs/language.md §9).  The name must be one: tagged so here or on its own (UniDic tags 太郎 a
     common noun before ボール; 宇宙 of 宇宙遊泳 is none)."""
     return (tok.pos1 == "名詞" and tok.pos2 == "普通名詞" and prev.pos1 == "名詞" and tok.surface not in PERSON_NOUNS
-            and after is not None and after.pos1 == "助詞" and (prev.pos3 == "人名" or _name_alone(prev.surface)))
+            and after is not None and (after.pos1 == "助詞" or (tok.pos3 == "サ変可能" and after.lemma == "為る"))
+            and (prev.pos3 == "人名" or _name_alone(prev.surface)))
 
 
 @lru_cache(maxsize=1024)
