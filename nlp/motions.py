@@ -279,8 +279,7 @@ def _mark_passives(phrases: list[Phrase]) -> None:
                    and case_particle(q) == "に" and person_name(q)), None)
         if by is not None and not _honoured_before(phrases, i):
             pred.reason = "passive"
-            said = f"{by.key}{pred.written or pred.verb} (passive): done by {person_name(by)}, not animated"
-            pred.note = f"{pred.note}; {said}" if pred.note else said
+            pred.say(f"{by.key}{pred.written or pred.verb} (passive): done by {person_name(by)}, not animated")
 
 
 def _honoured_before(phrases: list[Phrase], i: int) -> bool:

@@ -112,19 +112,12 @@ def _read_place(pred: Pred, phrases: list[Phrase]) -> None:
         if ph.head != pred.phrase or ph.pred is not None:
             continue
         inner = _after_no(ph)
-        if inner:
-            found = idiom(inner, (written, pred.lemma, pred.verb))
-            if found is not None:
-                pred.verb_phrase = f"{inner}を{written}"
-                pred.verb, pred.written, pred.reading, pred.body_part = found.action, pred.verb_phrase, "", found.part
-                return
-        if case_particle(ph) == "に":
-            noun = noun_of(ph)
-            found = idiom(noun, (written, pred.lemma, pred.verb), particle="に")
-            if found is not None:
-                pred.verb_phrase = f"{noun}に{written}"
-                pred.verb, pred.written, pred.reading, pred.body_part = found.action, pred.verb_phrase, "", found.part
-                return
+        noun, particle = (inner, "を") if inner else (noun_of(ph), "に") if case_particle(ph) == "に" else ("", "")
+        found = idiom(noun, (written, pred.lemma, pred.verb), particle=particle) if noun else None
+        if found is not None:
+            pred.verb_phrase = f"{noun}{particle}{written}"
+            _becomes(pred, found)
+            return
 
 
 def reread(pred: Pred, noun: str) -> None:
@@ -150,10 +143,16 @@ def _read(pred: Pred, noun: str, words: Callable[[], frozenset[str]]) -> None:
         return
     if found.with_:  # 首を縦に振る: the word that makes it this idiom is part of the phrase
         pred.verb_phrase = f"{noun}を{min(found.with_ & words())}{written}"
+    if _becomes(pred, found):
+        pred.object = None
+
+
+def _becomes(pred: Pred, found: Idiom) -> bool:
+    """``pred`` read as the action ``found`` means, its phrase (``verb_phrase``) kept as written; an idiom done
+    with the face alone (目を覚ます) is no motion, said in the note. Whether it became another action."""
     if not found.action:  # 目を覚ます: the face alone, which no clip animates
         pred.reason = "unseen"
-        said = f"{pred.verb_phrase}: the face is not animated, nothing plays for it"
-        pred.note = f"{pred.note}; {said}" if pred.note else said
-        return
-    pred.verb, pred.written, pred.reading = found.action, pred.verb_phrase, ""
-    pred.object, pred.body_part = None, found.part
+        pred.say(f"{pred.verb_phrase}: the face is not animated, nothing plays for it")
+        return False
+    pred.verb, pred.written, pred.reading, pred.body_part = found.action, pred.verb_phrase, "", found.part
+    return True

@@ -40,6 +40,10 @@ class Pred:
     target_person: bool = False
     id: int = 0
 
+    def say(self, said: str) -> None:
+        """Add ``said`` to :attr:`note` (how the text was read, shown with the motion)."""
+        self.note = f"{self.note}; {said}" if self.note else said
+
     @property
     def motion(self) -> bool:
         return not self.reason

@@ -32,6 +32,7 @@ just handled.
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 
 from .actors import as_written, noun_of, person_name
 from .bunsetsu import Phrase
@@ -158,19 +159,15 @@ def _surely_person(ph: Phrase) -> bool:
             or any(t.pos1 == "接尾辞" and t.surface in HONORIFICS for t in toks) or _name_alone(noun))
 
 
-_ALONE: dict[str, bool] = {}
-
-
+@lru_cache(maxsize=1024)
 def _name_alone(noun: str | None) -> bool:
     """Is ``noun`` tagged a name when written alone (太郎を: yes; 本を, 机を: no)? UniDic reads 太郎 as a common
-    noun after another name (次郎は太郎を押した), not by itself; a thing that is also a surname stays a thing."""
+    noun after another name (次郎は太郎を押した), not by itself; a thing that is also a surname stays a thing.
+    Kept for the last 1,024 nouns asked (a studio process reads text after text)."""
     if not noun:
         return False
-    found = _ALONE.get(noun)
-    if found is None:
-        words = tagger()(noun + "を")
-        found = _ALONE[noun] = len(words) == 2 and words[0].surface == noun and words[0].feature.pos3 == "人名"
-    return found
+    words = tagger()(noun + "を")
+    return len(words) == 2 and words[0].surface == noun and words[0].feature.pos3 == "人名"
 
 
 def _before_no(ph: Phrase) -> Phrase | None:
@@ -263,7 +260,7 @@ def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
         if role is None or (t.person and t.name == pred.actor):
             continue
         if chosen is not None:  # 駅から家まで走る: one target a motion; the other is said, never dropped
-            _say(pred, f"{t.name} ({role}) is not placed: the motion keeps one target, {chosen.name}")
+            pred.say(f"{t.name} ({role}) is not placed: the motion keeps one target, {chosen.name}")
             continue
         chosen = t
         pred.target, pred.target_role, pred.target_side, pred.target_person = t.name, role, t.side, t.person
@@ -271,10 +268,6 @@ def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
             pred.object = None  # 花子の方を向く: 方 says where, it is not a thing turned
         if role == "partner" and t.name not in pred.co_actors:
             pred.co_actors = (*pred.co_actors, t.name)  # 花子と握手する: she shakes hands too
-
-
-def _say(pred: Pred, said: str) -> None:
-    pred.note = f"{pred.note}; {said}" if pred.note else said
 
 
 def _role(pred: Pred, t: Target) -> str | None:
@@ -363,7 +356,7 @@ def _follow_on(preds: list[Pred]) -> None:
             handled = prev.object or gone_to
             if handled:  # ドアを引いて開ける, ドアの前で立ち止まってノックする, 台車を押して運ぶ: the thing just handled
                 pred.object = handled
-                _say(pred, f"{pred.verb} read as done to {handled}, the thing just handled")
+                pred.say(f"{pred.verb} read as done to {handled}, the thing just handled")
         if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
                 and prev.target_side not in ALONGSIDE
                 and pred.verb not in LOCOMOTION_VERBS and pred.verb not in SUPPORT_VERBS):
@@ -376,7 +369,7 @@ def _follow_on(preds: list[Pred]) -> None:
         _stand_at(pred, prev)
         last[pred.actor] = pred
         if pred.object in THING_ANAPHORS and thing is not None:
-            _say(pred, f"{pred.object} read as {thing}, the thing last named")
+            pred.say(f"{pred.object} read as {thing}, the thing last named")
             pred.object = thing
             reread(pred, thing)
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
@@ -393,8 +386,7 @@ def _stand_at(pred: Pred, prev: Pred | None) -> None:
         return
     pred.verb = pred.written = "歩く"
     pred.reading = ""
-    said = f"立つ: walks to stand at {pred.target}"
-    pred.note = f"{pred.note}; {said}" if pred.note else said
+    pred.say(f"立つ: walks to stand at {pred.target}")
 
 
 def _give_back(pred: Pred, givers: dict[str, str | None]) -> None:
