@@ -67,7 +67,7 @@ def _person_name(ph: Phrase) -> str | None:
     affixed = honorific = proper = False
     for k, t in enumerate(toks):  # one pass: this runs on most phrases of every text
         pos1 = t.pos1
-        if pos1 == "助詞" and t.surface == "の" and nouns and _names_a_side(toks[k + 1:]):
+        if pos1 == "助詞" and t.surface == "の" and nouns and side_after_no(toks[k + 1:]) is not None:
             return None  # 兄の後を, 花子の前に: a place beside a person, not a person
         if pos1 == "名詞" or pos1 == "代名詞":
             nouns.append(t)
@@ -87,10 +87,10 @@ def _person_name(ph: Phrase) -> str | None:
     return as_written(toks) if affixed else name
 
 
-def _names_a_side(toks: list[Token]) -> bool:
-    """Do the words after a の name a side or place of what comes before it (後, 前, ところ)?"""
+def side_after_no(toks: list[Token]) -> str | None:
+    """The side or place noun the words after a の name (後, 前, ところ: 花子の前に), ``None`` when they name none."""
     rel = "".join(t.surface for t in toks if t.pos1 in ("名詞", "接尾辞"))
-    return rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS
+    return rel if rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS else None
 
 
 def as_written(toks: list[Token]) -> str:

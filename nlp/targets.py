@@ -34,7 +34,7 @@ from __future__ import annotations
 from dataclasses import replace
 from functools import lru_cache
 
-from .actors import as_written, noun_of, person_name
+from .actors import as_written, noun_of, person_name, side_after_no
 from .bunsetsu import Phrase
 from .lexicon import (
     AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
@@ -226,8 +226,8 @@ def _inner_side(ph: Phrase) -> Target | None:
     toks = ph.tokens
     for k, t in enumerate(toks):
         if t.surface == "の" and t.pos1 == "助詞" and 0 < k < len(toks) - 1:
-            rel = "".join(x.surface for x in toks[k + 1:] if x.pos1 in ("名詞", "接尾辞"))
-            if rel in SIDE_NOUNS or rel in PLACE_OF_NOUNS:
+            rel = side_after_no(toks[k + 1:])
+            if rel is not None:
                 head = Phrase(ph.index, toks[:k], ph.sentence, ph.quoted)
                 name, person = _name(head)
                 particle = _at_side(_particle(ph))

@@ -23,12 +23,11 @@ def together(analysis: Analysis) -> dict[int, tuple[int, ...]]:
         if m.span[1] > m.span[0]:
             groups.setdefault((m.verb, m.span), []).append(m.id)
     by_id = {m.id: m for m in analysis.motions}
-    for c in analysis.constraints:  # 花子は踊り始めた。太郎も一緒に踊った: linked in parallel, the same verb
-        a, b = by_id.get(c.first), by_id.get(c.second)
-        if c.relation == "parallel" and a is not None and b is not None and a.verb == b.verb and a.actor != b.actor:
-            groups[(a.verb, (-c.first, -c.second))] = [a.id, b.id]
+    linked = [[a.id, b.id] for c in analysis.constraints  # 花子は踊り始めた。太郎も一緒に踊った: in parallel, one verb
+              if c.relation == "parallel" and (a := by_id.get(c.first)) is not None
+              and (b := by_id.get(c.second)) is not None and a.verb == b.verb]
     out: dict[int, tuple[int, ...]] = {}
-    for ids in groups.values():
+    for ids in [*groups.values(), *linked]:
         if len({by_id[i].actor for i in ids}) < 2:
             continue
         for i in ids:
