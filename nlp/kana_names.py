@@ -16,7 +16,7 @@ from dataclasses import replace
 from functools import lru_cache
 
 from .lexicon import HONORIFICS, KANA_NAMES
-from .tagging import katakana
+from .tagging import is_hiragana, katakana
 from .types import Token
 
 #: What may follow a name: an honorific, a particle or punctuation.
@@ -71,8 +71,4 @@ def read_names(line: str, offset: int, tokens: list[Token], notes: list[str]) ->
 def _opens_word(line: str, i: int, tokens: list[Token], k: int) -> bool:
     """Does a word start at ``line[i]`` (token ``k``): the line's start, after anything but hiragana, or
     after a particle (そこではるとが: で)?"""
-    return i == 0 or not _hiragana(line[i - 1]) or (k > 0 and tokens[k - 1].pos1 == "助詞")
-
-
-def _hiragana(ch: str) -> bool:
-    return "\u3041" <= ch <= "\u309f"
+    return i == 0 or not is_hiragana(line[i - 1]) or (k > 0 and tokens[k - 1].pos1 == "助詞")

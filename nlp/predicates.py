@@ -17,6 +17,7 @@ from .lexicon import (
 )
 from .mimetics import REPEATS, as_verb, repeats
 from .pred import Pred
+from .tagging import is_hiragana
 from .types import Token
 
 _NEGATIONS = frozenset(["ない", "ず", "ぬ", "無い"])
@@ -36,13 +37,9 @@ def canonical_verb(tok: Token) -> str:
             return cand
         if cand in VERB_ALIASES:
             return VERB_ALIASES[cand]
-    if _is_hiragana(tok.orth) and tok.kana in LIBRARY_BY_READING:
+    if is_hiragana(tok.orth) and tok.kana in LIBRARY_BY_READING:
         return LIBRARY_BY_READING[tok.kana]
     return tok.lemma
-
-
-def _is_hiragana(s: str) -> bool:
-    return all("\u3041" <= ch <= "\u309f" for ch in s)
 
 
 def find_predicate(ph: Phrase, next_ph: Phrase | None) -> Pred | None:

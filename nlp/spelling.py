@@ -19,7 +19,7 @@ from dataclasses import replace
 from functools import lru_cache
 
 from .lexicon import LIBRARY_BY_READING, LIBRARY_VERBS
-from .tagging import katakana, tag
+from .tagging import is_hiragana, katakana, tag
 from .types import Token
 
 #: What may follow a kanji that opens a misspelt verb: not a case or topic particle (手を, 前に, 本は)
@@ -101,10 +101,6 @@ def _is_kanji(ch: str) -> bool:
     return "\u4e00" <= ch <= "\u9fff"
 
 
-def _is_hiragana(ch: str) -> bool:
-    return "\u3041" <= ch <= "\u309f"
-
-
 def _suspect(tokens: list[Token], k: int) -> bool:
     """A one-kanji noun (or suffix) right before kana that do not make it a noun of the sentence."""
     tok = tokens[k]
@@ -113,7 +109,7 @@ def _suspect(tokens: list[Token], k: int) -> bool:
     if k + 1 >= len(tokens) or (k and tokens[k - 1].is_number):
         return False  # 3回する: a counter
     nxt = tokens[k + 1]
-    if nxt.start != tok.end or not _is_hiragana(nxt.surface[0]) or nxt.lemma == "為る":
+    if nxt.start != tok.end or not is_hiragana(nxt.surface[0]) or nxt.lemma == "為る":
         return False
     return not ((nxt.pos1 == "助詞" and nxt.pos2 in _NOUN_PARTICLES) or nxt.lemma in _COPULAS)
 
@@ -124,7 +120,7 @@ def _okurigana(line: _Line, kanji: Token, notes: list[str]) -> tuple[_Line, list
     first = line.at(kanji.start)
     at = first + 1  # where the kana after the kanji start
     end = at
-    while end < len(line.text) and _is_hiragana(line.text[end]):
+    while end < len(line.text) and is_hiragana(line.text[end]):
         end += 1
     for kana, shift in [("", -1)] + [(kana, +1) for kana in _FORGOTTEN]:
         new = line.edited(at, kana)
@@ -163,7 +159,7 @@ def _drawn_out(line: _Line, tokens: list[Token]) -> list[Token]:
     """おどろー -> おどろう, すわるぅ -> すわる: a drawl after kana read as a verb UniDic did not see."""
     text = line.text
     for q in range(1, len(text)):
-        if text[q] not in _DRAWL or not _is_hiragana(text[q - 1]):
+        if text[q] not in _DRAWL or not is_hiragana(text[q - 1]):
             continue
         kana = line.place(q - 1) + line.offset  # the drawn-out kana, in the text
         if any(t.pos1 == "動詞" and t.start <= kana < t.end for t in tokens):
@@ -209,7 +205,7 @@ def _nasal_verb(tokens: list[Token], notes: list[str]) -> list[Token]:
             stem, ending = tok.surface[:-1], nxt
         elif tok.pos1 == "連体詞" and tok.surface.endswith("んだ") and (nxt is None or nxt.pos1 != "名詞"):
             stem = tok.surface[:-2]
-        meant = _nasal_reading(stem) if stem and all(_is_hiragana(ch) for ch in stem) else None
+        meant = _nasal_reading(stem) if stem and is_hiragana(stem) else None
         if meant is None:
             out.append(tok)
             k += 1

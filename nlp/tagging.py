@@ -81,3 +81,8 @@ def as_verb(tok: Token) -> Token | None:
 def katakana(s: str) -> str:
     """``s`` with its hiragana written in katakana (はると -> ハルト): the form of UniDic's readings."""
     return "".join(chr(ord(ch) + 0x60) if "\u3041" <= ch <= "\u3096" else ch for ch in s)
+
+
+def is_hiragana(s: str) -> bool:
+    """Is every character of ``s`` hiragana (one character or a word)?"""
+    return all("\u3041" <= ch <= "\u309f" for ch in s)
