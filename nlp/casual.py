@@ -49,7 +49,8 @@ def repair(tokens: list[Token], notes: list[str]) -> list[Token]:
         nxt = out[i + 1] if i + 1 < len(out) else None
         if prev is None:
             continue
-        if is_laughter(tok.surface) and _ends_predicate(prev) and (nxt is None or _mark_or_laugh(nxt)):
+        if is_laughter(tok.surface) and _ends_predicate(prev) and (nxt is None or _mark_or_laugh(nxt)
+                                                                    or nxt.start > tok.end):  # ｗ　まじうける
             out[i] = replace(tok, pos1="補助記号", pos2="句点", pos3="*", lemma=tok.surface, orth=tok.surface)
         elif (tok.surface in ("わ", "ゎ") and tok.pos1 in ("助詞", "接尾辞") and _name_end(out, i - 1) and nxt is not None
               and nxt.pos1 not in ("補助記号", "助詞", "助動詞")):
