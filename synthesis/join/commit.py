@@ -8,6 +8,7 @@ track's; seconds only in the report.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 
 from text2anim.core.motion import Motion
@@ -19,13 +20,14 @@ from .laying import TrackState
 from .placed import Placed
 
 
-def commit(state: TrackState, placed: Placed, out: Motion, report: JoinReport, window: Frames, region: Frames,
+def commit(state: TrackState, placed: Placed, out: Motion | Sequence[Motion], report: JoinReport, window: Frames, region: Frames,
            rewrites_from: int, floor: int, delay: float = 0.0) -> Placed:
     """Commit the join of ``state``'s last element and ``placed`` (the next one, as placed) to ``state``.
 
     Args:
         placed: the next element as the join placed it (moved, and its offset, phase and stop as joined).
-        out: the track with the join written (it ends with ``placed``'s last frame).
+        out: the track with the join written (it ends with ``placed``'s last frame), or its pieces end to
+            end (:meth:`TrackState.lay`).
         report: the join's report (metrics are added when the track is measured).
         window: the frames measured as the join's blend; ``region``: the blend and the feet released after it.
         rewrites_from: the first track frame the join rewrites (a looped first clip's core ends there).
@@ -40,7 +42,7 @@ def commit(state: TrackState, placed: Placed, out: Motion, report: JoinReport, w
         placed = replace(placed, core=(max(placed.core[0], region[1] - placed.offset), placed.core[1]))
     if prev.cyclic:  # and the loop it leaves ends its core where the join starts rewriting it
         state.placed[k] = replace(prev, core=(prev.core[0], min(prev.core[1], rewrites_from - prev.offset)))
-    state.motion = out
+    state.lay([out] if isinstance(out, Motion) else out)
     state.floor = floor
     if delay:
         state.delays.append((placed.element.id, delay))

@@ -13,24 +13,30 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
+import numpy as np
+
 from text2anim.core.cancel import checkpoint
 from text2anim.core.contacts import detect_contacts
-from text2anim.core.motion import Motion
+from text2anim.core.motion import Motion, concatenate
 from text2anim.core.skeleton import Skeleton
 
 from ..tracks import Element, Track
 from .align import place_at
 from .laid import Laid, LaidJoin
 from .placed import Placed, on_skeleton
-from .timing import KNEE, ease_hold, ease_lead, hold, prepare, repetitions
+from .blend import sample
+from .timing import KNEE, ease_hold, ease_lead, hold, prepare, repetitions, soft_clip, take_frames
 
 
 @dataclass
 class TrackState:
     """A track being laid: the frames so far, the elements placed, the joins, the earliest frame a new
-    blend may start (``floor``), and the elements a join moved in time (``delays``: ``(id, s)``)."""
+    blend may start (``floor``), and the elements a join moved in time (``delays``: ``(id, s)``).
 
-    motion: Motion | None = None
+    The frames are kept as pieces end to end (:meth:`lay`), put together when :attr:`motion` is read: a join
+    lays the track before its blend and its rendering, and the next join extends those (:func:`extended`)
+    without first putting them together, so a long track is copied once a join, not twice."""
+
     placed: list[Placed] = field(default_factory=list)
     joins: list[LaidJoin] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
@@ -38,6 +44,22 @@ class TrackState:
     floor: int = 0
     delays: list[tuple[int, float]] = field(default_factory=list)
     skeleton: Skeleton | None = None
+    pieces: tuple[Motion, ...] = ()
+
+    @property
+    def motion(self) -> Motion | None:
+        """The frames so far (``None`` before the first element is placed)."""
+        if len(self.pieces) > 1:
+            self.pieces = (concatenate(list(self.pieces)),)
+        return self.pieces[0] if self.pieces else None
+
+    @motion.setter
+    def motion(self, motion: Motion | None) -> None:
+        self.pieces = () if motion is None else (motion,)
+
+    def lay(self, pieces: Sequence[Motion]) -> None:
+        """The frames so far are ``pieces`` end to end (empty ones left out; put together when read)."""
+        self.pieces = tuple(p for p in pieces if p.n_frames)
 
     def laid(self) -> Motion:
         """The frames so far (a join is only made once the first element is placed)."""
@@ -81,6 +103,30 @@ def extend(tr: Motion, n: int, floor: int) -> Motion:
     if tr.n_frames - 1 - KNEE * tr.fps >= floor:
         return ease_hold(tr, n)
     return hold(tr, n)
+
+
+def extended(state: TrackState, n: int) -> Motion:
+    """:func:`extend` of the track so far to ``n`` frames, with ``state.floor``, bit for bit, but put together
+    from its pieces (:meth:`TrackState.lay`) once: a track eased or held past a last piece that holds the
+    easing is that piece's frames resampled (:func:`synthesis.join.blend.sample` with the piece's origin,
+    the track's fractions) after the pieces before it."""
+    pieces = state.pieces
+    if len(pieces) < 2:
+        return extend(state.laid(), n, state.floor)
+    total = sum(p.n_frames for p in pieces)
+    last = pieces[-1]
+    origin = total - last.n_frames
+    if total >= n:
+        return extend(state.laid(), n, state.floor)
+    if total - 1 - KNEE * last.fps < state.floor:  # held (hold): the last frame repeated
+        return concatenate([*pieces, take_frames(last[last.n_frames - 1:], np.zeros(n - total, dtype=int))])
+    k = KNEE * last.fps  # eased (ease_hold): the frames from ``start`` on resampled
+    start = max(0, int(np.floor(total - 1 - k)))
+    if start < origin:
+        return extend(state.laid(), n, state.floor)
+    src = soft_clip(np.arange(start, n, dtype=np.float64), 0, total - 1, k)
+    head = [*pieces[:-1], last[:start - origin]]
+    return concatenate([p for p in head if p.n_frames] + [sample(last, src, origin)])
 
 
 def lay_elements(track: Track, whole: Sequence[Element], fps: float,

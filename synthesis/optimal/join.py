@@ -9,14 +9,14 @@ from text2anim.core.metrics import root_pop, skating_ratio
 
 from ..join.commit import commit, lock_report, skip
 from ..join.laid import Laid
-from ..join.laying import TrackState, extend, lay_elements
+from ..join.laying import TrackState, extended, lay_elements
 from ..join.placed import Placed
 from ..result import BlendInterval, JoinReport
 from ..tracks import Element, Track
 from .blend_search import Weights
 from .planner import MIN_BLEND, plan_join, public_info
 from .records import Plan, Skip
-from .repair import carry_out
+from .repair import carry_out_window
 
 
 def report_of(prev: Placed, inc: Placed, plan: Plan, fps: float, locks) -> JoinReport:
@@ -38,14 +38,14 @@ def join_next(state: TrackState, inc: Placed, fps: float, weights: Weights, lock
               min_blend: float = MIN_BLEND, allow_shift: bool = True) -> Plan | Skip:
     """Join ``inc`` to the track's last element (plan, render, report); a :class:`Skip` leaves the track as it was."""
     prev = state.placed[-1]
-    tr = extend(state.laid(), inc.offset + inc.motion.n_frames, state.floor)
+    tr = extended(state, inc.offset + inc.motion.n_frames)
     plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
     carry = _carried_delay(state, prev, fps)
     if isinstance(plan, Skip) and carry:
         # the previous element was delayed for room and its core now covers this one's start: the element
         # scheduled after it follows it rather than being dropped (only then; others keep their times)
         inc = inc.moved(carry)
-        tr = extend(state.laid(), inc.offset + inc.motion.n_frames, state.floor)
+        tr = extended(state, inc.offset + inc.motion.n_frames)
         plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
     else:
         carry = 0
@@ -57,7 +57,8 @@ def join_next(state: TrackState, inc: Placed, fps: float, weights: Weights, lock
     # the sources' figures at the track's rate (quality(m, None)'s skating ratio and root pop, without the rest)
     own = max(skating_ratio(prev.motion), skating_ratio(inc.motion))
     own_pop = max(root_pop(prev.motion), root_pop(inc.motion))
-    plan, out, locks, window = carry_out(tr, plan, lock, own, own_pop)
+    plan, c0, rendered, locks, window = carry_out_window(tr, plan, lock, own, own_pop)
+    out = (tr[:c0], rendered)  # the track, laid as these two pieces (TrackState.lay)
     region_end = max([window[1]] + [lk.release_end for lk in locks])
     shown = replace(e, start=inc.first / fps, end=inc.end / fps) if (plan.shift or plan.phase or carry) else e
     state.warnings.extend(w for w in plan.warnings if w not in state.warnings)  # a repeated motion's joins say it once

@@ -114,16 +114,24 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     all of them): each is a few hundred frames however long the track, and the whole track is put together
     once, for the rendering kept.
     """
+    p, c0, out, locks, window = carry_out_window(tr, plan, lock, own, own_pop)
+    return p, concatenate([tr[:c0], out]) if c0 else out, locks, window
+
+
+def carry_out_window(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: float = float("inf")):
+    """:func:`carry_out` without putting the whole track together: ``(plan, c0, rendered, locks, window)``, the
+    track being ``tr[:c0]`` then ``rendered`` (its pose known: the two end to end know theirs); the locks and
+    window in the track's frames. A long track laid join after join is then copied once a join, not twice
+    (:meth:`synthesis.join.laying.TrackState.lay`)."""
     c0 = _first_rendered(tr, plan)
     whole_c = detect_contacts(tr)  # on the whole track (the detection's thresholds are the track's), then cut
     p, out, locks, window = _carry_out(tr, tr[c0:], c0, plan, lock, own, own_pop,
                                        FootContacts(whole_c.fps, whole_c.left[c0:], whole_c.right[c0:]))
     if c0:
-        out.pose  # (its window's kinematics): the whole track's pose is then joined now, and its slices know theirs
-        out = concatenate([tr[:c0], out])
+        out.pose  # (its window's kinematics): the track's pose is then joined from the pieces', and its slices know theirs
         locks = [replace(lk, begin=lk.begin + c0, end=lk.end + c0, release_end=lk.release_end + c0) for lk in locks]
         window = (window[0] + c0, window[1] + c0)
-    return p, out, locks, window
+    return p, c0, out, locks, window
 
 
 def _carry_out(whole: Motion, tr: Motion, c0: int, plan: Plan, lock: bool, own: float, own_pop: float,

@@ -1,5 +1,5 @@
-"""A join's renderings are of the track from its blend on (:func:`synthesis.optimal.repair.carry_out`): the
-track it returns keeps every frame before the join as it was, and its pose — joined from the track's and the
+"""A join's renderings are of the track from its blend on (:func:`synthesis.optimal.repair.carry_out_window`):
+the track it lays keeps every frame before the join as it was, and its pose — joined from the track's and the
 kept rendering's — is the kinematics of its own frames, bit for bit (the next join reads it)."""
 from __future__ import annotations
 
@@ -7,23 +7,25 @@ import numpy as np
 
 import text2anim
 from text2anim.core import fk
+from text2anim.core.motion import concatenate
 from text2anim.synthesis.optimal import join as optimal_join
 
 
 def test_every_join_of_a_long_text_keeps_the_track_before_it_and_a_true_pose(monkeypatch):
     joins = []
-    real = optimal_join.carry_out
+    real = optimal_join.carry_out_window
 
     def recorded(tr, plan, *args):
         out = real(tr, plan, *args)
         joins.append((tr, out))
         return out
 
-    monkeypatch.setattr(optimal_join, "carry_out", recorded)
+    monkeypatch.setattr(optimal_join, "carry_out_window", recorded)
     text2anim.animate("太郎は走る。" + "3秒後に歩く。" * 3)
     assert len(joins) >= 3  # the run into a walk, and walk into walk: joins late on a track
     assert max(tr.n_frames for tr, _ in joins) > 400
-    for tr, (_, out, locks, window) in joins:
+    for tr, (_, c0, rendered, locks, window) in joins:
+        out = concatenate([tr[:c0], rendered])  # the track as laid
         w0 = window[0]
         assert all(lk.begin >= w0 for lk in locks)
         for a, b in ((out.rotations, tr.rotations), (out.root_positions, tr.root_positions)):
