@@ -20,8 +20,8 @@ from .laying import TrackState
 from .placed import Placed
 
 
-def commit(state: TrackState, placed: Placed, out: Motion | Sequence[Motion], report: JoinReport, window: Frames, region: Frames,
-           rewrites_from: int, floor: int, delay: float = 0.0) -> Placed:
+def commit(state: TrackState, placed: Placed, out: Motion | Sequence[Motion], report: JoinReport, window: Frames,
+           region: Frames, rewrites_from: int, floor: int, delay: float = 0.0) -> Placed:
     """Commit the join of ``state``'s last element and ``placed`` (the next one, as placed) to ``state``.
 
     Args:

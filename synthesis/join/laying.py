@@ -22,9 +22,9 @@ from text2anim.core.skeleton import Skeleton
 
 from ..tracks import Element, Track
 from .align import place_at
+from .blend import sample
 from .laid import Laid, LaidJoin
 from .placed import Placed, on_skeleton
-from .blend import sample
 from .timing import KNEE, ease_hold, ease_lead, hold, prepare, repetitions, soft_clip, take_frames
 
 

@@ -128,7 +128,7 @@ def carry_out_window(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_p
     p, out, locks, window = _carry_out(tr, tr[c0:], c0, plan, lock, own, own_pop,
                                        FootContacts(whole_c.fps, whole_c.left[c0:], whole_c.right[c0:]))
     if c0:
-        out.pose  # (its window's kinematics): the track's pose is then joined from the pieces', and its slices know theirs
+        out.pose  # (its window's kinematics): the track's pose is then joined from the pieces' (slices know theirs)
         locks = [replace(lk, begin=lk.begin + c0, end=lk.end + c0, release_end=lk.release_end + c0) for lk in locks]
         window = (window[0] + c0, window[1] + c0)
     return p, c0, out, locks, window
