@@ -173,6 +173,32 @@ def contacts_within(motion: Motion, floor: np.ndarray) -> FootContacts:
     return _detect(motion, floor)
 
 
+def lowest_tracks(motion: Motion) -> tuple[np.ndarray, np.ndarray]:
+    """``(heights, speeds)``, ``(T, feet)`` each (feet in ``body_map`` order): the world height (m) and the
+    horizontal speed (m/s) of each foot's lowest joint, what the rule reads before the floor levels. Per frame,
+    but a frame's speed reads its neighbours (a track's is its pieces' end to end except a frame either side of
+    a seam: the first and last frames' speeds are one-sided differences)."""
+    _sides, _joints, pos, lowest = _lowest(motion)
+    rows = np.arange(motion.n_frames)[:, None]
+    cols = np.arange(pos.shape[1])[None, :]
+    y = pos[rows, cols, lowest, 1]
+    return y, (horizontal_speed(pos, motion.fps)[rows, cols, lowest] if len(y) else y)
+
+
+def contacts_of(heights: np.ndarray, speeds: np.ndarray, fps: float) -> FootContacts:
+    """:func:`detect_contacts`' labels from a motion's :func:`lowest_tracks` (``(T, feet)`` each, the feet
+    ``left`` then ``right``), bit for bit: a long track's kept and extended by its new frames' values
+    instead of redone (:func:`synthesis.join.laying.extended`)."""
+    min_len = max(1, int(round(MIN_PHASE * fps)))
+    floor = floor_levels(heights) if len(heights) else np.zeros(heights.shape[1])
+    labels = []
+    for k in range(heights.shape[1]):
+        raw = (heights[:, k] - floor[k] < HEIGHT_THRESHOLD) & (speeds[:, k] < SPEED_THRESHOLD)
+        labels.append(hysteresis(raw, min_len))
+        labels[-1].setflags(write=False)
+    return FootContacts(fps, *labels)
+
+
 def _detect(motion: Motion, floor: np.ndarray | None = None) -> FootContacts:
     min_len = max(1, int(round(MIN_PHASE * motion.fps)))
     labels = {}

@@ -51,6 +51,8 @@ class Frames(Protocol):
 
     def local_translations(self) -> np.ndarray: ...
 
+    def frames(self, start: int, stop: int | None = None) -> "Frames": ...
+
 
 # ------------------------------------------------------------------ recipes
 @dataclass(frozen=True)
@@ -112,6 +114,18 @@ class _Parts:
     def pose(self, m: Frames) -> Pose:
         return fk.joined([p.cache.pose(p) for p in self.parts])
 
+    def frames(self, sl: slice) -> "PoseCache":
+        """A cache for the frames ``sl`` of the motion: the parts' frames there, end to end, joined when asked
+        (a window of a long track laid in pieces costs the window's, not the track's)."""
+        start, stop, _ = sl.indices(sum(len(p.rotations) for p in self.parts))
+        cut, at = [], 0
+        for p in self.parts:
+            n = len(p.rotations)
+            if at + n > start and at < stop:
+                cut.append(p.frames(max(start, at) - at, min(stop, at + n) - at))
+            at += n
+        return PoseCache(recipe=_Parts(tuple(cut))) if cut else PoseCache()
+
 
 Recipe = _Below | _RootMoved | _Rows | _Parts
 
@@ -148,6 +162,8 @@ class PoseCache(Memo):
             return self._recipe.frames(sl)
         if isinstance(self._recipe, _Rows):
             return PoseCache(recipe=_Rows(self._recipe.known, self._recipe.rows[sl]))
+        if isinstance(self._recipe, _Parts):
+            return self._recipe.frames(sl)
         return PoseCache()
 
     def of_root_moved(self, m: Frames, root_positions: np.ndarray) -> "PoseCache":
@@ -206,9 +222,16 @@ class PoseCache(Memo):
     def of_parts(parts: Sequence[Frames]) -> "PoseCache":
         """A cache for ``parts`` end to end: their poses joined, now if every part's is known, else when asked
         (only the parts not yet solved are)."""
+        # a part itself still parts end to end gives those (a track laid in pieces join after join stays one
+        # level of pieces, joined once when asked)
+        parts = [q for p in parts for q in (p.cache._recipe.parts if p.cache._parts_only() else (p,))]
         if all(p.cache.known_pose() is not None for p in parts):
             return PoseCache(fk.joined([p.cache.pose(p) for p in parts]))
         return PoseCache(recipe=_Parts(tuple(parts)))
+
+    def _parts_only(self) -> bool:
+        """Whether the pose is not known and is the pose of parts end to end (:meth:`of_parts`)."""
+        return self._pose is None and isinstance(self._recipe, _Parts)
 
     def share(self, m: Frames, other: Frames, rows: np.ndarray) -> None:
         """Let ``m``'s pose (this cache's) take ``other``'s where the frames are the same: ``rows`` ``(T,)``

@@ -35,6 +35,6 @@ def align_through_foot(prev: Motion, a: int, nxt: Motion, b: int, side: str | No
         pa, pb = prev.root_positions[a], nxt.root_positions[b]
     else:
         ankle, toe = body_map(prev.skeleton).feet[side]
-        pa = prev.positions[a, [ankle, toe]].mean(axis=0)
+        pa = prev[a:a + 1].positions[0, [ankle, toe]].mean(axis=0)  # (that frame's kinematics alone)
         pb = nxt.positions[b, [ankle, toe]].mean(axis=0)
     return match(pb, hb, pa, ha)

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from text2anim.core.cancel import checkpoint
-from text2anim.core.contacts import detect_contacts
+from text2anim.core.contacts import contacts_of, detect_contacts, lowest_tracks
 from text2anim.core.motion import Motion, concatenate
 from text2anim.core.skeleton import Skeleton
 
@@ -45,6 +45,8 @@ class TrackState:
     delays: list[tuple[int, float]] = field(default_factory=list)
     skeleton: Skeleton | None = None
     pieces: tuple[Motion, ...] = ()
+    #: the frames' :func:`core.contacts.lowest_tracks` ``(heights, speeds)`` when known (:func:`laid_feet`)
+    feet: tuple[np.ndarray, np.ndarray] | None = None
 
     @property
     def motion(self) -> Motion | None:
@@ -55,11 +57,13 @@ class TrackState:
 
     @motion.setter
     def motion(self, motion: Motion | None) -> None:
-        self.pieces = () if motion is None else (motion,)
+        self.lay(() if motion is None else (motion,))
 
-    def lay(self, pieces: Sequence[Motion]) -> None:
-        """The frames so far are ``pieces`` end to end (empty ones left out; put together when read)."""
+    def lay(self, pieces: Sequence[Motion], feet: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+        """The frames so far are ``pieces`` end to end (empty ones left out; put together when read);
+        ``feet``: their :func:`core.contacts.lowest_tracks` when the caller has them."""
         self.pieces = tuple(p for p in pieces if p.n_frames)
+        self.feet = feet
 
     def laid(self) -> Motion:
         """The frames so far (a join is only made once the first element is placed)."""
@@ -109,7 +113,8 @@ def extended(state: TrackState, n: int) -> Motion:
     """:func:`extend` of the track so far to ``n`` frames, with ``state.floor``, bit for bit, but put together
     from its pieces (:meth:`TrackState.lay`) once: a track eased or held past a last piece that holds the
     easing is that piece's frames resampled (:func:`synthesis.join.blend.sample` with the piece's origin,
-    the track's fractions) after the pieces before it."""
+    the track's fractions) after the pieces before it. Where the track's feet are kept (``state.feet``), the
+    extension's are theirs and its new frames' (:func:`_fed`), and so are its contacts."""
     pieces = state.pieces
     if len(pieces) < 2:
         return extend(state.laid(), n, state.floor)
@@ -126,7 +131,35 @@ def extended(state: TrackState, n: int) -> Motion:
         return extend(state.laid(), n, state.floor)
     src = soft_clip(np.arange(start, n, dtype=np.float64), 0, total - 1, k)
     head = [*pieces[:-1], last[:start - origin]]
-    return concatenate([p for p in head if p.n_frames] + [sample(last, src, origin)])
+    eased = sample(last, src, origin)
+    tr = concatenate([p for p in head if p.n_frames] + [eased])
+    if state.feet is not None and start - origin >= 2:
+        _fed(tr, state.feet, start, concatenate([last[start - origin - 2:start - origin], eased]))
+    return tr
+
+
+def _fed(tr: Motion, kept: tuple[np.ndarray, np.ndarray], k: int, seam: Motion) -> tuple[np.ndarray, np.ndarray]:
+    """``tr``'s :func:`core.contacts.lowest_tracks` and contacts (kept in its cache) from ``kept``, those of a
+    track whose first ``k`` frames are ``tr``'s, and ``seam``, ``tr``'s frames from ``k - 2`` on: a frame's
+    height is its own, its speed its neighbours' (``k - 1``'s reads ``k``), so only ``seam``'s frames are
+    measured. The same bits as measuring ``tr`` (a difference of two frames, a percentile and runs)."""
+    y, v = lowest_tracks(seam)
+    feet = (np.concatenate([kept[0][:k], y[2:]]), np.concatenate([kept[1][:k - 1], v[1:]]))
+    tr.cache.put("lowest_tracks", feet)
+    tr.cache.put("contacts", contacts_of(*feet, tr.fps))
+    return feet
+
+
+def laid_feet(tr: Motion, c0: int, rendered: Motion) -> tuple[np.ndarray, np.ndarray] | None:
+    """The :func:`core.contacts.lowest_tracks` of ``tr[:c0]`` then ``rendered`` (a join laid on ``tr``,
+    :meth:`TrackState.lay`), from ``tr``'s (measured once if not kept) and ``rendered``'s; ``None`` for a
+    rendering from the track's first two frames."""
+    if c0 < 2 or not rendered.n_frames:
+        return None
+    kept = tr.cache.get("lowest_tracks", lambda: lowest_tracks(tr))
+    seam = concatenate([tr[c0 - 2:c0], rendered])
+    y, v = lowest_tracks(seam)
+    return np.concatenate([kept[0][:c0], y[2:]]), np.concatenate([kept[1][:c0 - 1], v[1:]])
 
 
 def lay_elements(track: Track, whole: Sequence[Element], fps: float,
@@ -137,7 +170,7 @@ def lay_elements(track: Track, whole: Sequence[Element], fps: float,
     for e, rep in repetitions(whole):
         checkpoint()  # an abandoned animation stops before its next join
         inc = incoming(e, rep, fps, state)
-        if state.motion is None:
+        if not state.pieces:  # (reading ``state.motion`` would put the pieces together)
             place_first(state, inc, track.origin, track.heading)
             continue
         join(state, inc)

@@ -9,7 +9,7 @@ from text2anim.core.metrics import root_pop, skating_ratio
 
 from ..join.commit import commit, lock_report, skip
 from ..join.laid import Laid
-from ..join.laying import TrackState, extended, lay_elements
+from ..join.laying import TrackState, extended, laid_feet, lay_elements
 from ..join.placed import Placed
 from ..result import BlendInterval, JoinReport
 from ..tracks import Element, Track
@@ -70,6 +70,7 @@ def join_next(state: TrackState, inc: Placed, fps: float, weights: Weights, lock
     placed = replace(inc, element=shown, motion=plan.placed, rigid=plan.rigid)
     # the delay is this element's only: later ones keep their scheduled times unless dropped otherwise
     commit(state, placed, out, rep, main, (window[0], region_end), window[0], window[1], (plan.shift + carry) / fps)
+    state.feet = laid_feet(tr, c0, rendered)  # the next join's contacts are then found from the new frames alone
     return plan
 
 

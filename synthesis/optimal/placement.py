@@ -54,11 +54,11 @@ def alignment(choice: Choice, s0: Found, tr: Motion, tr_contacts: FootContacts, 
     # adaptation: the previous motion's feet where its lower body starts blending, the next's pose at S0's end
     ta, tb = s0.t0, s0.t1
     if sup is None:
-        fa = foot_points(tr)
+        fa = foot_points(tr[ta:ta + 1])  # (that frame's kinematics alone)
         fb = foot_points(inc.motion)
         ha = headings(tr, 0.5)[ta]
         hb = headings(inc.motion, 0.5)[tb - inc.offset]
-        pa = {s: to_heading_frame(fa[s][ta][None, None, :], np.array([ha]))[0, 0, [0, 2]] for s in fa}
+        pa = {s: to_heading_frame(fa[s][0][None, None, :], np.array([ha]))[0, 0, [0, 2]] for s in fa}
         pb = {s: to_heading_frame(fb[s][tb - inc.offset][None, None, :], np.array([hb]))[0, 0, [0, 2]] for s in fb}
         sup = support_by_gap(pa, pb)
     return sup, ta, tb

@@ -88,8 +88,8 @@ def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weight
     adapted = None
     info: dict = {}
     if choice.method.startswith("motion_adaptation"):
-        fa, fb = foot_points(tr), foot_points(placed)
-        offsets = {s: fa[s][ta] - fb[s][tb_own] for s in ("left", "right")}
+        fa, fb = foot_points(tr[ta:ta + 1]), foot_points(placed)  # (the track's frame ta alone)
+        offsets = {s: fa[s][0] - fb[s][tb_own] for s in ("left", "right")}
         if support is not None:
             offsets[support] = np.zeros(3)
         adapted = adapt(placed, offsets)

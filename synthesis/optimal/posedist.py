@@ -44,7 +44,7 @@ def _window(motion: Motion, lo: int, hi: int) -> tuple[int, np.ndarray]:
         if a <= lo and hi <= a + block.shape[1]:
             return known
         lo, hi = min(lo, a), max(hi, a + block.shape[1])
-    pos = motion.positions[lo:hi]
+    pos = motion[lo:hi].positions  # (a slice's kinematics: a long track's pose need not be joined)
     root = pos[:, 0]
     h = root_headings(motion)[lo:hi]
     d = pos - np.stack([root[:, 0], np.zeros(len(pos)), root[:, 2]], axis=1)[:, None, :]
