@@ -117,13 +117,14 @@ class _Parts:
     def frames(self, sl: slice) -> "PoseCache":
         """A cache for the frames ``sl`` of the motion: the parts' frames there, end to end, joined when asked
         (a window of a long track laid in pieces costs the window's, not the track's)."""
-        start, stop, _ = sl.indices(sum(len(p.rotations) for p in self.parts))
-        cut, at = [], 0
-        for p in self.parts:
-            n = len(p.rotations)
-            if at + n > start and at < stop:
-                cut.append(p.frames(max(start, at) - at, min(stop, at + n) - at))
-            at += n
+        ends = np.cumsum([len(p.rotations) for p in self.parts])
+        start, stop, _ = sl.indices(int(ends[-1]) if len(ends) else 0)
+        cut = []
+        for k in range(int(np.searchsorted(ends, start, side="right")), len(self.parts)):
+            at = int(ends[k]) - len(self.parts[k].rotations)
+            if at >= stop:
+                break
+            cut.append(self.parts[k].frames(max(start, at) - at, min(stop, int(ends[k])) - at))
         return PoseCache(recipe=_Parts(tuple(cut))) if cut else PoseCache()
 
 
