@@ -124,7 +124,8 @@ class _Parts:
             at = int(ends[k]) - len(self.parts[k].rotations)
             if at >= stop:
                 break
-            cut.append(self.parts[k].frames(max(start, at) - at, min(stop, int(ends[k])) - at))
+            part, a, b = self.parts[k], max(start, at) - at, min(stop, int(ends[k])) - at
+            cut.append(part if a == 0 and b == len(part.rotations) else part.frames(a, b))  # (whole: itself)
         return PoseCache(recipe=_Parts(tuple(cut))) if cut else PoseCache()
 
 
@@ -225,14 +226,14 @@ class PoseCache(Memo):
         (only the parts not yet solved are)."""
         # a part itself still parts end to end gives those (a track laid in pieces join after join stays one
         # level of pieces, joined once when asked)
-        parts = [q for p in parts for q in (p.cache._recipe.parts if p.cache._parts_only() else (p,))]
+        parts = [q for p in parts for q in (p.cache.unjoined_parts() or (p,))]
         if all(p.cache.known_pose() is not None for p in parts):
             return PoseCache(fk.joined([p.cache.pose(p) for p in parts]))
         return PoseCache(recipe=_Parts(tuple(parts)))
 
-    def _parts_only(self) -> bool:
-        """Whether the pose is not known and is the pose of parts end to end (:meth:`of_parts`)."""
-        return self._pose is None and isinstance(self._recipe, _Parts)
+    def unjoined_parts(self) -> tuple[Frames, ...] | None:
+        """The parts whose poses end to end are this one, not yet joined (:meth:`of_parts`), else ``None``."""
+        return self._recipe.parts if self._pose is None and isinstance(self._recipe, _Parts) else None
 
     def share(self, m: Frames, other: Frames, rows: np.ndarray) -> None:
         """Let ``m``'s pose (this cache's) take ``other``'s where the frames are the same: ``rows`` ``(T,)``

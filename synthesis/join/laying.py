@@ -138,7 +138,7 @@ def extended(state: TrackState, n: int) -> Motion:
     return tr
 
 
-def _fed(tr: Motion, kept: tuple[np.ndarray, np.ndarray], k: int, seam: Motion) -> tuple[np.ndarray, np.ndarray]:
+def _fed(tr: Motion, kept: tuple[np.ndarray, np.ndarray], k: int, seam: Motion) -> None:
     """``tr``'s :func:`core.contacts.lowest_tracks` and contacts (kept in its cache) from ``kept``, those of a
     track whose first ``k`` frames are ``tr``'s, and ``seam``, ``tr``'s frames from ``k - 2`` on: a frame's
     height is its own, its speed its neighbours' (``k - 1``'s reads ``k``), so only ``seam``'s frames are
@@ -147,7 +147,6 @@ def _fed(tr: Motion, kept: tuple[np.ndarray, np.ndarray], k: int, seam: Motion) 
     feet = (np.concatenate([kept[0][:k], y[2:]]), np.concatenate([kept[1][:k - 1], v[1:]]))
     tr.cache.put("lowest_tracks", feet)
     tr.cache.put("contacts", contacts_of(*feet, tr.fps))
-    return feet
 
 
 def laid_feet(tr: Motion, c0: int, rendered: Motion) -> tuple[np.ndarray, np.ndarray] | None:
