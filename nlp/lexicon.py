@@ -228,7 +228,7 @@ PERSON_HEADS = frozenset("人 方 子".split())
 #: with the actor: the motion they modify is performed by every one of them, for the same time.
 TOGETHER_WORDS = frozenset(
     """一緒に いっしょに 一緒になって 揃って そろって 共に ともに 二人で ふたりで みんなで 皆で みなで
-    全員で 一斉に""".split()
+    全員で 一斉に 並んで ならんで""".split()
 )
 
 #: Animals among the persons: 鳴く is what they do (太郎が鳴く is 泣く, a typo; 犬が鳴く is not).
