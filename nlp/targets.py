@@ -105,7 +105,9 @@ def attach_targets(phrases: list[Phrase]) -> None:
 
 
 #: Verbs of coming to someone: with no one named, to the person the story is with (:func:`_come_to`).
-COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る".split())
+COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る 現れる 現われる 姿を現す".split())
+#: Verbs of running away: with no one named, from whoever last came to the actor (熊が現れた。少年は逃げ出した).
+FLEEING_VERBS = frozenset("逃げる 逃げ出す 逃げ去る".split())
 
 
 def _comes(ph: Phrase) -> bool:
@@ -397,6 +399,8 @@ def _follow_on(preds: list[Pred]) -> None:
                     else "recipient" if pred.verb in TRANSFER_VERBS and pred.object and pred.object not in BODY_PARTS
                     else "addressee")
             pred.target, pred.target_role, pred.target_person = prev.target, role, True
+        if pred.target is None and pred.verb in FLEEING_VERBS:
+            _flee(pred, preds)
         if pred.target in pred.co_actors:
             pred.target_role = "partner"  # 花子の手を取って、一緒に踊る: done with her, not at her
         _stand_at(pred, prev)
@@ -408,6 +412,17 @@ def _follow_on(preds: list[Pred]) -> None:
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
         _give_back(pred, givers)
+
+
+def _flee(pred: Pred, preds: list[Pred]) -> None:
+    """熊が現れた。少年は驚いて逃げ出した: a flight with no one named runs from whoever last came to the actor
+    before it (a goal of theirs that is the actor), said in the notes."""
+    k = preds.index(pred)
+    came = next((p for p in reversed(preds[:k]) if p.motion and p.actor != pred.actor and p.target == pred.actor
+                 and p.target_role == "goal"), None)
+    if came is not None and came.actor is not None:
+        pred.target, pred.target_role, pred.target_person = came.actor, "source", True
+        pred.say(f"{pred.verb} read as from {came.actor}, who came to {pred.actor}")
 
 
 def _stand_at(pred: Pred, prev: Pred | None) -> None:
