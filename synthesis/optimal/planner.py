@@ -8,7 +8,7 @@ from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 
 from ..join.align import align_through_foot
-from ..join.gait import foot_points, steps
+from ..join.gait import foot_points_at, steps
 from ..join.placed import Placed
 from .adaptation import adapt
 from .blend_ranges import Bounds, after, ranges
@@ -88,8 +88,8 @@ def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weight
     adapted = None
     info: dict = {}
     if choice.method.startswith("motion_adaptation"):
-        fa, fb = foot_points(tr), foot_points(placed)
-        offsets = {s: fa[s][ta] - fb[s][tb_own] for s in ("left", "right")}
+        fa, fb = foot_points_at(tr, ta), foot_points_at(placed, tb_own)
+        offsets = {s: fa[s] - fb[s] for s in ("left", "right")}
         if support is not None:
             offsets[support] = np.zeros(3)
         adapted = adapt(placed, offsets)
