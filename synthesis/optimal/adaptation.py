@@ -41,6 +41,7 @@ from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.fk import quat_to_matrix
 from text2anim.core.ik import leg_ik, set_world_rotation, solve_rows, world_to_local
+from text2anim.core.kept import digest
 from text2anim.core.motion import Motion
 from text2anim.core.size import leg_length
 
@@ -53,8 +54,21 @@ def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
 
     ``scale`` ``(T,)`` in [0, 1] (default 1 everywhere) scales the offsets per frame: 1 is the adapted
     motion, 0 the motion's own; in between the deformation fades (eq. (8)'s return to the own pose, which
-    leaves a support foot with no offset exactly where it is).
+    leaves a support foot with no offset exactly where it is). The last answer with and without ``scale`` is
+    kept with ``motion`` (by the offsets' and the scale's exact bits): a warm process adapts the same placed
+    motion again when it plans and renders the same join again.
     """
+    key = (tuple((s, np.asarray(v, dtype=np.float64).tobytes()) for s, v in sorted(offsets.items())),
+           None if scale is None else digest(np.asarray(scale, dtype=np.float64)))
+    slot = ("adaptation.adapt", scale is None)
+    known = motion.cache.known(slot)
+    if known is not None and known[0] == key:
+        return known[1]
+    out = _adapt(motion, offsets, scale)
+    return out if out is motion else motion.cache.put(slot, (key, out))[1]
+
+
+def _adapt(motion: Motion, offsets: dict[str, np.ndarray], scale) -> Motion:
     feet = body_map(motion.skeleton).feet
     d = {s: np.array([float(v[0]), 0.0, float(v[2])]) for s, v in offsets.items()}
     if max(np.abs(x).max() for x in d.values()) < 1e-9:
