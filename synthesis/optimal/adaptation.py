@@ -41,11 +41,16 @@ from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
 from text2anim.core.fk import quat_to_matrix
 from text2anim.core.ik import leg_ik, set_world_rotation, solve_rows, world_to_local
-from text2anim.core.kept import digest
+from text2anim.core.kept import Kept, digest
 from text2anim.core.motion import Motion
 from text2anim.core.size import leg_length
 
 from ..join.legsolve import chain_length, leg_chain
+
+
+#: The last adaptations of the process, by the value of what :func:`adapt` reads: a warm process plans and renders
+#: the same joins again (the studio re-animates the text at every pause in typing).
+KEPT_ADAPTED: Kept[Motion] = Kept(16)
 
 
 def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
@@ -54,18 +59,25 @@ def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
 
     ``scale`` ``(T,)`` in [0, 1] (default 1 everywhere) scales the offsets per frame: 1 is the adapted
     motion, 0 the motion's own; in between the deformation fades (eq. (8)'s return to the own pose, which
-    leaves a support foot with no offset exactly where it is). The last answer with and without ``scale`` is
-    kept with ``motion`` (by the offsets' and the scale's exact bits): a warm process adapts the same placed
-    motion again when it plans and renders the same join again.
+    leaves a support foot with no offset exactly where it is). An answer given before is taken from
+    :data:`KEPT_ADAPTED`.
     """
-    key = (tuple((s, np.asarray(v, dtype=np.float64).tobytes()) for s, v in sorted(offsets.items())),
+    key = (_frames_digest(motion), tuple((s, np.asarray(v, dtype=np.float64).tobytes()) for s, v in sorted(offsets.items())),
            None if scale is None else digest(np.asarray(scale, dtype=np.float64)))
-    slot = ("adaptation.adapt", scale is None)
-    known = motion.cache.known(slot)
-    if known is not None and known[0] == key:
-        return known[1]
+    known = KEPT_ADAPTED.known(key)
+    if known is not None:
+        return known
     out = _adapt(motion, offsets, scale)
-    return out if out is motion else motion.cache.put(slot, (key, out))[1]
+    return out if out is motion else KEPT_ADAPTED.put(key, out)
+
+
+def _frames_digest(motion: Motion) -> bytes:
+    """A digest of everything of ``motion`` :func:`adapt` reads (its frames, rate and bones), kept with it."""
+    def make() -> bytes:
+        sk = motion.skeleton
+        return digest(sk.names, sk.parents, sk.offsets, motion.fps, motion.root_positions, motion.rotations,
+                      motion.translations)
+    return motion.cache.get("adaptation.frames_digest", make)
 
 
 def _adapt(motion: Motion, offsets: dict[str, np.ndarray], scale) -> Motion:
