@@ -45,6 +45,7 @@ from text2anim.core.kept import Kept, digest
 from text2anim.core.motion import Motion
 from text2anim.core.size import leg_length
 
+from ..join.gait import SIDES
 from ..join.legsolve import chain_length, leg_chain
 
 
@@ -62,8 +63,8 @@ def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
     leaves a support foot with no offset exactly where it is). An answer given before is taken from
     :data:`KEPT_ADAPTED`.
     """
-    key = (_frames_digest(motion), tuple((s, np.asarray(v, dtype=np.float64).tobytes()) for s, v in sorted(offsets.items())),
-           None if scale is None else digest(np.asarray(scale, dtype=np.float64)))
+    moves = tuple((s, np.asarray(v, dtype=np.float64).tobytes()) for s, v in sorted(offsets.items()))
+    key = (_frames_digest(motion), moves, None if scale is None else digest(np.asarray(scale, dtype=np.float64)))
     known = KEPT_ADAPTED.known(key)
     if known is not None:
         return known
@@ -100,10 +101,8 @@ def _adapt(motion: Motion, offsets: dict[str, np.ndarray], scale) -> Motion:
     return out.replace(rotations=_legs_to(out, frames, {s: targets[s][frames] for s in SIDES}, ankles))
 
 
-SIDES = ("left", "right")
-
-
-def _legs_to(motion: Motion, frames: np.ndarray, targets: dict[str, np.ndarray], ankles: dict[str, np.ndarray]) -> np.ndarray:
+def _legs_to(motion: Motion, frames: np.ndarray, targets: dict[str, np.ndarray],
+             ankles: dict[str, np.ndarray]) -> np.ndarray:
     """The local rotations ``(T, J, 4)`` of ``motion`` with, on ``frames`` ``(n,)``, each leg's ankle on
     ``targets[side]`` ``(n, 3)`` (world, metres; two-bone IK keeping the knee's bend plane) and turned to the
     world rotations ``ankles[side]`` ``(n, 4)``: :func:`core.ik.leg_ik` then :func:`core.ik.set_world_rotation`
