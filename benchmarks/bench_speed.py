@@ -206,11 +206,14 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
 
 
 def forget_joins() -> None:
-    """Forget what the process kept of the joins it finished (the post-pass's joins and the hips' paths)."""
+    """Forget what the process kept of the joins it finished (the post-pass's joins and the hips' paths) and of
+    the joins it planned (the adapted lower bodies)."""
     from text2anim.synthesis.join import hipspath, joinpass
+    from text2anim.synthesis.optimal import adaptation
 
     joinpass.KEPT_FINISHED.clear()
     hipspath.KEPT_PATHS.clear()
+    adaptation.KEPT_ADAPTED.clear()
 
 
 def planning_rate_row(url: str, repeat: int) -> None:

@@ -24,8 +24,13 @@ def leg_length(skel: Skeleton) -> float:
     """Rest-pose height (metres) of the hip joints above the lowest foot joint.
 
     The hip joints are the knees' parents, the knees the ankles' parents (:func:`core.bodyparts.body_map`'s
-    feet). Raises :class:`BodyMapError` without two such legs, or when the hips are not above the feet.
+    feet). Raises :class:`BodyMapError` without two such legs, or when the hips are not above the feet. Found
+    once per skeleton (kept in ``skel.derived``: every new motion's airborne test and adaptation asks for it).
     """
+    return skel.derived.get(("leg_length",), lambda: _leg_length(skel))
+
+
+def _leg_length(skel: Skeleton) -> float:
     feet = body_map(skel).feet
     rest = skel.rest_positions()
     hips, soles = [], []

@@ -205,6 +205,8 @@ def _ending(toks: list[Token], g: int, ph: Phrase, next_ph: Phrase | None) -> tu
     """(ending kind, cue words) of the clause whose verb group ends at ``g``."""
     last = toks[g]
     words = [t for t in toks[g + 1:] if t.pos1 != "補助記号"]
+    if words and words[0].surface == "か" and len(words) == 1 and not _ends_sentence(ph, next_ph):
+        return "quote", "か"  # 何を食べようか考えた, 行くか迷った: a question asked in thought, not done
     if words and _sentence_particles(words):
         return "final", _punct(ph)
     if words and _attempt(words, last, next_ph):

@@ -79,6 +79,7 @@ def attach_targets(phrases: list[Phrase]) -> None:
     pending: list[Target] = []
     group = None
     actors = {a for ph in phrases if ph.pred for a in (ph.pred.actor, *ph.pred.co_actors) if a}
+    done: list[Pred] = []  # the motions so far
     for i, ph in enumerate(phrases):
         if ph.group != group:
             pending, group = [], ph.group
@@ -90,7 +91,12 @@ def attach_targets(phrases: list[Phrase]) -> None:
             continue
         if pred.reason in ("direction", "facing"):
             continue  # its noun waits for the motion it says the way of
+        if pred.reason == "non-agent":
+            _sent_to(pred, _person_by(phrases, i), done)
+            pending = []
+            continue
         if pred.motion:
+            done.append(pred)
             _settle(pred, pending, actors)
             if pred.target is None and pred.verb in LOCOMOTION_VERBS and (_comes(ph) or pred.verb in COMING_VERBS):
                 _come_to(pred, phrases, i)
@@ -99,7 +105,9 @@ def attach_targets(phrases: list[Phrase]) -> None:
 
 
 #: Verbs of coming to someone: with no one named, to the person the story is with (:func:`_come_to`).
-COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る".split())
+COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る 現れる 現われる 姿を現す".split())
+#: Verbs of running away: with no one named, from whoever last came to the actor (熊が現れた。少年は逃げ出した).
+FLEEING_VERBS = frozenset("逃げる 逃げ出す 逃げ去る".split())
 
 
 def _comes(ph: Phrase) -> bool:
@@ -246,6 +254,30 @@ def _at_side(particle: str) -> str:
 # ---------------------------------------------------------------- roles
 
 
+def _person_by(phrases: list[Phrase], i: int) -> str | None:
+    """The one person a phrase of predicate ``i``'s clause names before it with の, に, へ or まで (花子の足元で,
+    花子の方へ, 花子に), if any."""
+    for ph in reversed(phrases[:i]):
+        if ph.group != phrases[i].group or ph.pred is not None:
+            break
+        if len(ph.persons) == 1 and _particle(ph) in ("の", "に", "へ", "まで"):
+            return ph.persons[0]
+    return None
+
+
+def _sent_to(pred: Pred, person: str | None, done: list[Pred]) -> None:
+    """ボールは転がって、花子の足元で止まった: a thing that comes to rest by a person (``person``, named in the
+    clause of its non-agent predicate) was sent to that person by the last motion that sent it and named no one
+    (太郎はボールを蹴った: to 花子, the recipient), said in that motion's notes."""
+    if person is None or pred.object is None:
+        return
+    sender = next((p for p in reversed(done) if p.object == pred.object and p.verb in TRANSFER_VERBS), None)
+    if sender is None or sender.target is not None or sender.actor == person:
+        return
+    sender.target, sender.target_role, sender.target_person = person, "recipient", True
+    sender.say(f"{sender.object} sent to {person}: it comes to rest by them")
+
+
 def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
     """The target of ``pred`` from the nouns before it in its clause (the nearest one with a role wins).
     A word taken for a person only because it can be a name, never an actor of the text, is a thing where
@@ -367,6 +399,8 @@ def _follow_on(preds: list[Pred]) -> None:
                     else "recipient" if pred.verb in TRANSFER_VERBS and pred.object and pred.object not in BODY_PARTS
                     else "addressee")
             pred.target, pred.target_role, pred.target_person = prev.target, role, True
+        if pred.target is None and pred.verb in FLEEING_VERBS:
+            _flee(pred, preds)
         if pred.target in pred.co_actors:
             pred.target_role = "partner"  # 花子の手を取って、一緒に踊る: done with her, not at her
         _stand_at(pred, prev)
@@ -378,6 +412,17 @@ def _follow_on(preds: list[Pred]) -> None:
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
         _give_back(pred, givers)
+
+
+def _flee(pred: Pred, preds: list[Pred]) -> None:
+    """熊が現れた。少年は驚いて逃げ出した: a flight with no one named runs from whoever last came to the actor
+    before it (a goal of theirs that is the actor), said in the notes."""
+    k = preds.index(pred)
+    came = next((p for p in reversed(preds[:k]) if p.motion and p.actor != pred.actor and p.target == pred.actor
+                 and p.target_role == "goal"), None)
+    if came is not None and came.actor is not None:
+        pred.target, pred.target_role, pred.target_person = came.actor, "source", True
+        pred.say(f"{pred.verb} read as from {came.actor}, who came to {pred.actor}")
 
 
 def _stand_at(pred: Pred, prev: Pred | None) -> None:

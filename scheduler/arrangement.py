@@ -19,7 +19,7 @@ from .clips import C, ClipSource
 from .fillers import IDLE_VERB
 from .picker import Picker
 from .plan import ClipFinder
-from .facing import turn_away
+from .facing import came_to, turn_away
 from .postures import bridges, choose, matching
 from .seated import seated_motions
 from .types import ClipTiming, Element, TimeTable
@@ -173,7 +173,8 @@ def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
             ca, cb = picked[a], picked[b]
             end = kept.get(a, ca.end_posture)
             same = end == kept.get(b, cb.start_posture)
-            turn = turn_away(specs.get(a), specs[b], cb, source, character=ca.character) if same else []
+            turn = turn_away(specs.get(a), specs[b], cb, source, character=ca.character,
+                             met=came_to(analysis.motions, specs[b])) if same else []
             if same and not turn:
                 continue
             incoming = next((k for k, c in enumerate(constraints) if c.second == b), None)

@@ -28,12 +28,20 @@ def faces(spec: MotionSpec | None, person: str | None) -> bool:
             and spec.target_role in FACING_ROLES and spec.target_side not in SIDEWAYS)
 
 
+def came_to(motions, spec: MotionSpec) -> bool:
+    """Did ``spec``'s target come up to its actor earlier in the text (熊が現れた: a goal of theirs that is the
+    actor)? The scene then stands them face to face, as after a goal of the actor's own."""
+    return any(m.id < spec.id and m.actor == spec.target and m.target == spec.actor and m.target_role == "goal"
+               for m in motions)
+
+
 def turn_away(prev: MotionSpec | None, spec: MotionSpec, leaving: C, source: ClipSource[C], *,
-              character: str | None = None) -> list[C]:
+              character: str | None = None, met: bool = False) -> list[C]:
     """``[the turning clip]`` when ``spec`` (played by ``leaving``) walks or runs away from the person ``prev``
-    faced (花子に手を振って、立ち去る); else ``[]`` (also when the database has no such clip)."""
+    faced (花子に手を振って、立ち去る), or who came up to the actor (``met``: 熊が現れた。少年は逃げ出した); else
+    ``[]`` (also when the database has no such clip)."""
     if not (spec.target_role == "source" and spec.target_person and leaving.cyclic and leaving.body_part is None
-            and faces(prev, spec.target)):
+            and (met or faces(prev, spec.target))):
         return []
     hits = [c for c in source.by_verb(TURN_VERB, prefer_character=character) if c.body_part is None and not c.cyclic]
     return hits[:1]

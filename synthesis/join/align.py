@@ -1,7 +1,7 @@
 """Placing a clip on a track: at the track's origin (:func:`place_at`) or through the support foot
 (:func:`align_through_foot`, paper 003 §4.3: the next motion is turned about +Y and slid over the ground
 so that, at the switching frames, its support foot stands where the previous motion's does and its body
-faces the same way). Both are a :class:`core.ground.Rigid`.
+faces the same way). Both are a :class:`core.ground.Rigid`; :func:`moved_by` applies one, kept with the clip.
 """
 from __future__ import annotations
 
@@ -38,3 +38,14 @@ def align_through_foot(prev: Motion, a: int, nxt: Motion, b: int, side: str | No
         pa = prev[a:a + 1].positions[0, [ankle, toe]].mean(axis=0)  # (that frame's kinematics alone)
         pb = nxt.positions[b, [ankle, toe]].mean(axis=0)
     return match(pb, hb, pa, ha)
+
+
+def moved_by(motion: Motion, rigid: Rigid) -> Motion:
+    """``rigid.apply(motion)``, the last such kept with ``motion`` (by the move's exact bits): a warm process plans
+    the same join again (the studio at every pause in typing) and gets the same placed motion, with the
+    kinematics and the features computed from it the first time."""
+    key = (rigid.yaw.hex(), tuple(float(x).hex() for x in rigid.offset))
+    known = motion.cache.known("align.moved")
+    if known is not None and known[0] == key:
+        return known[1]
+    return motion.cache.put("align.moved", (key, rigid.apply(motion)))[1]

@@ -83,11 +83,9 @@ def incoming(e: Element, rep: int, fps: float, state: TrackState) -> Placed:
     lead = prep.lead
     start = int(round(e.start * fps))
     motion = prep.motion
-    # found once for a prepared motion and kept with it, as the preparation is kept (timing.PREPARED); its pose
-    # with them, which a writable copy of its rows below then shares
+    # found once for a prepared motion and kept with it, as the preparation is kept (timing.PREPARED), and the
+    # motion itself goes on the track: what a join computes from it (its features, its placement) is kept with it
     contacts = detect_contacts(motion)
-    if not motion.root_positions.flags.writeable:  # cached library clips are read-only; scipy's Rotation.apply
-        motion = motion.replace(root_positions=motion.root_positions.copy())  # (align.match) wants writable rows
     return Placed(e, motion, start - lead, prep.core, contacts, e.clip.cyclic, lead, prep.motion.n_frames - lead, rep)
 
 

@@ -15,8 +15,8 @@ previous motion has it. :func:`adapt`:
   where the legs could not otherwise reach a stance wider than the motion's
   own (:func:`_sink`; beyond the paper, which leaves an unreachable foot
   hanging above its place);
-- both legs are solved by two-bone IK (:func:`core.ik.leg_ik`) and each
-  ankle keeps its world orientation (:func:`core.ik.set_world_rotation`),
+- both legs are solved by two-bone IK (:func:`core.ik.leg_ik`'s arithmetic, both legs as rows of one
+  :func:`core.ik.solve_rows`) and each ankle keeps its world orientation (:func:`core.ik.set_world_rotation`'s),
   so the sole stays on the ground; the upper body is untouched (its joints are
   local to the hips).
 
@@ -39,11 +39,19 @@ from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
-from text2anim.core.ik import leg_ik, set_world_rotation
+from text2anim.core.fk import quat_to_matrix
+from text2anim.core.ik import leg_ik, set_world_rotation, solve_rows, world_to_local
+from text2anim.core.kept import Kept, digest
 from text2anim.core.motion import Motion
 from text2anim.core.size import leg_length
 
+from ..join.gait import SIDES
 from ..join.legsolve import chain_length, leg_chain
+
+
+#: The last adaptations of the process, by the value of what :func:`adapt` reads: a warm process plans and renders
+#: the same joins again (the studio re-animates the text at every pause in typing).
+KEPT_ADAPTED: Kept[Motion] = Kept(16)
 
 
 def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
@@ -52,8 +60,28 @@ def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
 
     ``scale`` ``(T,)`` in [0, 1] (default 1 everywhere) scales the offsets per frame: 1 is the adapted
     motion, 0 the motion's own; in between the deformation fades (eq. (8)'s return to the own pose, which
-    leaves a support foot with no offset exactly where it is).
+    leaves a support foot with no offset exactly where it is). An answer given before is taken from
+    :data:`KEPT_ADAPTED`.
     """
+    moves = tuple((s, np.asarray(v, dtype=np.float64).tobytes()) for s, v in sorted(offsets.items()))
+    key = (_frames_digest(motion), moves, None if scale is None else digest(np.asarray(scale, dtype=np.float64)))
+    known = KEPT_ADAPTED.known(key)
+    if known is not None:
+        return known
+    out = _adapt(motion, offsets, scale)
+    return out if out is motion else KEPT_ADAPTED.put(key, out)
+
+
+def _frames_digest(motion: Motion) -> bytes:
+    """A digest of everything of ``motion`` :func:`adapt` reads (its frames, rate and bones), kept with it."""
+    def make() -> bytes:
+        sk = motion.skeleton
+        return digest(sk.names, sk.parents, sk.offsets, motion.fps, motion.root_positions, motion.rotations,
+                      motion.translations)
+    return motion.cache.get("adaptation.frames_digest", make)
+
+
+def _adapt(motion: Motion, offsets: dict[str, np.ndarray], scale) -> Motion:
     feet = body_map(motion.skeleton).feet
     d = {s: np.array([float(v[0]), 0.0, float(v[2])]) for s, v in offsets.items()}
     if max(np.abs(x).max() for x in d.values()) < 1e-9:
@@ -61,14 +89,44 @@ def adapt(motion: Motion, offsets: dict[str, np.ndarray], scale=None) -> Motion:
     k = np.ones(motion.n_frames) if scale is None else np.asarray(scale, dtype=np.float64).reshape(-1)
     shift = np.outer(k, 0.5 * (d["left"] + d["right"]))
     pose = motion.pose
-    shift[:, 1] = -_sink(motion, {s: pose.positions[:, feet[s][0]] + np.outer(k, d[s]) for s in feet}, shift)
+    targets = {s: pose.positions[:, feet[s][0]] + np.outer(k, d[s]) for s in feet}
+    shift[:, 1] = -_sink(motion, targets, shift)
     mask = (k > 1e-9) | (shift[:, 1] < -1e-9)  # the legs solved wherever the hips moved (a sink eases in and out)
     out = motion.replace(root_positions=motion.root_positions + shift)
-    for side in ("left", "right"):
-        ankle = feet[side][0]
-        out = leg_ik(out, side, pose.positions[:, ankle] + np.outer(k, d[side]), mask=mask)
-        out = set_world_rotation(out, ankle, rk.as_quat(rk.from_matrix(pose.rotations[:, ankle])), mask=mask)
-    return out
+    if not mask.any():
+        return out
+    frames = np.flatnonzero(mask)
+    world = rk.as_quat(rk.from_matrix(pose.rotations[frames[:, None], [feet[s][0] for s in SIDES]]))  # (n * 2, 4)
+    ankles = {s: world[i::len(SIDES)] for i, s in enumerate(SIDES)}  # each ankle keeps its world rotation
+    return out.replace(rotations=_legs_to(out, frames, {s: targets[s][frames] for s in SIDES}, ankles))
+
+
+def _legs_to(motion: Motion, frames: np.ndarray, targets: dict[str, np.ndarray],
+             ankles: dict[str, np.ndarray]) -> np.ndarray:
+    """The local rotations ``(T, J, 4)`` of ``motion`` with, on ``frames`` ``(n,)``, each leg's ankle on
+    ``targets[side]`` ``(n, 3)`` (world, metres; two-bone IK keeping the knee's bend plane) and turned to the
+    world rotations ``ankles[side]`` ``(n, 4)``: :func:`core.ik.leg_ik` then :func:`core.ik.set_world_rotation`
+    per leg, both legs as rows of one solve (per row the same arithmetic: the same bits; the legs' subtrees
+    are apart, so neither solve reads what the other changed)."""
+    chains = [leg_chain(motion, s) for s in SIDES]
+    pose = motion.pose
+    P, R = pose.positions[frames], pose.rotations[frames]
+    hip, knee, ankle = (np.concatenate([np.full(len(frames), c[i]) for c in chains]) for i in range(3))
+    rows = np.tile(np.arange(len(frames)), len(SIDES))
+    Rp = R[rows, motion.skeleton.parents[hip]]
+    poles = P[rows, knee]
+    qa, qb = solve_rows(P[rows, hip], poles, P[rows, ankle], R[rows, hip], R[rows, knee], Rp,
+                        np.concatenate([targets[s] for s in SIDES]), poles.copy())
+    rots = motion.rotations.copy()
+    at = np.concatenate([frames] * len(SIDES))
+    rots[at, hip] = qa
+    rots[at, knee] = qb
+    # the knees' new world rotations as forward kinematics has them (parent @ local, the local matrices from the
+    # stored quaternions), on these rows only
+    local = quat_to_matrix(np.concatenate([qa, qb]))
+    knee_world = (Rp @ local[:len(qa)]) @ local[len(qa):]
+    rots[at, ankle] = world_to_local(knee_world, np.concatenate([ankles[s] for s in SIDES]))
+    return rots
 
 
 #: fraction of a leg's length the adapted legs may stretch to (a straight leg has no bend left to give)

@@ -30,7 +30,7 @@ def _supported(choice: Choice, contacts: FootContacts, latest: int) -> Choice:
 
 
 def geometry(tr_contacts: FootContacts, prev: Placed, inc: Placed, floor: int, min_len: int):
-    a_steps = [s for s in steps(tr_contacts) if s.begin >= prev.offset]
+    a_steps = steps(tr_contacts, start=max(prev.offset, 0))
     c0 = (prev.offset + prev.core[0], prev.offset + prev.core[1])
     a_end = prev.offset + prev.stop
     c0_end = c0[1]

@@ -11,7 +11,7 @@ from text2anim.core.contacts import FootContacts
 from text2anim.core.ground import Rigid, headings, to_heading_frame
 from text2anim.core.motion import Motion
 
-from ..join.gait import foot_points
+from ..join.gait import foot_points_at
 from ..join.placed import Placed
 from .blend_search import Found
 from .method_select import Choice, support_by_gap
@@ -54,12 +54,12 @@ def alignment(choice: Choice, s0: Found, tr: Motion, tr_contacts: FootContacts, 
     # adaptation: the previous motion's feet where its lower body starts blending, the next's pose at S0's end
     ta, tb = s0.t0, s0.t1
     if sup is None:
-        fa = foot_points(tr[ta:ta + 1])  # (that frame's kinematics alone)
-        fb = foot_points(inc.motion)
+        fa = foot_points_at(tr, ta)
+        fb = foot_points_at(inc.motion, tb - inc.offset)
         ha = headings(tr, 0.5)[ta]
         hb = headings(inc.motion, 0.5)[tb - inc.offset]
-        pa = {s: to_heading_frame(fa[s][0][None, None, :], np.array([ha]))[0, 0, [0, 2]] for s in fa}
-        pb = {s: to_heading_frame(fb[s][tb - inc.offset][None, None, :], np.array([hb]))[0, 0, [0, 2]] for s in fb}
+        pa = {s: to_heading_frame(fa[s][None, None, :], np.array([ha]))[0, 0, [0, 2]] for s in fa}
+        pb = {s: to_heading_frame(fb[s][None, None, :], np.array([hb]))[0, 0, [0, 2]] for s in fb}
         sup = support_by_gap(pa, pb)
     return sup, ta, tb
 

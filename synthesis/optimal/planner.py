@@ -7,8 +7,8 @@ import numpy as np
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.motion import Motion
 
-from ..join.align import align_through_foot
-from ..join.gait import foot_points, steps
+from ..join.align import align_through_foot, moved_by
+from ..join.gait import foot_points_at, steps
 from ..join.placed import Placed
 from .adaptation import adapt
 from .blend_ranges import Bounds, after, ranges
@@ -84,12 +84,12 @@ def plan_join(tr: Motion, prev: Placed, inc: Placed, fps: float, weights: Weight
     ta = int(np.clip(ta, 0, tr.n_frames - 1))
     tb_own = int(np.clip(tb - inc.offset, 0, inc.motion.n_frames - 1))
     rigid = align_through_foot(tr, ta, inc.motion, tb_own, support)
-    placed = rigid.apply(inc.motion)
+    placed = moved_by(inc.motion, rigid)
     adapted = None
     info: dict = {}
     if choice.method.startswith("motion_adaptation"):
-        fa, fb = foot_points(tr[ta:ta + 1]), foot_points(placed)  # (the track's frame ta alone)
-        offsets = {s: fa[s][0] - fb[s][tb_own] for s in ("left", "right")}
+        fa, fb = foot_points_at(tr, ta), foot_points_at(placed, tb_own)
+        offsets = {s: fa[s] - fb[s] for s in ("left", "right")}
         if support is not None:
             offsets[support] = np.zeros(3)
         adapted = adapt(placed, offsets)

@@ -44,7 +44,7 @@ class Features:
         return features(motion, self.joints[part], np.asarray(frames) - off)
 
     def airborne(self, name: str, frames) -> np.ndarray:
-        """``(len(frames),)`` bool: whether source ``name`` is off its own floor at these track frames
+        """Bool of the shape of ``frames``: whether source ``name`` is off its own floor at these track frames
         (:func:`core.hang.off_its_floor`; frames outside it count as down)."""
         motion, off = self.src[name]
         air = motion.cache.get(("off_its_floor",), lambda: off_its_floor(motion))
@@ -68,8 +68,8 @@ def grid(r: Range, feats: Features, fps: float, weights: Weights, min_len: int):
         # a blend of the legs never ends on a pose in the air, nor (where it has the choice) a blend between two
         # poses just before one: it would lift both feet together into the take-off
         ahead = max(1, int(round(AIR_AHEAD * fps))) if r.kind == "pose-pose" else 0
-        air = [feats.airborne(r.src[1], g.t1 + k) for k in range(ahead + 1)]
-        for mask in (np.any(air, axis=0), air[0]):
+        air = feats.airborne(r.src[1], g.t1[None, :] + np.arange(ahead + 1)[:, None])  # (ahead + 1, N1)
+        for mask in (air.any(axis=0), air[0]):
             if mask.any() and np.isfinite(g.cost[:, ~mask]).any():  # unless that leaves no blend
                 g.cost[:, mask] = np.inf
                 break

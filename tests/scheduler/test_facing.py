@@ -20,6 +20,7 @@ def _sequence(planned, actor):
     ("太郎は花子に手を振って、立ち去った。", "太郎", "wave_hand", "walk"),
     ("次郎は先生にお辞儀をして、走り去った。", "次郎", "bow", "run"),
     ("花子は太郎に近づいて、離れた。", "花子", "walk", "walk"),
+    ("ある日、少年は森を歩いていた。突然、熊が現れた。少年は驚いて逃げ出した。", "少年", "startle", "run"),  # it came to him
 ])
 def test_leaving_the_person_just_faced_turns_away_first(library_db, text, actor, faced, leaving):
     planned = text2anim.plan(text, db=library_db)
