@@ -124,7 +124,7 @@ def carry_out_window(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_p
     window in the track's frames. A long track laid join after join is then copied once a join, not twice
     (:meth:`synthesis.join.laying.TrackState.lay`)."""
     c0 = _first_rendered(tr, plan)
-    whole_c = detect_contacts(tr)  # on the whole track (the detection's thresholds are the track's), then cut
+    whole_c = detect_contacts(tr)  # the whole track's (its thresholds are; laying.extended keeps them), then cut
     p, out, locks, window = _carry_out(tr, tr[c0:], c0, plan, lock, own, own_pop,
                                        FootContacts(whole_c.fps, whole_c.left[c0:], whole_c.right[c0:]))
     if c0:
