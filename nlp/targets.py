@@ -51,7 +51,7 @@ from .types import Constraint, MotionSpec
 #: Particles that mark a target, and the ones a 〜の + noun phrase may end with.
 TARGET_PARTICLES = frozenset("に へ まで から と".split())
 #: Verbs whose を-place is where the actor leaves from (店を出る).
-LEAVING_VERBS = frozenset("出る 離れる 去る 降りる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
+LEAVING_VERBS = frozenset("出る 離れる 去る 降りる 下りる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
 #: The て-forms that may say a way or a facing, no motion of their own.
 _WAY_TE = FACING_VERBS | DIRECTION_TE
 #: Roles a person keeps as the addressee of a following gesture (近づいて、お辞儀する).
@@ -298,6 +298,8 @@ def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
         pred.target, pred.target_role, pred.target_side, pred.target_person = t.name, role, t.side, t.person
         if t.covers is not None and pred.object == t.covers:
             pred.object = None  # 花子の方を向く: 方 says where, it is not a thing turned
+        if role == "source" and t.particle == "を" and pred.object == t.name:
+            pred.object = None  # 電車を降りる, 部屋を出る: the place left, not a thing handled
         if role == "partner" and t.name not in pred.co_actors:
             pred.co_actors = (*pred.co_actors, t.name)  # 花子と握手する: she shakes hands too
 
