@@ -408,7 +408,7 @@ CONTACT_VERBS = frozenset(
 #: Verbs two people do to each other: co-actors of one are each other's partner (太郎と花子は握手する).
 RECIPROCAL_VERBS = frozenset(
     """握手する ハイタッチする 話す 話する おしゃべりする 会話する 話し合う 喧嘩する けんかする 戦う 乾杯する キスする 見つめ合う
-    抱き合う 向かい合う 組み合う 繋ぐ つなぐ 手を繋ぐ 出会う 出合う""".split()
+    抱き合う 向かい合う 組み合う 繋ぐ つなぐ 手を繋ぐ 出会う 出合う 顔を見合わせる 見合わせる""".split()
 )
 #: Verbs whose を-person is where the motion ends, not whom it is done to: 男を追いかける runs up to him.
 CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く 追いつく".split())
