@@ -292,6 +292,40 @@ def replay(motion: Motion, lo: int, hi: int, src: np.ndarray, origin: int = 0) -
     return concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
 
 
+def replay_both(seamed: Motion, motion: Motion, lo: int, hi: int, src: np.ndarray,
+                origin: int = 0) -> tuple[Motion, Motion]:
+    """``(replay(seamed, ...), replay(motion, ...))`` (:func:`replay`) of two motions of one length that differ in
+    some frames only (the seams' inertialization): a new frame sampled between two frames the same in both is the
+    same bits in both (sampling is per frame and joint), so ``motion``'s are sampled only where they are not."""
+    base = replay(seamed, lo, hi, src, origin)
+    if seamed is motion:
+        return base, base
+    T = motion.n_frames
+    same = (seamed.root_positions == motion.root_positions).all(axis=1) & \
+        (seamed.rotations == motion.rotations).all(axis=(1, 2))
+    if (seamed.translations is None) != (motion.translations is None):
+        same[:] = False
+    elif motion.translations is not None:
+        same &= (seamed.translations == motion.translations).all(axis=(1, 2))
+    at = np.clip((origin + lo) + src, origin, origin + T - 1)  # as blend.sample clamps and reads them
+    i0 = np.floor(at).astype(int) - origin
+    differ = ~(same[i0] & same[np.minimum(i0 + 1, T - 1)])
+    if differ.all():
+        return base, replay(motion, lo, hi, src, origin)
+    mid = base[lo:lo + len(src)]
+    root, rots = mid.root_positions.copy(), mid.rotations.copy()
+    trans = None if mid.translations is None else mid.translations.copy()
+    if differ.any():
+        own = sample(motion, (origin + lo) + src[differ], origin)
+        root[differ], rots[differ] = own.root_positions, own.rotations
+        if trans is not None:
+            trans[differ] = own.translations
+    mid = Motion(motion.skeleton, motion.fps, root, rots, trans)
+    from text2anim.core.motion import concatenate
+
+    return base, concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
+
+
 def _planted(ref: Motion, contacts) -> dict:
     """Per side, ``(T,)``: the foot is in contact or held still by the engine (its ankle slower than :data:`STILL`)."""
     out = {}
@@ -401,7 +435,7 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
         n_new = int(round((whi - lo) * stretch))
         src = played[stretch] = warp_frames(whi - lo, n_new, seam, flights(span, n_new, seam))
         if n_new > whi - lo:
-            base, ref = replay(seamed, lo, whi, src, origin), replay(motion, lo, whi, src, origin)
+            base, ref = replay_both(seamed, motion, lo, whi, src, origin)
         else:
             base, ref = seamed, motion
         # rounded as the track's frames: a window's would round its halves the other way half the time
