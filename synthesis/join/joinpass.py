@@ -301,12 +301,15 @@ def replay_both(seamed: Motion, motion: Motion, lo: int, hi: int, src: np.ndarra
     if seamed is motion:
         return base, base
     T = motion.n_frames
-    same = (seamed.root_positions == motion.root_positions).all(axis=1) & \
-        (seamed.rotations == motion.rotations).all(axis=(1, 2))
+    def bits(x: np.ndarray) -> np.ndarray:  # compared as bits: -0.0 is not 0.0 here
+        return x.view(np.int64).reshape(T, -1)
+
+    same = (bits(seamed.root_positions) == bits(motion.root_positions)).all(axis=1) & \
+        (bits(seamed.rotations) == bits(motion.rotations)).all(axis=1)
     if (seamed.translations is None) != (motion.translations is None):
         same[:] = False
-    elif motion.translations is not None:
-        same &= (seamed.translations == motion.translations).all(axis=(1, 2))
+    elif seamed.translations is not None and motion.translations is not None:
+        same &= (bits(seamed.translations) == bits(motion.translations)).all(axis=1)
     at = np.clip((origin + lo) + src, origin, origin + T - 1)  # as blend.sample clamps and reads them
     i0 = np.floor(at).astype(int) - origin
     differ = ~(same[i0] & same[np.minimum(i0 + 1, T - 1)])

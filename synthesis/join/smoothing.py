@@ -20,6 +20,8 @@ bit the low-passed motion with its feet re-planted over the region.
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
@@ -34,13 +36,16 @@ from .legsolve import LegGoal, solve_legs
 AROUND = 3  # frames either side of a region its figures include (the jerk's differences reach that far)
 
 
+@functools.lru_cache(maxsize=256)
 def _fade(n: int, pad: int) -> np.ndarray:
-    """``(n,)``: 0 → 1 over the first ``pad`` frames, 1, 1 → 0 over the last ``pad`` (quintic, C2)."""
+    """``(n,)``: 0 → 1 over the first ``pad`` frames, 1, 1 → 0 over the last ``pad`` (quintic, C2); read-only, made
+    once per size (every width of every stretch asks for it twice)."""
     e = np.ones(n)
     if pad > 0:
         up = ease(np.linspace(0.0, 1.0, pad + 1)[:-1], "smooth")
         e[:pad] = up
         e[n - pad:] = up[::-1]
+    e.setflags(write=False)
     return e
 
 
@@ -129,13 +134,19 @@ class Stretch:
         self.a, self.b = max(0, lo - AROUND), min(base.n_frames, hi + AROUND)
         #: per side to keep: (side, ankle, weights (n,), ankle targets (n, 3), ankle world rotations (n, 4))
         self.feet: list[tuple[str, int, np.ndarray, np.ndarray, np.ndarray]] = []
+        #: the region's frames as they are (a width that smooths nothing): where they are the reference's frames
+        #: (those the seams left alone), their kinematics is the reference's
+        self.region = base[lo:hi]
         if hi - lo >= 2:
             want = None
             for side, (ankle, _toe) in body_map(skel).feet.items():
                 c = _soft(maximum_filter1d(planted[side], 3), self.fps)[lo:hi]  # held a frame either side too
                 if not c.any():
                     continue
-                want = ref[lo:hi].pose if want is None else want  # kinematics is per frame: the region's only
+                if want is None:  # kinematics is per frame: the region's only
+                    own = ref[lo:hi]
+                    want = own.pose
+                    self.region.share_pose(own, np.arange(hi - lo))
                 r_want = rk.as_quat(rk.from_matrix(want.rotations[:, ankle]))  # Rotation's bits
                 self.feet.append((side, ankle, c, want.positions[:, ankle], r_want))
         moved = np.zeros(skel.n_joints, dtype=bool)  # the knees, ankles and toes the leg IK moves
@@ -193,7 +204,7 @@ class Smoothed:
         """The region's frames ``[lo, hi)``: low-passed, their feet re-planted after :meth:`plant`."""
         if self._sub is None:
             st = self.stretch
-            sub = st.base[st.lo:st.hi]
+            sub = st.region
             if self.smooths:
                 rots = low_pass_rotations(st.base, st.lo, st.hi, self.sigma, self.pad)
                 sub = Motion(sub.skeleton, sub.fps, self.root[st.lo - st.a:st.hi - st.a], rots, sub.translations)
