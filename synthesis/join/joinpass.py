@@ -66,6 +66,7 @@ All vectorised over frames and joints; deterministic.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -82,13 +83,13 @@ from text2anim.core.kept import Kept, digest
 from text2anim.core.metrics import gmd_floor, quality
 from text2anim.core.motion import Motion
 
-from .blend import sample
+from .blend import sample, sample_path
 from .hipspath import least_acceleration
 from .inertialize import inertialize_at, inertialize_before
 from .legsolve import solve_leg
 from .overfeet import over_feet
 from .pruning import Tried, least, may_keep, replaces
-from .smoothing import Smoothed, Stretch, plant_all
+from .smoothing import Deferred, Smoothed, Stretch, plant_all
 from .spliced import Spliced
 
 SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
@@ -437,10 +438,11 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
     for stretch in STRETCHES:
         n_new = int(round((whi - lo) * stretch))
         src = played[stretch] = warp_frames(whi - lo, n_new, seam, flights(span, n_new, seam))
-        if n_new > whi - lo:
-            base, ref = replay_both(seamed, motion, lo, whi, src, origin)
-        else:
-            base, ref = seamed, motion
+        frames: Motion | Deferred = seamed
+        if n_new > whi - lo:  # retimed when a width's rotations are asked: the hips' path is enough for the pops
+            path = seamed.root_positions
+            frames = Deferred(np.concatenate([path[:lo], sample_path(path, (origin + lo) + src, origin), path[whi:]]),
+                              fps, functools.partial(replay_both, seamed, motion, lo, whi, src, origin))
         # rounded as the track's frames: a window's would round its halves the other way half the time
         idx = np.round(np.concatenate([np.arange(lo), (origin + lo) + src, np.arange(whi, T)])).astype(int)
         idx[lo:lo + len(src)] -= origin
@@ -449,7 +451,7 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
         pad = max(1, min(pad0, (h2 - lo) // 3))
         # the hips' filtered path fades in and out over at least 2.5 sigma: a path low-passed where it
         # accelerates lags the original, and a shorter fade would return it with a pop of its own
-        widths = Stretch(base, ref, lo, h2, mask, [
+        widths = Stretch(frames, motion if frames is seamed else None, lo, h2, mask, [
             (sigma * scale, pad, max(pad, min(int(np.ceil(2.5 * sigma * scale)), (h2 - lo) // 3))) for sigma in SIGMAS])
         stretches.append(widths)
         for i, sigma in enumerate(SIGMAS):
