@@ -1,8 +1,9 @@
 """The join post-pass's candidates (:mod:`synthesis.join.joinpass`, steps 2-3): a join's region at one stretch,
 low-passed at one width, its feet re-planted by leg IK and its figures measured.
 
-What every width of a stretch shares is computed once (:class:`Stretch`): the feet's contact weights and
-targets (from the reference motion's kinematics over the region only), and the kinematics of the 3 frames
+What every width of a stretch shares is computed once (:class:`Stretch`), when a width's rotations are first
+asked: the region's frames retimed (:class:`Deferred`: the pops need only the hips' path), the feet's contact weights
+and targets (from the reference motion's kinematics over the region only), and the kinematics of the 3 frames
 either side of the region, which no width changes. A width (:class:`Smoothed`) is measured as far as the
 search asks, each step dearer than the last:
 
