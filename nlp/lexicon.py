@@ -324,7 +324,7 @@ LOCOMOTION_VERBS = frozenset(
     帰る 入る 進む 前進する 移動する 急ぐ 逃げる 離れる 下がる 後ずさりする 後退りする スキップする 歩き出す
     走り出す 出る 出掛ける 這う 飛び込む 近寄る 立つ 隠れる 回り込む 詰め寄る 駆け上がる 駆け下りる 駆け降りる
     駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く 渡る 横切る 下る
-    集まる 駆けつける 駆け付ける""".split()
+    集まる 駆けつける 駆け付ける 去る 立ち去る 歩き去る 走り去る 駆け去る 逃げ去る 逃げ出す""".split()
 )
 
 #: Verbs that take the body down off its feet (besides ``SUPPORT_VERBS``): after them 立つ is rising, before

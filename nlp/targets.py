@@ -51,7 +51,7 @@ from .types import Constraint, MotionSpec
 #: Particles that mark a target, and the ones a 〜の + noun phrase may end with.
 TARGET_PARTICLES = frozenset("に へ まで から と".split())
 #: Verbs whose を-place is where the actor leaves from (店を出る).
-LEAVING_VERBS = frozenset("出る 離れる 去る 降りる 立ち去る 出て行く".split())
+LEAVING_VERBS = frozenset("出る 離れる 去る 降りる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
 #: The て-forms that may say a way or a facing, no motion of their own.
 _WAY_TE = FACING_VERBS | DIRECTION_TE
 #: Roles a person keeps as the addressee of a following gesture (近づいて、お辞儀する).
@@ -329,7 +329,7 @@ def _follow_on(preds: list[Pred]) -> None:
       other's partners;
     - a gesture right after a motion of the same actor directed at a person is addressed to that person
       (花子に近づいて、お辞儀する), a touch of them done to them (駆け寄って、抱きしめる), a thing sent goes
-      to them (近づいて、ボールを渡す: she receives it);
+      to them (近づいて、ボールを渡す: she receives it); a leaving leaves them (手を振って、立ち去る);
     - それ / これ as an object is the thing last named (花子はそれを投げた: the ball), said in its note;
     - a thing given back (返す, 投げ返す) with no one named goes back to the one who gave it (健は花子に本を
       貸した。彼女はそれを返した: to 健).
@@ -357,6 +357,9 @@ def _follow_on(preds: list[Pred]) -> None:
             if handled:  # ドアを引いて開ける, ドアの前で立ち止まってノックする, 台車を押して運ぶ: the thing just handled
                 pred.object = handled
                 pred.say(f"{pred.verb} read as done to {handled}, the thing just handled")
+        if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
+                and pred.verb in LEAVING_VERBS):  # 花子に手を振って、立ち去る: leaves her, not towards her
+            pred.target, pred.target_role, pred.target_person = prev.target, "source", True
         if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
                 and prev.target_side not in ALONGSIDE
                 and pred.verb not in LOCOMOTION_VERBS and pred.verb not in SUPPORT_VERBS):

@@ -73,6 +73,8 @@ def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str
                 r.method == "composition" and _is_base_of(rows, r)) or _answers(rows[:i], r):
             continue
         kind, dist, time = _shape(r, rows[i + 1:])
+        if kind == "away" and any(o.actor == r.actor and o.other == r.target for o in out):
+            continue  # 花子に手を振って、立ち去る: she stands where the wave put her, and he walks away from there
         quarter = 0.25 * (r.end - r.start)
         span = None if r.target_role in ("goal", "source") else (r.start + quarter, r.end - quarter)
         facing, hands = None, None

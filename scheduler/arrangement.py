@@ -2,7 +2,8 @@
 
 :func:`arrange` reads the first time table, chooses clips whose postures meet
 along each actor's sequence (:func:`postures.choose`) and, where none can, adds
-the :func:`postures.bridges` clips as motions of their own to the analysis,
+the :func:`postures.bridges` clips as motions of their own to the analysis (and
+:func:`facing.turn_away`'s turn where an actor leaves the person it faced),
 linked between their neighbours, for a second planning pass
 (:meth:`Arrangement.finder` gives that pass the clips chosen here).
 """
@@ -18,6 +19,7 @@ from .clips import C, ClipSource
 from .fillers import IDLE_VERB
 from .picker import Picker
 from .plan import ClipFinder
+from .facing import turn_away
 from .postures import bridges, choose, matching
 from .seated import seated_motions
 from .types import ClipTiming, Element, TimeTable
@@ -92,7 +94,7 @@ def _choose(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
     return picked
 
 
-def _relink(constraints: list[Constraint], incoming: int | None, chain: list[int]) -> None:
+def _relink(constraints: list[Constraint], incoming: int | None, chain: list[int], cue: str = "posture") -> None:
     """Link the motions of ``chain`` (a, the bridges, b) in ``constraints``, in place.
 
     The link that led to b leads to the first bridge (a delay is spent in the old
@@ -101,7 +103,7 @@ def _relink(constraints: list[Constraint], incoming: int | None, chain: list[int
     it came from a. Without a link (b follows a by sentence order alone) the bridges
     hang on a and b comes after them.
     """
-    posture = lambda x, y: Constraint(x, y, "serial", False, None, "connection", "posture")  # noqa: E731
+    posture = lambda x, y: Constraint(x, y, "serial", False, None, "connection", cue)  # noqa: E731
     if incoming is None:
         constraints += [posture(x, y) for x, y in zip(chain[:-2], chain[1:-1])]
         return
@@ -170,12 +172,14 @@ def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
         for a, b in zip(ids, ids[1:]):
             ca, cb = picked[a], picked[b]
             end = kept.get(a, ca.end_posture)
-            if end == kept.get(b, cb.start_posture):
+            same = end == kept.get(b, cb.start_posture)
+            turn = turn_away(specs.get(a), specs[b], cb, source, character=ca.character) if same else []
+            if same and not turn:
                 continue
             incoming = next((k for k, c in enumerate(constraints) if c.second == b), None)
             if incoming is not None and constraints[incoming].method == "composition":
                 continue  # b is laid onto a (a base chosen by the clips): no room for a bridge
-            plan = bridges(end, cb.start_posture, source, character=ca.character)
+            plan = turn or bridges(end, cb.start_posture, source, character=ca.character)
             if not plan:
                 continue
             spec_b = specs[b]
@@ -185,7 +189,7 @@ def arrange(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
                 picked[nid] = clip
                 motions.insert(next(i for i, m in enumerate(motions) if m.id == b),
                                MotionSpec(nid, spec_b.actor, clip.verb, span=(spec_b.span[0], spec_b.span[0])))
-            _relink(constraints, incoming, [a] + new_ids + [b])
+            _relink(constraints, incoming, [a] + new_ids + [b], "facing" if turn else "posture")
             added += new_ids
     changed = changed or bool(added or idles)
     new_analysis = replace(analysis, motions=tuple(motions), constraints=tuple(constraints)) \
