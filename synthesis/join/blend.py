@@ -102,7 +102,7 @@ def sample(motion: Motion, frames, origin: int = 0) -> Motion:
     track's positions: the fractions are those of the track's positions, bit for bit (``47.3 - 47`` is not
     ``52.3 - 52``).
     """
-    i0, i1, u = _neighbours(frames, motion.n_frames, origin)
+    i0, i1, u = neighbours(frames, motion.n_frames, origin)
     root = lerp(motion.root_positions[i0], motion.root_positions[i1], u)
     rots = slerp(motion.rotations[i0], motion.rotations[i1], np.broadcast_to(u[:, None], (len(u), motion.skeleton.n_joints)))
     trans = None
@@ -114,11 +114,11 @@ def sample(motion: Motion, frames, origin: int = 0) -> Motion:
 def sample_path(path: np.ndarray, frames, origin: int = 0) -> np.ndarray:
     """The root positions of :func:`sample` (bit for bit) from a motion's root positions ``path`` ``(T, 3)`` alone:
     ``(K, 3)`` at the fractional frame positions ``frames`` ``(K,)``."""
-    i0, i1, u = _neighbours(frames, len(path), origin)
+    i0, i1, u = neighbours(frames, len(path), origin)
     return lerp(path[i0], path[i1], u)
 
 
-def _neighbours(frames, n: int, origin: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def neighbours(frames, n: int, origin: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(i0, i1, u)`` ``(K,)`` each: the frames (of ``n``, the window's from ``origin``) either side of each of the
     track's positions ``frames`` (clamped to the window), and the fraction between them (:func:`sample`)."""
     f = np.clip(np.asarray(frames, dtype=np.float64), origin, origin + n - 1)

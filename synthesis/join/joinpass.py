@@ -83,7 +83,7 @@ from text2anim.core.kept import Kept, digest
 from text2anim.core.metrics import gmd_floor, quality
 from text2anim.core.motion import Motion
 
-from .blend import sample, sample_path
+from .blend import neighbours, sample, sample_path
 from .hipspath import least_acceleration
 from .inertialize import inertialize_at, inertialize_before
 from .legsolve import solve_leg
@@ -302,6 +302,7 @@ def replay_both(seamed: Motion, motion: Motion, lo: int, hi: int, src: np.ndarra
     if seamed is motion:
         return base, base
     T = motion.n_frames
+
     def bits(x: np.ndarray) -> np.ndarray:  # compared as bits: -0.0 is not 0.0 here
         return x.view(np.int64).reshape(T, -1)
 
@@ -311,9 +312,8 @@ def replay_both(seamed: Motion, motion: Motion, lo: int, hi: int, src: np.ndarra
         same[:] = False
     elif seamed.translations is not None and motion.translations is not None:
         same &= (bits(seamed.translations) == bits(motion.translations)).all(axis=1)
-    at = np.clip((origin + lo) + src, origin, origin + T - 1)  # as blend.sample clamps and reads them
-    i0 = np.floor(at).astype(int) - origin
-    differ = ~(same[i0] & same[np.minimum(i0 + 1, T - 1)])
+    i0, i1, _ = neighbours((origin + lo) + src, T, origin)  # the frames blend.sample reads
+    differ = ~(same[i0] & same[i1])
     if differ.all():
         return base, replay(motion, lo, hi, src, origin)
     mid = base[lo:lo + len(src)]
