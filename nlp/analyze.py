@@ -7,6 +7,7 @@ from .bunsetsu import Phrase, chunk, split_sentences
 from .constraints import build_constraints
 from .dependency import link_heads
 from .errors import NLPError
+from .lexicon import LOCOMOTION_VERBS
 from .motions import annotate
 from .targets import add_counterparts, time_catches
 from .tokens import OffsetMap, normalize, tokenize
@@ -63,7 +64,9 @@ def analyze(text: str) -> Analysis:
 def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: dict[int, tuple[str, ...]]) -> None:
     """太郎と花子が歩く: each co-actor gets a copy of the motions (ids after the text's own, same span); a
     copy directed at its co-actor is directed at the actor instead (太郎は花子と握手する: 花子's handshake is
-    with 太郎; 花子の手を取って、一緒に踊る: she dances toward him).
+    with 太郎; 花子の手を取って、一緒に踊る: she dances toward him); a copy of a walk or run directed at no one
+    goes beside the actor (partner, side ``beside``: 二人は並んで歩いた walk side by side, and a later motion
+    between them does not turn one round to meet the other head-on).
 
     Links among the copied motions are copied; a copy with no copied link starts
     with its original (parallel), so every actor's track is linked as the contract says.
@@ -77,7 +80,12 @@ def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: d
             copies[orig] = next_id
             spec = by_id[orig]
             target = spec.actor if spec.target == name else spec.target  # never directed at oneself
-            specs.append(replace(spec, id=next_id, actor=name, target=target))
+            copy = replace(spec, id=next_id, actor=name, target=target)
+            if spec.target is None and spec.verb in LOCOMOTION_VERBS and spec.actor is not None:
+                # 二人は並んで歩いた, 太郎と花子が走る: side by side with the first, whatever places them later
+                copy = replace(copy, target=spec.actor, target_role="partner", target_side="beside",
+                               target_person=True)
+            specs.append(copy)
             next_id += 1
         linked = set()
         for c in list(constraints):

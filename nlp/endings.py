@@ -67,6 +67,7 @@ NOT_MOTION = {
     "facing": "says that the actors face each other (向かい合って)",
     "greeting": "a set greeting (いらっしゃいませ, おかえりなさい: said to someone, not done)",
     "prop": "says what the next motion is done with (杖をついて歩く: the cane in hand)",
+    "companion": "says who goes along on the next motion (犬を連れて散歩する: the dog walks too)",
     "passive": "done to its subject by someone else (花子に言われた, 先生に呼ばれた)",
     "unseen": "done with the face alone (目を覚ます), which is not animated: said in the notes",
 }

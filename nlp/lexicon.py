@@ -228,8 +228,11 @@ PERSON_HEADS = frozenset("人 方 子".split())
 #: with the actor: the motion they modify is performed by every one of them, for the same time.
 TOGETHER_WORDS = frozenset(
     """一緒に いっしょに 一緒になって 揃って そろって 共に ともに 二人で ふたりで みんなで 皆で みなで
-    全員で 一斉に""".split()
+    全員で 一斉に 並んで ならんで""".split()
 )
+
+#: Verbs whose て-form takes its を-persons along on the next motion (犬を連れて散歩する: the dog walks too).
+TAKING_ALONG = frozenset("連れる 伴う".split())
 
 #: Animals among the persons: 鳴く is what they do (太郎が鳴く is 泣く, a typo; 犬が鳴く is not).
 ANIMALS = frozenset("犬 猫 子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣".split())
@@ -324,7 +327,7 @@ LOCOMOTION_VERBS = frozenset(
     帰る 入る 進む 前進する 移動する 急ぐ 逃げる 離れる 下がる 後ずさりする 後退りする スキップする 歩き出す
     走り出す 出る 出掛ける 這う 飛び込む 近寄る 立つ 隠れる 回り込む 詰め寄る 駆け上がる 駆け下りる 駆け降りる
     駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く 渡る 横切る 下る
-    集まる 駆けつける 駆け付ける 去る 立ち去る 歩き去る 走り去る 駆け去る 逃げ去る 逃げ出す""".split()
+    集まる 駆けつける 駆け付ける 散歩する 去る 立ち去る 歩き去る 走り去る 駆け去る 逃げ去る 逃げ出す""".split()
 )
 
 #: Verbs that take the body down off its feet (besides ``SUPPORT_VERBS``): after them 立つ is rising, before
@@ -401,7 +404,7 @@ CONTACT_VERBS = frozenset(
 
 #: Verbs two people do to each other: co-actors of one are each other's partner (太郎と花子は握手する).
 RECIPROCAL_VERBS = frozenset(
-    """握手する ハイタッチする 話す 会話する 話し合う 喧嘩する けんかする 戦う 乾杯する キスする 見つめ合う
+    """握手する ハイタッチする 話す 話する おしゃべりする 会話する 話し合う 喧嘩する けんかする 戦う 乾杯する キスする 見つめ合う
     抱き合う 向かい合う 組み合う 繋ぐ つなぐ 手を繋ぐ 出会う 出合う""".split()
 )
 #: Verbs whose を-person is where the motion ends, not whom it is done to: 男を追いかける runs up to him.

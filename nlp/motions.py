@@ -249,21 +249,41 @@ def _merge_light_verbs(phrases: list[Phrase]) -> None:
 
 
 def _mark_non_agents(phrases: list[Phrase]) -> None:
-    """雨が降る / 音楽が流れる / ボールが転がる: a が-subject that is neither a person nor
-    a body part (手が震える is still the actor's) makes its predicate no action of anyone; the
-    subject is kept as its ``object``, the thing it is about."""
+    """雨が降る / 音楽が流れる / ボールが転がる: a が- or は-subject that is neither a person nor
+    a body part (手が震える is still the actor's) makes its predicates no action of anyone, up to the next
+    subject of its clause group (ボールは転がって、花子の足元で止まった: neither is 太郎's); the subject is
+    kept as their ``object``, the thing they are about. A は-thing before a person's が is the object
+    of that person's action, as a topic (ボールは太郎が蹴った)."""
     for i, ph in enumerate(phrases):
-        if ph.role not in ("", "actor") or ph.pred or case_particle(ph) != "が" or any(t.is_number for t in ph.tokens):
-            continue
+        particle = case_particle(ph)
+        if ph.role not in ("", "actor") or ph.pred or particle not in ("が", "は") \
+                or any(t.is_number or (particle == "は" and t.pos3 == "副詞可能") for t in ph.tokens):
+            continue  # 今日は, 朝は: when, not what
         noun = noun_of(ph)
         target = _next_pred(phrases, i)
         weather = target is not None and target.predicate.lemma in WEATHER_VERBS and not any(
             t.pos3 == "人名" or t.surface in HONORIFICS for t in ph.tokens)  # ゆきが降る: snow, not ゆき
         if not noun or noun in BODY_PARTS or (person_name(ph) and not weather):
             continue
-        if target is not None and target.predicate.motion:
-            target.predicate.reason = "non-agent"
-            target.predicate.object = noun  # the thing it is about: それ may name it next (targets._follow_on)
+        for pred in _governed(phrases, i):
+            pred.reason = "non-agent"
+            pred.object = noun  # the thing it is about: それ may name it next (targets._follow_on)
+
+
+def _governed(phrases: list[Phrase], i: int) -> list:
+    """The motions whose subject is phrase ``i``'s: the predicates after it in its clause group up to the next
+    phrase naming an actor (none when that actor comes before the first predicate: ボールは太郎が蹴った) or the
+    first predicate that is no motion (本当は踊りたいけど、座る)."""
+    out = []
+    for ph in phrases[i + 1:]:
+        if ph.group != phrases[i].group or (ph.pred is None and ph.role == "actor"
+                                              and case_particle(ph) in ("が", "は", "も")):
+            break
+        if ph.pred is not None:
+            if not ph.pred.motion:  # 声がして、振り返る: the voice is heard, someone else turns
+                break
+            out.append(ph.pred)
+    return out
 
 
 def _mark_passives(phrases: list[Phrase]) -> None:

@@ -124,10 +124,12 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
             topic = particle in ("は", "も")
             persons, why = _topic_pronoun(seen, m, tuple(subjects.get(ph.sentence, ())) if topic else ())
         if m.kind != "name" and not persons:
-            persons = _unresolved(ph, m, seen.order)
+            later = _named_after(phrases, i, seen.order) if m.kind == "group" else ()
+            persons = _unresolved(ph, m, seen.order, later)
             if len(persons) > 1:
-                notes.append(f"read {m.written} as {'、'.join(persons)} (fewer were named: the rest are new "
-                             "characters)")
+                new = [p for p in persons if p in ORDINALS]
+                notes.append(f"read {m.written} as {'、'.join(persons)} (" + ("fewer were named: the rest are new "
+                             "characters" if new else "named in the sentences after it") + ")")
         elif persons != (m.written,):
             notes.append(f"read {m.written} as {'、'.join(persons)} ({why})")
         ph.persons = persons
@@ -238,19 +240,38 @@ class _Named:
 ORDINALS = tuple(f"{k}人目" for k in "一二三四五六七八九十")
 
 
-def _unresolved(ph: Phrase, m: Mention, named: list[str]) -> tuple[str, ...]:
+def _unresolved(ph: Phrase, m: Mention, named: list[str], later: tuple[str, ...] = ()) -> tuple[str, ...]:
     """A pronoun or group that refers to no one named: 彼女, 彼ら and 皆さん are characters of their
-    own (as written, as before this rule); 二人 / 三人 with fewer named before are those ``named`` and
-    new characters for the rest (:data:`ORDINALS`, up to ten: 太郎は3人で踊った is 太郎, 二人目 and
-    三人目); みんな as an actor is a character of its own (花子が歌い出すと、みんなが手拍子をした: not 花子),
-    elsewhere it names no one."""
+    own (as written, as before this rule); 二人 / 三人 with fewer named before are those ``named``, then
+    the actors ``later`` sentences name first (:func:`_named_after`), and new characters for the rest
+    (:data:`ORDINALS`, up to ten: 太郎は3人で踊った is 太郎, 二人目 and 三人目; 二人は並んで歩いた。途中で太郎が
+    転んだ。花子は彼を助け起こした is 太郎 and 花子); みんな as an actor is a character of its own
+    (花子が歌い出すと、みんなが手拍子をした: not 花子), elsewhere it names no one."""
     if m.kind == "group" and len(named) < m.size <= len(ORDINALS):
-        return (*named, *ORDINALS[len(named):m.size])
+        known = (*named, *later[:m.size - len(named)])
+        return (*known, *ORDINALS[len(known):m.size])
     if m.kind == "group" and not (any(t.pos1 == "代名詞" for t in ph.tokens) or _honorific(ph.tokens)
                                   or case_particle(ph) in ("は", "が")):
         return ()
     name = person_name(ph)
     return (name,) if name else ()
+
+
+def _named_after(phrases: list[Phrase], i: int, named: list[str]) -> tuple[str, ...]:
+    """The persons the sentences after phrase ``i``'s name first as actors (は, が, も) by a name or person noun,
+    in order, not among ``named``: whom a counted group the text opens with turns out to be (二人は歩いた。
+    途中で太郎が転んだ。花子は…). A reader takes the two for the two the story goes on with."""
+    out: list[str] = []
+    for j in range(i + 1, len(phrases)):
+        ph = phrases[j]
+        if ph.sentence == phrases[i].sentence or ph.pred is not None or ph.role not in _MAY_NAME \
+                or person_name(ph) is None or case_particle(ph) not in ("は", "が", "も"):
+            continue
+        m = mention(phrases, j)
+        if m is not None and m.kind == "name" and m.written not in ONE_OF_GROUP and m.written not in named \
+                and m.written not in out:
+            out.append(m.written)
+    return tuple(out)
 
 
 def _after_mou(phrases: list[Phrase], i: int) -> bool:

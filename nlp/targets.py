@@ -79,6 +79,7 @@ def attach_targets(phrases: list[Phrase]) -> None:
     pending: list[Target] = []
     group = None
     actors = {a for ph in phrases if ph.pred for a in (ph.pred.actor, *ph.pred.co_actors) if a}
+    done: list[Pred] = []  # the motions so far
     for i, ph in enumerate(phrases):
         if ph.group != group:
             pending, group = [], ph.group
@@ -90,7 +91,12 @@ def attach_targets(phrases: list[Phrase]) -> None:
             continue
         if pred.reason in ("direction", "facing"):
             continue  # its noun waits for the motion it says the way of
+        if pred.reason == "non-agent":
+            _sent_to(pred, _person_by(phrases, i), done)
+            pending = []
+            continue
         if pred.motion:
+            done.append(pred)
             _settle(pred, pending, actors)
             if pred.target is None and pred.verb in LOCOMOTION_VERBS and (_comes(ph) or pred.verb in COMING_VERBS):
                 _come_to(pred, phrases, i)
@@ -244,6 +250,30 @@ def _at_side(particle: str) -> str:
 
 
 # ---------------------------------------------------------------- roles
+
+
+def _person_by(phrases: list[Phrase], i: int) -> str | None:
+    """The one person a phrase of predicate ``i``'s clause names before it with の, に, へ or まで (花子の足元で,
+    花子の方へ, 花子に), if any."""
+    for ph in reversed(phrases[:i]):
+        if ph.group != phrases[i].group or ph.pred is not None:
+            break
+        if len(ph.persons) == 1 and _particle(ph) in ("の", "に", "へ", "まで"):
+            return ph.persons[0]
+    return None
+
+
+def _sent_to(pred: Pred, person: str | None, done: list[Pred]) -> None:
+    """ボールは転がって、花子の足元で止まった: a thing that comes to rest by a person (``person``, named in the
+    clause of its non-agent predicate) was sent to that person by the last motion that sent it and named no one
+    (太郎はボールを蹴った: to 花子, the recipient), said in that motion's notes."""
+    if person is None or pred.object is None:
+        return
+    sender = next((p for p in reversed(done) if p.object == pred.object and p.verb in TRANSFER_VERBS), None)
+    if sender is None or sender.target is not None or sender.actor == person:
+        return
+    sender.target, sender.target_role, sender.target_person = person, "recipient", True
+    sender.say(f"{sender.object} sent to {person}: it comes to rest by them")
 
 
 def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:

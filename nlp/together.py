@@ -1,4 +1,4 @@
-"""Acting together: 一緒に, 揃って, 二人で, みんなで (docs/language.md §9).
+"""Acting together: 一緒に, 揃って, 二人で, みんなで, 〜を連れて (docs/language.md §9).
 
 A together word (``lexicon.TOGETHER_WORDS``) makes more persons perform the motion it modifies:
 the persons joined to it by と (太郎は花子と一緒に歩く: 花子 walks too; 友達と二人で), or, with no
@@ -14,7 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from .bunsetsu import Phrase
-from .lexicon import TOGETHER_WORDS
+from .lexicon import TAKING_ALONG, TOGETHER_WORDS
 
 
 @dataclass(frozen=True, slots=True)
@@ -42,6 +42,9 @@ def together(phrases: list[Phrase], partners: Callable[[list[Phrase], int], list
     """
     out: dict[int, Joined] = {}
     for i, ph in enumerate(phrases):
+        if ph.pred is not None and ph.pred.lemma in TAKING_ALONG and ph.pred.ending == "te":
+            _taken_along(phrases, i, out)
+            continue
         if ph.key not in TOGETHER_WORDS and (ph.tokens[0].value is None or not _counted_group(ph)):
             continue
         target = next((k for k in range(i + 1, len(phrases))
@@ -56,6 +59,21 @@ def together(phrases: list[Phrase], partners: Callable[[list[Phrase], int], list
         elif ph.key in TOGETHER_WORDS and (other := _other_named(phrases, i)):
             out[target] = Joined((other,))
     return out
+
+
+def _taken_along(phrases: list[Phrase], i: int, out: dict[int, Joined]) -> None:
+    """犬を連れて散歩する, 弟を連れて歩く: the persons of the を-phrase before the て-form of 連れる (phrase ``i``)
+    go along: they join the next motion of the sentence, and 連れて is no motion of its own (reason
+    ``companion``)."""
+    ph = phrases[i]
+    taken = next((q for q in reversed(phrases[:i]) if q.group == ph.group and q.pred is None and q.persons
+                  and q.key.endswith("を")), None)
+    target = next((k for k in range(i + 1, len(phrases)) if phrases[k].sentence == ph.sentence and phrases[k].pred),
+                  None)
+    if taken is None or target is None or ph.pred is None:
+        return
+    ph.pred.reason = "companion"
+    out[target] = Joined(tuple(taken.persons))
 
 
 def _other_named(phrases: list[Phrase], i: int) -> str | None:
