@@ -234,6 +234,10 @@ TOGETHER_WORDS = frozenset(
 #: Verbs whose て-form takes its を-persons along on the next motion (犬を連れて散歩する: the dog walks too).
 TAKING_ALONG = frozenset("連れる 伴う".split())
 
+#: Verbs of taking someone by the hand (手を引く, 手をつなぐ): in て-form, that person goes along on the walk or
+#: run that follows (花子は太郎の手を引いて走った: both run).
+LEADING_BY_HAND = frozenset("引く 繋ぐ つなぐ 取る 握る".split())
+
 #: Animals among the persons: 鳴く is what they do (太郎が鳴く is 泣く, a typo; 犬が鳴く is not).
 ANIMALS = frozenset("犬 猫 子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣".split())
 
