@@ -234,6 +234,10 @@ TOGETHER_WORDS = frozenset(
 #: Verbs whose て-form takes its を-persons along on the next motion (犬を連れて散歩する: the dog walks too).
 TAKING_ALONG = frozenset("連れる 伴う".split())
 
+#: Verbs of taking someone by the hand (手を引く, 手をつなぐ): in て-form, that person goes along on the walk or
+#: run that follows (花子は太郎の手を引いて走った: both run).
+LEADING_BY_HAND = frozenset("引く 繋ぐ つなぐ 取る 握る".split())
+
 #: Animals among the persons: 鳴く is what they do (太郎が鳴く is 泣く, a typo; 犬が鳴く is not).
 ANIMALS = frozenset("犬 猫 子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣".split())
 
@@ -327,7 +331,7 @@ LOCOMOTION_VERBS = frozenset(
     帰る 入る 進む 前進する 移動する 急ぐ 逃げる 離れる 下がる 後ずさりする 後退りする スキップする 歩き出す
     走り出す 出る 出掛ける 這う 飛び込む 近寄る 立つ 隠れる 回り込む 詰め寄る 駆け上がる 駆け下りる 駆け降りる
     駆け回る 走り回る 歩き回る 追いかける 追い掛ける 追う 着く 到着する 辿り着く たどり着く 渡る 横切る 下る
-    集まる 駆けつける 駆け付ける 散歩する 現れる 現われる 姿を現す 去る 立ち去る 歩き去る 走り去る 駆け去る 逃げ去る 逃げ出す""".split()
+    集まる 駆けつける 駆け付ける 散歩する 別れる 現れる 現われる 姿を現す 去る 立ち去る 歩き去る 走り去る 駆け去る 逃げ去る 逃げ出す""".split()
 )
 
 #: Verbs that take the body down off its feet (besides ``SUPPORT_VERBS``): after them 立つ is rising, before
@@ -335,6 +339,9 @@ LOCOMOTION_VERBS = frozenset(
 LOWERING_VERBS = frozenset(
     "しゃがむ しゃがみ込む 屈む かがむ 転ぶ 倒れる ひざまずく 跪く 伏せる 寝転ぶ 横になる 座り込む うずくまる".split()
 )
+
+#: Things sat on: rising from one (椅子から立つ) starts seated.
+SEATS = frozenset("椅子 いす イス チェア ソファ ソファー ベンチ 長椅子 席 座席 腰掛け 切り株".split())
 
 #: Verbs whose に-thing holds the body up (the ``support``): 椅子に座る, ベッドに寝る.
 SUPPORT_VERBS = frozenset(
@@ -405,7 +412,7 @@ CONTACT_VERBS = frozenset(
 #: Verbs two people do to each other: co-actors of one are each other's partner (太郎と花子は握手する).
 RECIPROCAL_VERBS = frozenset(
     """握手する ハイタッチする 話す 話する おしゃべりする 会話する 話し合う 喧嘩する けんかする 戦う 乾杯する キスする 見つめ合う
-    抱き合う 向かい合う 組み合う 繋ぐ つなぐ 手を繋ぐ 出会う 出合う""".split()
+    抱き合う 向かい合う 組み合う 繋ぐ つなぐ 手を繋ぐ 出会う 出合う 顔を見合わせる 見合わせる""".split()
 )
 #: Verbs whose を-person is where the motion ends, not whom it is done to: 男を追いかける runs up to him.
 CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く 追いつく".split())

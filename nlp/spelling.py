@@ -43,6 +43,8 @@ def repair(line: str, offset: int, tokens: list[Token], notes: list[str]) -> lis
         tokens = _ha_verb(tokens, notes)
     if "んだ" in line or "んで" in line:
         tokens = _nasal_verb(tokens, notes)
+    if "行ったり" in line:
+        tokens = _to_and_fro(tokens)
     drawn = not _DRAWL.isdisjoint(line)
     # both passes below read a one-character noun (or suffix) only: most lines have none
     singles = [k for k, t in enumerate(tokens) if len(t.surface) == 1 and t.pos1 in ("名詞", "接尾辞")]
@@ -231,6 +233,16 @@ def _nasal_reading(stem: str) -> tuple[str, str] | None:
         if reading in LIBRARY_BY_READING:
             return LIBRARY_BY_READING[reading], reading
     return None
+
+
+def _to_and_fro(tokens: list[Token]) -> list[Token]:
+    """行ったり来たり: UniDic reads this 行っ as 行う (to hold an event); before たり and 来る it is 行く."""
+    out = list(tokens)
+    for k, t in enumerate(tokens[:-2]):
+        if (t.lemma == "行う" and t.surface == "行っ" and tokens[k + 1].surface == "たり"
+                and any(x.lemma == "来る" for x in tokens[k + 2:k + 4])):
+            out[k] = replace(t, lemma="行く", orth="行く")
+    return out
 
 
 def _same_sound(tokens: list[Token], notes: list[str]) -> list[Token]:

@@ -51,7 +51,7 @@ from .types import Constraint, MotionSpec
 #: Particles that mark a target, and the ones a 〜の + noun phrase may end with.
 TARGET_PARTICLES = frozenset("に へ まで から と".split())
 #: Verbs whose を-place is where the actor leaves from (店を出る).
-LEAVING_VERBS = frozenset("出る 離れる 去る 降りる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
+LEAVING_VERBS = frozenset("出る 離れる 去る 別れる 降りる 下りる 立つ 立ち上がる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
 #: The て-forms that may say a way or a facing, no motion of their own.
 _WAY_TE = FACING_VERBS | DIRECTION_TE
 #: Roles a person keeps as the addressee of a following gesture (近づいて、お辞儀する).
@@ -106,6 +106,8 @@ def attach_targets(phrases: list[Phrase]) -> None:
 
 #: Verbs of coming to someone: with no one named, to the person the story is with (:func:`_come_to`).
 COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る 現れる 現われる 姿を現す".split())
+#: Verbs of parting: co-actors who part each leave the other (二人は握手をして別れた).
+PARTING_VERBS = frozenset("別れる 分かれる".split())
 #: Verbs of running away: with no one named, from whoever last came to the actor (熊が現れた。少年は逃げ出した).
 FLEEING_VERBS = frozenset("逃げる 逃げ出す 逃げ去る".split())
 
@@ -298,7 +300,9 @@ def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
         pred.target, pred.target_role, pred.target_side, pred.target_person = t.name, role, t.side, t.person
         if t.covers is not None and pred.object == t.covers:
             pred.object = None  # 花子の方を向く: 方 says where, it is not a thing turned
-        if role == "partner" and t.name not in pred.co_actors:
+        if role == "source" and t.particle == "を" and pred.object == t.name:
+            pred.object = None  # 電車を降りる, 部屋を出る: the place left, not a thing handled
+        if (role == "partner" or (t.particle == "と" and pred.verb in PARTING_VERBS)) and t.name not in pred.co_actors:
             pred.co_actors = (*pred.co_actors, t.name)  # 花子と握手する: she shakes hands too
 
 
@@ -312,8 +316,8 @@ def _role(pred: Pred, t: Target) -> str | None:
         if t.person:
             return "goal" if verb in CHASING_VERBS else "patient"
         return "source" if verb in LEAVING_VERBS else None
-    if t.particle == "と":
-        return "partner" if t.person else None
+    if t.particle == "と":  # 花子と踊る: with her; 花子と別れる: each leaves the other
+        return ("source" if verb in PARTING_VERBS else "partner") if t.person else None
     if t.particle == "から":
         return "source"
     if verb in PLACING_VERBS:
@@ -380,6 +384,9 @@ def _follow_on(preds: list[Pred]) -> None:
         if (facing or pred.verb in RECIPROCAL_VERBS or pred.verb.endswith("合う")) and not pred.target \
                 and pred.co_actors:
             pred.target, pred.target_role, pred.target_person = pred.co_actors[0], "partner", True
+        elif pred.verb in PARTING_VERBS and not pred.target and pred.co_actors:
+            pred.target, pred.target_role, pred.target_person = pred.co_actors[0], "source", True  # each leaves
+            # the other (二人は握手をして別れた)
         if facing and pred.target_role == "partner":
             pred.target_side = "front"  # 向かい合って立つ: each in front of the other, not side by side
         prev = last.get(pred.actor)
@@ -401,7 +408,7 @@ def _follow_on(preds: list[Pred]) -> None:
             pred.target, pred.target_role, pred.target_person = prev.target, role, True
         if pred.target is None and pred.verb in FLEEING_VERBS:
             _flee(pred, preds)
-        if pred.target in pred.co_actors:
+        if pred.target in pred.co_actors and pred.verb not in PARTING_VERBS:
             pred.target_role = "partner"  # 花子の手を取って、一緒に踊る: done with her, not at her
         _stand_at(pred, prev)
         last[pred.actor] = pred

@@ -14,7 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from .bunsetsu import Phrase
-from .lexicon import TAKING_ALONG, TOGETHER_WORDS
+from .lexicon import LEADING_BY_HAND, LOCOMOTION_VERBS, TAKING_ALONG, TOGETHER_WORDS
 
 
 @dataclass(frozen=True, slots=True)
@@ -45,6 +45,9 @@ def together(phrases: list[Phrase], partners: Callable[[list[Phrase], int], list
         if ph.pred is not None and ph.pred.lemma in TAKING_ALONG and ph.pred.ending == "te":
             _taken_along(phrases, i, out)
             continue
+        if ph.pred is not None and ph.pred.lemma in LEADING_BY_HAND and ph.pred.ending == "te":
+            _by_the_hand(phrases, i, out)
+            continue
         if ph.key not in TOGETHER_WORDS and (ph.tokens[0].value is None or not _counted_group(ph)):
             continue
         target = next((k for k in range(i + 1, len(phrases))
@@ -74,6 +77,24 @@ def _taken_along(phrases: list[Phrase], i: int, out: dict[int, Joined]) -> None:
         return
     ph.pred.reason = "companion"
     out[target] = Joined(tuple(taken.persons))
+
+
+def _by_the_hand(phrases: list[Phrase], i: int, out: dict[int, Joined]) -> None:
+    """花子は太郎の手を引いて走った, 太郎は花子と手をつないで歩いた: the person whose hand is taken (太郎の手を)
+    or held with (花子と) goes along on the walk or run that follows in the sentence; the hand-taking plays
+    first, as written."""
+    ph = phrases[i]
+    before = [q for q in phrases[:i] if q.group == ph.group and q.pred is None]
+    hand = next((k for k in range(len(before) - 1, -1, -1) if before[k].key.endswith("手を")), None)
+    if hand is None:
+        return
+    owner = before[hand - 1] if hand > 0 and before[hand - 1].key.endswith("の") else None
+    withs = [q for q in before[:hand] if q.key.endswith("と") and q.persons]
+    persons = owner.persons if owner is not None and owner.persons else (withs[-1].persons if withs else ())
+    target = next((k for k in range(i + 1, len(phrases)) if phrases[k].sentence == ph.sentence and phrases[k].pred),
+                  None)
+    if persons and target is not None and phrases[target].pred.lemma in LOCOMOTION_VERBS:
+        out[target] = Joined(tuple(persons))
 
 
 def _other_named(phrases: list[Phrase], i: int) -> str | None:

@@ -47,7 +47,7 @@ BY_ROLE = {"addressee": 1.6, "patient": 0.6, "recipient": 1.2, "partner": 1.0}
 #: Partners who face each other for these; any other verb done with a partner is done side by side.
 FACE_TO_FACE = frozenset(
     """握手する ハイタッチする 抱き合う 話す 会話する 話し合う お辞儀する 挨拶する 喧嘩する 戦う キスする 見つめ合う
-    乾杯する 向かい合う 組み合う 渡す 受け取る""".split()
+    乾杯する 向かい合う 組み合う 渡す 受け取る 振り合う 手を振り合う 話する おしゃべりする 顔を見合わせる 見合わせる""".split()
 )
 #: The hand (or hands) each verb of two people's hands meeting makes its contact with: the scene puts the
 #: two so those hands meet at the instant of contact.

@@ -13,6 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Generic
 
+from text2anim.nlp.lexicon import SEATS
 from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .clips import C, ClipSource
@@ -73,7 +74,8 @@ def _choose(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
 
     A motion's candidates are those of its search that are whole-body or partial
     and looping or not as its first-pass clip (so the time table keeps its shape),
-    the first pass's pick (a variant, :mod:`variants`) first.
+    the first pass's pick (a variant, :mod:`variants`) first. An actor whose first motion leaves a seat
+    (椅子から立った: ``lexicon.SEATS``) starts seated: it rises from the chair, not from a crouch.
     """
     specs = {m.id: m for m in analysis.motions}
     picked: dict[int, C] = {}
@@ -90,7 +92,9 @@ def _choose(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
                     and c.name != first.name]
             cands[e.id] = [first] + same
             prefer = first.character
-        picked.update({k: v for k, v in choose(cands).items() if v is not None})
+        first = specs.get(seq[0].id) if seq else None
+        initial = "seated" if first is not None and first.target_role == "source" and first.target in SEATS else None
+        picked.update({k: v for k, v in choose(cands, initial=initial).items() if v is not None})
     return picked
 
 

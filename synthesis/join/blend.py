@@ -102,17 +102,30 @@ def sample(motion: Motion, frames, origin: int = 0) -> Motion:
     track's positions: the fractions are those of the track's positions, bit for bit (``47.3 - 47`` is not
     ``52.3 - 52``).
     """
-    f = np.clip(np.asarray(frames, dtype=np.float64), origin, origin + motion.n_frames - 1)
+    i0, i1, u = neighbours(frames, motion.n_frames, origin)
+    root = lerp(motion.root_positions[i0], motion.root_positions[i1], u)
+    rots = slerp(motion.rotations[i0], motion.rotations[i1], np.broadcast_to(u[:, None], (len(u), motion.skeleton.n_joints)))
+    trans = None
+    if motion.translations is not None:
+        trans = lerp(motion.translations[i0], motion.translations[i1], np.broadcast_to(u[:, None], (len(u), motion.skeleton.n_joints)))
+    return Motion(motion.skeleton, motion.fps, root, rots, trans)
+
+
+def sample_path(path: np.ndarray, frames, origin: int = 0) -> np.ndarray:
+    """The root positions of :func:`sample` (bit for bit) from a motion's root positions ``path`` ``(T, 3)`` alone:
+    ``(K, 3)`` at the fractional frame positions ``frames`` ``(K,)``."""
+    i0, i1, u = neighbours(frames, len(path), origin)
+    return lerp(path[i0], path[i1], u)
+
+
+def neighbours(frames, n: int, origin: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(i0, i1, u)`` ``(K,)`` each: the frames (of ``n``, the window's from ``origin``) either side of each of the
+    track's positions ``frames`` (clamped to the window), and the fraction between them (:func:`sample`)."""
+    f = np.clip(np.asarray(frames, dtype=np.float64), origin, origin + n - 1)
     i0 = np.floor(f).astype(int)
     u = f - i0
     i0 -= origin
-    i1 = np.minimum(i0 + 1, motion.n_frames - 1)
-    root = lerp(motion.root_positions[i0], motion.root_positions[i1], u)
-    rots = slerp(motion.rotations[i0], motion.rotations[i1], np.broadcast_to(u[:, None], (len(f), motion.skeleton.n_joints)))
-    trans = None
-    if motion.translations is not None:
-        trans = lerp(motion.translations[i0], motion.translations[i1], np.broadcast_to(u[:, None], (len(f), motion.skeleton.n_joints)))
-    return Motion(motion.skeleton, motion.fps, root, rots, trans)
+    return i0, np.minimum(i0 + 1, n - 1), u
 
 
 def blend_parts(base: Motion, other: Motion, joints, w) -> Motion:

@@ -66,6 +66,7 @@ All vectorised over frames and joints; deterministic.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -82,13 +83,13 @@ from text2anim.core.kept import Kept, digest
 from text2anim.core.metrics import gmd_floor, quality
 from text2anim.core.motion import Motion
 
-from .blend import sample
+from .blend import neighbours, sample, sample_path
 from .hipspath import least_acceleration
 from .inertialize import inertialize_at, inertialize_before
 from .legsolve import solve_leg
 from .overfeet import over_feet
 from .pruning import Tried, least, may_keep, replaces
-from .smoothing import Smoothed, Stretch, plant_all
+from .smoothing import Deferred, Smoothed, Stretch, plant_all
 from .spliced import Spliced
 
 SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
@@ -292,6 +293,43 @@ def replay(motion: Motion, lo: int, hi: int, src: np.ndarray, origin: int = 0) -
     return concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
 
 
+def replay_both(seamed: Motion, motion: Motion, lo: int, hi: int, src: np.ndarray,
+                origin: int = 0) -> tuple[Motion, Motion]:
+    """``(replay(seamed, ...), replay(motion, ...))`` (:func:`replay`) of two motions of one length that differ in
+    some frames only (the seams' inertialization): a new frame sampled between two frames the same in both is the
+    same bits in both (sampling is per frame and joint), so ``motion``'s are sampled only where they are not."""
+    base = replay(seamed, lo, hi, src, origin)
+    if seamed is motion:
+        return base, base
+    T = motion.n_frames
+
+    def bits(x: np.ndarray) -> np.ndarray:  # compared as bits: -0.0 is not 0.0 here
+        return x.view(np.int64).reshape(T, -1)
+
+    same = (bits(seamed.root_positions) == bits(motion.root_positions)).all(axis=1) & \
+        (bits(seamed.rotations) == bits(motion.rotations)).all(axis=1)
+    if (seamed.translations is None) != (motion.translations is None):
+        same[:] = False
+    elif seamed.translations is not None and motion.translations is not None:
+        same &= (bits(seamed.translations) == bits(motion.translations)).all(axis=1)
+    i0, i1, _ = neighbours((origin + lo) + src, T, origin)  # the frames blend.sample reads
+    differ = ~(same[i0] & same[i1])
+    if differ.all():
+        return base, replay(motion, lo, hi, src, origin)
+    mid = base[lo:lo + len(src)]
+    root, rots = mid.root_positions.copy(), mid.rotations.copy()
+    trans = None if mid.translations is None else mid.translations.copy()
+    if differ.any():
+        own = sample(motion, (origin + lo) + src[differ], origin)
+        root[differ], rots[differ] = own.root_positions, own.rotations
+        if trans is not None:
+            trans[differ] = own.translations
+    mid = Motion(motion.skeleton, motion.fps, root, rots, trans)
+    from text2anim.core.motion import concatenate
+
+    return base, concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
+
+
 def _planted(ref: Motion, contacts) -> dict:
     """Per side, ``(T,)``: the foot is in contact or held still by the engine (its ankle slower than :data:`STILL`)."""
     out = {}
@@ -400,10 +438,11 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
     for stretch in STRETCHES:
         n_new = int(round((whi - lo) * stretch))
         src = played[stretch] = warp_frames(whi - lo, n_new, seam, flights(span, n_new, seam))
-        if n_new > whi - lo:
-            base, ref = replay(seamed, lo, whi, src, origin), replay(motion, lo, whi, src, origin)
-        else:
-            base, ref = seamed, motion
+        frames: Motion | Deferred = seamed
+        if n_new > whi - lo:  # retimed when a width's rotations are asked: the hips' path is enough for the pops
+            path = seamed.root_positions
+            frames = Deferred(np.concatenate([path[:lo], sample_path(path, (origin + lo) + src, origin), path[whi:]]),
+                              fps, functools.partial(replay_both, seamed, motion, lo, whi, src, origin))
         # rounded as the track's frames: a window's would round its halves the other way half the time
         idx = np.round(np.concatenate([np.arange(lo), (origin + lo) + src, np.arange(whi, T)])).astype(int)
         idx[lo:lo + len(src)] -= origin
@@ -412,7 +451,7 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
         pad = max(1, min(pad0, (h2 - lo) // 3))
         # the hips' filtered path fades in and out over at least 2.5 sigma: a path low-passed where it
         # accelerates lags the original, and a shorter fade would return it with a pop of its own
-        widths = Stretch(base, ref, lo, h2, mask, [
+        widths = Stretch(frames, motion if frames is seamed else None, lo, h2, mask, [
             (sigma * scale, pad, max(pad, min(int(np.ceil(2.5 * sigma * scale)), (h2 - lo) // 3))) for sigma in SIGMAS])
         stretches.append(widths)
         for i, sigma in enumerate(SIGMAS):

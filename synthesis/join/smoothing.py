@@ -1,8 +1,9 @@
 """The join post-pass's candidates (:mod:`synthesis.join.joinpass`, steps 2-3): a join's region at one stretch,
 low-passed at one width, its feet re-planted by leg IK and its figures measured.
 
-What every width of a stretch shares is computed once (:class:`Stretch`): the feet's contact weights and
-targets (from the reference motion's kinematics over the region only), and the kinematics of the 3 frames
+What every width of a stretch shares is computed once (:class:`Stretch`), when a width's rotations are first
+asked: the region's frames retimed (:class:`Deferred`: the pops need only the hips' path), the feet's contact weights
+and targets (from the reference motion's kinematics over the region only), and the kinematics of the 3 frames
 either side of the region, which no width changes. A width (:class:`Smoothed`) is measured as far as the
 search asks, each step dearer than the last:
 
@@ -20,6 +21,10 @@ bit the low-passed motion with its feet re-planted over the region.
 """
 from __future__ import annotations
 
+import functools
+from collections.abc import Callable
+from dataclasses import dataclass
+
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
@@ -34,13 +39,16 @@ from .legsolve import LegGoal, solve_legs
 AROUND = 3  # frames either side of a region its figures include (the jerk's differences reach that far)
 
 
+@functools.lru_cache(maxsize=256)
 def _fade(n: int, pad: int) -> np.ndarray:
-    """``(n,)``: 0 → 1 over the first ``pad`` frames, 1, 1 → 0 over the last ``pad`` (quintic, C2)."""
+    """``(n,)``: 0 → 1 over the first ``pad`` frames, 1, 1 → 0 over the last ``pad`` (quintic, C2); read-only, made
+    once per size (every width of every stretch asks for it twice)."""
     e = np.ones(n)
     if pad > 0:
         up = ease(np.linspace(0.0, 1.0, pad + 1)[:-1], "smooth")
         e[:pad] = up
         e[n - pad:] = up[::-1]
+    e.setflags(write=False)
     return e
 
 
@@ -67,7 +75,12 @@ def _filtered(x: np.ndarray, lo: int, hi: int, sigma: float) -> tuple[np.ndarray
 
 def low_pass_root(motion: Motion, lo: int, hi: int, sigma: float, root_pad: int) -> np.ndarray:
     """Root positions ``(hi - lo, 3)`` of :func:`low_pass` over ``[lo, hi)`` (when :func:`smooths`)."""
-    own, smooth = _filtered(motion.root_positions, lo, hi, sigma)
+    return low_pass_path(motion.root_positions, lo, hi, sigma, root_pad)
+
+
+def low_pass_path(root: np.ndarray, lo: int, hi: int, sigma: float, root_pad: int) -> np.ndarray:
+    """:func:`low_pass_root` of a motion whose root positions are ``root`` ``(T, 3)``."""
+    own, smooth = _filtered(root, lo, hi, sigma)
     return lerp(own, smooth, _fade(hi - lo, root_pad))
 
 
@@ -111,43 +124,97 @@ def jerk_floor(jerk: np.ndarray, fixed: np.ndarray) -> float:
     return float(np.partition(known.ravel(), k)[k]) * (1.0 - 1e-12)
 
 
+@dataclass(frozen=True)
+class Deferred:
+    """A stretch's base and reference motions (:class:`Stretch`), made when a width's rotations are first asked:
+    ``root`` ``(T, 3)`` m, the base's root positions (all its widths' hips' paths, and so their pops, need),
+    ``fps``, and ``make``: ``() -> (base, ref)``. Nearly half of a long text's stretches have every width pruned
+    by its hips' path alone (:mod:`synthesis.join.pruning`): their frames are never retimed."""
+
+    root: np.ndarray
+    fps: float
+    make: Callable[[], tuple[Motion, Motion]]
+
+
 class Stretch:
     """What every smoothing width of one stretch of a join's region shares.
 
     ``base``: the region retimed (seams carried over), ``ref``: the engine's output retimed alike (the feet
-    to keep), ``[lo, hi)``: the frames smoothed, ``planted``: per side ``(T,)`` bool over ``base``'s frames,
-    ``widths``: ``(sigma, pad, root_pad)`` (frames) of :func:`low_pass` per width, made when first asked
-    (``stretch[i]``).
+    to keep), both given or :class:`Deferred` (``ref`` then ``None``); ``[lo, hi)``: the frames smoothed,
+    ``planted``: per side ``(T,)`` bool over ``base``'s frames, ``widths``: ``(sigma, pad, root_pad)`` (frames)
+    of :func:`low_pass` per width, made when first asked (``stretch[i]``). What the widths' rotations share
+    (:attr:`feet`, :attr:`fixed`, the kinematics around the region) is made when first asked.
     """
 
-    def __init__(self, base: Motion, ref: Motion, lo: int, hi: int, planted: dict,
+    def __init__(self, base: Motion | Deferred, ref: Motion | None, lo: int, hi: int, planted: dict,
                  widths: list[tuple[float, int, int]] | None = None):
-        self.base, self.lo, self.hi, self.fps = base, lo, hi, base.fps
+        if isinstance(base, Deferred):
+            self.root, self.fps, self._make = base.root, base.fps, base.make
+            self._motions: tuple[Motion, Motion] | None = None
+        else:
+            assert ref is not None
+            self.root, self.fps, self._motions = base.root_positions, base.fps, (base, ref)
+        self.lo, self.hi, self._planted = lo, hi, planted
         self.widths = list(widths or [])
         self._made: dict[int, Smoothed] = {}
+        self.a, self.b = max(0, lo - AROUND), min(len(self.root), hi + AROUND)
+
+    @property
+    def base(self) -> Motion:
+        """The region retimed, seams carried over (made when first asked)."""
+        if self._motions is None:
+            self._motions = self._make()
+        return self._motions[0]
+
+    @functools.cached_property
+    def _shared(self) -> tuple[Motion, list[tuple[str, int, np.ndarray, np.ndarray, np.ndarray]], np.ndarray,
+                               np.ndarray, np.ndarray]:
+        """``(region, feet, fixed, before, after)`` (:attr:`region`, :attr:`feet`, :attr:`fixed`, and the world
+        positions of the measured frames before and after the region)."""
+        base = self.base
+        assert self._motions is not None
+        ref, lo, hi = self._motions[1], self.lo, self.hi
         skel = base.skeleton
-        self.a, self.b = max(0, lo - AROUND), min(base.n_frames, hi + AROUND)
-        #: per side to keep: (side, ankle, weights (n,), ankle targets (n, 3), ankle world rotations (n, 4))
-        self.feet: list[tuple[str, int, np.ndarray, np.ndarray, np.ndarray]] = []
+        feet = []
+        # the region's frames as they are (a width that smooths nothing): where they are the reference's frames
+        # (those the seams left alone), their kinematics is the reference's
+        region = base[lo:hi]
         if hi - lo >= 2:
             want = None
             for side, (ankle, _toe) in body_map(skel).feet.items():
-                c = _soft(maximum_filter1d(planted[side], 3), self.fps)[lo:hi]  # held a frame either side too
+                c = _soft(maximum_filter1d(self._planted[side], 3), self.fps)[lo:hi]  # held a frame either side too
                 if not c.any():
                     continue
-                want = ref[lo:hi].pose if want is None else want  # kinematics is per frame: the region's only
+                if want is None:  # kinematics is per frame: the region's only
+                    own = ref[lo:hi]
+                    want = own.pose
+                    region.share_pose(own, np.arange(hi - lo))
                 r_want = rk.as_quat(rk.from_matrix(want.rotations[:, ankle]))  # Rotation's bits
-                self.feet.append((side, ankle, c, want.positions[:, ankle], r_want))
+                feet.append((side, ankle, c, want.positions[:, ankle], r_want))
         moved = np.zeros(skel.n_joints, dtype=bool)  # the knees, ankles and toes the leg IK moves
-        for _side, ankle, *_ in self.feet:
+        for _side, ankle, *_ in feet:
             hip = int(skel.parents[skel.parents[ankle]])
             moved[skel.subtree(hip)[1:]] = True
-        self.fixed = np.flatnonzero(~moved)
         # the measured frames either side of the region, their kinematics in one call (FK is per frame)
         around = np.r_[self.a:lo, hi:self.b]
         pos = Motion(skel, self.fps, base.root_positions[around], base.rotations[around],
                      None if base.translations is None else base.translations[around]).positions
-        self.before, self.after = pos[:lo - self.a], pos[lo - self.a:]
+        return region, feet, np.flatnonzero(~moved), pos[:lo - self.a], pos[lo - self.a:]
+
+    @property
+    def region(self) -> Motion:
+        """The base's frames ``[lo, hi)``."""
+        return self._shared[0]
+
+    @property
+    def feet(self) -> list[tuple[str, int, np.ndarray, np.ndarray, np.ndarray]]:
+        """Per side to keep: ``(side, ankle, weights (n,), ankle targets (n, 3), ankle world rotations (n, 4))``."""
+        return self._shared[1]
+
+    @property
+    def fixed(self) -> np.ndarray:
+        """The joints the leg IK leaves alone (all but the kept feet's knees, ankles and toes)."""
+        return self._shared[2]
 
     def __getitem__(self, i: int) -> Smoothed:
         """The ``i``-th of ``widths`` (:meth:`smoothed`), made once."""
@@ -166,7 +233,8 @@ class Stretch:
 
     def positions(self, sub: Motion) -> np.ndarray:
         """World positions ``(n, J, 3)`` of the measured frames, the region's from ``sub``."""
-        return np.concatenate([self.before, sub.positions, self.after])
+        _, _, _, before, after = self._shared
+        return np.concatenate([before, sub.positions, after])
 
 
 class Smoothed:
@@ -176,12 +244,12 @@ class Smoothed:
 
     def __init__(self, stretch: Stretch, sigma: float, pad: int, root_pad: int):
         self.stretch, self.sigma, self.pad = stretch, sigma, pad
-        st, base = stretch, stretch.base
+        st = stretch
         self.smooths = smooths(st.lo, st.hi, sigma, pad, root_pad)
-        root = base.root_positions[st.a:st.b]
+        root = st.root[st.a:st.b]
         if self.smooths:
             root = root.copy()
-            root[st.lo - st.a:st.hi - st.a] = low_pass_root(base, st.lo, st.hi, sigma, root_pad)
+            root[st.lo - st.a:st.hi - st.a] = low_pass_path(st.root, st.lo, st.hi, sigma, root_pad)
         self.root = root  # (b - a, 3) over the measured frames
         self.pop = peak_hips_acceleration(root, st.fps)
         self.jk: float | None = None
@@ -193,7 +261,7 @@ class Smoothed:
         """The region's frames ``[lo, hi)``: low-passed, their feet re-planted after :meth:`plant`."""
         if self._sub is None:
             st = self.stretch
-            sub = st.base[st.lo:st.hi]
+            sub = st.region
             if self.smooths:
                 rots = low_pass_rotations(st.base, st.lo, st.hi, self.sigma, self.pad)
                 sub = Motion(sub.skeleton, sub.fps, self.root[st.lo - st.a:st.hi - st.a], rots, sub.translations)

@@ -105,3 +105,58 @@ def test_the_fallback_chooses_as_re_planting_every_width_does(kick, lims, fewer)
     got = least(lazy, lims)
     assert got[1:3] == best[1:3] and got[4:] == best[4:] and got[0] == best[0]
     assert (sum(c.jk is not None for _s, _k, c, _h in lazy) < len(lazy)) == fewer
+
+
+def test_a_deferred_stretch_is_the_stretch_its_frames_make(kick):
+    """A stretch whose frames are retimed only when a width's rotations are asked (the post-pass's): the same pops
+    from the hips' path alone, sampled as the retiming samples it, and the same candidates once made."""
+    from text2anim.synthesis.join.blend import sample_path
+    from text2anim.synthesis.join.joinpass import replay, warp_frames
+    from text2anim.synthesis.join.smoothing import Deferred
+
+    lo, hi = 10, 44
+    src = warp_frames(hi - lo, 47)
+    retimed = replay(kick, lo, hi, src)
+    contacts = detect_contacts(kick)
+    idx = np.round(np.concatenate([np.arange(lo), lo + src, np.arange(hi, kick.n_frames)])).astype(int)
+    planted = {side: contacts.of(side)[:kick.n_frames][idx] for side in ("left", "right")}
+    path = kick.root_positions
+    made = []
+
+    def make():
+        made.append(True)
+        return retimed, retimed
+
+    root = np.concatenate([path[:lo], sample_path(path, lo + src), path[hi:]])
+    assert root.tobytes() == retimed.root_positions.tobytes()
+    h2 = lo + len(src)
+    eager, deferred = Stretch(retimed, retimed, lo, h2, planted), Stretch(Deferred(root, kick.fps, make), None, lo, h2,
+                                                                          planted)
+    widths = [(s, 6, 6) for s in WIDTHS]
+    pops = [deferred.smoothed(*w).pop for w in widths]
+    assert not made, "the pops need no retimed rotations"
+    assert pops == [eager.smoothed(*w).pop for w in widths]
+    for w in widths:
+        a, b = eager.smoothed(*w), deferred.smoothed(*w)
+        assert a.plant() == b.plant()
+        assert a.motion().rotations.tobytes() == b.motion().rotations.tobytes()
+    assert made == [True]
+
+
+@pytest.mark.parametrize("origin", [0, 37])
+def test_the_engine_output_retimed_beside_the_seamed_region_is_its_own_replay(kick, origin):
+    """The post-pass retimes the seamed region and the engine's output alike (:func:`joinpass.replay_both`), the
+    second sampled only where the seams changed frames: both are :func:`joinpass.replay`'s, bit for bit, also on a
+    window of a track (``origin``)."""
+    from text2anim.synthesis.join.inertialize import inertialize_at
+    from text2anim.synthesis.join.joinpass import replay, replay_both, warp_frames
+
+    lo, hi = 10, 44
+    seamed = inertialize_at(kick, 30, 0.3)  # frames from the seam on changed, those before it not
+    assert (seamed.rotations[:30] == kick.rotations[:30]).all() and (seamed.rotations[31:40] != kick.rotations[31:40]).any()
+    src = warp_frames(hi - lo, 50)
+    base, ref = replay_both(seamed, kick, lo, hi, src, origin)
+    for got, motion in ((base, seamed), (ref, kick)):
+        want = replay(motion, lo, hi, src, origin)
+        assert got.root_positions.tobytes() == want.root_positions.tobytes()
+        assert got.rotations.tobytes() == want.rotations.tobytes()
