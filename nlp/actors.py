@@ -150,6 +150,8 @@ def assign_actors(phrases: list[Phrase]) -> None:
         if not pred:
             continue
         companions = joined.get(i, companions)
+        if not (subject or topic):
+            topic = _topic_after(phrases, i)  # 先生にお辞儀をして、生徒は走り去った: 生徒 bows too
         names = companions.join(subject or topic) if companions else subject or topic
         pred.actor = names[0] if names else None
         pred.co_actors = names[1:]
@@ -158,6 +160,17 @@ def assign_actors(phrases: list[Phrase]) -> None:
         if closes and subject:
             topic = topic or subject
             subject = ()
+
+
+def _topic_after(phrases: list[Phrase], i: int) -> tuple[str, ...]:
+    """The persons of the first は-topic later in phrase ``i``'s sentence, for a text that opens with a clause
+    before its topic (先生にお辞儀をして、生徒は走り去った); () if none."""
+    for ph in phrases[i + 1:]:
+        if ph.sentence != phrases[i].sentence:
+            break
+        if ph.role == "actor" and case_particle(ph) in ("は", "も") and ph.persons:
+            return _distinct((*partners(phrases, phrases.index(ph)), *ph.persons))
+    return ()
 
 
 def partners(phrases: list[Phrase], i: int) -> list[str]:

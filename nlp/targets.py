@@ -92,7 +92,8 @@ def attach_targets(phrases: list[Phrase]) -> None:
         if pred.reason in ("direction", "facing"):
             continue  # its noun waits for the motion it says the way of
         if pred.reason == "non-agent":
-            _sent_to(pred, _person_by(phrases, i), done)
+            by = next((t.name for t in reversed(pending) if t.person), None) or _person_by(phrases, i)
+            _sent_to(pred, by, done)
             pending = []
             continue
         if pred.motion:
@@ -434,10 +435,16 @@ def _flee(pred: Pred, preds: list[Pred]) -> None:
 
 def _stand_at(pred: Pred, prev: Pred | None) -> None:
     """先生は黒板の前に立った: someone on their feet who stands somewhere goes there (a walk that ends
-    standing there, said in the note), rather than rising from a crouch they were never in."""
-    if pred.verb != "立つ" or pred.target_role != "goal":
+    standing there, said in the note), rather than rising from a crouch they were never in; 向かい合って立った
+    stands (待つ) with the partner."""
+    if pred.verb != "立つ" or pred.target_role not in ("goal", "partner"):
         return
     if prev is not None and (prev.verb in SUPPORT_VERBS or prev.verb in LOWERING_VERBS):
+        return
+    if pred.target_role == "partner":  # 向かい合って立った: they stand there, on their feet already
+        pred.verb = pred.written = "待つ"
+        pred.reading = ""
+        pred.say(f"立つ: stands with {pred.target}, on their feet already")
         return
     pred.verb = pred.written = "歩く"
     pred.reading = ""
