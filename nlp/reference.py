@@ -93,7 +93,7 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
     pronoun and group word was read (``read 彼女 as 花子 (the last woman named)``)."""
     seen = _Named()
     notes: list[str] = []
-    acting: dict[int, list[str]] = {}  # clause group -> the persons its actor phrases named so far
+    acting: dict[int, tuple[str, ...]] = {}  # clause group -> the persons its last actor phrase named
     subjects: dict[int, list[str]] = {}  # sentence -> the persons its が-actors named so far
     counted: tuple[int, tuple[str, ...]] | None = None  # 二人の (its phrase, whom it names) before 子ども
     for i, ph in enumerate(phrases):
@@ -119,7 +119,7 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
         elif m.kind == "group":
             persons, why = seen.group(m)
         elif not actor:
-            persons, why = seen.pronoun(m, tuple(acting.get(ph.group, ())))
+            persons, why = seen.pronoun(m, acting.get(ph.group, ()))
         else:
             topic = particle in ("は", "も")
             persons, why = _topic_pronoun(seen, m, tuple(subjects.get(ph.sentence, ())) if topic else ())
@@ -140,7 +140,7 @@ def resolve_persons(phrases: list[Phrase]) -> list[str]:
             seen.members, seen.picked = persons, []
         seen.add(persons)
         if actor:
-            acting.setdefault(ph.group, []).extend(persons)
+            acting[ph.group] = persons  # 花子が泣いていると、太郎が…彼女の頭を: only 太郎 is not 彼女
         if particle == "が":
             subjects.setdefault(ph.sentence, []).extend(persons)
     return notes

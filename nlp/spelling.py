@@ -45,6 +45,8 @@ def repair(line: str, offset: int, tokens: list[Token], notes: list[str]) -> lis
         tokens = _nasal_verb(tokens, notes)
     if "行ったり" in line:
         tokens = _to_and_fro(tokens)
+    if "とお" in line or "とご" in line:
+        tokens = _prefix_not_filler(tokens)
     drawn = not _DRAWL.isdisjoint(line)
     # both passes below read a one-character noun (or suffix) only: most lines have none
     singles = [k for k, t in enumerate(tokens) if len(t.surface) == 1 and t.pos1 in ("名詞", "接尾辞")]
@@ -233,6 +235,17 @@ def _nasal_reading(stem: str) -> tuple[str, str] | None:
         if reading in LIBRARY_BY_READING:
             return LIBRARY_BY_READING[reading], reading
     return None
+
+
+def _prefix_not_filler(tokens: list[Token]) -> list[Token]:
+    """深々とお辞儀をした: after と UniDic may read the お of お辞儀 as a filler (おー); before a noun it is the
+    honorific prefix."""
+    out = list(tokens)
+    for k, t in enumerate(tokens[:-1]):
+        nxt = tokens[k + 1]
+        if t.surface in ("お", "ご") and t.pos1 == "感動詞" and nxt.pos1 == "名詞" and t.end == nxt.start:
+            out[k] = replace(t, lemma="御", pos1="接頭辞", pos2="*")
+    return out
 
 
 def _to_and_fro(tokens: list[Token]) -> list[Token]:

@@ -107,6 +107,11 @@ def attach_targets(phrases: list[Phrase]) -> None:
 
 #: Verbs of coming to someone: with no one named, to the person the story is with (:func:`_come_to`).
 COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る 現れる 現われる 姿を現す".split())
+#: Verbs that receive a thing sent: with nothing named, the last thing sent to the actor (花子は受け取った).
+RECEIVING_VERBS = frozenset("受け取る 受け止める キャッチする 取る 捕る".split())
+#: Verbs that send on a thing: with nothing named, the thing the actor has just handled (ボールを受け取ると、
+#: すぐにパスした).
+SENDING_ON = frozenset("投げる 放る 放り投げる パスする 蹴る 渡す 手渡す 差し出す 投げ返す 蹴り返す".split())
 #: Verbs of parting: co-actors who part each leave the other (二人は握手をして別れた).
 PARTING_VERBS = frozenset("別れる 分かれる".split())
 #: Verbs of running away: with no one named, from whoever last came to the actor (熊が現れた。少年は逃げ出した).
@@ -391,7 +396,9 @@ def _follow_on(preds: list[Pred]) -> None:
         if facing and pred.target_role == "partner":
             pred.target_side = "front"  # 向かい合って立つ: each in front of the other, not side by side
         prev = last.get(pred.actor)
-        if prev is not None and pred.verb in DOOR_VERBS | MOVING_VERBS and not pred.object:
+        if pred.verb in RECEIVING_VERBS and not pred.object:
+            _received(pred, preds)
+        if prev is not None and pred.verb in DOOR_VERBS | MOVING_VERBS | SENDING_ON and not pred.object:
             gone_to = prev.target if pred.verb in DOOR_VERBS and prev.target and not prev.target_person else None
             handled = prev.object or gone_to
             if handled:  # ドアを引いて開ける, ドアの前で立ち止まってノックする, 台車を押して運ぶ: the thing just handled
@@ -420,6 +427,17 @@ def _follow_on(preds: list[Pred]) -> None:
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
         _give_back(pred, givers)
+
+
+def _received(pred: Pred, preds: list[Pred]) -> None:
+    """太郎は花子にプレゼントを差し出した。花子は嬉しそうに受け取った: a receiving with nothing named takes
+    the last thing sent to its actor, said in the notes."""
+    k = preds.index(pred)
+    sent = next((p for p in reversed(preds[:k]) if p.motion and p.target == pred.actor and p.object
+                 and p.verb in TRANSFER_VERBS), None)
+    if sent is not None:
+        pred.object = sent.object
+        pred.say(f"{pred.verb} read as done to {sent.object}, sent by {sent.actor}")
 
 
 def _flee(pred: Pred, preds: list[Pred]) -> None:
@@ -502,10 +520,18 @@ def time_catches(specs: list[MotionSpec], constraints: list[Constraint]) -> None
     with the throw (a parallel link, cue ``catch``), so the scene can time it by the flight instead of
     after the throw has ended. A catch joined by て (投げて、花子がキャッチする) already starts as the
     throw's core ends: its link stays. A throw that names no one to throw to is thrown to the catcher
-    (投げると、花子がキャッチした: to her)."""
+    (投げると、花子がキャッチした: to her). A hand-over's receiving written in the next sentence is its counterpart
+    (a parallel link, cue ``counterpart``), as the one the hand-over implies (:func:`add_counterparts`)."""
     by_id = {s.id: s for s in specs}
     for k, c in enumerate(constraints):
         a, b = by_id.get(c.first), by_id.get(c.second)
+        if (a is not None and b is not None and c.relation == "serial" and a.actor != b.actor and b.actor == a.target
+                and COUNTERPARTS.get(a.verb, ("",))[0] == b.verb and b.object in (a.object, None)):
+            # 太郎は花子にプレゼントを差し出した。花子は受け取った: her receiving is the hand-over's counterpart
+            constraints[k] = Constraint(a.id, b.id, "parallel", None, None, "composition", "counterpart")
+            if b.target is None and a.actor is not None:
+                specs[specs.index(b)] = replace(b, target=a.actor, target_role="source", target_person=True)
+            continue
         if not (a is not None and b is not None and c.relation == "serial" and a.actor != b.actor
                 and a.verb in THROWING_VERBS and b.verb in CATCHING_VERBS and b.object in (a.object, None)):
             continue
