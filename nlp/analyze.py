@@ -80,12 +80,12 @@ def _add_co_actors(specs: list[MotionSpec], constraints: list[Constraint], co: d
             copies[orig] = next_id
             spec = by_id[orig]
             target = spec.actor if spec.target == name else spec.target  # never directed at oneself
-            copy = replace(spec, id=next_id, actor=name, target=target)
+            dup = replace(spec, id=next_id, actor=name, target=target)
             if spec.target is None and spec.verb in LOCOMOTION_VERBS and spec.actor is not None:
                 # 二人は並んで歩いた, 太郎と花子が走る: side by side with the first, whatever places them later
-                copy = replace(copy, target=spec.actor, target_role="partner", target_side="beside",
-                               target_person=True)
-            specs.append(copy)
+                dup = replace(dup, target=spec.actor, target_role="partner", target_side="beside",
+                              target_person=True)
+            specs.append(dup)
             next_id += 1
         linked = set()
         for c in list(constraints):

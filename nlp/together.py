@@ -93,7 +93,8 @@ def _by_the_hand(phrases: list[Phrase], i: int, out: dict[int, Joined]) -> None:
     persons = owner.persons if owner is not None and owner.persons else (withs[-1].persons if withs else ())
     target = next((k for k in range(i + 1, len(phrases)) if phrases[k].sentence == ph.sentence and phrases[k].pred),
                   None)
-    if persons and target is not None and phrases[target].pred.lemma in LOCOMOTION_VERBS:
+    pred = phrases[target].pred if target is not None else None
+    if persons and target is not None and pred is not None and pred.lemma in LOCOMOTION_VERBS:
         out[target] = Joined(tuple(persons))
 
 

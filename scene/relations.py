@@ -67,7 +67,7 @@ def relations(rows: Sequence[Element], present: set[str | None], scale: dict[str
     instant (s) a row's hand reaches out to another's (:data:`HANDS`): the two are placed then, hand to hand;
     ``arrivals`` when an approach's body has come to rest (s; its row's end by default)."""
     sends, reaches, arrivals = sends or {}, reaches or {}, arrivals or {}
-    out = []
+    out: list[Relation] = []
     for i, r in enumerate(rows):
         if r.target is None or r.target == r.actor or r.target not in present or (
                 r.method == "composition" and _is_base_of(rows, r)) or _answers(rows[:i], r):

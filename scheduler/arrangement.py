@@ -92,8 +92,9 @@ def _choose(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
                     and c.name != first.name]
             cands[e.id] = [first] + same
             prefer = first.character
-        first = specs.get(seq[0].id) if seq else None
-        initial = "seated" if first is not None and first.target_role == "source" and first.target in SEATS else None
+        opening = specs.get(seq[0].id) if seq else None
+        initial = "seated" if opening is not None and opening.target_role == "source" and opening.target in SEATS \
+            else None
         picked.update({k: v for k, v in choose(cands, initial=initial).items() if v is not None})
     return picked
 
