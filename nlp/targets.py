@@ -107,11 +107,6 @@ def attach_targets(phrases: list[Phrase]) -> None:
 
 #: Verbs of coming to someone: with no one named, to the person the story is with (:func:`_come_to`).
 COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る 走り寄る 近寄る 歩み寄る 近付く 戻る 現れる 現われる 姿を現す".split())
-#: Verbs that receive a thing sent: with nothing named, the last thing sent to the actor (花子は受け取った).
-RECEIVING_VERBS = frozenset("受け取る 受け止める キャッチする 取る 捕る".split())
-#: Verbs that send on a thing: with nothing named, the thing the actor has just handled (ボールを受け取ると、
-#: すぐにパスした).
-SENDING_ON = frozenset("投げる 放る 放り投げる パスする 蹴る 渡す 手渡す 差し出す 投げ返す 蹴り返す".split())
 #: Verbs of parting: co-actors who part each leave the other (二人は握手をして別れた).
 PARTING_VERBS = frozenset("別れる 分かれる".split())
 #: Verbs of running away: with no one named, from whoever last came to the actor (熊が現れた。少年は逃げ出した).
@@ -396,9 +391,7 @@ def _follow_on(preds: list[Pred]) -> None:
         if facing and pred.target_role == "partner":
             pred.target_side = "front"  # 向かい合って立つ: each in front of the other, not side by side
         prev = last.get(pred.actor)
-        if pred.verb in RECEIVING_VERBS and not pred.object:
-            _received(pred, preds)
-        if prev is not None and pred.verb in DOOR_VERBS | MOVING_VERBS | SENDING_ON and not pred.object:
+        if prev is not None and pred.verb in DOOR_VERBS | MOVING_VERBS and not pred.object:
             gone_to = prev.target if pred.verb in DOOR_VERBS and prev.target and not prev.target_person else None
             handled = prev.object or gone_to
             if handled:  # ドアを引いて開ける, ドアの前で立ち止まってノックする, 台車を押して運ぶ: the thing just handled
@@ -427,17 +420,6 @@ def _follow_on(preds: list[Pred]) -> None:
         elif pred.object and pred.object not in THING_ANAPHORS and pred.target_role != "patient":
             thing = pred.object
         _give_back(pred, givers)
-
-
-def _received(pred: Pred, preds: list[Pred]) -> None:
-    """太郎は花子にプレゼントを差し出した。花子は嬉しそうに受け取った: a receiving with nothing named takes
-    the last thing sent to its actor, said in the notes."""
-    k = preds.index(pred)
-    sent = next((p for p in reversed(preds[:k]) if p.motion and p.target == pred.actor and p.object
-                 and p.verb in TRANSFER_VERBS), None)
-    if sent is not None:
-        pred.object = sent.object
-        pred.say(f"{pred.verb} read as done to {sent.object}, sent by {sent.actor}")
 
 
 def _flee(pred: Pred, preds: list[Pred]) -> None:
