@@ -39,7 +39,7 @@ from .bunsetsu import Phrase
 from .lexicon import (
     AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
     FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
-    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
+    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
     THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
@@ -51,7 +51,9 @@ from .types import Constraint, MotionSpec
 #: Particles that mark a target, and the ones a 〜の + noun phrase may end with.
 TARGET_PARTICLES = frozenset("に へ まで から と".split())
 #: Verbs whose を-place is where the actor leaves from (店を出る).
-LEAVING_VERBS = frozenset("出る 離れる 去る 別れる 降りる 下りる 立つ 立ち上がる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
+LEAVING_VERBS = frozenset("出る 離れる 去る 別れる 降りる 下りる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
+#: Verbs of rising: their を-seat is where they rise from (席を立つ).
+RISING_VERBS = frozenset("立つ 立ち上がる".split())
 #: The て-forms that may say a way or a facing, no motion of their own.
 _WAY_TE = FACING_VERBS | DIRECTION_TE
 #: Roles a person keeps as the addressee of a following gesture (近づいて、お辞儀する).
@@ -316,7 +318,8 @@ def _role(pred: Pred, t: Target) -> str | None:
     if t.particle == "を":
         if t.person:
             return "goal" if verb in CHASING_VERBS else "patient"
-        return "source" if verb in LEAVING_VERBS else None
+        # 店を出る; 席を立つ: the seat risen from
+        return "source" if verb in LEAVING_VERBS or (verb in RISING_VERBS and t.name in SEATS) else None
     if t.particle == "と":  # 花子と踊る: with her; 花子と別れる: each leaves the other
         return ("source" if verb in PARTING_VERBS else "partner") if t.person else None
     if t.particle == "から":
