@@ -141,8 +141,7 @@ def _fed(tr: Motion, kept: tuple[np.ndarray, np.ndarray], k: int, seam: Motion) 
     track whose first ``k`` frames are ``tr``'s, and ``seam``, ``tr``'s frames from ``k - 2`` on: a frame's
     height is its own, its speed its neighbours' (``k - 1``'s reads ``k``), so only ``seam``'s frames are
     measured. The same bits as measuring ``tr`` (a difference of two frames, a percentile and runs)."""
-    y, v = lowest_tracks(seam)
-    feet = (np.concatenate([kept[0][:k], y[2:]]), np.concatenate([kept[1][:k - 1], v[1:]]))
+    feet = _spliced(kept, k, seam)
     tr.cache.put("lowest_tracks", feet)
     tr.cache.put("contacts", contacts_of(*feet, tr.fps))
 
@@ -154,9 +153,15 @@ def laid_feet(tr: Motion, c0: int, rendered: Motion) -> tuple[np.ndarray, np.nda
     if c0 < 2 or not rendered.n_frames:
         return None
     kept = tr.cache.get("lowest_tracks", lambda: lowest_tracks(tr))
-    seam = concatenate([tr[c0 - 2:c0], rendered])
+    return _spliced(kept, c0, concatenate([tr[c0 - 2:c0], rendered]))
+
+
+def _spliced(kept: tuple[np.ndarray, np.ndarray], k: int, seam: Motion) -> tuple[np.ndarray, np.ndarray]:
+    """The :func:`core.contacts.lowest_tracks` of a track whose first ``k`` frames have ``kept`` and whose
+    frames from ``k - 2`` on are ``seam``: heights ``(T,)`` from frame ``k`` on and speeds ``(T - 1,)`` from
+    ``k - 1`` on are ``seam``'s (a speed reads the frame after it)."""
     y, v = lowest_tracks(seam)
-    return np.concatenate([kept[0][:c0], y[2:]]), np.concatenate([kept[1][:c0 - 1], v[1:]])
+    return np.concatenate([kept[0][:k], y[2:]]), np.concatenate([kept[1][:k - 1], v[1:]])
 
 
 def lay_elements(track: Track, whole: Sequence[Element], fps: float,

@@ -16,7 +16,7 @@ from ..tracks import Element, Track
 from .blend_search import Weights
 from .planner import MIN_BLEND, plan_join, public_info
 from .records import Plan, Skip
-from .repair import carry_out_window
+from .repair import carry_out
 
 
 def report_of(prev: Placed, inc: Placed, plan: Plan, fps: float, locks) -> JoinReport:
@@ -57,7 +57,7 @@ def join_next(state: TrackState, inc: Placed, fps: float, weights: Weights, lock
     # the sources' figures at the track's rate (quality(m, None)'s skating ratio and root pop, without the rest)
     own = max(skating_ratio(prev.motion), skating_ratio(inc.motion))
     own_pop = max(root_pop(prev.motion), root_pop(inc.motion))
-    plan, c0, rendered, locks, window = carry_out_window(tr, plan, lock, own, own_pop)
+    plan, c0, rendered, locks, window = carry_out(tr, plan, lock, own, own_pop)
     out = (tr[:c0], rendered)  # the track, laid as these two pieces (TrackState.lay)
     region_end = max([window[1]] + [lk.release_end for lk in locks])
     shown = replace(e, start=inc.first / fps, end=inc.end / fps) if (plan.shift or plan.phase or carry) else e

@@ -9,7 +9,7 @@ import numpy as np
 
 from text2anim.core.contacts import FootContacts, detect_contacts
 from text2anim.core.metrics import SOURCE_FACTOR, root_pop, toe_joints, toe_skating_pairs
-from text2anim.core.motion import Motion, concatenate
+from text2anim.core.motion import Motion
 
 from ..join.align import align_through_foot
 from ..join.apply import lift_join
@@ -108,21 +108,14 @@ def carry_out(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: flo
     else of those that do not skate the one that pops least, else the one that skates least; the report
     says which (``fallback``). When every rendering skates, the same is tried with the next-best lower-body
     intervals of eq. (10) (:data:`RUNNERS_UP` of them): the search's minimum subject to the join keeping
-    its feet. Deterministic. Returns ``(plan, track, locks, window)``.
+    its feet. Deterministic. Returns ``(plan, c0, rendered, locks, window)``: the track is ``tr[:c0]`` then
+    ``rendered`` (its pose known: the two end to end know theirs), the locks and window in the track's frames.
 
     The renderings are of the track from :func:`_first_rendered` on (every frame before it is the same in
-    all of them): each is a few hundred frames however long the track, and the whole track is put together
-    once, for the rendering kept.
+    all of them): each is a few hundred frames however long the track, and the track is not put together
+    here: a long track laid join after join is copied once a join, not twice
+    (:meth:`synthesis.join.laying.TrackState.lay`).
     """
-    p, c0, out, locks, window = carry_out_window(tr, plan, lock, own, own_pop)
-    return p, concatenate([tr[:c0], out]) if c0 else out, locks, window
-
-
-def carry_out_window(tr: Motion, plan: Plan, lock: bool, own: float = 0.0, own_pop: float = float("inf")):
-    """:func:`carry_out` without putting the whole track together: ``(plan, c0, rendered, locks, window)``, the
-    track being ``tr[:c0]`` then ``rendered`` (its pose known: the two end to end know theirs); the locks and
-    window in the track's frames. A long track laid join after join is then copied once a join, not twice
-    (:meth:`synthesis.join.laying.TrackState.lay`)."""
     c0 = _first_rendered(tr, plan)
     whole_c = detect_contacts(tr)  # the whole track's (its thresholds are; laying.extended keeps them), then cut
     p, out, locks, window = _carry_out(tr, tr[c0:], c0, plan, lock, own, own_pop,

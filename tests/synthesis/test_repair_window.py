@@ -1,4 +1,4 @@
-"""A join's renderings are of the track from its blend on (:func:`synthesis.optimal.repair.carry_out_window`):
+"""A join's renderings are of the track from its blend on (:func:`synthesis.optimal.repair.carry_out`):
 the track it lays keeps every frame before the join as it was, and its pose — joined from the track's and the
 kept rendering's — is the kinematics of its own frames, bit for bit (the next join reads it); and the contacts
 every join reads of the track, found from the new frames alone (synthesis.join.laying.extended), are the whole
@@ -16,14 +16,14 @@ from text2anim.synthesis.optimal import join as optimal_join
 
 def test_every_join_of_a_long_text_keeps_the_track_before_it_and_a_true_pose(monkeypatch):
     joins = []
-    real = optimal_join.carry_out_window
+    real = optimal_join.carry_out
 
     def recorded(tr, plan, *args):
         out = real(tr, plan, *args)
         joins.append((tr, out))
         return out
 
-    monkeypatch.setattr(optimal_join, "carry_out_window", recorded)
+    monkeypatch.setattr(optimal_join, "carry_out", recorded)
     text2anim.animate("太郎は走る。" + "3秒後に歩く。" * 3)
     assert len(joins) >= 3  # the run into a walk, and walk into walk: joins late on a track
     assert max(tr.n_frames for tr, _ in joins) > 400
