@@ -185,12 +185,14 @@ def lowest_tracks(motion: Motion) -> tuple[np.ndarray, np.ndarray]:
     return y, (horizontal_speed(pos, motion.fps)[rows, cols, lowest] if len(y) else y)
 
 
-def contacts_of(heights: np.ndarray, speeds: np.ndarray, fps: float) -> FootContacts:
+def contacts_of(heights: np.ndarray, speeds: np.ndarray, fps: float, floor: np.ndarray | None = None) -> FootContacts:
     """:func:`detect_contacts`' labels from a motion's :func:`lowest_tracks` (``(T, feet)`` each, the feet
-    ``left`` then ``right``), bit for bit: a long track's kept and extended by its new frames' values
-    instead of redone (:func:`synthesis.join.laying.extended`)."""
+    ``left`` then ``right``): a long track's kept and extended by its new frames' values instead of redone
+    (:func:`synthesis.join.laying.extended`). ``floor``: the feet's levels ``(feet,)``, default the heights'
+    own (:func:`floor_levels`)."""
     min_len = max(1, int(round(MIN_PHASE * fps)))
-    floor = floor_levels(heights) if len(heights) else np.zeros(heights.shape[1])
+    if floor is None:
+        floor = floor_levels(heights) if len(heights) else np.zeros(heights.shape[1])
     labels = []
     for k in range(heights.shape[1]):
         raw = (heights[:, k] - floor[k] < HEIGHT_THRESHOLD) & (speeds[:, k] < SPEED_THRESHOLD)
@@ -200,10 +202,4 @@ def contacts_of(heights: np.ndarray, speeds: np.ndarray, fps: float) -> FootCont
 
 
 def _detect(motion: Motion, floor: np.ndarray | None = None) -> FootContacts:
-    min_len = max(1, int(round(MIN_PHASE * motion.fps)))
-    labels = {}
-    for side, tr in foot_tracks(motion, floor).items():
-        raw = (tr.height < HEIGHT_THRESHOLD) & (tr.speed < SPEED_THRESHOLD)
-        labels[side] = hysteresis(raw, min_len)
-        labels[side].setflags(write=False)
-    return FootContacts(motion.fps, labels["left"], labels["right"])
+    return contacts_of(*lowest_tracks(motion), motion.fps, floor)
