@@ -81,7 +81,7 @@ from text2anim.core.floor import ON_FLOOR
 from text2anim.core.hang import slowed_into_hanging
 from text2anim.core.kept import Kept, digest
 from text2anim.core.metrics import gmd_floor, quality
-from text2anim.core.motion import Motion
+from text2anim.core.motion import Motion, concatenate
 
 from .blend import neighbours, sample, sample_path
 from .hipspath import least_acceleration
@@ -287,9 +287,11 @@ def replay(motion: Motion, lo: int, hi: int, src: np.ndarray, origin: int = 0) -
     """``motion`` with frames ``[lo, hi)`` replaced by its frames ``lo + src`` (``src`` ``(n_new,)``: a
     :func:`warp_frames`; later frames follow). ``origin``: ``motion`` is a window of a track from that frame on
     (the fractions sampled are the track's, :func:`synthesis.join.blend.sample`)."""
-    from text2anim.core.motion import concatenate
+    return _with_middle(motion, lo, hi, sample(motion, (origin + lo) + src, origin))
 
-    mid = sample(motion, (origin + lo) + src, origin)
+
+def _with_middle(motion: Motion, lo: int, hi: int, mid: Motion) -> Motion:
+    """``motion`` with its frames ``[lo, hi)`` replaced by ``mid``'s (any number)."""
     return concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
 
 
@@ -324,10 +326,7 @@ def replay_both(seamed: Motion, motion: Motion, lo: int, hi: int, src: np.ndarra
         root[differ], rots[differ] = own.root_positions, own.rotations
         if trans is not None:
             trans[differ] = own.translations
-    mid = Motion(motion.skeleton, motion.fps, root, rots, trans)
-    from text2anim.core.motion import concatenate
-
-    return base, concatenate([p for p in (motion[:lo], mid, motion[hi:]) if p.n_frames])
+    return base, _with_middle(motion, lo, hi, Motion(motion.skeleton, motion.fps, root, rots, trans))
 
 
 def _planted(ref: Motion, contacts) -> dict:

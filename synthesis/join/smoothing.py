@@ -73,13 +73,9 @@ def _filtered(x: np.ndarray, lo: int, hi: int, sigma: float) -> tuple[np.ndarray
     return x[lo:hi], gaussian_filter1d(x[a:b], sigma, axis=0, mode="nearest")[lo - a:hi - a]
 
 
-def low_pass_root(motion: Motion, lo: int, hi: int, sigma: float, root_pad: int) -> np.ndarray:
-    """Root positions ``(hi - lo, 3)`` of :func:`low_pass` over ``[lo, hi)`` (when :func:`smooths`)."""
-    return low_pass_path(motion.root_positions, lo, hi, sigma, root_pad)
-
-
 def low_pass_path(root: np.ndarray, lo: int, hi: int, sigma: float, root_pad: int) -> np.ndarray:
-    """:func:`low_pass_root` of a motion whose root positions are ``root`` ``(T, 3)``."""
+    """Root positions ``(hi - lo, 3)`` of :func:`low_pass` over ``[lo, hi)`` (when :func:`smooths`) of a motion
+    whose root positions are ``root`` ``(T, 3)``: the hips' path alone is enough (:class:`Deferred`)."""
     own, smooth = _filtered(root, lo, hi, sigma)
     return lerp(own, smooth, _fade(hi - lo, root_pad))
 
@@ -99,7 +95,7 @@ def low_pass(motion: Motion, lo: int, hi: int, sigma: float, pad: int, root_pad:
     rots = motion.rotations.copy()
     rots[lo:hi] = low_pass_rotations(motion, lo, hi, sigma, pad)
     root = motion.root_positions.copy()
-    root[lo:hi] = low_pass_root(motion, lo, hi, sigma, root_pad)
+    root[lo:hi] = low_pass_path(motion.root_positions, lo, hi, sigma, root_pad)
     return motion.replace(root_positions=root, rotations=rots)
 
 
