@@ -93,14 +93,24 @@ def solve_goals(span: Motion, lo: int, goals: list[LegGoal]) -> np.ndarray:
     above = skel.parents[hip]
     Rp = R[frames, above] if (above >= 0).all() else np.where((above >= 0)[:, None, None], R[frames, above], np.eye(3))
     qa, qb = solve_rows(h, P[frames, knee], P[frames, ankle], Rh, R[frames, knee], Rp, h + v * scale[:, None], pole)
-    rots = span.rotations.copy()
+    return put_legs(span.rotations, frames, (hip, knee, ankle), qa, qb, Rp, np.concatenate([g.ankle for g in goals]))
+
+
+def put_legs(rotations: np.ndarray, frames: np.ndarray, chain: tuple[np.ndarray, np.ndarray, np.ndarray],
+             qa: np.ndarray, qb: np.ndarray, Rp: np.ndarray, ankle_world: np.ndarray) -> np.ndarray:
+    """A copy of the local rotations ``rotations`` ``(T, J, 4)`` with, on rows ``frames`` ``(n,)`` of the legs'
+    ``chain`` (hip, knee, ankle joints, ``(n,)`` each), the hips' and knees' solved rotations ``qa``, ``qb``
+    ``(n, 4)`` (:func:`core.ik.solve_rows`, the hips' parents' world rotations ``Rp`` ``(n, 3, 3)``) and the
+    ankles turned to the world rotations ``ankle_world`` ``(n, 4)``."""
+    hip, knee, ankle = chain
+    rots = rotations.copy()
     rots[frames, hip] = qa
     rots[frames, knee] = qb
     # the knees' new world rotations, as forward kinematics has them (Motion.pose: parent @ local, the
     # local matrices from the stored quaternions), on these rows only
     local = quat_to_matrix(np.concatenate([qa, qb]))
     knee_world = (Rp @ local[:len(qa)]) @ local[len(qa):]
-    rots[frames, ankle] = world_to_local(knee_world, np.concatenate([g.ankle for g in goals]))
+    rots[frames, ankle] = world_to_local(knee_world, ankle_world)
     return rots
 
 

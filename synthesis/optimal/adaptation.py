@@ -39,14 +39,13 @@ from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
 from text2anim.core import rotkernels as rk
 from text2anim.core.bodyparts import body_map
-from text2anim.core.fk import quat_to_matrix
-from text2anim.core.ik import leg_ik, set_world_rotation, solve_rows, world_to_local
+from text2anim.core.ik import leg_ik, set_world_rotation, solve_rows
 from text2anim.core.kept import Kept, digest
 from text2anim.core.motion import Motion
 from text2anim.core.size import leg_length
 
 from ..join.gait import SIDES
-from ..join.legsolve import chain_length, leg_chain
+from ..join.legsolve import chain_length, leg_chain, put_legs
 
 
 #: The last adaptations of the process, by the value of what :func:`adapt` reads: a warm process plans and renders
@@ -117,16 +116,8 @@ def _legs_to(motion: Motion, frames: np.ndarray, targets: dict[str, np.ndarray],
     poles = P[rows, knee]
     qa, qb = solve_rows(P[rows, hip], poles, P[rows, ankle], R[rows, hip], R[rows, knee], Rp,
                         np.concatenate([targets[s] for s in SIDES]), poles.copy())
-    rots = motion.rotations.copy()
-    at = np.concatenate([frames] * len(SIDES))
-    rots[at, hip] = qa
-    rots[at, knee] = qb
-    # the knees' new world rotations as forward kinematics has them (parent @ local, the local matrices from the
-    # stored quaternions), on these rows only
-    local = quat_to_matrix(np.concatenate([qa, qb]))
-    knee_world = (Rp @ local[:len(qa)]) @ local[len(qa):]
-    rots[at, ankle] = world_to_local(knee_world, np.concatenate([ankles[s] for s in SIDES]))
-    return rots
+    return put_legs(motion.rotations, np.concatenate([frames] * len(SIDES)), (hip, knee, ankle), qa, qb, Rp,
+                    np.concatenate([ankles[s] for s in SIDES]))
 
 
 #: fraction of a leg's length the adapted legs may stretch to (a straight leg has no bend left to give)
