@@ -71,8 +71,7 @@ def _taken_along(phrases: list[Phrase], i: int, out: dict[int, Joined]) -> None:
     ph = phrases[i]
     taken = next((q for q in reversed(phrases[:i]) if q.group == ph.group and q.pred is None and q.persons
                   and q.key.endswith("を")), None)
-    target = next((k for k in range(i + 1, len(phrases)) if phrases[k].sentence == ph.sentence and phrases[k].pred),
-                  None)
+    target = _next_in_sentence(phrases, i)
     if taken is None or target is None or ph.pred is None:
         return
     ph.pred.reason = "companion"
@@ -91,11 +90,16 @@ def _by_the_hand(phrases: list[Phrase], i: int, out: dict[int, Joined]) -> None:
     owner = before[hand - 1] if hand > 0 and before[hand - 1].key.endswith("の") else None
     withs = [q for q in before[:hand] if q.key.endswith("と") and q.persons]
     persons = owner.persons if owner is not None and owner.persons else (withs[-1].persons if withs else ())
-    target = next((k for k in range(i + 1, len(phrases)) if phrases[k].sentence == ph.sentence and phrases[k].pred),
-                  None)
+    target = _next_in_sentence(phrases, i)
     pred = phrases[target].pred if target is not None else None
     if persons and target is not None and pred is not None and pred.lemma in LOCOMOTION_VERBS:
         out[target] = Joined(tuple(persons))
+
+
+def _next_in_sentence(phrases: list[Phrase], i: int) -> int | None:
+    """The index of the first predicate phrase after phrase ``i`` in its sentence, if any."""
+    return next((k for k in range(i + 1, len(phrases)) if phrases[k].sentence == phrases[i].sentence
+                 and phrases[k].pred), None)
 
 
 def _other_named(phrases: list[Phrase], i: int) -> str | None:

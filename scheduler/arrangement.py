@@ -106,16 +106,16 @@ def _relink(constraints: list[Constraint], incoming: int | None, chain: list[int
     posture; a link from another actor's motion starts the change of posture where b
     would have started); the bridges and b follow each other, b as the link said when
     it came from a. Without a link (b follows a by sentence order alone) the bridges
-    hang on a and b comes after them.
+    hang on a and b comes after them. ``cue``: the new links' (``posture``, or ``facing`` for a turn away).
     """
-    posture = lambda x, y: Constraint(x, y, "serial", False, None, "connection", cue)  # noqa: E731
+    bridge = lambda x, y: Constraint(x, y, "serial", False, None, "connection", cue)  # noqa: E731
     if incoming is None:
-        constraints += [posture(x, y) for x, y in zip(chain[:-2], chain[1:-1])]
+        constraints += [bridge(x, y) for x, y in zip(chain[:-2], chain[1:-1])]
         return
     link = constraints[incoming]
     same = link.first == chain[0]
     new = [replace(link, second=chain[1])]
-    new += [Constraint(x, y, link.relation, link.overlap, None, link.method, link.cue) if same else posture(x, y)
+    new += [Constraint(x, y, link.relation, link.overlap, None, link.method, link.cue) if same else bridge(x, y)
             for x, y in zip(chain[1:-1], chain[2:])]
     constraints[incoming:incoming + 1] = new
 
