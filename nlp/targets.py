@@ -51,7 +51,7 @@ from .types import Constraint, MotionSpec
 #: Particles that mark a target, and the ones a 〜の + noun phrase may end with.
 TARGET_PARTICLES = frozenset("に へ まで から と".split())
 #: Verbs whose を-place is where the actor leaves from (店を出る).
-LEAVING_VERBS = frozenset("出る 離れる 去る 別れる 降りる 下りる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
+LEAVING_VERBS = frozenset("出る 離れる 去る 別れる 帰る 降りる 下りる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
 #: Verbs of rising: their を-seat is where they rise from (席を立つ).
 RISING_VERBS = frozenset("立つ 立ち上がる".split())
 #: The て-forms that may say a way or a facing, no motion of their own.
