@@ -11,8 +11,10 @@ Rows (goal in brackets, from the issue):
 
 - text -> BVH, 3 motions, warm API (``animate`` + ``format_bvh``): the database given by URL as the README shows
   it, then an open ``MotionDB``, optimal and constraint [<= 30 ms]; the same sentence again is joins a warm process
-  has finished before (``joinpass.KEPT_FINISHED``, ``hipspath.KEPT_PATHS``): a row beside it forgets them before
-  each call, the cost of a sentence not seen before;
+  has laid and finished before (``optimal.join.KEPT_JOINS``, ``joinpass.KEPT_FINISHED``, ``hipspath.KEPT_PATHS``): a
+  row beside it forgets them before each call, the cost of a sentence not seen before;
+- a ten-sentence story in a warm process (the studio's case), animated again and with a sentence added, CPU
+  beside the same with the kept joins forgotten;
 - planning: sentences per CPU second, ``text2anim.plan(text, url)``, refusals included [>= 1,000];
 - ``text2anim TEXT -o x.bvh``, whole process, seeded database [<= 0.5 s];
 - ``text2anim plan TEXT``, whole process [<= 0.3 s];
@@ -124,6 +126,7 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
     cpu, wall = median_timed(unseen, repeat)
     row("  the same, its joins not seen before (kept joins forgotten)", ms(cpu), ms(wall), "<= 30 ms")
     planning_rate_row(url, repeat)
+    story_rows(url, repeat)
     db = MotionDB.open(url)
     animate(TEXT3, db=db)  # warm: analyser, caches
     for blend in ("optimal", "constraint"):
@@ -173,6 +176,7 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
     try:
         for _ in range(max(1, repeat // 2)):
             for text in SENTENCES:
+                optimal.KEPT_JOINS.clear()  # every join planned (a warm process would take it from those laid)
                 animate(text, db=db)
         p50, p95 = np.percentile(calls, [50, 95])
         row(f"join planning, built-in clips ({len(calls)} joins)", f"p50 {ms(p50)} p95 {ms(p95)}", "-", "p95 <= 1 ms")
@@ -181,6 +185,7 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
         c, w, _ = timed(lambda: animate(text2, db=db, fps=120.0))
         worst = max(calls) if calls else float("nan")
         optimal.plan_join = real_plan
+        optimal.KEPT_JOINS.clear()
         tracemalloc.start()
         animate(text2, db=db, fps=120.0)
         peak = tracemalloc.get_traced_memory()[1]
@@ -205,15 +210,48 @@ def pipeline_rows(tmp: Path, repeat: int) -> None:
     db.close()
 
 
+#: a story of ten sentences, two people (the studio's case: the whole text animated again at every pause in
+#: typing), and the sentence typed after it
+STORY = ("太郎は走って、ボールを蹴る。そして喜ぶ。花子は歩いて、椅子に座る。それから立ち上がって、手を振る。"
+         "太郎はジャンプして、お辞儀をする。花子は走って、止まる。太郎は歩いて、ボールを投げる。花子は踊って、笑う。"
+         "太郎は座って、立ち上がる。")
+STORY_NEXT = "花子はお辞儀をして、歩く。"
+
+
+def story_rows(url: str, repeat: int) -> None:
+    """A ten-sentence story in a warm process: animated again as it is, and with one sentence added (the
+    joins before it as they were); each beside the same text with what the process kept forgotten."""
+    from text2anim import animate
+
+    for name, text in (("again", STORY), ("one sentence added", STORY + STORY_NEXT)):
+        def warm():
+            forget_joins()
+            animate(STORY, db=url)  # what the studio animated at the last pause
+            c = time.process_time()
+            animate(text, db=url)
+            return time.process_time() - c
+
+        def cold():
+            forget_joins()
+            c = time.process_time()
+            animate(text, db=url)
+            return time.process_time() - c
+        w = float(np.median([warm() for _ in range(max(1, repeat // 2))]))
+        k = float(np.median([cold() for _ in range(max(1, repeat // 2))]))
+        row(f"story of 10 sentences, warm process: {name}", ms(w), f"joins forgotten {ms(k)}", "")
+
+
 def forget_joins() -> None:
-    """Forget what the process kept of the joins it finished (the post-pass's joins and the hips' paths) and of
-    the joins it planned (the adapted lower bodies)."""
+    """Forget what the process kept of the joins it finished (the post-pass's joins and the hips' paths), of the
+    joins it planned (the adapted lower bodies) and of the joins it laid (plans and renderings)."""
     from text2anim.synthesis.join import hipspath, joinpass
     from text2anim.synthesis.optimal import adaptation
+    from text2anim.synthesis.optimal import join as optimal_join
 
     joinpass.KEPT_FINISHED.clear()
     hipspath.KEPT_PATHS.clear()
     adaptation.KEPT_ADAPTED.clear()
+    optimal_join.KEPT_JOINS.clear()
 
 
 def planning_rate_row(url: str, repeat: int) -> None:

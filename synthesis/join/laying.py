@@ -17,6 +17,7 @@ import numpy as np
 
 from text2anim.core.cancel import checkpoint
 from text2anim.core.contacts import contacts_of, detect_contacts, lowest_tracks
+from text2anim.core.kept import value_digest
 from text2anim.core.motion import Motion, concatenate
 from text2anim.core.skeleton import Skeleton
 
@@ -47,6 +48,11 @@ class TrackState:
     pieces: tuple[Motion, ...] = ()
     #: the frames' :func:`core.contacts.lowest_tracks` ``(heights, speeds)`` when known (:func:`laid_feet`)
     feet: tuple[np.ndarray, np.ndarray] | None = None
+    #: a digest of everything the state was made from (:func:`lay_elements`: the track's origin, heading and rate,
+    #: then each incoming element in order, the one being joined included, without its labels:
+    #: :meth:`Placed.unlabelled`): with a joiner's options it determines the join but for the labels, so a joiner
+    #: may keep its answers by it; empty for a state laid otherwise
+    chain: bytes = b""
 
     @property
     def motion(self) -> Motion | None:
@@ -167,11 +173,12 @@ def _spliced(kept: tuple[np.ndarray, np.ndarray], k: int, seam: Motion) -> tuple
 def lay_elements(track: Track, whole: Sequence[Element], fps: float,
                  join: Callable[[TrackState, Placed], object]) -> Laid:
     """The whole-body elements of one track laid in time order: the first placed, each next one joined by
-    ``join(state, incoming)`` (which updates ``state``)."""
-    state = TrackState()
+    ``join(state, incoming)`` (which updates ``state``; ``state.chain`` names the track so far and ``incoming``)."""
+    state = TrackState(chain=value_digest(track.origin, track.heading, fps))
     for e, rep in repetitions(whole):
         checkpoint()  # an abandoned animation stops before its next join
         inc = incoming(e, rep, fps, state)
+        state.chain = value_digest(state.chain, inc.unlabelled())
         if not state.pieces:  # (reading ``state.motion`` would put the pieces together)
             place_first(state, inc, track.origin, track.heading)
             continue

@@ -67,6 +67,12 @@ class Placed:
         """The method of the join into it: the element's own, a connection for a later repetition."""
         return "connection" if self.repetition > 0 else self.element.method
 
+    def unlabelled(self) -> "Placed":
+        """The element without its time table labels (its ``id`` and ``prev`` as 0 and ``None``): what a join
+        reads of it but the names its reports and warnings give (a sentence added to a text renumbers the
+        elements the scheduler inserted, not their joins)."""
+        return replace(self, element=replace(self.element, id=0, prev=None))
+
     def moved(self, frames: int) -> "Placed":
         """The element delayed by ``frames`` (all of it, start, core and end)."""
         return replace(self, offset=self.offset + frames)

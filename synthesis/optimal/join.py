@@ -5,7 +5,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 
+from text2anim.core.kept import Kept, value_digest
 from text2anim.core.metrics import root_pop, skating_ratio
+from text2anim.core.motion import Motion
 
 from ..join.commit import commit, lock_report, skip
 from ..join.laid import Laid
@@ -34,30 +36,47 @@ def report_of(prev: Placed, inc: Placed, plan: Plan, fps: float, locks) -> JoinR
                       tuple(plan.warnings))
 
 
+#: the last joins planned and rendered (:func:`join_next`), by the state's chain and the options: a warm process
+#: lays the same joins again (the studio re-animates the whole text at every pause in typing, and a sentence typed
+#: at the end leaves every join before it as it was). Each keeps its plan and rendering, copied out of the track
+#: they were cut from; bounded by :data:`KEPT_BYTES`
+KEPT_BYTES = 128 * 2 ** 20
+
+
+def _weight(made: tuple) -> int:
+    """Bytes of a kept join's motions (its rendering and its plan's), their poses counted as if known (a motion's
+    pose, ``(T, J, 3)`` positions and ``(T, J, 3, 3)`` rotations, is 3x its ``(T, J, 4)`` rotations)."""
+    plan, rendered = made[0], made[3]
+    motions = [] if rendered is None else [rendered]
+    if isinstance(plan, Plan):
+        motions += [m for m in (plan.placed, plan.adapted, plan.inc.motion) if m is not None]
+    return sum(4 * m.rotations.nbytes + m.root_positions.nbytes for m in motions)
+
+
+KEPT_JOINS: Kept[tuple] = Kept(1024, KEPT_BYTES, _weight)
+
+
 def join_next(state: TrackState, inc: Placed, fps: float, weights: Weights, lock: bool = True,
               min_blend: float = MIN_BLEND, allow_shift: bool = True) -> Plan | Skip:
-    """Join ``inc`` to the track's last element (plan, render, report); a :class:`Skip` leaves the track as it was."""
-    prev = state.placed[-1]
-    tr = extended(state, inc.offset + inc.motion.n_frames)
-    plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
-    carry = _carried_delay(state, prev, fps)
-    if isinstance(plan, Skip) and carry:
-        # the previous element was delayed for room and its core now covers this one's start: the element
-        # scheduled after it follows it rather than being dropped (only then; others keep their times)
-        inc = inc.moved(carry)
-        tr = extended(state, inc.offset + inc.motion.n_frames)
-        plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
-    else:
-        carry = 0
+    """Join ``inc`` to the track's last element (plan, render, report); a :class:`Skip` leaves the track as it was.
+    A join made before from the same state and options (``state.chain``, :data:`KEPT_JOINS`) is that one's plan and
+    rendering again, bit for bit."""
+    key = value_digest("optimal", state.chain, fps, weights, lock, min_blend, allow_shift) if state.chain else None
+    labels = (state.placed[-1].element.id, inc.element.id)
+    made = None if key is None else _relabelled(KEPT_JOINS.known(key), labels, inc)
+    tr = None
+    if made is None:
+        made, tr = _made(state, inc, fps, weights, lock, min_blend, allow_shift)
+        if key is not None:
+            KEPT_JOINS.put(key, (*_kept(made), labels))
+    plan, inc, carry, rendered, c0, locks, window = made
     if isinstance(plan, Skip):
         skip(state, inc, plan.reason)
         return plan
-    inc = plan.inc
+    prev = state.placed[-1]
+    if tr is None:
+        tr = extended(state, inc.offset + inc.motion.n_frames)
     e = inc.element
-    # the sources' figures at the track's rate (quality(m, None)'s skating ratio and root pop, without the rest)
-    own = max(skating_ratio(prev.motion), skating_ratio(inc.motion))
-    own_pop = max(root_pop(prev.motion), root_pop(inc.motion))
-    plan, c0, rendered, locks, window = carry_out(tr, plan, lock, own, own_pop)
     out = (tr[:c0], rendered)  # the track, laid as these two pieces (TrackState.lay)
     region_end = max([window[1]] + [lk.release_end for lk in locks])
     shown = replace(e, start=inc.first / fps, end=inc.end / fps) if (plan.shift or plan.phase or carry) else e
@@ -72,6 +91,61 @@ def join_next(state: TrackState, inc: Placed, fps: float, weights: Weights, lock
     commit(state, placed, out, rep, main, (window[0], region_end), window[0], window[1], (plan.shift + carry) / fps)
     state.feet = laid_feet(tr, c0, rendered)  # the next join's contacts are then found from the new frames alone
     return plan
+
+
+def _made(state: TrackState, inc: Placed, fps: float, weights: Weights, lock: bool, min_blend: float,
+          allow_shift: bool) -> tuple[tuple, Motion]:
+    """The join's plan and rendering, ``(plan or Skip, the incoming element as joined, frames it was carried
+    by, rendered, c0, locks, window)`` (:func:`.repair.carry_out`'s last four; ``None`` for a Skip), and the
+    track extended to the element as joined."""
+    prev = state.placed[-1]
+    tr = extended(state, inc.offset + inc.motion.n_frames)
+    plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
+    carry = _carried_delay(state, prev, fps)
+    if isinstance(plan, Skip) and carry:
+        # the previous element was delayed for room and its core now covers this one's start: the element
+        # scheduled after it follows it rather than being dropped (only then; others keep their times)
+        inc = inc.moved(carry)
+        tr = extended(state, inc.offset + inc.motion.n_frames)
+        plan = plan_join(tr, prev, inc, fps, weights, state.floor, min_blend, allow_shift)
+    else:
+        carry = 0
+    if isinstance(plan, Skip):
+        return (plan, inc, carry, None, 0, [], (0, 0)), tr
+    # the sources' figures at the track's rate (quality(m, None)'s skating ratio and root pop, without the rest)
+    own = max(skating_ratio(prev.motion), skating_ratio(plan.inc.motion))
+    own_pop = max(root_pop(prev.motion), root_pop(plan.inc.motion))
+    plan, c0, rendered, locks, window = carry_out(tr, plan, lock, own, own_pop)
+    return (plan, plan.inc, carry, rendered, c0, locks, window), tr
+
+
+def _kept(made: tuple) -> tuple:
+    """A made join as kept: its rendering's frames copied out of the track's (a slice of the track would keep the
+    whole track alive), the rest as it is (a plan holds the clips' own motions)."""
+    plan, inc, carry, rendered, c0, locks, window = made
+    if rendered is not None:
+        rendered = Motion(rendered.skeleton, rendered.fps, rendered.root_positions.copy(), rendered.rotations.copy(),
+                          None if rendered.translations is None else rendered.translations.copy())
+    return plan, inc, carry, rendered, c0, locks, window
+
+
+def _relabelled(kept: tuple | None, labels: tuple[int, int], inc: Placed) -> tuple | None:
+    """A kept join (:data:`KEPT_JOINS`) for the element ``inc`` after the element labelled ``labels[0]``: as kept
+    where it was made for the same labels; else with ``inc``'s element (the same but for its labels) where the plan
+    names no element (no warning, not a skip); else ``None`` (made again). Its rendering as a motion of its own, its
+    caches empty (:data:`KEPT_BYTES` counts its frames, not what a track computes from them)."""
+    if kept is None:
+        return None
+    plan, was, carry, rendered, c0, locks, window, made_for = kept
+    if made_for != labels:
+        if isinstance(plan, Skip) or plan.warnings:
+            return None
+        was = replace(was, element=inc.element)
+        plan = replace(plan, inc=was)
+    if rendered is not None:
+        rendered = Motion(rendered.skeleton, rendered.fps, rendered.root_positions, rendered.rotations,
+                          rendered.translations)
+    return plan, was, carry, rendered, c0, locks, window
 
 
 def _carried_delay(state: TrackState, prev: Placed, fps: float) -> int:
