@@ -3,8 +3,8 @@ first frame of its animation on screen, measured by the page itself (``window.__
 the last ``input`` event of the text sent to the first frame drawn after its answer: a new sentence's draft), and
 to the first frame of its finished animation (``finishLatencies``: the draft replaced).
 
-``python benchmarks/bench_studio.py [--seconds 10] [--no-load]`` (needs /usr/bin/chromium and Playwright, as the
-tests do).
+``python benchmarks/bench_studio.py [--seconds 10] [--no-load] [--story] [--forget-joins]`` (needs /usr/bin/chromium
+and Playwright, as the tests do).
 
 For each reading the benchmark types sentences into the page for ``--seconds`` seconds of wall time, one
 character every 90 ms (``keyboard.type``: an ``input`` event each, as committed kana and kanji arrive), waits for
@@ -13,7 +13,9 @@ figure.
 
 - **seen**: five sentences typed again and again (the studio keeps recent results: the page's own cost, the
   pause, the request and the viewer's first frame);
-- **new**: sentences never animated before (names × verbs): analysis, synthesis and the viewer page too.
+- **new**: sentences never animated before (names × verbs): analysis, synthesis and the viewer page too;
+- **story** (``--story``): ten sentences typed one after another at the end of one text, as a story is written;
+  each pause animates the whole text again (``--forget-joins``: with no laid join kept, to compare).
 
 Unless ``--no-load``, one other CPU-bound process (``python -c "while 1: pass"``) runs for the whole benchmark,
 as on a machine where something else is working; it is stopped at the end. Wall times on this machine.
@@ -38,6 +40,10 @@ FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "-
          "--disable-component-update", "--disable-sync"]
 #: Milliseconds between two typed characters.
 KEY_MS = 90
+#: A story typed into one text, sentence after sentence (``--story``): two people, ten sentences.
+STORY = ["太郎は走って、ボールを蹴る。", "そして喜ぶ。", "花子は歩いて、椅子に座る。", "それから立ち上がって、手を振る。",
+         "太郎はジャンプして、お辞儀をする。", "花子は走って、止まる。", "太郎は歩いて、ボールを投げる。", "花子は踊って、笑う。",
+         "太郎は座って、立ち上がる。", "花子はお辞儀をして、歩く。"]
 
 
 def serve(db_url: str):
@@ -76,6 +82,41 @@ def type_sentence(page, text: str) -> tuple[float, float | None] | None:
     return first, finished
 
 
+def append_sentence(page, text: str, sentence: str) -> float | None:
+    """Type ``sentence`` at the end of the box, which holds ``text``; keystroke to the first frame of the whole
+    text's finished animation (ms; the first frame when no draft came first), or None when it failed."""
+    n = page.evaluate("window.__studio.keyLatencies.length")
+    done = page.evaluate("window.__studio.finishLatencies.length")
+    page.focus("#text")
+    page.keyboard.press("Control+End")
+    page.keyboard.type(sentence, delay=KEY_MS)
+    whole = text + sentence
+    page.wait_for_function("([n, text]) => window.__studio.text === text && !window.__studio.busy "
+                           "&& (window.__studio.keyLatencies.length > n || window.__studio.error)", arg=[n, whole],
+                           timeout=120000)
+    if page.evaluate("window.__studio.error"):
+        print(f"{whole}: {page.evaluate('window.__studio.error')}", file=sys.stderr)
+        return None
+    return float(page.evaluate("([k]) => window.__studio.finishLatencies.length > k ? "
+                               "window.__studio.finishLatencies[window.__studio.finishLatencies.length - 1] : "
+                               "window.__studio.keyLatencies[window.__studio.keyLatencies.length - 1]", [done]))
+
+
+def story_reading(page) -> list[float]:
+    """A story typed sentence after sentence into one text (:data:`STORY`): keystroke to its finished animation
+    after each sentence, ms."""
+    page.focus("#text")
+    page.keyboard.press("Control+a")
+    page.keyboard.press("Delete")
+    out, text = [], ""
+    for sentence in STORY:
+        ms = append_sentence(page, text, sentence)
+        text += sentence
+        if ms is not None:
+            out.append(ms)
+    return out
+
+
 def pct(values: list[float], q: int) -> float:
     return statistics.quantiles(values, n=100, method="inclusive")[q - 1] if len(values) > 1 else values[0]
 
@@ -98,7 +139,13 @@ def main(argv: list[str]) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--seconds", type=float, default=10.0, help="seconds of typing per reading (default 10)")
     p.add_argument("--no-load", action="store_true", help="no other CPU-bound process while it runs")
+    p.add_argument("--story", action="store_true", help="also type a ten-sentence story into one text")
+    p.add_argument("--forget-joins", action="store_true",
+                   help="keep no laid joins (optimal.join.KEPT_JOINS): the studio as before it kept them, to compare")
     args = p.parse_args(argv)
+    if args.forget_joins:
+        from text2anim.synthesis.optimal import join as optimal_join
+        optimal_join.KEPT_JOINS.budget = 0
     from playwright.sync_api import sync_playwright
 
     from text2anim.motiondb import MotionDB
@@ -120,6 +167,7 @@ def main(argv: list[str]) -> int:
                 fresh = (f"{n}は{v}" for n, v in itertools.product(NAMES, VERBS) if f"{n}は{v}" not in SEEN)
                 new = reading(page, fresh, args.seconds)
                 phases = page.evaluate("window.__studio.phases.slice(-%d)" % len(new[0])) if new[0] else []
+                story = story_reading(page) if args.story else []
                 browser.close()
             server.should_exit = True
     finally:
@@ -137,6 +185,9 @@ def main(argv: list[str]) -> int:
     if phases:
         print("new sentences, median ms: " + ", ".join(
             f"{k} {statistics.median(p[k] for p in phases):.0f}" for k in ("pause", "request", "shown")))
+    if story:
+        print(f"a story typed into one text{' (laid joins not kept)' if args.forget_joins else ''}, keystroke to "
+              "its finished animation after each sentence, ms: " + " ".join(f"{v:.0f}" for v in story))
     return 0
 
 
