@@ -255,14 +255,18 @@ def _minimum(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: 
     """The ``x`` that minimises ``cost · x`` subject to ``lower <= rows @ x <= upper`` and ``col_lower <= x <=
     col_upper`` (``np.inf`` for no bound): PIQP's proximal interior point method (a sparse LDLᵀ of the KKT system,
     12-25 iterations on these programmes, 2.4x faster than HiGHS's dual simplex), on one thread; to its
-    tolerance (1e-8 relative), where optima tie the middle of the optimal ones rather than a vertex. scipy's
-    HiGHS where PIQP finds none or piqp is missing; None when that finds none either."""
+    tolerance (1e-8 relative), where optima tie the middle of the optimal ones rather than a vertex. Both
+    programmes always have a solution (the given path, or programme 1's, is one), so PIQP's test for
+    infeasibility is off: it had called one of the 32-motion text's 93 least-peak programmes infeasible after 8
+    iterations (its optimum, 5.171 m/s², found in 16 without the test, as HiGHS finds it), and HiGHS's fallback cost
+    that region ~95 ms. scipy's HiGHS where PIQP finds none or piqp is missing; None when that finds none either."""
     piqp = _piqp()
     if piqp is not None:
         n = len(cost)
         solver = piqp.SparseSolver()
         solver.settings.verbose = False
         solver.settings.num_threads = 1
+        solver.settings.eps_primal_inf = solver.settings.eps_dual_inf = 1e-30  # never infeasible nor unbounded
         solver.setup(sparse.csc_matrix((n, n)), cost, None, None, sparse.csc_matrix(rows), lower, upper, col_lower,
                      col_upper)
         if solver.solve() == piqp.PIQP_SOLVED:
