@@ -255,11 +255,11 @@ def _minimum(cost: np.ndarray, rows: sparse.spmatrix, lower: np.ndarray, upper: 
     """The ``x`` that minimises ``cost · x`` subject to ``lower <= rows @ x <= upper`` and ``col_lower <= x <=
     col_upper`` (``np.inf`` for no bound): PIQP's proximal interior point method, on one thread; to its tolerance
     (1e-8 relative), where optima tie the middle of the optimal ones rather than a vertex. ``stage`` ``(len(x),)``:
-    the frame each variable belongs to (the last stage for one every frame shares): the variables are put in frame
-    order and the KKT system factored by PIQP's multistage solver, block-tridiagonal over the frames (a row reaches
-    three frames at most) with that shared variable as its arrow — on the 32-motion text's and the varied text's
-    103 regions its factorisations take about half as long as the general sparse LDLᵀ's, 12-15 % of the whole
-    solve; 12-25 iterations, 2.4x faster than HiGHS's dual simplex. Both programmes always have a solution (the
+    the frame each variable belongs to (one after the last for one every frame shares): put in frame order, the
+    variables make the KKT system banded (a row reaches three neighbouring frames), which PIQP's multistage solver
+    factors as the block-tridiagonal system it finds, the shared variable its arrow — on the 32-motion and the
+    varied text's 103 regions in about half the time of the general sparse LDLᵀ's (216 vs 393 ms), the solves
+    12-15 % faster; 12-25 iterations, 2.4x faster than HiGHS's dual simplex. Both programmes always have a solution (the
     given path, or programme 1's, is one), so PIQP's test for infeasibility is off: it had called one of the
     32-motion text's 93 least-peak programmes infeasible after 8 iterations (its optimum, 5.171 m/s², found in 16
     without the test, as HiGHS finds it), and HiGHS's fallback cost that region ~95 ms. scipy's HiGHS where PIQP
