@@ -424,7 +424,9 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
         elif s - lo > 2:  # the blend hands over to the next core (or the track ends) right here: the blend, not
             # what follows, takes the velocity difference (decaying backwards from the seam)
             seamed = inertialize_before(seamed, s, min(SEAM_DECAY, before))
-    planted = _planted(motion, contacts)
+    planted = _planted(motion, contacts)  # the engine output's kinematics over the window, known from here on
+    # the frames the seams left alone are the engine output's: their kinematics too (the flights', a stretch's)
+    seamed = seamed.share_pose(motion, np.arange(T)) if seamed is not motion else seamed
     jk_lim, pop_lim = _limits(region.sources, fps)
     pop_lim = max(pop_lim, POP_FLOOR)
     jk_near, pop_near = _limits(region.near, fps) if region.near else (jk_lim, pop_lim)
@@ -482,12 +484,12 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
         if kept is not None:
             break
     _score, sigma, stretch, chosen, jk, pop, h2 = kept or least(tried, lims)
-    # outside [lo, h2) the frames are the input's (those the seams left alone): their kinematics is known
-    rows = np.concatenate([np.arange(lo), np.full(h2 - lo, -1), np.arange(hi, T)])
     candidate = chosen.motion()
     for st in stretches:
         st.release()
-    finished = candidate.share_pose(motion, rows)
+    # outside [lo, h2) the frames are the input's (those the seams left alone), inside it the chosen width's (its
+    # feet re-planted): the kinematics of both is known
+    finished = candidate.share_pose(_beside(motion, chosen.sub, lo, hi), np.arange(candidate.n_frames))
     done = lift_off_floor(lift_skimming_feet(finished, lo, h2, min(outside, gmd_floor(finished))), lo, h2)
     # the feet a connection released after its blend may land inside the next core (the engine's frames, not
     # the clip's): where the body stands beside them there, the hips' path is bent over them too
@@ -499,6 +501,15 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
             "jerk_p99": round(jk, 1), "source_jerk_p99": round(jk_lim, 1), "root_pop": round(pop, 2),
             "source_root_pop": round(pop_lim, 2), "seam_decay_s": SEAM_DECAY}
     return done, info, (lo, whi, whi - lo + (h2 - hi), played[stretch])
+
+
+def _beside(motion: Motion, sub: Motion, lo: int, hi: int) -> Motion:
+    """``motion`` with its frames ``[lo, hi)`` replaced by ``sub``'s, its kinematics known (both motions' are: the
+    window's and a width's, :class:`synthesis.join.smoothing.Smoothed`; joined, no kinematics run): what a
+    candidate's frames may share theirs with."""
+    both = concatenate([motion[:lo], sub, motion[hi:]])
+    _ = both.pose
+    return both
 
 
 def _landing_end(motion: Motion, h2: int, r1: int) -> int:
