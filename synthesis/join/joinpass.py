@@ -443,7 +443,8 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
     span = seamed[lo:whi]  # one slice: its kinematics are computed once for every stretch's flights
     for stretch in STRETCHES:
         n_new = int(round((whi - lo) * stretch))
-        src = played[stretch] = warp_frames(whi - lo, n_new, seam, flights(span, n_new, seam))
+        air = flights(span, n_new, seam) if n_new > whi - lo else None  # unslowed, nothing hangs
+        src = played[stretch] = warp_frames(whi - lo, n_new, seam, air)
         frames: Motion | Deferred = seamed
         if n_new > whi - lo:  # retimed when a width's rotations are asked: the hips' path is enough for the pops
             path = seamed.root_positions
