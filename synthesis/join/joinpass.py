@@ -86,7 +86,7 @@ from text2anim.core.motion import Motion, concatenate
 from .blend import neighbours, sample, sample_path
 from .hipspath import least_acceleration
 from .inertialize import inertialize_at, inertialize_before
-from .legsolve import solve_leg
+from .legsolve import LegGoal, solve_legs
 from .overfeet import over_feet
 from .pruning import Tried, least, may_keep, replaces
 from .smoothing import Deferred, Smoothed, Stretch, plant_all
@@ -158,15 +158,14 @@ def _raise_ankle(motion: Motion, side: str, ankle: int, short: np.ndarray) -> Mo
     smoothed so the lift eases in and out, by leg IK with the ankle's world rotation kept."""
     d = gaussian_filter1d(maximum_filter1d(short, 5, mode="nearest"), 1.0, mode="nearest")
     d = np.maximum(d, short)
-    out = motion
+    goals = []
     for a, b in runs(d > 1e-5):
         a, b = int(a), int(b)
-        sub = out[a:b]
-        pose = sub.pose
+        pose = motion[a:b].pose
         target = pose.positions[:, ankle] + np.stack([np.zeros(b - a), d[a:b], np.zeros(b - a)], 1)
-        solved = solve_leg(sub, side, target, ankle=pose.quaternions(ankle))  # its world rotation kept
-        out = out.with_rotations(a, solved.rotations)
-    return out
+        goals.append(LegGoal(side, a, b, target, pose.quaternions(ankle)))  # its world rotation kept
+    # the runs as rows of one solve (each run's arithmetic is what it is alone: the same bits, one IK's fixed cost)
+    return solve_legs(motion, goals)
 
 
 SKIM_HEIGHT = 0.055  # m: a foot moving faster than SWING_SPEED keeps its toe this high (GMD counts < 5 cm)
