@@ -329,7 +329,8 @@ def plant_all(widths: list[Smoothed]) -> None:
     cs = np.concatenate([np.tile(foot[2], k) for foot in st.feet])
     goal = lerp(np.concatenate([now.positions[:, a] for a in ankles]),
                 np.concatenate([np.tile(foot[3], (k, 1)) for foot in st.feet]), cs)
-    turn = slerp(np.concatenate([now.quaternions(a) for a in ankles]),
+    world = now.quaternions(ankles)  # (rows, feet, 4): both ankles' world rotations in one conversion (per row)
+    turn = slerp(np.concatenate([world[:, i] for i in range(len(ankles))]),
                  np.concatenate([np.tile(foot[4], (k, 1)) for foot in st.feet]), cs)
     rows = k * n
     sub = solve_legs(sub, [LegGoal(foot[0], 0, rows, goal[i * rows:(i + 1) * rows], turn[i * rows:(i + 1) * rows])
