@@ -88,8 +88,8 @@ from .hipspath import least_acceleration
 from .inertialize import inertialize_at, inertialize_before
 from .legsolve import LegGoal, solve_legs
 from .overfeet import over_feet
-from .pruning import Tried, least, may_keep, replaces
-from .smoothing import Deferred, Smoothed, Stretch, plant_all
+from .pruning import Tried, least, may_keep, may_keep_by_pop, replaces
+from .smoothing import Deferred, Smoothed, Stretch, low_pass_all, plant_all
 from .spliced import Spliced
 
 SEAM_DECAY = 0.3  # s: a seam's velocity jump decays over this (Bollo's t1)
@@ -468,7 +468,9 @@ def _finish_region(motion: Motion, region: Region, contacts, origin: int = 0,
                 continue
             if cand.jk is None and failed:  # the rest of a stretch that failed once is mostly tried too: every
                 # later width that may count is re-planted with this one, in one IK solve (:data:`AHEAD`)
-                plant_all([cand] + [widths[j] for j in range(i + 1, len(SIGMAS)) if may_keep(widths[j], lims, kept)])
+                rest = [widths[j] for j in range(i + 1, len(SIGMAS))]
+                low_pass_all([w for w in rest if may_keep_by_pop(w, lims, kept)])  # their rotations in one go
+                plant_all([cand] + [w for w in rest if may_keep(w, lims, kept)])
             jk, pop = cand.plant()
             failed = failed or max(jk / lims[0], pop / lims[1]) > 1.0
             if max(jk / lims[0], pop / lims[1]) <= 1.0:  # within the whole clips' figures: no more time. A wider
