@@ -43,10 +43,15 @@ def may_keep(cand: Smoothed, lims: tuple[float, float, float, float], kept: Trie
     """Whether ``cand`` may be within the limits and then be kept (:func:`synthesis.join.joinpass.finish_region`), from its bounds:
     a candidate that cannot is not re-planted (exact: the choice is the one re-planting every candidate
     makes; one that can only be the fallback, the least score, waits for :func:`least`). The cheap bound
-    (the pop alone) is asked first."""
-    if pop_bound(cand, lims) > 1.0 or not replaces(pop_bound(cand, lims, near=True), 0.0, cand.pop, kept):
+    (the pop alone, :func:`may_keep_by_pop`) is asked first."""
+    if not may_keep_by_pop(cand, lims, kept):
         return False
     return score_floor(cand, lims) <= 1.0 and replaces(score_floor(cand, lims, near=True), cand.jk_floor, cand.pop, kept)
+
+
+def may_keep_by_pop(cand: Smoothed, lims: tuple[float, float, float, float], kept: Tried | None) -> bool:
+    """:func:`may_keep` from the pop's bound alone (the hips' path: no rotations low-passed yet)."""
+    return pop_bound(cand, lims) <= 1.0 and replaces(pop_bound(cand, lims, near=True), 0.0, cand.pop, kept)
 
 
 def least(tried: list[tuple[float, float, Smoothed, int]], lims: tuple[float, float, float, float]) -> Tried:

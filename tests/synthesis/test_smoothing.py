@@ -9,7 +9,7 @@ from shared_data import library_motion
 from text2anim.core.contacts import detect_contacts
 from text2anim.core.metrics import jerk_p99, joint_jerk, peak_hips_acceleration, quality
 from text2anim.core.motion import Motion
-from text2anim.synthesis.join.smoothing import Stretch, plant_all
+from text2anim.synthesis.join.smoothing import Stretch, low_pass_all, plant_all
 
 WIDTHS = (0.0, 1.0, 2.0, 4.0, 8.0)
 
@@ -65,6 +65,17 @@ def test_widths_replanted_together_are_each_replanted_alone(kick):
         on = np.flatnonzero(c == 1.0)
         for w in together:
             assert len(on) and np.abs(w.sub.positions[on, ankle] - target[on]).max() < 1e-9
+
+
+def test_widths_low_passed_together_are_each_low_passed_alone(kick):
+    st = _stretch(kick)
+    together = [st.smoothed(s, 6, 6) for s in WIDTHS]
+    low_pass_all(together)
+    for s, w in zip(WIDTHS, together):
+        alone = st.smoothed(s, 6, 6)
+        assert alone.sub.rotations.tobytes() == w.sub.rotations.tobytes()
+        assert alone.sub.positions.tobytes() == w.sub.positions.tobytes()  # their kinematics, run at once
+        assert (alone.jk_floor, alone.plant()) == (w.jk_floor, w.plant())
 
 
 def testsource_figures_are_remembered_by_content_not_by_object():
