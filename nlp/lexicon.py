@@ -340,6 +340,13 @@ LOWERING_VERBS = frozenset(
     "しゃがむ しゃがみ込む 屈む かがむ 転ぶ 倒れる ひざまずく 跪く 伏せる 寝転ぶ 横になる 座り込む うずくまる".split()
 )
 
+#: Verbs of a jump: 着地する right after one of them by the same actor is that jump's landing, no second jump.
+JUMP_VERBS = frozenset(
+    "ジャンプする 跳ぶ 飛ぶ 跳ねる 飛び跳ねる 跳び上がる 飛び上がる 飛び降りる 飛び下りる 跳び降りる 跳び下りる 飛び乗る 飛び込む 飛び越える".split()
+)
+#: The verb of landing (the end of a jump).
+LANDING_VERB = "着地する"
+
 #: Things sat on: rising from one (椅子から立つ) starts seated.
 SEATS = frozenset("椅子 いす イス チェア ソファ ソファー ベンチ 長椅子 席 座席 腰掛け 切り株".split())
 

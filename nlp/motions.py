@@ -14,8 +14,8 @@ from .actors import as_written, assign_actors, case_particle, noun_of, person_na
 from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, HONOURED_TITLES, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS,
-    REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS, WEATHER_VERBS,
+    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, HONOURED_TITLES, JUMP_VERBS, LANDING_VERB, LIBRARY_VERBS,
+    MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS, WEATHER_VERBS,
 )
 from . import manners, mimetics
 from .phrases import read_phrases
@@ -71,6 +71,7 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     if notes is not None:
         notes.extend(said)
     assign_actors(phrases)
+    _mark_landings(preds)
     mark_ways(phrases)
     cues = _attach_modifiers(phrases, values, styled)
     for pred in preds:
@@ -300,6 +301,21 @@ def _mark_passives(phrases: list[Phrase]) -> None:
         if by is not None and not _honoured_before(phrases, i):
             pred.reason = "passive"
             pred.say(f"{by.key}{pred.written or pred.verb} (passive): done by {person_name(by)}, not animated")
+
+
+def _mark_landings(preds: list[Pred]) -> None:
+    """ジャンプして、着地した: 着地する right after a jump of the same actor is that jump's landing (the jump
+    clip lands), no second jump; 着地した alone is played as the jump that lands (near.json)."""
+    last: dict[str | None, Pred] = {}
+    for pred in preds:
+        if not pred.motion:
+            continue
+        before = last.get(pred.actor)
+        if pred.verb == LANDING_VERB and before is not None and before.verb in JUMP_VERBS:
+            pred.reason = "landing"
+            pred.say(f"{pred.written or pred.verb}: the landing of {before.written or before.verb}, one jump")
+            continue
+        last[pred.actor] = pred
 
 
 def _honoured_before(phrases: list[Phrase], i: int) -> bool:
