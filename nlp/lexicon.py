@@ -403,6 +403,10 @@ THING_ANAPHORS = frozenset("それ これ あれ そいつ".split())
 
 #: A motion that hands a thing over implies its counterpart by the other person, played at the same time:
 #: verb (lemma) -> (the counterpart's verb, its reading, the role the first motion's target has).
+#: What the causer of a causative does (先生は生徒を前に進ませた: the teacher tells the student, who steps
+#: forward): the verb and its reading.
+TELLING = ("話す", "ハナス")
+
 COUNTERPARTS = {
     "渡す": ("受け取る", "ウケトル", "recipient"), "手渡す": ("受け取る", "ウケトル", "recipient"),
     "貸す": ("受け取る", "ウケトル", "recipient"), "返す": ("受け取る", "ウケトル", "recipient"),

@@ -71,6 +71,7 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     if notes is not None:
         notes.extend(said)
     assign_actors(phrases)
+    _mark_causatives(phrases)
     _mark_landings(preds)
     mark_ways(phrases)
     cues = _attach_modifiers(phrases, values, styled)
@@ -293,14 +294,34 @@ def _mark_passives(phrases: list[Phrase]) -> None:
     に-person: an action)."""
     for i, ph in enumerate(phrases):
         pred = ph.pred
-        if pred is None or not pred.motion or not any(
-                t.pos1 == "助動詞" and t.lemma in ("れる", "られる") for t in ph.tokens):
-            continue
+        auxes = {t.lemma for t in ph.tokens if t.pos1 == "助動詞"}
+        if pred is None or not pred.motion or not auxes & {"れる", "られる"} or auxes & {"せる", "させる"}:
+            continue  # 母に野菜を食べさせられた: made to eat, she eats (the causative passive)
         by = next((q for q in reversed(phrases[:i]) if q.group == ph.group and q.pred is None
                    and case_particle(q) == "に" and person_name(q)), None)
         if by is not None and not _honoured_before(phrases, i):
             pred.reason = "passive"
             pred.say(f"{by.key}{pred.written or pred.verb} (passive): done by {person_name(by)}, not animated")
+
+
+def _mark_causatives(phrases: list[Phrase]) -> None:
+    """先生は生徒を前に進ませた, 母は子供に野菜を食べさせた: a verb with the causative せる / させる (not
+    made passive: 歩かされた is the subject's own walk) is done by the person its clause makes do it (the を-
+    or に-person before it, not the actor): that person becomes its actor, and the actor its ``causer``
+    (:func:`analyze.add_causers` gives the causer the telling); the person is no object or target of it."""
+    for i, ph in enumerate(phrases):
+        pred = ph.pred
+        auxes = [t.lemma for t in ph.tokens if t.pos1 == "助動詞"]
+        if pred is None or not pred.motion or not {"せる", "させる"} & set(auxes) or {"れる", "られる"} & set(auxes):
+            continue
+        made = next((q for q in reversed(phrases[:i]) if q.group == ph.group and q.pred is None
+                     and case_particle(q) in ("を", "に") and person_name(q) not in (None, pred.actor)), None)
+        if made is None:
+            continue
+        made.role = "causee"
+        pred.causer, pred.actor = pred.actor, person_name(made)
+        pred.say(f"{''.join(t.surface for t in ph.tokens if t.pos1 in ('動詞', '助動詞'))} (causative): "
+                 f"{pred.actor} {pred.written or pred.verb}, told by {pred.causer}")
 
 
 def _mark_landings(preds: list[Pred]) -> None:

@@ -39,8 +39,8 @@ from .bunsetsu import Phrase
 from .lexicon import (
     AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
     FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
-    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
-    THROWING_VERBS, TRANSFER_VERBS,
+    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, TELLING,
+    THING_ANAPHORS, THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
 from .phrases import body_nouns, reread
@@ -492,6 +492,33 @@ def add_counterparts(specs: list[MotionSpec], constraints: list[Constraint]) -> 
         constraints.append(Constraint(spec.id, next_id, "parallel", None, None, "composition", "counterpart"))
         specs.append(other)
         notes.append(f"{spec.target} {verb}: implied by {spec.actor} {spec.written or spec.verb}")
+        next_id += 1
+    return notes
+
+
+def add_causers(specs: list[MotionSpec], constraints: list[Constraint], causers: dict[int, str]) -> list[str]:
+    """先生は生徒を前に進ませた: the causer of a causative motion (``causers``: motion id -> who makes its actor do
+    it) tells its actor first (:data:`lexicon.TELLING`, addressed to them, the motion's span), and the motion
+    follows the telling (a serial link with overlap, cue ``causative``); what led into the motion leads into
+    the telling. Returns the notes."""
+    notes: list[str] = []
+    next_id = max((s.id for s in specs), default=0) + 1
+    by_id = {s.id: s for s in specs}
+    for motion_id, causer in causers.items():
+        spec = by_id[motion_id]
+        if spec.target is None and spec.verb in LOCOMOTION_VERBS:  # 生徒を前に進ませた: up to the teacher
+            at = specs.index(spec)
+            spec = specs[at] = replace(spec, target=causer, target_role="goal", target_person=True)
+        verb, reading = TELLING
+        specs.append(replace(spec, id=next_id, actor=causer, verb=verb, written=verb, reading=reading, object=None,
+                             body_part=None, phrase="", target=spec.actor, target_role="addressee", target_side=None,
+                             target_person=True, repeat=1, duration=None, delay=None, manner=None, style=None,
+                             intensity=1.0))
+        for k, c in enumerate(constraints):
+            if c.second == motion_id:
+                constraints[k] = replace(c, second=next_id)
+        constraints.append(Constraint(next_id, motion_id, "serial", True, None, "transition", "causative"))
+        notes.append(f"{causer} {verb}: {causer} makes {spec.actor} {spec.written or spec.verb}")
         next_id += 1
     return notes
 
