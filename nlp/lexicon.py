@@ -239,7 +239,7 @@ TAKING_ALONG = frozenset("連れる 伴う".split())
 LEADING_BY_HAND = frozenset("引く 繋ぐ つなぐ 取る 握る".split())
 
 #: Animals among the persons: 鳴く is what they do (太郎が鳴く is 泣く, a typo; 犬が鳴く is not).
-ANIMALS = frozenset("犬 猫 子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣".split())
+ANIMALS = frozenset("犬 猫 子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣 鳩 ハト 金魚 小鳥".split())
 
 #: Script headings that open a line like a speaker label (ト書き：花子が座る) but name no
 #: one: the line is a stage direction, its actor is found as in any other sentence.
@@ -347,6 +347,10 @@ JUMP_VERBS = frozenset(
 #: The verb of landing (the end of a jump).
 LANDING_VERB = "着地する"
 
+#: Verbs of rising: their を-seat is where they rise from (席を立つ); opening an actor's track with no seat
+#: named, they rise from one too (生徒たちは立ってお辞儀をした: a class rising, not a crouch).
+RISING_VERBS = frozenset("立つ 立ち上がる 起立する".split())
+
 #: Things sat on: rising from one (椅子から立つ) starts seated.
 SEATS = frozenset("椅子 いす イス チェア ソファ ソファー ベンチ 長椅子 席 座席 腰掛け 切り株".split())
 
@@ -432,6 +436,8 @@ CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く �
 HAND_IN_HAND = frozenset("繋ぐ つなぐ 手を繋ぐ".split())
 
 #: Nouns before に / と that are no target (一緒に is "together", not a place).
+#: Nouns of how much, said bare before a verb (一口飲んで: a sip), never its object.
+AMOUNT_NOUNS = frozenset("一口 ひと口 ひとくち 一息 ひと息 一粒 ひと粒".split())
 NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 一斉 列 一列 輪 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
 
 #: Verbs that send a thing through the air to someone, and verbs that catch it: a catch of the thing another

@@ -14,7 +14,7 @@ from .actors import as_written, assign_actors, case_particle, noun_of, person_na
 from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, HONOURED_TITLES, JUMP_VERBS, LANDING_VERB, LIBRARY_VERBS,
+    AMOUNT_NOUNS, BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, HONOURED_TITLES, JUMP_VERBS, LANDING_VERB, LIBRARY_VERBS,
     MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS, WEATHER_VERBS,
 )
 from . import manners, mimetics
@@ -57,8 +57,7 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
                 mimetic.append(ph)
             continue
         ph.pred = find_predicate(ph, nxt)
-        opens = i == 0 or phrases[i - 1].sentence != ph.sentence
-        ph.role = "predicate" if ph.pred else _noun_role(ph, opens)
+        ph.role = "predicate" if ph.pred else _noun_role(ph, _opens_sentence(phrases, i))
     _bare_objects(phrases)
     _assign_groups(phrases)
     _mark_manner(phrases)
@@ -166,16 +165,21 @@ def _bare_objects(phrases: list[Phrase]) -> None:
         if ph.role or not nxt.pred or nxt.sentence != ph.sentence or ph.has_comma():
             continue
         toks = [t for t in ph.tokens if t.pos1 != "補助記号"]
+        pointed = bool(toks) and toks[0].pos1 == "連体詞"  # そのボール取って: the ball, この / その / あの before it
+        while toks[:1] and toks[0].pos1 == "連体詞":
+            toks = toks[1:]
         if not toks or any(t.pos1 not in ("名詞", "接頭辞", "接尾辞") for t in toks):
             continue
         last = toks[-1]
         if last.pos1 != "名詞" or last.pos3 == "副詞可能" or last.pos2 == "数詞" or last.is_number:
             continue
+        if ph.key in AMOUNT_NOUNS:
+            continue  # 一口飲んで: how much, not what
         if ph.key in PLACE_OF_NOUNS and k and phrases[k - 1].key.endswith("の"):
             continue  # 花子のとこ行く: where she is, its へ dropped (nlp.targets), not a person
-        if person_name(ph):
-            ph.role = "actor"  # 太郎歩く: が dropped too
-        elif not is_name(ph.key):
+        if person_name(ph) and not (pointed and toks[-1].pos3 != "人名"):
+            ph.role = "actor"  # 太郎歩く: が dropped too; この本読んで: 本 is no one's name here
+        elif pointed or not is_name(ph.key):
             ph.role = "body part" if noun_of(ph) in BODY_PARTS else "object"
 
 

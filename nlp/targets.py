@@ -37,9 +37,9 @@ from functools import lru_cache
 from .actors import as_written, noun_of, person_name, side_after_no
 from .bunsetsu import Phrase
 from .lexicon import (
-    AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
+    ANIMALS, AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
     FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
-    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, TELLING,
+    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, RISING_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, TELLING,
     THING_ANAPHORS, THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
@@ -52,8 +52,6 @@ from .types import Constraint, MotionSpec
 TARGET_PARTICLES = frozenset("に へ まで から と".split())
 #: Verbs whose を-place is where the actor leaves from (店を出る).
 LEAVING_VERBS = frozenset("出る 離れる 去る 別れる 帰る 降りる 下りる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
-#: Verbs of rising: their を-seat is where they rise from (席を立つ).
-RISING_VERBS = frozenset("立つ 立ち上がる".split())
 #: The て-forms that may say a way or a facing, no motion of their own.
 _WAY_TE = FACING_VERBS | DIRECTION_TE
 #: Roles a person keeps as the addressee of a following gesture (近づいて、お辞儀する).
@@ -101,6 +99,7 @@ def attach_targets(phrases: list[Phrase]) -> None:
         if pred.motion:
             done.append(pred)
             _settle(pred, pending, actors)
+            _giving(pred)
             if pred.target is None and pred.verb in LOCOMOTION_VERBS and (_comes(ph) or pred.verb in COMING_VERBS):
                 _come_to(pred, phrases, i)
         pending = []
@@ -113,6 +112,23 @@ COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る �
 PARTING_VERBS = frozenset("別れる 分かれる".split())
 #: Verbs of running away: with no one named, from whoever last came to the actor (熊が現れた。少年は逃げ出した).
 FLEEING_VERBS = frozenset("逃げる 逃げ出す 逃げ去る".split())
+
+
+#: 上げる with a thing sent to someone is giving it (花子に本をあげた: hands it over; 鳩にパンをあげた: puts it
+#: down for the animal), no raised hand: what it is played as.
+GIVING = {"person": "渡す", "animal": "置く"}
+
+
+def _giving(pred: Pred) -> None:
+    """花子に本をあげた, 鳩にパンをあげた: 上げる with a thing (no part of the body) sent to a person or an animal
+    gives it (:data:`GIVING`); said in the note."""
+    if pred.verb != "上げる" or pred.object is None or pred.object in BODY_PARTS or pred.target is None:
+        return
+    to = "person" if pred.target_person else "animal" if pred.target in ANIMALS else None
+    if to is None:
+        return
+    pred.say(f"{pred.written or pred.verb} {pred.object} to {pred.target}: gives it, played as {GIVING[to]}")
+    pred.verb = GIVING[to]
 
 
 def _comes(ph: Phrase) -> bool:
