@@ -417,6 +417,9 @@ COUNTERPARTS = {
     "差し出す": ("受け取る", "ウケトル", "recipient"),
     "受け取る": ("渡す", "ワタス", "source"), "貰う": ("渡す", "ワタス", "source"),
 }
+#: Verbs of receiving from someone face to face (their ``source`` stands in front): a leaving right after
+#: one leaves that person, turning away first (受け取って、走り去った).
+RECEIVING_VERBS = frozenset(v for v, (_, _, role) in COUNTERPARTS.items() if role == "source")
 
 #: Verbs done to a person by touching them: the person is the ``patient`` (close by), not an addressee.
 CONTACT_VERBS = frozenset(

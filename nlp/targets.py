@@ -39,7 +39,7 @@ from .bunsetsu import Phrase
 from .lexicon import (
     ANIMALS, AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
     FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
-    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, RISING_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, TELLING,
+    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECEIVING_VERBS, RECIPROCAL_VERBS, RISING_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, TELLING,
     THING_ANAPHORS, THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
@@ -416,8 +416,9 @@ def _follow_on(preds: list[Pred]) -> None:
             if handled:  # ドアを引いて開ける, ドアの前で立ち止まってノックする, 台車を押して運ぶ: the thing just handled
                 pred.object = handled
                 pred.say(f"{pred.verb} read as done to {handled}, the thing just handled")
-        if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
-                and pred.verb in LEAVING_VERBS):  # 花子に手を振って、立ち去る: leaves her, not towards her
+        if (prev is not None and pred.target is None and prev.target_person and pred.verb in LEAVING_VERBS
+                and (prev.target_role in DIRECTED or (prev.target_role == "source" and prev.verb in RECEIVING_VERBS))):
+            # 花子に手を振って、立ち去る, 太郎から受け取って、走り去る: leaves them, not towards them
             pred.target, pred.target_role, pred.target_person = prev.target, "source", True
         if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
                 and prev.target_side not in ALONGSIDE
@@ -539,6 +540,16 @@ def add_causers(specs: list[MotionSpec], constraints: list[Constraint], causers:
     return notes
 
 
+def _leaves_after(specs: list[MotionSpec], constraints: list[Constraint], motion_id: int, giver: str) -> None:
+    """花子は恥ずかしそうに受け取って、走り去った: the leaving that follows a receiving (motion ``motion_id``) with no
+    one named leaves the giver it faced (``source``), as :func:`_follow_on` reads one after a gesture."""
+    by_id = {s.id: s for s in specs}
+    nxt = next((by_id[c.second] for c in constraints if c.first == motion_id and c.relation == "serial"
+                and by_id[c.second].actor == by_id[motion_id].actor), None)
+    if nxt is not None and nxt.target is None and nxt.verb in LEAVING_VERBS:
+        specs[specs.index(nxt)] = replace(nxt, target=giver, target_role="source", target_person=True)
+
+
 def _actor_of(specs: list[MotionSpec], motion_id: int) -> str | None:
     return next((s.actor for s in specs if s.id == motion_id), None)
 
@@ -559,6 +570,7 @@ def time_catches(specs: list[MotionSpec], constraints: list[Constraint]) -> None
             constraints[k] = Constraint(a.id, b.id, "parallel", None, None, "composition", "counterpart")
             if b.target is None and a.actor is not None:
                 specs[specs.index(b)] = replace(b, target=a.actor, target_role="source", target_person=True)
+                _leaves_after(specs, constraints, b.id, a.actor)
             continue
         if not (a is not None and b is not None and c.relation == "serial" and a.actor != b.actor
                 and a.verb in THROWING_VERBS and b.verb in CATCHING_VERBS and b.object in (a.object, None)):

@@ -10,6 +10,7 @@ Only metadata is read: the two motions' targets and roles (``nlp.types.MotionSpe
 """
 from __future__ import annotations
 
+from text2anim.nlp.lexicon import RECEIVING_VERBS
 from text2anim.nlp.types import MotionSpec
 
 from .clips import C, ClipSource
@@ -26,9 +27,11 @@ SIDEWAYS = frozenset(("beside", "behind", "left", "right", "around", "under", "o
 
 
 def faces(spec: MotionSpec | None, person: str | None) -> bool:
-    """Does ``spec`` leave its actor facing ``person`` (a goal reached, a gesture or touch addressed to them)?"""
+    """Does ``spec`` leave its actor facing ``person`` (a goal reached, a gesture or touch addressed to them, a
+    thing received from them)?"""
     return (spec is not None and person is not None and spec.target == person and spec.target_person
-            and spec.target_role in FACING_ROLES and spec.target_side not in SIDEWAYS)
+            and (spec.target_role in FACING_ROLES or (spec.target_role == "source" and spec.verb in RECEIVING_VERBS))
+            and spec.target_side not in SIDEWAYS)
 
 
 def came_to(motions, spec: MotionSpec) -> bool:
