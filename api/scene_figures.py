@@ -42,6 +42,12 @@ free        the thing to the nearer wrist over the row (m; a thing not      > :d
 round       the turns the hips sweep round the thing over the row (laps:    >= 0.9 of ``laps``, never
             木の周りを三周歩く), and their nearest distance to its centre   within :data:`ROUND_M` of
                                                                            its side
+clear       the nearest the actor's hips come to the target's over the    > :data:`CLEAR_M`
+            row, over the floor (m): 受け取って、走り去った runs off, not
+            through the giver
+returns     the hips at the end of the row to where the actor started,    < :data:`RETURN_FRACTION`
+            over the floor, as a fraction of the farthest they went by
+            then (廊下を行ったり来たりした: back where they set off)
 =========== ============================================================== =========================
 """
 from __future__ import annotations
@@ -70,6 +76,7 @@ FREE_M = 0.3  # m: a thing further than this from both wrists is not in the hand
 ROUND_M = 0.2  # m between the hips and the side of a thing walked round
 TOGETHER_M = 2.0  # m: two who walk or dance together stay this close (walking apart ends metres away)
 CLEAR_M = 0.3  # m, hips to hips: closer, two bodies are inside each other
+RETURN_FRACTION = 0.5  # of the farthest distance gone: nearer the start than this has come back
 
 
 @dataclass(frozen=True)
@@ -441,9 +448,24 @@ def _round(anim, rows, props, c):
     return Figure("round", swept, "laps", swept >= 0.9 * c["laps"] and clear, f"nearest {near:.2f} m")
 
 
+def _clear(anim, rows, props, c):
+    _, m, f0, f1 = _played(anim, rows, c)
+    o = _motion(anim, c["target"])
+    n = min(f1 + 1, o.n_frames)
+    d = float(np.hypot(*(m.root_positions[f0:n] - o.root_positions[f0:n])[:, [0, 2]].T).min())
+    return Figure("clear", d, "m", d > CLEAR_M)
+
+
+def _returns(anim, rows, props, c):
+    _, m, _, f1 = _played(anim, rows, c)
+    away = np.hypot(*(m.root_positions[:f1 + 1] - m.root_positions[0])[:, [0, 2]].T)
+    ratio = float(away[-1] / max(away.max(), 1e-9))
+    return Figure("returns", ratio, "", ratio < RETURN_FRACTION, f"farthest {away.max():.2f} m")
+
+
 _MEASURES = {"approach": _approach, "faces": _faces, "sync": _sync, "holds": _holds, "launch": _launch,
              "catch": _catch, "seat": _seat, "present": _present, "together": _together, "leaves": _leaves,
              "behind": _behind, "reaches": _reaches,
              "apart": _apart, "at": _at, "hand_in_hand": _hand_in_hand, "rests": _rests, "free": _free,
-             "round": _round}
+             "round": _round, "returns": _returns, "clear": _clear}
 CHECKS = tuple(_MEASURES)

@@ -51,14 +51,16 @@ def run(items: list[dict]) -> tuple[list[tuple[dict, list, str | None]], list[fl
 
 
 def table(results) -> list[str]:
-    from text2anim.scene_figures import AT_M, CATCH_M, FACING_DEG, FREE_M, HANDS_M, HOLD_M, LAUNCH_S, REST_M, SYNC_S
+    from text2anim.scene_figures import (AT_M, CATCH_M, CLEAR_M, FACING_DEG, FREE_M, HANDS_M, HOLD_M, LAUNCH_S,
+                                         REST_M, RETURN_FRACTION, SYNC_S)
 
     limits = {"approach": "0.3-1.6 m", "faces": f"< {FACING_DEG:g} deg", "sync": f"< {SYNC_S:g} s",
               "holds": f"< {HOLD_M:g} m", "launch": f"<= {LAUNCH_S:g} s", "catch": f"< {CATCH_M:g} m",
               "seat": "< 0.2 m", "present": "yes", "together": f"< {SYNC_S:g} s", "leaves": "> 0.5 m",
               "behind": "> 120 deg", "reaches": "< 0.15 m", "apart": "> 0.5 m",
               "at": f"< {AT_M:g} m, facing it", "hand_in_hand": f"< {HANDS_M:g} m", "rests": f"< {REST_M:g} m",
-              "free": f"> {FREE_M:g} m", "round": ">= 0.9 laps"}
+              "free": f"> {FREE_M:g} m", "round": ">= 0.9 laps", "returns": f"< {RETURN_FRACTION:g} of the way",
+              "clear": f"> {CLEAR_M:g} m"}
     by: dict[str, list] = {}
     for item, figs, err in results:
         for c in item.get("scene", []):

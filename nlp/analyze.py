@@ -9,7 +9,7 @@ from .dependency import link_heads
 from .errors import NLPError
 from .lexicon import LOCOMOTION_VERBS
 from .motions import annotate
-from .targets import add_counterparts, time_catches
+from .targets import add_causers, add_counterparts, time_catches
 from .tokens import OffsetMap, normalize, tokenize
 from .types import Analysis, Constraint, MotionSpec
 
@@ -55,6 +55,7 @@ def analyze(text: str) -> Analysis:
         for p in motions
     ]
     constraints = list(constraints)
+    notes.extend(add_causers(specs, constraints, {p.id: p.causer for p in motions if p.causer}))
     _add_co_actors(specs, constraints, {p.id: p.co_actors for p in motions if p.co_actors})
     notes.extend(add_counterparts(specs, constraints))
     time_catches(specs, constraints)

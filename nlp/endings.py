@@ -69,5 +69,6 @@ NOT_MOTION = {
     "prop": "says what the next motion is done with (杖をついて歩く: the cane in hand)",
     "companion": "says who goes along on the next motion (犬を連れて散歩する: the dog walks too)",
     "passive": "done to its subject by someone else (花子に言われた, 先生に呼ばれた)",
+    "landing": "the landing of the jump just before it (ジャンプして、着地した: one jump, which lands)",
     "unseen": "done with the face alone (目を覚ます), which is not animated: said in the notes",
 }

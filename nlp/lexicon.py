@@ -239,7 +239,7 @@ TAKING_ALONG = frozenset("連れる 伴う".split())
 LEADING_BY_HAND = frozenset("引く 繋ぐ つなぐ 取る 握る".split())
 
 #: Animals among the persons: 鳴く is what they do (太郎が鳴く is 泣く, a typo; 犬が鳴く is not).
-ANIMALS = frozenset("犬 猫 子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣".split())
+ANIMALS = frozenset("犬 猫 子犬 子猫 馬 鳥 熊 クマ 猿 サル うさぎ ウサギ パンダ 怪獣 鳩 ハト 金魚 小鳥".split())
 
 #: Script headings that open a line like a speaker label (ト書き：花子が座る) but name no
 #: one: the line is a stage direction, its actor is found as in any other sentence.
@@ -340,6 +340,17 @@ LOWERING_VERBS = frozenset(
     "しゃがむ しゃがみ込む 屈む かがむ 転ぶ 倒れる ひざまずく 跪く 伏せる 寝転ぶ 横になる 座り込む うずくまる".split()
 )
 
+#: Verbs of a jump: 着地する right after one of them by the same actor is that jump's landing, no second jump.
+JUMP_VERBS = frozenset(
+    "ジャンプする 跳ぶ 飛ぶ 跳ねる 飛び跳ねる 跳び上がる 飛び上がる 飛び降りる 飛び下りる 跳び降りる 跳び下りる 飛び乗る 飛び込む 飛び越える".split()
+)
+#: The verb of landing (the end of a jump).
+LANDING_VERB = "着地する"
+
+#: Verbs of rising: their を-seat is where they rise from (席を立つ); opening an actor's track with no seat
+#: named, they rise from one too (生徒たちは立ってお辞儀をした: a class rising, not a crouch).
+RISING_VERBS = frozenset("立つ 立ち上がる 起立する".split())
+
 #: Things sat on: rising from one (椅子から立つ) starts seated.
 SEATS = frozenset("椅子 いす イス チェア ソファ ソファー ベンチ 長椅子 席 座席 腰掛け 切り株".split())
 
@@ -396,12 +407,19 @@ THING_ANAPHORS = frozenset("それ これ あれ そいつ".split())
 
 #: A motion that hands a thing over implies its counterpart by the other person, played at the same time:
 #: verb (lemma) -> (the counterpart's verb, its reading, the role the first motion's target has).
+#: What the causer of a causative does (先生は生徒を前に進ませた: the teacher tells the student, who steps
+#: forward): the verb and its reading.
+TELLING = ("話す", "ハナス")
+
 COUNTERPARTS = {
     "渡す": ("受け取る", "ウケトル", "recipient"), "手渡す": ("受け取る", "ウケトル", "recipient"),
     "貸す": ("受け取る", "ウケトル", "recipient"), "返す": ("受け取る", "ウケトル", "recipient"),
     "差し出す": ("受け取る", "ウケトル", "recipient"),
     "受け取る": ("渡す", "ワタス", "source"), "貰う": ("渡す", "ワタス", "source"),
 }
+#: Verbs of receiving from someone face to face (their ``source`` stands in front): a leaving right after
+#: one leaves that person, turning away first (受け取って、走り去った).
+RECEIVING_VERBS = frozenset(v for v, (_, _, role) in COUNTERPARTS.items() if role == "source")
 
 #: Verbs done to a person by touching them: the person is the ``patient`` (close by), not an addressee.
 CONTACT_VERBS = frozenset(
@@ -421,6 +439,8 @@ CHASING_VERBS = frozenset("追いかける 追い掛ける 追う 追い付く �
 HAND_IN_HAND = frozenset("繋ぐ つなぐ 手を繋ぐ".split())
 
 #: Nouns before に / と that are no target (一緒に is "together", not a place).
+#: Nouns of how much, said bare before a verb (一口飲んで: a sip), never its object.
+AMOUNT_NOUNS = frozenset("一口 ひと口 ひとくち 一息 ひと息 一粒 ひと粒".split())
 NOT_TARGETS = frozenset("一緒 いっしょ 共 とも 互い 同時 一斉 列 一列 輪 最後 最初 順番 順 前 後 後ろ 横 上 下 右 左 そば 隣".split())
 
 #: Verbs that send a thing through the air to someone, and verbs that catch it: a catch of the thing another

@@ -14,8 +14,8 @@ from .actors import as_written, assign_actors, case_particle, noun_of, person_na
 from .bunsetsu import Phrase
 from .endings import ENDINGS
 from .lexicon import (
-    BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, HONOURED_TITLES, LIBRARY_VERBS, MANNER_TE, PLACE_OF_NOUNS,
-    REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS, WEATHER_VERBS,
+    AMOUNT_NOUNS, BODY_PARTS, CONNECTIVES, COUNTERS, HONORIFICS, HONOURED_TITLES, JUMP_VERBS, LANDING_VERB, LIBRARY_VERBS,
+    MANNER_TE, PLACE_OF_NOUNS, REPEAT_WORDS, SIDE_PREFIX, SPEED_WORDS, STEPPING_VERBS, WEATHER_VERBS,
 )
 from . import manners, mimetics
 from .phrases import read_phrases
@@ -57,8 +57,7 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
                 mimetic.append(ph)
             continue
         ph.pred = find_predicate(ph, nxt)
-        opens = i == 0 or phrases[i - 1].sentence != ph.sentence
-        ph.role = "predicate" if ph.pred else _noun_role(ph, opens)
+        ph.role = "predicate" if ph.pred else _noun_role(ph, _opens_sentence(phrases, i))
     _bare_objects(phrases)
     _assign_groups(phrases)
     _mark_manner(phrases)
@@ -71,6 +70,8 @@ def annotate(phrases: list[Phrase], notes: list[str] | None = None) -> tuple[lis
     if notes is not None:
         notes.extend(said)
     assign_actors(phrases)
+    _mark_causatives(phrases)
+    _mark_landings(preds)
     mark_ways(phrases)
     cues = _attach_modifiers(phrases, values, styled)
     for pred in preds:
@@ -164,16 +165,21 @@ def _bare_objects(phrases: list[Phrase]) -> None:
         if ph.role or not nxt.pred or nxt.sentence != ph.sentence or ph.has_comma():
             continue
         toks = [t for t in ph.tokens if t.pos1 != "補助記号"]
+        pointed = bool(toks) and toks[0].pos1 == "連体詞"  # そのボール取って: the ball, この / その / あの before it
+        while toks[:1] and toks[0].pos1 == "連体詞":
+            toks = toks[1:]
         if not toks or any(t.pos1 not in ("名詞", "接頭辞", "接尾辞") for t in toks):
             continue
         last = toks[-1]
         if last.pos1 != "名詞" or last.pos3 == "副詞可能" or last.pos2 == "数詞" or last.is_number:
             continue
+        if ph.key in AMOUNT_NOUNS:
+            continue  # 一口飲んで: how much, not what
         if ph.key in PLACE_OF_NOUNS and k and phrases[k - 1].key.endswith("の"):
             continue  # 花子のとこ行く: where she is, its へ dropped (nlp.targets), not a person
-        if person_name(ph):
-            ph.role = "actor"  # 太郎歩く: が dropped too
-        elif not is_name(ph.key):
+        if person_name(ph) and not (pointed and toks[-1].pos3 != "人名"):
+            ph.role = "actor"  # 太郎歩く: が dropped too; この本読んで: 本 is no one's name here
+        elif pointed or not is_name(ph.key):
             ph.role = "body part" if noun_of(ph) in BODY_PARTS else "object"
 
 
@@ -292,14 +298,49 @@ def _mark_passives(phrases: list[Phrase]) -> None:
     に-person: an action)."""
     for i, ph in enumerate(phrases):
         pred = ph.pred
-        if pred is None or not pred.motion or not any(
-                t.pos1 == "助動詞" and t.lemma in ("れる", "られる") for t in ph.tokens):
-            continue
+        auxes = {t.lemma for t in ph.tokens if t.pos1 == "助動詞"}
+        if pred is None or not pred.motion or not auxes & {"れる", "られる"} or auxes & {"せる", "させる"}:
+            continue  # 母に野菜を食べさせられた: made to eat, she eats (the causative passive)
         by = next((q for q in reversed(phrases[:i]) if q.group == ph.group and q.pred is None
                    and case_particle(q) == "に" and person_name(q)), None)
         if by is not None and not _honoured_before(phrases, i):
             pred.reason = "passive"
             pred.say(f"{by.key}{pred.written or pred.verb} (passive): done by {person_name(by)}, not animated")
+
+
+def _mark_causatives(phrases: list[Phrase]) -> None:
+    """先生は生徒を前に進ませた, 母は子供に野菜を食べさせた: a verb with the causative せる / させる (not
+    made passive: 歩かされた is the subject's own walk) is done by the person its clause makes do it (the を-
+    or に-person before it, not the actor): that person becomes its actor, and the actor its ``causer``
+    (:func:`analyze.add_causers` gives the causer the telling); the person is no object or target of it."""
+    for i, ph in enumerate(phrases):
+        pred = ph.pred
+        auxes = [t.lemma for t in ph.tokens if t.pos1 == "助動詞"]
+        if pred is None or not pred.motion or not {"せる", "させる"} & set(auxes) or {"れる", "られる"} & set(auxes):
+            continue
+        made = next((q for q in reversed(phrases[:i]) if q.group == ph.group and q.pred is None
+                     and case_particle(q) in ("を", "に") and person_name(q) not in (None, pred.actor)), None)
+        if made is None:
+            continue
+        made.role = "causee"
+        pred.causer, pred.actor = pred.actor, person_name(made)
+        pred.say(f"{''.join(t.surface for t in ph.tokens if t.pos1 in ('動詞', '助動詞'))} (causative): "
+                 f"{pred.actor} {pred.written or pred.verb}, told by {pred.causer}")
+
+
+def _mark_landings(preds: list[Pred]) -> None:
+    """ジャンプして、着地した: 着地する right after a jump of the same actor is that jump's landing (the jump
+    clip lands), no second jump; 着地した alone is played as the jump that lands (near.json)."""
+    last: dict[str | None, Pred] = {}
+    for pred in preds:
+        if not pred.motion:
+            continue
+        before = last.get(pred.actor)
+        if pred.verb == LANDING_VERB and before is not None and before.verb in JUMP_VERBS:
+            pred.reason = "landing"
+            pred.say(f"{pred.written or pred.verb}: the landing of {before.written or before.verb}, one jump")
+            continue
+        last[pred.actor] = pred
 
 
 def _honoured_before(phrases: list[Phrase], i: int) -> bool:

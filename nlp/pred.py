@@ -20,6 +20,7 @@ class Pred:
     negated: bool = False
     actor: str | None = None
     co_actors: tuple[str, ...] = ()  # 太郎と花子が: the others who perform it too
+    causer: str | None = None  # 先生は生徒を進ませた: who makes the actor (生徒) do it (先生)
     object: str | None = None
     body_part: str | None = None
     repeat: int = 1

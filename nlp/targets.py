@@ -37,10 +37,10 @@ from functools import lru_cache
 from .actors import as_written, noun_of, person_name, side_after_no
 from .bunsetsu import Phrase
 from .lexicon import (
-    AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
+    ANIMALS, AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
     FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
-    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECIPROCAL_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, THING_ANAPHORS,
-    THROWING_VERBS, TRANSFER_VERBS,
+    PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECEIVING_VERBS, RECIPROCAL_VERBS, RISING_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, TELLING,
+    THING_ANAPHORS, THROWING_VERBS, TRANSFER_VERBS,
 )
 from .persons import refers, words_of
 from .phrases import body_nouns, reread
@@ -52,8 +52,6 @@ from .types import Constraint, MotionSpec
 TARGET_PARTICLES = frozenset("に へ まで から と".split())
 #: Verbs whose を-place is where the actor leaves from (店を出る).
 LEAVING_VERBS = frozenset("出る 離れる 去る 別れる 帰る 降りる 下りる 立ち去る 出て行く 走り去る 歩き去る 駆け去る 逃げ去る 逃げ出す".split())
-#: Verbs of rising: their を-seat is where they rise from (席を立つ).
-RISING_VERBS = frozenset("立つ 立ち上がる".split())
 #: The て-forms that may say a way or a facing, no motion of their own.
 _WAY_TE = FACING_VERBS | DIRECTION_TE
 #: Roles a person keeps as the addressee of a following gesture (近づいて、お辞儀する).
@@ -101,6 +99,7 @@ def attach_targets(phrases: list[Phrase]) -> None:
         if pred.motion:
             done.append(pred)
             _settle(pred, pending, actors)
+            _giving(pred)
             if pred.target is None and pred.verb in LOCOMOTION_VERBS and (_comes(ph) or pred.verb in COMING_VERBS):
                 _come_to(pred, phrases, i)
         pending = []
@@ -113,6 +112,23 @@ COMING_VERBS = frozenset("来る 駆けつける 駆け付ける 駆け寄る �
 PARTING_VERBS = frozenset("別れる 分かれる".split())
 #: Verbs of running away: with no one named, from whoever last came to the actor (熊が現れた。少年は逃げ出した).
 FLEEING_VERBS = frozenset("逃げる 逃げ出す 逃げ去る".split())
+
+
+#: 上げる with a thing sent to someone is giving it (花子に本をあげた: hands it over; 鳩にパンをあげた: puts it
+#: down for the animal), no raised hand: what it is played as.
+GIVING = {"person": "渡す", "animal": "置く"}
+
+
+def _giving(pred: Pred) -> None:
+    """花子に本をあげた, 鳩にパンをあげた: 上げる with a thing (no part of the body) sent to a person or an animal
+    gives it (:data:`GIVING`); said in the note."""
+    if pred.verb != "上げる" or pred.object is None or pred.object in BODY_PARTS or pred.target is None:
+        return
+    to = "person" if pred.target_person else "animal" if pred.target in ANIMALS else None
+    if to is None:
+        return
+    pred.say(f"{pred.written or pred.verb} {pred.object} to {pred.target}: gives it, played as {GIVING[to]}")
+    pred.verb = GIVING[to]
 
 
 def _comes(ph: Phrase) -> bool:
@@ -400,8 +416,9 @@ def _follow_on(preds: list[Pred]) -> None:
             if handled:  # ドアを引いて開ける, ドアの前で立ち止まってノックする, 台車を押して運ぶ: the thing just handled
                 pred.object = handled
                 pred.say(f"{pred.verb} read as done to {handled}, the thing just handled")
-        if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
-                and pred.verb in LEAVING_VERBS):  # 花子に手を振って、立ち去る: leaves her, not towards her
+        if (prev is not None and pred.target is None and prev.target_person and pred.verb in LEAVING_VERBS
+                and (prev.target_role in DIRECTED or (prev.target_role == "source" and prev.verb in RECEIVING_VERBS))):
+            # 花子に手を振って、立ち去る, 太郎から受け取って、走り去る: leaves them, not towards them
             pred.target, pred.target_role, pred.target_person = prev.target, "source", True
         if (prev is not None and pred.target is None and prev.target_role in DIRECTED and prev.target_person
                 and prev.target_side not in ALONGSIDE
@@ -496,6 +513,43 @@ def add_counterparts(specs: list[MotionSpec], constraints: list[Constraint]) -> 
     return notes
 
 
+def add_causers(specs: list[MotionSpec], constraints: list[Constraint], causers: dict[int, str]) -> list[str]:
+    """先生は生徒を前に進ませた: the causer of a causative motion (``causers``: motion id -> who makes its actor do
+    it) tells its actor first (:data:`lexicon.TELLING`, addressed to them, the motion's span), and the motion
+    follows the telling (a serial link with overlap, cue ``causative``); what led into the motion leads into
+    the telling. Returns the notes."""
+    notes: list[str] = []
+    next_id = max((s.id for s in specs), default=0) + 1
+    by_id = {s.id: s for s in specs}
+    for motion_id, causer in causers.items():
+        spec = by_id[motion_id]
+        if spec.target is None and spec.verb in LOCOMOTION_VERBS:  # 生徒を前に進ませた: up to the teacher
+            at = specs.index(spec)
+            spec = specs[at] = replace(spec, target=causer, target_role="goal", target_person=True)
+        verb, reading = TELLING
+        specs.append(replace(spec, id=next_id, actor=causer, verb=verb, written=verb, reading=reading, object=None,
+                             body_part=None, phrase="", target=spec.actor, target_role="addressee", target_side=None,
+                             target_person=True, repeat=1, duration=None, delay=None, manner=None, style=None,
+                             intensity=1.0))
+        for k, c in enumerate(constraints):
+            if c.second == motion_id:
+                constraints[k] = replace(c, second=next_id)
+        constraints.append(Constraint(next_id, motion_id, "serial", True, None, "transition", "causative"))
+        notes.append(f"{causer} {verb}: {causer} makes {spec.actor} {spec.written or spec.verb}")
+        next_id += 1
+    return notes
+
+
+def _leaves_after(specs: list[MotionSpec], constraints: list[Constraint], motion_id: int, giver: str) -> None:
+    """花子は恥ずかしそうに受け取って、走り去った: the leaving that follows a receiving (motion ``motion_id``) with no
+    one named leaves the giver it faced (``source``), as :func:`_follow_on` reads one after a gesture."""
+    by_id = {s.id: s for s in specs}
+    nxt = next((by_id[c.second] for c in constraints if c.first == motion_id and c.relation == "serial"
+                and by_id[c.second].actor == by_id[motion_id].actor), None)
+    if nxt is not None and nxt.target is None and nxt.verb in LEAVING_VERBS:
+        specs[specs.index(nxt)] = replace(nxt, target=giver, target_role="source", target_person=True)
+
+
 def _actor_of(specs: list[MotionSpec], motion_id: int) -> str | None:
     return next((s.actor for s in specs if s.id == motion_id), None)
 
@@ -516,6 +570,7 @@ def time_catches(specs: list[MotionSpec], constraints: list[Constraint]) -> None
             constraints[k] = Constraint(a.id, b.id, "parallel", None, None, "composition", "counterpart")
             if b.target is None and a.actor is not None:
                 specs[specs.index(b)] = replace(b, target=a.actor, target_role="source", target_person=True)
+                _leaves_after(specs, constraints, b.id, a.actor)
             continue
         if not (a is not None and b is not None and c.relation == "serial" and a.actor != b.actor
                 and a.verb in THROWING_VERBS and b.verb in CATCHING_VERBS and b.object in (a.object, None)):

@@ -49,6 +49,9 @@ FACE_TO_FACE = frozenset(
     """握手する ハイタッチする 抱き合う 話す 会話する 話し合う お辞儀する 挨拶する 喧嘩する 戦う キスする 見つめ合う
     乾杯する 向かい合う 組み合う 渡す 受け取る 振り合う 手を振り合う 話する おしゃべりする 顔を見合わせる 見合わせる""".split()
 )
+#: Verbs of taking someone by the hand: when that person then goes along beside the actor (手を引いて走った), the
+#: hand is taken at their side, not face to face.
+LEADING_HAND = frozenset("繋ぐ つなぐ 手を繋ぐ".split())
 #: The hand (or hands) each verb of two people's hands meeting makes its contact with: the scene puts the
 #: two so those hands meet at the instant of contact.
 HANDS = {"握手する": "right_hand", "ハイタッチする": "right_hand", "渡す": "right_hand", "手渡す": "right_hand",
@@ -142,5 +145,8 @@ def _shape(r: Element, later: Sequence[Element]) -> tuple[str, float, float]:
     if role == "source" and r.verb not in HANDS:  # 離れる: where it starts; 受け取る from someone: face them
         return "away", APPROACH, r.start
     if role == "partner" and r.verb not in FACE_TO_FACE and r.target_side != "front":  # 向かい合って: face
+        return "beside", BESIDE, mid
+    if r.verb in LEADING_HAND and any(x.actor == r.target and x.target == r.actor and x.target_side == "beside"
+                                      for x in later):  # 太郎の手を引いて走った: by his side, to run on together
         return "beside", BESIDE, mid
     return "face", DISTANCES.get(r.verb, BY_ROLE.get(role or "", APPROACH)), mid

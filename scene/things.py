@@ -536,9 +536,11 @@ def _reaches_body(p: _Path, r: Element, motions, after: int) -> int | None:
 
 
 def _catcher(p: _Path, r: Element, rows, motions, after: int, fps: float):
-    """The catch that ends a throw: (who, frame, where the hands meet the thing), or ``None``."""
+    """The catch that ends a throw: (who, frame, where the hands meet the thing), or ``None``. The thrower's own
+    catch after the throw ends it too (高く投げて、自分でキャッチした: the ball goes up and comes down to them)."""
     for q in rows:
-        if q.verb in CATCH and q.actor != r.actor and q.actor in motions and q.object in (p.name, None):
+        if (q.verb in CATCH and q.actor in motions and q.object in (p.name, None)
+                and (q.actor != r.actor or q.start >= r.start)):
             m = motions[q.actor]
             f0, f1 = _frames(q, fps, m.n_frames)
             both = bodies.hands(m)

@@ -13,7 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Generic
 
-from text2anim.nlp.lexicon import SEATS
+from text2anim.nlp.lexicon import RISING_VERBS, SEATS
 from text2anim.nlp.types import Analysis, Constraint, MotionSpec
 
 from .clips import C, ClipSource
@@ -69,13 +69,20 @@ def _sequences(table: TimeTable) -> dict[str | None, list[Element]]:
     return out
 
 
+def _from_a_seat(opening: MotionSpec) -> bool:
+    """Does an actor's first motion rise from a seat: one named (椅子から立った: ``lexicon.SEATS``), or none, by a
+    verb of rising (生徒たちは立ってお辞儀をした: ``lexicon.RISING_VERBS``; 起き上がる rises from lying)?"""
+    return ((opening.target_role == "source" and opening.target in SEATS)
+            or (opening.verb in RISING_VERBS and opening.target is None))
+
+
 def _choose(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], source: ClipSource[C]) -> dict[int, C]:
     """Motion id -> a clip per whole-body motion, the postures meeting where the candidates allow.
 
     A motion's candidates are those of its search that are whole-body or partial
     and looping or not as its first-pass clip (so the time table keeps its shape),
-    the first pass's pick (a variant, :mod:`variants`) first. An actor whose first motion leaves a seat
-    (椅子から立った: ``lexicon.SEATS``) starts seated: it rises from the chair, not from a crouch.
+    the first pass's pick (a variant, :mod:`variants`) first. An actor whose first motion rises from a seat
+    (:func:`_from_a_seat`) starts seated: it rises from the chair, not from a crouch.
     """
     specs = {m.id: m for m in analysis.motions}
     picked: dict[int, C] = {}
@@ -93,8 +100,7 @@ def _choose(analysis: Analysis, table: TimeTable, chosen: Mapping[int, C], sourc
             cands[e.id] = [first] + same
             prefer = first.character
         opening = specs.get(seq[0].id) if seq else None
-        initial = "seated" if opening is not None and opening.target_role == "source" and opening.target in SEATS \
-            else None
+        initial = "seated" if opening is not None and _from_a_seat(opening) else None
         picked.update({k: v for k, v in choose(cands, initial=initial).items() if v is not None})
     return picked
 

@@ -44,6 +44,7 @@ BRIDGE_VERBS: dict[str, tuple[str, ...]] = {
     "lying": ("横になる", "寝転ぶ", "寝る"),
 }
 POSTURES = tuple(BRIDGE_VERBS)
+LYING = "lying"
 #: At most this many clips are inserted between two motions (seated -> crouched takes two:
 #: stand up, crouch down).
 MAX_BRIDGE = 2
@@ -56,9 +57,13 @@ def _mismatch(prev_end: str | None, start: str) -> int:
 
 def _step(before: str | None, clip: ClipMeta) -> tuple[int, str | None]:
     """``(mismatch, posture after)`` of playing ``clip`` in the posture ``before``: a standing action
-    that can be played seated or kneeling (:func:`seated.plays_in`) keeps that posture and meets it."""
+    that can be played seated or kneeling (:func:`seated.plays_in`) keeps that posture and meets it. An
+    action done lying (``read_lying``) needs the actor lying already: in an unknown posture it is a
+    mismatch (本を読んで、立ち上がった reads seated and stands up, not on the floor and gets up)."""
     if before in KEPT and clip.start_posture != before and plays_in(clip, before):
         return 0, before
+    if before is None and clip.start_posture == clip.end_posture == LYING:
+        return 1, LYING
     return _mismatch(before, clip.start_posture), clip.end_posture
 
 
