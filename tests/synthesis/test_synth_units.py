@@ -67,6 +67,25 @@ def test_slerp_ends_and_sign_independence():
     assert np.allclose((half.inv() * Rotation.from_quat(slerp(qa, qb, 0.5))).magnitude(), 0, atol=1e-9)
 
 
+def test_slerp_rows_of_weight_zero_are_the_formula_bit_for_bit():
+    # rows of weight 0 skip B's logarithm (blend.slerp): the same bits as A * exp(w log(A^-1 B)) by scipy's
+    # Rotation, also where A has components that are zero (+0 and -0: their signs are the logarithm's)
+    rng = np.random.default_rng(7)
+    qa = Rotation.random(400, random_state=8).as_quat()
+    qb = Rotation.random(400, random_state=9).as_quat()
+    qa[:60] = [0.0, 0.0, 0.0, 1.0]
+    qa[60:90] = [-0.0, 0.0, -0.0, 1.0]
+    qa[90:120, 1] = 0.0
+    qb[120:140] = qa[120:140]
+    w = rng.uniform(size=400)
+    w[rng.uniform(size=400) < 0.6] = 0.0
+    ra, rb = Rotation.from_quat(qa), Rotation.from_quat(qb)
+    ref = (ra * Rotation.from_rotvec((ra.inv() * rb).as_rotvec() * w[:, None])).as_quat()
+    assert slerp(qa, qb, w).tobytes() == ref.tobytes()
+    held = w == 0.0
+    assert slerp(qa[held], qb[held], 0.0).tobytes() == ref[held].tobytes()
+
+
 def test_ramp_profiles():
     for profile in ("linear", "smooth"):
         w = ramp(20, profile)
