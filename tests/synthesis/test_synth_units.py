@@ -12,7 +12,6 @@ from text2anim.core.contacts import FootContacts
 from text2anim.core.ground import Rigid, headings, match, wrap_angle
 from text2anim.synthesis.join.footlock import plan_locks, planted_targets
 from text2anim.core.motion import Motion
-from text2anim.synthesis.tracks import Track
 from text2anim.core.skeleton import Skeleton
 from text2anim.synthesis.constraint.switching import find_switch, planted_for
 from text2anim.synthesis.join.gait import steps
