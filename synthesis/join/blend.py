@@ -64,25 +64,9 @@ def slerp(qa: np.ndarray, qb: np.ndarray, w) -> np.ndarray:
         return np.zeros(shape)
     # A * exp(w log(A^-1 B)) by scipy's own kernels, without Rotation objects (the same bits, less overhead)
     ra = rk.from_quat(np.broadcast_to(qa, shape))
-    wf = w.reshape(-1)
-    # a row of weight 0 (a blend's held side, a whole frame sampled) is A composed with exp(0) = the
-    # identity: the same bits without B's logarithm where no component of A is zero (a zero's sign is
-    # the only thing the logarithm's could change)
-    held = (wf == 0.0) & (ra != 0.0).all(axis=1)
-    if held.all():
-        return rk.compose(ra, _IDENTITY).reshape(shape)
-    out = np.empty_like(ra)
-    out[held] = rk.compose(ra[held], _IDENTITY)
-    live = ~held
-    ra = ra[live]
-    rb = rk.from_quat(np.broadcast_to(qb, shape).reshape(-1, 4)[live])
+    rb = rk.from_quat(np.broadcast_to(qb, shape))
     rel = rk.as_rotvec(rk.compose(rk.inverse(ra), rb))
-    out[live] = rk.as_quat(rk.compose(ra, rk.from_rotvec(rel * wf[live, None])))
-    return out.reshape(shape)
-
-
-#: exp(0): the identity rotation as a quaternion stack of one (x, y, z, w)
-_IDENTITY = np.array([[0.0, 0.0, 0.0, 1.0]])
+    return rk.as_quat(rk.compose(ra, rk.from_rotvec(rel * w.reshape(-1, 1)))).reshape(shape)
 
 
 def lerp(a: np.ndarray, b: np.ndarray, w) -> np.ndarray:

@@ -66,9 +66,9 @@ def test_slerp_ends_and_sign_independence():
     assert np.allclose((half.inv() * Rotation.from_quat(slerp(qa, qb, 0.5))).magnitude(), 0, atol=1e-9)
 
 
-def test_slerp_rows_of_weight_zero_are_the_formula_bit_for_bit():
-    # rows of weight 0 skip B's logarithm (blend.slerp): the same bits as A * exp(w log(A^-1 B)) by scipy's
-    # Rotation, also where A has components that are zero (+0 and -0: their signs are the logarithm's)
+def test_slerp_is_the_formula_bit_for_bit():
+    # A * exp(w log(A^-1 B)) by scipy's Rotation, the same bits: also on rows of weight 0 (+0 and -0) and
+    # where A has components that are zero (+0 and -0), whose signs the logarithm decides
     rng = np.random.default_rng(7)
     qa = Rotation.random(400, random_state=8).as_quat()
     qb = Rotation.random(400, random_state=9).as_quat()
@@ -78,6 +78,7 @@ def test_slerp_rows_of_weight_zero_are_the_formula_bit_for_bit():
     qb[120:140] = qa[120:140]
     w = rng.uniform(size=400)
     w[rng.uniform(size=400) < 0.6] = 0.0
+    w[:120:7] = -0.0
     ra, rb = Rotation.from_quat(qa), Rotation.from_quat(qb)
     ref = (ra * Rotation.from_rotvec((ra.inv() * rb).as_rotvec() * w[:, None])).as_quat()
     assert slerp(qa, qb, w).tobytes() == ref.tobytes()
