@@ -52,8 +52,9 @@ of this engine keep that from fighting the blend:
   lock hands over without bending a leg inside the next core;
 - a join whose blend would still skate is rendered again — without the step,
   with S0's weight eased to zero slope at its ends, placed by the roots
-  mid-blend (motion–motion), then with the next-best intervals of eq. (10) —
-  and the first clean rendering is kept (``fallback`` in the report).
+  mid-blend (motion–motion), then with the next-best intervals of eq. (10),
+  each eased and without the step — and the first clean rendering is kept
+  (``fallback`` in the report).
 
 **Room** (choice where the paper assumes suitable times): when the given start
 time leaves the lower-body blend less than :data:`MIN_ROOM` s (for a

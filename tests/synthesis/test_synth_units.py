@@ -12,7 +12,6 @@ from text2anim.core.contacts import FootContacts
 from text2anim.core.ground import Rigid, headings, match, wrap_angle
 from text2anim.synthesis.join.footlock import plan_locks, planted_targets
 from text2anim.core.motion import Motion
-from text2anim.synthesis.tracks import Track
 from text2anim.core.skeleton import Skeleton
 from text2anim.synthesis.constraint.switching import find_switch, planted_for
 from text2anim.synthesis.join.gait import steps
@@ -65,6 +64,26 @@ def test_slerp_ends_and_sign_independence():
     # -q is the same rotation: the blend must not take the long way round
     half = Rotation.from_quat(slerp(qa, -qb, 0.5))
     assert np.allclose((half.inv() * Rotation.from_quat(slerp(qa, qb, 0.5))).magnitude(), 0, atol=1e-9)
+
+
+def test_slerp_is_the_formula_bit_for_bit():
+    # A * exp(w log(A^-1 B)) by scipy's Rotation, the same bits: also on rows of weight 0 (+0 and -0) and
+    # where A has components that are zero (+0 and -0), whose signs the logarithm decides
+    rng = np.random.default_rng(7)
+    qa = Rotation.random(400, random_state=8).as_quat()
+    qb = Rotation.random(400, random_state=9).as_quat()
+    qa[:60] = [0.0, 0.0, 0.0, 1.0]
+    qa[60:90] = [-0.0, 0.0, -0.0, 1.0]
+    qa[90:120, 1] = 0.0
+    qb[120:140] = qa[120:140]
+    w = rng.uniform(size=400)
+    w[rng.uniform(size=400) < 0.6] = 0.0
+    w[:120:7] = -0.0
+    ra, rb = Rotation.from_quat(qa), Rotation.from_quat(qb)
+    ref = (ra * Rotation.from_rotvec((ra.inv() * rb).as_rotvec() * w[:, None])).as_quat()
+    assert slerp(qa, qb, w).tobytes() == ref.tobytes()
+    held = w == 0.0
+    assert slerp(qa[held], qb[held], 0.0).tobytes() == ref[held].tobytes()
 
 
 def test_ramp_profiles():
