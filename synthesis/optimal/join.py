@@ -44,16 +44,11 @@ KEPT_BYTES = 128 * 2 ** 20
 
 
 def _weight(made: tuple) -> int:
-    """Bytes of a kept join's frames: its rendering's (copied for it), and twice its plan's placed and adapted
-    motions' (their poses, computed as the track is measured, are kept with them; poses derived from the clip's
-    share most of theirs: 34 MB measured for the 32-motion text's 93 joins, 55 MB so counted). The clip itself is
-    the database's and the preparations' (:data:`synthesis.join.timing.PREPARED`)."""
+    """Bytes of a kept join's frames (:func:`_kept`): its rendering's, and its plan's placed and adapted motions'
+    (the clip itself is the database's and the preparations', :data:`synthesis.join.timing.PREPARED`)."""
     plan, rendered = made[0], made[3]
-    total = 0 if rendered is None else rendered.rotations.nbytes + rendered.root_positions.nbytes
-    if isinstance(plan, Plan):
-        total += sum(2 * (m.rotations.nbytes + m.root_positions.nbytes) for m in (plan.placed, plan.adapted)
-                     if m is not None)
-    return total
+    motions = [rendered] + ([plan.placed, plan.adapted] if isinstance(plan, Plan) else [])
+    return sum(m.rotations.nbytes + m.root_positions.nbytes for m in motions if m is not None)
 
 
 KEPT_JOINS: Kept[tuple] = Kept(1024, KEPT_BYTES, _weight)
@@ -123,20 +118,28 @@ def _made(state: TrackState, inc: Placed, fps: float, weights: Weights, lock: bo
 
 
 def _kept(made: tuple) -> tuple:
-    """A made join as kept: its rendering's frames copied out of the track's (a slice of the track would keep the
-    whole track alive), the rest as it is (a plan holds the clips' own motions)."""
+    """A made join as kept: its motions' frames alone (the rendering's copied out of the track's: a slice of the
+    track would keep the whole track alive; the plan's placed and adapted motions without what was computed from
+    them, their poses and contacts: 61 of the 91 MB the 32-motion text's joins held), the rest as it is."""
     plan, inc, carry, rendered, c0, locks, window = made
     if rendered is not None:
         rendered = Motion(rendered.skeleton, rendered.fps, rendered.root_positions.copy(), rendered.rotations.copy(),
                           None if rendered.translations is None else rendered.translations.copy())
+    if isinstance(plan, Plan):
+        plan = replace(plan, placed=_bare(plan.placed), adapted=None if plan.adapted is None else _bare(plan.adapted))
     return plan, inc, carry, rendered, c0, locks, window
+
+
+def _bare(m: Motion) -> Motion:
+    """``m``'s frames (read-only arrays, shared) as a motion of its own, its caches empty."""
+    return Motion(m.skeleton, m.fps, m.root_positions, m.rotations, m.translations)
 
 
 def _relabelled(kept: tuple | None, labels: tuple[int, int], inc: Placed) -> tuple | None:
     """A kept join (:data:`KEPT_JOINS`) for the element ``inc`` after the element labelled ``labels[0]``: as kept
     where it was made for the same labels; else with ``inc``'s element (the same but for its labels) where the plan
-    names no element (no warning, not a skip); else ``None`` (made again). Its rendering as a motion of its own, its
-    caches empty (:data:`KEPT_BYTES` counts its frames, not what a track computes from them)."""
+    names no element (no warning, not a skip); else ``None`` (made again). Its motions as motions of their own,
+    their caches empty: what a track computes from them is not kept with the join (:data:`KEPT_BYTES` counts frames)."""
     if kept is None:
         return None
     plan, was, carry, rendered, c0, locks, window, made_for = kept
@@ -145,10 +148,9 @@ def _relabelled(kept: tuple | None, labels: tuple[int, int], inc: Placed) -> tup
             return None
         was = replace(was, element=inc.element)
         plan = replace(plan, inc=was)
-    if rendered is not None:
-        rendered = Motion(rendered.skeleton, rendered.fps, rendered.root_positions, rendered.rotations,
-                          rendered.translations)
-    return plan, was, carry, rendered, c0, locks, window
+    if isinstance(plan, Plan):
+        plan = replace(plan, placed=_bare(plan.placed), adapted=None if plan.adapted is None else _bare(plan.adapted))
+    return plan, was, carry, None if rendered is None else _bare(rendered), c0, locks, window
 
 
 def _carried_delay(state: TrackState, prev: Placed, fps: float) -> int:
