@@ -22,6 +22,23 @@ import sys
 #: setting is kept. The Python API leaves its host process's threads as they are.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
+
+def _large_blocks_given_back() -> None:
+    """Have glibc's malloc map every block of 1 MB or more on its own, and unmap it when freed (``mallopt``'s
+    ``M_MMAP_THRESHOLD``, which also stops the threshold rising). By default it rises to a freed block's size,
+    up to 32 MB: a long text's frames, made and dropped join after join, then come from the heap, where what
+    the process keeps (its kept joins) holds the freed space around it. The 32-motion text peaked at 681 MB
+    so, 460 MB with the threshold held, and took 0.4 s less CPU. No-op without glibc."""
+    try:
+        import ctypes
+
+        ctypes.CDLL(None).mallopt(-3, 1 << 20)  # M_MMAP_THRESHOLD (glibc's malloc.h)
+    except (OSError, AttributeError):
+        pass
+
+
+_large_blocks_given_back()
+
 #: Sub-command modules, in the order ``--help`` lists them.
 COMMAND_MODULES = [
     "text2anim.cli.cmd_animate",
