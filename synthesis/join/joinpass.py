@@ -361,13 +361,14 @@ AHEAD = "after a failure"
 #: the last joins finished (:func:`finish_region`), by the value of everything the pass reads (:func:`_finished_key`):
 #: a warm process finishes the same joins again (the studio re-animates the whole text at every pause in typing,
 #: and only the joins the edit reached differ); each keeps the window's arrays (~0.2 MB), no kinematics, up to
-#: 64 MB of them (a story of 30 sentences: a bound by count would drop each join before the text came back to it)
+#: 32 MB of them (the 32-motion text's 93 joins: 20 MB; a bound by count dropped each join of a long text before
+#: the text came back to it)
 def _finished_bytes(kept: tuple) -> int:
     """Bytes of a kept finished join's arrays (frames and the retiming's source frames)."""
     return sum(a.nbytes for a in (*kept[:3], kept[4][3]) if a is not None)
 
 
-KEPT_FINISHED: Kept[tuple] = Kept(4096, 64 * 2 ** 20, _finished_bytes)
+KEPT_FINISHED: Kept[tuple] = Kept(4096, 32 * 2 ** 20, _finished_bytes)
 
 
 def finish_region(motion: Motion, region: Region, contacts, origin: int = 0,

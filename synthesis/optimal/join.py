@@ -40,7 +40,7 @@ def report_of(prev: Placed, inc: Placed, plan: Plan, fps: float, locks) -> JoinR
 #: lays the same joins again (the studio re-animates the whole text at every pause in typing, and a sentence typed
 #: at the end leaves every join before it as it was). Each keeps its plan and rendering, copied out of the track
 #: they were cut from; bounded by :data:`KEPT_BYTES`
-KEPT_BYTES = 128 * 2 ** 20
+KEPT_BYTES = 64 * 2 ** 20
 
 
 def _weight(made: tuple) -> int:
