@@ -360,6 +360,9 @@ SUPPORT_VERBS = frozenset(
     もたれる""".split()
 )
 
+#: Verbs of getting down off something: their から-thing held the body up before (台から飛び降りる, 馬から降りる).
+OFF_VERBS = frozenset("降りる 下りる 飛び降りる 飛び下りる 跳び降りる 跳び下りる 駆け下りる 駆け降りる 滑り降りる".split())
+
 #: Verbs that send a thing to a person (the に-person is the ``recipient``) or to a place (``destination``).
 TRANSFER_VERBS = frozenset(
     """渡す 手渡す 差し出す 投げる 放る 放り投げる 蹴る パスする 返す 見せる 上げる 送る 届ける 配る

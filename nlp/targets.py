@@ -38,7 +38,7 @@ from .actors import as_written, noun_of, person_name, side_after_no
 from .bunsetsu import Phrase
 from .lexicon import (
     ANIMALS, AROUND_NOUNS, BODY_PARTS, CATCHING_VERBS, CHASING_VERBS, CONTACT_VERBS, COUNTERPARTS, DIRECTION_TE, DOOR_VERBS,
-    FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS,
+    FACING_VERBS, HONORIFICS, LOCOMOTION_VERBS, LOWERING_VERBS, MOVING_VERBS, NOT_TARGETS, OFF_VERBS,
     PERSON_NOUNS, PLACE_OF_NOUNS, PLACING_VERBS, RECEIVING_VERBS, RECIPROCAL_VERBS, RISING_VERBS, SEATS, SIDE_NOUNS, SUPPORT_VERBS, TELLING,
     THING_ANAPHORS, THROWING_VERBS, TRANSFER_VERBS,
 )
@@ -302,12 +302,13 @@ def _sent_to(pred: Pred, person: str | None, done: list[Pred]) -> None:
 def _settle(pred: Pred, pending: list[Target], actors: set[str]) -> None:
     """The target of ``pred`` from the nouns before it in its clause (the nearest one with a role wins).
     A word taken for a person only because it can be a name, never an actor of the text, is a thing where
-    the body goes beside it or onto it, or a thing is put on it (机の前に座る, 岩に座る, 書類を机に置く: 机 and 岩
-    are also names)."""
+    the body goes beside it, onto it or down off it, or a thing is put on it (机の前に座る, 岩に座る, 台から飛び降りる,
+    書類を机に置く: 机, 岩 and 台 are also names)."""
     chosen: Target | None = None
     for t in reversed(pending):
         if t.person and not t.sure and t.name not in actors and (
-                t.side is not None or pred.verb in SUPPORT_VERBS or pred.verb in PLACING_VERBS):
+                t.side is not None or pred.verb in SUPPORT_VERBS or pred.verb in PLACING_VERBS
+                or (pred.verb in OFF_VERBS and t.particle == "から")):
             t.person = False
         role = _role(pred, t)
         if role is None or (t.person and t.name == pred.actor):
