@@ -65,41 +65,34 @@ def serve(db_url: str):
 def type_sentence(page, text: str) -> tuple[float, float | None] | None:
     """Select the box's text and type ``text`` over it; the keystroke-to-frame latencies (ms) of its first frame
     and of its finished animation's when a draft came first (else None), or None when it failed."""
-    n = page.evaluate("window.__studio.keyLatencies.length")
-    done = page.evaluate("window.__studio.finishLatencies.length")
-    page.focus("#text")
-    page.keyboard.press("Control+a")
-    page.keyboard.type(text, delay=KEY_MS)
-    page.wait_for_function("([n, text]) => window.__studio.text === text && !window.__studio.busy "
-                           "&& (window.__studio.keyLatencies.length > n || window.__studio.error)", arg=[n, text],
-                           timeout=60000)
-    if page.evaluate("window.__studio.error"):
-        print(f"{text}: {page.evaluate('window.__studio.error')}", file=sys.stderr)
-        return None
-    first = float(page.evaluate("window.__studio.keyLatencies[window.__studio.keyLatencies.length - 1]"))
-    finished = page.evaluate("([k]) => window.__studio.finishLatencies.length > k ? "
-                             "window.__studio.finishLatencies[window.__studio.finishLatencies.length - 1] : null", [done])
-    return first, finished
+    return _typed(page, "Control+a", text, text)
 
 
 def append_sentence(page, text: str, sentence: str) -> float | None:
     """Type ``sentence`` at the end of the box, which holds ``text``; keystroke to the first frame of the whole
     text's finished animation (ms; the first frame when no draft came first), or None when it failed."""
+    got = _typed(page, "Control+End", sentence, text + sentence)
+    return None if got is None else got[1] if got[1] is not None else got[0]
+
+
+def _typed(page, where: str, typed: str, whole: str) -> tuple[float, float | None] | None:
+    """Press ``where`` in the box (select all, or go to its end), type ``typed`` so that the box holds ``whole``;
+    the latencies of :func:`type_sentence`."""
     n = page.evaluate("window.__studio.keyLatencies.length")
     done = page.evaluate("window.__studio.finishLatencies.length")
     page.focus("#text")
-    page.keyboard.press("Control+End")
-    page.keyboard.type(sentence, delay=KEY_MS)
-    whole = text + sentence
+    page.keyboard.press(where)
+    page.keyboard.type(typed, delay=KEY_MS)
     page.wait_for_function("([n, text]) => window.__studio.text === text && !window.__studio.busy "
                            "&& (window.__studio.keyLatencies.length > n || window.__studio.error)", arg=[n, whole],
                            timeout=120000)
     if page.evaluate("window.__studio.error"):
         print(f"{whole}: {page.evaluate('window.__studio.error')}", file=sys.stderr)
         return None
-    return float(page.evaluate("([k]) => window.__studio.finishLatencies.length > k ? "
-                               "window.__studio.finishLatencies[window.__studio.finishLatencies.length - 1] : "
-                               "window.__studio.keyLatencies[window.__studio.keyLatencies.length - 1]", [done]))
+    first = float(page.evaluate("window.__studio.keyLatencies[window.__studio.keyLatencies.length - 1]"))
+    finished = page.evaluate("([k]) => window.__studio.finishLatencies.length > k ? "
+                             "window.__studio.finishLatencies[window.__studio.finishLatencies.length - 1] : null", [done])
+    return first, finished
 
 
 def story_reading(page) -> list[float]:
